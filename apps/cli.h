@@ -1,0 +1,33 @@
+// apps/cli.h — argument parsing for the shadowlab command (strict: every malformed value is
+// an InputError with one clear line).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/technique.h"
+
+namespace sl::cli {
+
+struct Args {
+  std::string command;
+  std::map<std::string, std::vector<std::string>> options;  // --key value (repeatable)
+  std::vector<std::string> flags;                           // --key without value
+  bool has(const std::string& key) const;
+  std::optional<std::string> value(const std::string& key) const;
+  std::string required(const std::string& key) const;
+};
+
+// Options that take a value and flags that do not, per command (unknown options are errors).
+Args parse(int argc, char** argv);
+
+int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
+void parseSize(const std::string& text, int& width, int& height);  // "800x600"
+// Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend.
+RenderParams renderParams(const Args& args);
+// Fails early (before any rendering) if `path` cannot be created: no partial outputs.
+void checkWritable(const std::string& path);
+
+}  // namespace sl::cli

@@ -1,0 +1,149 @@
+// apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures.
+// Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/cli.h"
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "core/metrics.h"
+#include "core/scene_library.h"
+#include "figures/figures.h"
+
+namespace sl {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kExitInputError = 2;
+constexpr int kExitGlError = 3;
+
+const char* kUsage = R"(shadowlab — classic shadow-map antialiasing, legacy OpenGL 1.x beside modern GLSL
+
+usage:
+  shadowlab list                                   techniques, scenes, figures
+  shadowlab render --scene S --technique T [--size WxH] [--shadow-map N] [--filter K]
+                   [--precision 8|12|float] [--param key=value ...] [--backend osmesa|egl|reference]
+                   --out image.png [--mask visibility.png] [--dump-passes DIR]
+  shadowlab compare --scene S --a T1 --b T2 [render options] [--diff diff.png] [--threshold X]
+  shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
+  shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
+  shadowlab figures [--out DIR] [--only ID]        the main job: every figure + report.html
+
+--mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
+Exit status: 0 ok, 2 bad input (names, files, numbers), 3 GL failure.
+)";
+
+int list() {
+  std::cout << "techniques:\n";
+  for (const Technique& t : allTechniques())
+    std::cout << "  " << t.name << std::string(t.name.size() < 22 ? 22 - t.name.size() : 1, ' ')
+              << t.paper << " — " << t.summary << " [" << t.status << "]\n";
+  std::cout << "scenes:\n";
+  for (const std::string& s : builtinSceneNames()) std::cout << "  " << s << " (built in)\n";
+  for (const std::string& s : sceneFileNames()) std::cout << "  " << s << " (assets/scenes)\n";
+  std::cout << "figures:\n";
+  for (const figures::FigureInfo& f : figures::listFigures())
+    std::cout << "  " << f.id << "  " << f.title << "\n";
+  return 0;
+}
+
+void writeFrameOutputs(const Frame& frame, const cli::Args& args) {
+  if (!frame.color.empty() && !allFinite(frame.color)) throw GlError("the image has NaN or Inf");
+  if (!allFinite(frame.visibility)) throw GlError("the visibility mask has NaN or Inf");
+  writePng(args.required("out"), frame.color, 8);
+  if (auto mask = args.value("mask")) writePng(*mask, frame.visibility, 16);
+  if (auto dir = args.value("dump-passes")) {
+    for (const PassImage& p : frame.intermediates)
+      writePng((fs::path(*dir) / (p.name + ".png")).string(), p.image, 8);
+  }
+}
+
+int render(const cli::Args& args) {
+  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  const Technique& technique = findTechnique(args.required("technique"));
+  RenderParams params = cli::renderParams(args);
+  cli::checkWritable(args.required("out"));
+  if (auto mask = args.value("mask")) cli::checkWritable(*mask);
+  if (auto dir = args.value("dump-passes")) {
+    std::error_code ec;
+    fs::create_directories(*dir, ec);
+    if (ec || !fs::is_directory(*dir)) throw InputError("cannot create directory " + *dir);
+    params.capturePasses = true;
+  }
+  const Frame frame = renderTechnique(technique, scene, params);
+  writeFrameOutputs(frame, args);
+  nlohmann::json out = {{"technique", technique.name}, {"scene", scene.name},
+                        {"frame_ms", frame.totalMilliseconds()}};
+  for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
+  for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
+  std::cout << out.dump() << "\n";
+  return 0;
+}
+
+int compare(const cli::Args& args) {
+  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  const Technique& a = findTechnique(args.required("a"));
+  const Technique& b = findTechnique(args.required("b"));
+  const RenderParams params = cli::renderParams(args);
+  double threshold = 0.0;
+  if (auto t = args.value("threshold")) {
+    try {
+      threshold = std::stod(*t);
+    } catch (const std::exception&) {
+      throw InputError("--threshold must be a number, got '" + *t + "'");
+    }
+    if (!(threshold >= 0.0 && threshold <= 1.0)) throw InputError("--threshold must lie in [0, 1]");
+  }
+  if (auto diff = args.value("diff")) cli::checkWritable(*diff);
+  const Frame fa = renderTechnique(a, scene, params);
+  const Frame fb = renderTechnique(b, scene, params);
+  const MaskDifference d = compareMasks(fa.visibility, fb.visibility, threshold);
+  nlohmann::json out = toJson(d);
+  out["scene"] = scene.name;
+  out["a"] = a.name;
+  out["b"] = b.name;
+  out["a_frame_ms"] = fa.totalMilliseconds();
+  out["b_frame_ms"] = fb.totalMilliseconds();
+  if (auto diff = args.value("diff"))
+    writePng(*diff, differenceHeatMap(fa.visibility, fb.visibility), 8);
+  std::cout << out.dump() << "\n";
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
+                    std::string(argv[1]) == "help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  const cli::Args args = cli::parse(argc, argv);
+  if (args.command == "list") return list();
+  if (args.command == "render") return render(args);
+  if (args.command == "compare") return compare(args);
+  if (args.command == "figures")
+    return figures::runFigures(args.value("out").value_or("out/figures"), args.value("only"),
+                               !args.has("no-progress"));
+  if (args.command == "bench") return figures::runBench(args);
+  if (args.command == "plan") return figures::runPlan(args);
+  throw InputError("unknown command " + args.command);
+}
+
+}  // namespace
+}  // namespace sl
+
+int main(int argc, char** argv) {
+  try {
+    return sl::run(argc, argv);
+  } catch (const sl::InputError& e) {
+    std::cerr << "shadowlab: " << e.what() << "\n";
+    return sl::kExitInputError;
+  } catch (const sl::GlError& e) {
+    std::cerr << "shadowlab: GL: " << e.what() << "\n";
+    return sl::kExitGlError;
+  } catch (const std::exception& e) {
+    std::cerr << "shadowlab: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,37 @@
+#include "core/errors.h"
+
+#include <string>
+
+#include "core/gl.h"
+
+namespace sl {
+using namespace sl::gl;
+
+const char* glErrorName(unsigned error) {
+  switch (error) {
+    case GL_NO_ERROR: return "GL_NO_ERROR";
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_TABLE_TOO_LARGE: return "GL_TABLE_TOO_LARGE";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default: return "unknown GL error";
+  }
+}
+
+void checkGl(const char* pass) {
+  std::string message;
+  constexpr int kMaxQueuedErrors = 16;  // GL keeps one flag per error kind; bound the drain
+  for (int i = 0; i < kMaxQueuedErrors; ++i) {
+    GLenum e = glGetError();
+    if (e == GL_NO_ERROR) break;
+    if (!message.empty()) message += ", ";
+    message += glErrorName(e);
+  }
+  if (!message.empty()) throw GlError(std::string(pass) + ": " + message);
+}
+
+}  // namespace sl

@@ -1,0 +1,27 @@
+// core/errors.h — the two kinds of failure shadowlab reports.
+//   InputError: the user's input is wrong (unknown name, malformed file, impossible number).
+//               The CLI prints its one-line message and exits with status 2.
+//   GlError:    the GL implementation refused or failed (with the pass that was running).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace sl {
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct GlError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Throws GlError("<pass>: GL error GL_INVALID_OPERATION ...") if glGetError reports anything;
+// drains every queued error so the next pass starts clean.
+void checkGl(const char* pass);
+
+// Name of a GL error enum, e.g. "GL_INVALID_ENUM".
+const char* glErrorName(unsigned error);
+
+}  // namespace sl

@@ -1,0 +1,239 @@
+#include "core/image.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "core/errors.h"
+
+namespace sl {
+namespace {
+
+struct FileCloser {
+  void operator()(FILE* f) const {
+    if (f != nullptr) std::fclose(f);
+  }
+};
+using File = std::unique_ptr<FILE, FileCloser>;
+
+int pngColorType(int channels) {
+  switch (channels) {
+    case 1: return PNG_COLOR_TYPE_GRAY;
+    case 2: return PNG_COLOR_TYPE_GRAY_ALPHA;
+    case 3: return PNG_COLOR_TYPE_RGB;
+    case 4: return PNG_COLOR_TYPE_RGBA;
+    default: return -1;
+  }
+}
+
+}  // namespace
+
+void writePng(const std::string& path, const Image& image, int bitDepth) {
+  if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
+  const int colorType = pngColorType(image.channels);
+  if (colorType < 0 || image.width <= 0 || image.height <= 0)
+    throw InputError("cannot write an empty or " + std::to_string(image.channels) +
+                     "-channel image to " + path);
+  const std::string temp = path + ".part";
+  File file(std::fopen(temp.c_str(), "wb"));
+  if (!file) throw InputError("cannot write " + path + ": " + std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr) {
+    png_destroy_write_struct(&png, &info);
+    std::remove(temp.c_str());
+    throw InputError("libpng could not start writing " + path);
+  }
+  const int bytes = bitDepth / 8;
+  const size_t rowBytes = size_t(image.width) * image.channels * bytes;
+  std::vector<unsigned char> pixels(rowBytes * image.height);
+  const float maxValue = bitDepth == 8 ? 255.0f : 65535.0f;
+  for (int y = 0; y < image.height; ++y) {
+    const int srcRow = image.height - 1 - y;  // bottom-up storage -> top-down PNG
+    unsigned char* out = pixels.data() + rowBytes * y;
+    for (int i = 0; i < image.width * image.channels; ++i) {
+      float v = image.data[size_t(srcRow) * image.width * image.channels + i];
+      if (!(v >= 0.0f)) v = 0.0f;  // NaN -> 0
+      v = std::min(v, 1.0f);
+      const unsigned q = unsigned(std::lround(v * maxValue));
+      if (bytes == 1) {
+        out[i] = static_cast<unsigned char>(q);
+      } else {
+        out[2 * i] = static_cast<unsigned char>(q >> 8);
+        out[2 * i + 1] = static_cast<unsigned char>(q & 0xff);
+      }
+    }
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    file.reset();
+    std::remove(temp.c_str());
+    throw InputError("libpng failed while writing " + path);
+  }
+  png_init_io(png, file.get());
+  png_set_IHDR(png, info, image.width, image.height, bitDepth, colorType, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y) png_write_row(png, pixels.data() + rowBytes * y);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  const bool flushed = std::fflush(file.get()) == 0;
+  file.reset();
+  if (!flushed || std::rename(temp.c_str(), path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw InputError("cannot write " + path + ": " + std::strerror(errno));
+  }
+}
+
+Image readPng(const std::string& path) {
+  File file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw InputError("cannot open " + path + ": " + std::strerror(errno));
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw InputError("libpng could not start reading " + path);
+  }
+  Image image;
+  std::vector<unsigned char> pixels;
+  std::vector<png_bytep> rows;
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw InputError(path + " is not a valid PNG file");
+  }
+  png_init_io(png, file.get());
+  png_read_info(png, info);
+  png_set_expand(png);  // palette -> RGB, low-bit gray -> 8 bit, tRNS -> alpha
+  png_set_swap(png);    // 16-bit samples in host (little-endian) order
+  png_read_update_info(png, info);
+  const int width = int(png_get_image_width(png, info));
+  const int height = int(png_get_image_height(png, info));
+  const int channels = png_get_channels(png, info);
+  const int bitDepth = png_get_bit_depth(png, info);
+  const size_t rowBytes = png_get_rowbytes(png, info);
+  pixels.resize(rowBytes * height);
+  rows.resize(height);
+  for (int y = 0; y < height; ++y) rows[y] = pixels.data() + rowBytes * y;
+  png_read_image(png, rows.data());
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  image = Image(width, height, channels);
+  for (int y = 0; y < height; ++y) {
+    const int dstRow = height - 1 - y;
+    for (int i = 0; i < width * channels; ++i) {
+      float v;
+      if (bitDepth == 16) {
+        uint16_t s;
+        std::memcpy(&s, rows[y] + 2 * i, 2);
+        v = s / 65535.0f;
+      } else {
+        v = rows[y][i] / 255.0f;
+      }
+      image.data[size_t(dstRow) * width * channels + i] = v;
+    }
+  }
+  return image;
+}
+
+Image crop(const Image& image, int x, int y, int w, int h) {
+  x = std::clamp(x, 0, image.width);
+  y = std::clamp(y, 0, image.height);
+  w = std::clamp(w, 0, image.width - x);
+  h = std::clamp(h, 0, image.height - y);
+  Image out(w, h, image.channels);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      for (int c = 0; c < image.channels; ++c) out.at(i, j, c) = image.at(x + i, y + j, c);
+  return out;
+}
+
+Image magnifyNearest(const Image& image, int factor) {
+  factor = std::max(factor, 1);
+  Image out(image.width * factor, image.height * factor, image.channels);
+  for (int j = 0; j < out.height; ++j)
+    for (int i = 0; i < out.width; ++i)
+      for (int c = 0; c < image.channels; ++c) out.at(i, j, c) = image.at(i / factor, j / factor, c);
+  return out;
+}
+
+Image toRgb(const Image& image) {
+  if (image.channels == 3) return image;
+  Image out(image.width, image.height, 3);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i)
+      for (int c = 0; c < 3; ++c)
+        out.at(i, j, c) = image.channels < 3 ? image.at(i, j, 0) : image.at(i, j, c);
+  return out;
+}
+
+void drawFrame(Image& rgb, int x, int y, int w, int h, int thickness) {
+  auto put = [&](int i, int j) {
+    if (i < 0 || j < 0 || i >= rgb.width || j >= rgb.height || rgb.channels < 3) return;
+    rgb.at(i, j, 0) = 1.0f;
+    rgb.at(i, j, 1) = 0.0f;
+    rgb.at(i, j, 2) = 0.0f;
+  };
+  for (int t = 0; t < thickness; ++t) {
+    for (int i = x - t; i < x + w + t; ++i) {
+      put(i, y - 1 - t);
+      put(i, y + h + t);
+    }
+    for (int j = y - 1 - t; j <= y + h + t; ++j) {
+      put(x - 1 - t, j);
+      put(x + w + t, j);
+    }
+  }
+}
+
+Image differenceHeatMap(const Image& a, const Image& b, float fullScale) {
+  if (a.width != b.width || a.height != b.height)
+    throw InputError("cannot difference images of different sizes");
+  Image out(a.width, a.height, 3);
+  for (int j = 0; j < a.height; ++j)
+    for (int i = 0; i < a.width; ++i) {
+      const float d = std::min(std::fabs(a.at(i, j) - b.at(i, j)) / fullScale, 1.0f);
+      if (!(d > 0.0f)) continue;
+      // Piecewise ramp: (0,0,0.5) at tiny differences, red at 1/3, yellow at 2/3, white at 1.
+      const float t = 0.15f + 0.85f * d;
+      out.at(i, j, 0) = std::clamp(3.0f * t - 0.5f, 0.0f, 1.0f);
+      out.at(i, j, 1) = std::clamp(3.0f * t - 1.5f, 0.0f, 1.0f);
+      out.at(i, j, 2) = std::clamp(t < 0.33f ? 0.6f : 3.0f * t - 2.0f, 0.0f, 1.0f);
+    }
+  return out;
+}
+
+Image channel(const Image& image, int c) {
+  Image out(image.width, image.height, 1);
+  for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
+    out.data[p] = image.data[p * image.channels + c];
+  return out;
+}
+
+Image sideBySide(const std::vector<Image>& images, int gap) {
+  int w = 0, h = 0;
+  for (const Image& im : images) {
+    w += im.width + (w > 0 ? gap : 0);
+    h = std::max(h, im.height);
+  }
+  Image out(std::max(w, 1), std::max(h, 1), 3, 1.0f);
+  int x0 = 0;
+  for (const Image& im : images) {
+    const Image rgb = toRgb(im);
+    for (int j = 0; j < rgb.height; ++j)
+      for (int i = 0; i < rgb.width; ++i)
+        for (int c = 0; c < 3; ++c) out.at(x0 + i, h - rgb.height + j, c) = rgb.at(i, j, c);
+    x0 += im.width + gap;
+  }
+  return out;
+}
+
+bool allFinite(const Image& image) {
+  return std::all_of(image.data.begin(), image.data.end(), [](float v) { return std::isfinite(v); });
+}
+
+}  // namespace sl

@@ -1,0 +1,25 @@
+// core/primitives.h — procedural meshes for the built-in scenes (all with outward normals;
+// the closed ones are 2-manifold so that shadow volumes and smoothies can use them).
+#pragma once
+
+#include "core/scene.h"
+
+namespace sl {
+
+Mesh makePlane(float sizeX, float sizeZ, int divisions = 1);       // y = 0, normal +y, open
+Mesh makeBox(const glm::vec3& size);                                 // centred, closed
+Mesh makeSphere(float radius, int slices = 32, int stacks = 16);     // closed
+Mesh makeCylinder(float radius, float height, int slices = 32);      // capped, closed, y up
+Mesh makeTorus(float major, float minor, int rings = 32, int sides = 16);  // closed
+Mesh makeQuad(float sizeX, float sizeY);                             // z = 0, normal +z, open
+// A picket fence along x (Annen et al. Fig. 9): `pickets` closed boxes on two closed rails.
+Mesh makeFence(float length, float height, int pickets);
+// A stylised tree: cylinder trunk and a few spheres of foliage (closed pieces).
+Mesh makeTree(float height);
+
+// Appends b (transformed) to a; keeps `closed` only if both are closed.
+void appendMesh(Mesh& a, const Mesh& b, const glm::mat4& transform);
+// Recomputes Mesh::closed from the index buffer (welding positions that are equal).
+bool isClosedManifold(const Mesh& mesh);
+
+}  // namespace sl

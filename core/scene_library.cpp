@@ -1,0 +1,325 @@
+#include "core/scene_library.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
+#include "core/mesh_io.h"
+#include "core/primitives.h"
+
+#ifndef SHADOWLAB_ASSET_DIR
+#define SHADOWLAB_ASSET_DIR "assets"
+#endif
+
+namespace sl {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::shared_ptr<const Mesh> share(Mesh m) { return std::make_shared<const Mesh>(std::move(m)); }
+
+Object object(std::string name, Mesh mesh, glm::mat4 model, glm::vec3 diffuse, bool casts = true,
+              bool receives = true) {
+  Object o;
+  o.name = std::move(name);
+  o.mesh = share(std::move(mesh));
+  o.model = model;
+  o.diffuse = diffuse;
+  o.castsShadow = casts;
+  o.receivesShadow = receives;
+  return o;
+}
+
+glm::mat4 at(glm::vec3 p) { return glm::translate(glm::mat4(1.0f), p); }
+
+constexpr glm::vec3 kGround{0.75f, 0.75f, 0.72f};
+
+// A square occluder parallel to a ground plane, a point-like spotlight straight above: the
+// geometric shadow is a square whose edges follow from similar triangles (tests use it).
+Scene analyticScene() {
+  Scene s;
+  s.name = "analytic";
+  s.description = "unit square occluder 1 unit above a plane, light 4 units above (exact shadow known)";
+  s.objects.push_back(object("ground", makePlane(6, 6), glm::mat4(1), kGround, false, true));
+  Mesh square = makeBox({1.0f, 0.02f, 1.0f});
+  s.objects.push_back(object("occluder", square, at({0, 1.0f, 0}), {0.8f, 0.3f, 0.2f}, true, false));
+  s.camera.position = {0, 6.5f, 3.2f};
+  s.camera.target = {0, 0, 0.3f};
+  s.camera.fovyDegrees = 40;
+  s.camera.nearPlane = 0.5f;
+  s.camera.farPlane = 20;
+  s.light.position = {0, 4.0f, 0};
+  s.light.target = {0, 0, 0};
+  s.light.up = {0, 0, -1};
+  s.light.coneDegrees = 70;
+  return s;
+}
+
+// The Brabec–Seidel test scene as their §5 describes it: about 7000 polygons, one light,
+// 800x600, OpenGL lighting (their exact model is not published; these are our primitives).
+Scene brabecScene() {
+  Scene s;
+  s.name = "brabec";
+  s.description = "torus, spheres, boxes and a cylinder on a ground plane, ~7000 triangles (Brabec–Seidel §5)";
+  s.objects.push_back(object("ground", makePlane(12, 12, 8), glm::mat4(1), kGround, true, true));
+  s.objects.push_back(object("torus", makeTorus(0.8f, 0.25f, 48, 24),
+                             glm::rotate(at({-1.3f, 1.1f, 0.2f}), glm::radians(60.0f), {1, 0, 0}),
+                             {0.85f, 0.35f, 0.25f}));
+  s.objects.push_back(object("sphere", makeSphere(0.6f, 48, 24), at({1.3f, 0.9f, -0.6f}),
+                             {0.3f, 0.5f, 0.85f}));
+  s.objects.push_back(object("small sphere", makeSphere(0.3f, 32, 16), at({0.4f, 0.3f, 1.3f}),
+                             {0.9f, 0.8f, 0.3f}));
+  s.objects.push_back(object("box", makeBox({0.8f, 0.8f, 0.8f}),
+                             glm::rotate(at({0.2f, 0.4f, -1.8f}), glm::radians(30.0f), {0, 1, 0}),
+                             {0.4f, 0.75f, 0.4f}));
+  s.objects.push_back(object("pillar", makeCylinder(0.2f, 2.0f, 48), at({-0.2f, 1.0f, -0.5f}),
+                             {0.7f, 0.7f, 0.75f}));
+  s.camera.position = {0.5f, 4.0f, 6.5f};
+  s.camera.target = {0, 0.4f, 0};
+  s.camera.fovyDegrees = 45;
+  s.camera.nearPlane = 0.5f;
+  s.camera.farPlane = 30;
+  s.light.position = {-3.0f, 7.0f, 3.0f};
+  s.light.target = {0, 0, 0};
+  s.light.up = {0, 1, 0};
+  s.light.coneDegrees = 55;
+  return s;
+}
+
+// A picket fence in front of objects (Annen et al. Fig. 9: where VSM leaks light).
+Scene fenceScene() {
+  Scene s;
+  s.name = "fence";
+  s.description = "a picket fence casting onto objects and ground (Annen et al. Fig. 9)";
+  s.objects.push_back(object("ground", makePlane(12, 12), glm::mat4(1), kGround, false, true));
+  s.objects.push_back(object("fence", makeFence(4.0f, 1.2f, 12), at({0, 0, 0.8f}),
+                             {0.65f, 0.5f, 0.35f}));
+  s.objects.push_back(object("box", makeBox({0.7f, 0.7f, 0.7f}), at({-0.8f, 0.35f, -0.6f}),
+                             {0.4f, 0.6f, 0.8f}));
+  s.objects.push_back(object("sphere", makeSphere(0.45f), at({0.9f, 0.45f, -0.5f}),
+                             {0.8f, 0.4f, 0.4f}));
+  s.camera.position = {0.0f, 3.0f, -5.0f};
+  s.camera.target = {0, 0.3f, 0.2f};
+  s.camera.fovyDegrees = 45;
+  s.camera.nearPlane = 0.5f;
+  s.camera.farPlane = 30;
+  s.light.position = {0.5f, 3.2f, 4.5f};
+  s.light.target = {0, 0, -0.5f};
+  s.light.up = {0, 1, 0};
+  s.light.coneDegrees = 60;
+  return s;
+}
+
+// Trees on a ground plane (CSM Fig. 7 and 10 use trees; ours are procedural).
+Scene treesScene() {
+  Scene s;
+  s.name = "trees";
+  s.description = "procedural trees on a large ground plane (stand-in for the trees of Annen et al.)";
+  s.objects.push_back(object("ground", makePlane(30, 30, 4), glm::mat4(1), kGround, false, true));
+  const glm::vec3 spots[] = {{0, 0, 0}, {2.5f, 0, -1.5f}, {-2.2f, 0, -2.5f}, {-3, 0, 1.8f},
+                             {3.2f, 0, 2.0f}, {0.5f, 0, -5}, {-5, 0, -5}, {5, 0, -6}};
+  int i = 0;
+  for (const glm::vec3& p : spots)
+    s.objects.push_back(object("tree " + std::to_string(i++), makeTree(2.5f + 0.3f * (i % 3)),
+                               at(p), {0.35f, 0.55f, 0.3f}));
+  s.camera.position = {0, 5, 10};
+  s.camera.target = {0, 0.5f, -1};
+  s.camera.fovyDegrees = 50;
+  s.camera.nearPlane = 0.5f;
+  s.camera.farPlane = 60;
+  s.light.position = {-6, 10, 4};
+  s.light.target = {0, 0, -1};
+  s.light.up = {0, 1, 0};
+  s.light.coneDegrees = 70;
+  return s;
+}
+
+// Dueling frusta (Everitt Fig. 6): the light looks back towards the camera.
+Scene duelingScene() {
+  Scene s = brabecScene();
+  s.name = "dueling";
+  s.description = "the brabec scene with the light facing the camera (dueling frusta, Everitt Fig. 6)";
+  s.light.position = {0.0f, 3.5f, -6.0f};
+  s.light.target = {0, 0, 0.5f};
+  s.light.coneDegrees = 60;
+  return s;
+}
+
+glm::vec3 vec3(const json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
+      !j[2].is_number())
+    throw InputError(what + " must be an array of three numbers");
+  glm::vec3 v(j[0].get<float>(), j[1].get<float>(), j[2].get<float>());
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw InputError(what + " must be finite");
+  return v;
+}
+
+float number(const json& j, const std::string& what) {
+  if (!j.is_number()) throw InputError(what + " must be a number");
+  const float v = j.get<float>();
+  if (!std::isfinite(v)) throw InputError(what + " must be finite");
+  return v;
+}
+
+Mesh meshFromJson(const json& j, const std::string& where, const std::string& baseDir) {
+  if (!j.is_object()) throw InputError(where + ".mesh must be an object");
+  if (j.contains("file")) {
+    fs::path p = j.at("file").get<std::string>();
+    if (p.is_relative()) p = fs::path(baseDir) / p;
+    Mesh m = loadMesh(p.string());
+    if (j.contains("size")) normalizeMesh(m, number(j["size"], where + ".mesh.size"));
+    return m;
+  }
+  const std::string kind = j.value("primitive", "");
+  auto num = [&](const char* key, float fallback) {
+    return j.contains(key) ? number(j[key], where + ".mesh." + key) : fallback;
+  };
+  if (kind == "plane") return makePlane(num("width", 10), num("depth", 10), int(num("divisions", 1)));
+  if (kind == "box")
+    return makeBox(j.contains("extent") ? vec3(j["extent"], where + ".mesh.extent") : glm::vec3(1));
+  if (kind == "sphere") return makeSphere(num("radius", 1), int(num("slices", 32)), int(num("stacks", 16)));
+  if (kind == "cylinder") return makeCylinder(num("radius", 0.5f), num("height", 1), int(num("slices", 32)));
+  if (kind == "torus") return makeTorus(num("major", 1), num("minor", 0.25f));
+  if (kind == "quad") return makeQuad(num("width", 1), num("height", 1));
+  if (kind == "fence") return makeFence(num("length", 4), num("height", 1), int(num("pickets", 10)));
+  if (kind == "tree") return makeTree(num("height", 2));
+  throw InputError(where + ".mesh needs \"file\" or a \"primitive\" (plane, box, sphere, cylinder, torus, quad, fence, tree), got '" + kind + "'");
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() {
+  return {"analytic", "brabec", "fence", "trees", "dueling"};
+}
+
+Scene builtinScene(const std::string& name) {
+  Scene s;
+  if (name == "analytic") s = analyticScene();
+  else if (name == "brabec") s = brabecScene();
+  else if (name == "fence") s = fenceScene();
+  else if (name == "trees") s = treesScene();
+  else if (name == "dueling") s = duelingScene();
+  else throw InputError("unknown scene '" + name + "'");
+  validateScene(s);
+  return s;
+}
+
+std::string assetDirectory() {
+  if (const char* env = std::getenv("SHADOWLAB_ASSETS"); env != nullptr && *env != 0) return env;
+  return SHADOWLAB_ASSET_DIR;
+}
+
+std::vector<std::string> sceneFileNames() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(assetDirectory()) / "scenes", ec))
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Scene parseSceneJson(const std::string& text, const std::string& sourceName,
+                     const std::string& baseDir) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw InputError("malformed scene file " + sourceName + ": " + e.what());
+  }
+  try {
+    if (!doc.is_object()) throw InputError("the document must be a JSON object");
+    Scene s;
+    s.name = doc.value("name", fs::path(sourceName).stem().string());
+    s.description = doc.value("description", "");
+    if (doc.contains("camera")) {
+      const json& c = doc["camera"];
+      if (c.contains("position")) s.camera.position = vec3(c["position"], "camera.position");
+      if (c.contains("target")) s.camera.target = vec3(c["target"], "camera.target");
+      if (c.contains("up")) s.camera.up = vec3(c["up"], "camera.up");
+      if (c.contains("fovy")) s.camera.fovyDegrees = number(c["fovy"], "camera.fovy");
+      if (c.contains("near")) s.camera.nearPlane = number(c["near"], "camera.near");
+      if (c.contains("far")) s.camera.farPlane = number(c["far"], "camera.far");
+    }
+    if (doc.contains("light")) {
+      const json& l = doc["light"];
+      if (l.contains("position")) s.light.position = vec3(l["position"], "light.position");
+      if (l.contains("target")) s.light.target = vec3(l["target"], "light.target");
+      if (l.contains("up")) s.light.up = vec3(l["up"], "light.up");
+      if (l.contains("cone")) s.light.coneDegrees = number(l["cone"], "light.cone");
+      if (l.contains("near")) s.light.nearPlane = number(l["near"], "light.near");
+      if (l.contains("far")) s.light.farPlane = number(l["far"], "light.far");
+      if (l.contains("radius")) s.light.radius = number(l["radius"], "light.radius");
+      if (l.contains("ambient")) s.light.ambient = number(l["ambient"], "light.ambient");
+      if (l.contains("color")) s.light.color = vec3(l["color"], "light.color");
+    }
+    if (!doc.contains("objects") || !doc["objects"].is_array())
+      throw InputError("\"objects\" must be an array");
+    int index = 0;
+    for (const json& o : doc["objects"]) {
+      const std::string where = "objects[" + std::to_string(index++) + "]";
+      if (!o.is_object()) throw InputError(where + " must be an object");
+      if (!o.contains("mesh")) throw InputError(where + " has no mesh");
+      Object obj;
+      obj.name = o.value("name", where);
+      obj.mesh = share(meshFromJson(o["mesh"], where, baseDir));
+      glm::mat4 m(1.0f);
+      if (o.contains("translate")) m = glm::translate(m, vec3(o["translate"], where + ".translate"));
+      if (o.contains("rotate")) {  // [x, y, z] Euler angles in degrees, applied z, y, x
+        const glm::vec3 r = vec3(o["rotate"], where + ".rotate");
+        m = glm::rotate(m, glm::radians(r.x), {1, 0, 0});
+        m = glm::rotate(m, glm::radians(r.y), {0, 1, 0});
+        m = glm::rotate(m, glm::radians(r.z), {0, 0, 1});
+      }
+      if (o.contains("scale")) {
+        const glm::vec3 sc = o["scale"].is_number() ? glm::vec3(number(o["scale"], where + ".scale"))
+                                                    : vec3(o["scale"], where + ".scale");
+        if (sc.x == 0 || sc.y == 0 || sc.z == 0) throw InputError(where + ".scale must not be 0");
+        m = glm::scale(m, sc);
+      }
+      obj.model = m;
+      if (o.contains("diffuse")) obj.diffuse = vec3(o["diffuse"], where + ".diffuse");
+      if (o.contains("specular")) obj.specular = number(o["specular"], where + ".specular");
+      obj.castsShadow = o.value("casts", true);
+      obj.receivesShadow = o.value("receives", true);
+      s.objects.push_back(std::move(obj));
+    }
+    validateScene(s);
+    return s;
+  } catch (const json::exception& e) {
+    throw InputError("malformed scene file " + sourceName + ": " + e.what());
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    if (what.rfind("scene '", 0) == 0 || what.find(sourceName) != std::string::npos) throw;
+    throw InputError("scene file " + sourceName + ": " + what);
+  }
+}
+
+Scene loadScene(const std::string& nameOrPath) {
+  const auto builtins = builtinSceneNames();
+  if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end())
+    return builtinScene(nameOrPath);
+  fs::path path = nameOrPath;
+  if (path.extension() != ".json") path = fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
+  std::ifstream in(path);
+  if (!in) {
+    std::string known;
+    for (const auto& n : builtins) known += (known.empty() ? "" : ", ") + n;
+    for (const auto& n : sceneFileNames()) known += ", " + n;
+    throw InputError("unknown scene '" + nameOrPath + "' (known: " + known + ")");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  // Mesh paths in scene files are relative to the asset directory (assets/models/...).
+  return parseSceneJson(text.str(), path.string(), assetDirectory());
+}
+
+}  // namespace sl

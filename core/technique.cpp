@@ -1,0 +1,152 @@
+#include "core/technique.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include "core/errors.h"
+
+namespace sl {
+using namespace sl::gl;
+
+const char* precisionName(Precision p) {
+  switch (p) {
+    case Precision::k8: return "8";
+    case Precision::k12: return "12";
+    case Precision::kFloat: return "float";
+  }
+  return "?";
+}
+
+Precision parsePrecision(const std::string& s) {
+  if (s == "8") return Precision::k8;
+  if (s == "12") return Precision::k12;
+  if (s == "float" || s == "32") return Precision::kFloat;
+  throw InputError("precision must be 8, 12 or float, got '" + s + "'");
+}
+
+namespace {
+double parseNumber(const std::string& key, const std::string& value) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || value.empty() || !std::isfinite(v))
+    throw InputError("--param " + key + "=" + value + ": not a finite number");
+  return v;
+}
+}  // namespace
+
+double RenderParams::number(const std::string& key, double fallback, double lo, double hi) const {
+  auto it = extra.find(key);
+  if (it == extra.end()) return fallback;
+  const double v = parseNumber(key, it->second);
+  if (v < lo || v > hi)
+    throw InputError("--param " + key + "=" + it->second + ": must lie in [" +
+                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v;
+}
+
+int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) const {
+  auto it = extra.find(key);
+  if (it == extra.end()) return fallback;
+  const double v = parseNumber(key, it->second);
+  if (v != std::floor(v) || v < lo || v > hi)
+    throw InputError("--param " + key + "=" + it->second + ": must be an integer in [" +
+                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return int(v);
+}
+
+std::string RenderParams::text(const std::string& key, const std::string& fallback,
+                               const std::vector<std::string>& allowed) const {
+  auto it = extra.find(key);
+  if (it == extra.end()) return fallback;
+  if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    throw InputError("--param " + key + "=" + it->second + ": expected one of " + list);
+  }
+  return it->second;
+}
+
+bool RenderParams::flag(const std::string& key, bool fallback) const {
+  auto it = extra.find(key);
+  if (it == extra.end()) return fallback;
+  if (it->second == "1" || it->second == "true" || it->second == "on") return true;
+  if (it->second == "0" || it->second == "false" || it->second == "off") return false;
+  throw InputError("--param " + key + "=" + it->second + ": expected on/off");
+}
+
+double Frame::totalMilliseconds() const {
+  double t = 0;
+  for (const PassTime& p : passes) t += p.milliseconds;
+  return t;
+}
+
+ContextSpec contextFor(const Technique& t, const RenderParams& p) {
+  ContextSpec spec;
+  spec.backend = p.backend;
+  spec.profile = t.needs.profile;
+  spec.width = p.width;
+  spec.height = p.height;
+  spec.accumulation = t.needs.accumulation;
+  spec.color = ColorFormat::kRgba8;
+  if (t.needs.colorFromPrecision) {
+    if (p.precision == Precision::k12) spec.color = ColorFormat::kRgba16;
+    if (p.precision == Precision::kFloat) spec.color = ColorFormat::kRgba32f;
+  }
+  return spec;
+}
+
+void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) {
+  constexpr int kMaxWindowSide = 16384;
+  if (p.width <= 0 || p.height <= 0 || p.width > kMaxWindowSide || p.height > kMaxWindowSide)
+    throw InputError("window size " + std::to_string(p.width) + "x" + std::to_string(p.height) +
+                     " is impossible (1.." + std::to_string(kMaxWindowSide) + " per side)");
+  if (p.shadowMapTexels <= 0 || (maxTextureSize > 0 && p.shadowMapTexels > maxTextureSize))
+    throw InputError("shadow map size " + std::to_string(p.shadowMapTexels) +
+                     " is outside 1.." + std::to_string(maxTextureSize) +
+                     " (GL_MAX_TEXTURE_SIZE of this GL)");
+  if (p.filter < 1 || p.filter > 16)
+    throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
+  for (const auto& [key, value] : p.extra) {
+    (void)value;
+    if (std::find(t.paramKeys.begin(), t.paramKeys.end(), key) == t.paramKeys.end()) {
+      std::string list;
+      for (const auto& k : t.paramKeys) list += (list.empty() ? "" : ", ") + k;
+      throw InputError("technique " + t.name + " has no parameter '" + key + "'" +
+                       (list.empty() ? std::string(" (it takes none)") : " (it takes " + list + ")"));
+    }
+  }
+}
+
+double nowMilliseconds() {
+  using namespace std::chrono;
+  return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+PassTimer::PassTimer(Frame& frame, std::string name) : frame_(frame), name_(std::move(name)) {
+  glFinish();
+  start_ = nowMilliseconds();
+}
+
+PassTimer::~PassTimer() noexcept(false) {
+  if (std::uncaught_exceptions() > 0) return;
+  glFinish();
+  frame_.passes.push_back({name_, nowMilliseconds() - start_});
+  checkGl(name_.c_str());
+}
+
+Image readColorBuffer(int x, int y, int width, int height) {
+  Image image(width, height, 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, width, height, GL_RGBA, GL_FLOAT, image.data.data());
+  checkGl("read colour buffer");
+  return image;
+}
+
+}  // namespace sl

@@ -1,0 +1,138 @@
+#include "legacy_gl/fixed_function.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/errors.h"
+#include "core/gl.h"
+
+namespace sl::legacy {
+using namespace sl::gl;
+
+void loadMatrix(unsigned mode, const glm::mat4& m) {
+  glMatrixMode(mode);
+  glLoadMatrixf(glm::value_ptr(m));
+}
+
+void drawScene(const Scene& scene, Draw which, Colors colors) {
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glMatrixMode(GL_MODELVIEW);
+  for (const Object& o : scene.objects) {
+    if (which == Draw::kCasters && !o.castsShadow) continue;
+    if (which == Draw::kReceivers && !o.receivesShadow) continue;
+    if (which == Draw::kNonReceivers && o.receivesShadow) continue;
+    const glm::vec4 diffuse(colors == Colors::kWhite ? glm::vec3(1.0f) : o.diffuse, 1.0f);
+    const glm::vec4 specular(glm::vec3(o.specular), 1.0f);
+    glColor4fv(glm::value_ptr(diffuse));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, glm::value_ptr(diffuse));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(specular));
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 32.0f);
+    glPushMatrix();
+    glMultMatrixf(glm::value_ptr(o.model));
+    glVertexPointer(3, GL_FLOAT, 0, o.mesh->positions.data());
+    glNormalPointer(GL_FLOAT, 0, o.mesh->normals.data());
+    glDrawElements(GL_TRIANGLES, GLsizei(o.mesh->indices.size()), GL_UNSIGNED_INT,
+                   o.mesh->indices.data());
+    glPopMatrix();
+  }
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+}
+
+void enableSpotlight(const Scene& scene, LightTerms terms) {
+  const SpotLight& l = scene.light;
+  const glm::vec4 zero(0, 0, 0, 1);
+  const glm::vec4 color(l.color, 1.0f);
+  const glm::vec4 ambient(l.ambient * l.color, 1.0f);
+  const bool direct = terms != LightTerms::kAmbientOnly;
+  const bool amb = terms != LightTerms::kDiffuseSpecularOnly;
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  glEnable(GL_NORMALIZE);
+  const glm::vec4 noGlobalAmbient(0, 0, 0, 1);
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, glm::value_ptr(noGlobalAmbient));
+  glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
+  glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(amb ? ambient : zero));
+  glLightfv(GL_LIGHT0, GL_DIFFUSE, glm::value_ptr(direct ? color : zero));
+  glLightfv(GL_LIGHT0, GL_SPECULAR, glm::value_ptr(direct ? color : zero));
+  const glm::vec4 position(l.position, 1.0f);
+  const glm::vec3 direction = glm::normalize(l.target - l.position);
+  glLightfv(GL_LIGHT0, GL_POSITION, glm::value_ptr(position));
+  glLightfv(GL_LIGHT0, GL_SPOT_DIRECTION, glm::value_ptr(direction));
+  // The spotlight cone is the circle inscribed in the light frustum (GL_SPOT_CUTOFF is the
+  // half angle): outside it there is no direct light, so the map's border never shows.
+  glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, 0.5f * l.coneDegrees);
+  glLightf(GL_LIGHT0, GL_SPOT_EXPONENT, 0.0f);
+}
+
+void disableLighting() {
+  glDisable(GL_LIGHTING);
+  glDisable(GL_LIGHT0);
+}
+
+void setCameraMatrices(const Scene& scene, int width, int height) {
+  glViewport(0, 0, width, height);
+  loadMatrix(GL_PROJECTION, cameraProjection(scene.camera, float(width) / float(height)));
+  loadMatrix(GL_MODELVIEW, cameraView(scene.camera));
+}
+
+LightTarget::LightTarget(int texels, bool windowFits, bool needColor) : texels_(texels) {
+  if (windowFits) return;
+  glGenFramebuffers(1, &fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glGenTextures(1, &depth_);
+  glBindTexture(GL_TEXTURE_2D, depth_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, texels, texels, 0, GL_DEPTH_COMPONENT,
+               GL_UNSIGNED_INT, nullptr);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  if (needColor) {
+    glGenTextures(1, &color_);
+    glBindTexture(GL_TEXTURE_2D, color_);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texels, texels, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+  } else {
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) throw GlError("light-pass framebuffer is incomplete");
+}
+
+LightTarget::~LightTarget() {
+  if (fbo_ == 0) return;
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteTextures(1, &depth_);
+  if (color_ != 0) glDeleteTextures(1, &color_);
+}
+
+void LightTarget::bind() {
+  if (fbo_ != 0) glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, texels_, texels_);
+}
+
+void LightTarget::unbind() {
+  if (fbo_ != 0) glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+TextureName::TextureName() { glGenTextures(1, &id_); }
+TextureName::~TextureName() { glDeleteTextures(1, &id_); }
+
+Image readRedChannel(int width, int height) {
+  Image red(width, height, 1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, red.data.data());
+  checkGl("read visibility");
+  return red;
+}
+
+Image readRgb(int width, int height) {
+  Image rgb(width, height, 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data.data());
+  checkGl("read colour");
+  return rgb;
+}
+
+}  // namespace sl::legacy

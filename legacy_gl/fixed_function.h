@@ -1,0 +1,73 @@
+// legacy_gl/fixed_function.h — scene drawing and lighting in OpenGL 1.x, shared by every
+// legacy technique (module-internal header).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "core/technique.h"
+
+namespace sl::legacy {
+
+enum class Draw { kAll, kCasters, kReceivers, kNonReceivers };
+enum class Colors { kMaterial, kWhite };
+
+// glMatrixMode(mode); glLoadMatrixf(m).
+void loadMatrix(unsigned mode, const glm::mat4& m);
+
+// Draws the objects selected by `which` with client-side vertex arrays (GL 1.1), each under
+// glPushMatrix/glMultMatrixf(model). Sets glColor and the diffuse material from the object.
+// With Colors::kWhite every object is drawn white (visibility and depth passes).
+void drawScene(const Scene& scene, Draw which, Colors colors = Colors::kMaterial);
+
+// Which terms of OpenGL lighting a pass wants (Everitt §4, Kilgard's note: the shadow term
+// darkens diffuse and specular and keeps the ambient).
+enum class LightTerms { kAmbientOnly, kDiffuseSpecularOnly, kAll };
+// Enables GL_LIGHTING with GL_LIGHT0 as the scene's spotlight. Must be called while the
+// modelview matrix holds the camera's view matrix (the light position is specified in world
+// coordinates and transformed by it, glspec121 §2.13.1).
+void enableSpotlight(const Scene& scene, LightTerms terms);
+void disableLighting();
+
+// The camera's matrices for a window of the given size (viewport set too).
+void setCameraMatrices(const Scene& scene, int width, int height);
+
+// A framebuffer object standing in for the window when a light pass does not fit in it.
+// DEVIATION (Brabec–Seidel §2, Everitt §2): the 2001 code rendered the light view into the
+// window; a map larger than our window would be clipped, so we render it off-screen.
+class LightTarget {
+ public:
+  LightTarget(int texels, bool windowFits, bool needColor);
+  ~LightTarget();
+  LightTarget(const LightTarget&) = delete;
+  LightTarget& operator=(const LightTarget&) = delete;
+  void bind();    // binds the FBO (or the window) and sets the viewport to texels^2
+  void unbind();  // back to the window
+  bool offscreen() const { return fbo_ != 0; }
+
+ private:
+  int texels_;
+  unsigned fbo_ = 0;
+  unsigned color_ = 0;
+  unsigned depth_ = 0;
+};
+
+// RAII for a texture name.
+class TextureName {
+ public:
+  TextureName();
+  ~TextureName();
+  TextureName(const TextureName&) = delete;
+  TextureName& operator=(const TextureName&) = delete;
+  unsigned id() const { return id_; }
+
+ private:
+  unsigned id_ = 0;
+};
+
+// Reads the window's red channel as a one-channel image (visibility masks).
+Image readRedChannel(int width, int height);
+// Reads the window as RGB.
+Image readRgb(int width, int height);
+
+}  // namespace sl::legacy

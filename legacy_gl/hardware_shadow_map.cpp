@@ -1,0 +1,218 @@
+// legacy.hw — Cass Everitt, Ashu Rege, Cem Cebenoyan, "Hardware Shadow Mapping", NVIDIA 2001,
+// with ARB_depth_texture and ARB_shadow (the SGIX_shadow/SGIX_depth_texture of the paper).
+//
+// Passes:
+//   1. renderDepthFromLight      — the scene from the light, polygon offset, depth copied
+//                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset")
+//   2. loadEyeLinearTexgenPlanes — EYE_LINEAR planes E_po = S·P_light·L^-1 specified while the
+//                                  modelview holds the view matrix (Eq. 1-5, Appendix A)
+//   3. renderAmbientPass         — lighting with the ambient term only (Kilgard's note)
+//   4. addShadowedDirectLight    — diffuse + specular modulated by the shadow comparison
+//                                  (ARB_shadow, NEAREST or LINEAR compare, Fig. 5), added with
+//                                  blending; fragments behind the light are forced to shadow
+//                                  ("negative projection", §"Advantages and Limitations")
+//   5. renderVisibilityMask      — the comparison result alone, for the --mask output
+#include "legacy_gl/hardware_shadow_map.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/errors.h"
+#include "core/gl.h"
+#include "legacy_gl/fixed_function.h"
+
+namespace sl::legacy {
+using namespace sl::gl;
+
+namespace {
+
+constexpr float kDefaultOffsetFactor = 2.0f;  // glPolygonOffset slope factor (Everitt Fig. 3)
+constexpr float kDefaultOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
+// Texgen scale of the negative-projection test: q (light eye-space depth, in world units)
+// times this maps any q >= 1e-4 units past the half-texel threshold of the step texture.
+constexpr float kBehindLightSharpness = 1.0e4f;
+
+struct HwState {
+  TextureName shadowMap;
+  TextureName behindLightStep;
+};
+
+// Pass 1 (Everitt Fig. 2, "Polygon offset"): render the casters from the light with slope-scaled
+// polygon offset and copy the depth buffer into the depth texture (glCopyTexSubImage2D reads
+// the depth buffer for a DEPTH_COMPONENT texture, ARB_depth_texture).
+void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwState& s,
+                          float factor, float units, bool linearCompare, Frame& frame) {
+  PassTimer timer(frame, "1 depth from light");
+  const int n = params.shadowMapTexels;
+  LightTarget target(n, n <= params.width && n <= params.height, false);
+  target.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(factor, units);
+  loadMatrix(GL_PROJECTION, lightProjection(scene));
+  loadMatrix(GL_MODELVIEW, lightView(scene.light));
+  drawScene(scene, Draw::kCasters);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+  glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
+               GL_UNSIGNED_INT, nullptr);
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
+  const GLint filter = linearCompare ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  // Outside the map: the border is the far plane, so nothing there is shadowed.
+  const float farDepth[4] = {1, 1, 1, 1};
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
+  target.unbind();
+}
+
+// Pass 2 (Everitt Eq. 5 and Appendix A): with modelview_po = V^-1 (the camera's view matrix,
+// Everitt's notation), the planes E_po = S·P_light·L^-1 are given in world space and GL maps
+// eye coordinates back through (modelview_po)^-1. Texture unit 0 gets (s,t,r,q) for the map;
+// unit 1 gets q alone, scaled, for the behind-the-light step texture.
+void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, HwState& s) {
+  setCameraMatrices(scene, params.width, params.height);  // modelview = V^-1 (Everitt)
+  const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));  // rows as columns
+  const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
+  const GLenum enables[4] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R,
+                             GL_TEXTURE_GEN_Q};
+  glActiveTexture(GL_TEXTURE0);
+  for (int i = 0; i < 4; ++i) {
+    glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+    glTexGenfv(coords[i], GL_EYE_PLANE, glm::value_ptr(planes[i]));
+    glEnable(enables[i]);
+  }
+  loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
+  glMatrixMode(GL_MODELVIEW);
+  glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
+
+  // Unit 1: s = kBehindLightSharpness * q + 0.5 through a 2-texel step (0 behind, 1 in front).
+  glActiveTexture(GL_TEXTURE1);
+  const glm::mat4 light = lightView(scene.light);
+  const glm::vec4 depthRow(-light[0][2], -light[1][2], -light[2][2], -light[3][2]);
+  glm::vec4 stepPlane = kBehindLightSharpness * depthRow;
+  stepPlane.w += 0.5f;
+  glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+  glTexGenfv(GL_S, GL_EYE_PLANE, glm::value_ptr(stepPlane));
+  glEnable(GL_TEXTURE_GEN_S);
+  glBindTexture(GL_TEXTURE_1D, s.behindLightStep.id());
+  const GLubyte step[2] = {0, 255};
+  glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, step);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void enableShadowTexturing(bool on) {
+  glActiveTexture(GL_TEXTURE0);
+  if (on) glEnable(GL_TEXTURE_2D); else glDisable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glActiveTexture(GL_TEXTURE1);
+  if (on) glEnable(GL_TEXTURE_1D); else glDisable(GL_TEXTURE_1D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+// Pass 3 (Kilgard's note in Everitt): the ambient term, everywhere, unshadowed.
+void renderAmbientPass(const Scene& scene, const RenderParams& params, Frame& frame) {
+  PassTimer timer(frame, "3 ambient");
+  setCameraMatrices(scene, params.width, params.height);
+  glClearColor(0, 0, 0, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  enableSpotlight(scene, LightTerms::kAmbientOnly);
+  drawScene(scene, Draw::kAll);
+}
+
+// Pass 4 (Everitt "the shadowing result directly modulates the diffuse and specular"): direct
+// light times the comparison result, added on the ambient pass (depth func EQUAL).
+void addShadowedDirectLight(const Scene& scene, const RenderParams& params, Frame& frame) {
+  PassTimer timer(frame, "4 direct light x shadow test");
+  setCameraMatrices(scene, params.width, params.height);
+  enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
+  glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
+  glDepthFunc(GL_EQUAL);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  enableShadowTexturing(true);
+  drawScene(scene, Draw::kReceivers);
+  enableShadowTexturing(false);
+  // Objects that do not receive shadows get their direct light unmodulated.
+  drawScene(scene, Draw::kNonReceivers);
+  glDisable(GL_BLEND);
+  glDepthFunc(GL_LESS);
+  disableLighting();
+}
+
+// Pass 5: the comparison result alone (white surfaces, lighting off) read back as the mask.
+Image renderVisibilityMask(const Scene& scene, const RenderParams& params, Frame& frame) {
+  PassTimer timer(frame, "5 visibility mask");
+  setCameraMatrices(scene, params.width, params.height);
+  glClearColor(1, 1, 1, 1);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  disableLighting();
+  glColor4f(1, 1, 1, 1);
+  // Non-receivers untextured (visibility 1); receivers through the shadow test.
+  enableShadowTexturing(false);
+  drawScene(scene, Draw::kNonReceivers, Colors::kWhite);
+  enableShadowTexturing(true);
+  drawScene(scene, Draw::kReceivers, Colors::kWhite);
+  enableShadowTexturing(false);
+  return readRedChannel(params.width, params.height);
+}
+
+Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
+  (void)context;
+  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
+  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  Frame frame;
+  HwState state;
+  renderDepthFromLight(scene, params, state, factor, units, linear, frame);
+  {
+    PassTimer timer(frame, "2 eye-linear texgen planes");
+    loadEyeLinearTexgenPlanes(scene, params, state);
+  }
+  renderAmbientPass(scene, params, frame);
+  addShadowedDirectLight(scene, params, frame);
+  frame.color = readRgb(params.width, params.height);
+  frame.visibility = renderVisibilityMask(scene, params, frame);
+  checkGl("legacy.hw");
+  return frame;
+}
+
+}  // namespace
+
+glm::mat4 worldToShadowMapTexture(const Scene& scene) {
+  // S: [-1,1] clip coordinates to [0,1] texture coordinates (Everitt Eq. 2).
+  const glm::mat4 S = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
+                      glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
+  return S * lightProjection(scene) * lightView(scene.light);
+}
+
+Technique hardwareShadowMapTechnique() {
+  Technique t;
+  t.name = "legacy.hw";
+  t.paper = "Everitt, Rege & Cebenoyan 2001 (ARB_depth_texture + ARB_shadow)";
+  t.summary = "depth texture with hardware comparison, EYE_LINEAR texgen, polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCompatibility;
+  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::legacy

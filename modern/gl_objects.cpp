@@ -1,0 +1,198 @@
+#include "modern/gl_objects.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/errors.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+const std::string& shaderSource(const std::string& name) {
+  const auto& all = embeddedShaders();
+  auto it = all.find(name);
+  if (it == all.end()) throw GlError("no shader modern/shaders/" + name + " in this build");
+  return it->second;
+}
+
+void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+void deleteProgram(GLuint id) { glDeleteProgram(id); }
+void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+
+Texture makeTexture() {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  return Texture(id);
+}
+
+Framebuffer makeFramebuffer() {
+  GLuint id = 0;
+  glGenFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+
+namespace {
+GLuint compile(GLenum type, const std::string& file,
+               const std::vector<std::pair<std::string, std::string>>& defines) {
+  std::string source = shaderSource(file);
+  if (!defines.empty()) {
+    // Defines go right after the #version line (which must stay first).
+    size_t eol = source.find('\n', source.find("#version"));
+    std::string block;
+    for (const auto& [k, v] : defines) block += "#define " + k + " " + v + "\n";
+    source.insert(eol == std::string::npos ? source.size() : eol + 1, block);
+  }
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {0};
+    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    glDeleteShader(shader);
+    throw GlError("compiling modern/shaders/" + file + ": " + log);
+  }
+  return shader;
+}
+}  // namespace
+
+Program::Program(const std::string& vertexFile, const std::string& fragmentFile,
+                 const std::vector<std::pair<std::string, std::string>>& defines,
+                 const std::string& geometryFile) {
+  program_ = GlName<deleteProgram>(glCreateProgram());
+  std::vector<GLuint> shaders = {compile(GL_VERTEX_SHADER, vertexFile, defines),
+                                 compile(GL_FRAGMENT_SHADER, fragmentFile, defines)};
+  if (!geometryFile.empty()) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometryFile, defines));
+  for (GLuint s : shaders) glAttachShader(program_.id(), s);
+  glBindAttribLocation(program_.id(), 0, "aPosition");
+  glBindAttribLocation(program_.id(), 1, "aNormal");
+  glLinkProgram(program_.id());
+  for (GLuint s : shaders) glDeleteShader(s);
+  GLint ok = 0;
+  glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {0};
+    glGetProgramInfoLog(program_.id(), sizeof(log), nullptr, log);
+    throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
+  }
+}
+
+void Program::use() const { glUseProgram(program_.id()); }
+GLint Program::uniform(const char* name) const { return glGetUniformLocation(program_.id(), name); }
+void Program::set(const char* name, int v) const { glUniform1i(uniform(name), v); }
+void Program::set(const char* name, float v) const { glUniform1f(uniform(name), v); }
+void Program::set(const char* name, const glm::vec2& v) const {
+  glUniform2fv(uniform(name), 1, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::vec3& v) const {
+  glUniform3fv(uniform(name), 1, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::vec4& v) const {
+  glUniform4fv(uniform(name), 1, glm::value_ptr(v));
+}
+void Program::set(const char* name, const glm::mat4& m) const {
+  glUniformMatrix4fv(uniform(name), 1, GL_FALSE, glm::value_ptr(m));
+}
+
+GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
+  for (const Object& o : scene.objects) {
+    GpuObject g;
+    g.object = &o;
+    GLuint ids[3] = {0, 0, 0};
+    GLuint vao = 0;
+    glGenVertexArrays(1, &vao);
+    g.vao = VertexArray(vao);
+    glGenBuffers(3, ids);
+    g.positions = Buffer(ids[0]);
+    g.normals = Buffer(ids[1]);
+    g.indices = Buffer(ids[2]);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, ids[0]);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(o.mesh->positions.size() * sizeof(glm::vec3)),
+                 o.mesh->positions.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, ids[1]);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(o.mesh->normals.size() * sizeof(glm::vec3)),
+                 o.mesh->normals.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(1);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ids[2]);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(o.mesh->indices.size() * sizeof(unsigned)),
+                 o.mesh->indices.data(), GL_STATIC_DRAW);
+    g.indexCount = GLsizei(o.mesh->indices.size());
+    glBindVertexArray(0);
+    objects_.push_back(std::move(g));
+  }
+  checkGl("upload scene");
+}
+
+void RenderTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  glViewport(0, 0, width, height);
+}
+
+RenderTarget makeRenderTarget(int width, int height, const std::vector<GLenum>& colorFormats,
+                              bool withDepth, GLenum depthFormat) {
+  RenderTarget t;
+  t.width = width;
+  t.height = height;
+  t.fbo = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, t.fbo.id());
+  std::vector<GLenum> drawBuffers;
+  for (size_t i = 0; i < colorFormats.size(); ++i) {
+    Texture tex = makeTexture();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(colorFormats[i]), width, height, 0, GL_RGBA, GL_FLOAT,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, tex.id(), 0);
+    drawBuffers.push_back(attachment);
+    t.color.push_back(std::move(tex));
+  }
+  if (withDepth) {
+    t.depth = makeTexture();
+    glBindTexture(GL_TEXTURE_2D, t.depth.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(depthFormat), width, height, 0, GL_DEPTH_COMPONENT,
+                 GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.depth.id(), 0);
+  }
+  if (drawBuffers.empty()) {
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+  } else {
+    glDrawBuffers(GLsizei(drawBuffers.size()), drawBuffers.data());
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw GlError("render target " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is incomplete");
+  return t;
+}
+
+FullScreenTriangle::FullScreenTriangle() {
+  GLuint vao = 0;
+  glGenVertexArrays(1, &vao);
+  vao_ = VertexArray(vao);
+}
+
+void FullScreenTriangle::draw() const {
+  glBindVertexArray(vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,142 @@
+// modern/gl_objects.h — RAII owners for GL objects, shader programs from modern/shaders/*.glsl,
+// and the scene uploaded into vertex buffers (module-internal header).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/gl.h"
+#include "core/scene.h"
+
+namespace sl::modern {
+
+// The source of modern/shaders/<name> (embedded at build time).
+const std::string& shaderSource(const std::string& name);
+const std::map<std::string, std::string>& embeddedShaders();
+
+// A move-only owner of one GL name; `Deleter` releases it.
+template <void (*Deleter)(GLuint)>
+class GlName {
+ public:
+  GlName() = default;
+  explicit GlName(GLuint id) : id_(id) {}
+  ~GlName() { reset(); }
+  GlName(GlName&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+  GlName& operator=(GlName&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, 0);
+    }
+    return *this;
+  }
+  GlName(const GlName&) = delete;
+  GlName& operator=(const GlName&) = delete;
+  GLuint id() const { return id_; }
+  void reset() {
+    if (id_ != 0) Deleter(id_);
+    id_ = 0;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+void deleteTexture(GLuint id);
+void deleteFramebuffer(GLuint id);
+void deleteBuffer(GLuint id);
+void deleteVertexArray(GLuint id);
+void deleteProgram(GLuint id);
+void deleteRenderbuffer(GLuint id);
+
+using Texture = GlName<deleteTexture>;
+using Framebuffer = GlName<deleteFramebuffer>;
+using Buffer = GlName<deleteBuffer>;
+using VertexArray = GlName<deleteVertexArray>;
+using Renderbuffer = GlName<deleteRenderbuffer>;
+
+Texture makeTexture();
+Framebuffer makeFramebuffer();
+
+// A linked program from a vertex and a fragment shader file (and an optional geometry
+// shader). `defines` are inserted after the #version line as "#define NAME VALUE".
+class Program {
+ public:
+  Program(const std::string& vertexFile, const std::string& fragmentFile,
+          const std::vector<std::pair<std::string, std::string>>& defines = {},
+          const std::string& geometryFile = "");
+  void use() const;
+  GLint uniform(const char* name) const;  // -1 when the compiler removed it
+  void set(const char* name, int v) const;
+  void set(const char* name, float v) const;
+  void set(const char* name, const glm::vec2& v) const;
+  void set(const char* name, const glm::vec3& v) const;
+  void set(const char* name, const glm::vec4& v) const;
+  void set(const char* name, const glm::mat4& m) const;
+  GLuint id() const { return program_.id(); }
+
+ private:
+  GlName<deleteProgram> program_;
+};
+
+// The scene in GPU buffers: one VAO per object (attribute 0 = position, 1 = normal).
+struct GpuObject {
+  VertexArray vao;
+  Buffer positions;
+  Buffer normals;
+  Buffer indices;
+  GLsizei indexCount = 0;
+  const Object* object = nullptr;
+};
+
+class GpuScene {
+ public:
+  explicit GpuScene(const Scene& scene);
+  const Scene& scene() const { return scene_; }
+  const std::vector<GpuObject>& objects() const { return objects_; }
+  // Draws each object for which `select` is true; `perObject` sets uniforms (model matrix...).
+  template <class Select, class PerObject>
+  void draw(Select select, PerObject perObject) const {
+    for (const GpuObject& o : objects_) {
+      if (!select(*o.object)) continue;
+      perObject(*o.object);
+      gl::glBindVertexArray(o.vao.id());
+      gl::glDrawElements(GL_TRIANGLES, o.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    gl::glBindVertexArray(0);
+  }
+
+ private:
+  const Scene& scene_;
+  std::vector<GpuObject> objects_;
+};
+
+// An off-screen render target: colour textures (any number, for MRT) + a depth texture.
+struct RenderTarget {
+  Framebuffer fbo;
+  std::vector<Texture> color;
+  Texture depth;
+  int width = 0;
+  int height = 0;
+  void bind() const;
+};
+// colorFormats: internal formats such as GL_RGBA8, GL_RGBA32F; empty = depth only.
+RenderTarget makeRenderTarget(int width, int height, const std::vector<GLenum>& colorFormats,
+                              bool withDepth = true, GLenum depthFormat = GL_DEPTH_COMPONENT24);
+
+// An empty VAO for full-screen triangles generated in the vertex shader (gl_VertexID).
+class FullScreenTriangle {
+ public:
+  FullScreenTriangle();
+  void draw() const;
+
+ private:
+  VertexArray vao_;
+};
+
+// Reads back channel `c` of colour attachment `attachment` of the bound read framebuffer.
+}  // namespace sl::modern

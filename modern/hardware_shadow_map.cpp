@@ -1,0 +1,98 @@
+// modern.hw — Everitt, Rege & Cebenoyan 2001 as shaders: the depth texture with compare mode
+// (hardware 2x2 filtering with GL_LINEAR), polygon offset, and the texgen planes as one
+// uniform matrix. Twin of legacy_gl/hardware_shadow_map.cpp.
+//
+// Passes:
+//   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset
+//   2. shadeWithShadowTest  — camera view; hw_shadow.frag does textureProj on sampler2DShadow
+#include "modern/hardware_shadow_map.h"
+
+#include "core/errors.h"
+#include "modern/camera_pass.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+constexpr float kDefaultOffsetFactor = 2.0f;  // same as legacy.hw (Everitt Fig. 3)
+constexpr float kDefaultOffsetUnits = 4.0f;
+
+// Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
+RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
+                                  float units, bool linear, Frame& frame) {
+  PassTimer timer(frame, "1 depth from light");
+  const int n = params.shadowMapTexels;
+  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+  map.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(factor, units);
+  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  gpu.draw([](const Object& o) { return o.castsShadow; },
+           [&](const Object& o) { program.set("uModel", o.model); });
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  const float farDepth[4] = {1, 1, 1, 1};
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  return map;
+}
+
+// Pass 2 (Everitt Eq. 5): shading with the comparison result modulating direct light.
+void shadeWithShadowTest(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
+                         Frame& frame) {
+  PassTimer timer(frame, "2 camera pass with shadow test");
+  const Scene& scene = gpu.scene();
+  RenderTarget target = makeCameraTarget(params, false);
+  clearCameraTarget(target);
+  glEnable(GL_DEPTH_TEST);
+  Program program("scene.vert.glsl", "hw_shadow.frag.glsl");
+  program.use();
+  program.set("uViewProjection", cameraViewProjection(scene, params));
+  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
+  program.set("uWorldToShadowMap", S * lightProjection(scene) * lightView(scene.light));
+  setLightingUniforms(program, scene);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  program.set("uShadowMap", 0);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(program, o); });
+  readCameraTarget(target, frame);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
+  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  Frame frame;
+  GpuScene gpu(scene);
+  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, frame);
+  shadeWithShadowTest(gpu, params, map, frame);
+  return frame;
+}
+}  // namespace
+
+Technique hardwareShadowMapTechnique() {
+  Technique t;
+  t.name = "modern.hw";
+  t.paper = "Everitt, Rege & Cebenoyan 2001 (as GLSL)";
+  t.summary = "sampler2DShadow with compare mode, hardware 2x2 filtering, polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,10 @@
+#include "modern/hardware_shadow_map.h"
+#include "modern/modern.h"
+
+namespace sl::modern {
+
+std::vector<Technique> techniques() {
+  return {hardwareShadowMapTechnique()};
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# scripts/setup.sh — installs the Debian 12 packages shadowlab builds and runs with.
+# As root it runs apt-get; otherwise it prints the exact command and stops.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libosmesa6-dev      # Mesa OSMesa (llvmpipe): the embedded GL, no GPU or display needed
+  libegl-dev libegl1-mesa-dev  # EGL back end (Mesa here, NVIDIA on GPU machines)
+  libglm-dev          # vector and matrix math
+  libpng-dev zlib1g-dev  # PNG images, gzip-compressed meshes
+  nlohmann-json3-dev  # scene files and machine-readable output
+  libassimp-dev       # OBJ and PLY meshes
+  libembree-dev       # ray-traced reference visibility
+  libgtest-dev googletest  # tests
+  gnuplot-nox         # plots in the report
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+if [[ $(id -u) -ne 0 ]]; then
+  echo "shadowlab needs these Debian packages; run as root:" >&2
+  echo "  apt-get update && apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+echo "installing: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
