@@ -25,7 +25,9 @@ std::vector<float> ramp(int width, float lo, float hi, bool reverse) {
 // departure, departures_test.cpp), so the copy-to-texture cases compare the other stages.
 void enableEverything(GLenum border, bool tablesAndMatrix = true) {
   glPixelTransferf(GL_RED_SCALE, 0.8f);
-  glPixelTransferf(GL_GREEN_BIAS, 0.2f);
+  // (The reference also clamps to [0,1] before convolving on the copy-to-texture paths, so
+  // those cases keep the stage-1 results inside [0,1].)
+  glPixelTransferf(tablesAndMatrix ? GL_GREEN_BIAS : GL_GREEN_SCALE, tablesAndMatrix ? 0.2f : 0.6f);
   const auto t0 = ramp(64, 0.05f, 0.95f, false);
   glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, t0.data());
   if (tablesAndMatrix) glEnable(GL_COLOR_TABLE);
