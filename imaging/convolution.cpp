@@ -164,6 +164,15 @@ void convolve(const ConvolutionFilter& f, bool separable, Image4& image) {
       for (const Tap& t : taps) {
         const float* s = src->row(j + t.m) + size_t(t.n) * 4;
         const float w0 = t.w[0], w1 = t.w[1], w2 = t.w[2], w3 = t.w[3];
+        // A tap that feeds one component only (each tap of the packing kernel does) touches
+        // that component alone; adding 0 * x to the others would change nothing for finite x.
+        const int live = (w0 != 0.0f) + (w1 != 0.0f) + (w2 != 0.0f) + (w3 != 0.0f);
+        if (live == 1) {
+          const int c = w0 != 0.0f ? 0 : w1 != 0.0f ? 1 : w2 != 0.0f ? 2 : 3;
+          const float wc = t.w[c];
+          for (int i = 0; i < ow; ++i) o[i * 4 + c] += s[i * 4 + c] * wc;
+          continue;
+        }
         for (int i = 0; i < ow; ++i) {
           o[i * 4 + 0] += s[i * 4 + 0] * w0;
           o[i * 4 + 1] += s[i * 4 + 1] * w1;

@@ -136,7 +136,7 @@ struct State {
   bool emulateAccum = false;
   Rgba clearAccum{0, 0, 0, 0};
   int accumWidth = 0, accumHeight = 0;
-  std::vector<float> accum;
+  std::vector<int16_t> accum;  // k / 32767 per component (accumulation.cpp)
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).
@@ -153,6 +153,12 @@ bool pipelineIsIdentity(const TransferState& t, Dimensionality dims);
 bool runPipeline(TransferState& t, Image4& image, Dimensionality dims);
 // The output size of the convolution stage for a source of w x h (REDUCE shrinks it).
 void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
+
+// The pipeline on 8-bit RGBA groups in place, for 8-bit destinations, when only
+// per-component stages and the color matrix are active (fast_paths.cpp). Returns false
+// (bytes untouched) when another stage is active; the general path is then used.
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h);
+bool bytePathApplies(const TransferState& t);
 
 // ---- stages (one file each) ----
 void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp
