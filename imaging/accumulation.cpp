@@ -20,7 +20,7 @@ namespace sl::imaging::detail {
 namespace {
 
 constexpr double kAccumSteps = 32767.0;  // 16-bit signed fixed point: v = k / 32767
-constexpr int kAccumMin = -32767, kAccumMax = 32767;
+constexpr int32_t kAccumMin = -32767, kAccumMax = 32767;
 
 // "Accumulation buffer values are taken to be signed values in [-1, 1]": values pushed
 // outside are undefined by the specification; the emulation saturates them.
@@ -89,11 +89,14 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
     s.driver.PixelStorei(GL_PACK_SKIP_ROWS, 0);
     s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
     s.driver.PopClientAttrib();
-    double scaled[256];
-    for (int v = 0; v < 256; ++v) scaled[v] = double(value) * (v / 255.0) * kAccumSteps;
+    // value * C in accumulator steps, rounded once per byte value; the accumulator is an
+    // integer, so A + round(value * C) is the rounded sum.
+    int32_t scaled[256];
+    for (int v = 0; v < 256; ++v)
+      scaled[v] = int32_t(std::lround(double(value) * (v / 255.0) * kAccumSteps));
     forEach(s, b, [&](int16_t a, size_t i) {
-      const double k = std::nearbyint((keep ? double(a) : 0.0) + scaled[bytes[i]]);
-      return int16_t(std::clamp(k, double(kAccumMin), double(kAccumMax)));
+      const int32_t k = (keep ? int32_t(a) : 0) + scaled[bytes[i]];
+      return int16_t(std::clamp(k, kAccumMin, kAccumMax));
     });
     return;
   }
@@ -196,9 +199,9 @@ void emAccum(GLenum op, GLfloat value) {
       return;
     }
     case GL_ADD: {
-      const double add = double(value) * kAccumSteps;
+      const int32_t add = int32_t(std::lround(std::clamp(double(value), -2.0, 2.0) * kAccumSteps));
       forEach(s, b, [&](int16_t a, size_t) {
-        return int16_t(std::clamp(std::nearbyint(a + add), double(kAccumMin), double(kAccumMax)));
+        return int16_t(std::clamp(int32_t(a) + add, kAccumMin, kAccumMax));
       });
       return;
     }

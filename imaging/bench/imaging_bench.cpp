@@ -4,8 +4,9 @@
 // as a ratio to a memcpy of the same w*h*4 bytes measured in the same run:
 //   * emulated: imaging/ installed on Debian's OSMesa (llvmpipe), the whole GL call;
 //   * reference: the same call natively on Mesa 7.8.2 (../shared/reference-gl), when present;
-//   * stage: the emulation's transform alone on a float RGBA image (runPipeline), the part
-//     imaging/ controls — the GL call adds the driver's read-back and DrawPixels.
+//   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
+//     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
+//     driver's read-back and DrawPixels.
 // Prints one markdown table. Usage: build/bin/imaging_bench [--quick]
 #include <chrono>
 #include <cstdio>
@@ -158,7 +159,11 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
   imaging::install(*ctx);
   std::vector<double> ratios;
   Image4 source(w, h);
-  for (size_t i = 0; i < source.px.size(); ++i) source.px[i] = float((i * 2654435761u) >> 24) / 255.0f;
+  std::vector<uint8_t> bytes(source.px.size());
+  for (size_t i = 0; i < source.px.size(); ++i) {
+    bytes[i] = uint8_t((i * 2654435761u) >> 24);
+    source.px[i] = float(bytes[i]) / 255.0f;
+  }
   for (const Operation& op : operations()) {
     if (op.accumulation) {
       ratios.push_back(-1.0);
@@ -166,14 +171,24 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
     }
     op.setup();
     State& s = *currentState();
-    Image4 work;
-    const double ms = bestMs([&] {
-      work = source;
-      runPipeline(s.transfer, work, Dimensionality::k2D);
-    }, reps);
-    const double copyMs = bestMs([&] { work = source; }, reps);
+    double ms = 0, copyMs = 0;
+    if (bytePathApplies(s.transfer)) {  // what the call runs for 8-bit buffers
+      std::vector<uint8_t> work;
+      ms = bestMs([&] {
+        work = bytes;
+        transformBytes(s.transfer, work, w, h);
+      }, reps);
+      copyMs = bestMs([&] { work = bytes; }, reps);
+    } else {
+      Image4 work;
+      ms = bestMs([&] {
+        work = source;
+        runPipeline(s.transfer, work, Dimensionality::k2D);
+      }, reps);
+      copyMs = bestMs([&] { work = source; }, reps);
+    }
     resetAll();
-    ratios.push_back((ms - copyMs) / base);  // the stages, without the image copy
+    ratios.push_back(std::max(0.0, ms - copyMs) / base);  // the stages, without the copy
   }
   return ratios;
 }
