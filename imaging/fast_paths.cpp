@@ -97,28 +97,46 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     replaced[2] = f.b || f.l || f.i;
     replaced[3] = f.a || f.i;
   }
+  // The conversion of a matrix output to its byte: post scale/bias, post-matrix table
+  // (replaced components only), final conversion.
+  auto finish = [&](int r, float sum) {
+    float v = scaled ? sum * scale[r] + bias[r] : sum + bias[r];
+    if (replaced[r]) {
+      const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      v = tableOut.px[size_t(int(c * tableScale + 0.5f)) * 4 + r];
+    }
+    return toByte(v);
+  };
+  // Flattened terms per output component; a row without terms is a constant byte.
+  struct Row {
+    int count = 0;
+    int component[4] = {0, 0, 0, 0};
+    const float* product[4] = {nullptr, nullptr, nullptr, nullptr};
+    uint8_t constant = 0;
+  };
+  Row flat[4];
+  for (int r = 0; r < 4; ++r) {
+    flat[r].count = int(rows[r].size());
+    for (int i = 0; i < flat[r].count; ++i) {
+      flat[r].component[i] = rows[r][size_t(i)].component;
+      flat[r].product[i] = rows[r][size_t(i)].product.data();
+    }
+    flat[r].constant = finish(r, 0.0f);
+  }
   parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
     uint8_t* p = bytes.data() + size_t(y0) * w * 4;
     const size_t n = size_t(y1 - y0) * w;
     for (size_t g = 0; g < n; ++g, p += 4) {
-      float o[4];
+      const uint8_t in[4] = {p[0], p[1], p[2], p[3]};
       for (int r = 0; r < 4; ++r) {
-        float sum = 0.0f;
-        bool first = true;
-        for (const Term& term : rows[r]) {
-          const float x = term.product[p[term.component]];
-          sum = first ? x : sum + x;
-          first = false;
+        const Row& row = flat[r];
+        if (row.count == 0) {
+          p[r] = row.constant;
+          continue;
         }
-        o[r] = scaled ? sum * scale[r] + bias[r] : sum + bias[r];
-      }
-      for (int r = 0; r < 4; ++r) {
-        float v = o[r];
-        if (replaced[r]) {
-          const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-          v = tableOut.px[size_t(int(c * tableScale + 0.5f)) * 4 + r];
-        }
-        p[r] = toByte(v);
+        float sum = row.product[0][in[row.component[0]]];
+        for (int i = 1; i < row.count; ++i) sum = sum + row.product[i][in[row.component[i]]];
+        p[r] = finish(r, sum);
       }
     }
   });
