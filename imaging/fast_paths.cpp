@@ -144,3 +144,119 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
 }
 
 }  // namespace sl::imaging::detail
+
+namespace sl::imaging::detail {
+
+// Convolution from 8-bit groups: stages 1-3 (per component) give float values per byte
+// value; the filter runs over strips of padded float rows built on the fly; stages 4-9 run on
+// each output row with the general stage code; the final conversion writes bytes. Same
+// floats, same order of operations as the general path (Image4 throughout), so the same
+// bytes, without whole-image float buffers.
+bool convolveBytesApplies(const TransferState& t) {
+  if (t.convolution2DEnabled) return t.conv2D.width > 0 && t.conv2D.height > 0;
+  if (t.separable2DEnabled) return t.separable2D.width > 0 && !t.separable2D.column.empty();
+  return false;
+}
+
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh) {
+  const bool separable = !t.convolution2DEnabled;
+  const ConvolutionFilter& f = separable ? t.separable2D : t.conv2D;
+  // Stages 1-3 on the 256 byte values.
+  TransferState prefix;
+  prefix.scale = t.scale;
+  prefix.bias = t.bias;
+  prefix.mapColor = t.mapColor;
+  prefix.colorMaps = t.colorMaps;
+  prefix.tables[0] = t.tables[0];
+  prefix.colorTableEnabled = t.colorTableEnabled;
+  Image4 values(256, 1);
+  for (int v = 0; v < 256; ++v)
+    for (int c = 0; c < 4; ++c) values.px[size_t(v) * 4 + c] = float(v) / 255.0f;
+  runPipeline(prefix, values, Dimensionality::k2D);
+  // Stages 5-7 (histogram and minmax are taken on the real state below).
+  TransferState suffix = t;
+  suffix.scale = {1, 1, 1, 1};
+  suffix.bias = {0, 0, 0, 0};
+  suffix.mapColor = false;
+  suffix.colorTableEnabled = false;
+  suffix.convolution2DEnabled = suffix.separable2DEnabled = suffix.convolution1DEnabled = false;
+  suffix.histogramEnabled = suffix.minmaxEnabled = false;
+  const bool postScaleBias = !(t.postConvolutionScale == Rgba{1, 1, 1, 1} &&
+                               t.postConvolutionBias == Rgba{0, 0, 0, 0});
+
+  int wf = 0, hf = 0;
+  const std::vector<Tap> taps = kernelTaps(f, separable, wf, hf);
+  const bool reduce = f.borderMode == GL_REDUCE;
+  ow = reduce ? ws - wf + 1 : ws;
+  oh = reduce ? hs - hf + 1 : hs;
+  if (ow <= 0 || oh <= 0) {
+    ow = oh = 0;
+    out.clear();
+    return true;
+  }
+  const int cw = reduce ? 0 : wf / 2, ch = reduce ? 0 : hf / 2;
+  const int pw = reduce ? ws : ws + wf - 1;  // padded row width
+  const bool replicate = f.borderMode == GL_REPLICATE_BORDER;
+  auto padRow = [&](int py, float* dst) {
+    const int sy = py - ch;
+    for (int x = 0; x < pw; ++x) {
+      const int sx = x - cw;
+      const bool inside = sx >= 0 && sx < ws && sy >= 0 && sy < hs;
+      if (inside || replicate) {
+        const uint8_t* p = src.data() + (size_t(std::clamp(sy, 0, hs - 1)) * ws +
+                                         size_t(std::clamp(sx, 0, ws - 1))) * 4;
+        for (int c = 0; c < 4; ++c) dst[x * 4 + c] = values.px[size_t(p[c]) * 4 + c];
+      } else {
+        for (int c = 0; c < 4; ++c) dst[x * 4 + c] = f.borderColor[c];
+      }
+    }
+  };
+  out.assign(size_t(ow) * oh * 4, 0);
+  const bool counting = t.histogramEnabled || t.minmaxEnabled;
+  bool kept = true;
+  constexpr int kStripRows = 16;
+  auto strip = [&](int j0, int j1) {
+    const int rows = j1 - j0 + hf - 1;
+    std::vector<float> padded(size_t(rows) * pw * 4);
+    for (int r = 0; r < rows; ++r) padRow(j0 + r, padded.data() + size_t(r) * pw * 4);
+    Image4 row(ow, 1);
+    for (int j = j0; j < j1; ++j) {
+      std::fill(row.px.begin(), row.px.end(), 0.0f);
+      accumulateTaps(taps, [&](int m) { return padded.data() + size_t(j - j0 + m) * pw * 4; },
+                     ow, row.px.data());
+      if (postScaleBias)
+        for (size_t i = 0; i < row.px.size(); ++i)
+          row.px[i] = row.px[i] * t.postConvolutionScale[i & 3] + t.postConvolutionBias[i & 3];
+      runPipeline(suffix, row, Dimensionality::k2D);
+      if (t.histogramEnabled) {
+        accumulateHistogram(t.histogram, row);
+        if (t.histogram.sink) {
+          kept = false;
+          continue;
+        }
+      }
+      if (t.minmaxEnabled) {
+        accumulateMinmax(t.minmax, row);
+        if (t.minmax.sink) {
+          kept = false;
+          continue;
+        }
+      }
+      uint8_t* o = out.data() + size_t(j) * ow * 4;
+      for (size_t i = 0; i < row.px.size(); ++i) o[i] = toByte(row.px[i]);
+    }
+  };
+  const int strips = (oh + kStripRows - 1) / kStripRows;
+  auto run = [&](int s0, int s1) {
+    for (int s = s0; s < s1; ++s) strip(s * kStripRows, std::min(oh, (s + 1) * kStripRows));
+  };
+  if (counting) {
+    run(0, strips);  // the tables are shared: one thread
+  } else {
+    parallelRows(strips, size_t(kStripRows) * ow * 4 * (taps.size() + 1), run);
+  }
+  return kept;
+}
+
+}  // namespace sl::imaging::detail

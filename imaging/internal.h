@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -159,6 +160,25 @@ void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
 // (bytes untouched) when another stage is active; the general path is then used.
 bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h);
 bool bytePathApplies(const TransferState& t);
+
+// Convolution on an 8-bit source straight to 8-bit output, in strips of rows that stay in
+// cache, with every stage of 3.6.5 (fast_paths.cpp). `out` receives ow x oh groups; returns
+// false when a sink consumed the groups (nothing to write).
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh);
+// A 2D or separable convolution with a non-empty filter is enabled.
+bool convolveBytesApplies(const TransferState& t);
+
+// A tap of a convolution kernel: offset (n, m) into the (bordered) source, four weights.
+struct Tap {
+  int n, m;
+  float w[4];
+};
+// The non-zero taps of a filter (pass-through components as a unit tap at the centre).
+std::vector<Tap> kernelTaps(const ConvolutionFilter& f, bool separable, int& wf, int& hf);
+// o[0 .. ow*4) += sum over taps of row(m)[n*4 + ...] * w, in tap order (convolution.cpp).
+void accumulateTaps(const std::vector<Tap>& taps, const std::function<const float*(int)>& row,
+                    int ow, float* o);
 
 // ---- stages (one file each) ----
 void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp

@@ -236,6 +236,16 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
     s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
     return;
   }
+  if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {  // strips, bytes to bytes
+    const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t> out;
+    int ow = 0, oh = 0;
+    if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh)) return;
+    if (ow == 0 || oh == 0) return;
+    TightPixelStore tight(s->driver);
+    s->driver.DrawPixels(ow, oh, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
+    return;
+  }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
@@ -279,6 +289,20 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
       TightPixelStore tight(s->driver);
       s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
                               bytes.data());
+      return;
+    }
+  }
+  if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {
+    GLint format = 0;
+    s->driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (eightBitTexture(GLenum(format))) {
+      const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+      std::vector<uint8_t> out;
+      int ow = 0, oh = 0;
+      if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh) || ow == 0 || oh == 0) return;
+      TightPixelStore tight(s->driver);
+      s->driver.TexSubImage2D(target, level, xoffset, yoffset, ow, oh, GL_RGBA,
+                              GL_UNSIGNED_BYTE, out.data());
       return;
     }
   }
