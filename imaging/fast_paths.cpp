@@ -7,6 +7,8 @@
 // color_table) and kept as a table. The color matrix then sums its non-zero coefficients
 // times those values, in the same order and with the same float operations as
 // applyColorMatrix, so the bytes written are identical to the general path's.
+#include <cstring>
+
 #include "imaging/internal.h"
 
 namespace sl::imaging::detail {
@@ -49,13 +51,18 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     uint8_t lut[256 * 4];
     for (int i = 0; i < 256 * 4; ++i) lut[i] = toByte(values.px[size_t(i)]);
     parallelRows(h, size_t(w), [&](int y0, int y1) {
+      // A local copy of the table: byte stores through p cannot alias it, so the compiler
+      // keeps it in place instead of reloading after every store.
+      uint8_t table[256 * 4];
+      std::memcpy(table, lut, sizeof table);
       uint8_t* p = bytes.data() + size_t(y0) * w * 4;
       const size_t n = size_t(y1 - y0) * w * 4;
       for (size_t i = 0; i < n; i += 4) {
-        p[i + 0] = lut[p[i + 0] * 4 + 0];
-        p[i + 1] = lut[p[i + 1] * 4 + 1];
-        p[i + 2] = lut[p[i + 2] * 4 + 2];
-        p[i + 3] = lut[p[i + 3] * 4 + 3];
+        const uint32_t v = uint32_t(table[p[i + 0] * 4 + 0]) |
+                           uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
+                           uint32_t(table[p[i + 2] * 4 + 2]) << 16 |
+                           uint32_t(table[p[i + 3] * 4 + 3]) << 24;
+        std::memcpy(p + i, &v, 4);  // RGBA bytes, little-endian
       }
     });
     return true;
@@ -126,18 +133,22 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
   parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
     uint8_t* p = bytes.data() + size_t(y0) * w * 4;
     const size_t n = size_t(y1 - y0) * w;
+    Row local[4];  // locals: the byte stores below cannot alias them
+    for (int r = 0; r < 4; ++r) local[r] = flat[r];
     for (size_t g = 0; g < n; ++g, p += 4) {
       const uint8_t in[4] = {p[0], p[1], p[2], p[3]};
+      uint8_t result[4];
       for (int r = 0; r < 4; ++r) {
-        const Row& row = flat[r];
+        const Row& row = local[r];
         if (row.count == 0) {
-          p[r] = row.constant;
+          result[r] = row.constant;
           continue;
         }
         float sum = row.product[0][in[row.component[0]]];
         for (int i = 1; i < row.count; ++i) sum = sum + row.product[i][in[row.component[i]]];
-        p[r] = finish(r, sum);
+        result[r] = finish(r, sum);
       }
+      std::memcpy(p, result, 4);
     }
   });
   return true;

@@ -185,7 +185,11 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
     op.setup();
     State& s = *currentState();
     double ms = 0, copyMs = 0;
-    if (bytePathApplies(s.transfer)) {  // what the call runs for 8-bit buffers
+    if (convolveBytesApplies(s.transfer)) {  // what the call runs for 8-bit buffers
+      std::vector<uint8_t> out;
+      int ow = 0, oh = 0;
+      ms = bestMs([&] { convolveBytes(s.transfer, bytes, w, h, out, ow, oh); }, reps);
+    } else if (bytePathApplies(s.transfer)) {
       std::vector<uint8_t> work;
       ms = bestMs([&] {
         work = bytes;
