@@ -128,10 +128,15 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
   if (type == GL_UNSIGNED_BYTE) {
     // One table over all 65535 accumulator values: the final conversion of value * A.
     std::vector<uint8_t> lut(65536);
+    const double step = double(value) / kAccumSteps;  // value * k / 32767, one multiply each
     for (int k = kAccumMin; k <= kAccumMax; ++k)
-      lut[size_t(k + 32768)] = uint8_t(clamp01(value * (k / kAccumSteps)) * 255.0 + 0.5);
+      lut[size_t(k + 32768)] = uint8_t(clamp01(double(k) * step) * 255.0 + 0.5);
     bytes.resize(size_t(w) * h * 4);
-    rows([&](size_t i, int16_t a) { bytes[i] = lut[size_t(a + 32768)]; });
+    // Raw pointers: a byte store through a vector's operator[] may alias the vector itself,
+    // which would reload its data pointer on every element.
+    uint8_t* const dst = bytes.data();
+    const uint8_t* const table = lut.data();
+    rows([dst, table](size_t i, int16_t a) { dst[i] = table[size_t(a + 32768)]; });
     data = bytes.data();
   } else if (type == GL_UNSIGNED_SHORT) {
     shorts.resize(size_t(w) * h * 4);

@@ -254,8 +254,10 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
           continue;
         }
       }
-      uint8_t* o = out.data() + size_t(j) * ow * 4;
-      for (size_t i = 0; i < row.px.size(); ++i) o[i] = toByte(row.px[i]);
+      uint8_t* const o = out.data() + size_t(j) * ow * 4;
+      const float* const v = row.px.data();
+      const size_t n = row.px.size();
+      for (size_t i = 0; i < n; ++i) o[i] = toByte(v[i]);
     }
   };
   const int strips = (oh + kStripRows - 1) / kStripRows;

@@ -65,14 +65,16 @@ std::vector<unsigned char> finalConversion(const Image4& image, GLenum type) {
   auto clamp01 = [](float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; };
   parallelRows(image.height, size_t(image.width) * 4, [&](int y0, int y1) {
     const size_t b = size_t(y0) * image.width * 4, e = size_t(y1) * image.width * 4;
+    const float* const in = image.px.data();
     if (type == GL_UNSIGNED_BYTE) {
-      for (size_t i = b; i < e; ++i) out[i] = uint8_t(clamp01(image.px[i]) * 255.0f + 0.5f);
+      uint8_t* const o = out.data();  // raw pointer: see accumulation.cpp
+      for (size_t i = b; i < e; ++i) o[i] = uint8_t(clamp01(in[i]) * 255.0f + 0.5f);
     } else if (type == GL_UNSIGNED_SHORT) {
       auto* o = reinterpret_cast<uint16_t*>(out.data());
-      for (size_t i = b; i < e; ++i) o[i] = uint16_t(clamp01(image.px[i]) * 65535.0f + 0.5f);
+      for (size_t i = b; i < e; ++i) o[i] = uint16_t(clamp01(in[i]) * 65535.0f + 0.5f);
     } else {
       auto* o = reinterpret_cast<float*>(out.data());
-      for (size_t i = b; i < e; ++i) o[i] = clamp01(image.px[i]);
+      for (size_t i = b; i < e; ++i) o[i] = clamp01(in[i]);
     }
   });
   return out;
