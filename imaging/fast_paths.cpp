@@ -120,6 +120,7 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     int component[4] = {0, 0, 0, 0};
     const float* product[4] = {nullptr, nullptr, nullptr, nullptr};
     uint8_t constant = 0;
+    bool plain = false;  // no post scale, bias or table: the byte is toByte(sum)
   };
   Row flat[4];
   for (int r = 0; r < 4; ++r) {
@@ -129,6 +130,7 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
       flat[r].product[i] = rows[r][size_t(i)].product.data();
     }
     flat[r].constant = finish(r, 0.0f);
+    flat[r].plain = !scaled && bias[r] == 0.0f && !replaced[r];
   }
   parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
     uint8_t* p = bytes.data() + size_t(y0) * w * 4;
@@ -146,7 +148,7 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
         }
         float sum = row.product[0][in[row.component[0]]];
         for (int i = 1; i < row.count; ++i) sum = sum + row.product[i][in[row.component[i]]];
-        result[r] = finish(r, sum);
+        result[r] = row.plain ? toByte(sum) : finish(r, sum);
       }
       std::memcpy(p, result, 4);
     }
