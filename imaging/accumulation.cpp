@@ -70,9 +70,12 @@ void forEach(State& s, const Box& b, const Op& op) {
 
 GLenum colorType(const State& s) {
   switch (s.context->spec().color) {
-    case ColorFormat::kRgba8: return GL_UNSIGNED_BYTE;
-    case ColorFormat::kRgba16: return GL_UNSIGNED_SHORT;
-    case ColorFormat::kRgba32f: return GL_FLOAT;
+    case ColorFormat::kRgba8:
+      return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16:
+      return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f:
+      return GL_FLOAT;
   }
   return GL_FLOAT;
 }
@@ -195,11 +198,16 @@ void emAccum(GLenum op, GLfloat value) {
   const Box b = region(s);
   if (b.x1 <= b.x0 || b.y1 <= b.y0) return;
   switch (op) {
-    case GL_ACCUM: accumulateColor(s, b, value, true); return;
-    case GL_LOAD: accumulateColor(s, b, value, false); return;
+    case GL_ACCUM:
+      accumulateColor(s, b, value, true);
+      return;
+    case GL_LOAD:
+      accumulateColor(s, b, value, false);
+      return;
     case GL_MULT: {
       std::vector<int16_t> lut(65536);
-      for (int k = kAccumMin; k <= kAccumMax; ++k) lut[size_t(k + 32768)] = toFixed(value * (k / kAccumSteps));
+      for (int k = kAccumMin; k <= kAccumMax; ++k)
+        lut[size_t(k + 32768)] = toFixed(value * (k / kAccumSteps));
       forEach(s, b, [&](int16_t a, size_t) { return lut[size_t(a + 32768)]; });
       return;
     }
@@ -210,8 +218,11 @@ void emAccum(GLenum op, GLfloat value) {
       });
       return;
     }
-    case GL_RETURN: returnToColorBuffer(s, b, value); return;
-    default: return;
+    case GL_RETURN:
+      returnToColorBuffer(s, b, value);
+      return;
+    default:
+      return;
   }
 }
 

@@ -39,7 +39,9 @@ void applyColorMatrix(const Matrix4& mat, const Rgba& scale, const Rgba& bias, I
 
 namespace {
 
-Matrix4& top(State& s) { return s.transfer.colorMatrixStack.back(); }
+Matrix4& top(State& s) {
+  return s.transfer.colorMatrixStack.back();
+}
 
 Matrix4 multiply(const Matrix4& a, const Matrix4& b) {  // a * b, column-major
   Matrix4 r;

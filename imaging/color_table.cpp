@@ -11,22 +11,32 @@ namespace {
 // Index of a regular table target in TransferState::tables, or -1.
 int regularIndex(GLenum target) {
   switch (target) {
-    case GL_COLOR_TABLE: return 0;
-    case GL_POST_CONVOLUTION_COLOR_TABLE: return 1;
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return 2;
-    default: return -1;
+    case GL_COLOR_TABLE:
+      return 0;
+    case GL_POST_CONVOLUTION_COLOR_TABLE:
+      return 1;
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
+      return 2;
+    default:
+      return -1;
   }
 }
 int proxyIndex(GLenum target) {
   switch (target) {
-    case GL_PROXY_COLOR_TABLE: return 0;
-    case GL_PROXY_POST_CONVOLUTION_COLOR_TABLE: return 1;
-    case GL_PROXY_POST_COLOR_MATRIX_COLOR_TABLE: return 2;
-    default: return -1;
+    case GL_PROXY_COLOR_TABLE:
+      return 0;
+    case GL_PROXY_POST_CONVOLUTION_COLOR_TABLE:
+      return 1;
+    case GL_PROXY_POST_COLOR_MATRIX_COLOR_TABLE:
+      return 2;
+    default:
+      return -1;
   }
 }
 
-bool isPowerOfTwoOrZero(int w) { return w >= 0 && (w & (w - 1)) == 0; }
+bool isPowerOfTwoOrZero(int w) {
+  return w >= 0 && (w & (w - 1)) == 0;
+}
 
 // 3.6.3: scale, bias, clamp to [0,1], then select the components of the base internal format
 // (table 3.15: L and I from R, A from A).
@@ -145,8 +155,8 @@ void applyColorTable(const ColorTable& t, Image4& image) {
 }
 
 // ---------------------------------------------------------------- entry points
-void emColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format,
-                  GLenum type, const void* data) {
+void emColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum format, GLenum type,
+                  const void* data) {
   State& s = *currentState();
   int regular = -1, proxy = -1;
   // Format and type are checked with the other enums, before the width (SGI_color_table).
@@ -214,7 +224,7 @@ void emColorTableParameterfv(GLenum target, GLenum pname, const GLfloat* params)
     return;
   }
   ColorTable& t = s.transfer.tables[index];
-  Rgba* dst = pname == GL_COLOR_TABLE_SCALE ? &t.scale
+  Rgba* dst = pname == GL_COLOR_TABLE_SCALE  ? &t.scale
               : pname == GL_COLOR_TABLE_BIAS ? &t.bias
                                              : nullptr;
   if (dst == nullptr) {
@@ -270,15 +280,33 @@ bool queryTableParameter(State& s, GLenum target, GLenum pname, GLfloat* params)
   const FormatComponents f = componentsOf(width > 0 ? format : 0);
   auto bits = [](bool present) { return present ? float(kTableComponentBits) : 0.0f; };
   switch (pname) {
-    case GL_COLOR_TABLE_FORMAT: params[0] = float(internalFormat); return true;
-    case GL_COLOR_TABLE_WIDTH: params[0] = float(width); return true;
-    case GL_COLOR_TABLE_RED_SIZE: params[0] = bits(f.r); return true;
-    case GL_COLOR_TABLE_GREEN_SIZE: params[0] = bits(f.g); return true;
-    case GL_COLOR_TABLE_BLUE_SIZE: params[0] = bits(f.b); return true;
-    case GL_COLOR_TABLE_ALPHA_SIZE: params[0] = bits(f.a); return true;
-    case GL_COLOR_TABLE_LUMINANCE_SIZE: params[0] = bits(f.l); return true;
-    case GL_COLOR_TABLE_INTENSITY_SIZE: params[0] = bits(f.i); return true;
-    default: recordError(s, GL_INVALID_ENUM); return false;  // incl. scale/bias of a proxy
+    case GL_COLOR_TABLE_FORMAT:
+      params[0] = float(internalFormat);
+      return true;
+    case GL_COLOR_TABLE_WIDTH:
+      params[0] = float(width);
+      return true;
+    case GL_COLOR_TABLE_RED_SIZE:
+      params[0] = bits(f.r);
+      return true;
+    case GL_COLOR_TABLE_GREEN_SIZE:
+      params[0] = bits(f.g);
+      return true;
+    case GL_COLOR_TABLE_BLUE_SIZE:
+      params[0] = bits(f.b);
+      return true;
+    case GL_COLOR_TABLE_ALPHA_SIZE:
+      params[0] = bits(f.a);
+      return true;
+    case GL_COLOR_TABLE_LUMINANCE_SIZE:
+      params[0] = bits(f.l);
+      return true;
+    case GL_COLOR_TABLE_INTENSITY_SIZE:
+      params[0] = bits(f.i);
+      return true;
+    default:
+      recordError(s, GL_INVALID_ENUM);
+      return false;  // incl. scale/bias of a proxy
   }
 }
 }  // namespace

@@ -13,10 +13,14 @@ namespace {
 
 ConvolutionFilter* filterFor(State& s, GLenum target) {
   switch (target) {
-    case GL_CONVOLUTION_1D: return &s.transfer.conv1D;
-    case GL_CONVOLUTION_2D: return &s.transfer.conv2D;
-    case GL_SEPARABLE_2D: return &s.transfer.separable2D;
-    default: return nullptr;
+    case GL_CONVOLUTION_1D:
+      return &s.transfer.conv1D;
+    case GL_CONVOLUTION_2D:
+      return &s.transfer.conv2D;
+    case GL_SEPARABLE_2D:
+      return &s.transfer.separable2D;
+    default:
+      return nullptr;
   }
 }
 
@@ -55,8 +59,7 @@ bool checkFilter(State& s, GLenum target, GLenum expected, GLenum internalformat
     recordError(s, GL_INVALID_ENUM);
     return false;
   }
-  if (width < 0 || width > kMaxConvolutionWidth || height < 0 ||
-      height > kMaxConvolutionHeight) {
+  if (width < 0 || width > kMaxConvolutionWidth || height < 0 || height > kMaxConvolutionHeight) {
     recordError(s, GL_INVALID_VALUE);
     return false;
   }
@@ -155,7 +158,8 @@ void convolve(const ConvolutionFilter& f, bool separable, Image4& image) {
   Image4 out(ow, oh);
   parallelRows(oh, size_t(ow) * 4 * (taps.size() + 1), [&](int y0, int y1) {
     for (int j = y0; j < y1; ++j) {
-      accumulateTaps(taps, [&](int m) { return src->row(j + m); }, ow, out.row(j));
+      accumulateTaps(
+          taps, [&](int m) { return src->row(j + m); }, ow, out.row(j));
     }
   });
   image = std::move(out);
@@ -192,8 +196,7 @@ void accumulateTaps(const std::vector<Tap>& taps, const std::function<const floa
 void emConvolutionFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height,
                            GLenum format, GLenum type, const void* data) {
   State& s = *currentState();
-  if (!checkFilter(s, target, GL_CONVOLUTION_2D, internalformat, width, height, true, format,
-                   type))
+  if (!checkFilter(s, target, GL_CONVOLUTION_2D, internalformat, width, height, true, format, type))
     return;
   defineFilter(s.transfer.conv2D, internalformat,
                unpackImage(data, width, height, format, type, unpackStore(s.driver)));
@@ -211,8 +214,7 @@ void emConvolutionFilter1D(GLenum target, GLenum internalformat, GLsizei width, 
 void emSeparableFilter2D(GLenum target, GLenum internalformat, GLsizei width, GLsizei height,
                          GLenum format, GLenum type, const void* row, const void* column) {
   State& s = *currentState();
-  if (!checkFilter(s, target, GL_SEPARABLE_2D, internalformat, width, height, true, format,
-                   type))
+  if (!checkFilter(s, target, GL_SEPARABLE_2D, internalformat, width, height, true, format, type))
     return;
   ConvolutionFilter& f = s.transfer.separable2D;
   f.format = baseInternalFormat(internalformat);
@@ -265,7 +267,9 @@ void emConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params
       f->borderMode = mode;
       return;
     }
-    default: recordError(s, GL_INVALID_ENUM); return;
+    default:
+      recordError(s, GL_INVALID_ENUM);
+      return;
   }
 }
 
@@ -274,8 +278,7 @@ void emConvolutionParameteriv(GLenum target, GLenum pname, const GLint* params) 
     // "Integer color components are interpreted linearly such that the most positive integer
     // maps to 1.0, and the most negative integer maps to -1.0."
     GLfloat f[4];
-    for (int c = 0; c < 4; ++c)
-      f[c] = float((2.0 * double(params[c]) + 1.0) / 4294967295.0);
+    for (int c = 0; c < 4; ++c) f[c] = float((2.0 * double(params[c]) + 1.0) / 4294967295.0);
     emConvolutionParameterfv(target, pname, f);
     return;
   }
@@ -357,10 +360,18 @@ bool queryConvolutionParameter(State& s, GLenum target, GLenum pname, GLfloat* p
     case GL_CONVOLUTION_FILTER_BIAS:
       for (int c = 0; c < 4; ++c) params[c] = f->bias[c];
       return true;
-    case GL_CONVOLUTION_BORDER_MODE: params[0] = float(f->borderMode); return true;
-    case GL_CONVOLUTION_FORMAT: params[0] = float(f->internalFormat); return true;
-    case GL_CONVOLUTION_WIDTH: params[0] = float(f->width); return true;
-    case GL_MAX_CONVOLUTION_WIDTH: params[0] = float(kMaxConvolutionWidth); return true;
+    case GL_CONVOLUTION_BORDER_MODE:
+      params[0] = float(f->borderMode);
+      return true;
+    case GL_CONVOLUTION_FORMAT:
+      params[0] = float(f->internalFormat);
+      return true;
+    case GL_CONVOLUTION_WIDTH:
+      params[0] = float(f->width);
+      return true;
+    case GL_MAX_CONVOLUTION_WIDTH:
+      params[0] = float(kMaxConvolutionWidth);
+      return true;
     case GL_CONVOLUTION_HEIGHT:
       if (oneD) break;
       params[0] = float(f->height);
@@ -369,7 +380,8 @@ bool queryConvolutionParameter(State& s, GLenum target, GLenum pname, GLfloat* p
       if (oneD) break;
       params[0] = float(kMaxConvolutionHeight);
       return true;
-    default: break;
+    default:
+      break;
   }
   recordError(s, GL_INVALID_ENUM);
   return false;

@@ -23,8 +23,7 @@ inline uint8_t toByte(float v) {
 }  // namespace
 
 bool bytePathApplies(const TransferState& t) {
-  return !(t.histogramEnabled || t.minmaxEnabled || t.convolution2DEnabled ||
-           t.separable2DEnabled);
+  return !(t.histogramEnabled || t.minmaxEnabled || t.convolution2DEnabled || t.separable2DEnabled);
 }
 
 bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h) {
@@ -58,10 +57,9 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
       uint8_t* p = bytes.data() + size_t(y0) * w * 4;
       const size_t n = size_t(y1 - y0) * w * 4;
       for (size_t i = 0; i < n; i += 4) {
-        const uint32_t v = uint32_t(table[p[i + 0] * 4 + 0]) |
-                           uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
-                           uint32_t(table[p[i + 2] * 4 + 2]) << 16 |
-                           uint32_t(table[p[i + 3] * 4 + 3]) << 24;
+        const uint32_t v =
+            uint32_t(table[p[i + 0] * 4 + 0]) | uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
+            uint32_t(table[p[i + 2] * 4 + 2]) << 16 | uint32_t(table[p[i + 3] * 4 + 3]) << 24;
         std::memcpy(p + i, &v, 4);  // RGBA bytes, little-endian
       }
     });
@@ -92,7 +90,8 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     tableOut = Image4(t.tables[2].width, 1);
     for (int i = 0; i < tableOut.width; ++i)
       for (int c = 0; c < 4; ++c)
-        tableOut.px[size_t(i) * 4 + c] = t.tables[2].width > 1 ? float(i) / float(t.tables[2].width - 1) : 0.0f;
+        tableOut.px[size_t(i) * 4 + c] =
+            t.tables[2].width > 1 ? float(i) / float(t.tables[2].width - 1) : 0.0f;
     applyColorTable(t.tables[2], tableOut);
   }
   const float tableScale = table ? float(t.tables[2].width - 1) : 0.0f;
@@ -195,8 +194,8 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
   suffix.colorTableEnabled = false;
   suffix.convolution2DEnabled = suffix.separable2DEnabled = suffix.convolution1DEnabled = false;
   suffix.histogramEnabled = suffix.minmaxEnabled = false;
-  const bool postScaleBias = !(t.postConvolutionScale == Rgba{1, 1, 1, 1} &&
-                               t.postConvolutionBias == Rgba{0, 0, 0, 0});
+  const bool postScaleBias =
+      !(t.postConvolutionScale == Rgba{1, 1, 1, 1} && t.postConvolutionBias == Rgba{0, 0, 0, 0});
 
   int wf = 0, hf = 0;
   const std::vector<Tap> taps = kernelTaps(f, separable, wf, hf);
@@ -217,8 +216,9 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
       const int sx = x - cw;
       const bool inside = sx >= 0 && sx < ws && sy >= 0 && sy < hs;
       if (inside || replicate) {
-        const uint8_t* p = src.data() + (size_t(std::clamp(sy, 0, hs - 1)) * ws +
-                                         size_t(std::clamp(sx, 0, ws - 1))) * 4;
+        const uint8_t* p =
+            src.data() +
+            (size_t(std::clamp(sy, 0, hs - 1)) * ws + size_t(std::clamp(sx, 0, ws - 1))) * 4;
         for (int c = 0; c < 4; ++c) dst[x * 4 + c] = values.px[size_t(p[c]) * 4 + c];
       } else {
         for (int c = 0; c < 4; ++c) dst[x * 4 + c] = f.borderColor[c];
@@ -236,8 +236,9 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
     Image4 row(ow, 1);
     for (int j = j0; j < j1; ++j) {
       std::fill(row.px.begin(), row.px.end(), 0.0f);
-      accumulateTaps(taps, [&](int m) { return padded.data() + size_t(j - j0 + m) * pw * 4; },
-                     ow, row.px.data());
+      accumulateTaps(
+          taps, [&](int m) { return padded.data() + size_t(j - j0 + m) * pw * 4; }, ow,
+          row.px.data());
       if (postScaleBias)
         for (size_t i = 0; i < row.px.size(); ++i)
           row.px[i] = row.px[i] * t.postConvolutionScale[i & 3] + t.postConvolutionBias[i & 3];

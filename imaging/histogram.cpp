@@ -92,7 +92,8 @@ void emHistogram(GLenum target, GLsizei width, GLenum internalformat, GLboolean 
     return;
   }
   if (target == GL_PROXY_HISTOGRAM) {
-    s.transfer.proxyHistogram = ProxyTable{baseInternalFormat(internalformat), internalformat, width};
+    s.transfer.proxyHistogram =
+        ProxyTable{baseInternalFormat(internalformat), internalformat, width};
     return;
   }
   Histogram& h = s.transfer.histogram;
@@ -137,8 +138,7 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
   // contains counts"; a normalised conversion would saturate every count above 1); the
   // parity suite shows the reference returns them the same way.
   Image4 image(h.width, 1);
-  for (int i = 0; i < h.width; ++i)
-  {
+  for (int i = 0; i < h.width; ++i) {
     // Table 6.1: the format's components, the constants 0 (R, G, B) and 1 (A) for the rest.
     const Rgba stored{float(h.counts[i][0]), float(h.counts[i][1]), float(h.counts[i][2]),
                       float(h.counts[i][3])};
@@ -159,25 +159,48 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
       packImage(asFloat, scratch.data(), format, GL_FLOAT, tight, false);
       int n = 0;
       switch (format) {
-        case GL_RGBA: case GL_BGRA: n = 4; break;
-        case GL_RGB: case GL_BGR: n = 3; break;
-        case GL_LUMINANCE_ALPHA: n = 2; break;
-        default: n = 1; break;
+        case GL_RGBA:
+        case GL_BGRA:
+          n = 4;
+          break;
+        case GL_RGB:
+        case GL_BGR:
+          n = 3;
+          break;
+        case GL_LUMINANCE_ALPHA:
+          n = 2;
+          break;
+        default:
+          n = 1;
+          break;
       }
-      const size_t size = (type == GL_UNSIGNED_BYTE || type == GL_BYTE) ? 1
-                          : (type == GL_UNSIGNED_SHORT || type == GL_SHORT) ? 2 : 4;
-      auto* out = static_cast<unsigned char*>(values) +
-                  size_t(store.skipPixels) * n * size;
+      const size_t size = (type == GL_UNSIGNED_BYTE || type == GL_BYTE)     ? 1
+                          : (type == GL_UNSIGNED_SHORT || type == GL_SHORT) ? 2
+                                                                            : 4;
+      auto* out = static_cast<unsigned char*>(values) + size_t(store.skipPixels) * n * size;
       for (int e = 0; e < h.width * n; ++e) {
         const double v = scratch[size_t(e)];
         switch (type) {
-          case GL_UNSIGNED_BYTE: out[e] = uint8_t(v); break;
-          case GL_BYTE: reinterpret_cast<int8_t*>(out)[e] = int8_t(v); break;
-          case GL_UNSIGNED_SHORT: reinterpret_cast<uint16_t*>(out)[e] = uint16_t(v); break;
-          case GL_SHORT: reinterpret_cast<int16_t*>(out)[e] = int16_t(v); break;
-          case GL_UNSIGNED_INT: reinterpret_cast<uint32_t*>(out)[e] = uint32_t(v); break;
-          case GL_INT: reinterpret_cast<int32_t*>(out)[e] = int32_t(v); break;
-          default: break;
+          case GL_UNSIGNED_BYTE:
+            out[e] = uint8_t(v);
+            break;
+          case GL_BYTE:
+            reinterpret_cast<int8_t*>(out)[e] = int8_t(v);
+            break;
+          case GL_UNSIGNED_SHORT:
+            reinterpret_cast<uint16_t*>(out)[e] = uint16_t(v);
+            break;
+          case GL_SHORT:
+            reinterpret_cast<int16_t*>(out)[e] = int16_t(v);
+            break;
+          case GL_UNSIGNED_INT:
+            reinterpret_cast<uint32_t*>(out)[e] = uint32_t(v);
+            break;
+          case GL_INT:
+            reinterpret_cast<int32_t*>(out)[e] = int32_t(v);
+            break;
+          default:
+            break;
         }
       }
     }
@@ -215,18 +238,33 @@ bool queryHistogram(State& s, GLenum target, GLenum pname, GLfloat* p) {
   const FormatComponents f = componentsOf(width > 0 ? base : 0);
   auto bits = [](bool b) { return b ? float(kHistogramComponentBits) : 0.0f; };
   switch (pname) {
-    case GL_HISTOGRAM_FORMAT: p[0] = float(internalFormat); return true;
-    case GL_HISTOGRAM_WIDTH: p[0] = float(width); return true;
-    case GL_HISTOGRAM_RED_SIZE: p[0] = bits(f.r); return true;
-    case GL_HISTOGRAM_GREEN_SIZE: p[0] = bits(f.g); return true;
-    case GL_HISTOGRAM_BLUE_SIZE: p[0] = bits(f.b); return true;
-    case GL_HISTOGRAM_ALPHA_SIZE: p[0] = bits(f.a); return true;
-    case GL_HISTOGRAM_LUMINANCE_SIZE: p[0] = bits(f.l); return true;
+    case GL_HISTOGRAM_FORMAT:
+      p[0] = float(internalFormat);
+      return true;
+    case GL_HISTOGRAM_WIDTH:
+      p[0] = float(width);
+      return true;
+    case GL_HISTOGRAM_RED_SIZE:
+      p[0] = bits(f.r);
+      return true;
+    case GL_HISTOGRAM_GREEN_SIZE:
+      p[0] = bits(f.g);
+      return true;
+    case GL_HISTOGRAM_BLUE_SIZE:
+      p[0] = bits(f.b);
+      return true;
+    case GL_HISTOGRAM_ALPHA_SIZE:
+      p[0] = bits(f.a);
+      return true;
+    case GL_HISTOGRAM_LUMINANCE_SIZE:
+      p[0] = bits(f.l);
+      return true;
     case GL_HISTOGRAM_SINK:
       if (proxy) break;  // "pname may be HISTOGRAM_SINK only for target HISTOGRAM"
       p[0] = h.sink ? 1.0f : 0.0f;
       return true;
-    default: break;
+    default:
+      break;
   }
   recordError(s, GL_INVALID_ENUM);
   return false;
@@ -237,9 +275,15 @@ bool queryMinmax(State& s, GLenum target, GLenum pname, GLfloat* p) {
     return false;
   }
   switch (pname) {
-    case GL_MINMAX_FORMAT: p[0] = float(s.transfer.minmax.internalFormat); return true;
-    case GL_MINMAX_SINK: p[0] = s.transfer.minmax.sink ? 1.0f : 0.0f; return true;
-    default: recordError(s, GL_INVALID_ENUM); return false;
+    case GL_MINMAX_FORMAT:
+      p[0] = float(s.transfer.minmax.internalFormat);
+      return true;
+    case GL_MINMAX_SINK:
+      p[0] = s.transfer.minmax.sink ? 1.0f : 0.0f;
+      return true;
+    default:
+      recordError(s, GL_INVALID_ENUM);
+      return false;
   }
 }
 }  // namespace

@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -25,12 +25,12 @@ using Rgba = std::array<float, 4>;
 
 // Implementation limits, chosen equal to the reference implementation (its README) so the
 // parity suite can compare errors and proxies.
-constexpr int kMaxColorTableWidth = 256;     // GL_MAX_COLOR_TABLE_WIDTH (not a GL query)
-constexpr int kMaxHistogramWidth = 256;      // same limit for the histogram table
-constexpr int kMaxConvolutionWidth = 9;      // GL_MAX_CONVOLUTION_WIDTH
-constexpr int kMaxConvolutionHeight = 9;     // GL_MAX_CONVOLUTION_HEIGHT
-constexpr int kMaxColorMatrixStackDepth = 4; // GL_MAX_COLOR_MATRIX_STACK_DEPTH (spec minimum 2)
-constexpr int kTableComponentBits = 8;       // reported GL_COLOR_TABLE_x_SIZE per component
+constexpr int kMaxColorTableWidth = 256;      // GL_MAX_COLOR_TABLE_WIDTH (not a GL query)
+constexpr int kMaxHistogramWidth = 256;       // same limit for the histogram table
+constexpr int kMaxConvolutionWidth = 9;       // GL_MAX_CONVOLUTION_WIDTH
+constexpr int kMaxConvolutionHeight = 9;      // GL_MAX_CONVOLUTION_HEIGHT
+constexpr int kMaxColorMatrixStackDepth = 4;  // GL_MAX_COLOR_MATRIX_STACK_DEPTH (spec minimum 2)
+constexpr int kTableComponentBits = 8;        // reported GL_COLOR_TABLE_x_SIZE per component
 
 // A float RGBA image, rows bottom-up (GL's order), 4 floats per pixel.
 struct Image4 {
@@ -70,9 +70,9 @@ struct ConvolutionFilter {
   GLenum format = GL_RGBA;  // base internal format
   GLenum internalFormat = GL_RGBA;
   int width = 0;
-  int height = 0;                // 1 for CONVOLUTION_1D
-  std::vector<Rgba> image;       // width*height (2D/1D) or row then column (separable)
-  std::vector<Rgba> row, column; // separable only
+  int height = 0;                 // 1 for CONVOLUTION_1D
+  std::vector<Rgba> image;        // width*height (2D/1D) or row then column (separable)
+  std::vector<Rgba> row, column;  // separable only
   Rgba scale{1, 1, 1, 1};
   Rgba bias{0, 0, 0, 0};
   GLenum borderMode = GL_REDUCE;
@@ -141,7 +141,7 @@ struct State {
   GlDispatch driver;  // the entry points as the driver resolved them, before install()
   GlContext* context = nullptr;
   TransferState transfer;
-  bool colorMatrixMode = false;  // glMatrixMode(GL_COLOR) is in effect
+  bool colorMatrixMode = false;             // glMatrixMode(GL_COLOR) is in effect
   std::vector<AttribSnapshot> attribStack;  // parallel to the driver's attribute stack
   // Sticky error flags raised by the emulation, in the order raised (section 2.5).
   std::vector<GLenum> errors;
@@ -193,12 +193,12 @@ void accumulateTaps(const std::vector<Tap>& taps, const std::function<const floa
                     int ow, float* o);
 
 // ---- stages (one file each) ----
-void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp
+void applyColorTable(const ColorTable& table, Image4& image);                   // color_table.cpp
 void convolve(const ConvolutionFilter& filter, bool separable, Image4& image);  // convolution.cpp
 void applyColorMatrix(const Matrix4& m, const Rgba& scale, const Rgba& bias,
-                      Image4& image);                                   // color_matrix.cpp
-void accumulateHistogram(Histogram& h, const Image4& image);            // histogram.cpp
-void accumulateMinmax(Minmax& m, const Image4& image);                  // histogram.cpp
+                      Image4& image);                         // color_matrix.cpp
+void accumulateHistogram(Histogram& h, const Image4& image);  // histogram.cpp
+void accumulateMinmax(Minmax& m, const Image4& image);        // histogram.cpp
 void resetMinmax(Minmax& m);
 
 // Runs body(y0, y1) over [0, rows) on both cores when the work is large enough to pay.
@@ -222,8 +222,8 @@ Image4 unpackImage(const void* data, int w, int h, GLenum format, GLenum type,
                    const PixelStore& store);
 // Packs RGBA floats into client memory (4.3.2 "Conversion to L", "Final Conversion" with its
 // clamp to [0,1] when clamp is true, "Placement in Client Memory").
-void packImage(const Image4& image, void* data, GLenum format, GLenum type,
-               const PixelStore& store, bool clamp);
+void packImage(const Image4& image, void* data, GLenum format, GLenum type, const PixelStore& store,
+               bool clamp);
 // Returns internal components as RGBA per table 6.1.
 Rgba tableReturnValue(GLenum baseFormat, const Rgba& stored);
 
@@ -306,8 +306,7 @@ void emCopyPixels(GLint, GLint, GLsizei, GLsizei, GLenum);
 void emCopyTexImage2D(GLenum, GLint, GLenum, GLint, GLint, GLsizei, GLsizei, GLint);
 void emCopyTexSubImage2D(GLenum, GLint, GLint, GLint, GLint, GLint, GLsizei, GLsizei);
 void emTexImage2D(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*);
-void emTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLenum,
-                     const void*);
+void emTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, const void*);
 // Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
 // the final expansion to RGBA": no pixel transfer), through the driver.
 Image4 readFramebuffer(State& s, int x, int y, int w, int h);

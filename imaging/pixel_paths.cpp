@@ -39,20 +39,35 @@ class TightPixelStore {
 // The client type that carries the destination's precision without loss.
 GLenum framebufferType(const State& s) {
   switch (s.context->spec().color) {
-    case ColorFormat::kRgba8: return GL_UNSIGNED_BYTE;
-    case ColorFormat::kRgba16: return GL_UNSIGNED_SHORT;
-    case ColorFormat::kRgba32f: return GL_FLOAT;
+    case ColorFormat::kRgba8:
+      return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16:
+      return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f:
+      return GL_FLOAT;
   }
   return GL_FLOAT;
 }
 
 bool eightBitTexture(GLenum internalformat) {
   switch (internalformat) {
-    case 3: case 4: case GL_RGB: case GL_RGBA: case GL_RGB8: case GL_RGBA8: case GL_ALPHA:
-    case GL_ALPHA8: case GL_LUMINANCE: case GL_LUMINANCE8: case GL_LUMINANCE_ALPHA:
-    case GL_LUMINANCE8_ALPHA8: case GL_INTENSITY: case GL_INTENSITY8:
+    case 3:
+    case 4:
+    case GL_RGB:
+    case GL_RGBA:
+    case GL_RGB8:
+    case GL_RGBA8:
+    case GL_ALPHA:
+    case GL_ALPHA8:
+    case GL_LUMINANCE:
+    case GL_LUMINANCE8:
+    case GL_LUMINANCE_ALPHA:
+    case GL_LUMINANCE8_ALPHA8:
+    case GL_INTENSITY:
+    case GL_INTENSITY8:
       return true;
-    default: return false;
+    default:
+      return false;
   }
 }
 
@@ -111,8 +126,7 @@ void drawImage(State& s, const Image4& image) {
 }
 
 void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint internalformat,
-                   GLint xoffset, GLint yoffset, GLint border, const Image4* image, int w,
-                   int h) {
+                   GLint xoffset, GLint yoffset, GLint border, const Image4* image, int w, int h) {
   GLenum type = GL_FLOAT;
   if (sub) {
     GLint format = 0;
@@ -134,7 +148,9 @@ void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint interna
 }
 
 // ---- the 8-bit path (fast_paths.cpp): bytes in, bytes out, no float images ----
-bool eightBitFramebuffer(const State& s) { return framebufferType(s) == GL_UNSIGNED_BYTE; }
+bool eightBitFramebuffer(const State& s) {
+  return framebufferType(s) == GL_UNSIGNED_BYTE;
+}
 
 std::vector<uint8_t> readBytes(State& s, int x, int y, int w, int h) {
   std::vector<uint8_t> bytes(size_t(w) * h * 4);
@@ -202,8 +218,7 @@ void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* 
   drawImage(*s, image);
 }
 
-void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type,
-                  void* data) {
+void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type, void* data) {
   State* s = currentState();
   if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0)
     return s->driver.ReadPixels(x, y, w, h, format, type, data);
@@ -276,8 +291,8 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
                 kept ? &image : nullptr, image.width, image.height);
 }
 
-void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x,
-                         GLint y, GLsizei w, GLsizei h) {
+void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
+                         GLsizei w, GLsizei h) {
   State* s = currentState();
   if (passThrough(s) || w < 0 || h < 0)
     return s->driver.CopyTexSubImage2D(target, level, xoffset, yoffset, x, y, w, h);
@@ -303,16 +318,15 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
       int ow = 0, oh = 0;
       if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh) || ow == 0 || oh == 0) return;
       TightPixelStore tight(s->driver);
-      s->driver.TexSubImage2D(target, level, xoffset, yoffset, ow, oh, GL_RGBA,
-                              GL_UNSIGNED_BYTE, out.data());
+      s->driver.TexSubImage2D(target, level, xoffset, yoffset, ow, oh, GL_RGBA, GL_UNSIGNED_BYTE,
+                              out.data());
       return;
     }
   }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
-  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width,
-                image.height);
+  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width, image.height);
 }
 
 void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, GLsizei h,
@@ -335,8 +349,8 @@ void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, G
                 image.width, image.height);
 }
 
-void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei w,
-                     GLsizei h, GLenum format, GLenum type, const void* data) {
+void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei w, GLsizei h,
+                     GLenum format, GLenum type, const void* data) {
   State* s = currentState();
   if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0 ||
       data == nullptr)
@@ -344,8 +358,7 @@ void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, G
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
-  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width,
-                image.height);
+  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width, image.height);
 }
 
 }  // namespace sl::imaging::detail

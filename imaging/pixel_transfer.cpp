@@ -48,7 +48,9 @@ void mapColor(const std::array<std::vector<float>, 4>& maps, Image4& image) {
   }
 }
 
-bool tableActive(bool enabled, const ColorTable& t) { return enabled && t.width > 0; }
+bool tableActive(bool enabled, const ColorTable& t) {
+  return enabled && t.width > 0;
+}
 
 }  // namespace
 
@@ -74,10 +76,10 @@ void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h) 
 }
 
 bool runPipeline(TransferState& t, Image4& image, Dimensionality dims) {
-  if (!isIdentity(t.scale, t.bias)) scaleBias(t.scale, t.bias, image);             // 1
-  if (t.mapColor) mapColor(t.colorMaps, image);                                    // 2
+  if (!isIdentity(t.scale, t.bias)) scaleBias(t.scale, t.bias, image);                     // 1
+  if (t.mapColor) mapColor(t.colorMaps, image);                                            // 2
   if (tableActive(t.colorTableEnabled, t.tables[0])) applyColorTable(t.tables[0], image);  // 3
-  if (convolutionEnabled(t, dims)) {                                               // 4
+  if (convolutionEnabled(t, dims)) {                                                       // 4
     if (dims == Dimensionality::k1D) {
       convolve(t.conv1D, false, image);
     } else if (t.convolution2DEnabled) {
@@ -88,21 +90,21 @@ bool runPipeline(TransferState& t, Image4& image, Dimensionality dims) {
     if (!isIdentity(t.postConvolutionScale, t.postConvolutionBias))
       scaleBias(t.postConvolutionScale, t.postConvolutionBias, image);
   }
-  if (tableActive(t.postConvolutionTableEnabled, t.tables[1]))                     // 5
+  if (tableActive(t.postConvolutionTableEnabled, t.tables[1]))  // 5
     applyColorTable(t.tables[1], image);
-  const Matrix4& matrix = t.colorMatrixStack.back();                               // 6
+  const Matrix4& matrix = t.colorMatrixStack.back();  // 6
   if (!matrix.isIdentity()) {
     applyColorMatrix(matrix, t.postColorMatrixScale, t.postColorMatrixBias, image);
   } else if (!isIdentity(t.postColorMatrixScale, t.postColorMatrixBias)) {
     scaleBias(t.postColorMatrixScale, t.postColorMatrixBias, image);
   }
-  if (tableActive(t.postColorMatrixTableEnabled, t.tables[2]))                     // 7
+  if (tableActive(t.postColorMatrixTableEnabled, t.tables[2]))  // 7
     applyColorTable(t.tables[2], image);
-  if (t.histogramEnabled) {                                                        // 8
+  if (t.histogramEnabled) {  // 8
     accumulateHistogram(t.histogram, image);
     if (t.histogram.sink) return false;
   }
-  if (t.minmaxEnabled) {                                                           // 9
+  if (t.minmaxEnabled) {  // 9
     accumulateMinmax(t.minmax, image);
     if (t.minmax.sink) return false;
   }

@@ -54,10 +54,12 @@ double bestMs(const std::function<void()>& run, int reps) {
 double memcpyMs(size_t bytes, int reps) {
   std::vector<unsigned char> a(bytes, 1), b(bytes, 2);
   volatile unsigned char sink = 0;
-  const double ms = bestMs([&] {
-    std::memcpy(b.data(), a.data(), bytes);
-    sink = sink + b[bytes / 2];
-  }, reps * 4);
+  const double ms = bestMs(
+      [&] {
+        std::memcpy(b.data(), a.data(), bytes);
+        sink = sink + b[bytes / 2];
+      },
+      reps * 4);
   return ms;
 }
 
@@ -118,15 +120,30 @@ std::vector<Operation> operations() {
   return {
       {"plain copy (glCopyPixels)", [] {}, copyPixels},
       {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
-      {"+ color table + sum-into-alpha color matrix (Fig. 4)", [] { brabecSeidelTable(); sumIntoAlpha(); }, copyPixels},
+      {"+ color table + sum-into-alpha color matrix (Fig. 4)",
+       [] {
+         brabecSeidelTable();
+         sumIntoAlpha();
+       },
+       copyPixels},
       {"+ 3x3 convolution", blur3x3, copyPixels},
       {"glCopyTexSubImage2D + 3x3 packing kernel (Eq. 1)", packingKernel,
        [](int w, int h) {
          glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, w, h);
          glFinish();
        }},
-      {"glAccum(GL_ACCUM, 0.25)", [] {}, [](int, int) { glAccum(GL_ACCUM, 0.25f); glFinish(); }, true},
-      {"glAccum(GL_RETURN, 1)", [] {}, [](int, int) { glAccum(GL_RETURN, 1.0f); glFinish(); }, true},
+      {"glAccum(GL_ACCUM, 0.25)", [] {},
+       [](int, int) {
+         glAccum(GL_ACCUM, 0.25f);
+         glFinish();
+       },
+       true},
+      {"glAccum(GL_RETURN, 1)", [] {},
+       [](int, int) {
+         glAccum(GL_RETURN, 1.0f);
+         glFinish();
+       },
+       true},
   };
 }
 
@@ -191,17 +208,21 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
       ms = bestMs([&] { convolveBytes(s.transfer, bytes, w, h, out, ow, oh); }, reps);
     } else if (bytePathApplies(s.transfer)) {
       std::vector<uint8_t> work;
-      ms = bestMs([&] {
-        work = bytes;
-        transformBytes(s.transfer, work, w, h);
-      }, reps);
+      ms = bestMs(
+          [&] {
+            work = bytes;
+            transformBytes(s.transfer, work, w, h);
+          },
+          reps);
       copyMs = bestMs([&] { work = bytes; }, reps);
     } else {
       Image4 work;
-      ms = bestMs([&] {
-        work = source;
-        runPipeline(s.transfer, work, Dimensionality::k2D);
-      }, reps);
+      ms = bestMs(
+          [&] {
+            work = source;
+            runPipeline(s.transfer, work, Dimensionality::k2D);
+          },
+          reps);
       copyMs = bestMs([&] { work = source; }, reps);
     }
     resetAll();
@@ -222,12 +243,16 @@ int run(int argc, char** argv) {
   const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};
   const std::string refPath = referenceGlPath();
   const bool haveReference = !refPath.empty() && std::fopen(refPath.c_str(), "r") != nullptr;
-  std::printf("imaging_bench: ratios to memcpy of the same RGBA8 buffer in the same run, best of %d, "
-              "%s time\n", reps, gCpuClock ? "process CPU" : "wall");
-  std::printf("(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s)\n\n",
-              haveReference ? "" : ": NOT FOUND, column empty");
-  std::printf("| operation | size | stage (imaging/ transform) | emulated call | reference call | "
-              "emulated / reference |\n| --- | --- | --- | --- | --- | --- |\n");
+  std::printf(
+      "imaging_bench: ratios to memcpy of the same RGBA8 buffer in the same run, best of %d, "
+      "%s time\n",
+      reps, gCpuClock ? "process CPU" : "wall");
+  std::printf(
+      "(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s)\n\n",
+      haveReference ? "" : ": NOT FOUND, column empty");
+  std::printf(
+      "| operation | size | stage (imaging/ transform) | emulated call | reference call | "
+      "emulated / reference |\n| --- | --- | --- | --- | --- | --- |\n");
   const auto ops = operations();
   for (const auto& sz : sizes) {
     double base = 0, refBase = 0;
@@ -255,4 +280,6 @@ int run(int argc, char** argv) {
 
 }  // namespace sl::imaging::bench
 
-int main(int argc, char** argv) { return sl::imaging::bench::run(argc, argv); }
+int main(int argc, char** argv) {
+  return sl::imaging::bench::run(argc, argv);
+}

@@ -47,27 +47,37 @@ TEST_P(ColorTableFormats, LookupFollowsTable313) {
     for (int c = 0; c < 4; ++c) want[c] = in[c];
     auto entry = [&](int c, int comp) { return t[size_t(tableIndex(in[c], width)) * 4 + comp]; };
     switch (format) {
-      case GL_ALPHA: want[3] = entry(3, 3); break;
-      case GL_LUMINANCE: for (int c = 0; c < 3; ++c) want[c] = entry(c, 0); break;
+      case GL_ALPHA:
+        want[3] = entry(3, 3);
+        break;
+      case GL_LUMINANCE:
+        for (int c = 0; c < 3; ++c) want[c] = entry(c, 0);
+        break;
       case GL_LUMINANCE_ALPHA:
         for (int c = 0; c < 3; ++c) want[c] = entry(c, 0);
         want[3] = entry(3, 3);
         break;
-      case GL_INTENSITY: for (int c = 0; c < 4; ++c) want[c] = entry(c, 0); break;
-      case GL_RGB: for (int c = 0; c < 3; ++c) want[c] = entry(c, c); break;
-      default: for (int c = 0; c < 4; ++c) want[c] = entry(c, c); break;
+      case GL_INTENSITY:
+        for (int c = 0; c < 4; ++c) want[c] = entry(c, 0);
+        break;
+      case GL_RGB:
+        for (int c = 0; c < 3; ++c) want[c] = entry(c, c);
+        break;
+      default:
+        for (int c = 0; c < 4; ++c) want[c] = entry(c, c);
+        break;
     }
     for (int c = 0; c < 4; ++c)
       ASSERT_EQ(got[p + c], toByte(want[c])) << "pixel " << p / 4 << " component " << c;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllFormats, ColorTableFormats,
-    ::testing::Values(TableCase{GL_ALPHA, 256}, TableCase{GL_LUMINANCE, 16},
-                      TableCase{GL_LUMINANCE_ALPHA, 8}, TableCase{GL_INTENSITY, 32},
-                      TableCase{GL_RGB, 2}, TableCase{GL_RGBA, 256}, TableCase{GL_RGBA, 1},
-                      TableCase{GL_RGBA8, 64}));
+INSTANTIATE_TEST_SUITE_P(AllFormats, ColorTableFormats,
+                         ::testing::Values(TableCase{GL_ALPHA, 256}, TableCase{GL_LUMINANCE, 16},
+                                           TableCase{GL_LUMINANCE_ALPHA, 8},
+                                           TableCase{GL_INTENSITY, 32}, TableCase{GL_RGB, 2},
+                                           TableCase{GL_RGBA, 256}, TableCase{GL_RGBA, 1},
+                                           TableCase{GL_RGBA8, 64}));
 
 // 3.6.3: "scaled by COLOR_TABLE_SCALE, biased by COLOR_TABLE_BIAS, and clamped to [0,1]",
 // scale and bias apply to the unclamped data.
@@ -181,19 +191,55 @@ const float kTableData[512 * 4] = {};
 INSTANTIATE_TEST_SUITE_P(
     SgiColorTableErrors, ColorTableErrors,
     ::testing::Values(
-        ErrorCase{"bad target", [] { glColorTable(GL_TEXTURE_2D, GL_RGBA, 4, GL_RGBA, GL_FLOAT, kTableData); }, GL_INVALID_ENUM},
-        ErrorCase{"bad internal format", [] { glColorTable(GL_COLOR_TABLE, GL_DEPTH_COMPONENT, 4, GL_RGBA, GL_FLOAT, kTableData); }, GL_INVALID_ENUM},
-        ErrorCase{"width not a power of two", [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, 3, GL_RGBA, GL_FLOAT, kTableData); }, GL_INVALID_VALUE},
-        ErrorCase{"negative width", [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, -4, GL_RGBA, GL_FLOAT, kTableData); }, GL_INVALID_VALUE},
-        ErrorCase{"table too large", [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, 512, GL_RGBA, GL_FLOAT, kTableData); }, GL_TABLE_TOO_LARGE},
-        ErrorCase{"sub-table past the end", [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, 4, GL_RGBA, GL_FLOAT, kTableData); glColorSubTable(GL_COLOR_TABLE, 3, 2, GL_RGBA, GL_FLOAT, kTableData); }, GL_INVALID_VALUE},
-        ErrorCase{"parameter on a proxy", [] { const float v[4] = {1, 1, 1, 1}; glColorTableParameterfv(GL_PROXY_COLOR_TABLE, GL_COLOR_TABLE_SCALE, v); }, GL_INVALID_ENUM},
-        ErrorCase{"bad parameter name", [] { const float v[4] = {1, 1, 1, 1}; glColorTableParameterfv(GL_COLOR_TABLE, GL_COLOR_TABLE_WIDTH, v); }, GL_INVALID_ENUM},
-        ErrorCase{"copy to a proxy", [] { glCopyColorTable(GL_PROXY_COLOR_TABLE, GL_RGBA, 0, 0, 4); }, GL_INVALID_ENUM},
-        ErrorCase{"query bad pname", [] { GLint v; glGetColorTableParameteriv(GL_COLOR_TABLE, GL_TEXTURE_WIDTH, &v); }, GL_INVALID_ENUM}),
+        ErrorCase{"bad target",
+                  [] { glColorTable(GL_TEXTURE_2D, GL_RGBA, 4, GL_RGBA, GL_FLOAT, kTableData); },
+                  GL_INVALID_ENUM},
+        ErrorCase{"bad internal format",
+                  [] {
+                    glColorTable(GL_COLOR_TABLE, GL_DEPTH_COMPONENT, 4, GL_RGBA, GL_FLOAT,
+                                 kTableData);
+                  },
+                  GL_INVALID_ENUM},
+        ErrorCase{"width not a power of two",
+                  [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, 3, GL_RGBA, GL_FLOAT, kTableData); },
+                  GL_INVALID_VALUE},
+        ErrorCase{"negative width",
+                  [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, -4, GL_RGBA, GL_FLOAT, kTableData); },
+                  GL_INVALID_VALUE},
+        ErrorCase{"table too large",
+                  [] { glColorTable(GL_COLOR_TABLE, GL_RGBA, 512, GL_RGBA, GL_FLOAT, kTableData); },
+                  GL_TABLE_TOO_LARGE},
+        ErrorCase{"sub-table past the end",
+                  [] {
+                    glColorTable(GL_COLOR_TABLE, GL_RGBA, 4, GL_RGBA, GL_FLOAT, kTableData);
+                    glColorSubTable(GL_COLOR_TABLE, 3, 2, GL_RGBA, GL_FLOAT, kTableData);
+                  },
+                  GL_INVALID_VALUE},
+        ErrorCase{"parameter on a proxy",
+                  [] {
+                    const float v[4] = {1, 1, 1, 1};
+                    glColorTableParameterfv(GL_PROXY_COLOR_TABLE, GL_COLOR_TABLE_SCALE, v);
+                  },
+                  GL_INVALID_ENUM},
+        ErrorCase{"bad parameter name",
+                  [] {
+                    const float v[4] = {1, 1, 1, 1};
+                    glColorTableParameterfv(GL_COLOR_TABLE, GL_COLOR_TABLE_WIDTH, v);
+                  },
+                  GL_INVALID_ENUM},
+        ErrorCase{"copy to a proxy",
+                  [] { glCopyColorTable(GL_PROXY_COLOR_TABLE, GL_RGBA, 0, 0, 4); },
+                  GL_INVALID_ENUM},
+        ErrorCase{"query bad pname",
+                  [] {
+                    GLint v;
+                    glGetColorTableParameteriv(GL_COLOR_TABLE, GL_TEXTURE_WIDTH, &v);
+                  },
+                  GL_INVALID_ENUM}),
     [](const auto& info) {
       std::string n = info.param.name;
-      for (char& c : n) if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      for (char& c : n)
+        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
       return n;
     });
 

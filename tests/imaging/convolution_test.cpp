@@ -140,12 +140,24 @@ TEST_P(ConvolutionFormats, ComponentsFollowTable314) {
   for (size_t t = 0; t < 9; ++t) {
     double* p = &stored.rgba[t * 4];
     switch (format) {
-      case GL_ALPHA: filtered[0] = filtered[1] = filtered[2] = false; break;
-      case GL_LUMINANCE: p[1] = p[2] = p[0]; filtered[3] = false; break;
-      case GL_LUMINANCE_ALPHA: p[1] = p[2] = p[0]; break;
-      case GL_INTENSITY: p[1] = p[2] = p[3] = p[0]; break;
-      case GL_RGB: filtered[3] = false; break;
-      default: break;
+      case GL_ALPHA:
+        filtered[0] = filtered[1] = filtered[2] = false;
+        break;
+      case GL_LUMINANCE:
+        p[1] = p[2] = p[0];
+        filtered[3] = false;
+        break;
+      case GL_LUMINANCE_ALPHA:
+        p[1] = p[2] = p[0];
+        break;
+      case GL_INTENSITY:
+        p[1] = p[2] = p[3] = p[0];
+        break;
+      case GL_RGB:
+        filtered[3] = false;
+        break;
+      default:
+        break;
     }
   }
   std::vector<float> kf(k.rgba.begin(), k.rgba.end());
@@ -157,25 +169,36 @@ TEST_P(ConvolutionFormats, ComponentsFollowTable314) {
   glDisable(GL_CONVOLUTION_2D);
   const double none[4] = {0, 0, 0, 0};
   int ow = 0, oh = 0;
-  expectCopyMatches(convolveModel(src, kSrcW, kSrcH, stored, GL_REPLICATE_BORDER, none,
-                                  filtered, ow, oh),
-                    ow, oh);
+  expectCopyMatches(
+      convolveModel(src, kSrcW, kSrcH, stored, GL_REPLICATE_BORDER, none, filtered, ow, oh), ow,
+      oh);
   // Table 6.1: the query returns the stored components, constants for the others.
   float back[9 * 4];
   glGetConvolutionFilter(GL_CONVOLUTION_2D, GL_RGBA, GL_FLOAT, back);
   const float a0 = back[3];
   switch (format) {
-    case GL_LUMINANCE: case GL_INTENSITY: EXPECT_EQ(back[1], 0.0f); EXPECT_EQ(a0, 1.0f); break;
-    case GL_ALPHA: EXPECT_EQ(back[0], 0.0f); EXPECT_FLOAT_EQ(a0, float(k.rgba[3])); break;
-    case GL_RGB: EXPECT_EQ(a0, 1.0f); break;
-    default: EXPECT_FLOAT_EQ(a0, float(k.rgba[3])); break;
+    case GL_LUMINANCE:
+    case GL_INTENSITY:
+      EXPECT_EQ(back[1], 0.0f);
+      EXPECT_EQ(a0, 1.0f);
+      break;
+    case GL_ALPHA:
+      EXPECT_EQ(back[0], 0.0f);
+      EXPECT_FLOAT_EQ(a0, float(k.rgba[3]));
+      break;
+    case GL_RGB:
+      EXPECT_EQ(a0, 1.0f);
+      break;
+    default:
+      EXPECT_FLOAT_EQ(a0, float(k.rgba[3]));
+      break;
   }
   EXPECT_TRUE(drainErrors().empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFilterFormat, ConvolutionFormats,
-                         ::testing::Values(GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA,
-                                           GL_INTENSITY, GL_RGB, GL_RGBA));
+                         ::testing::Values(GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY,
+                                           GL_RGB, GL_RGBA));
 
 // REDUCE with a kernel larger than the image: "the output is simply null, with no error".
 TEST(Convolution, ReduceLargerThanImageGivesNothing) {
@@ -216,7 +239,8 @@ TEST(Convolution, SeparableWithFilterAndPostScaleBias) {
   auto ctx = emulatedContext(kW, kH);
   const auto src = patternImage(kW, kH, 29);
   putImage(kW, kH, src);
-  const float row[3 * 4] = {0.25f, 0.5f, 0.0f, 1.0f, 0.5f, 0.25f, 1.0f, 0.0f, 0.25f, 0.25f, 0.0f, 0.0f};
+  const float row[3 * 4] = {0.25f, 0.5f, 0.0f,  1.0f,  0.5f, 0.25f,
+                            1.0f,  0.0f, 0.25f, 0.25f, 0.0f, 0.0f};
   const float column[2 * 4] = {1.0f, 0.5f, 0.5f, 1.0f, 0.5f, 0.5f, 0.5f, 0.0f};
   const float scale[4] = {2.0f, 1.0f, 1.0f, 1.0f}, bias[4] = {0.0f, 0.125f, 0.0f, 0.0f};
   glConvolutionParameterfv(GL_SEPARABLE_2D, GL_CONVOLUTION_FILTER_SCALE, scale);

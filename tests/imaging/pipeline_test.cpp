@@ -98,18 +98,18 @@ TEST(Pipeline, StageOrderWithEverythingEnabled) {
   const auto f = readRgbaF(0, 0, 1, 1);
   // By hand:
   double c[4] = {51 / 255.0, 102 / 255.0, 153 / 255.0, 204 / 255.0};
-  c[0] *= 2.0;                                   // 1
+  c[0] *= 2.0;  // 1
   c[2] -= 0.25;
   c[1] = inv[int(std::floor(std::clamp(c[1], 0.0, 1.0) * 1 + 0.5))];  // 2 (index 0 -> 1)
   for (int i : {0, 2, 3}) c[i] = identity[tableIndex(float(c[i]), 256)];
-  for (int i = 0; i < 3; ++i) {                  // 3
+  for (int i = 0; i < 3; ++i) {  // 3
     const int idx = tableIndex(float(c[i]), 256);
     c[i] = double(idx * idx) / 65025.0;
   }
-  for (double& v : c) v *= 1.5;                  // 4
+  for (double& v : c) v *= 1.5;  // 4
   c[3] -= 0.5;
-  c[3] = half[tableIndex(float(c[3]), 2)];       // 5
-  std::swap(c[0], c[2]);                         // 6
+  c[3] = half[tableIndex(float(c[3]), 2)];  // 5
+  std::swap(c[0], c[2]);                    // 6
   c[1] *= 4.0;
   for (int i = 0; i < 3; ++i) c[i] = steps[tableIndex(float(c[i]), 2)];  // 7
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(f[i], std::clamp(c[i], 0.0, 1.0), 1e-6) << i;
@@ -128,8 +128,8 @@ TEST(Pipeline, StageOrderWithEverythingEnabled) {
 TEST(Pipeline, NanInfAndNegativeInputs) {
   auto ctx = emulatedContext(4, 1, ColorFormat::kRgba32f);
   const float nan = std::nanf(""), inf = INFINITY;
-  const float src[16] = {nan, -inf, inf, -0.5f, 2.0f, -1.0f, 0.5f, nan,
-                         0.25f, 0.75f, -0.0f, 1.0f, inf, nan, -2.0f, 0.5f};
+  const float src[16] = {nan,   -inf,  inf,   -0.5f, 2.0f, -1.0f, 0.5f,  nan,
+                         0.25f, 0.75f, -0.0f, 1.0f,  inf,  nan,   -2.0f, 0.5f};
   glPixelTransferf(GL_RED_SCALE, 0.5f);  // any non-identity stage: the emulation runs
   glWindowPos2i(0, 0);
   glDrawPixels(4, 1, GL_RGBA, GL_FLOAT, src);
@@ -315,10 +315,11 @@ TEST(Pipeline, BytePathMatchesFloatPath) {
   for (size_t i = 0; i < t.size(); ++i) t[i] = float((i * 37) % 64) / 63.0f;
   glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, t.data());
   glEnable(GL_COLOR_TABLE);
-  glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE_ALPHA, 64, GL_RGBA, GL_FLOAT, t.data());
+  glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE_ALPHA, 64, GL_RGBA, GL_FLOAT,
+               t.data());
   glEnable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
   const float m[16] = {0.3f, 0.2f, -0.1f, 0.25f, 0.5f, 0.1f, 0.2f, 0.25f,
-                       0.0f, 0.6f, 0.3f, 0.25f, 0.1f, 0.0f, 0.5f, 0.25f};
+                       0.0f, 0.6f, 0.3f,  0.25f, 0.1f, 0.0f, 0.5f, 0.25f};
   glMatrixMode(GL_COLOR);
   glLoadMatrixf(m);
   glMatrixMode(GL_MODELVIEW);

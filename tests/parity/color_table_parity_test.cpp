@@ -7,9 +7,9 @@ namespace sl::imaging::testing {
 namespace {
 
 struct TableParity {
-  GLenum target;      // which table stage
+  GLenum target;  // which table stage
   GLenum enable;
-  GLenum format;      // internal format
+  GLenum format;  // internal format
   int width;
 };
 
@@ -29,10 +29,10 @@ TEST_P(ColorTableParity, ReadPixels) {
   SL_REQUIRE_REFERENCE();
   const TableParity p = GetParam();
   checkParity([p](Outcome& o) {
-    const bool luminance = p.format == GL_LUMINANCE || p.format == GL_LUMINANCE_ALPHA ||
-                           p.format == GL_INTENSITY;
-    auto src = luminance ? greyPattern(kParityW, kParityH, 11)
-                         : patternImage(kParityW, kParityH, 11);
+    const bool luminance =
+        p.format == GL_LUMINANCE || p.format == GL_LUMINANCE_ALPHA || p.format == GL_INTENSITY;
+    auto src =
+        luminance ? greyPattern(kParityW, kParityH, 11) : patternImage(kParityW, kParityH, 11);
     if (p.format == GL_INTENSITY)  // the reference indexes A with R too (departure 2)
       for (size_t k = 0; k < src.size(); k += 4) src[k + 3] = src[k];
     putImage(kParityW, kParityH, src);
@@ -59,9 +59,10 @@ TEST_P(ColorTableParity, ReadPixels) {
 
 std::vector<TableParity> tableCases() {
   std::vector<TableParity> cases;
-  const GLenum stages[3][2] = {{GL_COLOR_TABLE, GL_COLOR_TABLE},
-                               {GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE},
-                               {GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE}};
+  const GLenum stages[3][2] = {
+      {GL_COLOR_TABLE, GL_COLOR_TABLE},
+      {GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE},
+      {GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE}};
   for (const auto& st : stages)
     for (GLenum f : {GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY, GL_RGB, GL_RGBA})
       for (int w : {2, 16, 256}) cases.push_back({st[0], st[1], f, w});
@@ -70,11 +71,15 @@ std::vector<TableParity> tableCases() {
 
 std::string tableName(const ::testing::TestParamInfo<TableParity>& info) {
   const auto& p = info.param;
-  const char* stage = p.target == GL_COLOR_TABLE ? "Table"
-                      : p.target == GL_POST_CONVOLUTION_COLOR_TABLE ? "PostConv" : "PostMatrix";
-  const char* f = p.format == GL_ALPHA ? "Alpha" : p.format == GL_LUMINANCE ? "Luminance"
+  const char* stage = p.target == GL_COLOR_TABLE                    ? "Table"
+                      : p.target == GL_POST_CONVOLUTION_COLOR_TABLE ? "PostConv"
+                                                                    : "PostMatrix";
+  const char* f = p.format == GL_ALPHA             ? "Alpha"
+                  : p.format == GL_LUMINANCE       ? "Luminance"
                   : p.format == GL_LUMINANCE_ALPHA ? "LuminanceAlpha"
-                  : p.format == GL_INTENSITY ? "Intensity" : p.format == GL_RGB ? "Rgb" : "Rgba";
+                  : p.format == GL_INTENSITY       ? "Intensity"
+                  : p.format == GL_RGB             ? "Rgb"
+                                                   : "Rgba";
   return std::string(stage) + "_" + f + "_" + std::to_string(p.width);
 }
 
@@ -89,8 +94,10 @@ TEST_P(TableScaleBiasParity, ReadPixels) {
   const int k = GetParam();
   checkParity([k](Outcome& o) {
     putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 5));
-    const float scales[4][4] = {{2, 1, 0.5f, 1}, {-1, 1, 1, 3}, {0.25f, 0.5f, 0.75f, 1}, {1, -2, 4, 0}};
-    const float biases[4][4] = {{0, 0.1f, 0.2f, 0}, {1, 0, 0, -0.5f}, {0.5f, 0.25f, 0, 0}, {0, 1, -1, 0.3f}};
+    const float scales[4][4] = {
+        {2, 1, 0.5f, 1}, {-1, 1, 1, 3}, {0.25f, 0.5f, 0.75f, 1}, {1, -2, 4, 0}};
+    const float biases[4][4] = {
+        {0, 0.1f, 0.2f, 0}, {1, 0, 0, -0.5f}, {0.5f, 0.25f, 0, 0}, {0, 1, -1, 0.3f}};
     glColorTableParameterfv(GL_COLOR_TABLE, GL_COLOR_TABLE_SCALE, scales[k]);
     glColorTableParameterfv(GL_COLOR_TABLE, GL_COLOR_TABLE_BIAS, biases[k]);
     const auto t = tableValues(32, 77 + k);

@@ -33,12 +33,24 @@ std::vector<float> compatibleFilter(GLenum format, int w, int h, unsigned seed) 
     float* p = &f[size_t(k) * 4];
     const float delta = k == centre ? 1.0f : 0.0f;
     switch (format) {
-      case GL_ALPHA: p[0] = p[1] = p[2] = delta; break;
-      case GL_LUMINANCE: p[1] = p[2] = p[0]; p[3] = delta; break;
-      case GL_LUMINANCE_ALPHA: p[1] = p[2] = p[0]; break;
-      case GL_INTENSITY: p[1] = p[2] = p[3] = p[0]; break;
-      case GL_RGB: p[3] = delta; break;
-      default: break;
+      case GL_ALPHA:
+        p[0] = p[1] = p[2] = delta;
+        break;
+      case GL_LUMINANCE:
+        p[1] = p[2] = p[0];
+        p[3] = delta;
+        break;
+      case GL_LUMINANCE_ALPHA:
+        p[1] = p[2] = p[0];
+        break;
+      case GL_INTENSITY:
+        p[1] = p[2] = p[3] = p[0];
+        break;
+      case GL_RGB:
+        p[3] = delta;
+        break;
+      default:
+        break;
     }
   }
   return f;
@@ -80,12 +92,18 @@ std::string borderName(GLenum b) {
 }
 std::string formatName(GLenum f) {
   switch (f) {
-    case GL_ALPHA: return "Alpha";
-    case GL_LUMINANCE: return "Luminance";
-    case GL_LUMINANCE_ALPHA: return "LuminanceAlpha";
-    case GL_INTENSITY: return "Intensity";
-    case GL_RGB: return "Rgb";
-    default: return "Rgba";
+    case GL_ALPHA:
+      return "Alpha";
+    case GL_LUMINANCE:
+      return "Luminance";
+    case GL_LUMINANCE_ALPHA:
+      return "LuminanceAlpha";
+    case GL_INTENSITY:
+      return "Intensity";
+    case GL_RGB:
+      return "Rgb";
+    default:
+      return "Rgba";
   }
 }
 
@@ -106,7 +124,8 @@ TEST_P(Filter2DParity, CopyPixels) {
 
 std::vector<FilterCase> filterCases() {
   std::vector<FilterCase> cases;
-  const int sizes[][2] = {{1, 1}, {2, 2}, {3, 3}, {5, 3}, {7, 7}, {9, 9}, {9, 1}, {1, 9}, {4, 4}, {6, 6}, {8, 8}, {3, 5}, {4, 6}, {8, 2}};
+  const int sizes[][2] = {{1, 1}, {2, 2}, {3, 3}, {5, 3}, {7, 7}, {9, 9}, {9, 1},
+                          {1, 9}, {4, 4}, {6, 6}, {8, 8}, {3, 5}, {4, 6}, {8, 2}};
   for (GLenum b : {GL_REDUCE, GL_CONSTANT_BORDER, GL_REPLICATE_BORDER}) {
     for (const auto& s : sizes) cases.push_back({s[0], s[1], b, GL_RGBA});
     for (GLenum f : {GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY, GL_RGB})
@@ -115,12 +134,12 @@ std::vector<FilterCase> filterCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    SizesBordersFormats, Filter2DParity, ::testing::ValuesIn(filterCases()),
-    [](const ::testing::TestParamInfo<FilterCase>& i) {
-      return std::to_string(i.param.w) + "x" + std::to_string(i.param.h) + "_" +
-             borderName(i.param.border) + "_" + formatName(i.param.format);
-    });
+INSTANTIATE_TEST_SUITE_P(SizesBordersFormats, Filter2DParity, ::testing::ValuesIn(filterCases()),
+                         [](const ::testing::TestParamInfo<FilterCase>& i) {
+                           return std::to_string(i.param.w) + "x" + std::to_string(i.param.h) +
+                                  "_" + borderName(i.param.border) + "_" +
+                                  formatName(i.param.format);
+                         });
 
 // Separable filters: row x column products, every border mode.
 class SeparableParity : public ::testing::TestWithParam<FilterCase> {};
@@ -142,17 +161,21 @@ TEST_P(SeparableParity, CopyPixels) {
     appendFloats(o, c);
   });
 }
-INSTANTIATE_TEST_SUITE_P(
-    SizesBorders, SeparableParity,
-    ::testing::Values(FilterCase{3, 3, GL_REDUCE, GL_RGBA}, FilterCase{3, 3, GL_CONSTANT_BORDER, GL_RGBA},
-                      FilterCase{3, 3, GL_REPLICATE_BORDER, GL_RGBA}, FilterCase{5, 1, GL_REDUCE, GL_RGBA},
-                      FilterCase{5, 1, GL_CONSTANT_BORDER, GL_RGBA}, FilterCase{1, 5, GL_REPLICATE_BORDER, GL_RGBA},
-                      FilterCase{9, 9, GL_REDUCE, GL_RGBA}, FilterCase{9, 9, GL_CONSTANT_BORDER, GL_RGBA},
-                      FilterCase{9, 9, GL_REPLICATE_BORDER, GL_RGBA}, FilterCase{4, 2, GL_REPLICATE_BORDER, GL_RGBA}),
-    [](const ::testing::TestParamInfo<FilterCase>& i) {
-      return std::to_string(i.param.w) + "x" + std::to_string(i.param.h) + "_" +
-             borderName(i.param.border);
-    });
+INSTANTIATE_TEST_SUITE_P(SizesBorders, SeparableParity,
+                         ::testing::Values(FilterCase{3, 3, GL_REDUCE, GL_RGBA},
+                                           FilterCase{3, 3, GL_CONSTANT_BORDER, GL_RGBA},
+                                           FilterCase{3, 3, GL_REPLICATE_BORDER, GL_RGBA},
+                                           FilterCase{5, 1, GL_REDUCE, GL_RGBA},
+                                           FilterCase{5, 1, GL_CONSTANT_BORDER, GL_RGBA},
+                                           FilterCase{1, 5, GL_REPLICATE_BORDER, GL_RGBA},
+                                           FilterCase{9, 9, GL_REDUCE, GL_RGBA},
+                                           FilterCase{9, 9, GL_CONSTANT_BORDER, GL_RGBA},
+                                           FilterCase{9, 9, GL_REPLICATE_BORDER, GL_RGBA},
+                                           FilterCase{4, 2, GL_REPLICATE_BORDER, GL_RGBA}),
+                         [](const ::testing::TestParamInfo<FilterCase>& i) {
+                           return std::to_string(i.param.w) + "x" + std::to_string(i.param.h) +
+                                  "_" + borderName(i.param.border);
+                         });
 
 // Small images: a 1x1 image and kernels larger than the image, every border mode.
 struct SmallCase {
@@ -177,7 +200,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SmallCase{1, 1, 3, 3, GL_REDUCE}, SmallCase{1, 1, 3, 3, GL_CONSTANT_BORDER},
                       SmallCase{1, 1, 3, 3, GL_REPLICATE_BORDER}, SmallCase{1, 1, 1, 1, GL_REDUCE},
                       SmallCase{4, 3, 5, 5, GL_REDUCE}, SmallCase{4, 3, 5, 5, GL_CONSTANT_BORDER},
-                      SmallCase{4, 3, 5, 5, GL_REPLICATE_BORDER}, SmallCase{2, 2, 9, 9, GL_REPLICATE_BORDER}),
+                      SmallCase{4, 3, 5, 5, GL_REPLICATE_BORDER},
+                      SmallCase{2, 2, 9, 9, GL_REPLICATE_BORDER}),
     [](const ::testing::TestParamInfo<SmallCase>& i) {
       const auto& p = i.param;
       return std::to_string(p.srcW) + "x" + std::to_string(p.srcH) + "_kernel" +

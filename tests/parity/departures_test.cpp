@@ -11,7 +11,9 @@ namespace {
 // Source pixel (R, G, B, A) used by several departures, 8-bit.
 const std::vector<uint8_t> kPixel = {200, 60, 120, 255};
 
-Outcome both(Backend b, const Scenario& s) { return runOn(b, s, /*accumulation=*/b != Backend::kOsmesa); }
+Outcome both(Backend b, const Scenario& s) {
+  return runOn(b, s, /*accumulation=*/b != Backend::kOsmesa);
+}
 
 // 1. ReadPixels(GL_FLOAT) after a convolution must clamp (4.3.2 "Final Conversion").
 TEST(Departures, Departure1_FloatReadPixelsAfterConvolutionIsNotClamped) {
@@ -24,8 +26,8 @@ TEST(Departures, Departure1_FloatReadPixelsAfterConvolutionIsNotClamped) {
     appendFloats(o, readRgbaF(0, 0, 1, 1));
   };
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
-  EXPECT_FLOAT_EQ(e.floats[0], 1.0f);                       // spec: 2 * 200/255 clamped
-  EXPECT_FLOAT_EQ(r.floats[0], 2.0f * 200.0f / 255.0f);     // reference: unclamped
+  EXPECT_FLOAT_EQ(e.floats[0], 1.0f);                    // spec: 2 * 200/255 clamped
+  EXPECT_FLOAT_EQ(r.floats[0], 2.0f * 200.0f / 255.0f);  // reference: unclamped
 }
 
 // 2. LUMINANCE tables index each replaced component with its own value (table 3.13).
@@ -62,8 +64,8 @@ TEST(Departures, Departure3_FilterInternalFormatIgnored) {
     o.floats.assign(back, back + 4);
   };
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
-  EXPECT_EQ(e.bytes[3], 255);  // spec: an RGB filter passes A unmodified
-  EXPECT_EQ(r.bytes[3], 128);  // reference: A convolved with the unpacked 0.5
+  EXPECT_EQ(e.bytes[3], 255);    // spec: an RGB filter passes A unmodified
+  EXPECT_EQ(r.bytes[3], 128);    // reference: A convolved with the unpacked 0.5
   EXPECT_EQ(e.floats[3], 1.0f);  // table 6.1: RGB returns A = 1
   EXPECT_EQ(r.floats[3], 0.5f);
 }
@@ -100,7 +102,7 @@ TEST(Departures, Departure5_HistogramSinkStillWritesPixels) {
     o.floats.assign(px, px + 4);
   };
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
-  EXPECT_EQ(e.floats[0], -1.0f);                   // untouched
+  EXPECT_EQ(e.floats[0], -1.0f);                     // untouched
   EXPECT_NEAR(r.floats[0], 200.0f / 255.0f, 1e-6f);  // written anyway
 }
 

@@ -7,11 +7,11 @@ namespace sl::imaging::testing {
 namespace {
 
 const float kMatrices[][16] = {
-    {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},                 // identity
-    {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1},                 // sum into alpha (B&S Fig. 4)
-    {0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1},                 // swizzle R->G->B->R
+    {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},  // identity
+    {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1},  // sum into alpha (B&S Fig. 4)
+    {0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1},  // swizzle R->G->B->R
     {0.299f, 0.299f, 0.299f, 0, 0.587f, 0.587f, 0.587f, 0, 0.114f, 0.114f, 0.114f, 0, 0, 0, 0, 1},
-    {-1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 0, 1, 1, 1, 1},              // negate, + alpha
+    {-1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 0, 1, 1, 1, 1},  // negate, + alpha
     {0.5f, 0.25f, 0, 0.1f, 0.25f, 0.5f, 0.25f, 0.1f, 0, 0.25f, 0.5f, 0.1f, 0.1f, 0, 0.1f, 0.7f},
 };
 
@@ -121,14 +121,21 @@ INSTANTIATE_TEST_SUITE_P(ThreeSettings, TransferScaleBiasParity, ::testing::Rang
 // table 6.1 gives the constants 0 and 1: departures_test.cpp).
 std::vector<GLenum> storedParts(GLenum format) {
   switch (format) {
-    case GL_RGB: return {GL_RGB};
-    case GL_ALPHA: return {GL_ALPHA};
-    case GL_LUMINANCE: return {GL_RED};
-    case GL_LUMINANCE_ALPHA: return {GL_RED, GL_ALPHA};
-    default: return {GL_RGBA};
+    case GL_RGB:
+      return {GL_RGB};
+    case GL_ALPHA:
+      return {GL_ALPHA};
+    case GL_LUMINANCE:
+      return {GL_RED};
+    case GL_LUMINANCE_ALPHA:
+      return {GL_RED, GL_ALPHA};
+    default:
+      return {GL_RGBA};
   }
 }
-int partSize(GLenum part) { return part == GL_RGBA ? 4 : part == GL_RGB ? 3 : 1; }
+int partSize(GLenum part) {
+  return part == GL_RGBA ? 4 : part == GL_RGB ? 3 : 1;
+}
 
 struct HistogramCase {
   GLenum format;
@@ -142,8 +149,9 @@ TEST_P(HistogramParity, CountsAfterReadPixels) {
     // Luminance histograms count R only; grey input keeps the reference's extra G and B
     // counts (departure 6) out of this comparison.
     const bool luminance = p.format == GL_LUMINANCE || p.format == GL_LUMINANCE_ALPHA;
-    putImage(kParityW, kParityH, luminance ? greyPattern(kParityW, kParityH, 121)
-                                           : patternImage(kParityW, kParityH, 121));
+    putImage(
+        kParityW, kParityH,
+        luminance ? greyPattern(kParityW, kParityH, 121) : patternImage(kParityW, kParityH, 121));
     glHistogram(GL_HISTOGRAM, p.width, p.format, GL_FALSE);
     glEnable(GL_HISTOGRAM);
     appendFloats(o, readRgbaF(0, 0, kParityW, kParityH));

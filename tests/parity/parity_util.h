@@ -27,15 +27,15 @@ inline bool referenceAvailable() {
   return !path.empty() && stat(path.c_str(), &st) == 0;
 }
 
-#define SL_REQUIRE_REFERENCE()                                                              \
-  if (!::sl::imaging::testing::referenceAvailable())                                        \
-  GTEST_SKIP() << "parity skipped: the reference GL (Mesa 7.8.2) is not available; set "   \
+#define SL_REQUIRE_REFERENCE()                                                           \
+  if (!::sl::imaging::testing::referenceAvailable())                                     \
+  GTEST_SKIP() << "parity skipped: the reference GL (Mesa 7.8.2) is not available; set " \
                   "SHADOWLAB_REFERENCE_GL or place it at ../shared/reference-gl"
 
 struct Outcome {
-  std::vector<uint8_t> bytes;    // 8-bit results, compared bit for bit
-  std::vector<float> floats;     // float results, compared within kFloatTolerance
-  std::vector<GLenum> errors;    // errors raised during the case, in order
+  std::vector<uint8_t> bytes;  // 8-bit results, compared bit for bit
+  std::vector<float> floats;   // float results, compared within kFloatTolerance
+  std::vector<GLenum> errors;  // errors raised during the case, in order
   // Per byte: 1 where the exact value written lies in [kMesaSaturationStart, 254.5/255),
   // which the reference writes as 255 (departures_test.cpp, ReferenceSaturatesAbove0996).
   // Filled by the scenario from the emulation's float result; only the emulated one is used.
@@ -104,9 +104,9 @@ inline void checkParity(const Scenario& scenario, bool emulatedAccumulation = fa
 
 // Everything the imaging subset can enable, switched off; identity matrix and scale/bias.
 inline void resetImaging() {
-  for (GLenum cap : {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE,
-                     GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_CONVOLUTION_1D, GL_CONVOLUTION_2D,
-                     GL_SEPARABLE_2D, GL_HISTOGRAM, GL_MINMAX})
+  for (GLenum cap :
+       {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE,
+        GL_CONVOLUTION_1D, GL_CONVOLUTION_2D, GL_SEPARABLE_2D, GL_HISTOGRAM, GL_MINMAX})
     glDisable(cap);
   glMatrixMode(GL_COLOR);
   glLoadIdentity();

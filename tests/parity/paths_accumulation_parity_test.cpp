@@ -35,8 +35,9 @@ void enableEverything(GLenum border, bool tablesAndMatrix = true) {
   // Weights are whole multiples of 1/255: a sum of (8-bit value / 255) x (k / 255) times 255
   // is a multiple of 1/255 and can never be an exact rounding tie (x.5 would need an even
   // number to equal an odd multiple of 255/2).
-  const int k255[9 * 4] = {13, 26, 0, 26, 26, 13, 26, 0, 13, 26, 26, 26, 26, 51, 26, 26, 102, 77,
-                           128, 153, 26, 13, 26, 26, 13, 26, 13, 0, 26, 26, 13, 0, 13, 0, 0, 0};
+  const int k255[9 * 4] = {13, 26, 0,  26, 26,  13, 26,  0,   13, 26, 26, 26,
+                           26, 51, 26, 26, 102, 77, 128, 153, 26, 13, 26, 26,
+                           13, 26, 13, 0,  26,  26, 13,  0,   13, 0,  0,  0};
   float kernel[9 * 4];
   for (int i = 0; i < 9 * 4; ++i) kernel[i] = float(k255[i]) / 255.0f;
   glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, kernel);
@@ -82,8 +83,15 @@ std::vector<uint8_t> textureBytes(int w, int h) {
   return back;
 }
 
-enum class Path { kReadPixels, kDrawPixels, kCopyPixels, kCopyTexImage, kCopyTexSubImage,
-                  kTexImage, kTexSubImage };
+enum class Path {
+  kReadPixels,
+  kDrawPixels,
+  kCopyPixels,
+  kCopyTexImage,
+  kCopyTexSubImage,
+  kTexImage,
+  kTexSubImage
+};
 struct PathCase {
   Path path;
   GLenum border;
@@ -106,7 +114,9 @@ TEST_P(AllStagesParity, Path) {
     const bool copyToTexture = p.path == Path::kCopyTexImage || p.path == Path::kCopyTexSubImage;
     enableEverything(p.border, !copyToTexture);
     switch (p.path) {
-      case Path::kReadPixels: appendFloats(o, readRgbaF(0, 0, w, h)); break;
+      case Path::kReadPixels:
+        appendFloats(o, readRgbaF(0, 0, w, h));
+        break;
       case Path::kDrawPixels:
         glWindowPos2i(w, 0);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -116,8 +126,12 @@ TEST_P(AllStagesParity, Path) {
         glWindowPos2i(w, 0);
         glCopyPixels(0, 0, w, h, GL_COLOR);
         break;
-      case Path::kCopyTexImage: glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 0, 0, 8, 8, 0); break;
-      case Path::kCopyTexSubImage: glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 3, 2, 0, 0, w, h); break;
+      case Path::kCopyTexImage:
+        glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 0, 0, 8, 8, 0);
+        break;
+      case Path::kCopyTexSubImage:
+        glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 3, 2, 0, 0, w, h);
+        break;
       case Path::kTexImage:
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 8, 8, 0, GL_RGBA, GL_UNSIGNED_BYTE, src.data());
@@ -155,7 +169,7 @@ std::vector<PathCase> pathCases() {
 }
 
 std::string pathName(const ::testing::TestParamInfo<PathCase>& i) {
-  const char* names[] = {"ReadPixels", "DrawPixels", "CopyPixels", "CopyTexImage2D",
+  const char* names[] = {"ReadPixels",        "DrawPixels", "CopyPixels",   "CopyTexImage2D",
                          "CopyTexSubImage2D", "TexImage2D", "TexSubImage2D"};
   return std::string(names[int(i.param.path)]) +
          (i.param.border == GL_REDUCE ? "_Reduce" : "_Replicate");
@@ -171,7 +185,9 @@ struct AccumCase {
   void (*ops)();
 };
 
-void drawSecond() { putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 162)); }
+void drawSecond() {
+  putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 162));
+}
 
 class AccumulationParity : public ::testing::TestWithParam<AccumCase> {};
 TEST_P(AccumulationParity, Operations) {
@@ -189,18 +205,80 @@ TEST_P(AccumulationParity, Operations) {
 INSTANTIATE_TEST_SUITE_P(
     EveryOperation, AccumulationParity,
     ::testing::Values(
-        AccumCase{"LoadReturn", [] { glAccum(GL_LOAD, 1.0f); glClear(GL_COLOR_BUFFER_BIT); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"LoadFifthReturnTwice", [] { glAccum(GL_LOAD, 0.2f); glAccum(GL_RETURN, 2.0f); }},
-        AccumCase{"AccumTwoImages", [] { glAccum(GL_LOAD, 0.4f); drawSecond(); glAccum(GL_ACCUM, 0.6f); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"Mult", [] { glAccum(GL_LOAD, 1.0f); glAccum(GL_MULT, 0.6f); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"Add", [] { glAccum(GL_LOAD, 0.4f); glAccum(GL_ADD, 0.2f); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"NegativeAdd", [] { glAccum(GL_LOAD, -0.4f); glAccum(GL_ADD, 0.8f); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"ReturnClamps", [] { glAccum(GL_LOAD, 0.8f); glAccum(GL_RETURN, 1.6f); }},
-        AccumCase{"ClearAccum", [] { glClearAccum(0.2f, -0.4f, 0.6f, 0.8f); glClear(GL_ACCUM_BUFFER_BIT); glAccum(GL_ACCUM, 0.2f); glAccum(GL_RETURN, 1.0f); }},
+        AccumCase{"LoadReturn",
+                  [] {
+                    glAccum(GL_LOAD, 1.0f);
+                    glClear(GL_COLOR_BUFFER_BIT);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"LoadFifthReturnTwice",
+                  [] {
+                    glAccum(GL_LOAD, 0.2f);
+                    glAccum(GL_RETURN, 2.0f);
+                  }},
+        AccumCase{"AccumTwoImages",
+                  [] {
+                    glAccum(GL_LOAD, 0.4f);
+                    drawSecond();
+                    glAccum(GL_ACCUM, 0.6f);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"Mult",
+                  [] {
+                    glAccum(GL_LOAD, 1.0f);
+                    glAccum(GL_MULT, 0.6f);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"Add",
+                  [] {
+                    glAccum(GL_LOAD, 0.4f);
+                    glAccum(GL_ADD, 0.2f);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"NegativeAdd",
+                  [] {
+                    glAccum(GL_LOAD, -0.4f);
+                    glAccum(GL_ADD, 0.8f);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"ReturnClamps",
+                  [] {
+                    glAccum(GL_LOAD, 0.8f);
+                    glAccum(GL_RETURN, 1.6f);
+                  }},
+        AccumCase{"ClearAccum",
+                  [] {
+                    glClearAccum(0.2f, -0.4f, 0.6f, 0.8f);
+                    glClear(GL_ACCUM_BUFFER_BIT);
+                    glAccum(GL_ACCUM, 0.2f);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
         // (A scissored GL_LOAD after another GL_LOAD is a departure: departures_test.cpp.)
-        AccumCase{"Scissor", [] { glClear(GL_ACCUM_BUFFER_BIT); glEnable(GL_SCISSOR_TEST); glScissor(3, 2, 7, 5); glAccum(GL_ACCUM, 0.6f); glDisable(GL_SCISSOR_TEST); glAccum(GL_RETURN, 1.0f); }},
-        AccumCase{"ColorMask", [] { glAccum(GL_LOAD, 0.4f); glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE); glAccum(GL_RETURN, 1.0f); glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE); }},
-        AccumCase{"FourPassAverage", [] { glClear(GL_ACCUM_BUFFER_BIT); for (int i = 0; i < 4; ++i) { putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 170 + i)); glAccum(GL_ACCUM, 0.2f); } glAccum(GL_RETURN, 1.0f); }}),
+        AccumCase{"Scissor",
+                  [] {
+                    glClear(GL_ACCUM_BUFFER_BIT);
+                    glEnable(GL_SCISSOR_TEST);
+                    glScissor(3, 2, 7, 5);
+                    glAccum(GL_ACCUM, 0.6f);
+                    glDisable(GL_SCISSOR_TEST);
+                    glAccum(GL_RETURN, 1.0f);
+                  }},
+        AccumCase{"ColorMask",
+                  [] {
+                    glAccum(GL_LOAD, 0.4f);
+                    glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+                    glAccum(GL_RETURN, 1.0f);
+                    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+                  }},
+        AccumCase{"FourPassAverage",
+                  [] {
+                    glClear(GL_ACCUM_BUFFER_BIT);
+                    for (int i = 0; i < 4; ++i) {
+                      putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 170 + i));
+                      glAccum(GL_ACCUM, 0.2f);
+                    }
+                    glAccum(GL_RETURN, 1.0f);
+                  }}),
     [](const ::testing::TestParamInfo<AccumCase>& i) { return std::string(i.param.name); });
 
 }  // namespace
