@@ -70,7 +70,7 @@ Scene brabecScene() {
   s.name = "brabec";
   s.description = "torus, spheres, boxes and a cylinder on a ground plane, ~7000 triangles (Brabec–Seidel §5)";
   s.objects.push_back(object("ground", makePlane(12, 12, 8), glm::mat4(1), kGround, true, true));
-  s.objects.push_back(object("torus", makeTorus(0.8f, 0.25f, 48, 24),
+  s.objects.push_back(object("torus", makeTorus(0.8f, 0.25f, 60, 30),
                              glm::rotate(at({-1.3f, 1.1f, 0.2f}), glm::radians(60.0f), {1, 0, 0}),
                              {0.85f, 0.35f, 0.25f}));
   s.objects.push_back(object("sphere", makeSphere(0.6f, 48, 24), at({1.3f, 0.9f, -0.6f}),
@@ -126,10 +126,12 @@ Scene treesScene() {
   s.objects.push_back(object("ground", makePlane(30, 30, 4), glm::mat4(1), kGround, false, true));
   const glm::vec3 spots[] = {{0, 0, 0}, {2.5f, 0, -1.5f}, {-2.2f, 0, -2.5f}, {-3, 0, 1.8f},
                              {3.2f, 0, 2.0f}, {0.5f, 0, -5}, {-5, 0, -5}, {5, 0, -6}};
-  int i = 0;
-  for (const glm::vec3& p : spots)
-    s.objects.push_back(object("tree " + std::to_string(i++), makeTree(2.5f + 0.3f * (i % 3)),
-                               at(p), {0.35f, 0.55f, 0.3f}));
+  constexpr float kTreeHeight = 2.5f;     // world units
+  constexpr float kHeightVariation = 0.3f;
+  for (size_t i = 0; i < std::size(spots); ++i)
+    s.objects.push_back(object("tree " + std::to_string(i),
+                               makeTree(kTreeHeight + kHeightVariation * float(i % 3)),
+                               at(spots[i]), {0.35f, 0.55f, 0.3f}));
   s.camera.position = {0, 5, 10};
   s.camera.target = {0, 0.5f, -1};
   s.camera.fovyDegrees = 50;
