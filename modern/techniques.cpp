@@ -1,10 +1,12 @@
+#include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/modern.h"
 
 namespace sl::modern {
 
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique()};
+  return {hardwareShadowMapTechnique(), wooShadowMapTechnique(),
+          secondDepthShadowMapTechnique()};
 }
 
 }  // namespace sl::modern
