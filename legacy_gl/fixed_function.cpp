@@ -49,10 +49,12 @@ void enableSpotlight(const Scene& scene, LightTerms terms) {
   glEnable(GL_LIGHTING);
   glEnable(GL_LIGHT0);
   glEnable(GL_NORMALIZE);
-  const glm::vec4 noGlobalAmbient(0, 0, 0, 1);
-  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, glm::value_ptr(noGlobalAmbient));
+  // The ambient term goes through the global light-model ambient (glspec121 §2.13.1), not the
+  // light's own ambient, which GL would multiply by the spotlight cone: shadowed and unlit
+  // surfaces keep the same ambient everywhere, as in modern/camera_pass.cpp.
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, glm::value_ptr(amb ? ambient : zero));
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
-  glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(amb ? ambient : zero));
+  glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(zero));
   glLightfv(GL_LIGHT0, GL_DIFFUSE, glm::value_ptr(direct ? color : zero));
   glLightfv(GL_LIGHT0, GL_SPECULAR, glm::value_ptr(direct ? color : zero));
   const glm::vec4 position(l.position, 1.0f);
