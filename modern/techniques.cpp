@@ -1,10 +1,14 @@
 #include "modern/hardware_shadow_map.h"
 #include "modern/modern.h"
+#include "modern/shadow_volumes.h"
 
 namespace sl::modern {
 
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique()};
+  return {
+      hardwareShadowMapTechnique(),
+      shadowVolumesTechnique(),
+  };
 }
 
 }  // namespace sl::modern
