@@ -34,22 +34,12 @@ constexpr float kInfinityEpsilon = 2.4e-7f * 4.0f;  // a few 24-bit depth steps
 }  // namespace
 
 SceneCasters closedCasters(const Scene& scene, const std::string& technique) {
-  SceneCasters out;
-  std::string openNames;
-  for (const Object& o : scene.objects) {
-    if (!o.castsShadow) continue;
-    if (!o.mesh->closed) {
-      ++out.openSkipped;
-      openNames += (openNames.empty() ? "" : ", ") + o.name;
-      continue;
-    }
-    out.closed.push_back({&o, buildEdgeAdjacency(*o.mesh, o.name)});
-  }
+  SceneCasters out = collectClosedCasters(scene);
   if (out.closed.empty())
     throw InputError(technique + ": scene '" + scene.name +
                      "' has no closed shadow caster (shadow volumes need closed meshes; open "
                      "casters: " +
-                     (openNames.empty() ? "none" : openNames) + ")");
+                     (out.openNames.empty() ? "none" : out.openNames) + ")");
   return out;
 }
 

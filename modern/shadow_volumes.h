@@ -20,17 +20,8 @@ Technique shadowVolumesTechnique();
 constexpr GLuint kStencilCountBits = 0x7F;
 constexpr GLuint kStencilMaskBit = 0x80;
 
-// The closed shadow casters of a scene with their edge adjacency. Open casters (the ground
-// plane) cannot bound a shadow volume: they are skipped and counted; a scene whose casters are
-// all open is an InputError (nothing could cast a shadow volume).
-struct ClosedCaster {
-  const Object* object = nullptr;
-  EdgeAdjacency adjacency;
-};
-struct SceneCasters {
-  std::vector<ClosedCaster> closed;
-  int openSkipped = 0;
-};
+// collectClosedCasters (silhouettes.h), but a scene whose casters are all open is an
+// InputError: nothing could cast a shadow volume.
 SceneCasters closedCasters(const Scene& scene, const std::string& technique);
 
 // One blocker's shadow volume in a vertex buffer (object space, vec4 positions).

@@ -48,6 +48,20 @@ EdgeAdjacency buildEdgeAdjacency(const Mesh& mesh, const std::string& objectName
   return out;
 }
 
+SceneCasters collectClosedCasters(const Scene& scene) {
+  SceneCasters out;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow) continue;
+    if (!o.mesh->closed) {
+      ++out.openSkipped;
+      out.openNames += (out.openNames.empty() ? "" : ", ") + o.name;
+      continue;
+    }
+    out.closed.push_back({&o, buildEdgeAdjacency(*o.mesh, o.name)});
+  }
+  return out;
+}
+
 Silhouette findSilhouette(const EdgeAdjacency& mesh, const glm::vec3& light) {
   Silhouette s;
   s.facesLight.resize(mesh.triangles.size());

@@ -36,6 +36,20 @@ struct EdgeAdjacency {
 // an edge is not shared by exactly two oppositely oriented triangles.
 EdgeAdjacency buildEdgeAdjacency(const Mesh& mesh, const std::string& objectName);
 
+// The closed shadow casters of a scene with their adjacency (built once per frame, before any
+// timed pass: it depends on the mesh only, not on the light). Open casters (the ground planes
+// of the built-in scenes) cannot bound a shadow volume or carry smoothies: they are counted.
+struct ClosedCaster {
+  const Object* object = nullptr;
+  EdgeAdjacency adjacency;
+};
+struct SceneCasters {
+  std::vector<ClosedCaster> closed;
+  int openSkipped = 0;
+  std::string openNames;  // comma separated, for messages
+};
+SceneCasters collectClosedCasters(const Scene& scene);
+
 // The triangles that face a point light and the silhouette edges between facing and non-facing
 // triangles, each oriented as it runs in its light-facing triangle (so the blocker lies to the
 // left of a -> b when seen from the light).

@@ -1,6 +1,8 @@
 #include "modern/hardware_shadow_map.h"
+#include "modern/hybrid_shadows.h"
 #include "modern/modern.h"
 #include "modern/shadow_volumes.h"
+#include "modern/smoothies.h"
 
 namespace sl::modern {
 
@@ -8,6 +10,8 @@ std::vector<Technique> techniques() {
   return {
       hardwareShadowMapTechnique(),
       shadowVolumesTechnique(),
+      hybridShadowsTechnique(),
+      smoothiesTechnique(),
   };
 }
 
