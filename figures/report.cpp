@@ -272,6 +272,18 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
     }
     writeFigure(h, f);
   }
+  // Self-check for readers and for tests/figures/report_test.cpp: every image must have
+  // loaded; a broken one is outlined in red, logged to the console and counted on <body>.
+  h << "<script>\nwindow.addEventListener('load', function () {\n"
+       "  var ok = 0, broken = 0;\n"
+       "  document.querySelectorAll('img').forEach(function (img) {\n"
+       "    if (img.complete && img.naturalWidth > 0) { ok++; return; }\n"
+       "    broken++; img.style.outline = '3px solid red';\n"
+       "    console.error('missing image: ' + img.getAttribute('src'));\n"
+       "  });\n"
+       "  document.body.setAttribute('data-images-ok', ok);\n"
+       "  document.body.setAttribute('data-images-broken', broken);\n"
+       "});\n</script>\n";
   h << "</body></html>\n";
   const fs::path path = fs::path(outDir) / "report.html";
   const fs::path tmp = fs::path(outDir) / "report.html.tmp";
