@@ -1,10 +1,28 @@
+#include "modern/convolution_shadow_map.h"
+#include "modern/depth_layer_shadow_maps.h"
+#include "modern/gems_pcf.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/modern.h"
+#include "modern/variance_shadow_map.h"
 
 namespace sl::modern {
 
+// One line per technique, grouped by paper (the order `shadowlab list` prints).
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique()};
+  return {
+      // Everitt, Rege & Cebenoyan 2001 and the depth-layer variants (twins of legacy_gl/)
+      hardwareShadowMapTechnique(),
+      wooShadowMapTechnique(),
+      secondDepthShadowMapTechnique(),
+      // Brabec & Seidel 2001 (twins of legacy_gl/)
+      // Bunnell & Pellacini, GPU Gems ch. 11
+      gems16Technique(),
+      gems4Technique(),
+      // Annen et al. 2007 and Donnelly & Lauritzen 2006
+      convolutionShadowMapTechnique(),
+      varianceShadowMapTechnique(),
+      // Chan 2004
+  };
 }
 
 }  // namespace sl::modern
