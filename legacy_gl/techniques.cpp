@@ -5,7 +5,8 @@
 namespace sl::legacy {
 
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique(), rampShadowMapTechnique()};
+  return {hardwareShadowMapTechnique(), rampShadowMapTechnique(), pcfTechnique(),
+          fastPcfTechnique()};
 }
 
 }  // namespace sl::legacy
