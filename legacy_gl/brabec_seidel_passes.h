@@ -29,12 +29,16 @@ struct DepthEncoding {
 };
 DepthEncoding depthEncoding(Precision precision);
 
-// Depth bias in the units of `depth-bias` (steps of the encoding) -> fraction of the range.
+// `depth-bias` (in 8-bit steps, 1/255 of the light's depth range, at every precision) ->
+// fraction of the range.
 // DEVIATION (Brabec–Seidel §2): the paper names no bias. glPolygonOffset moves window z only,
 // never texgen values, so the bias is subtracted from the camera pass's ramp coordinate
 // through the texture matrix (lightEyeToRamp): a surface counts as shadowed only when it lies
 // more than `bias` behind the map.
-constexpr double kDefaultDepthBiasSteps = 1.5;  // rounding of both sides (1 step) + slope
+// 8-bit rounding of both sides (1 step) plus the depth slope across half a texel of the map
+// (a quarter step on the brabec ground at 512^2). Curved surfaces near their terminator still
+// self-shadow: the pipeline has no slope-scaled bias (the paper's 8-bit limitation, §6).
+constexpr double kDefaultDepthBiasSteps = 1.5;
 double depthBias(const RenderParams& params, const DepthEncoding& enc);
 
 // The 1D ramp texture of Fig. 1 (texel i = i / (N - 1)), bound to GL_TEXTURE_1D.
