@@ -1,3 +1,4 @@
+#include "modern/brabec_seidel_techniques.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/modern.h"
@@ -5,8 +6,9 @@
 namespace sl::modern {
 
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique(), wooShadowMapTechnique(),
-          secondDepthShadowMapTechnique()};
+  return {hardwareShadowMapTechnique(),  rampShadowMapTechnique(),
+          percentageCloserFilteringTechnique(), fastPercentageCloserFilteringTechnique(),
+          wooShadowMapTechnique(),        secondDepthShadowMapTechnique()};
 }
 
 }  // namespace sl::modern
