@@ -1,3 +1,4 @@
+#include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/hardware_shadow_map.h"
 #include "legacy_gl/legacy.h"
@@ -5,8 +6,8 @@
 namespace sl::legacy {
 
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique(), wooShadowMapTechnique(),
-          secondDepthShadowMapTechnique()};
+  return {hardwareShadowMapTechnique(), rampShadowMapTechnique(), pcfTechnique(),
+          fastPcfTechnique(),           wooShadowMapTechnique(),  secondDepthShadowMapTechnique()};
 }
 
 }  // namespace sl::legacy
