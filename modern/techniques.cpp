@@ -1,3 +1,4 @@
+#include "modern/brabec_seidel_techniques.h"
 #include "modern/convolution_shadow_map.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/gems_pcf.h"
