@@ -52,8 +52,8 @@ Scene fillHeavyScene() {
         o.diffuse = glm::vec3(0.3f + 0.2f * layer, 0.5f, 0.8f - 0.2f * layer);
         s.objects.push_back(o);
       }
-  s.camera.position = {0.5f, 2.2f, 7.5f};
-  s.camera.target = {0, 1.0f, 0};
+  s.camera.position = {0.5f, 5.0f, 7.0f};
+  s.camera.target = {0, 0.8f, 0};
   s.camera.fovyDegrees = 50;
   s.camera.nearPlane = 0.3f;
   s.camera.farPlane = 40;
