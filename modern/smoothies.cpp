@@ -376,7 +376,7 @@ Technique smoothiesTechnique() {
   t.name = "modern.smoothies";
   t.paper = "Chan 2004 thesis ch. 4 (Chan & Durand 2003, smoothies)";
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
-  t.status = "complete (closed blockers; corners as squares, see DEVIATION)";
+  t.status = "complete (closed blockers; square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"width", "offset-factor", "offset-units"};
   t.render = render;

@@ -5,11 +5,16 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <glm/gtc/constants.hpp>
 
 #include "apps/registry.h"
+#include "core/primitives.h"
 #include "core/scene_library.h"
+#include "modern/silhouettes.h"
 #include "modern/smoothies.h"
 #include "tests/modern/analytic_ground.h"
 
@@ -120,6 +125,71 @@ TEST(Smoothies, ContactAndEveryBufferStayFiniteWithinUnitRange) {
       EXPECT_GT(f.counters.at("smoothie_edges"), 0) << name;
       EXPECT_EQ(f.counters.at("smoothie_corners") >= 3, true) << name;
     }
+}
+
+// A closed "monkey saddle" cone: apex v with six neighbours alternating up and down, closed by a
+// bottom apex. Seen from suitable light positions, the facing of the six fan triangles around v
+// alternates more than twice, so v has more than two silhouette edges (Chan §4.2 step 3's
+// special case).
+Mesh saddleCone() {
+  constexpr int kNeighbours = 6;
+  constexpr float kRipple = 0.45f;  // up/down height of the neighbours
+  Mesh m;
+  m.positions.push_back({0, 0, 0});
+  for (int k = 0; k < kNeighbours; ++k) {
+    const float a = glm::two_pi<float>() * k / kNeighbours;
+    m.positions.push_back({std::cos(a), (k % 2 ? -kRipple : kRipple), std::sin(a)});
+  }
+  m.positions.push_back({0, -1.5f, 0});
+  const unsigned bottom = kNeighbours + 1;
+  for (unsigned k = 0; k < kNeighbours; ++k) {
+    const unsigned a = 1 + k, b = 1 + (k + 1) % kNeighbours;
+    m.indices.insert(m.indices.end(), {0u, b, a, bottom, a, b});
+  }
+  // Outward orientation: positive signed volume (divergence theorem), else flip every triangle.
+  double volume = 0;
+  for (size_t t = 0; t < m.indices.size(); t += 3)
+    volume += glm::dot(m.positions[m.indices[t]],
+                       glm::cross(m.positions[m.indices[t + 1]], m.positions[m.indices[t + 2]]));
+  if (volume < 0)
+    for (size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+  m.normals.assign(m.positions.size(), glm::vec3(0, 1, 0));
+  m.closed = isClosedManifold(m);
+  return m;
+}
+
+TEST(Smoothies, VertexWithMoreThanTwoSilhouetteEdges) {
+  const Mesh cone = saddleCone();
+  ASSERT_TRUE(cone.closed);
+  const glm::vec3 at(0, 2.0f, 0);  // where the cone floats above the ground
+  // Find a light above the cone for which the apex has more than two silhouette edges.
+  const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(cone, "saddle");
+  std::optional<glm::vec3> light;
+  for (int i = 0; i < 40 && !light; ++i)
+    for (int j = 1; j < 10 && !light; ++j) {
+      const float phi = glm::two_pi<float>() * i / 40, up = 0.15f * j;
+      const glm::vec3 l = 4.0f * glm::normalize(glm::vec3(std::cos(phi), up, std::sin(phi)));
+      int degree = 0;
+      for (const auto& [a, b] : modern::findSilhouette(adj, l).edges) degree += (a == 0) + (b == 0);
+      if (degree > 2) light = l;
+    }
+  ASSERT_TRUE(light.has_value()) << "no light position gives the apex > 2 silhouette edges";
+  Scene scene = builtinScene("analytic");
+  scene.objects[1].mesh = std::make_shared<const Mesh>(cone);
+  scene.objects[1].model = glm::translate(glm::mat4(1), at);
+  scene.light.position = at + *light;
+  scene.light.target = glm::vec3(0);
+  scene.light.up = glm::vec3(0, 1, 0);
+  scene.light.coneDegrees = 100;
+  RenderParams p = smallParams(512);
+  p.extra["width"] = "0.05";
+  p.capturePasses = true;
+  const Frame f = renderTechnique(findTechnique("modern.smoothies"), scene, p);
+  EXPECT_GE(f.counters.at("corners_with_more_than_two_edges"), 1);
+  EXPECT_GE(f.counters.at("corner_squares"), 1);
+  ASSERT_TRUE(allFinite(f.visibility));
+  for (float v : f.visibility.data) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+  for (const PassImage& i : f.intermediates) ASSERT_TRUE(allFinite(i.image)) << i.name;
 }
 
 TEST(Smoothies, WidthOutOfRangeIsAnInputError) {
