@@ -47,6 +47,9 @@ constexpr int kFullWarmup = 2, kFullTimed = 7;
 constexpr int kBandRadiusPixels = 2;
 // A pixel of the reference's umbra "leaks" when the technique shows it more than 20% lit.
 constexpr float kLeakThreshold = 0.2f;
+// --quick: a variant whose warm-up frame takes longer than this is timed once, not 3 times
+// (CSM on llvmpipe takes 0.3-2 s per frame; its median of 3 would take the whole budget).
+constexpr double kSlowFrameMs = 250.0;
 constexpr int kPlannerShadowMapTexels = 2048;  // the planner scene's map (what a skip saves)
 
 double median(std::vector<double> v) {
@@ -128,7 +131,7 @@ References renderReferences(const Scene& scene, const RenderParams& base) {
 
 // Pass 2: one variant, timed on one context.
 BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVariant& v,
-                        const References& refs, int warmup, int timed, Image& maskOut) {
+                        const References& refs, int warmup, int timed, bool quick, Image& maskOut) {
   BenchRow row;
   row.scene = scene.name;
   row.technique = t.name;
@@ -144,10 +147,13 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
     std::vector<double> totals, walls;
     std::map<std::string, std::vector<double>> perPass;
     std::vector<std::string> passOrder;
-    for (int i = 0; i < warmup + timed; ++i) {
+    int frames = warmup + timed;
+    for (int i = 0; i < frames; ++i) {
       const double start = nowMilliseconds();
       last = t.render(*context, scene, v.params);
       const double wall = nowMilliseconds() - start;
+      // A variant slower than kSlowFrameMs after warm-up is timed once (quick mode's budget).
+      if (quick && i == warmup - 1 && wall > kSlowFrameMs) frames = warmup + 1;
       if (i < warmup) continue;
       totals.push_back(last.totalMilliseconds());
       walls.push_back(wall);
@@ -324,7 +330,8 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
         // The references are measured once, without warm-up: they are the truth, not a
         // contender, and reference.soft costs seconds per frame.
         const bool truth = isReference(*t);
-        BenchRow row = measureVariant(*t, scene, v, refs, truth ? 0 : warmup, truth ? 1 : timed, mask);
+        BenchRow row = measureVariant(*t, scene, v, refs, truth ? 0 : warmup,
+                                      truth ? 1 : timed, options.quick, mask);
         if (row.status == "ok") {
           result.masks[key(scene.name, t->name, v.label)] = std::move(mask);
           result.texelsPerPixel[scene.name] =
