@@ -25,6 +25,8 @@
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
+#include "figures/bench.h"
+#include "figures/plan.h"
 #include "figures/diagnostics.h"
 #include "figures/plots.h"
 #include "figures/report.h"
@@ -482,7 +484,7 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
   return 0;
 }
 
-int runBench(const cli::Args&) { throw InputError("bench is not implemented yet"); }
-int runPlan(const cli::Args&) { throw InputError("plan is not implemented yet"); }
+int runBench(const cli::Args& args) { return runBenchCommand(args); }  // figures/bench.cpp
+int runPlan(const cli::Args& args) { return runPlanCommand(args); }    // figures/plan.cpp
 
 }  // namespace sl::figures

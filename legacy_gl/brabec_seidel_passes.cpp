@@ -23,7 +23,10 @@ constexpr int kRampTexelsFloat = 2;    // two texels 0 and 1, LINEAR: d itself, 
 // At float precision no quantisation step exists; this is the step the colour-table threshold
 // and the depth bias are expressed in (2^-20 of the light's depth range).
 constexpr double kFloatDepthStep = 1.0 / 1048576.0;
-constexpr double kChannelMax16 = 65535.0;  // shares of a 16-bit colour table
+constexpr double kChannelMax16 = 65535.0;
+// The unit of `depth-bias` at every precision: one 8-bit step of the light's depth range, so
+// that 8-bit, 12-bit and float frames with the same bias differ only by quantisation.
+constexpr double kBiasStep = 1.0 / 255.0;  // shares of a 16-bit colour table
 // The colour table of Fig. 4: 256 entries (GL_MAX_COLOR_TABLE_WIDTH of the reference is 256).
 constexpr int kShadowTableWidth = 256;
 constexpr int kShadowTableLastIndex = kShadowTableWidth - 1;
@@ -122,13 +125,10 @@ DepthEncoding depthEncoding(Precision precision) {
 }
 
 double depthBias(const RenderParams& params, const DepthEncoding& enc) {
-  constexpr double kMaxBiasSteps = 1.0e6;
+  (void)enc;
+  constexpr double kMaxBiasSteps = 255.0;  // the whole depth range
   const double steps = params.number("depth-bias", kDefaultDepthBiasSteps, 0.0, kMaxBiasSteps);
-  // At float precision one "step" of the bias is a 12-bit step (a float step is far below
-  // any useful bias).
-  const double unit = enc.precision == Precision::kFloat ? 1.0 / (kRampTexels12 - 1)
-                                                         : enc.depthStep;
-  return steps * unit;
+  return steps * kBiasStep;
 }
 
 void createRampTexture(RampTexture& ramp, const DepthEncoding& enc) {
@@ -226,6 +226,19 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
   glDisable(GL_CONVOLUTION_2D);
 }
 
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias) {
+  enableEyeCoordinateTexgen();
+  const glm::mat4 cameraToLight = lightView(scene.light) * glm::inverse(cameraView(scene.camera));
+  loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, bias) * cameraToLight);
+  glMatrixMode(GL_MODELVIEW);
+}
+
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels) {
+  enableEyeCoordinateTexgen();
+  loadMatrix(GL_TEXTURE, cameraEyeToShadowMap(scene, params.shadowMapTexels, offsetTexels));
+  glMatrixMode(GL_MODELVIEW);
+}
+
 void renderCameraDepth(const Scene& scene, const RenderParams& params, const DepthEncoding& enc,
                        const RampTexture& ramp, double bias, ChannelMask channels) {
   setCameraMatrices(scene, params.width, params.height);
@@ -242,10 +255,7 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
   drawScene(scene, Draw::kNonReceivers, Colors::kBlack);
   // §2: "an additional 4x4 texture matrix ... transforms points from camera to light source
   // space", then onto the ramp.
-  enableEyeCoordinateTexgen();
-  const glm::mat4 cameraToLight = lightView(scene.light) * glm::inverse(cameraView(scene.camera));
-  loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, bias) * cameraToLight);
-  glMatrixMode(GL_MODELVIEW);
+  loadCameraToRampTexgen(scene, enc, bias);
   glEnable(GL_TEXTURE_1D);
   glBindTexture(GL_TEXTURE_1D, ramp.name.id());
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
@@ -258,9 +268,7 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
 namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params,
                       const ShadowMapTexture& map, glm::vec2 offsetTexels) {
-  enableEyeCoordinateTexgen();
-  loadMatrix(GL_TEXTURE, cameraEyeToShadowMap(scene, params.shadowMapTexels, offsetTexels));
-  glMatrixMode(GL_MODELVIEW);
+  loadProjectiveTexgen(scene, params, offsetTexels);
   glEnable(GL_TEXTURE_2D);
   glBindTexture(GL_TEXTURE_2D, map.name.id());
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
@@ -310,8 +318,29 @@ void saturateAlphaByCopy(const RenderParams& params, const DepthEncoding& enc) {
   glPixelTransferf(GL_ALPHA_SCALE, float(1.0 / enc.depthStep));
   setChannelMask(kAlphaOnly);
   glCopyPixels(0, 0, params.width, params.height, GL_COLOR);
-  setChannelMask(kAllChannels);
   glPixelTransferf(GL_ALPHA_SCALE, 1.0f);
+  if (enc.precision == Precision::kFloat) {
+    // DEVIATION (float precision only): a float buffer keeps negative differences (lit points
+    // in front of the map) and scaled values above 1; two full-window quads blended with
+    // EXT_blend_minmax clamp alpha to [0, 1] as the fixed-point buffers of 2001 did by
+    // themselves.
+    const float corners[4][2] = {{0, 0}, {float(params.width), 0},
+                                 {float(params.width), float(params.height)},
+                                 {0, float(params.height)}};
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (const GLenum op : {GLenum(GL_MAX), GLenum(GL_MIN)}) {
+      glBlendEquation(op);
+      const float bound = op == GL_MAX ? 0.0f : 1.0f;
+      glColor4f(bound, bound, bound, bound);
+      glBegin(GL_QUADS);
+      for (const auto& c : corners) glVertex2f(c[0], c[1]);
+      glEnd();
+    }
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
+  }
+  setChannelMask(kAllChannels);
   glEnable(GL_DEPTH_TEST);
 }
 

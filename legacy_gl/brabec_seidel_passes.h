@@ -29,12 +29,16 @@ struct DepthEncoding {
 };
 DepthEncoding depthEncoding(Precision precision);
 
-// Depth bias in the units of `depth-bias` (steps of the encoding) -> fraction of the range.
+// `depth-bias` (in 8-bit steps, 1/255 of the light's depth range, at every precision) ->
+// fraction of the range.
 // DEVIATION (Brabec–Seidel §2): the paper names no bias. glPolygonOffset moves window z only,
 // never texgen values, so the bias is subtracted from the camera pass's ramp coordinate
 // through the texture matrix (lightEyeToRamp): a surface counts as shadowed only when it lies
 // more than `bias` behind the map.
-constexpr double kDefaultDepthBiasSteps = 1.5;  // rounding of both sides (1 step) + slope
+// 8-bit rounding of both sides (1 step) plus the depth slope across half a texel of the map
+// (a quarter step on the brabec ground at 512^2). Curved surfaces near their terminator still
+// self-shadow: the pipeline has no slope-scaled bias (the paper's 8-bit limitation, §6).
+constexpr double kDefaultDepthBiasSteps = 1.5;
 double depthBias(const RenderParams& params, const DepthEncoding& enc);
 
 // The 1D ramp texture of Fig. 1 (texel i = i / (N - 1)), bound to GL_TEXTURE_1D.
@@ -73,6 +77,12 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
 
 // The 3x3 RGBA kernel (rows bottom-up as glConvolutionFilter2D reads them) for a block offset.
 std::array<float, 36> packingKernel(glm::ivec2 blockOffset);
+
+// Texgen + texture matrix of the camera passes (identity EYE_LINEAR planes, so the texture
+// matrix receives camera eye coordinates): camera eye -> light eye -> ramp (minus bias), and
+// camera eye -> shadow-map coordinates (+ offset). Exposed for the texgen-matrix test.
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias);
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels);
 
 // §2 second pass / §3 "z replicated over all four channels": the scene from the camera with
 // the ramp on the light depth of every point (texture matrix camera eye -> light -> ramp),
