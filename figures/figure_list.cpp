@@ -206,8 +206,9 @@ FigureSpec everittFig6() {
   f.caption =
       "The light faces the camera. Left: eye pixels per shadow-map texel (log scale, computed "
       "per pixel from the screen-space derivatives of the shadow-map coordinate): blue where "
-      "one texel covers many pixels (the map is magnified and its texels show as blocks), red "
-      "where many texels fall into one pixel. Centre: the shadowed eye view. Right: the light's "
+      "one texel covers 4 or more pixels (the map is magnified and its texels show as blocks), "
+      "green at one pixel per texel, red where 4 or more texels fall into one pixel; grey is "
+      "outside the light's frustum. Centre: the shadowed eye view. Right: the light's "
       "view; the part of its image that the eye sees up close is tiny.";
   f.scene = "dueling";
   f.columns = 3;
@@ -434,6 +435,7 @@ std::vector<FigureSpec> csmFigures() {
 
 // ---------------------------------------------------------------- Chan 2004 thesis
 constexpr const char* kChan = "Chan 2004 (MIT thesis)";
+constexpr float kSmoothieWidthPerRadius = 0.5f;  // smoothie width (map side = 1) per unit radius
 
 FigureSpec chanFigure(std::string id, std::string figure, std::string title, std::string caption,
                       std::string scene, int columns, std::vector<PanelSpec> panels) {
@@ -505,7 +507,9 @@ std::vector<FigureSpec> chanFigures() {
       "chan-3-7", "Figure 3-7", "Image quality: shadow map, hybrid, shadow volumes",
       "Rows: three scenes of high shadow complexity (our stand-ins: procedural trees, the "
       "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
-      "1024² shadow map, the hybrid method with the same map, shadow volumes.",
+      "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
+      "dragon has holes, so the volume-based columns skip it as a caster (counted in "
+      "open_casters_skipped): compare its missing shadow on the right.",
       "trees", 3, p37);
   f37.shadowMapTexels = 1024;
   out.push_back(f37);
@@ -524,11 +528,13 @@ std::vector<FigureSpec> chanFigures() {
   for (const char* scene : {"trees", "dragon", "brabec"}) {
     PanelSpec sv = render(std::string(scene) + " SV", "modern.volumes");
     sv.scene = scene;
+    sv.counter = "volume_coverage";
     p310.push_back(sv);
     for (int texels : {256, 512, 1024}) {
       PanelSpec h = withMap(render(std::string(scene) + " H " + std::to_string(texels), "modern.hybrid"),
                             texels);
       h.scene = scene;
+      h.counter = "silhouette_fraction";
       p310.push_back(h);
     }
   }
@@ -566,7 +572,7 @@ std::vector<FigureSpec> chanFigures() {
       "soft shadow edges.",
       "cylinder", 4,
       {view("(a) shadow map", PanelKind::kShadowMap),
-       buffers("(b) smoothie depth", "modern.smoothies", "depth"),
+       buffers("(b) smoothie depth", "modern.smoothies", "smoothie-depth"),
        buffers("(c) smoothie alpha", "modern.smoothies", "alpha"),
        withPaper(render("(d) smoothies", "modern.smoothies"), "39 fps, 10,000 triangles")}));
 
@@ -590,26 +596,31 @@ std::vector<FigureSpec> chanFigures() {
     p48.push_back(withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
                             paperMs[row][0]));
     p48.push_back(withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
-    p48.push_back(withPaper(withMap(render(n + " smoothie 0.2", "modern.smoothies", {{"size", "0.2"}}), texels),
-                            paperMs[row][2]));
-    p48.push_back(withPaper(withMap(render(n + " smoothie 0.8", "modern.smoothies", {{"size", "0.8"}}), texels),
-                            paperMs[row][3]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}), texels),
+        paperMs[row][2]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.1", "modern.smoothies", {{"width", "0.1"}}), texels),
+        paperMs[row][3]));
     ++row;
   }
   FigureSpec f48 = chanFigure(
       "chan-4-8", "Figure 4-8", "Shadow edges: shadow map, 16-sample PCF, smoothies, with times",
       "The cylinder's shadow with 256², 512² and 1024² maps (rows). Columns: one comparison "
       "per pixel; 16-sample PCF (modern.gems16, our stand-in for the paper's bicubic "
-      "16-sample filter); smoothies of size 0.2 and 0.8. Times per frame beside the paper's "
-      "(GeForce FX 5950 class GPU).",
+      "16-sample filter); smoothies of size 0.2 and 0.8 in the thesis's units, here widths "
+      "0.025 and 0.1 of the light's image (the same 1:4 ratio). Times per frame beside the "
+      "paper's (GeForce FX 5950 class GPU).",
       "cylinder", 4, p48);
   f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};
   out.push_back(f48);
 
   std::vector<PanelSpec> p49;
   for (float radius : {0.05f, 0.1f, 0.2f}) {
+    // The smoothie width stands for the light's size: it grows with the radius.
+    const std::string width = std::to_string(radius * kSmoothieWidthPerRadius).substr(0, 5);
     PanelSpec s = render("smoothies, light radius " + std::to_string(radius).substr(0, 4),
-                         "modern.smoothies");
+                         "modern.smoothies", {{"width", width}});
     PanelSpec r = render("ray traced, light radius " + std::to_string(radius).substr(0, 4),
                          "reference.soft");
     s.lightRadius = r.lightRadius = radius;
@@ -617,8 +628,8 @@ std::vector<FigureSpec> chanFigures() {
   }
   FigureSpec f49 = chanFigure(
       "chan-4-9", "Figure 4-9", "Smoothies vs ray-traced soft shadows for growing lights",
-      "Left: smoothies (1024² buffer); right: Monte Carlo ray-traced visibility of a spherical "
-      "light (reference.soft). Each row a larger light; the error column measures the "
+      "Left: smoothies (1024² buffer, width 0.5 x the light radius); right: Monte Carlo "
+      "ray-traced visibility of a spherical light (reference.soft). Each row a larger light; the error column measures the "
       "smoothie against the ray tracer with the same light.",
       "cylinder", 2, p49);
   f49.shadowMapTexels = 1024;

@@ -345,23 +345,18 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
                          png, kPlotWidth, kPlotHeight);
     } else if (chart == "chan-3-10") {
       // Shares of the image: shadow-volume coverage (volumes) and silhouette pixels (hybrid),
-      // from the techniques' counters (names containing "coverage"/"silhouette").
+      // from the counter each panel names.
       std::vector<std::string> rows;
       std::vector<std::vector<double>> values;
       for (const PanelResult* p : rendered) {
-        double share = -1;
-        for (const auto& [name, value] : p->counters)
-          if (name.find("silhouette") != std::string::npos || name.find("coverage") != std::string::npos) {
-            share = value;
-            break;
-          }
-        if (share < 0) continue;
+        const auto it = p->counters.find(p->spec.counter);
+        if (p->spec.counter.empty() || it == p->counters.end()) continue;
         rows.push_back(p->spec.label);
-        values.push_back({share * (share <= 1.0 ? 100.0 : 1.0)});
+        values.push_back({100.0 * it->second});  // the counters are fractions of the image
       }
       if (rows.empty()) {
-        plot.reason = "no panel reported a silhouette or coverage counter (modern.hybrid and "
-                      "modern.volumes not available yet)";
+        plot.reason = "no panel reported its counter (modern.hybrid: silhouette_fraction, "
+                      "modern.volumes: volume_coverage)";
         return;
       }
       plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows,
