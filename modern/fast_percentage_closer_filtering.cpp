@@ -80,7 +80,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const std::vector<Phase>& phases = params.filter == 2 ? kFootprint2 : kFootprint4;
   Frame frame;
   GpuScene gpu(scene);
-  const Texture ramp = bs::makeRampTexture(bs::depthBits(params));
+  const Texture ramp = bs::makeRampTexture(params);
   const RenderTarget encoded = renderDepthAsColourFromLight(gpu, params, ramp, frame);
   const std::vector<RenderTarget> packed = packNeighbours(params, encoded, phases, frame);
   std::vector<bs::SampleGroup> groups;
