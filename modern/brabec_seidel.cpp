@@ -192,7 +192,7 @@ void renderEncodedDepth(const GpuScene& gpu, const RenderParams& params, const T
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glColorMask(channels.r, channels.g, channels.b, channels.a);
-  Program program("texgen.vert.glsl", "bs_encode_depth.frag.glsl");
+  const Program& program = cachedProgram("texgen.vert.glsl", "bs_encode_depth.frag.glsl");
   program.use();
   const Scene& scene = gpu.scene();
   // Shifting normalised device x by 2 j / N moves the image by j texels (Figure 3 jitter).
@@ -222,7 +222,7 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("texgen.vert.glsl", "pcf_shadow.frag.glsl");
+  const Program& program = cachedProgram("texgen.vert.glsl", "pcf_shadow.frag.glsl");
   program.use();
   const glm::mat4 view = cameraView(scene.camera);
   const glm::mat4 projection =

@@ -54,7 +54,7 @@ std::vector<RenderTarget> packNeighbours(const RenderParams& params, const Rende
                                          const std::vector<Phase>& phases, Frame& frame) {
   PassTimer timer(frame, "2 convolution packing (Eq. 1)");
   std::vector<RenderTarget> packed;
-  Program program("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
   FullScreenTriangle triangle;
   glDisable(GL_DEPTH_TEST);
   for (const Phase& phase : phases) {

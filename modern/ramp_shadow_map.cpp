@@ -38,7 +38,7 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("texgen.vert.glsl", "ramp_shadow.frag.glsl");
+  const Program& program = cachedProgram("texgen.vert.glsl", "ramp_shadow.frag.glsl");
   program.use();
   const glm::mat4 view = cameraView(scene.camera);
   const glm::mat4 projection =
