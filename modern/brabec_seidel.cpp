@@ -117,11 +117,6 @@ glm::vec4 shadowShares(const RenderParams& params, int samples) {
   return shares;
 }
 
-glm::mat4 worldToShadowMap(const Scene& scene) {
-  const glm::mat4 S = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
-                      glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
-  return S * lightProjection(scene) * lightView(scene.light);
-}
 
 glm::mat4 eyeToRamp(const Scene& scene, int rampTexels, double bias) {
   const DepthRange range = lightDepthRange(scene);
@@ -156,12 +151,6 @@ void setTexgenObjectUniforms(const Program& program, const Object& object, const
   program.set("uModelViewProjection", projection * modelView);
 }
 
-glm::mat4 jitteredLightViewProjection(const Scene& scene, glm::vec2 offsetTexels, int texels) {
-  // One texel is 2 / texels in normalised device coordinates.
-  const glm::vec2 ndc = 2.0f * offsetTexels / float(texels);
-  return glm::translate(glm::mat4(1.0f), glm::vec3(ndc, 0.0f)) * lightProjection(scene) *
-         lightView(scene.light);
-}
 
 RenderTarget makeEncodedDepthTarget(const RenderParams& params) {
   const int n = params.shadowMapTexels;

@@ -42,11 +42,8 @@ float depthBias(const RenderParams& params);
 
 // Sets the uniforms of 'faithful' arithmetic that describe the legacy colour buffer and its
 // pipeline: uBufferMax, uReadScale, uSaturateScale, uTableScale, uTableLastIndex, uAccumMode,
-// uAccumReturnScale (see ramp_shadow.frag and pcf_shadow.frag), and the ramp (uRampTexels).
+// uAccumReturnScale (see ramp_shadow.frag and pcf_shadow.frag).
 void setLegacyArithmeticUniforms(const Program& program, const RenderParams& params);
-
-// S · P_light · L^-1 (projective lookup of the map).
-glm::mat4 worldToShadowMap(const Scene& scene);
 
 // The texture matrices of texgen.vert, computed exactly as legacy_gl computes the matrices it
 // loads (same formulas, same order of products, so the same floats):
@@ -61,11 +58,8 @@ glm::mat4 cameraEyeToShadowMap(const Scene& scene, int texels, glm::vec2 offsetT
 void setTexgenObjectUniforms(const Program& program, const Object& object, const glm::mat4& view,
                              const glm::mat4& projection);
 
-// The light's view-projection with the image plane moved by `offsetTexels` map texels
-// (Figure 3: the jittered passes of §3).
-glm::mat4 jitteredLightViewProjection(const Scene& scene, glm::vec2 offsetTexels, int texels);
-
-// Renders the casters from the light (jittered by `offsetTexels`) with bs_encode_depth.frag into
+// Renders the casters from the light, the image plane moved by `offsetTexels` map texels
+// (Figure 3 jitter), with texgen.vert + bs_encode_depth.frag into
 // the channels of `target` that `channels` enables (glColorMask); the target stays bound.
 void renderEncodedDepth(const GpuScene& gpu, const RenderParams& params, const Texture& ramp,
                         const RenderTarget& target, glm::bvec4 channels, glm::vec2 offsetTexels);
