@@ -226,6 +226,19 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
   glDisable(GL_CONVOLUTION_2D);
 }
 
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias) {
+  enableEyeCoordinateTexgen();
+  const glm::mat4 cameraToLight = lightView(scene.light) * glm::inverse(cameraView(scene.camera));
+  loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, bias) * cameraToLight);
+  glMatrixMode(GL_MODELVIEW);
+}
+
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels) {
+  enableEyeCoordinateTexgen();
+  loadMatrix(GL_TEXTURE, cameraEyeToShadowMap(scene, params.shadowMapTexels, offsetTexels));
+  glMatrixMode(GL_MODELVIEW);
+}
+
 void renderCameraDepth(const Scene& scene, const RenderParams& params, const DepthEncoding& enc,
                        const RampTexture& ramp, double bias, ChannelMask channels) {
   setCameraMatrices(scene, params.width, params.height);
@@ -242,10 +255,7 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
   drawScene(scene, Draw::kNonReceivers, Colors::kBlack);
   // §2: "an additional 4x4 texture matrix ... transforms points from camera to light source
   // space", then onto the ramp.
-  enableEyeCoordinateTexgen();
-  const glm::mat4 cameraToLight = lightView(scene.light) * glm::inverse(cameraView(scene.camera));
-  loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, bias) * cameraToLight);
-  glMatrixMode(GL_MODELVIEW);
+  loadCameraToRampTexgen(scene, enc, bias);
   glEnable(GL_TEXTURE_1D);
   glBindTexture(GL_TEXTURE_1D, ramp.name.id());
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
@@ -258,9 +268,7 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
 namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params,
                       const ShadowMapTexture& map, glm::vec2 offsetTexels) {
-  enableEyeCoordinateTexgen();
-  loadMatrix(GL_TEXTURE, cameraEyeToShadowMap(scene, params.shadowMapTexels, offsetTexels));
-  glMatrixMode(GL_MODELVIEW);
+  loadProjectiveTexgen(scene, params, offsetTexels);
   glEnable(GL_TEXTURE_2D);
   glBindTexture(GL_TEXTURE_2D, map.name.id());
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);

@@ -78,6 +78,12 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
 // The 3x3 RGBA kernel (rows bottom-up as glConvolutionFilter2D reads them) for a block offset.
 std::array<float, 36> packingKernel(glm::ivec2 blockOffset);
 
+// Texgen + texture matrix of the camera passes (identity EYE_LINEAR planes, so the texture
+// matrix receives camera eye coordinates): camera eye -> light eye -> ramp (minus bias), and
+// camera eye -> shadow-map coordinates (+ offset). Exposed for the texgen-matrix test.
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias);
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels);
+
 // §2 second pass / §3 "z replicated over all four channels": the scene from the camera with
 // the ramp on the light depth of every point (texture matrix camera eye -> light -> ramp),
 // biased; non-receivers write 0 (nothing can be in front of them: lit).

@@ -5,9 +5,18 @@
 
 namespace sl::legacy {
 
+// One line per technique, grouped by paper (the order `shadowlab list` prints).
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique(), rampShadowMapTechnique(), pcfTechnique(),
-          fastPcfTechnique(),           wooShadowMapTechnique(),  secondDepthShadowMapTechnique()};
+  return {
+      // Everitt, Rege & Cebenoyan 2001 and the depth-layer variants
+      hardwareShadowMapTechnique(),
+      wooShadowMapTechnique(),
+      secondDepthShadowMapTechnique(),
+      // Brabec & Seidel 2001
+      rampShadowMapTechnique(),
+      pcfTechnique(),
+      fastPcfTechnique(),
+  };
 }
 
 }  // namespace sl::legacy
