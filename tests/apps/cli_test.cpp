@@ -2,6 +2,7 @@
 // input one line on stderr, exit status 2, and no output file (DESIGN.md "Contracts").
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,8 +20,12 @@ struct CommandResult {
   std::string err;
 };
 
+// One directory per test: ctest runs the cases as parallel processes.
 fs::path dir() {
-  fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "cli";
+  std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : name)
+    if (c == '/') c = '_';
+  fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "cli" / name;
   fs::create_directories(d);
   return d;
 }
@@ -44,8 +49,13 @@ CommandResult shadowlab(const std::string& args) {
   return r;
 }
 
+// Input files are written while the test list is built (before any test runs), into a
+// directory per process, since every ctest process builds the list anew.
 std::string write(const std::string& name, const std::string& text) {
-  const fs::path p = dir() / name;
+  const fs::path d =
+      fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "cli" / ("inputs-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const fs::path p = d / name;
   std::ofstream(p, std::ios::binary) << text;
   return p.string();
 }
