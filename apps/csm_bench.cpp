@@ -42,7 +42,7 @@ const std::map<int, std::vector<std::vector<int>>> kPaperFps = {
 struct Options {
   int width = kPaperWidth;
   int height = kPaperHeight;
-  int repeat = 3;
+  int repeat = 2;
   int warmup = 1;
   std::string scene = "brabec";
   Backend backend = Backend::kOsmesa;
