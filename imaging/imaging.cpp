@@ -1,13 +1,112 @@
+// imaging/imaging.cpp — install(): native pass-through or the software emulation of the
+// OpenGL 1.2 imaging subset (glspec121 3.6.2 "the imaging subset"), by replacing entries of
+// the context's dispatch table, as a driver's dispatch layer would.
+//
+// One GL feature per file, like Mesa's old imaging code:
+//   color_table.cpp     color tables, sub-tables, copies, proxies, queries, lookup stage
+//   convolution.cpp     1D / 2D / separable filters, border modes, queries, convolution stage
+//   color_matrix.cpp    GL_COLOR matrix stack and the color matrix stage
+//   histogram.cpp       histogram and minmax tables, stages and queries
+//   pixel_transfer.cpp  the stages of 3.6.5 in order on float RGBA images
+//   pixel_memory.cpp    unpacking from and packing to client memory
+//   pixel_paths.cpp     DrawPixels, ReadPixels, CopyPixels, TexImage2D, CopyTex(Sub)Image2D
+//   accumulation.cpp    the accumulation buffer where the visual has none
+//   state.cpp           enables, queries, pixel-transfer parameters, errors
 #include "imaging/imaging.h"
+
+#include <memory>
+
+#include "imaging/internal.h"
 
 namespace sl::imaging {
 
+namespace {
+constexpr const char* kLayerKey = "imaging";
+}
+
 Mode install(GlContext& context) {
-  if (context.caps().nativeImaging()) return Mode::kNative;
-  // TODO(imaging issue): install the software emulation.
+  if (context.caps().nativeImaging()) return Mode::kNative;  // the driver's own entries stay
+  if (context.layerState(kLayerKey) != nullptr) return Mode::kEmulated;  // already installed
+  auto state = std::make_shared<detail::State>();
+  detail::State& s = *state;
+  GlDispatch& d = context.dispatch();
+  s.driver = d;
+  s.context = &context;
+  s.emulateAccum = context.caps().accumRedBits == 0;
+  detail::resetMinmax(s.transfer.minmax);
+  using namespace detail;
+  // The imaging subset's own entry points.
+  d.ColorTable = emColorTable;
+  d.ColorSubTable = emColorSubTable;
+  d.CopyColorTable = emCopyColorTable;
+  d.CopyColorSubTable = emCopyColorSubTable;
+  d.ColorTableParameterfv = emColorTableParameterfv;
+  d.ColorTableParameteriv = emColorTableParameteriv;
+  d.GetColorTable = emGetColorTable;
+  d.GetColorTableParameterfv = emGetColorTableParameterfv;
+  d.GetColorTableParameteriv = emGetColorTableParameteriv;
+  d.ConvolutionFilter1D = emConvolutionFilter1D;
+  d.ConvolutionFilter2D = emConvolutionFilter2D;
+  d.SeparableFilter2D = emSeparableFilter2D;
+  d.CopyConvolutionFilter1D = emCopyConvolutionFilter1D;
+  d.CopyConvolutionFilter2D = emCopyConvolutionFilter2D;
+  d.ConvolutionParameterf = emConvolutionParameterf;
+  d.ConvolutionParameterfv = emConvolutionParameterfv;
+  d.ConvolutionParameteri = emConvolutionParameteri;
+  d.ConvolutionParameteriv = emConvolutionParameteriv;
+  d.GetConvolutionFilter = emGetConvolutionFilter;
+  d.GetSeparableFilter = emGetSeparableFilter;
+  d.GetConvolutionParameterfv = emGetConvolutionParameterfv;
+  d.GetConvolutionParameteriv = emGetConvolutionParameteriv;
+  d.Histogram = emHistogram;
+  d.Minmax = emMinmax;
+  d.ResetHistogram = emResetHistogram;
+  d.ResetMinmax = emResetMinmax;
+  d.GetHistogram = emGetHistogram;
+  d.GetHistogramParameterfv = emGetHistogramParameterfv;
+  d.GetHistogramParameteriv = emGetHistogramParameteriv;
+  d.GetMinmax = emGetMinmax;
+  d.GetMinmaxParameterfv = emGetMinmaxParameterfv;
+  d.GetMinmaxParameteriv = emGetMinmaxParameteriv;
+  // Entries whose behaviour the subset changes.
+  d.Enable = emEnable;
+  d.Disable = emDisable;
+  d.IsEnabled = emIsEnabled;
+  d.MatrixMode = emMatrixMode;
+  d.LoadIdentity = emLoadIdentity;
+  d.LoadMatrixf = emLoadMatrixf;
+  d.LoadMatrixd = emLoadMatrixd;
+  d.MultMatrixf = emMultMatrixf;
+  d.MultMatrixd = emMultMatrixd;
+  d.PushMatrix = emPushMatrix;
+  d.PopMatrix = emPopMatrix;
+  d.Scalef = emScalef;
+  d.Translatef = emTranslatef;
+  d.GetIntegerv = emGetIntegerv;
+  d.GetFloatv = emGetFloatv;
+  d.GetBooleanv = emGetBooleanv;
+  d.GetDoublev = emGetDoublev;
+  d.PixelTransferf = emPixelTransferf;
+  d.PixelTransferi = emPixelTransferi;
+  d.GetError = emGetError;
+  d.DrawPixels = emDrawPixels;
+  d.ReadPixels = emReadPixels;
+  d.CopyPixels = emCopyPixels;
+  d.CopyTexImage2D = emCopyTexImage2D;
+  d.CopyTexSubImage2D = emCopyTexSubImage2D;
+  d.TexImage2D = emTexImage2D;
+  d.TexSubImage2D = emTexSubImage2D;
+  if (s.emulateAccum) {
+    d.Accum = emAccum;
+    d.ClearAccum = emClearAccum;
+    d.Clear = emClear;
+  }
+  context.setLayerState(kLayerKey, std::move(state));
   return Mode::kEmulated;
 }
 
-Mode currentMode() { return Mode::kNative; }
+Mode currentMode() {
+  return detail::currentState() != nullptr ? Mode::kEmulated : Mode::kNative;
+}
 
 }  // namespace sl::imaging

@@ -34,9 +34,31 @@ Framebuffer makeFramebuffer() {
 }
 
 namespace {
+// Replaces each line `#include "name.glsl"` with modern/shaders/name.glsl (one level deep:
+// included files hold shared functions, such as the fixed-function lighting model).
+std::string expandIncludes(const std::string& source, const std::string& file) {
+  std::string out;
+  size_t pos = 0;
+  while (pos < source.size()) {
+    size_t eol = source.find('\n', pos);
+    if (eol == std::string::npos) eol = source.size();
+    const std::string line = source.substr(pos, eol - pos);
+    if (line.rfind("#include \"", 0) == 0) {
+      const size_t close = line.find('"', 10);
+      if (close == std::string::npos) throw GlError("bad #include in modern/shaders/" + file);
+      out += shaderSource(line.substr(10, close - 10));
+    } else {
+      out += line;
+    }
+    out += '\n';
+    pos = eol + 1;
+  }
+  return out;
+}
+
 GLuint compile(GLenum type, const std::string& file,
                const std::vector<std::pair<std::string, std::string>>& defines) {
-  std::string source = shaderSource(file);
+  std::string source = expandIncludes(shaderSource(file), file);
   if (!defines.empty()) {
     // Defines go right after the #version line (which must stay first).
     size_t eol = source.find('\n', source.find("#version"));

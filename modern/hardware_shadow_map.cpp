@@ -4,7 +4,7 @@
 //
 // Passes:
 //   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset
-//   2. shadeWithShadowTest  — camera view; hw_shadow.frag does textureProj on sampler2DShadow
+//   2. shadeWithShadowMap   — camera view; hw_shadow.frag does textureProj on sampler2DShadow
 #include "modern/hardware_shadow_map.h"
 
 #include "core/errors.h"
@@ -35,7 +35,14 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  setDepthCompareParameters(map.depth.id(), linear);
+  return map;
+}
+
+}  // namespace
+
+void setDepthCompareParameters(GLuint depthTexture, bool linear) {
+  glBindTexture(GL_TEXTURE_2D, depthTexture);
   const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
@@ -45,31 +52,38 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  return map;
 }
 
-// Pass 2 (Everitt Eq. 5): shading with the comparison result modulating direct light.
-void shadeWithShadowTest(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
-                         Frame& frame) {
-  PassTimer timer(frame, "2 camera pass with shadow test");
+glm::mat4 worldToShadowMap(const Scene& scene) {
+  // S: [-1,1] clip coordinates to [0,1] texture coordinates (Everitt Eq. 2).
+  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
+  return S * lightProjection(scene) * lightView(scene.light);
+}
+
+// Everitt Eq. 5: shading with the comparison result modulating direct light.
+void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint shadowMap,
+                        const std::string& passName, Frame& frame) {
+  PassTimer timer(frame, passName);
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, false);
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
   Program program("scene.vert.glsl", "hw_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
-  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
-  program.set("uWorldToShadowMap", S * lightProjection(scene) * lightView(scene.light));
+  program.set("uWorldToShadowMap", worldToShadowMap(scene));
   setLightingUniforms(program, scene);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  glBindTexture(GL_TEXTURE_2D, shadowMap);
   program.set("uShadowMap", 0);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
   readCameraTarget(target, frame);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
+
+namespace {
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
@@ -78,7 +92,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, frame);
-  shadeWithShadowTest(gpu, params, map, frame);
+  shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
   return frame;
 }
 }  // namespace

@@ -155,11 +155,6 @@ void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filt
   checkGl("mip-maps and filtering of the shadow map");
 }
 
-glm::mat4 worldToShadowMap(const Scene& scene) {
-  const glm::mat4 bias(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
-  return bias * lightProjection(scene) * lightView(scene.light);
-}
-
 Image readLayer(const LayeredMap& map, int layer, int c, float scale, float bias) {
   const Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.id());

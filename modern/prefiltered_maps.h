@@ -12,6 +12,7 @@
 
 #include "core/technique.h"
 #include "modern/gl_objects.h"
+#include "modern/hardware_shadow_map.h"
 
 namespace sl::modern {
 
@@ -62,8 +63,7 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& passName, Fr
 // Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
 
-// The light-space transform S * P_light * V_light (Everitt Eq. 5) as one matrix.
-glm::mat4 worldToShadowMap(const Scene& scene);
+// worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.
 
 // One layer of a layered map as a float image (for --dump-passes), channel `c` mapped with
 // value * scale + bias.

@@ -1,0 +1,299 @@
+// imaging/internal.h — the emulation's state tables and the helpers its files share.
+//
+// Not part of the public interface (imaging/imaging.h). The state mirrors the specification's
+// state tables (glspec121 6.2, tables 6.14-6.16 "pixels"): three color tables and their
+// proxies (3.6.3 "Color Table State and Proxy State"), the 1D/2D/separable convolution
+// filters with border mode and colour and filter scale/bias ("Convolution Filter State"),
+// post-convolution and post-color-matrix scale/bias (table 3.2), the color matrix stack
+// (3.6.3 "Color Matrix Specification"), histogram and minmax (3.6.3), the RGBA pixel-transfer
+// scale/bias and GL_MAP_COLOR (3.6.5), and the enables.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/context.h"
+#include "imaging/imaging.h"
+
+namespace sl::imaging::detail {
+
+using Rgba = std::array<float, 4>;
+
+// Implementation limits, chosen equal to the reference implementation (its README) so the
+// parity suite can compare errors and proxies.
+constexpr int kMaxColorTableWidth = 256;     // GL_MAX_COLOR_TABLE_WIDTH (not a GL query)
+constexpr int kMaxHistogramWidth = 256;      // same limit for the histogram table
+constexpr int kMaxConvolutionWidth = 9;      // GL_MAX_CONVOLUTION_WIDTH
+constexpr int kMaxConvolutionHeight = 9;     // GL_MAX_CONVOLUTION_HEIGHT
+constexpr int kMaxColorMatrixStackDepth = 4; // GL_MAX_COLOR_MATRIX_STACK_DEPTH (spec minimum 2)
+constexpr int kTableComponentBits = 8;       // reported GL_COLOR_TABLE_x_SIZE per component
+
+// A float RGBA image, rows bottom-up (GL's order), 4 floats per pixel.
+struct Image4 {
+  int width = 0;
+  int height = 0;
+  std::vector<float> px;
+  Image4() = default;
+  Image4(int w, int h) : width(w), height(h), px(size_t(w) * size_t(h) * 4, 0.0f) {}
+  float* row(int y) { return px.data() + size_t(y) * size_t(width) * 4; }
+  const float* row(int y) const { return px.data() + size_t(y) * size_t(width) * 4; }
+};
+
+// Which of R, G, B, A (and L, I) a base internal format holds (table 3.15).
+struct FormatComponents {
+  bool r = false, g = false, b = false, a = false, l = false, i = false;
+};
+FormatComponents componentsOf(GLenum baseFormat);
+// The base internal format of a color table / filter / texture internal format (tables 3.15,
+// 3.16), or 0 when `internalformat` is not one of them.
+GLenum baseInternalFormat(GLenum internalformat);
+
+struct ColorTable {
+  GLenum format = GL_RGBA;  // base internal format
+  GLenum internalFormat = GL_RGBA;
+  int width = 0;
+  std::vector<Rgba> entries;  // table 3.15: R,G,B,A or L in [0], A in [3], I in [0]
+  Rgba scale{1, 1, 1, 1};
+  Rgba bias{0, 0, 0, 0};
+};
+struct ProxyTable {
+  GLenum format = GL_RGBA;
+  GLenum internalFormat = GL_RGBA;
+  int width = 0;
+};
+
+struct ConvolutionFilter {
+  GLenum format = GL_RGBA;  // base internal format
+  GLenum internalFormat = GL_RGBA;
+  int width = 0;
+  int height = 0;                // 1 for CONVOLUTION_1D
+  std::vector<Rgba> image;       // width*height (2D/1D) or row then column (separable)
+  std::vector<Rgba> row, column; // separable only
+  Rgba scale{1, 1, 1, 1};
+  Rgba bias{0, 0, 0, 0};
+  GLenum borderMode = GL_REDUCE;
+  Rgba borderColor{0, 0, 0, 0};
+};
+
+struct Histogram {
+  GLenum format = GL_RGBA;
+  GLenum internalFormat = GL_RGBA;
+  int width = 0;
+  bool sink = false;
+  std::vector<std::array<uint32_t, 4>> counts;
+};
+struct Minmax {
+  GLenum format = GL_RGBA;
+  GLenum internalFormat = GL_RGBA;
+  bool sink = false;
+  Rgba min{};
+  Rgba max{};
+};
+
+struct Matrix4 {
+  std::array<float, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major
+  bool isIdentity() const;
+};
+
+// Everything the pipeline reads (section 3.6.5), separated from the GL bookkeeping.
+struct TransferState {
+  Rgba scale{1, 1, 1, 1};  // GL_RED_SCALE ..
+  Rgba bias{0, 0, 0, 0};   // GL_RED_BIAS ..
+  bool mapColor = false;
+  std::array<std::vector<float>, 4> colorMaps;  // PIXEL_MAP_R_TO_R .. A_TO_A (when mapColor)
+  Rgba postConvolutionScale{1, 1, 1, 1};
+  Rgba postConvolutionBias{0, 0, 0, 0};
+  Rgba postColorMatrixScale{1, 1, 1, 1};
+  Rgba postColorMatrixBias{0, 0, 0, 0};
+  bool colorTableEnabled = false;
+  bool postConvolutionTableEnabled = false;
+  bool postColorMatrixTableEnabled = false;
+  bool convolution1DEnabled = false;
+  bool convolution2DEnabled = false;
+  bool separable2DEnabled = false;
+  bool histogramEnabled = false;
+  bool minmaxEnabled = false;
+  // Tables: [0] COLOR_TABLE, [1] POST_CONVOLUTION, [2] POST_COLOR_MATRIX.
+  std::array<ColorTable, 3> tables;
+  std::array<ProxyTable, 3> proxies;
+  ConvolutionFilter conv1D, conv2D, separable2D;
+  std::vector<Matrix4> colorMatrixStack{Matrix4{}};
+  Histogram histogram;
+  ProxyTable proxyHistogram;
+  Minmax minmax;
+};
+
+// Per-context emulation state (stored with GlContext::setLayerState("imaging", ...)).
+struct State {
+  GlDispatch driver;  // the entry points as the driver resolved them, before install()
+  GlContext* context = nullptr;
+  TransferState transfer;
+  bool colorMatrixMode = false;  // glMatrixMode(GL_COLOR) is in effect
+  // Sticky error flags raised by the emulation, in the order raised (section 2.5).
+  std::vector<GLenum> errors;
+  // Accumulation buffer where the visual has none (section 4.2.4); 16-bit signed fixed point.
+  bool emulateAccum = false;
+  Rgba clearAccum{0, 0, 0, 0};
+  int accumWidth = 0, accumHeight = 0;
+  std::vector<float> accum;
+};
+
+// The state of the current context (nullptr when the emulation is not installed on it).
+State* currentState();
+void recordError(State& s, GLenum error);
+
+// ---- the pipeline (pixel_transfer.cpp) ----
+enum class Dimensionality { k1D, k2D };
+// True when every stage of section 3.6.5 that applies to RGBA groups is identity, so a pixel
+// path can be forwarded to the driver untouched.
+bool pipelineIsIdentity(const TransferState& t, Dimensionality dims);
+// Runs the RGBA pixel-transfer stages of section 3.6.5 in order on `image` (which may change
+// size under GL_REDUCE). Returns false when histogram or minmax sink consumed the groups.
+bool runPipeline(TransferState& t, Image4& image, Dimensionality dims);
+// The output size of the convolution stage for a source of w x h (REDUCE shrinks it).
+void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
+
+// ---- stages (one file each) ----
+void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp
+void convolve(const ConvolutionFilter& filter, bool separable, Image4& image);  // convolution.cpp
+void applyColorMatrix(const Matrix4& m, const Rgba& scale, const Rgba& bias,
+                      Image4& image);                                   // color_matrix.cpp
+void accumulateHistogram(Histogram& h, const Image4& image);            // histogram.cpp
+void accumulateMinmax(Minmax& m, const Image4& image);                  // histogram.cpp
+void resetMinmax(Minmax& m);
+
+// Runs body(y0, y1) over [0, rows) on both cores when the work is large enough to pay.
+template <class Body>
+void parallelRows(int rows, size_t workPerRow, const Body& body);
+
+// ---- client memory (pixel_memory.cpp): unpack/pack following 3.6.4 and 4.3.2 ----
+struct PixelStore {
+  int alignment = 4, rowLength = 0, skipPixels = 0, skipRows = 0;
+  bool swapBytes = false, lsbFirst = false;
+};
+PixelStore unpackStore(const GlDispatch& gl);
+PixelStore packStore(const GlDispatch& gl);
+// GL_NO_ERROR when format/type are a supported color format for the emulation, else the error
+// GL would raise (INVALID_ENUM), or GL_INVALID_OPERATION for a packed type/format mismatch.
+GLenum checkColorFormat(GLenum format, GLenum type);
+bool isColorFormat(GLenum format);
+// Unpacks w x h groups to RGBA floats ("Unpacking", "Conversion to floating-point",
+// "Conversion to RGB", "Final Expansion to RGBA" of 3.6.4).
+Image4 unpackImage(const void* data, int w, int h, GLenum format, GLenum type,
+                   const PixelStore& store);
+// Packs RGBA floats into client memory (4.3.2 "Conversion to L", "Final Conversion" with its
+// clamp to [0,1] when clamp is true, "Placement in Client Memory").
+void packImage(const Image4& image, void* data, GLenum format, GLenum type,
+               const PixelStore& store, bool clamp);
+// Returns internal components as RGBA per table 6.1.
+Rgba tableReturnValue(GLenum baseFormat, const Rgba& stored);
+
+}  // namespace sl::imaging::detail
+
+#include <algorithm>
+#include <thread>
+
+namespace sl::imaging::detail {
+
+constexpr size_t kParallelThreshold = 1u << 16;  // floats of work below which one core is faster
+
+template <class Body>
+void parallelRows(int rows, size_t workPerRow, const Body& body) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  if (rows < 2 || cores < 2 || size_t(rows) * workPerRow < kParallelThreshold) {
+    body(0, rows);
+    return;
+  }
+  const int parts = int(cores < 4 ? cores : 4);
+  std::vector<std::thread> threads;
+  const int step = (rows + parts - 1) / parts;
+  for (int p = 1; p < parts; ++p) {
+    const int y0 = p * step, y1 = std::min(rows, y0 + step);
+    if (y0 < y1) threads.emplace_back([&body, y0, y1] { body(y0, y1); });
+  }
+  body(0, std::min(rows, step));
+  for (auto& t : threads) t.join();
+}
+
+}  // namespace sl::imaging::detail
+
+namespace sl::imaging::detail {
+
+// ---- the replaced entry points (same signatures as the GL prototypes) ----
+// color_table.cpp
+void emColorTable(GLenum, GLenum, GLsizei, GLenum, GLenum, const void*);
+void emColorSubTable(GLenum, GLsizei, GLsizei, GLenum, GLenum, const void*);
+void emCopyColorTable(GLenum, GLenum, GLint, GLint, GLsizei);
+void emCopyColorSubTable(GLenum, GLsizei, GLint, GLint, GLsizei);
+void emColorTableParameterfv(GLenum, GLenum, const GLfloat*);
+void emColorTableParameteriv(GLenum, GLenum, const GLint*);
+void emGetColorTable(GLenum, GLenum, GLenum, void*);
+void emGetColorTableParameterfv(GLenum, GLenum, GLfloat*);
+void emGetColorTableParameteriv(GLenum, GLenum, GLint*);
+// convolution.cpp
+void emConvolutionFilter1D(GLenum, GLenum, GLsizei, GLenum, GLenum, const void*);
+void emConvolutionFilter2D(GLenum, GLenum, GLsizei, GLsizei, GLenum, GLenum, const void*);
+void emSeparableFilter2D(GLenum, GLenum, GLsizei, GLsizei, GLenum, GLenum, const void*,
+                         const void*);
+void emCopyConvolutionFilter1D(GLenum, GLenum, GLint, GLint, GLsizei);
+void emCopyConvolutionFilter2D(GLenum, GLenum, GLint, GLint, GLsizei, GLsizei);
+void emConvolutionParameterf(GLenum, GLenum, GLfloat);
+void emConvolutionParameterfv(GLenum, GLenum, const GLfloat*);
+void emConvolutionParameteri(GLenum, GLenum, GLint);
+void emConvolutionParameteriv(GLenum, GLenum, const GLint*);
+void emGetConvolutionFilter(GLenum, GLenum, GLenum, void*);
+void emGetSeparableFilter(GLenum, GLenum, GLenum, void*, void*, void*);
+void emGetConvolutionParameterfv(GLenum, GLenum, GLfloat*);
+void emGetConvolutionParameteriv(GLenum, GLenum, GLint*);
+// histogram.cpp
+void emHistogram(GLenum, GLsizei, GLenum, GLboolean);
+void emMinmax(GLenum, GLenum, GLboolean);
+void emResetHistogram(GLenum);
+void emResetMinmax(GLenum);
+void emGetHistogram(GLenum, GLboolean, GLenum, GLenum, void*);
+void emGetHistogramParameterfv(GLenum, GLenum, GLfloat*);
+void emGetHistogramParameteriv(GLenum, GLenum, GLint*);
+void emGetMinmax(GLenum, GLboolean, GLenum, GLenum, void*);
+void emGetMinmaxParameterfv(GLenum, GLenum, GLfloat*);
+void emGetMinmaxParameteriv(GLenum, GLenum, GLint*);
+// color_matrix.cpp (matrix entries act on the color matrix only in GL_COLOR mode)
+void emMatrixMode(GLenum);
+void emLoadIdentity();
+void emLoadMatrixf(const GLfloat*);
+void emLoadMatrixd(const GLdouble*);
+void emMultMatrixf(const GLfloat*);
+void emMultMatrixd(const GLdouble*);
+void emPushMatrix();
+void emPopMatrix();
+void emScalef(GLfloat, GLfloat, GLfloat);
+void emTranslatef(GLfloat, GLfloat, GLfloat);
+// pixel_paths.cpp
+void emDrawPixels(GLsizei, GLsizei, GLenum, GLenum, const void*);
+void emReadPixels(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void*);
+void emCopyPixels(GLint, GLint, GLsizei, GLsizei, GLenum);
+void emCopyTexImage2D(GLenum, GLint, GLenum, GLint, GLint, GLsizei, GLsizei, GLint);
+void emCopyTexSubImage2D(GLenum, GLint, GLint, GLint, GLint, GLint, GLsizei, GLsizei);
+void emTexImage2D(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*);
+void emTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLenum,
+                     const void*);
+// Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
+// the final expansion to RGBA": no pixel transfer), through the driver.
+Image4 readFramebuffer(State& s, int x, int y, int w, int h);
+// accumulation.cpp
+void emAccum(GLenum, GLfloat);
+void emClearAccum(GLfloat, GLfloat, GLfloat, GLfloat);
+void emClear(GLbitfield);
+// state.cpp (enables, queries, pixel transfer parameters, errors)
+void emEnable(GLenum);
+void emDisable(GLenum);
+GLboolean emIsEnabled(GLenum);
+void emGetIntegerv(GLenum, GLint*);
+void emGetFloatv(GLenum, GLfloat*);
+void emGetBooleanv(GLenum, GLboolean*);
+void emGetDoublev(GLenum, GLdouble*);
+void emPixelTransferf(GLenum, GLfloat);
+void emPixelTransferi(GLenum, GLint);
+GLenum emGetError();
+
+}  // namespace sl::imaging::detail

@@ -1,0 +1,255 @@
+// imaging/pixel_paths.cpp — the commands whose pixels go through the pixel-transfer
+// operations (glspec121 3.6.4 DrawPixels, 4.3.2 ReadPixels, 4.3.3 CopyPixels, 3.8.1-3.8.2
+// TexImage2D, TexSubImage2D, CopyTexImage2D, CopyTexSubImage2D).
+//
+// When every stage is identity the call goes to the driver untouched. Otherwise the groups
+// are read (client memory or framebuffer), transformed by runPipeline (pixel_transfer.cpp),
+// clamped ("Final Conversion") and written through the driver with its own pixel transfer
+// left at identity (the emulation owns the RGBA pixel-transfer state), in the destination's
+// precision: unsigned bytes for an 8-bit colour buffer or texture, unsigned shorts for a
+// 16-bit buffer, floats otherwise.
+#include <cmath>
+
+#include "imaging/internal.h"
+
+namespace sl::imaging::detail {
+namespace {
+
+// Saves the client pixel-store state and sets tight packing for the emulation's own
+// transfers to and from the driver; restores the caller's state when it goes.
+class TightPixelStore {
+ public:
+  explicit TightPixelStore(const GlDispatch& gl) : gl_(gl) {
+    gl_.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
+    for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
+                     GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_ROWS})
+      gl_.PixelStorei(p, 0);
+    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  }
+  ~TightPixelStore() { gl_.PopClientAttrib(); }
+  TightPixelStore(const TightPixelStore&) = delete;
+  TightPixelStore& operator=(const TightPixelStore&) = delete;
+
+ private:
+  const GlDispatch& gl_;
+};
+
+// The client type that carries the destination's precision without loss.
+GLenum framebufferType(const State& s) {
+  switch (s.context->spec().color) {
+    case ColorFormat::kRgba8: return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16: return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f: return GL_FLOAT;
+  }
+  return GL_FLOAT;
+}
+
+bool eightBitTexture(GLenum internalformat) {
+  switch (internalformat) {
+    case 3: case 4: case GL_RGB: case GL_RGBA: case GL_RGB8: case GL_RGBA8: case GL_ALPHA:
+    case GL_ALPHA8: case GL_LUMINANCE: case GL_LUMINANCE8: case GL_LUMINANCE_ALPHA:
+    case GL_LUMINANCE8_ALPHA8: case GL_INTENSITY: case GL_INTENSITY8:
+      return true;
+    default: return false;
+  }
+}
+
+// "Final Conversion": each component clamped to [0,1] (NaN becomes 0), then converted to the
+// client type with round-to-nearest (table 4.7), as a tight RGBA array.
+std::vector<unsigned char> finalConversion(const Image4& image, GLenum type) {
+  const size_t n = image.px.size();
+  const size_t size = type == GL_UNSIGNED_BYTE ? 1 : type == GL_UNSIGNED_SHORT ? 2 : 4;
+  std::vector<unsigned char> out(n * size);
+  auto clamp01 = [](float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; };
+  parallelRows(image.height, size_t(image.width) * 4, [&](int y0, int y1) {
+    const size_t b = size_t(y0) * image.width * 4, e = size_t(y1) * image.width * 4;
+    if (type == GL_UNSIGNED_BYTE) {
+      for (size_t i = b; i < e; ++i) out[i] = uint8_t(clamp01(image.px[i]) * 255.0f + 0.5f);
+    } else if (type == GL_UNSIGNED_SHORT) {
+      auto* o = reinterpret_cast<uint16_t*>(out.data());
+      for (size_t i = b; i < e; ++i) o[i] = uint16_t(clamp01(image.px[i]) * 65535.0f + 0.5f);
+    } else {
+      auto* o = reinterpret_cast<float*>(out.data());
+      for (size_t i = b; i < e; ++i) o[i] = clamp01(image.px[i]);
+    }
+  });
+  return out;
+}
+
+void refreshColorMaps(State& s) {
+  if (!s.transfer.mapColor) return;
+  const GLenum maps[4] = {GL_PIXEL_MAP_R_TO_R, GL_PIXEL_MAP_G_TO_G, GL_PIXEL_MAP_B_TO_B,
+                          GL_PIXEL_MAP_A_TO_A};
+  const GLenum sizes[4] = {GL_PIXEL_MAP_R_TO_R_SIZE, GL_PIXEL_MAP_G_TO_G_SIZE,
+                           GL_PIXEL_MAP_B_TO_B_SIZE, GL_PIXEL_MAP_A_TO_A_SIZE};
+  for (int c = 0; c < 4; ++c) {
+    GLint size = 0;
+    s.driver.GetIntegerv(sizes[c], &size);
+    s.transfer.colorMaps[c].assign(size_t(std::max(size, 1)), 0.0f);
+    s.driver.GetPixelMapfv(maps[c], s.transfer.colorMaps[c].data());
+  }
+}
+
+bool rasterPositionValid(State& s) {
+  GLboolean valid = GL_FALSE;
+  s.driver.GetBooleanv(GL_CURRENT_RASTER_POSITION_VALID, &valid);
+  return valid != GL_FALSE;
+}
+
+// Draws a transformed image at the current raster position (zoom, masks and fragment
+// operations are the driver's, as for any DrawPixels).
+void drawImage(State& s, const Image4& image) {
+  if (image.width == 0 || image.height == 0) return;
+  const GLenum type = framebufferType(s);
+  const std::vector<unsigned char> data = finalConversion(image, type);
+  TightPixelStore tight(s.driver);
+  s.driver.DrawPixels(image.width, image.height, GL_RGBA, type, data.data());
+}
+
+void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint internalformat,
+                   GLint xoffset, GLint yoffset, GLint border, const Image4* image, int w,
+                   int h) {
+  GLenum type = GL_FLOAT;
+  if (sub) {
+    GLint format = 0;
+    s.driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (eightBitTexture(GLenum(format))) type = GL_UNSIGNED_BYTE;
+  } else if (eightBitTexture(GLenum(internalformat))) {
+    type = GL_UNSIGNED_BYTE;
+  }
+  std::vector<unsigned char> data;
+  if (image != nullptr) data = finalConversion(*image, type);
+  TightPixelStore tight(s.driver);
+  const void* p = image != nullptr ? data.data() : nullptr;
+  if (sub) {
+    if (image == nullptr || w == 0 || h == 0) return;
+    s.driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, type, p);
+  } else {
+    s.driver.TexImage2D(target, level, internalformat, w, h, border, GL_RGBA, type, p);
+  }
+}
+
+bool passThrough(State* s) {
+  return s == nullptr || pipelineIsIdentity(s->transfer, Dimensionality::k2D);
+}
+
+}  // namespace
+
+Image4 readFramebuffer(State& s, int x, int y, int w, int h) {
+  Image4 image(std::max(w, 0), std::max(h, 0));
+  if (w <= 0 || h <= 0) return image;
+  const GLenum type = framebufferType(s);
+  TightPixelStore tight(s.driver);
+  if (type == GL_FLOAT) {
+    s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_FLOAT, image.px.data());
+    return image;
+  }
+  if (type == GL_UNSIGNED_BYTE) {
+    std::vector<unsigned char> bytes(image.px.size());
+    s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    float lut[256];
+    for (int i = 0; i < 256; ++i) lut[i] = float(i) / 255.0f;  // table 2.6
+    parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
+      for (size_t i = size_t(y0) * w * 4; i < size_t(y1) * w * 4; ++i) image.px[i] = lut[bytes[i]];
+    });
+    return image;
+  }
+  std::vector<uint16_t> shorts(image.px.size());
+  s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_SHORT, shorts.data());
+  for (size_t i = 0; i < shorts.size(); ++i) image.px[i] = float(shorts[i]) / 65535.0f;
+  return image;
+}
+
+void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* data) {
+  State* s = currentState();
+  if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0 ||
+      !rasterPositionValid(*s))  // invalid raster position: nothing, not even histogram
+    return s->driver.DrawPixels(w, h, format, type, data);
+  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;  // sink
+  drawImage(*s, image);
+}
+
+void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type,
+                  void* data) {
+  State* s = currentState();
+  if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0)
+    return s->driver.ReadPixels(x, y, w, h, format, type, data);
+  Image4 image = readFramebuffer(*s, x, y, w, h);
+  refreshColorMaps(*s);
+  // Sink: "no pixel values are returned" (3.6.5 Histogram, Minmax).
+  if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
+  packImage(image, data, format, type, packStore(s->driver), true);
+}
+
+void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
+  State* s = currentState();
+  if (passThrough(s) || type != GL_COLOR || w < 0 || h < 0 || !rasterPositionValid(*s))
+    return s->driver.CopyPixels(x, y, w, h, type);
+  Image4 image = readFramebuffer(*s, x, y, w, h);
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
+  drawImage(*s, image);
+}
+
+void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
+                      GLsizei w, GLsizei h, GLint border) {
+  State* s = currentState();
+  if (passThrough(s) || w < 0 || h < 0)
+    return s->driver.CopyTexImage2D(target, level, internalformat, x, y, w, h, border);
+  Image4 image = readFramebuffer(*s, x, y, w, h);
+  refreshColorMaps(*s);
+  const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
+  // A sink leaves texture memory undefined but still (re)defines the texture's state.
+  uploadTexture(*s, false, target, level, GLint(internalformat), 0, 0, border,
+                kept ? &image : nullptr, image.width, image.height);
+}
+
+void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x,
+                         GLint y, GLsizei w, GLsizei h) {
+  State* s = currentState();
+  if (passThrough(s) || w < 0 || h < 0)
+    return s->driver.CopyTexSubImage2D(target, level, xoffset, yoffset, x, y, w, h);
+  Image4 image = readFramebuffer(*s, x, y, w, h);
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
+  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width,
+                image.height);
+}
+
+void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, GLsizei h,
+                  GLint border, GLenum format, GLenum type, const void* data) {
+  State* s = currentState();
+  if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0)
+    return s->driver.TexImage2D(target, level, internalformat, w, h, border, format, type, data);
+  if (data == nullptr) {
+    // 3.6.5 REDUCE: "the dimensions of the resulting texture image are those that would
+    // result from the convolution of the specified image", even with a null pointer.
+    int cw = w, ch = h;
+    convolvedSize(s->transfer, Dimensionality::k2D, cw, ch);
+    return s->driver.TexImage2D(target, level, internalformat, cw, ch, border, format, type,
+                                nullptr);
+  }
+  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
+  refreshColorMaps(*s);
+  const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
+  uploadTexture(*s, false, target, level, internalformat, 0, 0, border, kept ? &image : nullptr,
+                image.width, image.height);
+}
+
+void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei w,
+                     GLsizei h, GLenum format, GLenum type, const void* data) {
+  State* s = currentState();
+  if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0 ||
+      data == nullptr)
+    return s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, format, type, data);
+  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
+  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width,
+                image.height);
+}
+
+}  // namespace sl::imaging::detail
