@@ -584,7 +584,7 @@ std::vector<FigureSpec> chanFigures() {
       "grow away from the contact (d).",
       "brabec", 2,
       {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
-       render("(d) remapped alpha", "modern.smoothies", {{"remap", "true"}})}));
+       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
   out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
 
   std::vector<PanelSpec> p48;
@@ -644,7 +644,7 @@ std::vector<FigureSpec> chanFigures() {
       "the ground (right).",
       "boxes", 3,
       {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
-       buffers("alpha, remapped", "modern.smoothies", "alpha", {{"remap", "true"}}),
+       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
        render("result", "modern.smoothies")}));
   return out;
 }
