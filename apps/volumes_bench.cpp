@@ -4,12 +4,13 @@
 //
 //   volumes_bench [--scene cubes|<built-in>] [--size WxH] [--shadow-map N] [--frames N]
 //                 [--backend osmesa|egl] [--technique T ...]
+#include "modern/volumes_bench.h"
+
 #include <cstdlib>
 #include <iostream>
 
 #include "core/errors.h"
 #include "core/scene_library.h"
-#include "modern/volumes_bench.h"
 
 int main(int argc, char** argv) {
   using namespace sl;
