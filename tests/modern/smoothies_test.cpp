@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "apps/registry.h"
+#include "core/errors.h"
 #include "core/primitives.h"
 #include "core/scene_library.h"
 #include "modern/silhouettes.h"
@@ -194,7 +195,8 @@ TEST(Smoothies, VertexWithMoreThanTwoSilhouetteEdges) {
 TEST(Smoothies, WidthOutOfRangeIsAnInputError) {
   RenderParams p = smallParams();
   p.extra["width"] = "0";
-  EXPECT_ANY_THROW(renderTechnique(findTechnique("modern.smoothies"), builtinScene("analytic"), p));
+  EXPECT_THROW(renderTechnique(findTechnique("modern.smoothies"), builtinScene("analytic"), p),
+               InputError);
 }
 
 }  // namespace
