@@ -51,7 +51,9 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
   glPolygonOffset(factor, units);
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
+  // Only the casters that have shadow volumes (closed meshes): an open caster in the map would
+  // shadow non-silhouette pixels while its silhouette pixels, decided by the volumes, stayed lit.
+  gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindTexture(GL_TEXTURE_2D, map.depth.id());
