@@ -185,6 +185,56 @@ TEST(BrabecSeidel, FastPcfFourByFourGivesAtLeastSeventeenLevels) {
   }
 }
 
+// §3/§4 accumulation: the returned alpha is the weighted sum of the groups' (phases') alphas,
+// weights = samples in the group / samples in the footprint. The sum is modelled exactly; one
+// 8-bit step is allowed because the accumulation buffer's fixed-point format and the rounding
+// of GL_ACCUM/GL_RETURN are implementation-dependent (glspec121 §4.2.4).
+TEST(BrabecSeidel, AccumulationSumsTheGroupsWithTheirWeights) {
+  const auto backends = testing::imagingBackends();
+  if (backends.empty()) GTEST_SKIP() << testing::kNoImagingMessage;
+  struct Variant {
+    const char* technique;
+    int filter;
+    std::vector<std::string> groups;
+    std::vector<double> weights;
+    const char* result;
+  };
+  const Variant variants[] = {
+      {"legacy.pcf", 3,
+       {"4-alpha-after-colour-matrix-group1", "4-alpha-after-colour-matrix-group2",
+        "4-alpha-after-colour-matrix-group3"},
+       {4.0 / 9, 4.0 / 9, 1.0 / 9}, "5-accumulation-result-alpha"},
+      {"legacy.fast-pcf", 4,
+       {"5-alpha-after-colour-matrix-upper-left", "5-alpha-after-colour-matrix-upper-right",
+        "5-alpha-after-colour-matrix-lower-left", "5-alpha-after-colour-matrix-lower-right"},
+       {0.25, 0.25, 0.25, 0.25}, "6-accumulation-result-alpha"}};
+  for (Backend b : backends)
+    for (const Variant& v : variants) {
+      RenderParams p = params(b, v.filter);
+      p.capturePasses = true;
+      const Frame f = render(v.technique, "brabec", p);
+      auto find = [&](const std::string& name) -> const Image& {
+        for (const PassImage& i : f.intermediates)
+          if (i.name == name) return i.image;
+        throw std::runtime_error("no intermediate " + name);
+      };
+      const Image& result = find(v.result);
+      long checked = 0, partial = 0;
+      for (size_t i = 0; i < result.data.size(); ++i) {
+        double sum = 0;
+        for (size_t g = 0; g < v.groups.size(); ++g)
+          sum += v.weights[g] * std::lround(find(v.groups[g]).data[i] * 255.0f);
+        const long got = std::lround(result.data[i] * 255.0f);
+        ASSERT_LE(std::fabs(double(got) - sum), 1.0)
+            << v.technique << " " << v.filter << " on " << backendName(b) << " pixel " << i;
+        ++checked;
+        partial += got > 0 && got < 255;
+      }
+      EXPECT_GT(partial, 500) << "penumbra pixels present";
+      EXPECT_EQ(checked, long(kWidth) * kHeight);
+    }
+}
+
 // ------------------------------------------------------------------ analytic scene
 
 struct Geometry {
@@ -415,6 +465,62 @@ TEST(BrabecSeidel, EightBitModelMatchesPipelineBitForBit) {
     // 10 % of cases leave about 0.9^3 = 73 %. And the model saw shadow, not only lit pixels.
     EXPECT_GT(modelled, covered * 6 / 10);
     EXPECT_GT(shadowedSamples, 1000);
+  }
+}
+
+// §4 Fig. 5: the copy through the packing convolution gives texel (x, y) the channels
+// R = light(x-1+ox, y-1+oy).r, G = light(x+ox, y-1+oy).g, B = light(x-1+ox, y+oy).b,
+// A = light(x+ox, y+oy).a of the unpacked light image (outside it: the far plane, 255),
+// bit for bit, for Eq. (1) (ox = oy = 0) and the three moved kernels of the 4x4 phases.
+TEST(BrabecSeidel, PackingConvolutionGathersTheTwoByTwoBlock) {
+  const auto backends = testing::imagingBackends();
+  if (backends.empty()) GTEST_SKIP() << testing::kNoImagingMessage;
+  namespace bs = legacy::bs;
+  for (Backend backend : backends) {
+    SCOPED_TRACE(backendName(backend));
+    const Scene scene = builtinScene("brabec");
+    ContextSpec spec;
+    spec.backend = backend;
+    spec.width = kWidth;
+    spec.height = kHeight;
+    auto ctx = GlContext::create(spec);
+    imaging::install(*ctx);
+    const bs::DepthEncoding enc = bs::depthEncoding(Precision::k8);
+    bs::RampTexture ramp;
+    bs::createRampTexture(ramp, enc);
+    // A light image whose four channels differ (four jittered passes), so that a channel taken
+    // from the wrong neighbour or the wrong channel shows.
+    const glm::vec2 sub[4] = {{-0.25f, -0.25f}, {0.25f, -0.25f}, {-0.25f, 0.25f}, {0.25f, 0.25f}};
+    for (int c = 0; c < 4; ++c)
+      bs::renderLightDepth(scene, enc, ramp, kMapTexels, -sub[c], bs::onlyChannel(c), c == 0);
+    const size_t n = kMapTexels;
+    std::vector<uint8_t> light(n * n * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, kMapTexels, kMapTexels, GL_RGBA, GL_UNSIGNED_BYTE, light.data());
+    auto at = [&](int x, int y, int c) -> int {
+      if (x < 0 || y < 0 || x >= kMapTexels || y >= kMapTexels) return 255;  // far border
+      return light[(size_t(y) * n + size_t(x)) * 4 + size_t(c)];
+    };
+    for (const glm::ivec2 o : {glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+      bs::ShadowMapTexture map;
+      bs::allocateShadowMap(map, enc, kMapTexels);
+      bs::copyLightPassToMapPacked(map, kMapTexels, o);
+      std::vector<uint8_t> packed(n * n * 4);
+      glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, packed.data());
+      ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+      long wrong = 0, differingNeighbours = 0;
+      for (int y = 0; y < kMapTexels; ++y)
+        for (int x = 0; x < kMapTexels; ++x) {
+          const int expected[4] = {at(x - 1 + o.x, y - 1 + o.y, 0), at(x + o.x, y - 1 + o.y, 1),
+                                   at(x - 1 + o.x, y + o.y, 2), at(x + o.x, y + o.y, 3)};
+          for (int c = 0; c < 4; ++c) {
+            wrong += packed[(size_t(y) * n + size_t(x)) * 4 + size_t(c)] != expected[c];
+            differingNeighbours += expected[c] != at(x, y, c);
+          }
+        }
+      EXPECT_EQ(wrong, 0) << "kernel offset " << o.x << "," << o.y;
+      EXPECT_GT(differingNeighbours, 1000) << "the test image must tell neighbours apart";
+    }
   }
 }
 
