@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
         options.warmupFrames = 1;
         options.timedFrames = 3;
       } else {
-        throw sl::InputError("usage: legacy_bench [--backend osmesa|reference] [--frames N] [--quick]");
+        throw sl::InputError(
+            "usage: legacy_bench [--backend osmesa|reference] [--frames N] [--quick]");
       }
     }
     const auto results = sl::legacy::benchmarkBrabecSeidel(sl::builtinScene("brabec"), options,

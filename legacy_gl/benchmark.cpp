@@ -93,9 +93,11 @@ std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {
       << (r.variant.paperFps.empty() ? "-" : r.variant.paperFps) << " | "
       << fixed(1000.0 / r.medianFrameMs, 1) << " | " << fixed(r.medianFrameMs, 1) << " |\n";
   for (const BenchmarkResult& r : results) {
-    s << "\n" << r.variant.label << " on " << backendName(r.backend) << " (median ms per pass):\n\n"
+    s << "\n"
+      << r.variant.label << " on " << backendName(r.backend) << " (median ms per pass):\n\n"
       << "| pass | ms |\n| --- | --- |\n";
-    for (const PassTime& p : r.medianPasses) s << "| " << p.name << " | " << fixed(p.milliseconds, 2) << " |\n";
+    for (const PassTime& p : r.medianPasses)
+      s << "| " << p.name << " | " << fixed(p.milliseconds, 2) << " |\n";
   }
   return s.str();
 }

@@ -16,7 +16,7 @@ struct BenchmarkVariant {
   std::string label;      // "fast PCF 2x2"
   std::string technique;  // "legacy.fast-pcf"
   int filter = 2;
-  std::string paperFps;   // the paper's Octane VPro/8 figure (§5), "" when not reported
+  std::string paperFps;  // the paper's Octane VPro/8 figure (§5), "" when not reported
 };
 
 // The variants of Figure 7 (+ PCF 4x4, which §3 calls impractical and reports no rate for).

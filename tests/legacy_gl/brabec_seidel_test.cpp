@@ -1,21 +1,21 @@
 // Brabec & Seidel 2001 §2-§4 (legacy.ramp, legacy.pcf, legacy.fast-pcf): expectations computed
 // from the paper's formulas and from the geometry, never copied from an output.
+#include "legacy_gl/brabec_seidel.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <set>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <set>
+#include <string>
 
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
-#include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_test_support.h"
 
@@ -23,7 +23,7 @@ namespace sl {
 namespace {
 using namespace sl::gl;
 
-constexpr int kWidth = 400;   // small window (team rule); the 256 map fits in it (window path)
+constexpr int kWidth = 400;  // small window (team rule); the 256 map fits in it (window path)
 constexpr int kHeight = 300;
 constexpr int kMapTexels = 256;
 
@@ -43,7 +43,9 @@ Frame render(const std::string& technique, const std::string& scene, const Rende
 }
 
 // 8-bit alpha shadow term back from the visibility (visibility = 1 - A / 255, exact in float).
-int alphaOf(float visibility) { return int(std::lround((1.0f - visibility) * 255.0f)); }
+int alphaOf(float visibility) {
+  return int(std::lround((1.0f - visibility) * 255.0f));
+}
 
 // ------------------------------------------------------------------ matrices
 
@@ -53,11 +55,11 @@ TEST(BrabecSeidel, ProjectiveTexgenEqualsSPLinvV) {
   const Scene scene = builtinScene("brabec");
   const DepthRange range = lightDepthRange(scene);
   const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
-  const glm::mat4 P = glm::perspective(glm::radians(scene.light.coneDegrees), 1.0f,
-                                       range.nearPlane, range.farPlane);
+  const glm::mat4 P = glm::perspective(glm::radians(scene.light.coneDegrees), 1.0f, range.nearPlane,
+                                       range.farPlane);
   const glm::mat4 Linv = glm::lookAt(scene.light.position, scene.light.target, scene.light.up);
-  const glm::mat4 V = glm::inverse(glm::lookAt(scene.camera.position, scene.camera.target,
-                                               scene.camera.up));
+  const glm::mat4 V =
+      glm::inverse(glm::lookAt(scene.camera.position, scene.camera.target, scene.camera.up));
   for (const glm::vec2 offset : {glm::vec2(0.0f), glm::vec2(0.5f, 0.5f), glm::vec2(-0.5f, 0.5f)}) {
     const glm::mat4 T = glm::translate(glm::mat4(1.0f), glm::vec3(offset / float(kMapTexels), 0));
     const glm::mat4 expected = T * S * P * Linv * V;
@@ -200,14 +202,18 @@ TEST(BrabecSeidel, AccumulationSumsTheGroupsWithTheirWeights) {
     const char* result;
   };
   const Variant variants[] = {
-      {"legacy.pcf", 3,
+      {"legacy.pcf",
+       3,
        {"4-alpha-after-colour-matrix-group1", "4-alpha-after-colour-matrix-group2",
         "4-alpha-after-colour-matrix-group3"},
-       {4.0 / 9, 4.0 / 9, 1.0 / 9}, "5-accumulation-result-alpha"},
-      {"legacy.fast-pcf", 4,
+       {4.0 / 9, 4.0 / 9, 1.0 / 9},
+       "5-accumulation-result-alpha"},
+      {"legacy.fast-pcf",
+       4,
        {"5-alpha-after-colour-matrix-upper-left", "5-alpha-after-colour-matrix-upper-right",
         "5-alpha-after-colour-matrix-lower-left", "5-alpha-after-colour-matrix-lower-right"},
-       {0.25, 0.25, 0.25, 0.25}, "6-accumulation-result-alpha"}};
+       {0.25, 0.25, 0.25, 0.25},
+       "6-accumulation-result-alpha"}};
   for (Backend b : backends)
     for (const Variant& v : variants) {
       RenderParams p = params(b, v.filter);
@@ -254,7 +260,8 @@ class AnalyticShadow {
     const double a = 0.5 * (box_.hi.x - box_.lo.x);
     half_ = a * H / (H - box_.hi.y);
     // The shadow-map texel on the ground: the light frustum's width at distance H over N.
-    const double texel = 2.0 * H * std::tan(glm::radians(scene.light.coneDegrees) / 2.0) / mapTexels;
+    const double texel =
+        2.0 * H * std::tan(glm::radians(scene.light.coneDegrees) / 2.0) / mapTexels;
     band_ = bandTexels * texel;
     const Bounds ground = worldBounds(scene.objects.at(0));
     groundHalf_ = ground.hi.x;
@@ -263,8 +270,10 @@ class AnalyticShadow {
   }
 
   Geometry::Kind classify(double px, double py) const {
-    const glm::vec4 a = inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), -1, 1);
-    const glm::vec4 b = inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), 1, 1);
+    const glm::vec4 a =
+        inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), -1, 1);
+    const glm::vec4 b =
+        inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), 1, 1);
     const glm::dvec3 o = glm::dvec3(a) / double(a.w);
     const glm::dvec3 d = glm::normalize(glm::dvec3(b) / double(b.w) - o);
     // Slab test against the occluder box.
@@ -501,7 +510,8 @@ TEST(BrabecSeidel, PackingConvolutionGathersTheTwoByTwoBlock) {
       if (x < 0 || y < 0 || x >= kMapTexels || y >= kMapTexels) return 255;  // far border
       return light[(size_t(y) * n + size_t(x)) * 4 + size_t(c)];
     };
-    for (const glm::ivec2 o : {glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+    for (const glm::ivec2 o :
+         {glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
       bs::ShadowMapTexture map;
       bs::allocateShadowMap(map, enc, kMapTexels);
       bs::copyLightPassToMapPacked(map, kMapTexels, o);

@@ -18,11 +18,11 @@
 #include <map>
 #include <string>
 
+#include "../legacy_gl/legacy_test_support.h"
 #include "apps/registry.h"
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/scene_library.h"
-#include "../legacy_gl/legacy_test_support.h"
 
 namespace sl {
 namespace {
@@ -41,8 +41,8 @@ constexpr double kMinAgreement = 0.999;  // issue 10 item 3
 // (fast PCF 4x4, brabec) to 99.85 % (PCF 4x4, analytic) within one sample. The bound below is
 // what the 4x4 footprints are held to; every differing pixel must still lie on an edge band.
 constexpr double kMinAgreement4x4 = 0.995;
-constexpr int kShadowEdgeRadius = 2;    // pixels; a 256 map texel spans about 1-2 pixels here
-constexpr int kSilhouetteRadius = 1;    // pixels; one pixel of rasteriser disagreement
+constexpr int kShadowEdgeRadius = 2;  // pixels; a 256 map texel spans about 1-2 pixels here
+constexpr int kSilhouetteRadius = 1;  // pixels; one pixel of rasteriser disagreement
 // Colour jump between neighbours that marks an object silhouette in the shaded image (any two
 // different materials or a depth jump changes the lighting by more than this).
 constexpr float kSilhouetteColourJump = 0.08f;
@@ -67,8 +67,10 @@ Image silhouetteBand(const Image& a, const Image& b) {
       for (const Image* im : {&a, &b})
         edge = edge || jump(*im, x, y, x + 1, y) || jump(*im, x, y, x, y + 1);
       if (!edge) continue;
-      for (int j = std::max(0, y - kSilhouetteRadius); j <= std::min(a.height - 1, y + 1 + kSilhouetteRadius); ++j)
-        for (int i = std::max(0, x - kSilhouetteRadius); i <= std::min(a.width - 1, x + 1 + kSilhouetteRadius); ++i)
+      for (int j = std::max(0, y - kSilhouetteRadius);
+           j <= std::min(a.height - 1, y + 1 + kSilhouetteRadius); ++j)
+        for (int i = std::max(0, x - kSilhouetteRadius);
+             i <= std::min(a.width - 1, x + 1 + kSilhouetteRadius); ++i)
           band.at(i, j) = 1.0f;
     }
   return band;
@@ -80,7 +82,8 @@ void writeArtefacts(const std::string& name, const Frame& ref, const Frame& emu)
   fs::create_directories(dir);
   writePng((dir / (name + "-reference-mask.png")).string(), ref.visibility, 16);
   writePng((dir / (name + "-osmesa-mask.png")).string(), emu.visibility, 16);
-  writePng((dir / (name + "-diff.png")).string(), differenceHeatMap(ref.visibility, emu.visibility), 8);
+  writePng((dir / (name + "-diff.png")).string(), differenceHeatMap(ref.visibility, emu.visibility),
+           8);
   writePng((dir / (name + "-reference.png")).string(), ref.color, 8);
   writePng((dir / (name + "-osmesa.png")).string(), emu.color, 8);
 }
@@ -119,8 +122,8 @@ void expectParity(const Case& c, const std::string& sceneName) {
   const int samples = c.filter * c.filter;
   const double oneSample = samples > 1 ? std::ceil(255.0 / samples) / 255.0 : 0.0;
   const double oneStep = samples > 4 ? 1.0 / 255.0 : 0.0;
-  const MaskDifference beyond = compareMasks(ref.visibility, emu.visibility,
-                                             oneSample + oneStep + 0.5 / 255.0);
+  const MaskDifference beyond =
+      compareMasks(ref.visibility, emu.visibility, oneSample + oneStep + 0.5 / 255.0);
   const double withinOneSample = 1.0 - double(beyond.mismatching) / double(beyond.pixels);
   std::cout << name << ": " << d.mismatching << " of " << d.pixels << " pixels differ ("
             << beyond.mismatching << " by more than one sample), " << outside
@@ -152,7 +155,7 @@ TEST_P(LegacyParity, ReferenceAndOsmesaMasksAgree) {
 
 INSTANTIATE_TEST_SUITE_P(
     BrabecSeidelAndEveritt, LegacyParity,
-    ::testing::Values(Case{"legacy.ramp", 1, false}, 
+    ::testing::Values(Case{"legacy.ramp", 1, false},
                       // GL_NEAREST compare: ARB_shadow leaves the LINEAR compare's weights to the
                       // implementation, so Mesa 7.8 and 22 legitimately differ there everywhere
                       // along penumbrae; the binary test is specified exactly.
