@@ -309,9 +309,10 @@ class AnalyticShadow {
   glm::mat4 inverse_;
 };
 
-void expectGeometricShadow(const Frame& f, double bandTexels, const std::string& what) {
+void expectGeometricShadow(const Frame& f, double bandTexels, const std::string& what,
+                           int mapTexels = kMapTexels) {
   const Scene scene = builtinScene("analytic");
-  const AnalyticShadow exact(scene, kWidth, kHeight, bandTexels, kMapTexels);
+  const AnalyticShadow exact(scene, kWidth, kHeight, bandTexels, mapTexels);
   long compared = 0, shadowed = 0, wrong = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
@@ -364,6 +365,26 @@ TEST(BrabecSeidel, FilteredMasksEqualGeometricShadowOnAnalyticScene) {
     // around the texel corner x0 nearest the point), so the band needs more than 2 texels.
     expectGeometricShadow(render("legacy.fast-pcf", "analytic", params(b, 4)), 2.5,
                           "legacy.fast-pcf 4x4" + on);
+  }
+}
+
+// A map larger than the window goes through legacy_gl's LightTarget framebuffer object
+// (DEVIATION in fixed_function.h); the mask is still the exact shadow outside the band.
+TEST(BrabecSeidel, MapLargerThanTheWindowRendersOffscreen) {
+  constexpr int kLargeMap = 512;  // > kHeight
+  std::vector<Backend> backends = {Backend::kOsmesa};
+  if (testing::referenceAvailable()) backends.push_back(Backend::kReference);
+  for (Backend b : backends) {
+    RenderParams p = params(b, 1);
+    p.shadowMapTexels = kLargeMap;
+    expectGeometricShadow(render("legacy.ramp", "analytic", p), 2.0,
+                          std::string("legacy.ramp 512 map on ") + backendName(b), kLargeMap);
+  }
+  for (Backend b : testing::imagingBackends()) {
+    RenderParams p = params(b, 2);
+    p.shadowMapTexels = kLargeMap;
+    expectGeometricShadow(render("legacy.fast-pcf", "analytic", p), 2.0,
+                          std::string("legacy.fast-pcf 512 map on ") + backendName(b), kLargeMap);
   }
 }
 
