@@ -95,6 +95,8 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
 // §2 third pass: the shadow map as a projective texture (texture matrix from camera eye to
 // shadow-map coordinates) subtracted from the camera pass by the blending unit
 // (GL_FUNC_REVERSE_SUBTRACT: framebuffer - fragment, clamped at 0). > 0 = shadowed sample.
+// Points behind the light (q < 0) get a mirrored lookup, as in the paper, which does not treat
+// them (Everitt's negative-projection fix is in legacy.hw); the built-in scenes have none.
 void subtractProjectedMap(const Scene& scene, const RenderParams& params,
                           const ShadowMapTexture& map, glm::vec2 offsetTexels,
                           ChannelMask channels);
