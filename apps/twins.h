@@ -70,6 +70,11 @@ Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& mode
 RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int height,
                        int shadowMapTexels, Backend backend);
 
+// Why the legacy side of `pair` cannot run at the pair's precision with these parameters, ""
+// when it can: EGL pbuffers are 8-bit (core/context.cpp), so legacy 12-bit and float colour
+// is not there and the pair is not comparable.
+std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
+
 // Median frame time (sum of the technique's timed passes) over `frames` frames rendered in
 // one context after one warm-up frame.
 double medianFrameMilliseconds(const Technique& technique, const Scene& scene,

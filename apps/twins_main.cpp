@@ -86,6 +86,8 @@ void agreementTable(const Options& o) {
       std::cout << "| " << pair.label << " | " << name << " | "
                 << (pair.faithful ? "faithful (ties only)" : "1/255, band") << " | ";
       try {
+        if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+          throw InputError(why);
         const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
         const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
         const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
@@ -110,6 +112,10 @@ void benchTable(const Options& o) {
   for (const twins::TwinPair& pair : twins::twinPairs()) {
     std::cout << "| " << pair.label << " | ";
     try {
+      const RenderParams pl =
+          twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend);
+      if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+        throw InputError(why);
       const double legacy = twins::medianFrameMilliseconds(
           findTechnique(pair.legacy), scene,
           twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
