@@ -159,8 +159,8 @@ std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legac
          " bits that precision " + precisionName(pair.precision) + " needs";
 }
 
-double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
-                               const RenderParams& params, int frames) {
+FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
+                             const RenderParams& params, int frames) {
   if (frames < 1) throw InputError("the number of timed frames must be at least 1");
   checkParams(technique, params, 0);
   auto context = GlContext::create(contextFor(technique, params));
@@ -171,7 +171,7 @@ double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
   for (int i = 0; i < frames; ++i)
     times.push_back(technique.render(*context, scene, params).totalMilliseconds());
   std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  return {times[times.size() / 2], times.front()};
 }
 
 }  // namespace sl::twins

@@ -75,9 +75,14 @@ RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int hei
 // is not there and the pair is not comparable.
 std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
 
-// Median frame time (sum of the technique's timed passes) over `frames` frames rendered in
-// one context after one warm-up frame.
-double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
-                               const RenderParams& params, int frames);
+// Frame time (sum of the technique's timed passes) over `frames` frames rendered in one context
+// after one warm-up frame: the median, and the minimum (the least disturbed by other processes
+// on a shared machine).
+struct FrameTimes {
+  double median = 0.0;
+  double minimum = 0.0;
+};
+FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
+                             const RenderParams& params, int frames);
 
 }  // namespace sl::twins
