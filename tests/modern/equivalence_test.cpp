@@ -100,8 +100,9 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
 
 }  // namespace
 
-namespace twins {
 // Readable test parameters in gtest's messages.
+void PrintTo(Backend backend, std::ostream* os) { *os << backendName(backend); }
+namespace twins {
 void PrintTo(const TwinPair& pair, std::ostream* os) { *os << pair.label; }
 }  // namespace twins
 
