@@ -50,11 +50,23 @@ void setBorder(GLenum target, GLenum mode) {
   glConvolutionParameterfv(target, GL_CONVOLUTION_BORDER_COLOR, border);
 }
 
-// Copies the convolved left half to the right half and returns the whole window.
+// Copies the convolved left half to the right half and returns the whole window. The same
+// pipeline read back as floats marks the bytes whose exact value lies in the band the
+// reference saturates to 255 (parity_util.h).
 void copyAndRead(Outcome& o, int srcW = kSrcW, int srcH = kParityH) {
+  std::vector<float> exact(size_t(srcW) * srcH * 4, -1.0f);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, srcW, srcH, GL_RGBA, GL_FLOAT, exact.data());  // REDUCE: stride srcW
   glWindowPos2i(kSrcW, 0);
   glCopyPixels(0, 0, srcW, srcH, GL_COLOR);
+  std::vector<uint8_t> band(size_t(kParityW) * kParityH * 4, 0);
+  for (int y = 0; y < srcH; ++y)
+    for (int x = 0; x < srcW && kSrcW + x < kParityW; ++x)
+      for (int c = 0; c < 4; ++c)
+        band[(size_t(y) * kParityW + kSrcW + x) * 4 + c] =
+            inSaturationBand(exact[(size_t(y) * srcW + x) * 4 + c]) ? 1 : 0;
   appendBytes(o, readWindow());
+  o.saturationBand = band;
 }
 
 struct FilterCase {
@@ -94,7 +106,7 @@ TEST_P(Filter2DParity, CopyPixels) {
 
 std::vector<FilterCase> filterCases() {
   std::vector<FilterCase> cases;
-  const int sizes[][2] = {{1, 1}, {2, 2}, {3, 3}, {3, 5}, {5, 3}, {7, 7}, {9, 9}, {9, 1}, {1, 9}};
+  const int sizes[][2] = {{1, 1}, {2, 2}, {3, 3}, {5, 3}, {7, 7}, {9, 9}, {9, 1}, {1, 9}, {4, 4}, {6, 6}, {8, 8}, {3, 5}, {4, 6}, {8, 2}};
   for (GLenum b : {GL_REDUCE, GL_CONSTANT_BORDER, GL_REPLICATE_BORDER}) {
     for (const auto& s : sizes) cases.push_back({s[0], s[1], b, GL_RGBA});
     for (GLenum f : {GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA, GL_INTENSITY, GL_RGB})
