@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -136,7 +137,7 @@ struct State {
   bool emulateAccum = false;
   Rgba clearAccum{0, 0, 0, 0};
   int accumWidth = 0, accumHeight = 0;
-  std::vector<float> accum;
+  std::vector<int16_t> accum;  // k / 32767 per component (accumulation.cpp)
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).
@@ -153,6 +154,31 @@ bool pipelineIsIdentity(const TransferState& t, Dimensionality dims);
 bool runPipeline(TransferState& t, Image4& image, Dimensionality dims);
 // The output size of the convolution stage for a source of w x h (REDUCE shrinks it).
 void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
+
+// The pipeline on 8-bit RGBA groups in place, for 8-bit destinations, when only
+// per-component stages and the color matrix are active (fast_paths.cpp). Returns false
+// (bytes untouched) when another stage is active; the general path is then used.
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h);
+bool bytePathApplies(const TransferState& t);
+
+// Convolution on an 8-bit source straight to 8-bit output, in strips of rows that stay in
+// cache, with every stage of 3.6.5 (fast_paths.cpp). `out` receives ow x oh groups; returns
+// false when a sink consumed the groups (nothing to write).
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh);
+// A 2D or separable convolution with a non-empty filter is enabled.
+bool convolveBytesApplies(const TransferState& t);
+
+// A tap of a convolution kernel: offset (n, m) into the (bordered) source, four weights.
+struct Tap {
+  int n, m;
+  float w[4];
+};
+// The non-zero taps of a filter (pass-through components as a unit tap at the centre).
+std::vector<Tap> kernelTaps(const ConvolutionFilter& f, bool separable, int& wf, int& hf);
+// o[0 .. ow*4) += sum over taps of row(m)[n*4 + ...] * w, in tap order (convolution.cpp).
+void accumulateTaps(const std::vector<Tap>& taps, const std::function<const float*(int)>& row,
+                    int ow, float* o);
 
 // ---- stages (one file each) ----
 void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp

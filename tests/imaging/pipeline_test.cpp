@@ -301,3 +301,34 @@ TEST(Accumulation, ErrorsAndReturnClamps) {
 
 }  // namespace
 }  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// The 8-bit path (fast_paths.cpp) computes exactly what the float path computes: read the
+// same transformed pixels once as floats (general path, then the final conversion by hand)
+// and once as unsigned bytes (byte path).
+TEST(Pipeline, BytePathMatchesFloatPath) {
+  auto ctx = emulatedContext(32, 16);
+  putImage(32, 16, patternImage(32, 16, 77));
+  std::vector<float> t(64 * 4);
+  for (size_t i = 0; i < t.size(); ++i) t[i] = float((i * 37) % 64) / 63.0f;
+  glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, t.data());
+  glEnable(GL_COLOR_TABLE);
+  glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE_ALPHA, 64, GL_RGBA, GL_FLOAT, t.data());
+  glEnable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
+  const float m[16] = {0.3f, 0.2f, -0.1f, 0.25f, 0.5f, 0.1f, 0.2f, 0.25f,
+                       0.0f, 0.6f, 0.3f, 0.25f, 0.1f, 0.0f, 0.5f, 0.25f};
+  glMatrixMode(GL_COLOR);
+  glLoadMatrixf(m);
+  glMatrixMode(GL_MODELVIEW);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_GREEN_SCALE, 1.3f);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_BLUE_BIAS, 0.05f);
+  glPixelTransferf(GL_RED_SCALE, 0.9f);
+  const auto f = readRgbaF(0, 0, 32, 16);
+  const auto b = readRgba8(0, 0, 32, 16);
+  for (size_t i = 0; i < b.size(); ++i) ASSERT_EQ(b[i], toByte(f[i])) << i;
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
