@@ -109,7 +109,7 @@ RenderTarget renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams&
 LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s, Frame& frame) {
   PassTimer timer(frame, "2 basis textures (MRT)");
   LayeredMap basis = makeLayeredMap(depth.width, s.layers(), s.format, s.filtering.mipmaps);
-  Program program("fullscreen_triangle.vert.glsl", "csm_basis.frag.glsl");
+  Program program("fullscreen.vert.glsl", "csm_basis.frag.glsl");
   program.use();
   program.set("uLinearDepth", 0);
   program.set("uOrder", s.order);

@@ -110,7 +110,7 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame&
   PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
   const LayeredMap scratch = makeLayeredMap(map.size, map.layers, map.format, false);
   const std::vector<float> weights = binomialWeights(taps);
-  Program program("fullscreen_triangle.vert.glsl", "separable_gaussian.frag.glsl");
+  Program program("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
   program.use();
   program.set("uSource", 0);
   program.set("uTaps", taps);
