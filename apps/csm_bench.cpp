@@ -180,7 +180,7 @@ int run(int argc, char** argv) {
                               paramsFor(o, map,
                                         {{"order", std::to_string(order)},
                                          {"blur", std::to_string(blur)},
-                                         {"filtering", "trilinear"},
+                                         {"filtering", "anisotropic"},
                                          {"anisotropy", "16"}}),
                               o);
             record("table1", "modern.csm", map, order, blur, t);

@@ -33,7 +33,7 @@ constexpr double kMaxAlpha = 50.0;
 constexpr double kMaxOffset = 0.5;          // in linear depth units (the whole range is 1)
 constexpr double kDefaultScale = 1.0;       // §3.2.2 suggests 2.0 as the alternative to offset
 constexpr double kMaxScale = 8.0;
-constexpr int kDefaultBlurTaps = 3;         // 3x3 (Table 1's middle row)
+constexpr int kDefaultBlurTaps = 3;         // 3x3 (Table 1's middle block)
 constexpr int kChannelsPerLayer = 4;        // RGBA
 constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
 constexpr int kOffsetSearchSteps = 20000;   // resolution of the default-offset search on (0, 1]
@@ -58,8 +58,11 @@ CsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
   CsmSettings s;
   s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
   s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
-  s.offset = params.extra.count("offset") ? params.number("offset", 0.0, 0.0, kMaxOffset)
-                                          : csmDefaultOffset(s.order, s.alpha);
+  // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset.
+  const auto offset = params.extra.find("offset");
+  s.offset = offset == params.extra.end() || offset->second == "auto"
+                 ? csmDefaultOffset(s.order, s.alpha)
+                 : params.number("offset", 0.0, 0.0, kMaxOffset);
   s.scale = params.number("scale", kDefaultScale, 1.0, kMaxScale);
   const std::string storage = params.text("storage", "8", {"8", "16", "float"});
   s.format = storage == "8" ? GL_RGBA8 : storage == "16" ? GL_RGBA16F : GL_RGBA32F;
@@ -182,13 +185,20 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
   const Image linear = readAttachment(depth, 0);
   frame.intermediates.push_back(
       {"1-linear-depth", "linear light-space depth z(p) (§4.1)", channel(linear, 0)});
-  // Fig. 5: the basis images; shown for k = 1 with [-1, 1] mapped to [0, 1].
+  // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one, the
+  // stored values with [-1, 1] shown as [0, 1].
   const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
   const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
-  frame.intermediates.push_back({"2-basis-sin-k1", "sin(c_1 z) after blur (Fig. 5)",
-                                 readLayer(basis, 0, 0, scale, bias)});
-  frame.intermediates.push_back({"2-basis-cos-k1", "cos(c_1 z) after blur",
-                                 readLayer(basis, s.sinLayers(), 0, scale, bias)});
+  auto range = [&](int layer) {
+    const int first = kChannelsPerLayer * layer + 1;
+    return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
+  };
+  for (int layer = 0; layer < s.sinLayers(); ++layer)
+    frame.intermediates.push_back({"2-basis-sin-" + range(layer),
+                                   "sin(c_k z), " + range(layer) + ", after blur (Fig. 5)",
+                                   readLayer(basis, layer, scale, bias)});
+  frame.intermediates.push_back({"2-basis-cos-" + range(0), "cos(c_k z), " + range(0) + ", after blur",
+                                 readLayer(basis, s.sinLayers(), scale, bias)});
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {

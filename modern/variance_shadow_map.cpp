@@ -121,7 +121,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   blurMoments(moments, s, frame);
   if (params.capturePasses)
     frame.intermediates.push_back(
-        {"1-moments-mean", "filtered mean depth E[z]", readLayer(moments, 0, 0, 1.0f, 0.0f)});
+        {"1-moments-mean", "filtered mean depth E[z]", channel(readLayer(moments, 0, 1.0f, 0.0f), 0)});
   buildMomentMipmaps(moments, s, frame);
   chebyshevInCameraPass(gpu, params, moments, s, frame);
   frame.counters["anisotropy"] = s.filtering.anisotropy;
