@@ -15,6 +15,7 @@
 //                                   (§3.2.2), clamp to [0, 1] (§4.1); csm_shadow.frag
 #include "modern/convolution_shadow_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -31,7 +32,6 @@ constexpr int kMaxOrder = 64;               // 32 RGBA layers
 constexpr double kDefaultAlpha = 1.0;       // §3.2.1; removes most of the Gibbs overshoot
 constexpr double kMaxAlpha = 50.0;
 constexpr double kMaxOffset = 0.5;          // in linear depth units (the whole range is 1)
-constexpr double kDefaultScale = 1.0;       // §3.2.2 suggests 2.0 as the alternative to offset
 constexpr double kMaxScale = 8.0;
 constexpr int kDefaultBlurTaps = 3;         // 3x3 (Table 1's middle block)
 constexpr int kChannelsPerLayer = 4;        // RGBA
@@ -42,7 +42,7 @@ struct CsmSettings {
   int order = kDefaultOrder;     // M
   double alpha = kDefaultAlpha;
   double offset = 0.0;           // subtracted from d (§3.2.2)
-  double scale = kDefaultScale;  // multiplies f (§3.2.2)
+  double scale = 1.0;            // multiplies f (§3.2.2)
   GLenum format = GL_RGBA8;      // storage of the basis layers
   bool encodeUnsigned = true;    // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
   int blurTaps = kDefaultBlurTaps;
@@ -63,7 +63,15 @@ CsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
   s.offset = offset == params.extra.end() || offset->second == "auto"
                  ? csmDefaultOffset(s.order, s.alpha)
                  : params.number("offset", 0.0, 0.0, kMaxOffset);
-  s.scale = params.number("scale", kDefaultScale, 1.0, kMaxScale);
+  // "auto" (or no value): 1 / f(offset) where the attenuated step tops out below 1 (small M
+  // with alpha > 0: M = 1, alpha = 1 peaks at 0.73), so that lit surfaces are lit (§3.2.2:
+  // "after offsetting, f goes through 1"); 1 otherwise. §3.2.2's own alternative is 2.
+  const auto scale = params.extra.find("scale");
+  if (scale == params.extra.end() || scale->second == "auto") {
+    s.scale = std::max(1.0, 1.0 / csmReconstructedStep(s.offset, s.order, s.alpha));
+  } else {
+    s.scale = params.number("scale", 1.0, 1.0, kMaxScale);
+  }
   const std::string storage = params.text("storage", "8", {"8", "16", "float"});
   s.format = storage == "8" ? GL_RGBA8 : storage == "16" ? GL_RGBA16F : GL_RGBA32F;
   s.encodeUnsigned = storage == "8";
@@ -213,6 +221,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   reconstructInCameraPass(gpu, params, basis, s, frame);
   frame.counters["order M"] = s.order;
   frame.counters["offset"] = s.offset;
+  frame.counters["scale"] = s.scale;
   frame.counters["basis layers"] = s.layers();
   frame.counters["anisotropy"] = s.filtering.anisotropy;
   return frame;

@@ -138,6 +138,21 @@ TEST(Csm, DefaultOffsetIsTheTopOfTheStep) {
   }
 }
 
+TEST(Csm, LitGroundIsLitForEveryOrderWithDefaults) {
+  // §3.2.2: with the default offset (and, for small M, the default scale) a lit surface,
+  // z = d, reconstructs to 1. The analytic ground is made to cast so that the map holds its
+  // own depth (otherwise z = far and t lies past the step's top, on the attenuated ripple).
+  Scene scene = builtinScene("analytic");
+  for (Object& o : scene.objects) o.castsShadow = true;
+  for (int order : {1, 2, 4, 16, 64}) {
+    const RenderParams p = smallParams(160, 120, 128, {{"order", std::to_string(order)}});
+    const Frame frame = renderByName("modern.csm", scene, p);
+    const glm::ivec2 lit = pixelOf(scene, p, {1.8f, 0.0f, 0.3f});
+    // 8-bit storage (the default) moves f by at most eightBitBound (< 0.012 for M <= 64).
+    EXPECT_NEAR(frame.visibility.at(lit.x, lit.y), 1.0, eightBitBound(order, 1.0) + 1e-3) << order;
+  }
+}
+
 TEST(Csm, HighOrdersStayFiniteAndInRange) {
   const Scene scene = builtinScene("fence");
   for (const std::string storage : {"8", "float"}) {
@@ -165,6 +180,7 @@ TEST(Csm, SpellingsTheFiguresUse) {
   };
   EXPECT_EQ(mask({{"blur", "1"}}).data, mask({{"blur", "0"}}).data);
   EXPECT_EQ(mask({{"offset", "auto"}}).data, mask({}).data);
+  EXPECT_EQ(mask({{"scale", "auto"}}).data, mask({}).data);
   EXPECT_EQ(mask({{"filtering", "anisotropic"}}).data, mask({}).data);
 }
 
