@@ -197,3 +197,62 @@ TEST(Csm, BadParametersAreInputErrors) {
 
 }  // namespace
 }  // namespace sl
+
+namespace sl {
+namespace {
+using namespace sl::testing_filtered;
+
+// Box-filters `image` (one channel) by `factor` in each direction.
+Image downsample(const Image& image, int factor) {
+  Image out(image.width / factor, image.height / factor, 1, 0.0f);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      double sum = 0;
+      for (int j = 0; j < factor; ++j)
+        for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j);
+      out.at(x, y) = float(sum / (factor * factor));
+    }
+  return out;
+}
+
+double rmse(const Image& a, const Image& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) sum += double(a.data[i] - b.data[i]) * (a.data[i] - b.data[i]);
+  return std::sqrt(sum / double(a.data.size()));
+}
+
+TEST(Csm, MipMapsAntialiasMinifiedShadows) {
+  // Fig. 1 and 10: trees far away, many shadow-map texels per pixel. The ground truth of the
+  // pixel's shadow is the fraction of it that is lit: a hard shadow map (nearest compare) at
+  // 4x4 the resolution, box-filtered. The pixel-rate hard test aliases; CSM with mip-maps
+  // (tri-linear) pre-filters the basis and comes closer; without mip-maps it aliases too.
+  Scene scene = builtinScene("trees");
+  // Three times the scene's camera distance. The claim is about strong minification: nearer
+  // (1.5x) CSM's own reconstruction error near contact (§3.2.2) outweighs the aliasing it
+  // removes (measured RMSE: hard 0.056, CSM 0.067); at 2x they are close (0.054 / 0.049);
+  // at 3x: hard 0.042, CSM tri-linear 0.027, CSM without mip-maps 0.036.
+  constexpr float kDistance = 3.0f;
+  scene.camera.position = scene.camera.target + kDistance * (scene.camera.position - scene.camera.target);
+  constexpr int kFactor = 4;
+  const int w = 128, h = 96, texels = 2048;
+  const Image truth = downsample(
+      renderByName("modern.hw", scene, smallParams(w * kFactor, h * kFactor, texels, {{"compare", "nearest"}}))
+          .visibility,
+      kFactor);
+  const Image hard =
+      renderByName("modern.hw", scene, smallParams(w, h, texels, {{"compare", "nearest"}})).visibility;
+  const Image mip = renderByName("modern.csm", scene,
+                                 smallParams(w, h, texels, {{"order", "16"}, {"blur", "0"}}))
+                        .visibility;
+  const Image flat = renderByName("modern.csm", scene,
+                                  smallParams(w, h, texels,
+                                              {{"order", "16"}, {"blur", "0"}, {"filtering", "bilinear"}}))
+                         .visibility;
+  const double eHard = rmse(hard, truth), eMip = rmse(mip, truth), eFlat = rmse(flat, truth);
+  writePng(outputPath("csm-minification-truth-hard-mip-flat.png"), sideBySide({truth, hard, mip, flat}));
+  EXPECT_LT(eMip, eHard) << "CSM tri-linear " << eMip << ", hard " << eHard;
+  EXPECT_LT(eMip, eFlat) << "CSM tri-linear " << eMip << ", bilinear " << eFlat;
+}
+
+}  // namespace
+}  // namespace sl
