@@ -27,24 +27,24 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
-constexpr int kDefaultOrder = 16;           // M of Fig. 4, 5 (Table 1 also measures 4 and 8)
-constexpr int kMaxOrder = 64;               // 32 RGBA layers
-constexpr double kDefaultAlpha = 1.0;       // §3.2.1; removes most of the Gibbs overshoot
+constexpr int kDefaultOrder = 16;      // M of Fig. 4, 5 (Table 1 also measures 4 and 8)
+constexpr int kMaxOrder = 64;          // 32 RGBA layers
+constexpr double kDefaultAlpha = 1.0;  // §3.2.1; removes most of the Gibbs overshoot
 constexpr double kMaxAlpha = 50.0;
-constexpr double kMaxOffset = 0.5;          // in linear depth units (the whole range is 1)
+constexpr double kMaxOffset = 0.5;  // in linear depth units (the whole range is 1)
 constexpr double kMaxScale = 8.0;
-constexpr int kDefaultBlurTaps = 3;         // 3x3 (Table 1's middle block)
-constexpr int kChannelsPerLayer = 4;        // RGBA
+constexpr int kDefaultBlurTaps = 3;                        // 3x3 (Table 1's middle block)
+constexpr int kChannelsPerLayer = 4;                       // RGBA
 constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
-constexpr int kOffsetSearchSteps = 20000;   // resolution of the default-offset search on (0, 1]
+constexpr int kOffsetSearchSteps = 20000;  // resolution of the default-offset search on (0, 1]
 
 struct CsmSettings {
-  int order = kDefaultOrder;     // M
+  int order = kDefaultOrder;  // M
   double alpha = kDefaultAlpha;
-  double offset = 0.0;           // subtracted from d (§3.2.2)
-  double scale = 1.0;            // multiplies f (§3.2.2)
-  GLenum format = GL_RGBA8;      // storage of the basis layers
-  bool encodeUnsigned = true;    // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
+  double offset = 0.0;         // subtracted from d (§3.2.2)
+  double scale = 1.0;          // multiplies f (§3.2.2)
+  GLenum format = GL_RGBA8;    // storage of the basis layers
+  bool encodeUnsigned = true;  // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
   int blurTaps = kDefaultBlurTaps;
   MapFiltering filtering;
   int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
@@ -205,7 +205,8 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
     frame.intermediates.push_back({"2-basis-sin-" + range(layer),
                                    "sin(c_k z), " + range(layer) + ", after blur (Fig. 5)",
                                    readLayer(basis, layer, scale, bias)});
-  frame.intermediates.push_back({"2-basis-cos-" + range(0), "cos(c_k z), " + range(0) + ", after blur",
+  frame.intermediates.push_back({"2-basis-cos-" + range(0),
+                                 "cos(c_k z), " + range(0) + ", after blur",
                                  readLayer(basis, s.sinLayers(), scale, bias)});
 }
 
@@ -259,8 +260,7 @@ Technique convolutionShadowMapTechnique() {
       "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering",
-                 "anisotropy"};
+  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering", "anisotropy"};
   t.render = render;
   return t;
 }

@@ -9,9 +9,9 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
-constexpr int kMaxOutputsPerPass = 8;      // separable_gaussian.frag declares 8 outputs
-constexpr float kMaxAnisotropy = 16.0f;    // Annen Table 1: "16x anisotropic tri-linear"
-constexpr int kMaxBlurTaps = 7;            // 7x7, the largest kernel of Annen Table 1
+constexpr int kMaxOutputsPerPass = 8;    // separable_gaussian.frag declares 8 outputs
+constexpr float kMaxAnisotropy = 16.0f;  // Annen Table 1: "16x anisotropic tri-linear"
+constexpr int kMaxBlurTaps = 7;          // 7x7, the largest kernel of Annen Table 1
 const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";
 }  // namespace
 
@@ -41,8 +41,8 @@ std::vector<float> binomialWeights(int taps) {
 
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params) {
   MapFiltering f;
-  const std::string mode = params.text("filtering", "anisotropic",
-                                       {"anisotropic", "trilinear", "bilinear", "nearest"});
+  const std::string mode =
+      params.text("filtering", "anisotropic", {"anisotropic", "trilinear", "bilinear", "nearest"});
   f.mipmaps = mode == "anisotropic" || mode == "trilinear";
   f.linear = mode != "nearest";
   // "anisotropic" is Table 1's "16x anisotropic tri-linear"; an explicit --param anisotropy

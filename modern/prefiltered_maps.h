@@ -29,9 +29,9 @@ std::vector<float> binomialWeights(int taps);  // sums to 1
 
 // How the map is sampled in the camera pass.
 struct MapFiltering {
-  bool mipmaps = true;     // trilinear (GL_LINEAR_MIPMAP_LINEAR) when true
-  bool linear = true;      // bilinear magnification/minification within a level
-  float anisotropy = 1.0f; // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
+  bool mipmaps = true;      // trilinear (GL_LINEAR_MIPMAP_LINEAR) when true
+  bool linear = true;       // bilinear magnification/minification within a level
+  float anisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
 };
 // --param filtering=anisotropic|trilinear|bilinear|nearest (anisotropic = tri-linear with
 // --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped

@@ -77,14 +77,19 @@ struct Case {
 
 void expectMatchesEq11(const Case& c) {
   const Scene scene = builtinScene("analytic");
-  const RenderParams p = smallParams(
-      160, 120, 256,
-      {{"order", std::to_string(c.order)}, {"alpha", std::to_string(c.alpha)},
-       {"offset", std::to_string(c.offset)}, {"scale", std::to_string(c.scale)},
-       {"storage", c.storage}, {"blur", c.blur}, {"filtering", c.filtering}});
+  const RenderParams p = smallParams(160, 120, 256,
+                                     {{"order", std::to_string(c.order)},
+                                      {"alpha", std::to_string(c.alpha)},
+                                      {"offset", std::to_string(c.offset)},
+                                      {"scale", std::to_string(c.scale)},
+                                      {"storage", c.storage},
+                                      {"blur", c.blur},
+                                      {"filtering", c.filtering}});
   const Frame frame = renderByName("modern.csm", scene, p);
   const AnalyticDepths depth = analyticDepths(scene);
-  auto visibility = [&](double t) { return std::clamp(c.scale * eq11(t, c.order, c.alpha), 0.0, 1.0); };
+  auto visibility = [&](double t) {
+    return std::clamp(c.scale * eq11(t, c.order, c.alpha), 0.0, 1.0);
+  };
   const double tUmbra = (1.0 - c.offset) * (depth.occluder - depth.ground) + c.offset;
   const double tLit = (1.0 - c.offset) * (depth.open - depth.ground) + c.offset;
   // Float storage: the shader's float32 sin/cos of arguments up to c_M ~ 400 and the float
@@ -94,7 +99,7 @@ void expectMatchesEq11(const Case& c) {
   // (0, 0, 0.25): in the umbra (|x|, |z| < 2/3), 0.42 from its edge (19 texels at 256^2),
   // and seen by the camera in front of the occluder.
   const glm::ivec2 umbra = pixelOf(scene, p, {0.0f, 0.0f, 0.25f});
-  const glm::ivec2 lit = pixelOf(scene, p, {1.8f, 0.0f, 0.3f});      // > 1 unit from its edge
+  const glm::ivec2 lit = pixelOf(scene, p, {1.8f, 0.0f, 0.3f});  // > 1 unit from its edge
   ASSERT_TRUE(umbra.x > 0 && umbra.x < p.width && umbra.y > 0 && umbra.y < p.height);
   ASSERT_TRUE(lit.x > 0 && lit.x < p.width && lit.y > 0 && lit.y < p.height);
   const std::string what = "M=" + std::to_string(c.order) + " alpha=" + std::to_string(c.alpha) +
@@ -186,9 +191,16 @@ TEST(Csm, SpellingsTheFiguresUse) {
 
 TEST(Csm, BadParametersAreInputErrors) {
   const Scene scene = builtinScene("analytic");
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"order", "0"}, {"order", "65"}, {"blur", "4"}, {"blur", "9"}, {"storage", "12"},
-           {"alpha", "-1"}, {"offset", "0.8"}, {"filtering", "cubic"}, {"anisotropy", "0"}}) {
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"order", "0"},
+                                                        {"order", "65"},
+                                                        {"blur", "4"},
+                                                        {"blur", "9"},
+                                                        {"storage", "12"},
+                                                        {"alpha", "-1"},
+                                                        {"offset", "0.8"},
+                                                        {"filtering", "cubic"},
+                                                        {"anisotropy", "0"}}) {
     EXPECT_THROW(renderByName("modern.csm", scene, smallParams(32, 32, 32, {{key, value}})),
                  InputError)
         << key << "=" << value;
@@ -217,7 +229,8 @@ Image downsample(const Image& image, int factor) {
 
 double rmse(const Image& a, const Image& b) {
   double sum = 0;
-  for (size_t i = 0; i < a.data.size(); ++i) sum += double(a.data[i] - b.data[i]) * (a.data[i] - b.data[i]);
+  for (size_t i = 0; i < a.data.size(); ++i)
+    sum += double(a.data[i] - b.data[i]) * (a.data[i] - b.data[i]);
   return std::sqrt(sum / double(a.data.size()));
 }
 
@@ -232,24 +245,29 @@ TEST(Csm, MipMapsAntialiasMinifiedShadows) {
   // removes (measured RMSE: hard 0.056, CSM 0.067); at 2x they are close (0.054 / 0.049);
   // at 3x: hard 0.042, CSM tri-linear 0.027, CSM without mip-maps 0.036.
   constexpr float kDistance = 3.0f;
-  scene.camera.position = scene.camera.target + kDistance * (scene.camera.position - scene.camera.target);
+  scene.camera.position =
+      scene.camera.target + kDistance * (scene.camera.position - scene.camera.target);
   constexpr int kFactor = 4;
   const int w = 128, h = 96, texels = 2048;
   const Image truth = downsample(
-      renderByName("modern.hw", scene, smallParams(w * kFactor, h * kFactor, texels, {{"compare", "nearest"}}))
+      renderByName("modern.hw", scene,
+                   smallParams(w * kFactor, h * kFactor, texels, {{"compare", "nearest"}}))
           .visibility,
       kFactor);
   const Image hard =
-      renderByName("modern.hw", scene, smallParams(w, h, texels, {{"compare", "nearest"}})).visibility;
-  const Image mip = renderByName("modern.csm", scene,
-                                 smallParams(w, h, texels, {{"order", "16"}, {"blur", "0"}}))
-                        .visibility;
-  const Image flat = renderByName("modern.csm", scene,
-                                  smallParams(w, h, texels,
-                                              {{"order", "16"}, {"blur", "0"}, {"filtering", "bilinear"}}))
-                         .visibility;
+      renderByName("modern.hw", scene, smallParams(w, h, texels, {{"compare", "nearest"}}))
+          .visibility;
+  const Image mip =
+      renderByName("modern.csm", scene, smallParams(w, h, texels, {{"order", "16"}, {"blur", "0"}}))
+          .visibility;
+  const Image flat =
+      renderByName(
+          "modern.csm", scene,
+          smallParams(w, h, texels, {{"order", "16"}, {"blur", "0"}, {"filtering", "bilinear"}}))
+          .visibility;
   const double eHard = rmse(hard, truth), eMip = rmse(mip, truth), eFlat = rmse(flat, truth);
-  writePng(outputPath("csm-minification-truth-hard-mip-flat.png"), sideBySide({truth, hard, mip, flat}));
+  writePng(outputPath("csm-minification-truth-hard-mip-flat.png"),
+           sideBySide({truth, hard, mip, flat}));
   EXPECT_LT(eMip, eHard) << "CSM tri-linear " << eMip << ", hard " << eHard;
   EXPECT_LT(eMip, eFlat) << "CSM tri-linear " << eMip << ", bilinear " << eFlat;
 }
