@@ -226,6 +226,9 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
       writePanelCell(h, p);
       h << "</div>\n";
     }
+  if (!f.composite.empty())
+    h << "<p><small>The whole figure as one image: <a href=\"" << esc(f.composite) << "\">"
+      << esc(f.composite) << "</a></small></p>\n";
   writeTwins(h, f);
   if (!s.paperNumbers.empty())
     h << "<p class=paper>The paper's numbers: " << esc(s.paperNumbers) << "</p>\n";

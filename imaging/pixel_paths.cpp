@@ -181,7 +181,11 @@ void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum 
   refreshColorMaps(*s);
   // Sink: "no pixel values are returned" (3.6.5 Histogram, Minmax).
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
-  packImage(image, data, format, type, packStore(s->driver), true);
+  // A REDUCE convolution returns a smaller image, placed with the row stride of the width
+  // the call named (the rows the caller's buffer has).
+  PixelStore store = packStore(s->driver);
+  if (store.rowLength == 0) store.rowLength = w;
+  packImage(image, data, format, type, store, true);
 }
 
 void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {

@@ -3,7 +3,9 @@
 //
 // Passes:
 //   1. renderDepthFromLight      — the scene from the light, polygon offset, depth copied
-//                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset")
+//                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset");
+//                                  left out when the pass planner (core/plan.h) finds no caster
+//                                  in the light frustum (--param plan=off keeps it)
 //   2. loadEyeLinearTexgenPlanes — EYE_LINEAR planes E_po = S·P_light·L^-1 specified while the
 //                                  modelview holds the view matrix (Eq. 1-5, Appendix A)
 //   3. renderAmbientPass         — lighting with the ambient term only (Kilgard's note)
@@ -20,6 +22,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/errors.h"
+#include "core/plan.h"
 #include "core/gl.h"
 #include "legacy_gl/fixed_function.h"
 
@@ -42,9 +45,13 @@ struct HwState {
 // polygon offset and copy the depth buffer into the depth texture (glCopyTexSubImage2D reads
 // the depth buffer for a DEPTH_COMPONENT texture, ARB_depth_texture).
 void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwState& s,
-                          float factor, float units, bool linearCompare, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light");
-  const int n = params.shadowMapTexels;
+                          float factor, float units, bool linearCompare, bool casterInFrustum,
+                          Frame& frame) {
+  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
+                                         : "1 depth from light left out (planner: no caster in frustum)");
+  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+  // depth (every comparison passes) replaces the pass.
+  const int n = casterInFrustum ? params.shadowMapTexels : 1;
   LightTarget target(n, n <= params.width && n <= params.height, false);
   target.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -55,7 +62,7 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
   glPolygonOffset(factor, units);
   loadMatrix(GL_PROJECTION, lightProjection(scene));
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
-  drawScene(scene, Draw::kCasters);
+  if (casterInFrustum) drawScene(scene, Draw::kCasters);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
@@ -175,7 +182,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
   Frame frame;
   HwState state;
-  renderDepthFromLight(scene, params, state, factor, units, linear, frame);
+  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
+  renderDepthFromLight(scene, params, state, factor, units, linear, casterInFrustum, frame);
   shadeWithShadowMap(scene, params, state.shadowMap.id(), 2, frame);
   checkGl("legacy.hw");
   return frame;
@@ -230,7 +238,7 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "depth texture with hardware comparison, EYE_LINEAR texgen, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
-  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
   t.render = render;
   return t;
 }

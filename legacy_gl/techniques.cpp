@@ -14,6 +14,8 @@ std::vector<Technique> techniques() {
       secondDepthShadowMapTechnique(),
       // Brabec & Seidel 2001
       rampShadowMapTechnique(),
+      pcfTechnique(),
+      fastPcfTechnique(),
   };
 }
 

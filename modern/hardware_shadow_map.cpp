@@ -3,11 +3,14 @@
 // uniform matrix. Twin of legacy_gl/hardware_shadow_map.cpp.
 //
 // Passes:
-//   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset
+//   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset;
+//                             left out when the pass planner (core/plan.h) finds no caster in
+//                             the light frustum (--param plan=off keeps it)
 //   2. shadeWithShadowMap   — camera view; hw_shadow.frag does textureProj on sampler2DShadow
 #include "modern/hardware_shadow_map.h"
 
 #include "core/errors.h"
+#include "core/plan.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern {
@@ -19,9 +22,12 @@ constexpr float kDefaultOffsetUnits = 4.0f;
 
 // Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
-                                  float units, bool linear, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light");
-  const int n = params.shadowMapTexels;
+                                  float units, bool linear, bool casterInFrustum, Frame& frame) {
+  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
+                                         : "1 depth from light left out (planner: no caster in frustum)");
+  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+  // depth (every comparison passes) replaces the pass.
+  const int n = casterInFrustum ? params.shadowMapTexels : 1;
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -29,10 +35,10 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(factor, units);
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
+  gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
   setDepthCompareParameters(map.depth.id(), linear);
@@ -69,7 +75,7 @@ void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint 
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "hw_shadow.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "hw_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));
@@ -89,9 +95,10 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
   const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
   Frame frame;
   GpuScene gpu(scene);
-  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, frame);
+  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, casterInFrustum, frame);
   shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
   return frame;
 }
@@ -104,7 +111,7 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "sampler2DShadow with compare mode, hardware 2x2 filtering, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
   t.render = render;
   return t;
 }

@@ -128,6 +128,9 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
   }
   const FullScreenTriangle triangle;
   triangle.draw();
+  // The tags are an attachment of the bound framebuffer: leaving them bound to a texture unit
+  // would make the driver synchronise every later draw (llvmpipe flushes per draw).
+  glBindTexture(GL_TEXTURE_2D, 0);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);

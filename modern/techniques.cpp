@@ -18,6 +18,10 @@ std::vector<Technique> techniques() {
       hardwareShadowMapTechnique(),
       wooShadowMapTechnique(),
       secondDepthShadowMapTechnique(),
+      // Brabec & Seidel 2001 (twins of legacy_gl/)
+      rampShadowMapTechnique(),
+      percentageCloserFilteringTechnique(),
+      fastPercentageCloserFilteringTechnique(),
       // Bunnell & Pellacini, GPU Gems ch. 11
       gems16Technique(),
       gems4Technique(),

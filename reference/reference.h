@@ -25,6 +25,10 @@ std::vector<Technique> techniques();
 //  * only objects with castsShadow occlude.
 constexpr float kNoGeometryVisibility = 1.0f;
 
+// With RenderParams::capturePasses the references add this intermediate: 1 where a surface
+// point faces the light (geometric normal), 0 elsewhere and where no geometry is seen.
+constexpr const char* kFacesLightPass = "2-faces-light";
+
 // Shadow rays start this far (times the scene's bounding-box diagonal) along the surface's
 // geometric normal, so that a surface does not shadow itself through float round-off.
 constexpr float kRayOffsetPerSceneDiagonal = 1e-4f;
