@@ -297,13 +297,13 @@ const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters = fa
   return cache[key] = std::move(f);
 }
 
-// The pixels a case's bound counts: outside the reference's edge band and on surfaces facing
-// the light (elsewhere the direct term is zero and visibility does not change the image).
+// The pixels a case's bound counts: outside the reference's edge band and on surfaces the light
+// can reach (facing it, inside its frustum; elsewhere visibility does not change the image).
 MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
   const Image band = boundaryBand(ref.visibility, kBandPixels);
   const Image* facing = nullptr;
   for (const PassImage& p : ref.intermediates)
-    if (p.name == reference::kFacesLightPass) facing = &p.image;
+    if (p.name == reference::kDirectLightRegionPass) facing = &p.image;
   Image region(kWidth, kHeight, 1);
   for (size_t i = 0; i < band.data.size(); ++i)
     region.data[i] = band.data[i] <= 0.5f && (!facing || facing->data[i] > 0.5f) ? 1.0f : 0.0f;
