@@ -268,9 +268,12 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
   h << "<p>Rendered " << esc(info.date) << " with " << esc(info.renderer) << " in "
     << fixed(info.totalSeconds, 0)
-    << " s. Times are ours on this machine and are meant to be compared with each other; the "
-       "papers' numbers (blue) come from 2001-2007 hardware. Missing panels are in red with "
-       "the reason.</p>\n";
+    << " s. Times are ours on this machine: one frame per panel, in a fresh GL context (so "
+       "they include shader compilation and first-use costs; <code>shadowlab bench</code> "
+       "measures steady frames), meant to be compared with each other; the papers' numbers "
+       "(blue) come from 2001-2007 hardware. Error: the visibility mask against the ray-traced "
+       "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
+       "red with the reason.</p>\n";
   // Index with a status per figure.
   h << "<nav><table><tr><th>paper</th><th>figure</th><th>id</th><th>panels made</th></tr>\n";
   for (const FigureResult& f : figures) {
