@@ -108,6 +108,7 @@ void plotLabelledPoints(
   s << "set grid\nset title " << quote(title) << "\nset xlabel " << quote(xLabel) << "\nset ylabel "
     << quote(yLabel) << "\nunset key\n";
   if (logX) s << "set logscale x\n";
+  s << "set offsets graph 0.02, graph 0.15, graph 0.05, graph 0.05\n";  // room for labels
   s << "$d << EOD\n";
   for (const auto& [xy, label] : points)
     s << xy.first << " " << xy.second << " " << quote(label) << "\n";
