@@ -7,9 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "apps/registry.h"
 #include "core/scene_library.h"
@@ -53,8 +52,8 @@ class AnalyticTruth {
     const glm::dvec3 light(scene_.light.position);
     const bool shadowed = hitsBox(p, light - p, 1.0);
     // Near the outline when a point a band's width away sees the light differently.
-    for (const glm::dvec2 step : {glm::dvec2(1, 0), glm::dvec2(-1, 0), glm::dvec2(0, 1),
-                                  glm::dvec2(0, -1)}) {
+    for (const glm::dvec2 step :
+         {glm::dvec2(1, 0), glm::dvec2(-1, 0), glm::dvec2(0, 1), glm::dvec2(0, -1)}) {
       const glm::dvec3 q = p + kBandTexels * texel_ * glm::dvec3(step.x, 0, step.y);
       if (hitsBox(q, light - q, 1.0) != shadowed) return Truth::kNearBoundary;
     }
