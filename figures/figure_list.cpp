@@ -73,7 +73,7 @@ FigureSpec brabecFig7() {
       "The paper's own comparison at its own size: 800x600 window, 512x512 shadow map, one "
       "light, a scene of about 7000 triangles (ours is procedural: their model is not "
       "published). Top row (a-d) the full frames, bottom row (e-h) the red rectangle "
-      "magnified 4x with nearest-neighbour sampling, so that the shadow-map texels and the "
+      "magnified 8x with nearest-neighbour sampling, so that the shadow-map texels and the "
       "shadow levels of each filter can be counted.";
   f.scene = "brabec";
   f.width = 800;
@@ -89,7 +89,7 @@ FigureSpec brabecFig7() {
       withPaper(withFilter(render("(d,h) fast PCF 4x4, multipass (§4)", "legacy.fast-pcf"), 4),
                 "about 5 fps"),
   };
-  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 4}};
+  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 8}};  // magnified to about the panel's size
   f.paperNumbers =
       "§5, SGI Octane VPro/8, 800x600, 512x512 map, times include the shadow map: "
       "unfiltered 25-30 fps, PCF 2x2 about 10 fps, fast PCF 2x2 15-20 fps, fast PCF 4x4 about 5 fps.";
@@ -115,7 +115,7 @@ FigureSpec brabecFig8() {
       withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps"),
       withPaper(withFilter(render("(b) fast PCF 2x2", "legacy.fast-pcf"), 2), "about 10 fps"),
   };
-  f.closeups = {{0.55f, 0.22f, 0.15f, 0.15f, 4}};
+  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4}};
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }
@@ -152,7 +152,8 @@ FigureSpec everittFig2() {
   f.caption =
       "The shadowed scene from the eye (left), the same scene from the light (centre) and the "
       "light's depth buffer, the shadow map, with near depths dark and far depths light "
-      "(right; our own read-back of the depth texture, 24-bit depth shown as 8-bit grey).";
+      "(right; rendered by the figure module itself, depth linearised between the light's "
+      "near and far planes so that the grey levels are readable).";
   f.columns = 3;
   f.panels = {render("eye view (legacy.hw)", "legacy.hw"),
               view("light's view", PanelKind::kLightView),
@@ -583,7 +584,7 @@ std::vector<FigureSpec> chanFigures() {
       "grow away from the contact (d).",
       "brabec", 2,
       {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
-       render("(d) remapped alpha", "modern.smoothies", {{"remap", "true"}})}));
+       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
   out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
 
   std::vector<PanelSpec> p48;
@@ -643,7 +644,7 @@ std::vector<FigureSpec> chanFigures() {
       "the ground (right).",
       "boxes", 3,
       {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
-       buffers("alpha, remapped", "modern.smoothies", "alpha", {{"remap", "true"}}),
+       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
        render("result", "modern.smoothies")}));
   return out;
 }

@@ -58,7 +58,8 @@ th { background: #eee; }
 .paper { color: #05a; }
 .ok { color: #070; } .bad { color: #c00; }
 .inter { display: flex; flex-wrap: wrap; gap: 6px; }
-.inter figure { width: 220px; }
+.inter figure { max-width: 100%; }
+.inter img { height: 180px; width: auto; }
 nav li { margin: 2px 0; }
 )";
 

@@ -9,9 +9,11 @@
 // scale/bias and GL_MAP_COLOR (3.6.5), and the enables.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "core/context.h"
@@ -125,12 +127,22 @@ struct TransferState {
   Minmax minmax;
 };
 
+// The emulated state glPushAttrib saves (glspec121 6.1.14, tables 6.14-6.16: the imaging
+// enables belong to GL_ENABLE_BIT and GL_PIXEL_MODE_BIT, the scale/bias, border and
+// GL_MAP_COLOR parameters to GL_PIXEL_MODE_BIT; tables, filters and the color matrix stack
+// are not attributes).
+struct AttribSnapshot {
+  GLbitfield mask = 0;
+  TransferState transfer;  // the saved fields only are restored
+};
+
 // Per-context emulation state (stored with GlContext::setLayerState("imaging", ...)).
 struct State {
   GlDispatch driver;  // the entry points as the driver resolved them, before install()
   GlContext* context = nullptr;
   TransferState transfer;
   bool colorMatrixMode = false;  // glMatrixMode(GL_COLOR) is in effect
+  std::vector<AttribSnapshot> attribStack;  // parallel to the driver's attribute stack
   // Sticky error flags raised by the emulation, in the order raised (section 2.5).
   std::vector<GLenum> errors;
   // Accumulation buffer where the visual has none (section 4.2.4); 16-bit signed fixed point.
@@ -214,13 +226,6 @@ void packImage(const Image4& image, void* data, GLenum format, GLenum type,
                const PixelStore& store, bool clamp);
 // Returns internal components as RGBA per table 6.1.
 Rgba tableReturnValue(GLenum baseFormat, const Rgba& stored);
-
-}  // namespace sl::imaging::detail
-
-#include <algorithm>
-#include <thread>
-
-namespace sl::imaging::detail {
 
 constexpr size_t kParallelThreshold = 1u << 16;  // floats of work below which one core is faster
 
@@ -320,6 +325,8 @@ void emGetBooleanv(GLenum, GLboolean*);
 void emGetDoublev(GLenum, GLdouble*);
 void emPixelTransferf(GLenum, GLfloat);
 void emPixelTransferi(GLenum, GLint);
+void emPushAttrib(GLbitfield);
+void emPopAttrib();
 GLenum emGetError();
 
 }  // namespace sl::imaging::detail

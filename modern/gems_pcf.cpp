@@ -99,8 +99,8 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   const std::string samples =
       params.text("samples", std::to_string(defaultSamples), {"1", "4", "16"});
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(
-      params.number("offset-units", defaultOffsetUnits(params.shadowMapTexels), -1e7, 1e7));
+  const float units =
+      float(params.number("offset-units", defaultOffsetUnits(params.shadowMapTexels), -1e7, 1e7));
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, frame);

@@ -332,3 +332,43 @@ TEST(Pipeline, BytePathMatchesFloatPath) {
 
 }  // namespace
 }  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// glPushAttrib / glPopAttrib save and restore the emulated imaging enables and pixel-mode
+// parameters with the driver's own (6.1.14, tables 6.14-6.16), as legacy passes rely on.
+TEST(Pipeline, PushPopAttribRestoresImagingState) {
+  auto ctx = emulatedContext(2, 2);
+  glPushAttrib(GL_PIXEL_MODE_BIT | GL_ENABLE_BIT);
+  glEnable(GL_COLOR_TABLE);
+  glEnable(GL_CONVOLUTION_2D);
+  glPixelTransferf(GL_RED_SCALE, 0.5f);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_BLUE_BIAS, 0.25f);
+  glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
+  glEnable(GL_DEPTH_TEST);
+  glPopAttrib();
+  EXPECT_FALSE(glIsEnabled(GL_COLOR_TABLE));
+  EXPECT_FALSE(glIsEnabled(GL_CONVOLUTION_2D));
+  EXPECT_FALSE(glIsEnabled(GL_DEPTH_TEST));  // the driver's own state too
+  float v = 0;
+  glGetFloatv(GL_RED_SCALE, &v);
+  EXPECT_EQ(v, 1.0f);
+  glGetFloatv(GL_POST_COLOR_MATRIX_BLUE_BIAS, &v);
+  EXPECT_EQ(v, 0.0f);
+  GLint mode = 0;
+  glGetConvolutionParameteriv(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, &mode);
+  EXPECT_EQ(GLenum(mode), GLenum(GL_REDUCE));
+  // GL_ENABLE_BIT alone restores the enables but keeps pixel-mode parameters.
+  glPushAttrib(GL_ENABLE_BIT);
+  glEnable(GL_HISTOGRAM);
+  glPixelTransferf(GL_GREEN_BIAS, 0.125f);
+  glPopAttrib();
+  EXPECT_FALSE(glIsEnabled(GL_HISTOGRAM));
+  glGetFloatv(GL_GREEN_BIAS, &v);
+  EXPECT_EQ(v, 0.125f);
+  EXPECT_TRUE(drainErrors().empty());
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
