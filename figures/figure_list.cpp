@@ -73,7 +73,7 @@ FigureSpec brabecFig7() {
       "The paper's own comparison at its own size: 800x600 window, 512x512 shadow map, one "
       "light, a scene of about 7000 triangles (ours is procedural: their model is not "
       "published). Top row (a-d) the full frames, bottom row (e-h) the red rectangle "
-      "magnified 4x with nearest-neighbour sampling, so that the shadow-map texels and the "
+      "magnified 8x with nearest-neighbour sampling, so that the shadow-map texels and the "
       "shadow levels of each filter can be counted.";
   f.scene = "brabec";
   f.width = 800;
@@ -89,7 +89,7 @@ FigureSpec brabecFig7() {
       withPaper(withFilter(render("(d,h) fast PCF 4x4, multipass (§4)", "legacy.fast-pcf"), 4),
                 "about 5 fps"),
   };
-  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 4}};
+  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 8}};  // magnified to about the panel's size
   f.paperNumbers =
       "§5, SGI Octane VPro/8, 800x600, 512x512 map, times include the shadow map: "
       "unfiltered 25-30 fps, PCF 2x2 about 10 fps, fast PCF 2x2 15-20 fps, fast PCF 4x4 about 5 fps.";
@@ -115,7 +115,7 @@ FigureSpec brabecFig8() {
       withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps"),
       withPaper(withFilter(render("(b) fast PCF 2x2", "legacy.fast-pcf"), 2), "about 10 fps"),
   };
-  f.closeups = {{0.55f, 0.22f, 0.15f, 0.15f, 4}};
+  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4}};
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }
@@ -152,7 +152,8 @@ FigureSpec everittFig2() {
   f.caption =
       "The shadowed scene from the eye (left), the same scene from the light (centre) and the "
       "light's depth buffer, the shadow map, with near depths dark and far depths light "
-      "(right; our own read-back of the depth texture, 24-bit depth shown as 8-bit grey).";
+      "(right; rendered by the figure module itself, depth linearised between the light's "
+      "near and far planes so that the grey levels are readable).";
   f.columns = 3;
   f.panels = {render("eye view (legacy.hw)", "legacy.hw"),
               view("light's view", PanelKind::kLightView),
@@ -206,8 +207,9 @@ FigureSpec everittFig6() {
   f.caption =
       "The light faces the camera. Left: eye pixels per shadow-map texel (log scale, computed "
       "per pixel from the screen-space derivatives of the shadow-map coordinate): blue where "
-      "one texel covers many pixels (the map is magnified and its texels show as blocks), red "
-      "where many texels fall into one pixel. Centre: the shadowed eye view. Right: the light's "
+      "one texel covers 4 or more pixels (the map is magnified and its texels show as blocks), "
+      "green at one pixel per texel, red where 4 or more texels fall into one pixel; grey is "
+      "outside the light's frustum. Centre: the shadowed eye view. Right: the light's "
       "view; the part of its image that the eye sees up close is tiny.";
   f.scene = "dueling";
   f.columns = 3;
@@ -229,7 +231,7 @@ FigureSpec gemsFigures() {
   f.title = "One, four dithered and sixteen samples per pixel, and magnified";
   f.caption =
       "The chapter's ninja is not available: we use the Stanford bunny. 11-6: one hardware "
-      "2x2 compare per pixel (modern.hw, GL_LINEAR); 11-7: four samples in the dithered "
+      "2x2 compare per pixel (modern.gems16 with samples=1); 11-7: four samples in the dithered "
       "pattern of Fig. 11-4; 11-8: sixteen samples at offsets -1.5..1.5 texels. The bottom row "
       "(11-9) magnifies the shadow edge of each. A 256x256 map makes the differences visible.";
   f.scene = "bunny";
@@ -238,7 +240,7 @@ FigureSpec gemsFigures() {
   f.panels = {render("11-6 one sample", "modern.hw", {{"compare", "linear"}}),
               render("11-7 four dithered samples", "modern.gems4"),
               render("11-8 sixteen samples", "modern.gems16")};
-  f.closeups = {{0.62f, 0.2f, 0.16f, 0.16f, 4}};
+  f.closeups = {{0.74f, 0.12f, 0.2f, 0.2f, 4}};
   f.twins = false;
   return f;
 }
@@ -272,12 +274,15 @@ std::vector<FigureSpec> csmFigures() {
       "csm-fig1", "Figure 1", "PCF vs CSM under minification",
       "Trees seen from far away, so that many shadow-map texels fall into one pixel. PCF "
       "(hardware 2x2 compare) aliases; CSM filters the basis textures tri-linearly, and an "
-      "extra 5x5 blur hides the map's discretisation. Our trees are procedural stand-ins.",
+      "extra 5x5 blur hides the map's discretisation. Our trees are procedural stand-ins; "
+      "M = 16 (the paper does not give M for this figure).",
       "trees", 3,
       {far(render("PCF", "modern.hw"), 2.5f),
-       far(render("CSM trilinear", "modern.csm", {{"order", "4"}, {"filtering", "trilinear"}}), 2.5f),
+       far(render("CSM trilinear", "modern.csm",
+                  {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "0"}}),
+           2.5f),
        far(render("CSM trilinear + 5x5 blur", "modern.csm",
-                  {{"order", "4"}, {"filtering", "trilinear"}, {"blur", "5"}}),
+                  {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}}),
            2.5f)}));
   out.back().closeups = {{0.4f, 0.35f, 0.2f, 0.2f, 3}};
 
@@ -296,15 +301,18 @@ std::vector<FigureSpec> csmFigures() {
       "Scaling the reconstruction sharpens shadows; (b) an offset keeps the blur but may show "
       "limits at contact points.",
       "squares", 2,
-      {render("(a) scaled by 2", "modern.csm", {{"order", "16"}, {"blur", "5"}, {"scale", "2"}}),
-       render("(b) offset", "modern.csm", {{"order", "16"}, {"blur", "5"}, {"offset", "auto"}})}));
+      {render("(a) scaled by 2", "modern.csm",
+              {{"order", "16"}, {"blur", "5"}, {"scale", "2"}, {"offset", "0"}}),
+       render("(b) offset (the technique's default for M = 16)", "modern.csm",
+              {{"order", "16"}, {"blur", "5"}})}));
   out.back().closeups = {{0.55f, 0.45f, 0.25f, 0.25f, 3}};
 
   FigureSpec fig5 = csmFigure(
       "csm-fig5", "Figure 5", "A shadow map and its basis textures",
-      "The depth map and the sine and cosine basis textures B_i(z(p)) for M = 16, each RGBA "
-      "channel shown as its own image (positive blue, negative red in the paper; ours: the "
-      "stored 8-bit value as grey).",
+      "The depth map and the first sine and cosine basis textures B_i(z(p)) for M = 16 (the "
+      "layers modern.csm captures), each RGBA channel shown as its own image (the paper "
+      "colours positive blue and negative red; ours show the stored 8-bit value as grey, "
+      "0.5 = zero).",
       "brabec", 4,
       {view("shadow map", PanelKind::kShadowMap),
        buffers("basis textures", "modern.csm", "basis", {{"order", "16"}})});
@@ -327,26 +335,30 @@ std::vector<FigureSpec> csmFigures() {
       "csm-fig7", "Figure 7 (a-f)", "Filter modes on a scene of high depth complexity",
       "PCF loses thin branches; CSM with bilinear filtering gives the same picture; tri-linear "
       "filtering (16x anisotropic) and then 3x3, 5x5, 7x7 blurs improve it step by step. "
-      "2048x2048 map as in the paper; procedural trees stand in for the paper's.",
+      "2048x2048 map as in the paper; procedural trees stand in for the paper's; M = 16.",
       "trees", 3,
       {render("(a) PCF", "modern.hw"),
-       render("(b) CSM bilinear", "modern.csm", {{"order", "4"}, {"filtering", "bilinear"}}),
-       render("(c) CSM trilinear", "modern.csm", {{"order", "4"}, {"filtering", "anisotropic"}}),
+       render("(b) CSM bilinear", "modern.csm",
+              {{"order", "16"}, {"filtering", "bilinear"}, {"blur", "0"}}),
+       render("(c) CSM trilinear, 16x aniso", "modern.csm",
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "0"}}),
        render("(d) + 3x3", "modern.csm",
-              {{"order", "4"}, {"filtering", "anisotropic"}, {"blur", "3"}}),
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "3"}}),
        render("(e) + 5x5", "modern.csm",
-              {{"order", "4"}, {"filtering", "anisotropic"}, {"blur", "5"}}),
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "5"}}),
        render("(f) + 7x7", "modern.csm",
-              {{"order", "4"}, {"filtering", "anisotropic"}, {"blur", "7"}})});
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "7"}})});
   fig7.shadowMapTexels = 2048;
   fig7.closeups = {{0.45f, 0.3f, 0.18f, 0.18f, 3}};
   out.push_back(fig7);
 
   std::vector<PanelSpec> fig8;
   for (int texels : {256, 512, 1024})
-    for (const char* blur : {"1", "3", "7"})
-      fig8.push_back(withMap(render(std::to_string(texels) + "², blur " + blur + "x" + blur,
-                                    "modern.csm", {{"order", "4"}, {"blur", blur}}),
+    for (const char* blur : {"0", "3", "7"})
+      fig8.push_back(withMap(render(std::to_string(texels) + "², " +
+                                        (blur[0] == '0' ? std::string("no blur")
+                                                        : std::string("blur ") + blur + "x" + blur),
+                                    "modern.csm", {{"order", "16"}, {"blur", blur}}),
                              texels));
   out.push_back(csmFigure(
       "csm-fig8", "Figure 8", "Map resolution x blur size",
@@ -362,14 +374,14 @@ std::vector<FigureSpec> csmFigures() {
       "fence", 2,
       {render("(a) VSM", "modern.vsm", {{"blur", "5"}}),
        render("(b) CSM", "modern.csm", {{"order", "16"}, {"blur", "5"}})}));
-  out.back().closeups = {{0.3f, 0.3f, 0.25f, 0.25f, 3}};
+  out.back().closeups = {{0.15f, 0.04f, 0.3f, 0.25f, 3}};
 
   std::vector<PanelSpec> fig10;
-  for (float d : {1.0f, 2.0f, 4.0f, 8.0f})
+  for (float d : {1.0f, 2.0f, 3.0f, 4.0f})
     fig10.push_back(far(render("CSM, distance x" + std::to_string(int(d)), "modern.csm",
-                               {{"order", "4"}, {"filtering", "trilinear"}, {"blur", "5"}}),
+                               {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}}),
                         d));
-  for (float d : {1.0f, 2.0f, 4.0f, 8.0f})
+  for (float d : {1.0f, 2.0f, 3.0f, 4.0f})
     fig10.push_back(far(render("PCF, distance x" + std::to_string(int(d)), "modern.hw"), d));
   out.push_back(csmFigure(
       "csm-fig10", "Figure 10", "Minification sequence",
@@ -399,17 +411,20 @@ std::vector<FigureSpec> csmFigures() {
        {"42", "39", "32", "19"}},
       {{"", "", "", ""}, {"62", "60", "53", "36"}, {"52", "49", "41", "24"},
        {"41", "38", "28", "14"}}};
-  const char* blurs[] = {"1", "3", "7"};
+  const char* blurs[] = {"0", "3", "7"};
+  const char* blurNames[] = {"none", "3x3", "7x7"};
   const char* orders[] = {"PCF", "4", "8", "16"};
   for (int c = 0; c < 3; ++c)
     for (int m = 0; m < 4; ++m) {
       if (m == 0 && c > 0) continue;
       for (int s = 0; s < 4; ++s) {
-        const std::string label = std::string("C=") + blurs[c] + "x" + blurs[c] + " " +
+        const std::string label = std::string("C=") + blurNames[c] + " " +
                                   (m == 0 ? "PCF" : std::string("M=") + orders[m]) +
                                   " S=" + sizes[s];
         PanelSpec p = m == 0 ? render(label, "modern.hw")
-                             : render(label, "modern.csm", {{"order", orders[m]}, {"blur", blurs[c]}});
+                             : render(label, "modern.csm",
+                                      {{"order", orders[m]}, {"blur", blurs[c]},
+                                       {"filtering", "trilinear"}, {"anisotropy", "16"}});
         p.shadowMapTexels = std::stoi(sizes[s]);
         p.paperNumbers = std::string(paper[c][m][s]) + " fps";
         table.panels.push_back(p);
@@ -421,6 +436,7 @@ std::vector<FigureSpec> csmFigures() {
 
 // ---------------------------------------------------------------- Chan 2004 thesis
 constexpr const char* kChan = "Chan 2004 (MIT thesis)";
+constexpr float kSmoothieWidthPerRadius = 0.5f;  // smoothie width (map side = 1) per unit radius
 
 FigureSpec chanFigure(std::string id, std::string figure, std::string title, std::string caption,
                       std::string scene, int columns, std::vector<PanelSpec> panels) {
@@ -492,7 +508,9 @@ std::vector<FigureSpec> chanFigures() {
       "chan-3-7", "Figure 3-7", "Image quality: shadow map, hybrid, shadow volumes",
       "Rows: three scenes of high shadow complexity (our stand-ins: procedural trees, the "
       "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
-      "1024² shadow map, the hybrid method with the same map, shadow volumes.",
+      "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
+      "dragon has holes, so the volume-based columns skip it as a caster (counted in "
+      "open_casters_skipped): compare its missing shadow on the right.",
       "trees", 3, p37);
   f37.shadowMapTexels = 1024;
   out.push_back(f37);
@@ -511,11 +529,13 @@ std::vector<FigureSpec> chanFigures() {
   for (const char* scene : {"trees", "dragon", "brabec"}) {
     PanelSpec sv = render(std::string(scene) + " SV", "modern.volumes");
     sv.scene = scene;
+    sv.counter = "volume_coverage";
     p310.push_back(sv);
     for (int texels : {256, 512, 1024}) {
       PanelSpec h = withMap(render(std::string(scene) + " H " + std::to_string(texels), "modern.hybrid"),
                             texels);
       h.scene = scene;
+      h.counter = "silhouette_fraction";
       p310.push_back(h);
     }
   }
@@ -553,7 +573,7 @@ std::vector<FigureSpec> chanFigures() {
       "soft shadow edges.",
       "cylinder", 4,
       {view("(a) shadow map", PanelKind::kShadowMap),
-       buffers("(b) smoothie depth", "modern.smoothies", "depth"),
+       buffers("(b) smoothie depth", "modern.smoothies", "smoothie-depth"),
        buffers("(c) smoothie alpha", "modern.smoothies", "alpha"),
        withPaper(render("(d) smoothies", "modern.smoothies"), "39 fps, 10,000 triangles")}));
 
@@ -564,7 +584,7 @@ std::vector<FigureSpec> chanFigures() {
       "grow away from the contact (d).",
       "brabec", 2,
       {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
-       render("(d) remapped alpha", "modern.smoothies", {{"remap", "true"}})}));
+       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
   out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
 
   std::vector<PanelSpec> p48;
@@ -577,26 +597,31 @@ std::vector<FigureSpec> chanFigures() {
     p48.push_back(withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
                             paperMs[row][0]));
     p48.push_back(withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
-    p48.push_back(withPaper(withMap(render(n + " smoothie 0.2", "modern.smoothies", {{"size", "0.2"}}), texels),
-                            paperMs[row][2]));
-    p48.push_back(withPaper(withMap(render(n + " smoothie 0.8", "modern.smoothies", {{"size", "0.8"}}), texels),
-                            paperMs[row][3]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}), texels),
+        paperMs[row][2]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.1", "modern.smoothies", {{"width", "0.1"}}), texels),
+        paperMs[row][3]));
     ++row;
   }
   FigureSpec f48 = chanFigure(
       "chan-4-8", "Figure 4-8", "Shadow edges: shadow map, 16-sample PCF, smoothies, with times",
       "The cylinder's shadow with 256², 512² and 1024² maps (rows). Columns: one comparison "
       "per pixel; 16-sample PCF (modern.gems16, our stand-in for the paper's bicubic "
-      "16-sample filter); smoothies of size 0.2 and 0.8. Times per frame beside the paper's "
-      "(GeForce FX 5950 class GPU).",
+      "16-sample filter); smoothies of size 0.2 and 0.8 in the thesis's units, here widths "
+      "0.025 and 0.1 of the light's image (the same 1:4 ratio). Times per frame beside the "
+      "paper's (GeForce FX 5950 class GPU).",
       "cylinder", 4, p48);
   f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};
   out.push_back(f48);
 
   std::vector<PanelSpec> p49;
   for (float radius : {0.05f, 0.1f, 0.2f}) {
+    // The smoothie width stands for the light's size: it grows with the radius.
+    const std::string width = std::to_string(radius * kSmoothieWidthPerRadius).substr(0, 5);
     PanelSpec s = render("smoothies, light radius " + std::to_string(radius).substr(0, 4),
-                         "modern.smoothies");
+                         "modern.smoothies", {{"width", width}});
     PanelSpec r = render("ray traced, light radius " + std::to_string(radius).substr(0, 4),
                          "reference.soft");
     s.lightRadius = r.lightRadius = radius;
@@ -604,8 +629,8 @@ std::vector<FigureSpec> chanFigures() {
   }
   FigureSpec f49 = chanFigure(
       "chan-4-9", "Figure 4-9", "Smoothies vs ray-traced soft shadows for growing lights",
-      "Left: smoothies (1024² buffer); right: Monte Carlo ray-traced visibility of a spherical "
-      "light (reference.soft). Each row a larger light; the error column measures the "
+      "Left: smoothies (1024² buffer, width 0.5 x the light radius); right: Monte Carlo "
+      "ray-traced visibility of a spherical light (reference.soft). Each row a larger light; the error column measures the "
       "smoothie against the ray tracer with the same light.",
       "cylinder", 2, p49);
   f49.shadowMapTexels = 1024;
@@ -619,7 +644,7 @@ std::vector<FigureSpec> chanFigures() {
       "the ground (right).",
       "boxes", 3,
       {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
-       buffers("alpha, remapped", "modern.smoothies", "alpha", {{"remap", "true"}}),
+       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
        render("result", "modern.smoothies")}));
   return out;
 }

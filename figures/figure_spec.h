@@ -47,6 +47,7 @@ struct PanelSpec {
   bool mask = false;                          // show the visibility mask instead of colour
   std::string intermediate;  // kIntermediates: substring of the PassImage names to show
   std::string plot;          // kPlot: which chart (see plots.h)
+  std::string counter;       // Frame::counters entry a chart plots for this panel
   std::string paperNumbers;  // what the paper reports for this panel, quoted, or empty
   bool closeups = true;      // apply the figure's close-ups to this panel
 };

@@ -39,6 +39,8 @@ namespace {
 constexpr int kPlotWidth = 900;   // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;  // heat-map full scale: a whole visibility step
+constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
+constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 
 const Technique* lookup(const std::string& name) {
   for (const Technique& t : allTechniques())
@@ -315,6 +317,71 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
   return out;
 }
 
+// The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels,
+// then the close-ups; a missing panel is a dark red block of the panel's size.
+Image stackRows(const std::vector<Image>& rows, int gap) {
+  int w = 0, h = 0;
+  for (const Image& r : rows) {
+    w = std::max(w, r.width);
+    h += r.height + (h > 0 ? gap : 0);
+  }
+  Image out(std::max(w, 1), std::max(h, 1), 3, 1.0f);
+  int y0 = h;
+  for (const Image& r : rows) {
+    y0 -= r.height;
+    for (int j = 0; j < r.height; ++j)
+      for (int i = 0; i < r.width; ++i)
+        for (int c = 0; c < 3; ++c) out.at(i, y0 + j, c) = r.at(i, j, c);
+    y0 -= gap;
+  }
+  return out;
+}
+
+Image shrinkToWidth(const Image& image, int maxWidth) {
+  const int factor = (image.width + maxWidth - 1) / maxWidth;
+  if (factor <= 1) return image;
+  Image out(image.width / factor, image.height / factor, image.channels);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < image.channels; ++c) {
+        float sum = 0;
+        for (int j = 0; j < factor; ++j)
+          for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j, c);
+        out.at(x, y, c) = sum / float(factor * factor);
+      }
+  return out;
+}
+
+void writeComposite(Renderer& r, FigureResult& fig) {
+  const FigureSpec& s = fig.spec;
+  if (s.table) return;
+  std::vector<Image> panels, closeups;
+  for (const PanelResult& p : fig.panels) {
+    if (p.spec.kind == PanelKind::kPlot || p.spec.kind == PanelKind::kIntermediates) continue;
+    if (p.ok && !p.images.empty()) {
+      panels.push_back(readPng((fs::path(r.outDir()) / p.images.front().file).string()));
+      for (const ImageFile& c : p.closeups)
+        closeups.push_back(readPng((fs::path(r.outDir()) / c.file).string()));
+    } else {
+      Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);
+      for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
+      panels.push_back(missing);
+    }
+  }
+  if (panels.empty()) return;
+  constexpr int kGap = 6;
+  std::vector<Image> rows;
+  for (size_t i = 0; i < panels.size(); i += size_t(s.columns))
+    rows.push_back(sideBySide(std::vector<Image>(panels.begin() + long(i),
+                                                 panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
+                              kGap));
+  for (size_t i = 0; i < closeups.size(); i += size_t(s.columns))
+    rows.push_back(sideBySide(std::vector<Image>(closeups.begin() + long(i),
+                                                 closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
+                              kGap));
+  fig.composite = r.write(s.id, "figure", shrinkToWidth(stackRows(rows, kGap), kCompositeMaxWidth));
+}
+
 // Step 5: charts.
 void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
   std::string why;
@@ -345,23 +412,18 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
                          png, kPlotWidth, kPlotHeight);
     } else if (chart == "chan-3-10") {
       // Shares of the image: shadow-volume coverage (volumes) and silhouette pixels (hybrid),
-      // from the techniques' counters (names containing "coverage"/"silhouette").
+      // from the counter each panel names.
       std::vector<std::string> rows;
       std::vector<std::vector<double>> values;
       for (const PanelResult* p : rendered) {
-        double share = -1;
-        for (const auto& [name, value] : p->counters)
-          if (name.find("silhouette") != std::string::npos || name.find("coverage") != std::string::npos) {
-            share = value;
-            break;
-          }
-        if (share < 0) continue;
+        const auto it = p->counters.find(p->spec.counter);
+        if (p->spec.counter.empty() || it == p->counters.end()) continue;
         rows.push_back(p->spec.label);
-        values.push_back({share * (share <= 1.0 ? 100.0 : 1.0)});
+        values.push_back({100.0 * it->second});  // the counters are fractions of the image
       }
       if (rows.empty()) {
-        plot.reason = "no panel reported a silhouette or coverage counter (modern.hybrid and "
-                      "modern.volumes not available yet)";
+        plot.reason = "no panel reported its counter (modern.hybrid: silhouette_fraction, "
+                      "modern.volumes: volume_coverage)";
         return;
       }
       plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows,
@@ -463,6 +525,11 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
     }
     for (PanelResult& p : fr.panels)
       if (p.spec.kind == PanelKind::kPlot) drawPlot(renderer, fr, p);
+    try {
+      writeComposite(renderer, fr);
+    } catch (const std::exception& e) {
+      std::cerr << "        could not compose " << f->id << "/figure.png: " << e.what() << std::endl;
+    }
     renderer.forgetFrames();
     fr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
     results.push_back(std::move(fr));

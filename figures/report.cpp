@@ -58,7 +58,8 @@ th { background: #eee; }
 .paper { color: #05a; }
 .ok { color: #070; } .bad { color: #c00; }
 .inter { display: flex; flex-wrap: wrap; gap: 6px; }
-.inter figure { width: 220px; }
+.inter figure { max-width: 100%; }
+.inter img { height: 180px; width: auto; }
 nav li { margin: 2px 0; }
 )";
 
@@ -226,6 +227,9 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
       writePanelCell(h, p);
       h << "</div>\n";
     }
+  if (!f.composite.empty())
+    h << "<p><small>The whole figure as one image: <a href=\"" << esc(f.composite) << "\">"
+      << esc(f.composite) << "</a></small></p>\n";
   writeTwins(h, f);
   if (!s.paperNumbers.empty())
     h << "<p class=paper>The paper's numbers: " << esc(s.paperNumbers) << "</p>\n";

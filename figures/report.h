@@ -42,7 +42,8 @@ struct PanelResult {
 struct FigureResult {
   FigureSpec spec;
   std::vector<PanelResult> panels;
-  double seconds = 0;  // wall time to make the figure
+  double seconds = 0;     // wall time to make the figure
+  std::string composite;  // the whole figure as one PNG (empty for tables)
 };
 
 struct ReportInfo {

@@ -133,15 +133,18 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
   if (target != GL_HISTOGRAM || checkColorFormat(format, type) != GL_NO_ERROR)
     return recordError(s, GL_INVALID_ENUM);
   Histogram& h = s.transfer.histogram;
-  bool keep[4];
-  keptComponents(h.format, keep);
-  // Counters are returned as counts (not normalised) for every type: the histogram holds
-  // integers, and a normalised conversion would clamp every count above 1 to the maximum.
-  // DEVIATION (glspec121 6.1.9 "as GetTexImage"): the spec's wording would normalise; every
-  // implementation of EXT_histogram (and the reference) returns the counts themselves.
+  // Counters are returned as counts for every type (EXT_histogram: "the histogram table
+  // contains counts"; a normalised conversion would saturate every count above 1); the
+  // parity suite shows the reference returns them the same way.
   Image4 image(h.width, 1);
   for (int i = 0; i < h.width; ++i)
-    for (int c = 0; c < 4; ++c) image.px[size_t(i) * 4 + c] = keep[c] ? float(h.counts[i][c]) : 0.0f;
+  {
+    // Table 6.1: the format's components, the constants 0 (R, G, B) and 1 (A) for the rest.
+    const Rgba stored{float(h.counts[i][0]), float(h.counts[i][1]), float(h.counts[i][2]),
+                      float(h.counts[i][3])};
+    const Rgba v = tableReturnValue(h.format, stored);
+    for (int c = 0; c < 4; ++c) image.px[size_t(i) * 4 + c] = v[c];
+  }
   if (h.width > 0) {
     // Counts go out unconverted: write them through the float path, then cast per type.
     Image4 asFloat = image;
@@ -187,12 +190,12 @@ void emGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, voi
   if (target != GL_MINMAX || checkColorFormat(format, type) != GL_NO_ERROR)
     return recordError(s, GL_INVALID_ENUM);
   Minmax& m = s.transfer.minmax;
-  bool keep[4];
-  keptComponents(m.format, keep);
+  // Table 6.1 maps the format's components; absent ones read 0 (R, G, B) or 1 (A).
+  const Rgba lo = tableReturnValue(m.format, m.min), hi = tableReturnValue(m.format, m.max);
   Image4 image(2, 1);
   for (int c = 0; c < 4; ++c) {
-    image.px[c] = keep[c] ? m.min[c] : 0.0f;
-    image.px[4 + c] = keep[c] ? m.max[c] : 0.0f;
+    image.px[c] = lo[c];
+    image.px[4 + c] = hi[c];
   }
   packImage(image, values, format, type, packStore(s.driver), type != GL_FLOAT);
   if (reset) resetMinmax(m);

@@ -26,34 +26,47 @@ int depthBits(const RenderParams& params);
 // RGBA32F.
 GLenum encodedDepthFormat(const RenderParams& params);
 
-// The 1D linear ramp of §2: 2^bits texels, texel k = k / (2^bits - 1), GL_NEAREST, clamped.
-// (For float arithmetic an 8-bit ramp is bound but not read.)
-Texture makeRampTexture(int bits);
+// The 1D linear ramp of §2: N = 2^bits texels (256 or 4096; 256 for float, where it is not
+// read), texel k = k / (N - 1), GL_NEAREST, clamped, 8- or 16-bit like legacy_gl's ramp.
+int rampTexels(const RenderParams& params);
+Texture makeRampTexture(const RenderParams& params);
 
-// World position -> ramp coordinate s: the light's eye-space depth mapped from [near, far] to
-// [0, 1] (the texgen plane of §2, given in world space).
-glm::vec4 rampPlane(const Scene& scene);
+// World position -> d = (-z_light_eye - near) / (far - near), the light depth over the light's
+// depth range (legacy_gl's lightEyeToRamp before it places d on the ramp's texel centres).
+glm::vec4 depthPlane(const Scene& scene);
 
-// The depth bias of §2, in units of the ramp coordinate (--param bias, default two 8-bit steps),
-// subtracted from the fragment's coordinate in the camera pass.
-constexpr float kDefaultBiasSteps = 2.0f;  // two 8-bit ramp steps
-float bias(const RenderParams& params);
+// The depth bias of §2 (--param depth-bias, in 8-bit steps of d at every precision, as
+// legacy_gl), subtracted from d in the camera pass.
+constexpr double kDefaultDepthBiasSteps = 2.0;  // as legacy_gl/brabec_seidel_passes.h
+float depthBias(const RenderParams& params);
 
-// S · P_light · L^-1 (projective lookup of the map).
-glm::mat4 worldToShadowMap(const Scene& scene);
+// Sets the uniforms of 'faithful' arithmetic that describe the legacy colour buffer and its
+// pipeline: uBufferMax, uReadScale, uSaturateScale, uTableScale, uTableLastIndex, uAccumMode,
+// uAccumReturnScale (see ramp_shadow.frag and pcf_shadow.frag).
+void setLegacyArithmeticUniforms(const Program& program, const RenderParams& params);
 
-// The light's view-projection with the image plane moved by `offsetTexels` map texels
-// (Figure 3: the jittered passes of §3).
-glm::mat4 jitteredLightViewProjection(const Scene& scene, glm::vec2 offsetTexels, int texels);
+// The texture matrices of texgen.vert, computed exactly as legacy_gl computes the matrices it
+// loads (same formulas, same order of products, so the same floats):
+//   light eye -> ramp coordinate s = (0.5 + (N - 1)(d - bias)) / N  (legacy lightEyeToRamp)
+glm::mat4 eyeToRamp(const Scene& scene, int rampTexels, double bias);
+//   camera eye -> ramp coordinate of the camera pass (§2 "from camera to light source space")
+glm::mat4 cameraEyeToRamp(const Scene& scene, const RenderParams& params);
+//   camera eye -> projective map coordinates, + offsetTexels / texels (§4 Fig. 6)
+glm::mat4 cameraEyeToShadowMap(const Scene& scene, int texels, glm::vec2 offsetTexels);
+// uModel, uModelView = view · model and uModelViewProjection = projection · (view · model), as
+// the fixed-function pipeline forms them from glLoadMatrix(view) + glMultMatrix(model).
+void setTexgenObjectUniforms(const Program& program, const Object& object, const glm::mat4& view,
+                             const glm::mat4& projection);
 
-// Renders the casters from the light (jittered by `offsetTexels`) with bs_encode_depth.frag into
+// Renders the casters from the light, the image plane moved by `offsetTexels` map texels
+// (Figure 3 jitter), with texgen.vert + bs_encode_depth.frag into
 // the channels of `target` that `channels` enables (glColorMask); the target stays bound.
 void renderEncodedDepth(const GpuScene& gpu, const RenderParams& params, const Texture& ramp,
                         const RenderTarget& target, glm::bvec4 channels, glm::vec2 offsetTexels);
 
 // A colour target for encoded depth, cleared to the far plane (1) and depth 1.
 RenderTarget makeEncodedDepthTarget(const RenderParams& params);
-// GL_NEAREST, clamp to edge on a map texture.
+// GL_NEAREST and a far-plane border (1: lit) on a map texture, as legacy_gl allocates maps.
 void setMapSampling(GLuint texture);
 
 // One group of up to four samples packed in one map (§3 channel packing, §4 phases).
@@ -70,5 +83,10 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
 
 // The --param keys every Brabec–Seidel twin understands.
 std::vector<std::string> paramKeys();
+
+// §3 Figure 4 / footnote 2: the colour-table output of each channel for a group of `samples`
+// samples, as a share of the channel maximum M: ceil(M / samples) each, the last channel the
+// rest, so a fully shadowed group sums to M exactly.
+glm::vec4 shadowShares(const RenderParams& params, int samples);
 
 }  // namespace sl::modern::bs

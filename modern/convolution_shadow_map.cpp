@@ -15,6 +15,7 @@
 //                                   (§3.2.2), clamp to [0, 1] (§4.1); csm_shadow.frag
 #include "modern/convolution_shadow_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -26,25 +27,24 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
-constexpr int kDefaultOrder = 16;           // M of Fig. 4, 5 (Table 1 also measures 4 and 8)
-constexpr int kMaxOrder = 64;               // 32 RGBA layers
-constexpr double kDefaultAlpha = 1.0;       // §3.2.1; removes most of the Gibbs overshoot
+constexpr int kDefaultOrder = 16;      // M of Fig. 4, 5 (Table 1 also measures 4 and 8)
+constexpr int kMaxOrder = 64;          // 32 RGBA layers
+constexpr double kDefaultAlpha = 1.0;  // §3.2.1; removes most of the Gibbs overshoot
 constexpr double kMaxAlpha = 50.0;
-constexpr double kMaxOffset = 0.5;          // in linear depth units (the whole range is 1)
-constexpr double kDefaultScale = 1.0;       // §3.2.2 suggests 2.0 as the alternative to offset
+constexpr double kMaxOffset = 0.5;  // in linear depth units (the whole range is 1)
 constexpr double kMaxScale = 8.0;
-constexpr int kDefaultBlurTaps = 3;         // 3x3 (Table 1's middle row)
-constexpr int kChannelsPerLayer = 4;        // RGBA
+constexpr int kDefaultBlurTaps = 3;                        // 3x3 (Table 1's middle block)
+constexpr int kChannelsPerLayer = 4;                       // RGBA
 constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
-constexpr int kOffsetSearchSteps = 20000;   // resolution of the default-offset search on (0, 1]
+constexpr int kOffsetSearchSteps = 20000;  // resolution of the default-offset search on (0, 1]
 
 struct CsmSettings {
-  int order = kDefaultOrder;     // M
+  int order = kDefaultOrder;  // M
   double alpha = kDefaultAlpha;
-  double offset = 0.0;           // subtracted from d (§3.2.2)
-  double scale = kDefaultScale;  // multiplies f (§3.2.2)
-  GLenum format = GL_RGBA8;      // storage of the basis layers
-  bool encodeUnsigned = true;    // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
+  double offset = 0.0;         // subtracted from d (§3.2.2)
+  double scale = 1.0;          // multiplies f (§3.2.2)
+  GLenum format = GL_RGBA8;    // storage of the basis layers
+  bool encodeUnsigned = true;  // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
   int blurTaps = kDefaultBlurTaps;
   MapFiltering filtering;
   int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
@@ -58,9 +58,20 @@ CsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
   CsmSettings s;
   s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
   s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
-  s.offset = params.extra.count("offset") ? params.number("offset", 0.0, 0.0, kMaxOffset)
-                                          : csmDefaultOffset(s.order, s.alpha);
-  s.scale = params.number("scale", kDefaultScale, 1.0, kMaxScale);
+  // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset.
+  const auto offset = params.extra.find("offset");
+  s.offset = offset == params.extra.end() || offset->second == "auto"
+                 ? csmDefaultOffset(s.order, s.alpha)
+                 : params.number("offset", 0.0, 0.0, kMaxOffset);
+  // "auto" (or no value): 1 / f(offset) where the attenuated step tops out below 1 (small M
+  // with alpha > 0: M = 1, alpha = 1 peaks at 0.73), so that lit surfaces are lit (§3.2.2:
+  // "after offsetting, f goes through 1"); 1 otherwise. §3.2.2's own alternative is 2.
+  const auto scale = params.extra.find("scale");
+  if (scale == params.extra.end() || scale->second == "auto") {
+    s.scale = std::max(1.0, 1.0 / csmReconstructedStep(s.offset, s.order, s.alpha));
+  } else {
+    s.scale = params.number("scale", 1.0, 1.0, kMaxScale);
+  }
   const std::string storage = params.text("storage", "8", {"8", "16", "float"});
   s.format = storage == "8" ? GL_RGBA8 : storage == "16" ? GL_RGBA16F : GL_RGBA32F;
   s.encodeUnsigned = storage == "8";
@@ -109,7 +120,7 @@ RenderTarget renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams&
 LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s, Frame& frame) {
   PassTimer timer(frame, "2 basis textures (MRT)");
   LayeredMap basis = makeLayeredMap(depth.width, s.layers(), s.format, s.filtering.mipmaps);
-  Program program("fullscreen_triangle.vert.glsl", "csm_basis.frag.glsl");
+  Program program("fullscreen.vert.glsl", "csm_basis.frag.glsl");
   program.use();
   program.set("uLinearDepth", 0);
   program.set("uOrder", s.order);
@@ -182,13 +193,21 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
   const Image linear = readAttachment(depth, 0);
   frame.intermediates.push_back(
       {"1-linear-depth", "linear light-space depth z(p) (§4.1)", channel(linear, 0)});
-  // Fig. 5: the basis images; shown for k = 1 with [-1, 1] mapped to [0, 1].
+  // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one, the
+  // stored values with [-1, 1] shown as [0, 1].
   const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
   const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
-  frame.intermediates.push_back({"2-basis-sin-k1", "sin(c_1 z) after blur (Fig. 5)",
-                                 readLayer(basis, 0, 0, scale, bias)});
-  frame.intermediates.push_back({"2-basis-cos-k1", "cos(c_1 z) after blur",
-                                 readLayer(basis, s.sinLayers(), 0, scale, bias)});
+  auto range = [&](int layer) {
+    const int first = kChannelsPerLayer * layer + 1;
+    return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
+  };
+  for (int layer = 0; layer < s.sinLayers(); ++layer)
+    frame.intermediates.push_back({"2-basis-sin-" + range(layer),
+                                   "sin(c_k z), " + range(layer) + ", after blur (Fig. 5)",
+                                   readLayer(basis, layer, scale, bias)});
+  frame.intermediates.push_back({"2-basis-cos-" + range(0),
+                                 "cos(c_k z), " + range(0) + ", after blur",
+                                 readLayer(basis, s.sinLayers(), scale, bias)});
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -203,6 +222,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   reconstructInCameraPass(gpu, params, basis, s, frame);
   frame.counters["order M"] = s.order;
   frame.counters["offset"] = s.offset;
+  frame.counters["scale"] = s.scale;
   frame.counters["basis layers"] = s.layers();
   frame.counters["anisotropy"] = s.filtering.anisotropy;
   return frame;
@@ -240,8 +260,7 @@ Technique convolutionShadowMapTechnique() {
       "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering",
-                 "anisotropy"};
+  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering", "anisotropy"};
   t.render = render;
   return t;
 }

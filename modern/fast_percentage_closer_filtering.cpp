@@ -54,7 +54,7 @@ std::vector<RenderTarget> packNeighbours(const RenderParams& params, const Rende
                                          const std::vector<Phase>& phases, Frame& frame) {
   PassTimer timer(frame, "2 convolution packing (Eq. 1)");
   std::vector<RenderTarget> packed;
-  Program program("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
   FullScreenTriangle triangle;
   glDisable(GL_DEPTH_TEST);
   for (const Phase& phase : phases) {
@@ -80,7 +80,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const std::vector<Phase>& phases = params.filter == 2 ? kFootprint2 : kFootprint4;
   Frame frame;
   GpuScene gpu(scene);
-  const Texture ramp = bs::makeRampTexture(bs::depthBits(params));
+  const Texture ramp = bs::makeRampTexture(params);
   const RenderTarget encoded = renderDepthAsColourFromLight(gpu, params, ramp, frame);
   const std::vector<RenderTarget> packed = packNeighbours(params, encoded, phases, frame);
   std::vector<bs::SampleGroup> groups;

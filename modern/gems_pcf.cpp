@@ -11,6 +11,7 @@
 //   2. filterInCameraPass     — camera view; gems_pcf.frag sums offset_lookup (§11.3/§11.4)
 #include "modern/gems_pcf.h"
 
+#include <algorithm>
 #include <string>
 
 #include "core/errors.h"
@@ -22,13 +23,21 @@ using namespace sl::gl;
 
 namespace {
 // The 4x4 region reaches 2 texels from the lookup point, where one reference depth is compared
-// with the depths of neighbouring texels. A slanted receiver needs twice modern.hw's slope
-// factor; a curved one (the top of a sphere, where the slope is zero) needs a constant
-// offset of the order of the surface's sag over two texels: 4000 units of the 24-bit depth
-// buffer (2.4e-4 of the depth range) removed the acne rings on the brabec spheres at 256^2
-// (looked at; the chapter itself does not discuss bias). Both are --param overridable.
+// with the depths of neighbouring texels (the chapter does not discuss bias). A slanted
+// receiver needs twice modern.hw's slope factor. A curved one needs a constant offset of the
+// order of the surface's sag over two texels, which grows with the texel's area: 40000 units
+// of the 24-bit depth buffer (2.4e-3 of the depth range) at 256^2 removed the acne on the
+// brabec spheres (looked at, gems4 dithers it into dots), scaled by (256 / size)^2 for other
+// sizes. Both are --param overridable.
 constexpr float kDefaultOffsetFactor = 4.0f;
-constexpr float kDefaultOffsetUnits = 4000.0f;
+constexpr float kOffsetUnitsAt256 = 40000.0f;
+constexpr float kOffsetUnitsReferenceSize = 256.0f;
+constexpr float kMinOffsetUnits = 4.0f;  // modern.hw's constant
+
+float defaultOffsetUnits(int shadowMapTexels) {
+  const float ratio = kOffsetUnitsReferenceSize / float(shadowMapTexels);
+  return std::max(kOffsetUnitsAt256 * ratio * ratio, kMinOffsetUnits);
+}
 
 // Pass 1 (§11.3, "NVIDIA GPUs have built-in percentage-closer filtering"): the depth map
 // with compare mode and linear filtering, so that one lookup is a bilinear 2x2 PCF.
@@ -90,7 +99,8 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   const std::string samples =
       params.text("samples", std::to_string(defaultSamples), {"1", "4", "16"});
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
+  const float units =
+      float(params.number("offset-units", defaultOffsetUnits(params.shadowMapTexels), -1e7, 1e7));
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, frame);

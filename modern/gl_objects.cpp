@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/context.h"
 #include "core/errors.h"
 
 namespace sl::modern {
@@ -101,6 +102,40 @@ Program::Program(const std::string& vertexFile, const std::string& fragmentFile,
     glGetProgramInfoLog(program_.id(), sizeof(log), nullptr, log);
     throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
   }
+}
+
+namespace {
+struct ProgramCache {
+  std::map<std::string, std::unique_ptr<Program>> programs;
+  ProgramCache() = default;
+  ProgramCache(const ProgramCache&) = delete;
+  ProgramCache& operator=(const ProgramCache&) = delete;
+  // Runs after the GL context is gone (GlContext::Impl destroys it first): nothing to delete.
+  ~ProgramCache() {
+    for (auto& entry : programs) entry.second->abandon();
+  }
+};
+constexpr const char* kProgramCacheKey = "modern.programs";
+}  // namespace
+
+const Program& cachedProgram(const std::string& vertexFile, const std::string& fragmentFile,
+                             const std::vector<std::pair<std::string, std::string>>& defines) {
+  GlContext* context = GlContext::current();
+  if (context == nullptr) throw GlError("no current GL context for " + fragmentFile);
+  auto* cache = static_cast<ProgramCache*>(context->layerState(kProgramCacheKey));
+  if (cache == nullptr) {
+    auto fresh = std::make_shared<ProgramCache>();
+    cache = fresh.get();
+    context->setLayerState(kProgramCacheKey, fresh);
+  }
+  std::string key = vertexFile + "|" + fragmentFile;
+  for (const auto& [k, v] : defines) key += "|" + k + "=" + v;
+  auto it = cache->programs.find(key);
+  if (it == cache->programs.end())
+    it = cache->programs
+             .emplace(key, std::make_unique<Program>(vertexFile, fragmentFile, defines))
+             .first;
+  return *it->second;
 }
 
 void Program::use() const { glUseProgram(program_.id()); }

@@ -35,7 +35,7 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(factor, units);
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
@@ -75,7 +75,7 @@ void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint 
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "hw_shadow.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "hw_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));

@@ -25,10 +25,12 @@ namespace {
 constexpr int kSamplesPerMap = 4;  // R, G, B, A
 constexpr int kLargestFootprint = 4;
 
-// Figure 3: sample (i, j) of an n x n footprint lies at the centre of stratum (i, j) of the
-// texel; the image plane moves by that position relative to the texel centre.
+// Figure 3: sample (i, j) of an n x n footprint (row by row from the bottom left, as
+// legacy.pcf numbers them) lies at the centre of stratum (i, j) of the texel; the image plane
+// moves by minus that position, so texel (x, y) stores the depth seen at its sample.
 glm::vec2 jitterTexels(int i, int j, int n) {
-  return glm::vec2((float(i) + 0.5f) / float(n) - 0.5f, (float(j) + 0.5f) / float(n) - 0.5f);
+  const glm::vec2 sample((float(i) + 0.5f) / float(n) - 0.5f, (float(j) + 0.5f) / float(n) - 0.5f);
+  return -sample;
 }
 
 // Pass 1 (§3, Figure 3): n^2 jittered light passes packed four to a map, one channel each.
@@ -53,7 +55,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     throw InputError("modern.pcf takes footprints 1..4 (--filter), got " + std::to_string(n));
   Frame frame;
   GpuScene gpu(scene);
-  const Texture ramp = bs::makeRampTexture(bs::depthBits(params));
+  const Texture ramp = bs::makeRampTexture(params);
   const std::vector<RenderTarget> maps = renderJitteredLightPasses(gpu, params, ramp, n, frame);
   std::vector<bs::SampleGroup> groups;
   for (size_t g = 0; g < maps.size(); ++g) {

@@ -9,9 +9,9 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
-constexpr int kMaxOutputsPerPass = 8;      // separable_gaussian.frag declares 8 outputs
-constexpr float kMaxAnisotropy = 16.0f;    // Annen Table 1: "16x anisotropic tri-linear"
-constexpr int kMaxBlurTaps = 7;            // 7x7, the largest kernel of Annen Table 1
+constexpr int kMaxOutputsPerPass = 8;    // separable_gaussian.frag declares 8 outputs
+constexpr float kMaxAnisotropy = 16.0f;  // Annen Table 1: "16x anisotropic tri-linear"
+constexpr int kMaxBlurTaps = 7;          // 7x7, the largest kernel of Annen Table 1
 const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";
 }  // namespace
 
@@ -24,10 +24,10 @@ void setLinearDepthUniforms(const Program& program, const Scene& scene) {
 
 int parseBlurTaps(const RenderParams& params) {
   const int taps = params.integer("blur", 0, 0, kMaxBlurTaps);
-  if (taps != 0 && taps != 3 && taps != 5 && taps != 7)
+  if (taps != 0 && taps != 1 && taps != 3 && taps != 5 && taps != 7)
     throw InputError("--param blur=" + std::to_string(taps) +
-                     ": the Gaussian kernel must be 0 (none), 3, 5 or 7 texels wide");
-  return taps;
+                     ": the Gaussian kernel must be 0 or 1 (none), 3, 5 or 7 texels wide");
+  return taps <= 1 ? 0 : taps;
 }
 
 std::vector<float> binomialWeights(int taps) {
@@ -41,10 +41,14 @@ std::vector<float> binomialWeights(int taps) {
 
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params) {
   MapFiltering f;
-  const std::string mode = params.text("filtering", "trilinear", {"trilinear", "bilinear", "nearest"});
-  f.mipmaps = mode == "trilinear";
+  const std::string mode =
+      params.text("filtering", "anisotropic", {"anisotropic", "trilinear", "bilinear", "nearest"});
+  f.mipmaps = mode == "anisotropic" || mode == "trilinear";
   f.linear = mode != "nearest";
-  const float asked = float(params.number("anisotropy", kMaxAnisotropy, 1, kMaxAnisotropy));
+  // "anisotropic" is Table 1's "16x anisotropic tri-linear"; an explicit --param anisotropy
+  // applies to "trilinear" too.
+  const float fallback = mode == "anisotropic" ? kMaxAnisotropy : 1.0f;
+  const float asked = float(params.number("anisotropy", fallback, 1, kMaxAnisotropy));
   if (!context.caps().hasExtension(kAnisotropicExtension)) {
     f.anisotropy = 1.0f;
   } else {
@@ -110,7 +114,7 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame&
   PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
   const LayeredMap scratch = makeLayeredMap(map.size, map.layers, map.format, false);
   const std::vector<float> weights = binomialWeights(taps);
-  Program program("fullscreen_triangle.vert.glsl", "separable_gaussian.frag.glsl");
+  Program program("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
   program.use();
   program.set("uSource", 0);
   program.set("uTaps", taps);
@@ -155,7 +159,7 @@ void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filt
   checkGl("mip-maps and filtering of the shadow map");
 }
 
-Image readLayer(const LayeredMap& map, int layer, int c, float scale, float bias) {
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias) {
   const Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.id());
   glFramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.texture.id(), 0, layer);
@@ -165,10 +169,8 @@ Image readLayer(const LayeredMap& map, int layer, int c, float scale, float bias
   glReadPixels(0, 0, map.size, map.size, GL_RGBA, GL_FLOAT, rgba.data.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   checkGl("read shadow map layer");
-  Image out(map.size, map.size, 1);
-  for (size_t p = 0; p < out.data.size(); ++p)
-    out.data[p] = std::clamp(rgba.data[p * 4 + size_t(c)] * scale + bias, 0.0f, 1.0f);
-  return out;
+  for (float& v : rgba.data) v = std::clamp(v * scale + bias, 0.0f, 1.0f);
+  return rgba;
 }
 
 }  // namespace sl::modern

@@ -22,18 +22,20 @@ namespace sl::modern {
 void setLinearDepthUniforms(const Program& program, const Scene& scene);
 
 // The separable blur of Annen §4.1: n x n binomial weights (the discrete Gaussian), n in
-// {3, 5, 7}; blur = 0 means none. Parsed from --param blur=0|3|5|7 (InputError otherwise).
+// {3, 5, 7}; blur = 0 or 1 (a 1x1 kernel) means none, returned as 0. Parsed from
+// --param blur=0|1|3|5|7 (InputError otherwise).
 int parseBlurTaps(const RenderParams& params);
 std::vector<float> binomialWeights(int taps);  // sums to 1
 
 // How the map is sampled in the camera pass.
 struct MapFiltering {
-  bool mipmaps = true;     // trilinear (GL_LINEAR_MIPMAP_LINEAR) when true
-  bool linear = true;      // bilinear magnification/minification within a level
-  float anisotropy = 1.0f; // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
+  bool mipmaps = true;      // trilinear (GL_LINEAR_MIPMAP_LINEAR) when true
+  bool linear = true;       // bilinear magnification/minification within a level
+  float anisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
 };
-// --param filtering=trilinear|bilinear|nearest and --param anisotropy=1..16 (clamped to what
-// the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent).
+// --param filtering=anisotropic|trilinear|bilinear|nearest (anisotropic = tri-linear with
+// --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped
+// to what the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent.
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params);
 
 // A square 2D array texture with `layers` layers of `format`, and a full mip chain when
@@ -65,8 +67,8 @@ void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filt
 
 // worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.
 
-// One layer of a layered map as a float image (for --dump-passes), channel `c` mapped with
-// value * scale + bias.
-Image readLayer(const LayeredMap& map, int layer, int c, float scale, float bias);
+// One layer of a layered map as a 4-channel float image (for --dump-passes), each value
+// mapped to value * scale + bias and clamped to [0, 1].
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias);
 
 }  // namespace sl::modern

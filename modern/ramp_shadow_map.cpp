@@ -34,17 +34,22 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   PassTimer timer(frame, "2 camera pass: ramp depth minus projected map");
   const Scene& scene = gpu.scene();
   const bool faithful = bs::arithmeticOf(params) == bs::Arithmetic::kFaithful;
-  RenderTarget target = makeCameraTarget(params, !faithful);
+  RenderTarget target = makeCameraTarget(params, true);  // visibility exactly as computed
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "ramp_shadow.frag.glsl");
+  const Program& program = cachedProgram("texgen.vert.glsl", "ramp_shadow.frag.glsl");
   program.use();
-  program.set("uViewProjection", cameraViewProjection(scene, params));
-  program.set("uWorldToShadowMap", bs::worldToShadowMap(scene));
-  program.set("uRampPlane", bs::rampPlane(scene));
-  program.set("uBias", bs::bias(params));
+  const glm::mat4 view = cameraView(scene.camera);
+  const glm::mat4 projection =
+      cameraProjection(scene.camera, float(params.width) / float(params.height));
+  program.set("uEyeToRamp", bs::cameraEyeToRamp(scene, params));
+  program.set("uEyeToShadowMap[0]",
+              bs::cameraEyeToShadowMap(scene, params.shadowMapTexels, glm::vec2(0.0f)));
+  program.set("uDepthPlane", bs::depthPlane(scene));
+  program.set("uBias", bs::depthBias(params));
   program.set("uFaithful", faithful ? 1 : 0);
+  bs::setLegacyArithmeticUniforms(program, params);
   setLightingUniforms(program, scene);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_1D, ramp.id());
@@ -53,8 +58,10 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   glBindTexture(GL_TEXTURE_2D, map.color[0].id());
   program.set("uShadowMap", 1);
   glActiveTexture(GL_TEXTURE0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
+  gpu.draw([](const Object&) { return true; }, [&](const Object& o) {
+    setObjectUniforms(program, o);
+    bs::setTexgenObjectUniforms(program, o, view, projection);
+  });
   readCameraTarget(target, frame);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -62,7 +69,7 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   Frame frame;
   GpuScene gpu(scene);
-  const Texture ramp = bs::makeRampTexture(bs::depthBits(params));
+  const Texture ramp = bs::makeRampTexture(params);
   const RenderTarget map = renderDepthAsColourFromLight(gpu, params, ramp, frame);
   if (params.capturePasses)
     frame.intermediates.push_back({"1-light-pass-ramp-depth",

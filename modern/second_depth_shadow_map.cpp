@@ -27,7 +27,7 @@ RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, F
   glFrontFace(GL_CCW);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   gpu.draw([](const Object& o) { return o.castsShadow; },

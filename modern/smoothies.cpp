@@ -25,9 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <map>
-
 #include <glm/gtc/constants.hpp>
+#include <map>
 
 #include "core/errors.h"
 #include "modern/camera_pass.h"
@@ -41,16 +40,19 @@ float remapSmoothieAlpha(float a, float bOverR) {
   return a >= room ? 1.0f : a / room;
 }
 
-float smoothieFalloff(float v) { return 0.5f - 0.5f * std::cos(glm::pi<float>() * v); }
+float smoothieFalloff(float v) {
+  return 0.5f - 0.5f * std::cos(glm::pi<float>() * v);
+}
 
 namespace {
-constexpr double kDefaultWidth = 0.1;           // t, light screen space (map side = 1)
-constexpr float kDefaultOffsetFactor = 2.0f;    // as modern.hw (Everitt et al. Fig. 3)
+constexpr double kDefaultWidth = 0.03;        // t, light screen space (map side = 1)
+constexpr float kDefaultOffsetFactor = 2.0f;  // as modern.hw (Everitt et al. Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
-constexpr int kFalloffTexels = 256;             // 1D falloff texture (§4.2.1)
-constexpr float kNoSurfaceDepth = 1.0e30f;      // linear depth where nothing is seen: b/r ~ 0
-constexpr float kMinClipW = 1.0e-6f;            // vertices at or behind the light: no smoothie
-constexpr float kMinEdgeLength = 1.0e-7f;       // light NDC; shorter edges have no direction
+constexpr int kFalloffTexels = 256;                  // 1D falloff texture (§4.2.1)
+constexpr float kNoSurfaceDepth = 1.0e30f;           // linear depth where nothing is seen: b/r ~ 0
+constexpr float kMinClipW = 1.0e-6f;                 // vertices at or behind the light: no smoothie
+constexpr float kMinEdgeLength = 1.0e-7f;            // light NDC; shorter edges have no direction
+constexpr float kMaxCornerSegmentRadians = 0.7854f;  // 45 degrees per corner fan triangle
 
 // One smoothie vertex: position in light clip space, root and normal in shadow-map pixels.
 struct SmoothieVertex {
@@ -67,6 +69,7 @@ struct SmoothieGeometry {
   long long edges = 0;
   long long corners = 0;
   long long cornersWithManyEdges = 0;  // silhouette vertices with more than two edges
+  long long cornerSquares = 0;         // corners drawn as squares (see the DEVIATION below)
   int openSkipped = 0;
 };
 
@@ -74,14 +77,20 @@ struct SmoothieGeometry {
 // the blocker in light screen space, at the edge's own depth) per edge and a smoothie corner
 // per silhouette vertex.
 //
-// DEVIATION (Chan §4.2 step 3, Figure 4-6): a smoothie corner here is the square of half-side t
-// around the silhouette vertex, shaded with Chan's corner alpha |v - p| / t (clamped, remapped).
-// Chan connects adjacent smoothie edges with corner triangles and treats vertices with more than
-// two silhouette edges as a special case (an averaged normal n'). The square covers every gap
-// between the edges around a vertex — two edges or more, convex or not — with no special case,
-// and where it overlaps an edge smoothie, minimum blending keeps the edge's alpha, which is never
-// larger (the distance to a line through v is at most the distance to v). Inside the blocker the
-// shadow map decides (umbra), so the square's inner half changes nothing.
+// Corners (Figure 4-6): at a vertex where one silhouette edge arrives and one leaves, the gap
+// between their smoothie edges is the wedge from the incoming edge's outward normal to the
+// outgoing one's (counter-clockwise: the silhouette runs counter-clockwise around the blocker);
+// it is covered by a fan whose outer edges are tangent to the circle of radius t, shaded with
+// Chan's corner alpha |v - p| / t. Concave or straight vertices have no gap and get no corner.
+//
+// DEVIATION (Chan §4.2 step 3, "more than two adjacent silhouette edges"): Chan averages the
+// adjacent face normals into one vertex normal n' and connects it to each adjacent smoothie
+// edge. We draw the square of half-side t around such a vertex with the same corner alpha
+// |v - p| / t instead: it covers every gap around the vertex whatever its configuration, and
+// where it overlaps an edge smoothie, minimum blending keeps the edge's alpha, which is never
+// larger (the distance to a line through v is at most the distance to v); inside the blocker
+// the shadow map decides (umbra). The same square serves vertices whose two edges do not chain
+// (both arriving or both leaving).
 SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const SceneCasters& casters,
                                                   double width, int texels, Frame& frame) {
   PassTimer timer(frame, "0 silhouettes and smoothies (CPU)");
@@ -102,7 +111,11 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
     const auto displaced = [](const glm::vec4& c, glm::vec2 offset) {
       return glm::vec4(c.x + offset.x * c.w, c.y + offset.y * c.w, c.z, c.w);
     };
-    std::map<unsigned, int> silhouetteDegree;
+    // Per silhouette vertex: the outward normals of the edges arriving at it and leaving it.
+    struct VertexEdges {
+      std::vector<glm::vec2> arriving, leaving;
+    };
+    std::map<unsigned, VertexEdges> around;
     for (const auto& [a, b] : silhouette.edges) {
       const glm::vec4 ca = clip[a], cb = clip[b];
       if (ca.w <= kMinClipW || cb.w <= kMinClipW) continue;
@@ -118,19 +131,40 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
                                       {displaced(ca, t * out), toPixels(na), out, kEdge}};
       for (int k : {0, 1, 2, 0, 2, 3}) g.vertices.push_back(quad[k]);
       ++g.edges;
-      ++silhouetteDegree[a];
-      ++silhouetteDegree[b];
+      around[a].leaving.push_back(out);
+      around[b].arriving.push_back(out);
     }
-    for (const auto& [v, degree] : silhouetteDegree) {
+    for (const auto& [v, edges] : around) {
       const glm::vec4 c = clip[v];
       const glm::vec2 root = toPixels(glm::vec2(c) / c.w);
+      const size_t degree = edges.arriving.size() + edges.leaving.size();
+      if (degree > 2) ++g.cornersWithManyEdges;
+      if (edges.arriving.size() == 1 && edges.leaving.size() == 1) {
+        // Figure 4-6: the wedge from the arriving edge's normal to the leaving edge's.
+        const glm::vec2 from = edges.arriving[0], to = edges.leaving[0];
+        const float angle = std::atan2(from.x * to.y - from.y * to.x, glm::dot(from, to));
+        if (angle <= 0.0f) continue;  // concave or straight: the edge smoothies overlap
+        const int segments = int(std::ceil(angle / kMaxCornerSegmentRadians));
+        const float step = angle / float(segments);
+        const float radius = t / std::cos(0.5f * step);  // chords tangent to the circle of t
+        const float start = std::atan2(from.y, from.x);
+        for (int k = 0; k < segments; ++k) {
+          const float a0 = start + k * step, a1 = a0 + step;
+          const glm::vec2 p0 = radius * glm::vec2(std::cos(a0), std::sin(a0));
+          const glm::vec2 p1 = radius * glm::vec2(std::cos(a1), std::sin(a1));
+          for (const glm::vec4& q : {c, displaced(c, p0), displaced(c, p1)})
+            g.vertices.push_back({q, root, {0, 0}, kCorner});
+        }
+        ++g.corners;
+        continue;
+      }
       const SmoothieVertex square[4] = {{displaced(c, {-t, -t}), root, {0, 0}, kCorner},
                                         {displaced(c, {t, -t}), root, {0, 0}, kCorner},
                                         {displaced(c, {t, t}), root, {0, 0}, kCorner},
                                         {displaced(c, {-t, t}), root, {0, 0}, kCorner}};
       for (int k : {0, 1, 2, 0, 2, 3}) g.vertices.push_back(square[k]);
       ++g.corners;
-      if (degree > 2) ++g.cornersWithManyEdges;
+      ++g.cornerSquares;
     }
   }
   return g;
@@ -139,9 +173,8 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
 // Pass 1 (§4.3): the blockers' depth with polygon offset (for the umbra test), and the linear
 // depth of the nearest surface of any object, caster or not (r of Eq. 4.1: "the distance from
 // the light source to the receiver using the shadow map").
-RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& program,
-                                            int texels, float factor, float units,
-                                            Frame& frame) {
+RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& program, int texels,
+                                            float factor, float units, Frame& frame) {
   PassTimer timer(frame, "1 shadow map + linear depth");
   const Scene& scene = gpu.scene();
   RenderTarget map = makeRenderTarget(texels, texels, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
@@ -320,6 +353,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   frame.counters["smoothie_edges"] = double(geometry.edges);
   frame.counters["smoothie_corners"] = double(geometry.corners);
   frame.counters["corners_with_more_than_two_edges"] = double(geometry.cornersWithManyEdges);
+  frame.counters["corner_squares"] = double(geometry.cornerSquares);
   if (params.capturePasses) {
     Image alpha = channel(readAttachment(smoothie, 0), 0);
     frame.intermediates.push_back(
@@ -342,7 +376,7 @@ Technique smoothiesTechnique() {
   t.name = "modern.smoothies";
   t.paper = "Chan 2004 thesis ch. 4 (Chan & Durand 2003, smoothies)";
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
-  t.status = "complete (closed blockers; corners as squares, see DEVIATION)";
+  t.status = "complete (closed blockers; square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"width", "offset-factor", "offset-units"};
   t.render = render;

@@ -23,8 +23,8 @@ namespace {
 constexpr double kDefaultMinVariance = 1e-5;  // (linear depth)^2: ~ (0.3% of the range)^2
 constexpr double kMaxMinVariance = 0.25;      // the largest variance of values in [0, 1]
 constexpr double kDefaultBleedReduction = 0.0;
-constexpr double kMaxBleedReduction = 0.99;   // 1 would divide by zero
-constexpr int kDefaultBlurTaps = 3;           // same default as modern.csm
+constexpr double kMaxBleedReduction = 0.99;  // 1 would divide by zero
+constexpr int kDefaultBlurTaps = 3;          // same default as modern.csm
 
 struct VsmSettings {
   double minVariance = kDefaultMinVariance;
@@ -120,8 +120,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const LayeredMap moments = renderMomentsFromLight(gpu, params, s, frame);
   blurMoments(moments, s, frame);
   if (params.capturePasses)
-    frame.intermediates.push_back(
-        {"1-moments-mean", "filtered mean depth E[z]", readLayer(moments, 0, 0, 1.0f, 0.0f)});
+    frame.intermediates.push_back({"1-moments-mean", "filtered mean depth E[z]",
+                                   channel(readLayer(moments, 0, 1.0f, 0.0f), 0)});
   buildMomentMipmaps(moments, s, frame);
   chebyshevInCameraPass(gpu, params, moments, s, frame);
   frame.counters["anisotropy"] = s.filtering.anisotropy;

@@ -34,7 +34,7 @@ RenderTarget renderFirstDepthLayer(const GpuScene& gpu, int n, Frame& frame) {
   RenderTarget map = makeDepthMap(n);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   gpu.draw([](const Object& o) { return o.castsShadow; },
@@ -52,7 +52,7 @@ RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget
   RenderTarget map = makeDepthMap(n);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "woo_peel.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "woo_peel.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   program.set("uWorldToShadowMap", worldToShadowMap(gpu.scene()));
@@ -76,7 +76,7 @@ RenderTarget storeMidpointDepth(int n, const RenderTarget& first, const RenderTa
   RenderTarget map = makeDepthMap(n);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
-  Program program("fullscreen.vert.glsl", "woo_midpoint.frag.glsl");
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "woo_midpoint.frag.glsl");
   program.use();
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, first.depth.id());

@@ -4,7 +4,8 @@
 // alpha from the centre pixel of the 3x3 neighbourhood (the kernel C of Eq. 1). For 4x4
 // footprints the kernel samples one of the four 2x2 regions of the 3x3 neighbourhood;
 // uRegionOrigin is that region's lower-left pixel relative to the centre ((-1,-1) for Eq. 1).
-// Pixels beyond the map's edge repeat the edge (GL_REPLICATE_BORDER).
+// Pixels beyond the map's edge are the far plane (GL_CONSTANT_BORDER with colour 1, as the
+// legacy convolution sets it).
 #version 330 core
 uniform sampler2D uEncodedDepth;   // the light pass, encoded depth in all four channels
 uniform ivec2 uRegionOrigin;
@@ -12,7 +13,8 @@ layout(location = 0) out vec4 oPacked;
 
 float sampleAt(ivec2 p, int channel) {
   ivec2 size = textureSize(uEncodedDepth, 0);
-  return texelFetch(uEncodedDepth, clamp(p, ivec2(0), size - 1), 0)[channel];
+  if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) return 1.0;
+  return texelFetch(uEncodedDepth, p, 0)[channel];
 }
 
 void main() {

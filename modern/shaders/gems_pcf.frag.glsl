@@ -12,14 +12,7 @@ uniform sampler2DShadow uShadowMap;
 uniform mat4 uWorldToShadowMap;  // S * P_light * V_light (Everitt Eq. 5)
 uniform vec2 uTexmapScale;       // (1/width, 1/height) of the shadow map (§11.3)
 uniform bool uReceivesShadow;
-uniform vec3 uDiffuse;
-uniform float uSpecular;
-uniform vec3 uLightPosition;
-uniform vec3 uLightDirection;
-uniform float uSpotCosCutoff;
-uniform vec3 uLightColor;
-uniform float uAmbient;
-uniform vec3 uEyePosition;
+#include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 
@@ -57,18 +50,8 @@ float shadowTest(vec3 world) {
 #endif
 }
 
-// OpenGL fixed-function lighting with one spotlight (as hw_shadow.frag).
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;
-  vec3 n = normalize(vWorldNormal);
-  vec3 toLight = normalize(uLightPosition - vWorldPosition);
-  if (!gl_FrontFacing) n = -n;
-  float spot = dot(-toLight, normalize(uLightDirection)) >= uSpotCosCutoff ? 1.0 : 0.0;
-  float diffuse = max(dot(n, toLight), 0.0);
-  vec3 toEye = normalize(uEyePosition - vWorldPosition);
-  float specular = diffuse > 0.0 ? pow(max(dot(n, normalize(toLight + toEye)), 0.0), 32.0) : 0.0;
-  vec3 direct = spot * uLightColor * (uDiffuse * diffuse + vec3(uSpecular) * specular);
-  vec3 ambient = uAmbient * uLightColor * uDiffuse;
-  oColor = vec4(ambient + visibility * direct, 1.0);
+  oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
 }

@@ -16,14 +16,7 @@ uniform float uLightFar;
 uniform float uMinVariance;       // floor on sigma^2 (against self-shadowing of lit surfaces)
 uniform float uBleedReduction;    // 0 = off; cuts the tail of p_max below this amount
 uniform bool uReceivesShadow;
-uniform vec3 uDiffuse;
-uniform float uSpecular;
-uniform vec3 uLightPosition;
-uniform vec3 uLightDirection;
-uniform float uSpotCosCutoff;
-uniform vec3 uLightColor;
-uniform float uAmbient;
-uniform vec3 uEyePosition;
+#include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 
@@ -49,18 +42,8 @@ float shadowTest(vec3 world) {
   return clamp(chebyshevUpperBound(moments, d), 0.0, 1.0);
 }
 
-// OpenGL fixed-function lighting with one spotlight (as hw_shadow.frag).
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;
-  vec3 n = normalize(vWorldNormal);
-  vec3 toLight = normalize(uLightPosition - vWorldPosition);
-  if (!gl_FrontFacing) n = -n;
-  float spot = dot(-toLight, normalize(uLightDirection)) >= uSpotCosCutoff ? 1.0 : 0.0;
-  float diffuse = max(dot(n, toLight), 0.0);
-  vec3 toEye = normalize(uEyePosition - vWorldPosition);
-  float specular = diffuse > 0.0 ? pow(max(dot(n, normalize(toLight + toEye)), 0.0), 32.0) : 0.0;
-  vec3 direct = spot * uLightColor * (uDiffuse * diffuse + vec3(uSpecular) * specular);
-  vec3 ambient = uAmbient * uLightColor * uDiffuse;
-  oColor = vec4(ambient + visibility * direct, 1.0);
+  oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
 }

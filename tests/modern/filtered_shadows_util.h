@@ -4,10 +4,9 @@
 #pragma once
 
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <map>
 #include <string>
-
-#include <glm/glm.hpp>
 
 #include "apps/registry.h"
 #include "core/image.h"
@@ -43,9 +42,8 @@ inline glm::ivec2 pixelOf(const Scene& scene, const RenderParams& p, const glm::
 // Where the ray through the centre of pixel (x, y) meets the plane y = planeY.
 inline glm::vec3 groundPointOf(const Scene& scene, const RenderParams& p, float x, float y,
                                float planeY = 0.0f) {
-  const glm::mat4 inverse =
-      glm::inverse(cameraProjection(scene.camera, float(p.width) / float(p.height)) *
-                   cameraView(scene.camera));
+  const glm::mat4 inverse = glm::inverse(
+      cameraProjection(scene.camera, float(p.width) / float(p.height)) * cameraView(scene.camera));
   const glm::vec2 ndc((x + 0.5f) / float(p.width) * 2.0f - 1.0f,
                       (y + 0.5f) / float(p.height) * 2.0f - 1.0f);
   glm::vec4 nearPoint = inverse * glm::vec4(ndc, -1.0f, 1.0f);

@@ -26,15 +26,20 @@ Scene zoomedAnalytic() {
   return scene;
 }
 
-float minOf(const Image& m) { return *std::min_element(m.data.begin(), m.data.end()); }
-float maxOf(const Image& m) { return *std::max_element(m.data.begin(), m.data.end()); }
+float minOf(const Image& m) {
+  return *std::min_element(m.data.begin(), m.data.end());
+}
+float maxOf(const Image& m) {
+  return *std::max_element(m.data.begin(), m.data.end());
+}
 
 // Horizontal and vertical neighbour pairs whose visibility jumps by more than half.
 int hardEdges(const Image& m) {
   int n = 0;
   for (int y = 0; y + 1 < m.height; ++y)
     for (int x = 0; x + 1 < m.width; ++x)
-      n += (std::abs(m.at(x, y) - m.at(x + 1, y)) > 0.5f) + (std::abs(m.at(x, y) - m.at(x, y + 1)) > 0.5f);
+      n += (std::abs(m.at(x, y) - m.at(x + 1, y)) > 0.5f) +
+           (std::abs(m.at(x, y) - m.at(x, y + 1)) > 0.5f);
   return n;
 }
 
@@ -77,10 +82,12 @@ TEST(Gems, FourDitheredSamplesAverageToSixteenOverEach2x2Block) {
       const glm::vec3 g0 = groundPointOf(scene, p, float(x), float(y));
       const glm::vec3 g1 = groundPointOf(scene, p, float(x + 1), float(y + 1));
       if (std::abs(g0.x) > 2.5f || std::abs(g0.z) > 2.5f) continue;  // ground inside the map
-      const glm::vec2 t0 = shadowTexelOf(scene, kTexels, g0), t1 = shadowTexelOf(scene, kTexels, g1);
-      const glm::vec2 tx = shadowTexelOf(scene, kTexels, groundPointOf(scene, p, float(x + 1), float(y)));
-      const float spread = std::abs(t1.x - t0.x) + std::abs(t1.y - t0.y) +
-                           std::abs(tx.x - t0.x) + std::abs(tx.y - t0.y);
+      const glm::vec2 t0 = shadowTexelOf(scene, kTexels, g0),
+                      t1 = shadowTexelOf(scene, kTexels, g1);
+      const glm::vec2 tx =
+          shadowTexelOf(scene, kTexels, groundPointOf(scene, p, float(x + 1), float(y)));
+      const float spread = std::abs(t1.x - t0.x) + std::abs(t1.y - t0.y) + std::abs(tx.x - t0.x) +
+                           std::abs(tx.y - t0.y);
       double mean4 = 0, mean16 = 0;
       bool occluderInBlock = false;
       for (int dy = 0; dy < 2; ++dy)
@@ -88,8 +95,9 @@ TEST(Gems, FourDitheredSamplesAverageToSixteenOverEach2x2Block) {
           mean4 += four.visibility.at(x + dx, y + dy) / 4.0;
           mean16 += sixteen.visibility.at(x + dx, y + dy) / 4.0;
           // The occluder itself does not receive shadows (1 in both): skip blocks it covers.
-          occluderInBlock |= std::abs(groundPointOf(scene, p, float(x + dx), float(y + dy)).x) < 0.75f &&
-                             std::abs(groundPointOf(scene, p, float(x + dx), float(y + dy)).z) < 0.75f;
+          occluderInBlock |=
+              std::abs(groundPointOf(scene, p, float(x + dx), float(y + dy)).x) < 0.75f &&
+              std::abs(groundPointOf(scene, p, float(x + dx), float(y + dy)).z) < 0.75f;
         }
       if (occluderInBlock || mean16 < 0.02 || mean16 > 0.98) continue;
       ++penumbraBlocks;
@@ -97,7 +105,8 @@ TEST(Gems, FourDitheredSamplesAverageToSixteenOverEach2x2Block) {
       float lo = 1, hi = -1;
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
-          const float r = four.visibility.at(x + dx, y + dy) - sixteen.visibility.at(x + dx, y + dy);
+          const float r =
+              four.visibility.at(x + dx, y + dy) - sixteen.visibility.at(x + dx, y + dy);
           lo = std::min(lo, r);
           hi = std::max(hi, r);
         }
@@ -130,10 +139,12 @@ TEST(Gems, DitherRepeatsWithPeriodTwo) {
       const glm::vec3 g = groundPointOf(scene, p, float(x), float(y));
       if (std::abs(g.x) < 0.75f && std::abs(g.z) < 0.75f) continue;  // occluder covers it
       const glm::vec2 a = shadowTexelOf(scene, kTexels, g);
-      const glm::vec2 b = shadowTexelOf(scene, kTexels, groundPointOf(scene, p, float(x + 2), float(y)));
+      const glm::vec2 b =
+          shadowTexelOf(scene, kTexels, groundPointOf(scene, p, float(x + 2), float(y)));
       const float motion = std::abs(b.x - a.x) + std::abs(b.y - a.y);
       // Both images move: 2 * motion, plus 8-bit quantisation of each of the four values.
-      EXPECT_NEAR(residual(x, y), residual(x + 2, y), 2.0f * motion + 4.0f / 255.0f) << x << "," << y;
+      EXPECT_NEAR(residual(x, y), residual(x + 2, y), 2.0f * motion + 4.0f / 255.0f)
+          << x << "," << y;
       periodTwo += std::abs(residual(x, y) - residual(x + 2, y));
       periodOne += std::abs(residual(x, y) - residual(x + 1, y));
       ++n;

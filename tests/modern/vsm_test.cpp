@@ -28,10 +28,10 @@ TEST(Vsm, UmbraIsTheChebyshevBound) {
   const double d = linearDepthOfY(scene, 0.0f);                // the ground's depth
   for (const double minVariance : {0.05, 0.25}) {
     for (const double bleed : {0.0, 0.1}) {
-      const RenderParams p =
-          smallParams(160, 120, 256,
-                      {{"min-variance", std::to_string(minVariance)},
-                       {"bleed-reduction", std::to_string(bleed)}, {"blur", "5"}});
+      const RenderParams p = smallParams(160, 120, 256,
+                                         {{"min-variance", std::to_string(minVariance)},
+                                          {"bleed-reduction", std::to_string(bleed)},
+                                          {"blur", "5"}});
       const Frame frame = renderByName("modern.vsm", scene, p);
       // A single depth under the footprint: sigma^2 = E[z^2] - E[z]^2 = 0 -> the minimum.
       double expected = minVariance / (minVariance + (d - z) * (d - z));
@@ -65,8 +65,7 @@ Image erodedUmbra(const Image& hard, int margin) {
     for (int x = margin; x < hard.width - margin; ++x) {
       bool all = true;
       for (int dy = -margin; dy <= margin && all; ++dy)
-        for (int dx = -margin; dx <= margin && all; ++dx)
-          all = hard.at(x + dx, y + dy) < 0.5f;
+        for (int dx = -margin; dx <= margin && all; ++dx) all = hard.at(x + dx, y + dy) < 0.5f;
       mask.at(x, y) = all ? 1.0f : 0.0f;
     }
   return mask;

@@ -1,0 +1,229 @@
+// Parity of the color matrix and its stack (glspec121 3.6.3, 3.6.5 "Color Matrix
+// Transformation", 6.1.6), post-color-matrix scale/bias, histogram and minmax with and
+// without sink (3.6.5, 6.1.9, 6.1.10).
+#include "parity/parity_util.h"
+
+namespace sl::imaging::testing {
+namespace {
+
+const float kMatrices[][16] = {
+    {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},                 // identity
+    {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1},                 // sum into alpha (B&S Fig. 4)
+    {0, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1},                 // swizzle R->G->B->R
+    {0.299f, 0.299f, 0.299f, 0, 0.587f, 0.587f, 0.587f, 0, 0.114f, 0.114f, 0.114f, 0, 0, 0, 0, 1},
+    {-1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 0, 1, 1, 1, 1},              // negate, + alpha
+    {0.5f, 0.25f, 0, 0.1f, 0.25f, 0.5f, 0.25f, 0.1f, 0, 0.25f, 0.5f, 0.1f, 0.1f, 0, 0.1f, 0.7f},
+};
+
+class ColorMatrixParity : public ::testing::TestWithParam<int> {};
+TEST_P(ColorMatrixParity, ReadPixelsAndQuery) {
+  SL_REQUIRE_REFERENCE();
+  const int k = GetParam();
+  checkParity([k](Outcome& o) {
+    putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 91 + k));
+    glMatrixMode(GL_COLOR);
+    glLoadMatrixf(kMatrices[k]);
+    GLint mode = 0;
+    glGetIntegerv(GL_MATRIX_MODE, &mode);
+    o.floats.push_back(float(mode));
+    glMatrixMode(GL_MODELVIEW);
+    appendFloats(o, readRgbaF(0, 0, kParityW, kParityH));
+    float m[16];
+    glGetFloatv(GL_COLOR_MATRIX, m);
+    o.floats.insert(o.floats.end(), m, m + 16);
+  });
+}
+INSTANTIATE_TEST_SUITE_P(SixMatrices, ColorMatrixParity, ::testing::Range(0, 6));
+
+// The stack: push, multiply, pop, depths, overflow past 4 and underflow.
+TEST(ColorMatrixStackParity, PushMultiplyPopOverflowUnderflow) {
+  SL_REQUIRE_REFERENCE();
+  checkParity([](Outcome& o) {
+    glMatrixMode(GL_COLOR);
+    GLint depth = 0, maxDepth = 0;
+    glGetIntegerv(GL_MAX_COLOR_MATRIX_STACK_DEPTH, &maxDepth);
+    o.floats.push_back(float(maxDepth));
+    glLoadMatrixf(kMatrices[5]);
+    for (int i = 0; i < 5; ++i) {
+      glPushMatrix();
+      glMultMatrixf(kMatrices[2]);
+      glGetIntegerv(GL_COLOR_MATRIX_STACK_DEPTH, &depth);
+      o.floats.push_back(float(depth));
+      const auto e = drainErrors();
+      o.errors.insert(o.errors.end(), e.begin(), e.end());
+    }
+    float m[16];
+    glGetFloatv(GL_COLOR_MATRIX, m);
+    o.floats.insert(o.floats.end(), m, m + 16);
+    for (int i = 0; i < 5; ++i) {
+      glPopMatrix();
+      const auto e = drainErrors();
+      o.errors.insert(o.errors.end(), e.begin(), e.end());
+    }
+    glGetFloatv(GL_COLOR_MATRIX, m);
+    o.floats.insert(o.floats.end(), m, m + 16);
+    glMatrixMode(GL_MODELVIEW);
+  });
+}
+
+// Post-color-matrix scale and bias, with and without a matrix.
+class PostMatrixScaleBiasParity : public ::testing::TestWithParam<int> {};
+TEST_P(PostMatrixScaleBiasParity, CopyPixels) {
+  SL_REQUIRE_REFERENCE();
+  const int k = GetParam();
+  checkParity([k](Outcome& o) {
+    putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 101 + k));
+    const GLenum sp[4] = {GL_POST_COLOR_MATRIX_RED_SCALE, GL_POST_COLOR_MATRIX_GREEN_SCALE,
+                          GL_POST_COLOR_MATRIX_BLUE_SCALE, GL_POST_COLOR_MATRIX_ALPHA_SCALE};
+    const GLenum bp[4] = {GL_POST_COLOR_MATRIX_RED_BIAS, GL_POST_COLOR_MATRIX_GREEN_BIAS,
+                          GL_POST_COLOR_MATRIX_BLUE_BIAS, GL_POST_COLOR_MATRIX_ALPHA_BIAS};
+    // Scales with denominators of 5 and biases on whole 1/255 steps: no exact rounding ties.
+    const float scale[4] = {0.6f, 1.2f, -1.0f, 0.8f}, bias[4] = {0.2f, -0.4f, 1.0f, 0.6f};
+    for (int c = 0; c < 4; ++c) {
+      glPixelTransferf(sp[c], scale[c]);
+      glPixelTransferf(bp[c], bias[c]);
+    }
+    if (k > 0) {
+      glMatrixMode(GL_COLOR);
+      glLoadMatrixf(kMatrices[k]);
+      glMatrixMode(GL_MODELVIEW);
+    }
+    glWindowPos2i(kParityW / 2, 0);
+    glCopyPixels(0, 0, kParityW / 2, kParityH, GL_COLOR);
+    appendBytes(o, readWindow());
+  });
+}
+INSTANTIATE_TEST_SUITE_P(WithAndWithoutMatrix, PostMatrixScaleBiasParity, ::testing::Range(0, 4));
+
+// Pixel-transfer scale and bias (stage 1) alone on CopyPixels.
+class TransferScaleBiasParity : public ::testing::TestWithParam<int> {};
+TEST_P(TransferScaleBiasParity, CopyPixels) {
+  SL_REQUIRE_REFERENCE();
+  const int k = GetParam();
+  checkParity([k](Outcome& o) {
+    putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 111 + k));
+    // Scales with denominators of 5 and biases that are whole multiples of 1/255 keep every
+    // exact result at least 0.1 step from a rounding tie (ties: RoundingTies below).
+    const float scales[3] = {0.6f, 1.2f, -0.4f}, biases[3] = {0.2f, -0.4f, 0.8f};
+    glPixelTransferf(GL_RED_SCALE, scales[k]);
+    glPixelTransferf(GL_GREEN_BIAS, biases[k]);
+    glPixelTransferf(GL_ALPHA_SCALE, scales[(k + 1) % 3]);
+    glPixelTransferf(GL_BLUE_BIAS, biases[(k + 2) % 3]);
+    glWindowPos2i(kParityW / 2, 0);
+    glCopyPixels(0, 0, kParityW / 2, kParityH, GL_COLOR);
+    appendBytes(o, readWindow());
+  });
+}
+INSTANTIATE_TEST_SUITE_P(ThreeSettings, TransferScaleBiasParity, ::testing::Range(0, 3));
+
+// The pack formats that return exactly the components a histogram / minmax format holds
+// (the reference also returns counts and extremes of components the format lacks, where
+// table 6.1 gives the constants 0 and 1: departures_test.cpp).
+std::vector<GLenum> storedParts(GLenum format) {
+  switch (format) {
+    case GL_RGB: return {GL_RGB};
+    case GL_ALPHA: return {GL_ALPHA};
+    case GL_LUMINANCE: return {GL_RED};
+    case GL_LUMINANCE_ALPHA: return {GL_RED, GL_ALPHA};
+    default: return {GL_RGBA};
+  }
+}
+int partSize(GLenum part) { return part == GL_RGBA ? 4 : part == GL_RGB ? 3 : 1; }
+
+struct HistogramCase {
+  GLenum format;
+  int width;
+};
+class HistogramParity : public ::testing::TestWithParam<HistogramCase> {};
+TEST_P(HistogramParity, CountsAfterReadPixels) {
+  SL_REQUIRE_REFERENCE();
+  const HistogramCase p = GetParam();
+  checkParity([p](Outcome& o) {
+    // Luminance histograms count R only; grey input keeps the reference's extra G and B
+    // counts (departure 6) out of this comparison.
+    const bool luminance = p.format == GL_LUMINANCE || p.format == GL_LUMINANCE_ALPHA;
+    putImage(kParityW, kParityH, luminance ? greyPattern(kParityW, kParityH, 121)
+                                           : patternImage(kParityW, kParityH, 121));
+    glHistogram(GL_HISTOGRAM, p.width, p.format, GL_FALSE);
+    glEnable(GL_HISTOGRAM);
+    appendFloats(o, readRgbaF(0, 0, kParityW, kParityH));
+    // Luminance formats are returned as (L, 0, 0, 1) by table 6.1; the reference returns its
+    // G and B counts there (departure 6), so only the stored components are read.
+    for (GLenum part : storedParts(p.format)) {
+      std::vector<GLuint> counts(size_t(p.width) * partSize(part), 0xFFFF);
+      glGetHistogram(GL_HISTOGRAM, GL_FALSE, part, GL_UNSIGNED_INT, counts.data());
+      for (GLuint c : counts) o.floats.push_back(float(c));
+    }
+    glResetHistogram(GL_HISTOGRAM);
+    std::vector<float> after(size_t(p.width), -1.0f);
+    glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_RED, GL_FLOAT, after.data());  // reset: zero
+    appendFloats(o, after);
+    GLint v = 0;
+    glGetHistogramParameteriv(GL_HISTOGRAM, GL_HISTOGRAM_WIDTH, &v);
+    o.floats.push_back(float(v));
+    glGetHistogramParameteriv(GL_HISTOGRAM, GL_HISTOGRAM_FORMAT, &v);
+    o.floats.push_back(float(v));
+  });
+}
+std::vector<HistogramCase> histogramCases() {
+  std::vector<HistogramCase> c;
+  for (GLenum f : {GL_RGBA, GL_RGB, GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA})
+    for (int w : {2, 16, 256}) c.push_back({f, w});
+  return c;
+}
+INSTANTIATE_TEST_SUITE_P(FormatsAndWidths, HistogramParity, ::testing::ValuesIn(histogramCases()));
+
+class MinmaxParity : public ::testing::TestWithParam<HistogramCase> {};
+TEST_P(MinmaxParity, ReadPixelsWithAndWithoutSink) {
+  SL_REQUIRE_REFERENCE();
+  const HistogramCase p = GetParam();
+  const bool sink = p.width != 0;
+  checkParity([p, sink](Outcome& o) {
+    putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 131));
+    glMinmax(GL_MINMAX, p.format, sink ? GL_TRUE : GL_FALSE);
+    glEnable(GL_MINMAX);
+    // Values stay inside [0,1]: outside it the reference clamps (departures_test.cpp).
+    glPixelTransferf(GL_RED_SCALE, 0.75f);
+    glPixelTransferf(GL_BLUE_SCALE, 0.8f);
+    std::vector<float> px(size_t(kParityW) * kParityH * 4, 0.5f);
+    glReadPixels(0, 0, kParityW, kParityH, GL_RGBA, GL_FLOAT, px.data());
+    appendFloats(o, px);  // with sink: untouched ("no pixel values are returned")
+    for (GLenum part : storedParts(p.format)) {
+      float mm[8] = {};
+      glGetMinmax(GL_MINMAX, GL_FALSE, part, GL_FLOAT, mm);
+      o.floats.insert(o.floats.end(), mm, mm + 2 * partSize(part));
+    }
+    GLint v = 0;
+    glGetMinmaxParameteriv(GL_MINMAX, GL_MINMAX_SINK, &v);
+    o.floats.push_back(float(v));
+  });
+}
+std::vector<HistogramCase> minmaxCases() {
+  std::vector<HistogramCase> c;
+  for (GLenum f : {GL_RGBA, GL_RGB, GL_ALPHA, GL_LUMINANCE, GL_LUMINANCE_ALPHA})
+    for (int sink : {0, 1}) c.push_back({f, sink});
+  return c;
+}
+INSTANTIATE_TEST_SUITE_P(FormatsAndSink, MinmaxParity, ::testing::ValuesIn(minmaxCases()));
+
+// Histogram sink on DrawPixels: the groups are discarded, the counts still taken.
+TEST(HistogramSinkParity, DrawPixelsDiscardsGroups) {
+  SL_REQUIRE_REFERENCE();
+  checkParity([](Outcome& o) {
+    glClearColor(0.2f, 0.4f, 0.6f, 0.8f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glHistogram(GL_HISTOGRAM, 8, GL_RGBA, GL_TRUE);
+    glEnable(GL_HISTOGRAM);
+    const auto img = patternImage(6, 5, 141);
+    glWindowPos2i(3, 2);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glDrawPixels(6, 5, GL_RGBA, GL_UNSIGNED_BYTE, img.data());
+    std::vector<GLuint> counts(8 * 4);
+    glGetHistogram(GL_HISTOGRAM, GL_FALSE, GL_RGBA, GL_UNSIGNED_INT, counts.data());
+    for (GLuint c : counts) o.floats.push_back(float(c));
+    appendBytes(o, readWindow());
+  });
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
