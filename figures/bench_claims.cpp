@@ -135,9 +135,12 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
       if (csm && vsm) {
         c.measured = "umbra pixels shown lit > 20%: VSM " + fmt(100 * vsm->hard.leakShare, 3) +
                      "%, CSM " + fmt(100 * csm->hard.leakShare, 3) + "%";
-        c.verdict = csm->hard.leakShare < kNoLeakShare && vsm->hard.leakShare > csm->hard.leakShare
-                        ? "agrees"
-                        : "disagrees";
+        if (vsm->hard.leakShare < kNoLeakShare)
+          c.verdict = "not exercised (VSM does not leak on this scene)";
+        else
+          c.verdict = csm->hard.leakShare < kNoLeakShare && vsm->hard.leakShare > csm->hard.leakShare
+                          ? "agrees"
+                          : "disagrees";
       }
       out.push_back(c);
     }

@@ -290,11 +290,8 @@ const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters = fa
     for (Object& o : scene.objects)
       if (!o.mesh->closed) o.castsShadow = false;
   RenderParams p = baseParams();  // with capturePasses: the reference's faces-light mask
-  Frame f = renderTechnique(findTechnique(soft ? "reference.soft" : "reference.hard"), scene, p);
-  writePng((outputDir() / (c.name + (soft ? "-soft" : "-hard") + (withoutOpenCasters ? "-closed" : "") +
-                           ".png")).string(),
-           f.color);
-  return cache[key] = std::move(f);
+  return cache[key] =
+             renderTechnique(findTechnique(soft ? "reference.soft" : "reference.hard"), scene, p);
 }
 
 // The pixels a case's bound counts: outside the reference's edge band and on surfaces the light
@@ -354,6 +351,11 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
             "it (0.01% before main's shared worldToShadowMap change); modern.hw and modern.pcf "
             "are right on the same scene"}},
       {{"behind_and_around_light", "modern.gems4"},
+       {-1, "BUG (gems): as modern.gems16"}},
+      {{"near_far_1e-3", "modern.gems16"},
+       {-1, "BUG (gems): 30% of the pixels wrong with the light's near/far given explicitly "
+            "(0.02% before main's shared worldToShadowMap change); modern.hw is right"}},
+      {{"near_far_1e-3", "modern.gems4"},
        {-1, "BUG (gems): as modern.gems16"}},
       {{"map_2x2", "modern.csm"},
        {-1, "BUG (csm): GlError 'layered shadow map framebuffer is incomplete' for a 2x2 map"}},
@@ -423,8 +425,11 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
             << 100.0 * d.shareAboveHalf << "% (bound " << 100.0 * bound << "%), rmse " << d.rmse
             << "\n";
   EXPECT_LE(d.shareAboveHalf, bound) << why;
-  if (d.shareAboveHalf > bound)
+  if (d.shareAboveHalf > bound) {  // failure artefacts, one name per test (ctest runs in parallel)
     writePng((outputDir() / (c.name + "-" + t.name + ".png")).string(), frame.color);
+    writePng((outputDir() / (c.name + "-" + t.name + "-reference.png")).string(),
+             referenceFor(c, soft).color);
+  }
 }
 
 std::vector<Param> allParams() {
