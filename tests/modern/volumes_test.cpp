@@ -278,6 +278,18 @@ TEST(ShadowVolumes, OpenCastersGetTwoSidedVolumesAndAreCounted) {
   EXPECT_EQ(f.counters.at("closed_casters"), 5);
 }
 
+TEST(ShadowVolumes, CubesSceneFileIsTheFillHeavyScene) {
+  // assets/scenes/cubes.json (volumes_bench's default): a non-casting ground and 3 layers of 5x5
+  // closed cubes, all inside the light's cone (each cube has a silhouette of 6 edges from a
+  // point light in general position; 75 * 6 = 450).
+  const Scene cubes = loadScene("cubes");
+  ASSERT_EQ(cubes.objects.size(), 76u);
+  EXPECT_FALSE(cubes.objects[0].castsShadow);
+  const Frame f = renderTechnique(findTechnique("modern.volumes"), cubes, smallParams());
+  EXPECT_EQ(f.counters.at("closed_casters"), 75);
+  EXPECT_EQ(f.counters.at("silhouette_edges"), 450);
+}
+
 // ---------------------------------------------------------------- modern.hybrid
 
 TEST(HybridShadows, EqualsShadowVolumesAtEverySilhouettePixel) {
