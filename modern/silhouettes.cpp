@@ -28,8 +28,7 @@ EdgeAdjacency buildEdgeAdjacency(const Mesh& mesh, const std::string& objectName
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const glm::uvec3 tri(id[mesh.indices[t]], id[mesh.indices[t + 1]], id[mesh.indices[t + 2]]);
     const glm::vec3 p0 = out.positions[tri[0]];
-    const glm::vec3 n =
-        glm::cross(out.positions[tri[1]] - p0, out.positions[tri[2]] - p0);
+    const glm::vec3 n = glm::cross(out.positions[tri[1]] - p0, out.positions[tri[2]] - p0);
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0] || n == glm::vec3(0.0f)) {
       ++out.droppedDegenerate;
       continue;

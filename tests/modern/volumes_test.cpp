@@ -118,11 +118,12 @@ TEST(ShadowVolumeGeometry, OpenMeshVolumesAreClosed) {
     std::string name;
     Mesh mesh;
     size_t boundaryEdges;
-  } meshes[] = {{"quad", makeQuad(1, 1), 4}, {"plane", makePlane(2, 2, 3), 12},
-                {"open box", openTop, 4}};
+  } meshes[] = {
+      {"quad", makeQuad(1, 1), 4}, {"plane", makePlane(2, 2, 3), 12}, {"open box", openTop, 4}};
   for (const auto& [name, mesh, boundaryEdges] : meshes) {
     const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(mesh, name);
     ASSERT_FALSE(adj.closed) << name;
+    int folds = 0;
     for (const glm::vec3 light : {glm::vec3(0.3f, 5, 0.2f), glm::vec3(0.2f, -4, 0.1f),
                                   glm::vec3(-3.1f, 0.3f, 2.9f), glm::vec3(0.1f, 0.2f, 0.05f)}) {
       const modern::Silhouette s = modern::findSilhouette(adj, light);
@@ -131,8 +132,16 @@ TEST(ShadowVolumeGeometry, OpenMeshVolumesAreClosed) {
       int once = 0;
       for (int q : s.quads) once += q == 1;
       EXPECT_GE(size_t(once), boundaryEdges) << name;  // every boundary edge, once
+      folds += int(s.quads.size()) - once;
       expectClosedVolume(modern::buildShadowVolume(adj, s, light), false, name);
     }
+    // Beside the open box, a light faces two of its side faces and not the other two (nor the
+    // bottom): the edges between a facing and a non-facing face are folds (two quads each).
+    // Flat meshes have none.
+    if (name == "open box")
+      EXPECT_GT(folds, 0);
+    else
+      EXPECT_EQ(folds, 0) << name;
   }
   // A flat mesh has no fold: from any light off its plane the silhouette is its boundary.
   const modern::EdgeAdjacency plane = modern::buildEdgeAdjacency(makePlane(2, 2, 3), "plane");
