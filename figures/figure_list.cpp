@@ -516,8 +516,8 @@ std::vector<FigureSpec> chanFigures() {
       "Rows: three scenes of high shadow complexity (our stand-ins: procedural trees, the "
       "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
       "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
-      "dragon has holes, so the volume-based columns skip it as a caster (counted in "
-      "open_casters_skipped): compare its missing shadow on the right.",
+      "dragon has holes; the volume-based columns give it the volume of its two-sided surface "
+      "(counted in open_casters_two_sided, docs/volumes.md).",
       "trees", 3, p37);
   f37.shadowMapTexels = 1024;
   out.push_back(f37);
