@@ -16,6 +16,7 @@
 
 #include "core/context.h"
 #include "core/errors.h"
+#include "core/shaders.h"
 #include "core/technique.h"
 #include "modern/gl_objects.h"
 
@@ -31,72 +32,6 @@ constexpr float kDensityLog2Range = 2.0f;  // colour ramp spans 1/4 .. 4 eye pix
 constexpr float kOutsideGrey = 0.35f;      // pixels outside the light frustum
 constexpr float kAmbient = 0.15f;          // light-view shading floor
 
-const char* kVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-uniform mat4 uModel;
-uniform mat4 uViewProjection;
-uniform mat4 uLightView;
-uniform mat4 uLightClip;  // bias * projection * view of the light
-out vec3 vNormal;
-out vec3 vWorld;
-out float vLightZ;        // distance along the light's axis (positive)
-out vec4 vShadowCoord;
-void main() {
-  vec4 world = uModel * vec4(aPosition, 1.0);
-  vWorld = world.xyz;
-  vNormal = mat3(transpose(inverse(uModel))) * aNormal;
-  vLightZ = -(uLightView * world).z;
-  vShadowCoord = uLightClip * world;
-  gl_Position = uViewProjection * world;
-}
-)";
-
-// Light pass: attachment 0 = linear depth, attachment 1 = N.L shading.
-const char* kLightFragment = R"(#version 330 core
-in vec3 vNormal;
-in vec3 vWorld;
-in float vLightZ;
-in vec4 vShadowCoord;
-uniform vec2 uDepthRange;  // near, far
-uniform vec3 uLightPosition;
-uniform vec3 uDiffuse;
-uniform float uAmbient;
-layout(location = 0) out vec4 oDepth;
-layout(location = 1) out vec4 oColor;
-void main() {
-  float d = clamp((vLightZ - uDepthRange.x) / (uDepthRange.y - uDepthRange.x), 0.0, 1.0);
-  oDepth = vec4(d, 0.0, 0.0, 1.0);
-  vec3 n = normalize(vNormal);
-  vec3 l = normalize(uLightPosition - vWorld);
-  float lambert = abs(dot(n, l));
-  oColor = vec4(uDiffuse * (uAmbient + (1.0 - uAmbient) * lambert), 1.0);
-}
-)";
-
-// Eye pass: R = own linear light depth, G = map value at the projection (-1 outside),
-// B = shadow-map texels per eye pixel, A = 1 where geometry was drawn.
-const char* kEyeFragment = R"(#version 330 core
-in vec3 vNormal;
-in vec3 vWorld;
-in float vLightZ;
-in vec4 vShadowCoord;
-uniform vec2 uDepthRange;
-uniform float uTexels;
-uniform sampler2D uLinearDepth;
-out vec4 oProbe;
-void main() {
-  float d = clamp((vLightZ - uDepthRange.x) / (uDepthRange.y - uDepthRange.x), 0.0, 1.0);
-  vec2 uv = vShadowCoord.xy / vShadowCoord.w;
-  vec2 t = uv * uTexels;
-  float texelsPerPixel = max(length(dFdx(t)), length(dFdy(t)));
-  bool inside = vShadowCoord.w > 0.0 && all(greaterThanEqual(uv, vec2(0.0))) &&
-                all(lessThanEqual(uv, vec2(1.0)));
-  float mapValue = inside ? texture(uLinearDepth, uv).r : -1.0;
-  oProbe = vec4(d, mapValue, inside ? texelsPerPixel : -1.0, 1.0);
-}
-)";
-
 // Reads colour attachment `index` of a target as float RGBA.
 Image readTarget(const RenderTarget& target, int index) {
   target.bind();
@@ -106,37 +41,6 @@ Image readTarget(const RenderTarget& target, int index) {
   return image;
 }
 
-GLuint compileShader(GLenum type, const char* source, const char* what) {
-  GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {0};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    glDeleteShader(shader);
-    throw GlError(std::string("compiling the figures' ") + what + " shader: " + log);
-  }
-  return shader;
-}
-
-GlName<modern::deleteProgram> linkProgram(const char* fragment, const char* what) {
-  GlName<modern::deleteProgram> program(glCreateProgram());
-  const GLuint vs = compileShader(GL_VERTEX_SHADER, kVertex, what);
-  const GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragment, what);
-  glAttachShader(program.id(), vs);
-  glAttachShader(program.id(), fs);
-  glBindAttribLocation(program.id(), 0, "aPosition");
-  glBindAttribLocation(program.id(), 1, "aNormal");
-  glLinkProgram(program.id());
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-  if (!ok) throw GlError(std::string("linking the figures' ") + what + " program");
-  return program;
-}
 
 void setMat(GLuint program, const char* name, const glm::mat4& m) {
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
@@ -179,7 +83,8 @@ RenderTarget renderLightDepth(const GpuScene& gpu, const LightMatrices& lm, int 
   glClearBufferfv(GL_COLOR, 1, black);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
-  auto program = linkProgram(kLightFragment, "light view");
+  GlName<modern::deleteProgram> program(
+      compileShaderProgram("diagnostics.vert.glsl", "diagnostics_light.frag.glsl"));
   setCommon(program.id(), lm, lm.projection * lm.view);
   const Scene& scene = gpu.scene();
   glUniform3fv(glGetUniformLocation(program.id(), "uLightPosition"), 1,
@@ -204,7 +109,8 @@ Image renderEyeProbe(const GpuScene& gpu, const LightMatrices& lm, const RenderT
   glClearBufferfv(GL_COLOR, 0, clear);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
-  auto program = linkProgram(kEyeFragment, "eye probe");
+  GlName<modern::deleteProgram> program(
+      compileShaderProgram("diagnostics.vert.glsl", "diagnostics_eye.frag.glsl"));
   const Scene& scene = gpu.scene();
   const float aspect = float(width) / float(height);
   setCommon(program.id(), lm, cameraProjection(scene.camera, aspect) * cameraView(scene.camera));

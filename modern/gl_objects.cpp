@@ -4,16 +4,10 @@
 
 #include "core/context.h"
 #include "core/errors.h"
+#include "core/shaders.h"
 
 namespace sl::modern {
 using namespace sl::gl;
-
-const std::string& shaderSource(const std::string& name) {
-  const auto& all = embeddedShaders();
-  auto it = all.find(name);
-  if (it == all.end()) throw GlError("no shader modern/shaders/" + name + " in this build");
-  return it->second;
-}
 
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
@@ -34,75 +28,10 @@ Framebuffer makeFramebuffer() {
   return Framebuffer(id);
 }
 
-namespace {
-// Replaces each line `#include "name.glsl"` with modern/shaders/name.glsl (one level deep:
-// included files hold shared functions, such as the fixed-function lighting model).
-std::string expandIncludes(const std::string& source, const std::string& file) {
-  std::string out;
-  size_t pos = 0;
-  while (pos < source.size()) {
-    size_t eol = source.find('\n', pos);
-    if (eol == std::string::npos) eol = source.size();
-    const std::string line = source.substr(pos, eol - pos);
-    if (line.rfind("#include \"", 0) == 0) {
-      const size_t close = line.find('"', 10);
-      if (close == std::string::npos) throw GlError("bad #include in modern/shaders/" + file);
-      out += shaderSource(line.substr(10, close - 10));
-    } else {
-      out += line;
-    }
-    out += '\n';
-    pos = eol + 1;
-  }
-  return out;
-}
-
-GLuint compile(GLenum type, const std::string& file,
-               const std::vector<std::pair<std::string, std::string>>& defines) {
-  std::string source = expandIncludes(shaderSource(file), file);
-  if (!defines.empty()) {
-    // Defines go right after the #version line (which must stay first).
-    size_t eol = source.find('\n', source.find("#version"));
-    std::string block;
-    for (const auto& [k, v] : defines) block += "#define " + k + " " + v + "\n";
-    source.insert(eol == std::string::npos ? source.size() : eol + 1, block);
-  }
-  GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {0};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    glDeleteShader(shader);
-    throw GlError("compiling modern/shaders/" + file + ": " + log);
-  }
-  return shader;
-}
-}  // namespace
-
 Program::Program(const std::string& vertexFile, const std::string& fragmentFile,
                  const std::vector<std::pair<std::string, std::string>>& defines,
-                 const std::string& geometryFile) {
-  program_ = GlName<deleteProgram>(glCreateProgram());
-  std::vector<GLuint> shaders = {compile(GL_VERTEX_SHADER, vertexFile, defines),
-                                 compile(GL_FRAGMENT_SHADER, fragmentFile, defines)};
-  if (!geometryFile.empty()) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometryFile, defines));
-  for (GLuint s : shaders) glAttachShader(program_.id(), s);
-  glBindAttribLocation(program_.id(), 0, "aPosition");
-  glBindAttribLocation(program_.id(), 1, "aNormal");
-  glLinkProgram(program_.id());
-  for (GLuint s : shaders) glDeleteShader(s);
-  GLint ok = 0;
-  glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {0};
-    glGetProgramInfoLog(program_.id(), sizeof(log), nullptr, log);
-    throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
-  }
-}
+                 const std::string& geometryFile)
+    : program_(compileShaderProgram(vertexFile, fragmentFile, defines, geometryFile)) {}
 
 namespace {
 struct ProgramCache {

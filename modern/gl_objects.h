@@ -15,9 +15,7 @@
 
 namespace sl::modern {
 
-// The source of modern/shaders/<name> (embedded at build time).
-const std::string& shaderSource(const std::string& name);
-const std::map<std::string, std::string>& embeddedShaders();
+// Shader sources and their compiler: core/shaders.h (modern/shaders/*.glsl, embedded).
 
 // A move-only owner of one GL name; `Deleter` releases it.
 template <void (*Deleter)(GLuint)>

@@ -3,8 +3,8 @@
 //
 // The vertex transform is the one of modern/shaders/scene.vert.glsl (uModel, then
 // uViewProjection from the same glm matrices), so GL rasterises the same fragments here as in
-// every technique's camera pass. The module keeps its own small shaders and GL owners: the
-// reference does not depend on modern/ (DESIGN.md "Layout": one-way dependencies).
+// every technique's camera pass. The module keeps its own GL owners and its shaders in
+// reference/shaders/: the reference does not depend on modern/ (DESIGN.md "Layout").
 #include "reference/surface_buffer.h"
 
 #include <string>
@@ -12,48 +12,12 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/errors.h"
+#include "core/shaders.h"
 
 namespace sl::reference {
 using namespace sl::gl;
 
 namespace {
-
-constexpr const char* kVertexShader = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-uniform mat4 uModel;
-uniform mat4 uViewProjection;
-out vec3 vWorldPosition;
-out vec3 vWorldNormal;
-void main() {
-  vec4 world = uModel * vec4(aPosition, 1.0);
-  vWorldPosition = world.xyz;
-  vWorldNormal = mat3(transpose(inverse(uModel))) * aNormal;
-  gl_Position = uViewProjection * world;
-}
-)";
-
-// Attachment 0: position + (object index + 1); 1: shading normal; 2: geometric normal. Both
-// normals face the camera (the modern shaders flip n on back faces the same way).
-constexpr const char* kFragmentShader = R"(#version 330 core
-in vec3 vWorldPosition;
-in vec3 vWorldNormal;
-uniform float uObjectId;
-layout(location = 0) out vec4 oPosition;
-layout(location = 1) out vec4 oShadingNormal;
-layout(location = 2) out vec4 oGeometricNormal;
-void main() {
-  vec3 n = normalize(vWorldNormal);
-  if (!gl_FrontFacing) n = -n;
-  vec3 g = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
-  float len = length(g);
-  g = len > 0.0 ? g / len : n;
-  if (dot(g, n) < 0.0) g = -g;
-  oPosition = vec4(vWorldPosition, uObjectId);
-  oShadingNormal = vec4(n, 1.0);
-  oGeometricNormal = vec4(g, 1.0);
-}
-)";
 
 constexpr int kAttachments = 3;
 
@@ -75,35 +39,9 @@ struct GlObjects {
   }
 };
 
-GLuint compileShader(GLenum type, const char* source) {
-  GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {0};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    glDeleteShader(shader);
-    throw GlError(std::string("reference surface pass shader: ") + log);
-  }
-  return shader;
-}
-
+// reference/shaders/surface_points.{vert,frag}.glsl (embedded, core/shaders.h).
 void buildProgram(GlObjects& gl) {
-  gl.program = glCreateProgram();
-  const GLuint vs = compileShader(GL_VERTEX_SHADER, kVertexShader);
-  const GLuint fs = compileShader(GL_FRAGMENT_SHADER, kFragmentShader);
-  glAttachShader(gl.program, vs);
-  glAttachShader(gl.program, fs);
-  glBindAttribLocation(gl.program, 0, "aPosition");
-  glBindAttribLocation(gl.program, 1, "aNormal");
-  glLinkProgram(gl.program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(gl.program, GL_LINK_STATUS, &ok);
-  if (!ok) throw GlError("reference surface pass: program does not link");
+  gl.program = compileShaderProgram("surface_points.vert.glsl", "surface_points.frag.glsl");
 }
 
 void buildTarget(GlObjects& gl, int width, int height) {
