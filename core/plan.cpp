@@ -7,9 +7,9 @@
 //   3. depth range      — fitted: near to the casters inside the frustum, far to the casters
 //                         and receivers inside it (a receiver nearer than every caster cannot
 //                         be shadowed; a receiver beyond far would be compared wrongly)
-//   4. accumulation     — only for footprints that need more than one group of four samples
-//                         (Brabec–Seidel §3: 2x2 fits the four channels of one pass; §4: the
-//                         convolution packs up to 3x3 phases... 4x4 needs four phases)
+//   4. accumulation     — only for footprints that need more than one pass of four samples
+//                         (Brabec–Seidel §3: a 2x2 footprint fits the RGBA channels of one
+//                         pass; §4: fast PCF packs 2x2 by convolution, 4x4 sums four phases)
 //   5. imaging stages   — the colour matrix is the identity for one sample (filter 1); the
 //                         convolution is the identity for filter 1
 //   6. convolution taps — Eq. (1)'s 3x3 RGBA kernel has 4 non-zero taps of 36

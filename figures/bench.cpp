@@ -69,10 +69,9 @@ bool isReference(const Technique& t) {
 bool usesShadowMap(const Technique& t) {
   return !isReference(t) && t.name.find("volumes") == std::string::npos;
 }
-bool usesFilterFootprint(const Technique& t) {
-  return t.name.find("pcf") != std::string::npos && t.name.rfind("legacy.", 0) == 0
-             ? true
-             : t.name == "modern.pcf" || t.name == "modern.fast-pcf";
+bool usesFilterFootprint(const Technique& t) {  // Brabec–Seidel §3-4 and their GLSL twins
+  return t.name == "legacy.pcf" || t.name == "legacy.fast-pcf" || t.name == "modern.pcf" ||
+         t.name == "modern.fast-pcf";
 }
 // Techniques whose result approximates an area light (the soft reference is their truth).
 bool approximatesSoftShadows(const Technique& t) {
