@@ -29,14 +29,41 @@ const char* kTexgenRounding =
 std::vector<TwinPair> allPairs() {
   std::vector<TwinPair> p;
   auto add = [&](TwinPair t) { p.push_back(std::move(t)); };
-  add({"hw (linear compare)", "legacy.hw", "modern.hw", 1, Precision::k8, {}, {}, false,
+  add({"hw (linear compare)",
+       "legacy.hw",
+       "modern.hw",
+       1,
+       Precision::k8,
+       {},
+       {},
+       false,
        kTexgenRounding});
-  add({"hw (nearest compare)", "legacy.hw", "modern.hw", 1, Precision::k8,
-       {{"compare", "nearest"}}, {{"compare", "nearest"}}, false, kTexgenRounding});
-  add({"woo", "legacy.woo", "modern.woo", 1, Precision::k8, {}, {}, false,
+  add({"hw (nearest compare)",
+       "legacy.hw",
+       "modern.hw",
+       1,
+       Precision::k8,
+       {{"compare", "nearest"}},
+       {{"compare", "nearest"}},
+       false,
+       kTexgenRounding});
+  add({"woo",
+       "legacy.woo",
+       "modern.woo",
+       1,
+       Precision::k8,
+       {},
+       {},
+       false,
        "same as hw; the midpoint depth is averaged on the host (legacy) and in a shader "
        "(modern), which may round the 24-bit midpoint apart by one unit, a tie only"});
-  add({"second-depth", "legacy.second-depth", "modern.second-depth", 1, Precision::k8, {}, {},
+  add({"second-depth",
+       "legacy.second-depth",
+       "modern.second-depth",
+       1,
+       Precision::k8,
+       {},
+       {},
        false,
        "same as hw; without polygon offset the back faces (seen from the light) compare against "
        "their own depth, so their acne ties are many, all on the back faces' noisy boundary"});
@@ -48,26 +75,75 @@ std::vector<TwinPair> allPairs() {
   const char* kFloat =
       "'float' arithmetic drops the 2001 quantisation on the modern side and the legacy side "
       "runs with float colour buffers: what remains is texgen rounding (see hw)";
-  add({"ramp faithful 8-bit", "legacy.ramp", "modern.ramp", 1, Precision::k8, {},
-       {{"arithmetic", "faithful"}}, true, kFaithful});
-  add({"ramp faithful 12-bit", "legacy.ramp", "modern.ramp", 1, Precision::k12, {},
-       {{"arithmetic", "faithful"}}, true, kFaithful});
-  add({"ramp float", "legacy.ramp", "modern.ramp", 1, Precision::kFloat, {},
-       {{"arithmetic", "float"}}, false, kFloat});
+  add({"ramp faithful 8-bit",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::k8,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithful});
+  add({"ramp faithful 12-bit",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::k12,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithful});
+  add({"ramp float",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
   for (int f : {2, 3, 4}) {
     const std::string k = std::to_string(f) + "x" + std::to_string(f);
-    add({"pcf " + k + " faithful 8-bit", "legacy.pcf", "modern.pcf", f, Precision::k8, {},
-         {{"arithmetic", "faithful"}}, true, kFaithful});
+    add({"pcf " + k + " faithful 8-bit",
+         "legacy.pcf",
+         "modern.pcf",
+         f,
+         Precision::k8,
+         {},
+         {{"arithmetic", "faithful"}},
+         true,
+         kFaithful});
   }
-  add({"pcf 2x2 float", "legacy.pcf", "modern.pcf", 2, Precision::kFloat, {},
-       {{"arithmetic", "float"}}, false, kFloat});
+  add({"pcf 2x2 float",
+       "legacy.pcf",
+       "modern.pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
   for (int f : {2, 4}) {
     const std::string k = std::to_string(f) + "x" + std::to_string(f);
-    add({"fast-pcf " + k + " faithful 8-bit", "legacy.fast-pcf", "modern.fast-pcf", f,
-         Precision::k8, {}, {{"arithmetic", "faithful"}}, true, kFaithful});
+    add({"fast-pcf " + k + " faithful 8-bit",
+         "legacy.fast-pcf",
+         "modern.fast-pcf",
+         f,
+         Precision::k8,
+         {},
+         {{"arithmetic", "faithful"}},
+         true,
+         kFaithful});
   }
-  add({"fast-pcf 2x2 float", "legacy.fast-pcf", "modern.fast-pcf", 2, Precision::kFloat, {},
-       {{"arithmetic", "float"}}, false, kFloat});
+  add({"fast-pcf 2x2 float",
+       "legacy.fast-pcf",
+       "modern.fast-pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
   return p;
 }
 
@@ -119,8 +195,8 @@ Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& mode
     const double share = a.all.pixels > 0 ? double(a.differing) / double(a.all.pixels) : 0.0;
     a.withinBound = share <= kMaxFaithfulTieShare && a.differingOutsideBand == 0;
     v << "bound: bit-exact but for ties (<= " << kMaxFaithfulTieShare * 100
-      << "% of pixels, all on the boundary band); measured " << a.differing
-      << " differing pixels, " << a.differingOutsideBand << " off the band, max " << a.all.maxAbs;
+      << "% of pixels, all on the boundary band); measured " << a.differing << " differing pixels, "
+      << a.differingOutsideBand << " off the band, max " << a.all.maxAbs;
   } else {
     a.withinBound = a.shareBeyondOneStep <= kMaxShareBeyondOneStep && a.beyondOutsideBand == 0;
     v << "bound: <= 1/255 on >= 99.9% of pixels, larger only on the boundary band (radius "

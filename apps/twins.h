@@ -54,10 +54,10 @@ constexpr double kMaxFaithfulTieShare = 1e-4;
 constexpr double kIdentical = 0.5 / 65535.0;
 
 struct Agreement {
-  MaskDifference all;                // over every pixel
-  long long beyondOneStep = 0;       // pixels with |diff| > one 8-bit step
-  long long beyondOutsideBand = 0;   // of those, how many lie outside the boundary band
-  long long differing = 0;           // pixels that differ at all (> kIdentical)
+  MaskDifference all;               // over every pixel
+  long long beyondOneStep = 0;      // pixels with |diff| > one 8-bit step
+  long long beyondOutsideBand = 0;  // of those, how many lie outside the boundary band
+  long long differing = 0;          // pixels that differ at all (> kIdentical)
   long long differingOutsideBand = 0;
   double shareBeyondOneStep = 0.0;
   bool withinBound = false;

@@ -49,17 +49,28 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= argc) throw InputError(a + " needs a value");
       return argv[++i];
     };
-    if (a == "--size") cli::parseSize(value(), o.width, o.height);
-    else if (a == "--shadow-map") o.shadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
-    else if (a == "--bench-size") cli::parseSize(value(), o.benchWidth, o.benchHeight);
-    else if (a == "--bench-shadow-map") o.benchShadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
-    else if (a == "--bench-scene") o.benchScene = value();
-    else if (a == "--frames") o.frames = cli::parsePositiveInt(a, value(), 1000);
-    else if (a == "--backend") o.backend = parseBackend(value());
-    else if (a == "--scenes") o.scenes = splitCommas(value());
-    else if (a == "--no-agreement") o.agreement = false;
-    else if (a == "--no-bench") o.bench = false;
-    else throw InputError("unknown option " + a + " (see the head of apps/twins_main.cpp)");
+    if (a == "--size")
+      cli::parseSize(value(), o.width, o.height);
+    else if (a == "--shadow-map")
+      o.shadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
+    else if (a == "--bench-size")
+      cli::parseSize(value(), o.benchWidth, o.benchHeight);
+    else if (a == "--bench-shadow-map")
+      o.benchShadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
+    else if (a == "--bench-scene")
+      o.benchScene = value();
+    else if (a == "--frames")
+      o.frames = cli::parsePositiveInt(a, value(), 1000);
+    else if (a == "--backend")
+      o.backend = parseBackend(value());
+    else if (a == "--scenes")
+      o.scenes = splitCommas(value());
+    else if (a == "--no-agreement")
+      o.agreement = false;
+    else if (a == "--no-bench")
+      o.bench = false;
+    else
+      throw InputError("unknown option " + a + " (see the head of apps/twins_main.cpp)");
   }
   return o;
 }
@@ -91,10 +102,9 @@ void agreementTable(const Options& o) {
         const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
         const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
         const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
-        std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1)
-                  << "/255) | " << a.differing << " of " << a.all.pixels << " | "
-                  << a.beyondOneStep << " | " << a.beyondOutsideBand << " | "
-                  << (a.withinBound ? "yes" : "**no**") << " |\n";
+        std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1) << "/255) | "
+                  << a.differing << " of " << a.all.pixels << " | " << a.beyondOneStep << " | "
+                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " |\n";
       } catch (const std::exception& e) {
         std::cout << "not run: " << e.what() << " | | | | |\n";
       }
@@ -105,8 +115,8 @@ void agreementTable(const Options& o) {
 
 void benchTable(const Options& o) {
   std::cout << "### Frame time (" << backendName(o.backend) << ", " << o.benchScene << ", "
-            << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap
-            << "^2 map, " << o.frames << " frames each)\n\n"
+            << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap << "^2 map, "
+            << o.frames << " frames each)\n\n"
             << "| pair | legacy ms (median / min) | modern ms (median / min) | legacy / modern "
                "(medians) | legacy / modern (minima) |\n| --- | --- | --- | --- | --- |\n";
   const Scene scene = loadScene(o.benchScene);

@@ -2,9 +2,11 @@
 // modern.smoothies (Chan 2004 Figures 3-10, 3-11, 4-8) with the overdraw counters; one JSON
 // object per technique per line. See docs/volumes.md.
 //
-//   volumes_bench [--scene cubes|<built-in>] [--size WxH] [--shadow-map N] [--frames N]
+//   volumes_bench [--scene S] [--size WxH] [--shadow-map N] [--frames N]
 //                 [--backend osmesa|egl] [--technique T ...]
 //   volumes_bench --doc-images DIR     the two images of docs/volumes.md
+//
+// S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
 #include "modern/volumes_bench.h"
 
 #include <cstdlib>
@@ -37,7 +39,7 @@ void writeDocImages(const std::string& dir) {
   writePng(dir + "/volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png", sideBySide(crops));
   p.shadowMapTexels = 1024;
   p.capturePasses = true;
-  const Scene cubes = modern::fillHeavyScene();
+  const Scene cubes = loadScene("cubes");
   const Frame v = renderTechnique(findTechnique("modern.volumes"), cubes, p);
   const Frame h = renderTechnique(findTechnique("modern.hybrid"), cubes, p);
   std::vector<Image> panels = {v.color};
@@ -88,7 +90,7 @@ int main(int argc, char** argv) {
     }
     if (techniques.empty())
       techniques = {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"};
-    const Scene scene = sceneName == "cubes" ? modern::fillHeavyScene() : builtinScene(sceneName);
+    const Scene scene = loadScene(sceneName);
     for (const auto& row : modern::benchmarkShadowVolumes(scene, params, techniques, frames))
       std::cout << modern::toJson(row).dump() << std::endl;
     return 0;

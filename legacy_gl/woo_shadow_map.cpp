@@ -12,11 +12,10 @@
 //   3. storeMidpointDepth     — (z1 + z2) / 2 into the DEPTH_COMPONENT shadow map
 //   4-7. shadeWithShadowMap   — legacy.hw's camera passes (texgen planes, ambient, direct light
 //                               x shadow test, visibility mask) on the midpoint map
-#include <string>
-#include <vector>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
+#include <vector>
 
 #include "core/errors.h"
 #include "core/gl.h"
@@ -49,8 +48,8 @@ std::vector<float> renderFirstDepthLayer(const Scene& scene, int n, LightTarget&
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
   drawScene(scene, Draw::kCasters);
   glBindTexture(GL_TEXTURE_2D, firstLayer);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
-               GL_UNSIGNED_INT, nullptr);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+               nullptr);
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
   std::vector<float> z1(size_t(n) * n);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -167,7 +166,8 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
 Technique wooShadowMapTechnique() {
   Technique t;
   t.name = "legacy.woo";
-  t.paper = "Woo's midpoint shadow map (Everitt, Rege & Cebenoyan 2001, Advantages and Limitations)";
+  t.paper =
+      "Woo's midpoint shadow map (Everitt, Rege & Cebenoyan 2001, Advantages and Limitations)";
   t.summary = "depth peeling of two layers from the light, map = their midpoint, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;

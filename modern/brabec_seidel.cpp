@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
@@ -24,27 +23,32 @@ int depthBits(const RenderParams& params) {
 
 GLenum encodedDepthFormat(const RenderParams& params) {
   switch (depthBits(params)) {
-    case 8: return GL_RGBA8;
-    case 12: return GL_RGBA16;  // 12-bit values in a 16-bit buffer (Octane VPro, §6)
-    default: return GL_RGBA32F;
+    case 8:
+      return GL_RGBA8;
+    case 12:
+      return GL_RGBA16;  // 12-bit values in a 16-bit buffer (Octane VPro, §6)
+    default:
+      return GL_RGBA32F;
   }
 }
 
 namespace {
 // The legacy colour buffer and pipeline constants (legacy_gl/brabec_seidel_passes.cpp).
-constexpr double kStep8 = 1.0 / 255.0;            // 8-bit depth step
-constexpr double kStep12 = 1.0 / 4095.0;          // 12-bit depth step
-constexpr double kStepFloat = 1.0 / 1048576.0;    // the float pipeline's nominal step
+constexpr double kStep8 = 1.0 / 255.0;          // 8-bit depth step
+constexpr double kStep12 = 1.0 / 4095.0;        // 12-bit depth step
+constexpr double kStepFloat = 1.0 / 1048576.0;  // the float pipeline's nominal step
 constexpr double kChannelMax8 = 255.0;
 constexpr double kChannelMax12 = 4095.0;
-constexpr double kChannelMaxFloat = 65535.0;      // shares of a 16-bit colour table
-constexpr float kColorTableLastIndex = 255.0f;    // 256-entry colour table
-constexpr float kAccumSteps = 32767.0f;           // 16-bit signed accumulation buffer
+constexpr double kChannelMaxFloat = 65535.0;    // shares of a 16-bit colour table
+constexpr float kColorTableLastIndex = 255.0f;  // 256-entry colour table
+constexpr float kAccumSteps = 32767.0f;         // 16-bit signed accumulation buffer
 constexpr int kRampTexels8 = 256;
 constexpr int kRampTexels12 = 4096;
 
 double depthStep(const RenderParams& p) {
-  return p.precision == Precision::k8 ? kStep8 : p.precision == Precision::k12 ? kStep12 : kStepFloat;
+  return p.precision == Precision::k8    ? kStep8
+         : p.precision == Precision::k12 ? kStep12
+                                         : kStepFloat;
 }
 double channelMax(const RenderParams& p) {
   return p.precision == Precision::k8    ? kChannelMax8
@@ -117,7 +121,6 @@ glm::vec4 shadowShares(const RenderParams& params, int samples) {
   return shares;
 }
 
-
 glm::mat4 eyeToRamp(const Scene& scene, int rampTexels, double bias) {
   const DepthRange range = lightDepthRange(scene);
   const double n = range.nearPlane, f = range.farPlane;
@@ -150,7 +153,6 @@ void setTexgenObjectUniforms(const Program& program, const Object& object, const
   program.set("uModelView", modelView);
   program.set("uModelViewProjection", projection * modelView);
 }
-
 
 RenderTarget makeEncodedDepthTarget(const RenderParams& params) {
   const int n = params.shadowMapTexels;
@@ -244,14 +246,17 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
     program.set(("uGroupAccumScale" + i).c_str(), weight * kAccumSteps);
   }
   glActiveTexture(GL_TEXTURE0);
-  gpu.draw([](const Object&) { return true; }, [&](const Object& o) {
-    setObjectUniforms(program, o);
-    setTexgenObjectUniforms(program, o, view, projection);
-  });
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) {
+             setObjectUniforms(program, o);
+             setTexgenObjectUniforms(program, o, view, projection);
+           });
   readCameraTarget(target, frame);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-std::vector<std::string> paramKeys() { return {"arithmetic", "depth-bias"}; }
+std::vector<std::string> paramKeys() {
+  return {"arithmetic", "depth-bias"};
+}
 
 }  // namespace sl::modern::bs

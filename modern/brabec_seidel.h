@@ -4,9 +4,8 @@
 // (module-internal header).
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/technique.h"
 #include "modern/gl_objects.h"

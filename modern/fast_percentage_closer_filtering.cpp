@@ -35,10 +35,10 @@ struct Phase {
 const std::vector<Phase> kFootprint2 = {{{-1, -1}, {0.5f, 0.5f}}};
 // 4x4: the footprint {c-2 .. c+1}^2 around c = round(p) as four 2x2 regions. A region with
 // origin -1 looked up at p - 1/2 covers {c-2, c-1}; origin 0 looked up at p + 1/2 covers {c, c+1}.
-const std::vector<Phase> kFootprint4 = {{{-1, -1}, {-0.5f, -0.5f}},   // lower left
-                                        {{0, -1}, {0.5f, -0.5f}},     // lower right
-                                        {{-1, 0}, {-0.5f, 0.5f}},     // upper left
-                                        {{0, 0}, {0.5f, 0.5f}}};      // upper right
+const std::vector<Phase> kFootprint4 = {{{-1, -1}, {-0.5f, -0.5f}},  // lower left
+                                        {{0, -1}, {0.5f, -0.5f}},    // lower right
+                                        {{-1, 0}, {-0.5f, 0.5f}},    // upper left
+                                        {{0, 0}, {0.5f, 0.5f}}};     // upper right
 
 // Pass 1 (§4): the scene from the light once, encoded depth in R, G, B and A.
 RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParams& params,

@@ -51,9 +51,9 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
   glPolygonOffset(factor, units);
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  // Only the casters that have shadow volumes (closed meshes): an open caster in the map would
-  // shadow non-silhouette pixels while its silhouette pixels, decided by the volumes, stayed lit.
-  gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; },
+  // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the
+  // hybrid see the same blockers.
+  gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindTexture(GL_TEXTURE_2D, map.depth.id());
@@ -195,7 +195,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
                             ? MaskKind::kStencil
                             : MaskKind::kDepthBounds;
   Frame frame;
-  const SceneCasters casters = closedCasters(scene, "modern.hybrid");
+  const SceneCasters casters = collectCasters(scene);
   GpuScene gpu(scene);
   const glm::mat4 viewProjection = infiniteCameraViewProjection(scene, params);
   Program volumeProgram("shadow_volume.vert.glsl", "depth_only.frag.glsl");

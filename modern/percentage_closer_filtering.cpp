@@ -34,8 +34,7 @@ glm::vec2 jitterTexels(int i, int j, int n) {
 }
 
 // Pass 1 (§3, Figure 3): n^2 jittered light passes packed four to a map, one channel each.
-std::vector<RenderTarget> renderJitteredLightPasses(const GpuScene& gpu,
-                                                    const RenderParams& params,
+std::vector<RenderTarget> renderJitteredLightPasses(const GpuScene& gpu, const RenderParams& params,
                                                     const Texture& ramp, int n, Frame& frame) {
   PassTimer timer(frame, "1 jittered light passes (" + std::to_string(n * n) + ")");
   const int samples = n * n;

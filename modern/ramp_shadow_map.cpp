@@ -58,10 +58,11 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   glBindTexture(GL_TEXTURE_2D, map.color[0].id());
   program.set("uShadowMap", 1);
   glActiveTexture(GL_TEXTURE0);
-  gpu.draw([](const Object&) { return true; }, [&](const Object& o) {
-    setObjectUniforms(program, o);
-    bs::setTexgenObjectUniforms(program, o, view, projection);
-  });
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) {
+             setObjectUniforms(program, o);
+             bs::setTexgenObjectUniforms(program, o, view, projection);
+           });
   readCameraTarget(target, frame);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -85,7 +86,8 @@ Technique rampShadowMapTechnique() {
   Technique t;
   t.name = "modern.ramp";
   t.paper = "Brabec & Seidel 2001, §2 (as GLSL)";
-  t.summary = "depth encoded through a 1D ramp, shadow test by subtraction; faithful|float arithmetic";
+  t.summary =
+      "depth encoded through a 1D ramp, shadow test by subtraction; faithful|float arithmetic";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();

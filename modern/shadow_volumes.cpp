@@ -4,9 +4,12 @@
 // algorithm and uses it as the accurate half of the hybrid (modern.hybrid) and as the
 // reference its Figures 3-7, 3-9 and 3-10 compare against.
 //
-// Blockers must be closed 2-manifold meshes (Chan §3.1). Open casters (the ground planes of the
-// built-in scenes) are skipped and counted in Frame::counters["open_casters_skipped"]; a scene
-// whose every caster is open is an InputError.
+// Everitt–Kilgard and Chan §3.1 assume closed 2-manifold blockers. Zero-area triangles are
+// dropped before the adjacency is built (they block no ray) and closedness is judged from the
+// remaining topology. Open casters (the brabec ground plane, a single quad, the decimated
+// dragon) are not skipped: they get the volume of the two-sided, zero-thickness solid made of
+// both faces of their triangles (DEVIATION in modern/silhouettes.h), which is exact for them
+// too; they are counted in Frame::counters["open_casters_two_sided"].
 //
 // Passes:
 //   1. findSilhouettesAndBuildVolumes — CPU: silhouette edges w.r.t. the light from edge
@@ -32,19 +35,9 @@ namespace {
 constexpr float kInfinityEpsilon = 2.4e-7f * 4.0f;  // a few 24-bit depth steps
 }  // namespace
 
-SceneCasters closedCasters(const Scene& scene, const std::string& technique) {
-  SceneCasters out = collectClosedCasters(scene);
-  if (out.closed.empty())
-    throw InputError(technique + ": scene '" + scene.name +
-                     "' has no closed shadow caster (shadow volumes need closed meshes; open "
-                     "casters: " +
-                     (out.openNames.empty() ? "none" : out.openNames) + ")");
-  return out;
-}
-
 SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lightWorld) {
   SceneVolumes out;
-  for (const ClosedCaster& c : casters.closed) {
+  for (const ShadowCaster& c : casters.casters) {
     const glm::vec3 light = glm::vec3(glm::inverse(c.object->model) * glm::vec4(lightWorld, 1));
     const Silhouette silhouette = findSilhouette(c.adjacency, light);
     const std::vector<glm::vec4> vertices = buildShadowVolume(c.adjacency, silhouette, light);
@@ -210,8 +203,8 @@ VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolume
 void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,
                           const VolumeFill& fill, const RenderParams& params, Frame& frame) {
   const double pixels = double(params.width) * params.height;
-  frame.counters["open_casters_skipped"] = casters.openSkipped;
-  frame.counters["closed_casters"] = double(casters.closed.size());
+  frame.counters["closed_casters"] = casters.closed;
+  frame.counters["open_casters_two_sided"] = casters.open;
   frame.counters["silhouette_edges"] = double(volumes.silhouetteEdges);
   frame.counters["volume_triangles"] = double(volumes.triangles);
   // Chan Figure 3-10: black bars (share of the image covered by shadow volumes) and the number
@@ -256,7 +249,7 @@ void shadeWithStencil(const GpuScene& gpu, const Program& shadeProgram, Frame& f
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   Frame frame;
-  const SceneCasters casters = closedCasters(scene, "modern.volumes");
+  const SceneCasters casters = collectCasters(scene);
   GpuScene gpu(scene);
   const glm::mat4 viewProjection = infiniteCameraViewProjection(scene, params);
   Program depthProgram("shadow_volume.vert.glsl", "depth_only.frag.glsl");
@@ -297,7 +290,7 @@ Technique shadowVolumesTechnique() {
   t.name = "modern.volumes";
   t.paper = "Everitt & Kilgard 2002 (z-fail stencil shadow volumes; Chan 2004 §2.1.2)";
   t.summary = "z-fail stencil shadow volumes, CPU silhouettes, caps, infinite far plane";
-  t.status = "complete (closed casters only; open casters are skipped and counted)";
+  t.status = "complete (open casters get two-sided volumes)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {};
   t.render = render;

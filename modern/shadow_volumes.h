@@ -20,10 +20,6 @@ Technique shadowVolumesTechnique();
 constexpr GLuint kStencilCountBits = 0x7F;
 constexpr GLuint kStencilMaskBit = 0x80;
 
-// collectClosedCasters (silhouettes.h), but a scene whose casters are all open is an
-// InputError: nothing could cast a shadow volume.
-SceneCasters closedCasters(const Scene& scene, const std::string& technique);
-
 // One blocker's shadow volume in a vertex buffer (object space, vec4 positions).
 struct GpuVolume {
   VertexArray vao;

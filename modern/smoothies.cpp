@@ -6,7 +6,7 @@
 // ratio b/r of light-blocker and light-receiver distances (Eq. 4.1).
 //
 // Steps of §4.2 and the four passes of §4.3:
-//   (steps 2-3) findSilhouettesAndBuildSmoothies — CPU: silhouette edges of closed blockers
+//   (steps 2-3) findSilhouettesAndBuildSmoothies — CPU: silhouette edges of the blockers
 //        w.r.t. the light (edge adjacency), a smoothie edge per silhouette edge and a smoothie
 //        corner per silhouette vertex, in light clip space
 //   1. renderShadowMapWithLinearDepth — blockers' depth (hardware depth texture) and the linear
@@ -17,9 +17,9 @@
 //        lit, bilinear, sinusoidal falloff texture
 //
 // --param width=t: smoothie width in light-screen-space units, where the shadow map's side is 1
-// (so t = 0.1 is a tenth of the light's view). Blockers must be closed meshes (§4.1); open
-// casters are skipped and counted in Frame::counters["open_casters_skipped"]; they still cast
-// their hard shadow through the shadow map.
+// (so t = 0.1 is a tenth of the light's view). §4.1 assumes closed blockers; open casters get
+// smoothies on the silhouette of their two-sided solid (boundary edges and folds, see the
+// DEVIATION in modern/silhouettes.h), counted in Frame::counters["open_casters_two_sided"].
 #include "modern/smoothies.h"
 
 #include <algorithm>
@@ -70,7 +70,7 @@ struct SmoothieGeometry {
   long long corners = 0;
   long long cornersWithManyEdges = 0;  // silhouette vertices with more than two edges
   long long cornerSquares = 0;         // corners drawn as squares (see the DEVIATION below)
-  int openSkipped = 0;
+  int openTwoSided = 0;
 };
 
 // Steps 2-3 (§4.2): silhouette edges, then a smoothie edge (a rectangle extended by t away from
@@ -98,8 +98,8 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
   const glm::mat4 lightClip = lightProjection(scene) * lightView(scene.light);
   const float t = float(2.0 * width);  // NDC spans 2 per map side
   const auto toPixels = [&](glm::vec2 ndc) { return (0.5f * ndc + 0.5f) * float(texels); };
-  g.openSkipped = casters.openSkipped;
-  for (const ClosedCaster& caster : casters.closed) {
+  g.openTwoSided = casters.open;
+  for (const ShadowCaster& caster : casters.casters) {
     const Object& o = *caster.object;
     const EdgeAdjacency& mesh = caster.adjacency;
     const glm::vec3 light = glm::vec3(glm::inverse(o.model) * glm::vec4(scene.light.position, 1));
@@ -334,7 +334,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   Frame frame;
   GpuScene gpu(scene);
   const Texture falloff = makeFalloffTexture();
-  const SceneCasters casters = collectClosedCasters(scene);
+  const SceneCasters casters = collectCasters(scene);
   const SmoothieGeometry geometry =
       findSilhouettesAndBuildSmoothies(scene, casters, width, texels, frame);
   const GpuSmoothies smoothies = uploadSmoothies(geometry);
@@ -349,7 +349,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   renderSmoothieAlpha(smoothies, smoothie, map, alphaProgram, width, frame);
   shadeWithSmoothies(gpu, params, shadeProgram, map, smoothie, falloff, frame);
 
-  frame.counters["open_casters_skipped"] = geometry.openSkipped;
+  frame.counters["open_casters_two_sided"] = geometry.openTwoSided;
   frame.counters["smoothie_edges"] = double(geometry.edges);
   frame.counters["smoothie_corners"] = double(geometry.corners);
   frame.counters["corners_with_more_than_two_edges"] = double(geometry.cornersWithManyEdges);
@@ -376,7 +376,7 @@ Technique smoothiesTechnique() {
   t.name = "modern.smoothies";
   t.paper = "Chan 2004 thesis ch. 4 (Chan & Durand 2003, smoothies)";
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
-  t.status = "complete (closed blockers; square corners at vertices with >2 silhouette edges)";
+  t.status = "complete (square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"width", "offset-factor", "offset-units"};
   t.render = render;

@@ -13,9 +13,9 @@
 
 namespace sl::modern {
 
-// A fill-heavy scene after Chan's "Cubes" (Figure 3-6): three layers of floating cubes over a
-// ground plane, a light above, the camera looking across the columns of shadow volumes.
-Scene fillHeavyScene();
+// The fill-heavy scene after Chan's "Cubes" (Figure 3-6) is a scene file: loadScene("cubes")
+// (assets/scenes/cubes.json: three layers of floating cubes over a ground plane, a light above,
+// the camera looking across the columns of shadow volumes).
 
 struct VolumesBenchRow {
   std::string technique;

@@ -7,9 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "apps/registry.h"
 #include "core/scene_library.h"
@@ -53,8 +52,8 @@ class AnalyticTruth {
     const glm::dvec3 light(scene_.light.position);
     const bool shadowed = hitsBox(p, light - p, 1.0);
     // Near the outline when a point a band's width away sees the light differently.
-    for (const glm::dvec2 step : {glm::dvec2(1, 0), glm::dvec2(-1, 0), glm::dvec2(0, 1),
-                                  glm::dvec2(0, -1)}) {
+    for (const glm::dvec2 step :
+         {glm::dvec2(1, 0), glm::dvec2(-1, 0), glm::dvec2(0, 1), glm::dvec2(0, -1)}) {
       const glm::dvec3 q = p + kBandTexels * texel_ * glm::dvec3(step.x, 0, step.y);
       if (hitsBox(q, light - q, 1.0) != shadowed) return Truth::kNearBoundary;
     }
@@ -126,6 +125,54 @@ TEST(DepthLayerShadowMaps, WooMidpointEqualsRayCastShadowWithoutPolygonOffset) {
 
 TEST(DepthLayerShadowMaps, SecondDepthEqualsRayCastShadowWithoutPolygonOffset) {
   expectExactShadowAwayFromOutline("legacy.second-depth");
+}
+
+// Everitt, "Advantages and Limitations": "make sure that the shadow test always returns
+// 'shadowed' for surfaces behind the light" (the negative projection). A light 0.5 above the
+// ground looking along +x: the ground at x < 0 lies behind it. Every technique that shares
+// legacy.hw's camera passes, and its modern twin, must show that half fully shadowed.
+TEST(DepthLayerShadowMaps, SurfacesBehindTheLightAreShadowed) {
+  Scene scene = loadScene("analytic");
+  scene.light.position = {0.0f, 0.5f, 0.0f};
+  scene.light.target = {3.0f, 0.0f, 0.0f};
+  scene.light.up = {0.0f, 1.0f, 0.0f};
+  scene.camera.position = {0.0f, 6.0f, 0.01f};  // straight above, both halves in view
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  scene.camera.fovyDegrees = 60.0f;
+  const glm::dmat4 inverse =
+      glm::inverse(glm::dmat4(cameraProjection(scene.camera, float(kWidth) / kHeight)) *
+                   glm::dmat4(cameraView(scene.camera)));
+  // The ground point seen through the pixel centre (the ground is the plane y = 0).
+  auto groundPoint = [&](int x, int y) {
+    const glm::dvec4 a =
+        inverse * glm::dvec4(2 * (x + 0.5) / kWidth - 1, 2 * (y + 0.5) / kHeight - 1, -1, 1);
+    const glm::dvec4 b =
+        inverse * glm::dvec4(2 * (x + 0.5) / kWidth - 1, 2 * (y + 0.5) / kHeight - 1, 1, 1);
+    const glm::dvec3 o = glm::dvec3(a) / a.w, d = glm::dvec3(b) / b.w - o;
+    return o + d * (-o.y / d.y);
+  };
+  // Behind = at least 0.6 units behind the light plane x = 0, which keeps the 1x1 occluder
+  // (|x| <= 0.5, non-receiver) out of the checked pixels.
+  constexpr double kBehind = -0.6;
+  for (const char* name : {"legacy.hw", "modern.hw", "legacy.woo", "modern.woo",
+                           "legacy.second-depth", "modern.second-depth"}) {
+    RenderParams p;
+    p.width = kWidth;
+    p.height = kHeight;
+    p.shadowMapTexels = kMapTexels;
+    const Frame f = renderTechnique(findTechnique(name), scene, p);
+    long checked = 0, lit = 0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const glm::dvec3 g = groundPoint(x, y);
+        constexpr double kGroundHalf = 3.0;  // the analytic ground is 6 x 6
+        if (!(g.x < kBehind) || g.x < -kGroundHalf || std::fabs(g.z) > kGroundHalf) continue;
+        ++checked;
+        lit += f.visibility.at(x, y) != 0.0f;
+      }
+    EXPECT_GT(checked, 5000) << name;
+    EXPECT_EQ(lit, 0) << name << ": surfaces behind the light must be shadowed";
+  }
 }
 
 // Woo's map lies between the two layers: with --dump-passes the three depth images come back,

@@ -94,16 +94,20 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
   if (!a.withinBound)
     writeFailureArtefacts(identifier(pair.label + "_" + sceneName + "_" + backendName(backend)),
                           legacy, modern);
-  EXPECT_TRUE(a.withinBound) << pair.legacy << " vs " << pair.modern << " on " << sceneName
-                             << ": " << a.verdict << "\nwhy this bound: " << pair.why;
+  EXPECT_TRUE(a.withinBound) << pair.legacy << " vs " << pair.modern << " on " << sceneName << ": "
+                             << a.verdict << "\nwhy this bound: " << pair.why;
 }
 
 }  // namespace
 
 // Readable test parameters in gtest's messages.
-void PrintTo(Backend backend, std::ostream* os) { *os << backendName(backend); }
+void PrintTo(Backend backend, std::ostream* os) {
+  *os << backendName(backend);
+}
 namespace twins {
-void PrintTo(const TwinPair& pair, std::ostream* os) { *os << pair.label; }
+void PrintTo(const TwinPair& pair, std::ostream* os) {
+  *os << pair.label;
+}
 }  // namespace twins
 
 namespace {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
 #include "apps/registry.h"
@@ -43,13 +44,109 @@ TEST(ShadowVolumeGeometry, BoxAdjacencyWeldsCornersAndPairsEveryEdge) {
   EXPECT_EQ(adj.edges.size(), 18u);
 }
 
-TEST(ShadowVolumeGeometry, OpenMeshIsRejectedWithItsName) {
+TEST(ShadowVolumeGeometry, OpenMeshIsJudgedOpen) {
+  // A plane has boundary edges: not closed, whatever Mesh::closed says.
+  Mesh plane = makePlane(2, 2);
+  plane.closed = true;
+  EXPECT_FALSE(modern::buildEdgeAdjacency(plane, "ground").closed);
+  EXPECT_TRUE(modern::buildEdgeAdjacency(makeBox({1, 1, 1}), "box").closed);
+}
+
+TEST(ShadowVolumeGeometry, ZeroAreaTrianglesAreDroppedAndTheBoxStaysClosed) {
+  // The stability suite's degenerate box: a collinear triangle, a triangle with one corner three
+  // times and one with a repeated corner, flagged open. Dropping the three leaves the box's 12
+  // triangles, which pair up into its 18 edges: closed again.
+  Mesh box = makeBox({0.8f, 0.8f, 0.8f});
+  const unsigned base = unsigned(box.positions.size());
+  for (float x : {0.0f, 0.1f, 0.2f}) box.positions.push_back({x, 0, 0}), box.normals.push_back({});
+  for (unsigned i : {base, base + 1, base + 2, base, base, base, 0u, 0u, 1u})
+    box.indices.push_back(i);
+  box.closed = false;
+  const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(box, "degenerate box");
+  EXPECT_EQ(adj.droppedDegenerate, 3);
+  EXPECT_EQ(adj.triangles.size(), 12u);
+  EXPECT_EQ(adj.edges.size(), 18u);
+  EXPECT_TRUE(adj.closed);
+}
+
+TEST(ShadowVolumeGeometry, IndexBeyondThePositionsIsAnInputErrorNamingTheObject) {
+  Mesh quad = makeQuad(1, 1);
+  quad.indices.back() = 99;
   try {
-    modern::buildEdgeAdjacency(makePlane(2, 2), "ground");
-    FAIL() << "an open plane has boundary edges";
+    modern::buildEdgeAdjacency(quad, "broken quad");
+    FAIL() << "index 99 of 4 positions";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("ground"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("broken quad"), std::string::npos) << e.what();
   }
+}
+
+// Every directed edge of a volume (points at infinity distinct from finite ones) is walked as
+// often as its reverse: the volume is a closed, consistently oriented surface, so z-fail
+// counting is exact. `once`: additionally each directed edge exactly once (a 2-manifold volume).
+void expectClosedVolume(const std::vector<glm::vec4>& v, bool once, const std::string& what) {
+  ASSERT_EQ(v.size() % 3, 0u) << what;
+  using Key = std::tuple<float, float, float, float>;
+  const auto key = [](const glm::vec4& p) { return Key(p.x, p.y, p.z, p.w); };
+  std::map<std::pair<Key, Key>, int> directed;
+  for (size_t t = 0; t < v.size(); t += 3)
+    for (int e = 0; e < 3; ++e) ++directed[{key(v[t + e]), key(v[t + (e + 1) % 3])}];
+  for (const auto& [edge, count] : directed) {
+    if (once) {
+      EXPECT_EQ(count, 1) << what;
+    }
+    auto twin = directed.find({edge.second, edge.first});
+    ASSERT_NE(twin, directed.end()) << what;
+    EXPECT_EQ(twin->second, count) << what;
+  }
+}
+
+TEST(ShadowVolumeGeometry, OpenMeshVolumesAreClosed) {
+  // Open meshes get the volume of their two-sided solid: a quad (4 boundary edges, each a
+  // silhouette once), a tessellated plane (its 4 * 3 boundary edges; interior edges cancel), and
+  // a box without its top face lit from several sides (boundary and fold edges).
+  Mesh openBox = makeBox({1, 1, 1});
+  Mesh openTop = openBox;
+  openTop.indices.clear();
+  for (size_t t = 0; t < openBox.indices.size(); t += 3) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && openBox.positions[openBox.indices[t + k]].y > 0.4f;
+    if (!top)
+      for (int k = 0; k < 3; ++k) openTop.indices.push_back(openBox.indices[t + k]);
+  }
+  openTop.closed = false;
+  const struct {
+    std::string name;
+    Mesh mesh;
+    size_t boundaryEdges;
+  } meshes[] = {
+      {"quad", makeQuad(1, 1), 4}, {"plane", makePlane(2, 2, 3), 12}, {"open box", openTop, 4}};
+  for (const auto& [name, mesh, boundaryEdges] : meshes) {
+    const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(mesh, name);
+    ASSERT_FALSE(adj.closed) << name;
+    int folds = 0;
+    for (const glm::vec3 light : {glm::vec3(0.3f, 5, 0.2f), glm::vec3(0.2f, -4, 0.1f),
+                                  glm::vec3(-3.1f, 0.3f, 2.9f), glm::vec3(0.1f, 0.2f, 0.05f)}) {
+      const modern::Silhouette s = modern::findSilhouette(adj, light);
+      EXPECT_TRUE(s.twoSided);
+      ASSERT_EQ(s.quads.size(), s.edges.size());
+      int once = 0;
+      for (int q : s.quads) once += q == 1;
+      EXPECT_GE(size_t(once), boundaryEdges) << name;  // every boundary edge, once
+      folds += int(s.quads.size()) - once;
+      expectClosedVolume(modern::buildShadowVolume(adj, s, light), false, name);
+    }
+    // Beside the open box, a light faces two of its side faces and not the other two (nor the
+    // bottom): the edges between a facing and a non-facing face are folds (two quads each).
+    // Flat meshes have none.
+    if (name == "open box")
+      EXPECT_GT(folds, 0);
+    else
+      EXPECT_EQ(folds, 0) << name;
+  }
+  // A flat mesh has no fold: from any light off its plane the silhouette is its boundary.
+  const modern::EdgeAdjacency plane = modern::buildEdgeAdjacency(makePlane(2, 2, 3), "plane");
+  EXPECT_EQ(modern::findSilhouette(plane, {0.3f, 5, 0.2f}).edges.size(), 12u);
+  EXPECT_EQ(modern::findSilhouette(plane, {0.3f, -5, 0.2f}).edges.size(), 12u);
 }
 
 TEST(ShadowVolumeGeometry, BoxSilhouetteFromAboveIsTheTopSquare) {
@@ -79,19 +176,7 @@ TEST(ShadowVolumeGeometry, VolumesAreClosedAndConsistentlyOriented) {
     const glm::vec3 light(-3.1f, 7.3f, 2.9f);
     const modern::Silhouette s = modern::findSilhouette(adj, light);
     EXPECT_FALSE(s.edges.empty());
-    const std::vector<glm::vec4> v = modern::buildShadowVolume(adj, s, light);
-    ASSERT_EQ(v.size() % 3, 0u);
-    using Key = std::tuple<float, float, float, float>;
-    const auto key = [](const glm::vec4& p) { return Key(p.x, p.y, p.z, p.w); };
-    std::map<std::pair<Key, Key>, int> directed;
-    for (size_t t = 0; t < v.size(); t += 3)
-      for (int e = 0; e < 3; ++e) ++directed[{key(v[t + e]), key(v[t + (e + 1) % 3])}];
-    for (const auto& [edge, count] : directed) {
-      EXPECT_EQ(count, 1);
-      auto twin = directed.find({edge.second, edge.first});
-      ASSERT_NE(twin, directed.end());
-      EXPECT_EQ(twin->second, 1);
-    }
+    expectClosedVolume(modern::buildShadowVolume(adj, s, light), true, "closed mesh");
     // Silhouette loops are closed: every silhouette vertex has an even number of edges.
     std::map<unsigned, int> degree;
     for (const auto& [a, b] : s.edges) ++degree[a], ++degree[b];
@@ -101,16 +186,17 @@ TEST(ShadowVolumeGeometry, VolumesAreClosedAndConsistentlyOriented) {
 
 // ---------------------------------------------------------------- modern.volumes
 
-TEST(ShadowVolumes, AnalyticSquareShadowIsExact) {
-  // The point light (0,4,0) above the slab whose top face is at y = 1.01 casts the square
-  // |x|, |z| <= 0.5 * 4 / (4 - 1.01) on the ground (similar triangles). Shadow volumes are exact
-  // per pixel sample: every ground pixel whose whole footprint (3x3 sub-samples) lies on one side
-  // of the edge must have exactly that visibility.
-  const Scene scene = builtinScene("analytic");
-  const RenderParams p = smallParams();
-  const Frame f = renderTechnique(findTechnique("modern.volumes"), scene, p);
-  const float half = testing::kOccluderHalfSide * 4.0f / (4.0f - testing::kOccluderTop);
+struct AnalyticCheck {
   int checked = 0, shadowed = 0, wrong = 0;
+};
+// Pixels of the analytic scene whose whole footprint (3x3 sub-samples) lies on one side of the
+// shadow edge, and how many of them `visibility` gets wrong. The point light (0,4,0) above the
+// occluder's top at y = 1.01 casts the square |x|, |z| <= 0.5 * 4 / (4 - 1.01) on the ground
+// (similar triangles).
+AnalyticCheck checkAnalyticSquare(const Scene& scene, const RenderParams& p,
+                                  const Image& visibility) {
+  const float half = testing::kOccluderHalfSide * 4.0f / (4.0f - testing::kOccluderTop);
+  AnalyticCheck c;
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
       int inside = 0, samples = 0;
@@ -123,15 +209,49 @@ TEST(ShadowVolumes, AnalyticSquareShadowIsExact) {
         }
       if (samples != 9 || (inside != 0 && inside != 9)) continue;
       const float expected = inside == 9 ? 0.0f : 1.0f;
-      ++checked;
-      shadowed += inside == 9;
-      if (f.visibility.at(x, y) != expected) ++wrong;
+      ++c.checked;
+      c.shadowed += inside == 9;
+      if (visibility.at(x, y) != expected) ++c.wrong;
     }
-  EXPECT_GT(checked, p.width * p.height / 2);
-  EXPECT_GT(shadowed, 1000);  // the square covers a few thousand pixels at 320x240
-  EXPECT_EQ(wrong, 0);
-  if (wrong) saveArtefact("volumes_analytic_mask", f.visibility);
+  return c;
+}
+
+TEST(ShadowVolumes, AnalyticSquareShadowIsExact) {
+  // Shadow volumes are exact per pixel sample: every ground pixel whose whole footprint lies on
+  // one side of the edge must have exactly that visibility.
+  const Scene scene = builtinScene("analytic");
+  const RenderParams p = smallParams();
+  const Frame f = renderTechnique(findTechnique("modern.volumes"), scene, p);
+  const AnalyticCheck c = checkAnalyticSquare(scene, p, f.visibility);
+  EXPECT_GT(c.checked, p.width * p.height / 2);
+  EXPECT_GT(c.shadowed, 1000);  // the square covers a few thousand pixels at 320x240
+  EXPECT_EQ(c.wrong, 0);
+  if (c.wrong) saveArtefact("volumes_analytic_mask", f.visibility);
   EXPECT_EQ(f.counters.at("silhouette_edges"), 4);  // the top square (light straight above)
+}
+
+TEST(ShadowVolumes, OpenQuadCastsTheSameExactSquare) {
+  // The slab replaced by a single open quad at its top (y = 1.01), facing the light and facing
+  // away from it, with the open ground casting too: the two-sided volumes must give the same
+  // exact square (the ground's own volume lies below the ground and shadows nothing visible).
+  for (float degrees : {-90.0f, 90.0f}) {  // quad normal +y (faces the light), -y (away)
+    Scene scene = builtinScene("analytic");
+    scene.objects[0].castsShadow = true;
+    scene.objects[1].mesh = std::make_shared<const Mesh>(makeQuad(1, 1));
+    scene.objects[1].model =
+        glm::rotate(glm::translate(glm::mat4(1), {0, testing::kOccluderTop, 0}),
+                    glm::radians(degrees), {1, 0, 0});
+    for (const std::string t : {"modern.volumes", "modern.hybrid"}) {
+      const RenderParams p = smallParams();
+      const Frame f = renderTechnique(findTechnique(t), scene, p);
+      const AnalyticCheck c = checkAnalyticSquare(scene, p, f.visibility);
+      EXPECT_GT(c.shadowed, 1000) << t << " " << degrees;
+      EXPECT_EQ(c.wrong, 0) << t << " " << degrees;
+      if (c.wrong) saveArtefact("volumes_open_quad_" + t, f.visibility);
+      EXPECT_EQ(f.counters.at("open_casters_two_sided"), 2) << t;
+      EXPECT_EQ(f.counters.at("closed_casters"), 0) << t;
+    }
+  }
 }
 
 TEST(ShadowVolumes, AgreeWithNearestShadowMapAwayFromEdges) {
@@ -159,21 +279,24 @@ TEST(ShadowVolumes, AgreeWithNearestShadowMapAwayFromEdges) {
   }
 }
 
-TEST(ShadowVolumes, OnlyOpenCastersIsAnInputError) {
-  // A ground plane that casts and a floating quad (both open): no shadow volume can be built.
-  Scene scene = builtinScene("analytic");
-  scene.objects[0].castsShadow = true;
-  scene.objects[1].mesh = std::make_shared<const Mesh>(makeQuad(1, 1));
-  for (const std::string t : {"modern.volumes", "modern.hybrid"})
-    EXPECT_THROW(renderTechnique(findTechnique(t), scene, smallParams()), InputError) << t;
-}
-
-TEST(ShadowVolumes, OpenCastersAreSkippedAndCounted) {
+TEST(ShadowVolumes, OpenCastersGetTwoSidedVolumesAndAreCounted) {
   // brabec: the ground plane casts (castsShadow) but is open; the five solids are closed.
   const Frame f =
       renderTechnique(findTechnique("modern.volumes"), builtinScene("brabec"), smallParams());
-  EXPECT_EQ(f.counters.at("open_casters_skipped"), 1);
+  EXPECT_EQ(f.counters.at("open_casters_two_sided"), 1);
   EXPECT_EQ(f.counters.at("closed_casters"), 5);
+}
+
+TEST(ShadowVolumes, CubesSceneFileIsTheFillHeavyScene) {
+  // assets/scenes/cubes.json (volumes_bench's default): a non-casting ground and 3 layers of 5x5
+  // closed cubes, all inside the light's cone (each cube has a silhouette of 6 edges from a
+  // point light in general position; 75 * 6 = 450).
+  const Scene cubes = loadScene("cubes");
+  ASSERT_EQ(cubes.objects.size(), 76u);
+  EXPECT_FALSE(cubes.objects[0].castsShadow);
+  const Frame f = renderTechnique(findTechnique("modern.volumes"), cubes, smallParams());
+  EXPECT_EQ(f.counters.at("closed_casters"), 75);
+  EXPECT_EQ(f.counters.at("silhouette_edges"), 450);
 }
 
 // ---------------------------------------------------------------- modern.hybrid
