@@ -7,9 +7,9 @@
 //   3. depth range      — fitted: near to the casters inside the frustum, far to the casters
 //                         and receivers inside it (a receiver nearer than every caster cannot
 //                         be shadowed; a receiver beyond far would be compared wrongly)
-//   4. accumulation     — only for footprints that need more than one group of four samples
-//                         (Brabec–Seidel §3: 2x2 fits the four channels of one pass; §4: the
-//                         convolution packs up to 3x3 phases... 4x4 needs four phases)
+//   4. accumulation     — only for footprints that need more than one pass of four samples
+//                         (Brabec–Seidel §3: a 2x2 footprint fits the RGBA channels of one
+//                         pass; §4: fast PCF packs 2x2 by convolution, 4x4 sums four phases)
 //   5. imaging stages   — the colour matrix is the identity for one sample (filter 1); the
 //                         convolution is the identity for filter 1
 //   6. convolution taps — Eq. (1)'s 3x3 RGBA kernel has 4 non-zero taps of 36
@@ -19,22 +19,25 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
 
 namespace sl {
 namespace {
 
-constexpr int kSamplesPerTriangleSide = 4;  // barycentric grid for the minification estimate
+constexpr int kSamplesPerTriangleSide = 4;        // barycentric grid for the minification estimate
 constexpr double kMinificationPercentile = 0.95;  // of the camera-facing receiver samples
-constexpr float kHalf8BitStep = 1.0f / 510.0f;  // a weight below this rounds to 0 in 8 bits
-constexpr int kChannelsPerPass = 4;             // R, G, B, A: four samples per pass (§3)
+constexpr float kHalf8BitStep = 1.0f / 510.0f;    // a weight below this rounds to 0 in 8 bits
+constexpr int kChannelsPerPass = 4;               // R, G, B, A: four samples per pass (§3)
 
-bool hasWord(const std::string& s, const char* w) { return s.find(w) != std::string::npos; }
+bool hasWord(const std::string& s, const char* w) {
+  return s.find(w) != std::string::npos;
+}
 
 // Clip-space position of a model-space vertex.
-glm::vec4 clip(const glm::mat4& m, const glm::vec3& p) { return m * glm::vec4(p, 1.0f); }
+glm::vec4 clip(const glm::mat4& m, const glm::vec3& p) {
+  return m * glm::vec4(p, 1.0f);
+}
 
 // True when the triangle is certainly outside the frustum: all three vertices beyond the same
 // lateral plane or behind the near plane (w <= 0 counts as behind the light).
@@ -78,8 +81,8 @@ ObjectReach reach(const Object& o, const glm::mat4& lightClip, const glm::mat4& 
       const float z = -v.z;
       r.zMin = std::min(r.zMin, z);
       r.zMax = std::max(r.zMax, z);
-      r.maxTangent = std::max(r.maxTangent, z > 0.0f ? std::max(std::fabs(v.x), std::fabs(v.y)) / z
-                                                     : 1e30f);
+      r.maxTangent =
+          std::max(r.maxTangent, z > 0.0f ? std::max(std::fabs(v.x), std::fabs(v.y)) / z : 1e30f);
     }
   }
   return r;
@@ -131,8 +134,9 @@ double maxTexelsPerPixel(const Scene& scene, const RenderParams& params) {
           const glm::mat2 J = dTexel * glm::inverse(dWindow);  // texels per window pixel
           const double rho = std::max(glm::length(J[0]), glm::length(J[1]));
           // Pixels per unit of (e1, e2) parameter area, times the parameter area per sample.
-          const double pixels = std::fabs(glm::determinant(dWindow)) / (double(h) * h) /
-                                double((kSamplesPerTriangleSide + 1) * (kSamplesPerTriangleSide + 2));
+          const double pixels =
+              std::fabs(glm::determinant(dWindow)) / (double(h) * h) /
+              double((kSamplesPerTriangleSide + 1) * (kSamplesPerTriangleSide + 2));
           if (std::isfinite(rho) && std::isfinite(pixels)) rhos.push_back({rho, pixels});
         }
     }
@@ -244,11 +248,10 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
                         : std::to_string((f * f + kChannelsPerPass - 1) / kChannelsPerPass) +
                               " groups of four samples summed (Brabec–Seidel §3)")});
     else
-      plan.resources.push_back(
-          {"accumulation buffer", false,
-           "footprint " + std::to_string(f) + "x" + std::to_string(f) +
-               (fastPcf ? " is packed by one convolution pass (§4)"
-                        : " fits the four channels of one pass (§3)")});
+      plan.resources.push_back({"accumulation buffer", false,
+                                "footprint " + std::to_string(f) + "x" + std::to_string(f) +
+                                    (fastPcf ? " is packed by one convolution pass (§4)"
+                                             : " fits the four channels of one pass (§3)")});
   }
   if (t.name == "legacy.pcf" || t.name == "legacy.fast-pcf") {
     plan.resources.push_back({"imaging: colour table (the comparison step)", true,
@@ -257,13 +260,13 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
       plan.resources.push_back({"imaging: colour matrix", false,
                                 "one sample in one channel: the channel sum is the identity"});
     else
-      plan.resources.push_back({"imaging: colour matrix", true,
-                                "sums the four channels' results into alpha (Fig. 4)"});
+      plan.resources.push_back(
+          {"imaging: colour matrix", true, "sums the four channels' results into alpha (Fig. 4)"});
   }
   if (t.name == "legacy.fast-pcf") {
     if (params.filter == 1)
-      plan.resources.push_back({"imaging: convolution", false,
-                                "footprint 1x1: the packing kernel is the identity"});
+      plan.resources.push_back(
+          {"imaging: convolution", false, "footprint 1x1: the packing kernel is the identity"});
     else
       plan.resources.push_back(
           {"imaging: convolution (Eq. 1, 3x3 RGBA)", true,
@@ -292,21 +295,24 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
         if (i > 0) w = w * double(taps - i) / double(i);
         if (storage == "8" && w / std::ldexp(1.0, taps - 1) < kHalf8BitStep) ++zero;
       }
-      plan.resources.push_back(
-          {"separable blur pass", true,
-           std::to_string(taps) + " taps per axis, " + std::to_string(zero) +
-               " of them below half an 8-bit step" + (zero ? " (skipped)" : " (none skipped)")});
+      plan.resources.push_back({"separable blur pass", true,
+                                std::to_string(taps) + " taps per axis, " + std::to_string(zero) +
+                                    " of them below half an 8-bit step" +
+                                    (zero ? " (skipped)" : " (none skipped)")});
     }
     const std::string filtering =
         params.extra.count("filtering") ? params.extra.at("filtering") : "trilinear";
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
     const std::string rho = fixed(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
     if (filtering != "trilinear")
-      plan.resources.push_back({"mip chain", false, "filtering=" + filtering + " reads level 0 only"});
+      plan.resources.push_back(
+          {"mip chain", false, "filtering=" + filtering + " reads level 0 only"});
     else if (plan.maxShadowTexelsPerPixel <= 1.0)
-      plan.resources.push_back({"mip chain", false, "the view never minifies the map (at most " + rho + ")"});
+      plan.resources.push_back(
+          {"mip chain", false, "the view never minifies the map (at most " + rho + ")"});
     else
-      plan.resources.push_back({"mip chain", true, "the view minifies the map (up to " + rho + ")"});
+      plan.resources.push_back(
+          {"mip chain", true, "the view minifies the map (up to " + rho + ")"});
   } else if (!reference) {
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
   }
@@ -334,7 +340,8 @@ std::string formatPlan(const FramePlan& plan) {
   s << "light frustum: cone " << fixed(plan.sceneConeDegrees, 4) << " deg, fitted to the casters "
     << fixed(plan.fittedConeDegrees, 4) << " deg: "
     << fixed(std::tan(glm::radians(0.5 * plan.sceneConeDegrees)) /
-                 std::tan(glm::radians(0.5 * plan.fittedConeDegrees)), 3)
+                 std::tan(glm::radians(0.5 * plan.fittedConeDegrees)),
+             3)
     << "x the shadow-map texels per unit across the casters\n";
   s << "light depth range: scene fit [" << fixed(plan.sceneRange.nearPlane, 4) << ", "
     << fixed(plan.sceneRange.farPlane, 4) << "], fitted to casters and receivers in the frustum ["

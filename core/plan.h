@@ -21,16 +21,16 @@ struct PlanItem {
 struct FramePlan {
   std::string technique;
   std::string scene;
-  std::vector<PlanItem> passes;         // shadow passes and the camera pass
-  std::vector<PlanItem> lightObjects;   // objects drawn in (or left out of) the light passes
-  std::vector<PlanItem> resources;      // accumulation buffer, imaging stages, blur, mip chain
-  bool shadowPassesNeeded = true;       // some caster reaches the light frustum (and a receiver)
+  std::vector<PlanItem> passes;        // shadow passes and the camera pass
+  std::vector<PlanItem> lightObjects;  // objects drawn in (or left out of) the light passes
+  std::vector<PlanItem> resources;     // accumulation buffer, imaging stages, blur, mip chain
+  bool shadowPassesNeeded = true;      // some caster reaches the light frustum (and a receiver)
   int castersInFrustum = 0;
   int receiversInFrustum = 0;
-  float sceneConeDegrees = 0.0f;        // the light's cone (the square frustum's full angle)
-  float fittedConeDegrees = 0.0f;       // the cone through the casters inside it
-  DepthRange sceneRange;                // lightDepthRange(scene): what the techniques use
-  DepthRange fittedRange;               // casters (near) and receivers + casters (far) inside
+  float sceneConeDegrees = 0.0f;   // the light's cone (the square frustum's full angle)
+  float fittedConeDegrees = 0.0f;  // the cone through the casters inside it
+  DepthRange sceneRange;           // lightDepthRange(scene): what the techniques use
+  DepthRange fittedRange;          // casters (near) and receivers + casters (far) inside
   // Shadow-map texels one camera pixel covers (GL's rho, the larger footprint axis), 95th
   // percentile over camera-facing receiver points inside both frusta: > 1 means the view
   // minifies (silhouettes, where rho grows without bound, are the excluded 5%).

@@ -17,13 +17,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
 
 #include "apps/registry.h"
 #include "core/errors.h"
@@ -64,14 +63,15 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
 
-bool isReference(const Technique& t) { return t.name.rfind("reference.", 0) == 0; }
+bool isReference(const Technique& t) {
+  return t.name.rfind("reference.", 0) == 0;
+}
 bool usesShadowMap(const Technique& t) {
   return !isReference(t) && t.name.find("volumes") == std::string::npos;
 }
-bool usesFilterFootprint(const Technique& t) {
-  return t.name.find("pcf") != std::string::npos && t.name.rfind("legacy.", 0) == 0
-             ? true
-             : t.name == "modern.pcf" || t.name == "modern.fast-pcf";
+bool usesFilterFootprint(const Technique& t) {  // Brabec–Seidel §3-4 and their GLSL twins
+  return t.name == "legacy.pcf" || t.name == "legacy.fast-pcf" || t.name == "modern.pcf" ||
+         t.name == "modern.fast-pcf";
 }
 // Techniques whose result approximates an area light (the soft reference is their truth).
 bool approximatesSoftShadows(const Technique& t) {
@@ -86,18 +86,18 @@ struct ParamAxis {
 };
 const std::vector<ParamAxis>& paramAxes() {
   static const std::vector<ParamAxis> kAxes = {
-      {"order", {"4"}, {"4", "8", "32", "64"}},               // CSM truncation order M
-      {"blur", {"0"}, {"0", "5", "7"}},                       // CSM/VSM Gaussian taps
-      {"storage", {"float"}, {"8", "16", "float"}},           // CSM/VSM basis precision
-      {"samples", {"1"}, {"1", "4"}},                         // GPU Gems PCF samples
-      {"compare", {"nearest"}, {"nearest"}},                  // hardware 2x2 compare off
-      {"width", {"0.01"}, {"0.01", "0.04", "0.08"}},          // smoothie width t
+      {"order", {"4"}, {"4", "8", "32", "64"}},       // CSM truncation order M
+      {"blur", {"0"}, {"0", "5", "7"}},               // CSM/VSM Gaussian taps
+      {"storage", {"float"}, {"8", "16", "float"}},   // CSM/VSM basis precision
+      {"samples", {"1"}, {"1", "4"}},                 // GPU Gems PCF samples
+      {"compare", {"nearest"}, {"nearest"}},          // hardware 2x2 compare off
+      {"width", {"0.01"}, {"0.01", "0.04", "0.08"}},  // smoothie width t
       {"smoothie-width", {}, {"0.01", "0.04", "0.08"}},
       {"t", {}, {"0.01", "0.04", "0.08"}},
-      {"bleed-reduction", {}, {"0", "0.4"}},                  // VSM light-bleeding reduction
-      {"alpha", {}, {"0", "4"}},                              // CSM attenuation
-      {"filtering", {}, {"bilinear", "nearest"}},             // CSM/VSM mip-mapping
-      {"plan", {"off"}, {"off"}},                             // the pass planner's omissions
+      {"bleed-reduction", {}, {"0", "0.4"}},       // VSM light-bleeding reduction
+      {"alpha", {}, {"0", "4"}},                   // CSM attenuation
+      {"filtering", {}, {"bilinear", "nearest"}},  // CSM/VSM mip-mapping
+      {"plan", {"off"}, {"off"}},                  // the pass planner's omissions
   };
   return kAxes;
 }
@@ -110,7 +110,8 @@ std::string describe(const RenderParams& p) {
   return s.str();
 }
 
-std::string key(const std::string& scene, const std::string& technique, const std::string& variant) {
+std::string key(const std::string& scene, const std::string& technique,
+                const std::string& variant) {
   return scene + "|" + technique + "|" + variant;
 }
 
@@ -149,8 +150,8 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
   row.variant = v.label;
   row.params = v.params;
   row.primaryReference = approximatesSoftShadows(t) ? "reference.soft" : "reference.hard";
-  if (refs.hard.visibility.width > 0 && (t.name == "reference.hard" || t.name == "reference.soft") &&
-      v.params.extra.empty()) {
+  if (refs.hard.visibility.width > 0 &&
+      (t.name == "reference.hard" || t.name == "reference.soft") && v.params.extra.empty()) {
     // The references were rendered once for this scene (pass 1): their row is that frame.
     const Frame& f = t.name == "reference.hard" ? refs.hard : refs.soft;
     row.frameMs = row.wallMs = f.totalMilliseconds();
@@ -212,9 +213,9 @@ nlohmann::json errorJson(const ErrorSet& e) {
 }
 
 nlohmann::json rowJson(const BenchRow& r) {
-  nlohmann::json j = {{"scene", r.scene},        {"technique", r.technique},
-                      {"variant", r.variant},    {"status", r.status},
-                      {"params", describe(r.params)}, {"reference", r.primaryReference}};
+  nlohmann::json j = {
+      {"scene", r.scene},   {"technique", r.technique},     {"variant", r.variant},
+      {"status", r.status}, {"params", describe(r.params)}, {"reference", r.primaryReference}};
   if (r.status != "ok") return j;
   j["frame_ms"] = r.frameMs;
   j["wall_ms"] = r.wallMs;
@@ -257,8 +258,9 @@ std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& 
     }
   }
   if (t.needs.colorFromPrecision) {
-    for (Precision q : quick ? std::vector<Precision>{Precision::kFloat}
-                             : std::vector<Precision>{Precision::k8, Precision::k12, Precision::kFloat}) {
+    for (Precision q :
+         quick ? std::vector<Precision>{Precision::kFloat}
+               : std::vector<Precision>{Precision::k8, Precision::k12, Precision::kFloat}) {
       RenderParams p = base;
       p.precision = q;
       add(std::string("precision=") + precisionName(q), p);
@@ -311,8 +313,8 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
   base.backend = options.backend;
   const int warmup = options.warmupFrames > 0 ? options.warmupFrames
                                               : (options.quick ? kQuickWarmup : kFullWarmup);
-  const int timed = options.timedFrames > 0 ? options.timedFrames
-                                            : (options.quick ? kQuickTimed : kFullTimed);
+  const int timed =
+      options.timedFrames > 0 ? options.timedFrames : (options.quick ? kQuickTimed : kFullTimed);
   std::vector<const Technique*> techniques;
   for (const Technique& t : allTechniques())
     if (!options.technique || t.name == *options.technique) techniques.push_back(&t);
@@ -354,8 +356,8 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
         // The references are measured once, without warm-up: they are the truth, not a
         // contender, and reference.soft costs seconds per frame.
         const bool truth = isReference(*t);
-        BenchRow row = measureVariant(*t, scene, v, refs, truth ? 0 : warmup,
-                                      truth ? 1 : timed, options.quick, mask);
+        BenchRow row = measureVariant(*t, scene, v, refs, truth ? 0 : warmup, truth ? 1 : timed,
+                                      options.quick, mask);
         if (row.status == "ok") {
           result.masks[key(scene.name, t->name, v.label)] = std::move(mask);
           result.texelsPerPixel[scene.name] =
@@ -383,8 +385,9 @@ std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::st
         rows[i].technique.rfind("reference.", 0) != 0)
       candidates.push_back(i);
   std::sort(candidates.begin(), candidates.end(), [&](size_t a, size_t b) {
-    return rows[a].frameMs != rows[b].frameMs ? rows[a].frameMs < rows[b].frameMs
-                                              : rows[a].primary().all.rmse < rows[b].primary().all.rmse;
+    return rows[a].frameMs != rows[b].frameMs
+               ? rows[a].frameMs < rows[b].frameMs
+               : rows[a].primary().all.rmse < rows[b].primary().all.rmse;
   });
   std::vector<size_t> front;
   double best = 1e300;
@@ -445,8 +448,8 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
-  const std::string terminal = gnuplotHasTerminal("pngcairo") ? "pngcairo size 1200,800 font ',10'"
-                                                              : "png size 1200,800";
+  const std::string terminal =
+      gnuplotHasTerminal("pngcairo") ? "pngcairo size 1200,800 font ',10'" : "png size 1200,800";
   std::set<std::string> scenes;
   for (const BenchRow& r : result.rows) scenes.insert(r.scene);
   std::vector<std::string> written;
@@ -470,8 +473,8 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
     for (size_t i : paretoFront(result.rows, scene)) {
       const BenchRow& r = result.rows[i];
       if (r.primary().all.rmse <= 0) continue;
-      data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.technique << " "
-           << r.variant << "\"\n";
+      data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.technique << " " << r.variant
+           << "\"\n";
     }
     data.close();
     std::ofstream script(base.string() + ".gp");
@@ -487,8 +490,8 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
       script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "
              << (i % 13) + 1 << " ps 1.5 title '" << techniques[i] << "', ";
     script << "'" << base.string() << ".dat' index " << techniques.size()
-           << " using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', '' index " << techniques.size()
-           << " using 1:2 with points lc rgb 'black' pt 6 ps 2.5 notitle, "
+           << " using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', '' index "
+           << techniques.size() << " using 1:2 with points lc rgb 'black' pt 6 ps 2.5 notitle, "
            << "'' index " << techniques.size()
            << " using 1:2:3 with labels offset 1,0.8 left font ',7' notitle\n";
     script.close();
@@ -511,7 +514,8 @@ int runBenchCommand(const cli::Args& args) {
   if (auto out = args.value("out")) options.outDir = *out;
   if (auto size = args.value("size")) cli::parseSize(*size, options.width, options.height);
   if (auto b = args.value("backend")) options.backend = parseBackend(*b);
-  if (auto r = args.value("repeat")) options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
+  if (auto r = args.value("repeat"))
+    options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
   if (options.csvPath) cli::checkWritable(*options.csvPath);
   for (const std::string& s : options.scenes) loadScene(s);  // bad names fail before any work
   if (options.technique) findTechnique(*options.technique);
@@ -521,14 +525,15 @@ int runBenchCommand(const cli::Args& args) {
     std::cerr << "bench: wrote " << *options.csvPath << "\n";
   }
   try {
-    for (const std::string& p : writePlots(options.outDir, result)) std::cerr << "bench: wrote " << p << "\n";
+    for (const std::string& p : writePlots(options.outDir, result))
+      std::cerr << "bench: wrote " << p << "\n";
   } catch (const InputError& e) {
     std::cerr << "bench: " << e.what() << "\n";
   }
   for (const ClaimCheck& c : checkClaims(result)) {
-    std::cout << nlohmann::json{{"claim", c.id},       {"source", c.source}, {"statement", c.claim},
-                                {"scene", c.scene},    {"measured", c.measured},
-                                {"verdict", c.verdict}}
+    std::cout << nlohmann::json{{"claim", c.id},          {"source", c.source},
+                                {"statement", c.claim},   {"scene", c.scene},
+                                {"measured", c.measured}, {"verdict", c.verdict}}
                      .dump()
               << "\n";
     std::cerr << "claim " << c.id << " (" << c.source << ") on " << c.scene << ": " << c.verdict

@@ -18,14 +18,14 @@ namespace sl::figures {
 
 struct BenchOptions {
   bool quick = false;
-  std::vector<std::string> scenes;         // empty: the fixed set (benchScenes)
-  std::optional<std::string> technique;    // only this technique (all variants)
+  std::vector<std::string> scenes;       // empty: the fixed set (benchScenes)
+  std::optional<std::string> technique;  // only this technique (all variants)
   std::optional<std::string> csvPath;
-  std::string outDir = "out/bench";        // plots, gnuplot scripts and data
-  int width = 0, height = 0;               // 0: the mode's default
-  int warmupFrames = 0, timedFrames = 0;   // 0: the mode's default
+  std::string outDir = "out/bench";       // plots, gnuplot scripts and data
+  int width = 0, height = 0;              // 0: the mode's default
+  int warmupFrames = 0, timedFrames = 0;  // 0: the mode's default
   Backend backend = Backend::kOsmesa;
-  bool progress = true;                    // one line per variant on stderr
+  bool progress = true;  // one line per variant on stderr
 };
 
 // The scenes the bench measures: quick = {brabec, fence}; full = every built-in scene.
@@ -55,7 +55,7 @@ ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& r
 
 struct BenchRow {
   std::string scene, technique, variant;
-  std::string status = "ok";     // "ok", or why the variant could not run
+  std::string status = "ok";  // "ok", or why the variant could not run
   RenderParams params;
   std::string primaryReference;  // the reference the technique approximates
   ErrorSet hard, soft;           // against reference.hard and reference.soft
@@ -68,7 +68,7 @@ struct BenchRow {
 
 struct BenchResult {
   std::vector<BenchRow> rows;
-  std::map<std::string, Image> masks;  // "scene|technique|variant" -> visibility
+  std::map<std::string, Image> masks;            // "scene|technique|variant" -> visibility
   std::map<std::string, double> texelsPerPixel;  // scene -> largest shadow-map minification
 };
 
@@ -78,7 +78,7 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json);
 // The papers' comparative claims (issue 8 item 2) as checks on the measurements.
 struct ClaimCheck {
   std::string id;
-  std::string source;    // paper and section
+  std::string source;  // paper and section
   std::string claim;
   std::string scene;
   std::string measured;  // the numbers

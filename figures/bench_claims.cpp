@@ -60,8 +60,8 @@ std::vector<std::string> scenesOf(const BenchResult& r) {
   return s;
 }
 
-std::string largestShadowMapVariant(const Finder& f, const std::string& scene,
-                                    const std::string& a, const std::string& b) {
+std::string largestShadowMapVariant(const Finder& f, const std::string& scene, const std::string& a,
+                                    const std::string& b) {
   for (int n : {2048, 1024, 512, 256}) {
     const std::string v = "shadow-map=" + std::to_string(n);
     if (f.row(scene, a, v) && f.row(scene, b, v)) return v;
@@ -78,8 +78,12 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
     // 1. Brabec & Seidel §5: fast PCF (convolution packing + accumulation) gives the 2x2 PCF
     //    result at lower cost.
     for (const char* prefix : {"legacy", "modern"}) {
-      ClaimCheck c{std::string("fast-pcf-") + prefix, "Brabec & Seidel 2001, §4-5",
-                   "fast PCF 2x2 matches PCF 2x2 quality at lower cost", scene, "", "not measured"};
+      ClaimCheck c{std::string("fast-pcf-") + prefix,
+                   "Brabec & Seidel 2001, §4-5",
+                   "fast PCF 2x2 matches PCF 2x2 quality at lower cost",
+                   scene,
+                   "",
+                   "not measured"};
       const BenchRow* pcf = f.row(scene, std::string(prefix) + ".pcf", "default");
       const BenchRow* fast = f.row(scene, std::string(prefix) + ".fast-pcf", "default");
       if (pcf && fast) {
@@ -87,16 +91,20 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         const bool cheaper = fast->frameMs < pcf->frameMs;
         c.measured = summary(*pcf) + "; " + summary(*fast) + "; time ratio fast/pcf " +
                      fmt(fast->frameMs / pcf->frameMs, 3);
-        c.verdict = same && cheaper ? "agrees"
-                                    : std::string("disagrees (") + (same ? "" : "quality differs") +
-                                          (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
+        c.verdict = same && cheaper
+                        ? "agrees"
+                        : std::string("disagrees (") + (same ? "" : "quality differs") +
+                              (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
       }
       out.push_back(c);
     }
     // 2. GPU Gems ch. 11 §11.5: 16 samples reduce the edge error of 1 sample.
     {
-      ClaimCheck c{"gems16-vs-1", "Bunnell & Pellacini 2004, §11.5",
-                   "16-sample PCF reduces the shadow-edge error against 1 sample", scene, "",
+      ClaimCheck c{"gems16-vs-1",
+                   "Bunnell & Pellacini 2004, §11.5",
+                   "16-sample PCF reduces the shadow-edge error against 1 sample",
+                   scene,
+                   "",
                    "not measured"};
       const BenchRow* many = f.row(scene, "modern.gems16", "default");
       const BenchRow* one = f.row(scene, "modern.gems16", "samples=1");
@@ -110,8 +118,12 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
     // 3. Annen et al. Fig. 10: under minification CSM (prefiltered, mip-mapped) has lower
     //    error than PCF.
     {
-      ClaimCheck c{"csm-minification", "Annen et al. 2007, Fig. 10",
-                   "CSM has lower error than PCF under minification", scene, "", "not measured"};
+      ClaimCheck c{"csm-minification",
+                   "Annen et al. 2007, Fig. 10",
+                   "CSM has lower error than PCF under minification",
+                   scene,
+                   "",
+                   "not measured"};
       std::string pcfName = "modern.gems16";
       if (!f.row(scene, pcfName, "default")) pcfName = "modern.pcf";
       const std::string v = largestShadowMapVariant(f, scene, "modern.csm", pcfName);
@@ -128,8 +140,12 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
     }
     // 4. Annen et al. Fig. 9: VSM leaks light where CSM does not (fence in front of objects).
     {
-      ClaimCheck c{"csm-no-leak", "Annen et al. 2007, Fig. 9",
-                   "no light leaking with CSM where VSM leaks", scene, "", "not measured"};
+      ClaimCheck c{"csm-no-leak",
+                   "Annen et al. 2007, Fig. 9",
+                   "no light leaking with CSM where VSM leaks",
+                   scene,
+                   "",
+                   "not measured"};
       const BenchRow* csm = f.row(scene, "modern.csm", "default");
       const BenchRow* vsm = f.row(scene, "modern.vsm", "default");
       if (csm && vsm) {
@@ -138,16 +154,20 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         if (vsm->hard.leakShare < kNoLeakShare)
           c.verdict = "not exercised (VSM does not leak on this scene)";
         else
-          c.verdict = csm->hard.leakShare < kNoLeakShare && vsm->hard.leakShare > csm->hard.leakShare
-                          ? "agrees"
-                          : "disagrees";
+          c.verdict =
+              csm->hard.leakShare < kNoLeakShare && vsm->hard.leakShare > csm->hard.leakShare
+                  ? "agrees"
+                  : "disagrees";
       }
       out.push_back(c);
     }
     // 5. Chan §3.3: the hybrid equals shadow volumes at silhouette pixels, at lower cost.
     {
-      ClaimCheck c{"hybrid-vs-volumes", "Chan 2004, §3.3",
-                   "hybrid matches shadow volumes at silhouette pixels at lower cost", scene, "",
+      ClaimCheck c{"hybrid-vs-volumes",
+                   "Chan 2004, §3.3",
+                   "hybrid matches shadow volumes at silhouette pixels at lower cost",
+                   scene,
+                   "",
                    "not measured"};
       const BenchRow* hybrid = f.row(scene, "modern.hybrid", "default");
       const BenchRow* volumes = f.row(scene, "modern.volumes", "default");
@@ -159,32 +179,38 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         const MaskDifference all = compareMasks(*hm, *vm);
         const bool same = inBand.shareAboveHalf < kSameAtSilhouettes;
         const bool cheaper = hybrid->frameMs < volumes->frameMs;
-        c.measured = "hybrid vs volumes at silhouette band: " + fmt(100 * inBand.shareAboveHalf, 3) +
-                     "% pixels differ > 0.5 (all pixels " + fmt(100 * all.shareAboveHalf, 3) +
-                     "%); " + fmt(hybrid->frameMs, 3) + " ms vs " + fmt(volumes->frameMs, 3) + " ms";
-        c.verdict = same && cheaper ? "agrees"
-                                    : std::string("disagrees (") + (same ? "" : "masks differ") +
-                                          (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
+        c.measured =
+            "hybrid vs volumes at silhouette band: " + fmt(100 * inBand.shareAboveHalf, 3) +
+            "% pixels differ > 0.5 (all pixels " + fmt(100 * all.shareAboveHalf, 3) + "%); " +
+            fmt(hybrid->frameMs, 3) + " ms vs " + fmt(volumes->frameMs, 3) + " ms";
+        c.verdict = same && cheaper
+                        ? "agrees"
+                        : std::string("disagrees (") + (same ? "" : "masks differ") +
+                              (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
       }
       out.push_back(c);
     }
     // 6. Chan Fig. 4-9: for small lights smoothies approach the ray-traced soft shadow
     //    (closer to it than a hard shadow map is).
     {
-      ClaimCheck c{"smoothies-soft", "Chan 2004, Fig. 4-9",
-                   "smoothies approach the ray-traced soft shadows of small lights", scene, "",
+      ClaimCheck c{"smoothies-soft",
+                   "Chan 2004, Fig. 4-9",
+                   "smoothies approach the ray-traced soft shadows of small lights",
+                   scene,
+                   "",
                    "not measured"};
       // The smoothie width t is a free parameter (Chan §4.2), not derived from the light's
       // radius: the claim is checked with the best width the sweep measured.
       const BenchRow* smoothies = f.row(scene, "modern.smoothies", "default");
       for (const BenchRow& r : result.rows)
         if (r.scene == scene && r.technique == "modern.smoothies" && r.status == "ok" &&
-            r.variant.rfind("width=", 0) == 0 && (!smoothies || r.soft.all.rmse < smoothies->soft.all.rmse))
+            r.variant.rfind("width=", 0) == 0 &&
+            (!smoothies || r.soft.all.rmse < smoothies->soft.all.rmse))
           smoothies = &r;
       const BenchRow* hard = f.row(scene, "modern.hw", "default");
       if (smoothies && hard) {
-        c.measured = "against reference.soft: " + summary(*smoothies, true) + "; " +
-                     summary(*hard, true);
+        c.measured =
+            "against reference.soft: " + summary(*smoothies, true) + "; " + summary(*hard, true);
         c.verdict = smoothies->soft.all.rmse < hard->soft.all.rmse ? "agrees" : "disagrees";
       }
       out.push_back(c);
@@ -199,7 +225,8 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
     if (c.verdict != "not measured") {
       kept.push_back(c);
     } else if (!measuredSomewhere &&
-               std::none_of(kept.begin(), kept.end(), [&](const ClaimCheck& k) { return k.id == c.id; })) {
+               std::none_of(kept.begin(), kept.end(),
+                            [&](const ClaimCheck& k) { return k.id == c.id; })) {
       ClaimCheck none = c;
       none.scene = "-";
       none.measured = "the techniques it compares did not run (not in this build, or filtered out)";

@@ -62,18 +62,18 @@ Occluders buildOcclusionScene(const Scene& scene) {
     if (!object.castsShadow || !object.mesh || object.mesh->indices.empty()) continue;
     const Mesh& mesh = *object.mesh;
     RTCGeometry geometry = rtcNewGeometry(o.device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        mesh.positions.size()));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
       const glm::vec3 w = glm::vec3(object.model * glm::vec4(mesh.positions[i], 1.0f));
       vertices[3 * i] = w.x;
       vertices[3 * i + 1] = w.y;
       vertices[3 * i + 2] = w.z;
     }
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-        mesh.indices.size() / 3));
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.indices.size() / 3));
     std::copy(mesh.indices.begin(), mesh.indices.begin() + (mesh.indices.size() / 3) * 3, indices);
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(o.scene.get(), geometry);
@@ -165,7 +165,8 @@ Visibility castHardShadowRays(const Scene& scene, const std::vector<SurfacePoint
       if (s.object < 0 || !scene.objects[s.object].receivesShadow) continue;
       if (!insideLightFrustum(scene.light, view, s.position)) continue;
       ++count;
-      v.mask.at(x, y) = occluded(occluders, rayOrigin(s, offset), scene.light.position) ? 0.0f : 1.0f;
+      v.mask.at(x, y) =
+          occluded(occluders, rayOrigin(s, offset), scene.light.position) ? 0.0f : 1.0f;
     }
     rays += count;
   });
@@ -271,10 +272,11 @@ Image shadeFromVisibility(const Scene& scene, const std::vector<SurfacePoint>& p
     const float diffuse = std::max(glm::dot(n, toLight), 0.0f);
     const glm::vec3 toEye = glm::normalize(scene.camera.position - s.position);
     const float specular =
-        diffuse > 0.0f
-            ? std::pow(std::max(glm::dot(n, glm::normalize(toLight + toEye)), 0.0f), kSpecularExponent)
-            : 0.0f;
-    const glm::vec3 direct = spot * l.color * (o.diffuse * diffuse + glm::vec3(o.specular) * specular);
+        diffuse > 0.0f ? std::pow(std::max(glm::dot(n, glm::normalize(toLight + toEye)), 0.0f),
+                                  kSpecularExponent)
+                       : 0.0f;
+    const glm::vec3 direct =
+        spot * l.color * (o.diffuse * diffuse + glm::vec3(o.specular) * specular);
     const glm::vec3 ambient = l.ambient * l.color * o.diffuse;
     const glm::vec3 c = ambient + visibility.data[p] * direct;
     for (int k = 0; k < 3; ++k) color.data[p * 3 + k] = std::isfinite(c[k]) ? c[k] : 0.0f;
@@ -291,7 +293,8 @@ void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye) {
   for (SurfacePoint& s : points) {
     if (s.object < 0) continue;
     if (!usable(s.geometricNormal))
-      s.geometricNormal = usable(s.shadingNormal) ? s.shadingNormal : glm::normalize(eye - s.position);
+      s.geometricNormal =
+          usable(s.shadingNormal) ? s.shadingNormal : glm::normalize(eye - s.position);
     if (!usable(s.shadingNormal)) s.shadingNormal = s.geometricNormal;
     if (!usable(s.geometricNormal)) s.geometricNormal = s.shadingNormal = glm::vec3(0, 1, 0);
   }
@@ -331,7 +334,8 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
     Image depth(params.width, params.height, 3, 0.0f);
     for (size_t p = 0; p < points.size(); ++p)
       if (points[p].object >= 0)
-        for (int k = 0; k < 3; ++k) depth.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
+        for (int k = 0; k < 3; ++k)
+          depth.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
     frame.intermediates.push_back({"1-surface-normals", "surface normals from the GL pass", depth});
     // Where direct light can arrive: the surface faces the light (geometric normal) inside the
     // light's frustum. Elsewhere the direct term is 0 and visibility does not change the image
@@ -343,7 +347,8 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
           glm::dot(points[p].geometricNormal, scene.light.position - points[p].position) > 0.0f &&
           insideLightFrustum(scene.light, view, points[p].position))
         region.data[p] = 1.0f;
-    frame.intermediates.push_back({kDirectLightRegionPass, "surface points the light can reach", region});
+    frame.intermediates.push_back(
+        {kDirectLightRegionPass, "surface points the light can reach", region});
     frame.intermediates.push_back({"3-visibility", "ray-traced visibility", frame.visibility});
   }
   return frame;

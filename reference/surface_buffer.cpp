@@ -7,9 +7,8 @@
 // reference/shaders/: the reference does not depend on modern/ (DESIGN.md "Layout").
 #include "reference/surface_buffer.h"
 
-#include <string>
-
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 #include "core/errors.h"
 #include "core/shaders.h"
@@ -34,7 +33,8 @@ struct GlObjects {
     if (program) glDeleteProgram(program);
     if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
     glDeleteTextures(kAttachments + 1, textures);
-    if (!vertexArrays.empty()) glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
+    if (!vertexArrays.empty())
+      glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
     if (!buffers.empty()) glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
   }
 };
@@ -56,7 +56,8 @@ void buildTarget(GlObjects& gl, int width, int height) {
                  depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, depth ? GL_DEPTH_ATTACHMENT : GLenum(GL_COLOR_ATTACHMENT0 + i),
+    glFramebufferTexture2D(GL_FRAMEBUFFER,
+                           depth ? GL_DEPTH_ATTACHMENT : GLenum(GL_COLOR_ATTACHMENT0 + i),
                            GL_TEXTURE_2D, gl.textures[i], 0);
     if (!depth) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
   }

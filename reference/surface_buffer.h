@@ -2,9 +2,8 @@
 // (module-internal header).
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "core/technique.h"
 
@@ -12,10 +11,10 @@ namespace sl::reference {
 
 // One camera pixel's surface point. `object` < 0: the pixel sees no geometry.
 struct SurfacePoint {
-  glm::vec3 position{0.0f};        // world space
-  glm::vec3 shadingNormal{0.0f};   // interpolated vertex normal, facing the camera
-  glm::vec3 geometricNormal{0.0f}; // the triangle's plane normal, facing the camera
-  int object = -1;                 // index into Scene::objects
+  glm::vec3 position{0.0f};         // world space
+  glm::vec3 shadingNormal{0.0f};    // interpolated vertex normal, facing the camera
+  glm::vec3 geometricNormal{0.0f};  // the triangle's plane normal, facing the camera
+  int object = -1;                  // index into Scene::objects
 };
 
 // Rasterises the scene with the camera of `params` (window width x height, rows bottom-up)

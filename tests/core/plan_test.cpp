@@ -1,13 +1,13 @@
 // The pass planner (core/plan.h) on purpose-built scenes: each test builds a scene in which one
 // omission must happen (or must not) and checks it, with the expected numbers computed here
 // from the scene's geometry.
+#include "core/plan.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/plan.h"
 #include "core/primitives.h"
 
 namespace sl {
@@ -24,7 +24,9 @@ Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool c
   return o;
 }
 
-glm::mat4 at(float x, float y, float z) { return glm::translate(glm::mat4(1), {x, y, z}); }
+glm::mat4 at(float x, float y, float z) {
+  return glm::translate(glm::mat4(1), {x, y, z});
+}
 
 constexpr float kLightHeight = 10.0f;
 constexpr float kCasterTop = 5.0f;  // the box's top face: the caster nearest the light
@@ -100,7 +102,8 @@ TEST(Plan, DepthRangeFittedToCastersAndReceivers) {
   Scene s = column();
   // A caster far outside the cone and nearer the light: the scene-wide fit starts near it, the
   // planner's fit ignores it (it cannot shadow anything in the frustum).
-  s.objects.push_back(object("stray", makeBox({1, 1, 1}), at(20, kLightHeight - 1.0f, 0), true, true));
+  s.objects.push_back(
+      object("stray", makeBox({1, 1, 1}), at(20, kLightHeight - 1.0f, 0), true, true));
   const FramePlan p = planFrame(s, named("modern.hw"), RenderParams{});
   // Expected: near = distance to the box top (10 - 5 = 5) less the 2% margin of the span
   // [5, 10] (0.1); far = distance to the ground (10) plus the margin.
@@ -156,7 +159,8 @@ TEST(Plan, BlurPassLeftOutWithoutKernel) {
 // minifies the map by (N / height) (h tan(fovy/2)) / (H tan(cone/2)).
 double expectedTexelsPerPixel(const Scene& s, const RenderParams& p) {
   const double h = s.camera.position.y, H = s.light.position.y;
-  return (double(p.shadowMapTexels) / p.height) * (h * std::tan(glm::radians(s.camera.fovyDegrees / 2.0))) /
+  return (double(p.shadowMapTexels) / p.height) *
+         (h * std::tan(glm::radians(s.camera.fovyDegrees / 2.0))) /
          (H * std::tan(glm::radians(s.light.coneDegrees / 2.0)));
 }
 

@@ -1,5 +1,7 @@
 // The bench's machinery (figures/bench.h): the sweep declares only what a technique declares,
 // the Pareto front, the error metrics and a tiny end-to-end run with CSV, JSON and plot.
+#include "figures/bench.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +9,6 @@
 #include <sstream>
 
 #include "apps/registry.h"
-#include "figures/bench.h"
 
 namespace sl::figures {
 namespace {

@@ -1,18 +1,17 @@
 // The planner consulted by legacy.hw and modern.hw, end to end: with no caster in the light
 // frustum the light pass is left out, and the result is the one the full pass gives; and the
 // `shadowlab plan` command.
-#include <gtest/gtest.h>
+#include "core/plan.h"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "apps/registry.h"
-#include "core/plan.h"
 #include "core/scene_library.h"
 
 namespace sl {

@@ -1,19 +1,19 @@
 // reference.hard and reference.soft against answers computed independently of any renderer:
 // the analytic scene's shadow follows from similar triangles (hard) and from the area of a
 // disk cut by a line (soft).
+#include "reference/reference.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
 #include <optional>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "apps/registry.h"
 #include "core/scene_library.h"
-#include "reference/reference.h"
 
 namespace sl {
 namespace {

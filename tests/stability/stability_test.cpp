@@ -15,15 +15,14 @@
 
 #include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
 #include <map>
 #include <mutex>
 #include <tuple>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "apps/registry.h"
 #include "core/errors.h"
@@ -50,7 +49,9 @@ constexpr double kWellConditioned = 0.02;
 // band is "better than an inverted or random mask".
 constexpr double kDegradedButSane = 0.5;
 
-std::shared_ptr<const Mesh> share(Mesh m) { return std::make_shared<const Mesh>(std::move(m)); }
+std::shared_ptr<const Mesh> share(Mesh m) {
+  return std::make_shared<const Mesh>(std::move(m));
+}
 
 Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool casts,
               bool receives) {
@@ -63,7 +64,9 @@ Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool c
   return o;
 }
 
-glm::mat4 at(float x, float y, float z) { return glm::translate(glm::mat4(1), {x, y, z}); }
+glm::mat4 at(float x, float y, float z) {
+  return glm::translate(glm::mat4(1), {x, y, z});
+}
 
 // The stage: a tessellated ground (receiver), a floating box and a sphere (closed casters),
 // large in the window so that their shadows are wide compared with the edge band.
@@ -71,8 +74,10 @@ Scene stage() {
   Scene s;
   s.name = "stage";
   s.objects.push_back(object("ground", makePlane(4, 4, 8), glm::mat4(1), false, true));
-  s.objects.push_back(object("box", makeBox({0.8f, 0.8f, 0.8f}), at(-0.6f, 0.8f, -0.2f), true, true));
-  s.objects.push_back(object("sphere", makeSphere(0.45f, 32, 16), at(0.7f, 0.6f, 0.4f), true, true));
+  s.objects.push_back(
+      object("box", makeBox({0.8f, 0.8f, 0.8f}), at(-0.6f, 0.8f, -0.2f), true, true));
+  s.objects.push_back(
+      object("sphere", makeSphere(0.45f, 32, 16), at(0.7f, 0.6f, 0.4f), true, true));
   s.camera.position = {0, 3.2f, 2.6f};
   s.camera.target = {0, 0.0f, -0.2f};
   s.camera.fovyDegrees = 50;
@@ -143,9 +148,10 @@ Scene degenerate() {
   const unsigned base = unsigned(box.positions.size());
   box.positions.push_back({0.0f, 0.0f, 0.0f});
   box.positions.push_back({0.1f, 0.0f, 0.0f});
-  box.positions.push_back({0.2f, 0.0f, 0.0f});  // collinear with the two before
+  box.positions.push_back({0.2f, 0.0f, 0.0f});                   // collinear with the two before
   for (int i = 0; i < 3; ++i) box.normals.push_back({0, 0, 0});  // no usable normal
-  for (unsigned i : {base, base + 1, base + 2, base, base, base, 0u, 0u, 1u}) box.indices.push_back(i);
+  for (unsigned i : {base, base + 1, base + 2, base, base, base, 0u, 0u, 1u})
+    box.indices.push_back(i);
   box.closed = false;
   s.objects[1] = object("degenerate box", box, at(-0.6f, 0.8f, -0.2f), true, true);
   return s;
@@ -154,8 +160,9 @@ Scene degenerate() {
 // An open caster (a single quad, not closed) for techniques that need closed meshes.
 Scene openCaster() {
   Scene s = stage();
-  s.objects[1] = object("open quad", makeQuad(0.8f, 0.8f),
-                        glm::rotate(at(-0.6f, 1.2f, -0.2f), glm::radians(-90.0f), {1, 0, 0}), true, true);
+  s.objects[1] =
+      object("open quad", makeQuad(0.8f, 0.8f),
+             glm::rotate(at(-0.6f, 1.2f, -0.2f), glm::radians(-90.0f), {1, 0, 0}), true, true);
   return s;
 }
 
@@ -191,9 +198,13 @@ struct Case {
 bool declares(const Technique& t, const std::string& key) {
   return std::find(t.paramKeys.begin(), t.paramKeys.end(), key) != t.paramKeys.end();
 }
-std::string always(const Technique&) { return ""; }
+std::string always(const Technique&) {
+  return "";
+}
 void noChange(RenderParams&) {}
-bool isReference(const Technique& t) { return t.name.rfind("reference.", 0) == 0; }
+bool isReference(const Technique& t) {
+  return t.name.rfind("reference.", 0) == 0;
+}
 
 const std::vector<Case>& cases() {
   static const std::vector<Case> kCases = {
@@ -233,24 +244,40 @@ const std::vector<Case>& cases() {
        "the contact line lies on the edge band; elsewhere contact is an ordinary shadow"},
       {"ramp_8bit_limit", [] { return nearFar(2e-2f); },
        [](RenderParams& p) { p.precision = Precision::k8; },
-       [](const Technique& t) { return t.needs.colorFromPrecision ? "" : "no colour-encoded depth"; },
+       [](const Technique& t) {
+         return t.needs.colorFromPrecision ? "" : "no colour-encoded depth";
+       },
        kDegradedButSane,
        "8-bit depth through the ramp: 256 steps over the forced light range [0.16, 8] are 0.03 "
        "units apart, the size of the stage's gaps"},
       {"csm_order_64_8bit", stage,
-       [](RenderParams& p) { p.extra = {{"order", "64"}, {"storage", "8"}}; },
-       [](const Technique& t) { return declares(t, "order") && declares(t, "storage") ? "" : "no order/storage parameters"; },
+       [](RenderParams& p) {
+         p.extra = {{"order", "64"}, {"storage", "8"}};
+       },
+       [](const Technique& t) {
+         return declares(t, "order") && declares(t, "storage") ? "" : "no order/storage parameters";
+       },
        kDegradedButSane,
        "M = 64 in 8 bits: the basis sin(c_k z) changes by more than one 8-bit step per depth step "
        "for k > 20, so the reconstruction rings"},
       {"csm_order_64_float", stage,
-       [](RenderParams& p) { p.extra = {{"order", "64"}, {"storage", "float"}}; },
-       [](const Technique& t) { return declares(t, "order") && declares(t, "storage") ? "" : "no order/storage parameters"; },
+       [](RenderParams& p) {
+         p.extra = {{"order", "64"}, {"storage", "float"}};
+       },
+       [](const Technique& t) {
+         return declares(t, "order") && declares(t, "storage") ? "" : "no order/storage parameters";
+       },
        kWellConditioned, "M = 64 in float: the expansion converges to the step (Eq. 11)"},
-      {"vsm_zero_variance", flatDepth, [](RenderParams& p) { p.extra = {{"min-variance", "0"}}; },
-       [](const Technique& t) { return declares(t, "min-variance") ? "" : "no min-variance parameter"; },
+      {"vsm_zero_variance", flatDepth,
+       [](RenderParams& p) {
+         p.extra = {{"min-variance", "0"}};
+       },
+       [](const Technique& t) {
+         return declares(t, "min-variance") ? "" : "no min-variance parameter";
+       },
        kWellConditioned,
-       "flat caster over a flat receiver: sigma^2 = 0 and the Chebyshev bound must not divide by it"},
+       "flat caster over a flat receiver: sigma^2 = 0 and the Chebyshev bound must not divide by "
+       "it"},
   };
   return kCases;
 }
@@ -282,7 +309,8 @@ const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters = fa
   static std::map<std::string, Frame> cache;
   static std::mutex mutex;
   std::lock_guard<std::mutex> lock(mutex);
-  const std::string key = c.name + (soft ? "|soft" : "|hard") + (withoutOpenCasters ? "|closed" : "");
+  const std::string key =
+      c.name + (soft ? "|soft" : "|hard") + (withoutOpenCasters ? "|closed" : "");
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   Scene scene = c.scene();
@@ -325,11 +353,13 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   static const std::map<std::pair<std::string, std::string>, KnownIssue> kIssues = {
       {{"grazing80", "legacy.ramp"}, {1.0, kConstantBias}},
       {{"open_caster", "legacy.second-depth"},
-       {-1, "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
-            "(InputError) nor falls back"}},
+       {-1,
+        "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
+        "(InputError) nor falls back"}},
       {{"open_caster", "modern.second-depth"},
-       {-1, "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
-            "(InputError) nor falls back"}},
+       {-1,
+        "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
+        "(InputError) nor falls back"}},
       {{"grazing80", "legacy.pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "legacy.fast-pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "modern.ramp"}, {1.0, kConstantBias}},
@@ -347,16 +377,16 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
         "its penumbra stretches 1/cos 80 = 5.8x, about 2.5x the 2-pixel band around the post's "
         "shadow outline (~2% of the pixels): at most 5%"}},
       {{"behind_and_around_light", "modern.gems16"},
-       {-1, "BUG (gems): 30% of the pixels wrong with a torus around the light and a box behind "
-            "it (0.01% before main's shared worldToShadowMap change); modern.hw and modern.pcf "
-            "are right on the same scene"}},
-      {{"behind_and_around_light", "modern.gems4"},
-       {-1, "BUG (gems): as modern.gems16"}},
+       {-1,
+        "BUG (gems): 30% of the pixels wrong with a torus around the light and a box behind "
+        "it (0.01% before main's shared worldToShadowMap change); modern.hw and modern.pcf "
+        "are right on the same scene"}},
+      {{"behind_and_around_light", "modern.gems4"}, {-1, "BUG (gems): as modern.gems16"}},
       {{"near_far_1e-3", "modern.gems16"},
-       {-1, "BUG (gems): 30% of the pixels wrong with the light's near/far given explicitly "
-            "(0.02% before main's shared worldToShadowMap change); modern.hw is right"}},
-      {{"near_far_1e-3", "modern.gems4"},
-       {-1, "BUG (gems): as modern.gems16"}},
+       {-1,
+        "BUG (gems): 30% of the pixels wrong with the light's near/far given explicitly "
+        "(0.02% before main's shared worldToShadowMap change); modern.hw is right"}},
+      {{"near_far_1e-3", "modern.gems4"}, {-1, "BUG (gems): as modern.gems16"}},
       {{"map_2x2", "modern.csm"},
        {-1, "BUG (csm): GlError 'layered shadow map framebuffer is incomplete' for a 2x2 map"}},
   };
@@ -366,7 +396,8 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
 void expectFiniteBuffers(const Frame& f) {
   EXPECT_TRUE(allFinite(f.visibility)) << "visibility has NaN/Inf";
   EXPECT_TRUE(f.color.empty() || allFinite(f.color)) << "colour has NaN/Inf";
-  for (const PassImage& p : f.intermediates) EXPECT_TRUE(allFinite(p.image)) << p.name << " has NaN/Inf";
+  for (const PassImage& p : f.intermediates)
+    EXPECT_TRUE(allFinite(p.image)) << p.name << " has NaN/Inf";
 }
 
 using Param = std::tuple<std::string, std::string>;  // case, technique
@@ -381,7 +412,8 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
   c.params(params);
   const Scene scene = c.scene();
   if (auto it = knownIssues().find({c.name, t.name});
-      it != knownIssues().end() && it->second.bound < 0 && it->second.why.find("GlError") != std::string::npos)
+      it != knownIssues().end() && it->second.bound < 0 &&
+      it->second.why.find("GlError") != std::string::npos)
     GTEST_SKIP() << "known issue: " << it->second.why;
   Frame frame;
   try {
@@ -404,7 +436,8 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
   auto skipped = frame.counters.find("open_casters_skipped");
   if (skipped != frame.counters.end() && skipped->second > 0) {
     // Documented fallback: open casters left out. Right if it matches either reference.
-    const MaskDifference without = errorWhereItMatters(frame.visibility, referenceFor(c, soft, true));
+    const MaskDifference without =
+        errorWhereItMatters(frame.visibility, referenceFor(c, soft, true));
     std::cout << "[stability] " << c.name << " " << t.name << ": skipped " << skipped->second
               << " open caster(s); wrong " << 100.0 * without.shareAboveHalf
               << "% against the reference without them\n";
