@@ -9,17 +9,10 @@ in vec3 vWorldNormal;
 uniform sampler2DShadow uShadowMap;
 uniform mat4 uWorldToShadowMap;   // S · P_light · V_light
 uniform bool uReceivesShadow;
-uniform vec3 uDiffuse;
-uniform float uSpecular;
-uniform vec3 uLightPosition;
-uniform vec3 uLightDirection;
-uniform float uSpotCosCutoff;
-uniform vec3 uLightColor;
-uniform float uAmbient;
-uniform vec3 uEyePosition;
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 layout(location = 2) out vec4 oSilhouette;  // 1 = silhouette pixel (Figure 3-1b, green)
+#include "lighting.glsl"
 
 void main() {
   vec3 n = normalize(vWorldNormal);
@@ -33,12 +26,7 @@ void main() {
   // Non-silhouette pixels: v is exactly 0 or 1 on light-facing surfaces; "pixels that are
   // back-facing with respect to the light are always in shadow" (§3.1 step 2).
   float visibility = !uReceivesShadow ? 1.0 : (diffuse > 0.0 ? v : 0.0);
-  float spot = dot(-toLight, normalize(uLightDirection)) >= uSpotCosCutoff ? 1.0 : 0.0;
-  vec3 toEye = normalize(uEyePosition - vWorldPosition);
-  float specular = diffuse > 0.0 ? pow(max(dot(n, normalize(toLight + toEye)), 0.0), 32.0) : 0.0;
-  vec3 direct = spot * uLightColor * (uDiffuse * diffuse + vec3(uSpecular) * specular);
-  vec3 ambient = uAmbient * uLightColor * uDiffuse;
-  oColor = vec4(ambient + visibility * direct, 1.0);
+  oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
   oSilhouette = vec4(silhouette ? 1.0 : 0.0, 0.0, 0.0, 1.0);
 }
