@@ -145,8 +145,22 @@ RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int hei
   return p;
 }
 
-double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
-                               const RenderParams& params, int frames) {
+std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams) {
+  const Technique& legacy = findTechnique(pair.legacy);
+  if (!legacy.needs.colorFromPrecision || pair.precision == Precision::k8) return "";
+  constexpr int kBits12 = 16;  // 12-bit values live in a 16-bit buffer
+  constexpr int kBitsFloat = 32;
+  const int needed = pair.precision == Precision::k12 ? kBits12 : kBitsFloat;
+  auto context = GlContext::create(contextFor(legacy, legacyParams));
+  const int bits = context->caps().redBits;
+  if (bits >= needed) return "";
+  return std::string(backendName(legacyParams.backend)) + " gives the legacy context " +
+         std::to_string(bits) + "-bit colour, not the " + std::to_string(needed) +
+         " bits that precision " + precisionName(pair.precision) + " needs";
+}
+
+FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
+                             const RenderParams& params, int frames) {
   if (frames < 1) throw InputError("the number of timed frames must be at least 1");
   checkParams(technique, params, 0);
   auto context = GlContext::create(contextFor(technique, params));
@@ -157,7 +171,7 @@ double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
   for (int i = 0; i < frames; ++i)
     times.push_back(technique.render(*context, scene, params).totalMilliseconds());
   std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  return {times[times.size() / 2], times.front()};
 }
 
 }  // namespace sl::twins

@@ -70,9 +70,19 @@ Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& mode
 RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int height,
                        int shadowMapTexels, Backend backend);
 
-// Median frame time (sum of the technique's timed passes) over `frames` frames rendered in
-// one context after one warm-up frame.
-double medianFrameMilliseconds(const Technique& technique, const Scene& scene,
-                               const RenderParams& params, int frames);
+// Why the legacy side of `pair` cannot run at the pair's precision with these parameters, ""
+// when it can: EGL pbuffers are 8-bit (core/context.cpp), so legacy 12-bit and float colour
+// is not there and the pair is not comparable.
+std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
+
+// Frame time (sum of the technique's timed passes) over `frames` frames rendered in one context
+// after one warm-up frame: the median, and the minimum (the least disturbed by other processes
+// on a shared machine).
+struct FrameTimes {
+  double median = 0.0;
+  double minimum = 0.0;
+};
+FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
+                             const RenderParams& params, int frames);
 
 }  // namespace sl::twins

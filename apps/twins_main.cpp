@@ -86,6 +86,8 @@ void agreementTable(const Options& o) {
       std::cout << "| " << pair.label << " | " << name << " | "
                 << (pair.faithful ? "faithful (ties only)" : "1/255, band") << " | ";
       try {
+        if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+          throw InputError(why);
         const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
         const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
         const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
@@ -104,22 +106,27 @@ void agreementTable(const Options& o) {
 void benchTable(const Options& o) {
   std::cout << "### Frame time (" << backendName(o.backend) << ", " << o.benchScene << ", "
             << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap
-            << "^2 map, median of " << o.frames << " frames)\n\n"
-            << "| pair | legacy ms | modern ms | legacy / modern |\n| --- | --- | --- | --- |\n";
+            << "^2 map, " << o.frames << " frames each)\n\n"
+            << "| pair | legacy ms (median / min) | modern ms (median / min) | legacy / modern "
+               "(medians) | legacy / modern (minima) |\n| --- | --- | --- | --- | --- |\n";
   const Scene scene = loadScene(o.benchScene);
   for (const twins::TwinPair& pair : twins::twinPairs()) {
     std::cout << "| " << pair.label << " | ";
     try {
-      const double legacy = twins::medianFrameMilliseconds(
-          findTechnique(pair.legacy), scene,
-          twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
-          o.frames);
-      const double modern = twins::medianFrameMilliseconds(
+      const RenderParams pl =
+          twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend);
+      if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+        throw InputError(why);
+      const twins::FrameTimes legacy =
+          twins::frameMilliseconds(findTechnique(pair.legacy), scene, pl, o.frames);
+      const twins::FrameTimes modern = twins::frameMilliseconds(
           findTechnique(pair.modern), scene,
           twins::paramsFor(pair, false, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
           o.frames);
-      std::cout << fixed(legacy, 1) << " | " << fixed(modern, 1) << " | "
-                << fixed(legacy / modern, 2) << " |\n";
+      std::cout << fixed(legacy.median, 1) << " / " << fixed(legacy.minimum, 1) << " | "
+                << fixed(modern.median, 1) << " / " << fixed(modern.minimum, 1) << " | "
+                << fixed(legacy.median / modern.median, 2) << " | "
+                << fixed(legacy.minimum / modern.minimum, 2) << " |\n";
     } catch (const std::exception& e) {
       std::cout << "not run: " << e.what() << " | | |\n";
     }

@@ -4,12 +4,50 @@
 //
 //   volumes_bench [--scene cubes|<built-in>] [--size WxH] [--shadow-map N] [--frames N]
 //                 [--backend osmesa|egl] [--technique T ...]
+//   volumes_bench --doc-images DIR     the two images of docs/volumes.md
+#include "modern/volumes_bench.h"
+
 #include <cstdlib>
 #include <iostream>
 
+#include "apps/registry.h"
 #include "core/errors.h"
+#include "core/image.h"
 #include "core/scene_library.h"
-#include "modern/volumes_bench.h"
+
+namespace {
+using namespace sl;
+
+// docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
+// smoothies) and the cubes scene with its volume overdraw (Chan Fig. 3-9a) and the hybrid's
+// classification (Fig. 3-5b).
+void writeDocImages(const std::string& dir) {
+  constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
+                kCropH = 90, kMagnify = 3;
+  RenderParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  p.shadowMapTexels = 256;
+  std::vector<Image> crops;
+  for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"}) {
+    const Frame f = renderTechnique(findTechnique(t), builtinScene("brabec"), p);
+    crops.push_back(magnifyNearest(
+        crop(f.color, kCropX, kHeight - kCropTop - kCropH, kCropW, kCropH), kMagnify));
+  }
+  writePng(dir + "/volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png", sideBySide(crops));
+  p.shadowMapTexels = 1024;
+  p.capturePasses = true;
+  const Scene cubes = modern::fillHeavyScene();
+  const Frame v = renderTechnique(findTechnique("modern.volumes"), cubes, p);
+  const Frame h = renderTechnique(findTechnique("modern.hybrid"), cubes, p);
+  std::vector<Image> panels = {v.color};
+  for (const PassImage& i : v.intermediates)
+    if (i.name == "3-volume-overdraw") panels.push_back(i.image);
+  for (const PassImage& i : h.intermediates)
+    if (i.name == "6-classification") panels.push_back(i.image);
+  writePng(dir + "/volumes-cubes-image-overdraw-classification.png", sideBySide(panels));
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace sl;
@@ -39,6 +77,9 @@ int main(int argc, char** argv) {
         frames = std::atoi(value().c_str());
       } else if (arg == "--backend") {
         params.backend = parseBackend(value());
+      } else if (arg == "--doc-images") {
+        writeDocImages(value());
+        return 0;
       } else if (arg == "--technique") {
         techniques.push_back(value());
       } else {

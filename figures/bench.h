@@ -41,15 +41,17 @@ struct BenchVariant {
 // Table 1 grid (side x order x blur) in the full mode.
 std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& base, bool quick);
 
-// Errors of one mask against one reference.
+// Errors of one mask against one reference, counted where the light can reach (surfaces
+// facing it inside its frustum: elsewhere the direct term is 0 and visibility changes nothing).
 struct ErrorSet {
-  MaskDifference all;
-  MaskDifference band;  // restricted to the reference's shadow-boundary band
+  MaskDifference all;   // every pixel of the direct-light region
+  MaskDifference band;  // the region's pixels within 2 pixels of a reference shadow edge
   // Light leaking: share of the reference's umbra pixels (visibility 0, outside the band)
   // that the technique shows more than kLeakThreshold lit.
   double leakShare = 0.0;
 };
-ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& band);
+ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& region,
+                       const Image& band);
 
 struct BenchRow {
   std::string scene, technique, variant;

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/context.h"
@@ -252,9 +251,8 @@ Image probeChannel(const Image& probe, int c) {
 void densityColor(float pixelsPerTexel, float rgb[3]) {
   if (!(pixelsPerTexel > 0.0f) || !std::isfinite(pixelsPerTexel)) pixelsPerTexel = 1e-6f;
   // t in [0, 1]: 0 = 1/8 pixel per texel (red), 0.5 = one to one (green), 1 = 8 pixels (blue).
-  const float t = std::clamp((std::log2(pixelsPerTexel) + kDensityLog2Range) /
-                                 (2.0f * kDensityLog2Range),
-                             0.0f, 1.0f);
+  const float t = std::clamp(
+      (std::log2(pixelsPerTexel) + kDensityLog2Range) / (2.0f * kDensityLog2Range), 0.0f, 1.0f);
   if (t < 0.5f) {
     const float u = t / 0.5f;
     rgb[0] = 1.0f - u;

@@ -73,7 +73,7 @@ FigureSpec brabecFig7() {
       "The paper's own comparison at its own size: 800x600 window, 512x512 shadow map, one "
       "light, a scene of about 7000 triangles (ours is procedural: their model is not "
       "published). Top row (a-d) the full frames, bottom row (e-h) the red rectangle "
-      "magnified 4x with nearest-neighbour sampling, so that the shadow-map texels and the "
+      "magnified 8x with nearest-neighbour sampling, so that the shadow-map texels and the "
       "shadow levels of each filter can be counted.";
   f.scene = "brabec";
   f.width = 800;
@@ -84,15 +84,15 @@ FigureSpec brabecFig7() {
       withPaper(withFilter(render("(a,e) unfiltered (§2)", "legacy.ramp"), 1),
                 "25-30 fps on an SGI Octane VPro/8"),
       withPaper(withFilter(render("(b,f) PCF 2x2 (§3)", "legacy.pcf"), 2), "about 10 fps"),
-      withPaper(withFilter(render("(c,g) fast PCF 2x2 (§4)", "legacy.fast-pcf"), 2),
-                "15-20 fps"),
+      withPaper(withFilter(render("(c,g) fast PCF 2x2 (§4)", "legacy.fast-pcf"), 2), "15-20 fps"),
       withPaper(withFilter(render("(d,h) fast PCF 4x4, multipass (§4)", "legacy.fast-pcf"), 4),
                 "about 5 fps"),
   };
-  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 4}};
+  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 8}};  // magnified to about the panel's size
   f.paperNumbers =
       "§5, SGI Octane VPro/8, 800x600, 512x512 map, times include the shadow map: "
-      "unfiltered 25-30 fps, PCF 2x2 about 10 fps, fast PCF 2x2 15-20 fps, fast PCF 4x4 about 5 fps.";
+      "unfiltered 25-30 fps, PCF 2x2 about 10 fps, fast PCF 2x2 15-20 fps, fast PCF 4x4 about 5 "
+      "fps.";
   return f;
 }
 
@@ -115,7 +115,7 @@ FigureSpec brabecFig8() {
       withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps"),
       withPaper(withFilter(render("(b) fast PCF 2x2", "legacy.fast-pcf"), 2), "about 10 fps"),
   };
-  f.closeups = {{0.55f, 0.22f, 0.15f, 0.15f, 4}};
+  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4}};
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }
@@ -152,7 +152,8 @@ FigureSpec everittFig2() {
   f.caption =
       "The shadowed scene from the eye (left), the same scene from the light (centre) and the "
       "light's depth buffer, the shadow map, with near depths dark and far depths light "
-      "(right; our own read-back of the depth texture, 24-bit depth shown as 8-bit grey).";
+      "(right; rendered by the figure module itself, depth linearised between the light's "
+      "near and far planes so that the grey levels are readable).";
   f.columns = 3;
   f.panels = {render("eye view (legacy.hw)", "legacy.hw"),
               view("light's view", PanelKind::kLightView),
@@ -402,14 +403,19 @@ std::vector<FigureSpec> csmFigures() {
   table.table = true;
   table.reference = "";  // a timing table
   const char* sizes[] = {"256", "512", "1024", "2048"};
-  const char* paper[3][4][4] = {
-      // C = none: PCF, M=4, M=8, M=16 rows
-      {{"76", "74", "71", "69"}, {"64", "62", "60", "50"}, {"55", "53", "49", "38"},
-       {"47", "45", "39", "26"}},
-      {{"", "", "", ""}, {"63", "61", "57", "43"}, {"53", "50", "44", "30"},
-       {"42", "39", "32", "19"}},
-      {{"", "", "", ""}, {"62", "60", "53", "36"}, {"52", "49", "41", "24"},
-       {"41", "38", "28", "14"}}};
+  const char* paper[3][4][4] = {// C = none: PCF, M=4, M=8, M=16 rows
+                                {{"76", "74", "71", "69"},
+                                 {"64", "62", "60", "50"},
+                                 {"55", "53", "49", "38"},
+                                 {"47", "45", "39", "26"}},
+                                {{"", "", "", ""},
+                                 {"63", "61", "57", "43"},
+                                 {"53", "50", "44", "30"},
+                                 {"42", "39", "32", "19"}},
+                                {{"", "", "", ""},
+                                 {"62", "60", "53", "36"},
+                                 {"52", "49", "41", "24"},
+                                 {"41", "38", "28", "14"}}};
   const char* blurs[] = {"0", "3", "7"};
   const char* blurNames[] = {"none", "3x3", "7x7"};
   const char* orders[] = {"PCF", "4", "8", "16"};
@@ -422,8 +428,10 @@ std::vector<FigureSpec> csmFigures() {
                                   " S=" + sizes[s];
         PanelSpec p = m == 0 ? render(label, "modern.hw")
                              : render(label, "modern.csm",
-                                      {{"order", orders[m]}, {"blur", blurs[c]},
-                                       {"filtering", "trilinear"}, {"anisotropy", "16"}});
+                                      {{"order", orders[m]},
+                                       {"blur", blurs[c]},
+                                       {"filtering", "trilinear"},
+                                       {"anisotropy", "16"}});
         p.shadowMapTexels = std::stoi(sizes[s]);
         p.paperNumbers = std::string(paper[c][m][s]) + " fps";
         table.panels.push_back(p);
@@ -531,8 +539,8 @@ std::vector<FigureSpec> chanFigures() {
     sv.counter = "volume_coverage";
     p310.push_back(sv);
     for (int texels : {256, 512, 1024}) {
-      PanelSpec h = withMap(render(std::string(scene) + " H " + std::to_string(texels), "modern.hybrid"),
-                            texels);
+      PanelSpec h = withMap(
+          render(std::string(scene) + " H " + std::to_string(texels), "modern.hybrid"), texels);
       h.scene = scene;
       h.counter = "silhouette_fraction";
       p310.push_back(h);
@@ -583,7 +591,7 @@ std::vector<FigureSpec> chanFigures() {
       "grow away from the contact (d).",
       "brabec", 2,
       {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
-       render("(d) remapped alpha", "modern.smoothies", {{"remap", "true"}})}));
+       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
   out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
 
   std::vector<PanelSpec> p48;
@@ -593,11 +601,14 @@ std::vector<FigureSpec> chanFigures() {
   int row = 0;
   for (int texels : {256, 512, 1024}) {
     const std::string n = std::to_string(texels) + "²";
-    p48.push_back(withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
-                            paperMs[row][0]));
-    p48.push_back(withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
+    p48.push_back(
+        withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
+                  paperMs[row][0]));
+    p48.push_back(
+        withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
     p48.push_back(withPaper(
-        withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}), texels),
+        withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}),
+                texels),
         paperMs[row][2]));
     p48.push_back(withPaper(
         withMap(render(n + " smoothie width 0.1", "modern.smoothies", {{"width", "0.1"}}), texels),
@@ -621,15 +632,16 @@ std::vector<FigureSpec> chanFigures() {
     const std::string width = std::to_string(radius * kSmoothieWidthPerRadius).substr(0, 5);
     PanelSpec s = render("smoothies, light radius " + std::to_string(radius).substr(0, 4),
                          "modern.smoothies", {{"width", width}});
-    PanelSpec r = render("ray traced, light radius " + std::to_string(radius).substr(0, 4),
-                         "reference.soft");
+    PanelSpec r =
+        render("ray traced, light radius " + std::to_string(radius).substr(0, 4), "reference.soft");
     s.lightRadius = r.lightRadius = radius;
     p49.insert(p49.end(), {s, r});
   }
   FigureSpec f49 = chanFigure(
       "chan-4-9", "Figure 4-9", "Smoothies vs ray-traced soft shadows for growing lights",
       "Left: smoothies (1024² buffer, width 0.5 x the light radius); right: Monte Carlo "
-      "ray-traced visibility of a spherical light (reference.soft). Each row a larger light; the error column measures the "
+      "ray-traced visibility of a spherical light (reference.soft). Each row a larger light; the "
+      "error column measures the "
       "smoothie against the ray tracer with the same light.",
       "cylinder", 2, p49);
   f49.shadowMapTexels = 1024;
@@ -643,7 +655,7 @@ std::vector<FigureSpec> chanFigures() {
       "the ground (right).",
       "boxes", 3,
       {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
-       buffers("alpha, remapped", "modern.smoothies", "alpha", {{"remap", "true"}}),
+       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
        render("result", "modern.smoothies")}));
   return out;
 }
@@ -661,10 +673,10 @@ FigureSpec errorAgainstTime() {
   f.columns = 4;
   f.twins = false;
   f.table = true;
-  for (const char* t : {"legacy.ramp", "legacy.pcf", "legacy.fast-pcf", "legacy.hw",
-                        "legacy.woo", "legacy.second-depth", "modern.ramp", "modern.pcf",
-                        "modern.fast-pcf", "modern.hw", "modern.gems4", "modern.gems16",
-                        "modern.csm", "modern.vsm", "modern.volumes", "modern.hybrid"})
+  for (const char* t : {"legacy.ramp", "legacy.pcf", "legacy.fast-pcf", "legacy.hw", "legacy.woo",
+                        "legacy.second-depth", "modern.ramp", "modern.pcf", "modern.fast-pcf",
+                        "modern.hw", "modern.gems4", "modern.gems16", "modern.csm", "modern.vsm",
+                        "modern.volumes", "modern.hybrid"})
     f.panels.push_back(render(t, t));
   f.panels.push_back(plot("error vs time", "error-vs-time"));
   return f;

@@ -36,8 +36,8 @@ struct Closeup {
 struct PanelSpec {
   std::string label;  // "(a) unfiltered"
   PanelKind kind = PanelKind::kRender;
-  std::string technique;  // registry name; for kLightView..kTexelDensity none is needed
-  std::string scene;      // empty: the figure's scene
+  std::string technique;      // registry name; for kLightView..kTexelDensity none is needed
+  std::string scene;          // empty: the figure's scene
   int width = 0, height = 0;  // 0: the figure's size
   int shadowMapTexels = 0;    // 0: the figure's
   int filter = 0;             // 0: RenderParams default
@@ -57,7 +57,7 @@ struct FigureSpec {
   std::string paper;        // "Brabec & Seidel 2001"
   std::string paperFigure;  // "Figure 7 (a-h)"
   std::string title;
-  std::string caption;      // ours, with any stand-in model named
+  std::string caption;  // ours, with any stand-in model named
   std::string scene = "brabec";
   int width = 512, height = 384;
   int shadowMapTexels = 512;

@@ -26,8 +26,8 @@
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "figures/bench.h"
-#include "figures/plan.h"
 #include "figures/diagnostics.h"
+#include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
 
@@ -36,9 +36,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kPlotWidth = 900;   // pixels of a gnuplot chart
+constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
-constexpr float kDiffFullScale = 1.0f;  // heat-map full scale: a whole visibility step
+constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
 constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 
@@ -219,13 +219,14 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
   }
   auto addImage = [&](const Image& image, const std::string& caption, bool withCloseups) {
     const bool close = withCloseups && p.closeups && !fig.closeups.empty();
-    out.images.push_back({r.write(fig.id, base, close ? framed(image, fig.closeups) : image),
-                          caption});
+    out.images.push_back(
+        {r.write(fig.id, base, close ? framed(image, fig.closeups) : image), caption});
     if (!close) return;
     for (size_t i = 0; i < fig.closeups.size(); ++i)
-      out.closeups.push_back({r.write(fig.id, base + "-closeup" + std::to_string(i),
-                                      closeupOf(image, fig.closeups[i])),
-                              p.label + " magnified " + std::to_string(fig.closeups[i].magnify) + "x"});
+      out.closeups.push_back(
+          {r.write(fig.id, base + "-closeup" + std::to_string(i),
+                   closeupOf(image, fig.closeups[i])),
+           p.label + " magnified " + std::to_string(fig.closeups[i].magnify) + "x"});
   };
   try {
     switch (p.kind) {
@@ -277,12 +278,14 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           if (!p.intermediate.empty() && pass.name.find(p.intermediate) == std::string::npos)
             continue;
           for (auto& [image, caption] : splitIntermediate(pass)) {
-            out.images.push_back({r.write(fig.id, base + "-" + std::to_string(n++), image), caption});
+            out.images.push_back(
+                {r.write(fig.id, base + "-" + std::to_string(n++), image), caption});
           }
         }
         if (out.images.empty()) {
           std::string names;
-          for (const PassImage& pass : f->intermediates) names += (names.empty() ? "" : ", ") + pass.name;
+          for (const PassImage& pass : f->intermediates)
+            names += (names.empty() ? "" : ", ") + pass.name;
           out.reason = p.technique + " gives no intermediate buffer named '*" + p.intermediate +
                        "*' (it gives: " + (names.empty() ? "none" : names) + ")";
           return out;
@@ -363,7 +366,8 @@ void writeComposite(Renderer& r, FigureResult& fig) {
       for (const ImageFile& c : p.closeups)
         closeups.push_back(readPng((fs::path(r.outDir()) / c.file).string()));
     } else {
-      Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);
+      Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height,
+                    3);
       for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
       panels.push_back(missing);
     }
@@ -372,13 +376,16 @@ void writeComposite(Renderer& r, FigureResult& fig) {
   constexpr int kGap = 6;
   std::vector<Image> rows;
   for (size_t i = 0; i < panels.size(); i += size_t(s.columns))
-    rows.push_back(sideBySide(std::vector<Image>(panels.begin() + long(i),
-                                                 panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
-                              kGap));
+    rows.push_back(sideBySide(
+        std::vector<Image>(panels.begin() + long(i),
+                           panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
+        kGap));
   for (size_t i = 0; i < closeups.size(); i += size_t(s.columns))
-    rows.push_back(sideBySide(std::vector<Image>(closeups.begin() + long(i),
-                                                 closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
-                              kGap));
+    rows.push_back(
+        sideBySide(std::vector<Image>(
+                       closeups.begin() + long(i),
+                       closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
+                   kGap));
   fig.composite = r.write(s.id, "figure", shrinkToWidth(stackRows(rows, kGap), kCompositeMaxWidth));
 }
 
@@ -422,8 +429,9 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
         values.push_back({100.0 * it->second});  // the counters are fractions of the image
       }
       if (rows.empty()) {
-        plot.reason = "no panel reported its counter (modern.hybrid: silhouette_fraction, "
-                      "modern.volumes: volume_coverage)";
+        plot.reason =
+            "no panel reported its counter (modern.hybrid: silhouette_fraction, "
+            "modern.volumes: volume_coverage)";
         return;
       }
       plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows,
@@ -440,15 +448,16 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
         rows.push_back(p->spec.label);
         std::vector<double> v(columns.size(), 0.0);
         for (const PassTime& pass : p->passes)
-          v[std::find(columns.begin(), columns.end(), pass.name) - columns.begin()] += pass.milliseconds;
+          v[std::find(columns.begin(), columns.end(), pass.name) - columns.begin()] +=
+              pass.milliseconds;
         values.push_back(v);
       }
       if (rows.empty()) {
         plot.reason = "no technique of this figure is available yet";
         return;
       }
-      plotStackedBars("time per pass (Chan Fig. 3-11)", "ms per frame", rows, columns, values,
-                      png, kPlotWidth, kPlotHeight);
+      plotStackedBars("time per pass (Chan Fig. 3-11)", "ms per frame", rows, columns, values, png,
+                      kPlotWidth, kPlotHeight);
     } else {
       plot.reason = "unknown chart '" + chart + "'";
       return;
@@ -503,7 +512,9 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
   for (const FigureSpec* f : selected) {
     fs::create_directories(fs::path(outDir) / f->id, ec);
-    if (ec) throw InputError("cannot create " + (fs::path(outDir) / f->id).string() + ": " + ec.message());
+    if (ec)
+      throw InputError("cannot create " + (fs::path(outDir) / f->id).string() + ": " +
+                       ec.message());
   }
 
   size_t total = 0, done = 0;
@@ -528,16 +539,19 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
     try {
       writeComposite(renderer, fr);
     } catch (const std::exception& e) {
-      std::cerr << "        could not compose " << f->id << "/figure.png: " << e.what() << std::endl;
+      std::cerr << "        could not compose " << f->id << "/figure.png: " << e.what()
+                << std::endl;
     }
     renderer.forgetFrames();
-    fr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
+    fr.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
     results.push_back(std::move(fr));
   }
   ReportInfo info;
   info.renderer = rendererName();
   info.date = utcNow();
-  info.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  info.totalSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writeReport(outDir, results, info);
   int missing = 0, panels = 0;
   for (const FigureResult& fr : results)
@@ -551,7 +565,11 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
   return 0;
 }
 
-int runBench(const cli::Args& args) { return runBenchCommand(args); }  // figures/bench.cpp
-int runPlan(const cli::Args& args) { return runPlanCommand(args); }    // figures/plan.cpp
+int runBench(const cli::Args& args) {
+  return runBenchCommand(args);
+}  // figures/bench.cpp
+int runPlan(const cli::Args& args) {
+  return runPlanCommand(args);
+}  // figures/plan.cpp
 
 }  // namespace sl::figures

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kCurveSamples = 801;       // points per reconstruction curve
-constexpr double kPlotHalfRange = 0.5;   // Fig. 3 shows d - z in [-0.5, 0.5] ("range scaled")
+constexpr int kCurveSamples = 801;         // points per reconstruction curve
+constexpr double kPlotHalfRange = 0.5;     // Fig. 3 shows d - z in [-0.5, 0.5] ("range scaled")
 constexpr double kAttenuationAlpha = 4.0;  // a strong attenuation for Fig. 3 (b)
 
 std::string quote(const std::string& s) {
@@ -31,8 +31,7 @@ std::string quote(const std::string& s) {
 
 // The PNG terminal: cairo when present (anti-aliased), libgd's otherwise.
 std::string terminalLine(int width, int height) {
-  static const bool cairo =
-      std::system("gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1") == 0;
+  static const bool cairo = std::system("gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1") == 0;
   std::ostringstream s;
   if (cairo)
     s << "set terminal pngcairo size " << width << "," << height << " font 'sans,10'\n";
@@ -52,7 +51,8 @@ void runScript(const std::string& script, const std::string& pngPath) {
   }
   std::error_code ec;
   fs::remove(png, ec);
-  const std::string command = "gnuplot " + quote(gp.string()) + " >" + quote(log.string()) + " 2>&1";
+  const std::string command =
+      "gnuplot " + quote(gp.string()) + " >" + quote(log.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   if (status != 0 || !fs::exists(png)) {
     std::ifstream in(log);
@@ -87,9 +87,9 @@ void plotLines(const std::vector<LineChart>& charts, int columns, const std::str
   s << "set multiplot layout " << rows << "," << columns << "\n";
   block = 0;
   for (const LineChart& c : charts) {
-    s << "set title " << quote(c.title) << "\nset xlabel " << quote(c.xLabel)
-      << "\nset ylabel " << quote(c.yLabel) << "\nset xrange [" << c.xMin << ":" << c.xMax
-      << "]\nset yrange [" << c.yMin << ":" << c.yMax << "]\nplot ";
+    s << "set title " << quote(c.title) << "\nset xlabel " << quote(c.xLabel) << "\nset ylabel "
+      << quote(c.yLabel) << "\nset xrange [" << c.xMin << ":" << c.xMax << "]\nset yrange ["
+      << c.yMin << ":" << c.yMax << "]\nplot ";
     for (size_t i = 0; i < c.series.size(); ++i)
       s << (i ? ", " : "") << "$d" << block++ << " with lines lw 2 title "
         << quote(c.series[i].title);
@@ -99,17 +99,19 @@ void plotLines(const std::vector<LineChart>& charts, int columns, const std::str
   runScript(s.str(), pngPath);
 }
 
-void plotLabelledPoints(const std::string& title, const std::string& xLabel,
-                        const std::string& yLabel,
-                        const std::vector<std::pair<std::pair<double, double>, std::string>>& points,
-                        bool logX, const std::string& pngPath, int width, int height) {
+void plotLabelledPoints(
+    const std::string& title, const std::string& xLabel, const std::string& yLabel,
+    const std::vector<std::pair<std::pair<double, double>, std::string>>& points, bool logX,
+    const std::string& pngPath, int width, int height) {
   std::ostringstream s;
   s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
-  s << "set grid\nset title " << quote(title) << "\nset xlabel " << quote(xLabel)
-    << "\nset ylabel " << quote(yLabel) << "\nunset key\n";
+  s << "set grid\nset title " << quote(title) << "\nset xlabel " << quote(xLabel) << "\nset ylabel "
+    << quote(yLabel) << "\nunset key\n";
   if (logX) s << "set logscale x\n";
+  s << "set offsets graph 0.02, graph 0.15, graph 0.05, graph 0.05\n";  // room for labels
   s << "$d << EOD\n";
-  for (const auto& [xy, label] : points) s << xy.first << " " << xy.second << " " << quote(label) << "\n";
+  for (const auto& [xy, label] : points)
+    s << xy.first << " " << xy.second << " " << quote(label) << "\n";
   s << "EOD\n";
   s << "plot $d using 1:2 with points pt 7 ps 1.5, $d using 1:2:3 with labels offset char 1,0.6 "
        "left font ',8'\n";
@@ -123,7 +125,8 @@ void plotStackedBars(const std::string& title, const std::string& yLabel,
   std::ostringstream s;
   s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
   s << "set title " << quote(title) << "\nset ylabel " << quote(yLabel) << "\n"
-    << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border -1\n"
+    << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border "
+       "-1\n"
     << "set boxwidth 0.7\nset xtics rotate by -35 font ',8'\nset key outside right top font ',8'\n"
     << "set grid ytics\nset yrange [0:*]\n";
   s << "$d << EOD\n";
@@ -200,15 +203,16 @@ std::vector<LineChart> csmFigure3Charts() {
   out.push_back(a);
   LineChart b = base("(b) attenuation, M = 16");
   b.series.push_back(step);
-  b.series.push_back(curve("alpha = 0", [](double t) { return csmVisibility(t, 16, 0, 0, 1, false); }));
-  b.series.push_back(curve("alpha = 4", [](double t) {
-    return csmVisibility(t, 16, kAttenuationAlpha, 0, 1, false);
-  }));
+  b.series.push_back(
+      curve("alpha = 0", [](double t) { return csmVisibility(t, 16, 0, 0, 1, false); }));
+  b.series.push_back(curve(
+      "alpha = 4", [](double t) { return csmVisibility(t, 16, kAttenuationAlpha, 0, 1, false); }));
   out.push_back(b);
   LineChart c = base("(c) offset on d, M = 4");
   const double offset = csmOffsetFor(4, 0.0);
   c.series.push_back(step);
-  c.series.push_back(curve("no offset", [](double t) { return csmVisibility(t, 4, 0, 0, 1, true); }));
+  c.series.push_back(
+      curve("no offset", [](double t) { return csmVisibility(t, 4, 0, 0, 1, true); }));
   c.series.push_back(curve("offset " + std::to_string(offset).substr(0, 5),
                            [offset](double t) { return csmVisibility(t, 4, 0, offset, 1, true); }));
   out.push_back(c);

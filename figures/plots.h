@@ -27,10 +27,10 @@ bool gnuplotAvailable(std::string* why);
 void plotLines(const std::vector<LineChart>& charts, int columns, const std::string& pngPath,
                int width, int height);
 // Labelled points (x, y, label), e.g. error against time; log-scale x when `logX`.
-void plotLabelledPoints(const std::string& title, const std::string& xLabel,
-                        const std::string& yLabel,
-                        const std::vector<std::pair<std::pair<double, double>, std::string>>& points,
-                        bool logX, const std::string& pngPath, int width, int height);
+void plotLabelledPoints(
+    const std::string& title, const std::string& xLabel, const std::string& yLabel,
+    const std::vector<std::pair<std::pair<double, double>, std::string>>& points, bool logX,
+    const std::string& pngPath, int width, int height);
 // Stacked bars: one bar per row label, one stack segment per column name.
 void plotStackedBars(const std::string& title, const std::string& yLabel,
                      const std::vector<std::string>& rows, const std::vector<std::string>& columns,

@@ -20,11 +20,20 @@ std::string esc(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -58,7 +67,8 @@ th { background: #eee; }
 .paper { color: #05a; }
 .ok { color: #070; } .bad { color: #c00; }
 .inter { display: flex; flex-wrap: wrap; gap: 6px; }
-.inter figure { width: 220px; }
+.inter figure { max-width: 100%; }
+.inter img { height: 180px; width: auto; }
 nav li { margin: 2px 0; }
 )";
 
@@ -69,11 +79,11 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
     return;
   }
   if (p.spec.kind == PanelKind::kIntermediates) {
-    h << "<div><b>" << esc(p.spec.label) << "</b> (" << esc(p.spec.technique) << ")<div class=inter>";
+    h << "<div><b>" << esc(p.spec.label) << "</b> (" << esc(p.spec.technique)
+      << ")<div class=inter>";
     for (const ImageFile& im : p.images)
-      h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file)
-        << "\" alt=\"" << esc(im.caption) << "\"></a><figcaption>" << esc(im.caption)
-        << "</figcaption></figure>";
+      h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
+        << esc(im.caption) << "\"></a><figcaption>" << esc(im.caption) << "</figcaption></figure>";
     h << "</div></div>\n";
     return;
   }
@@ -94,7 +104,8 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
     any = any || (p.spec.kind == PanelKind::kRender || p.spec.kind == PanelKind::kIntermediates);
   if (!any) return;
   h << "<table><tr><th>panel</th><th>technique</th><th>frame time (ours)</th><th>passes</th>"
-       "<th>error vs " << esc(f.spec.reference.empty() ? "reference" : f.spec.reference)
+       "<th>error vs "
+    << esc(f.spec.reference.empty() ? "reference" : f.spec.reference)
     << "</th><th>counters</th><th>paper</th></tr>\n";
   for (const PanelResult& p : f.panels) {
     if (p.spec.kind != PanelKind::kRender && p.spec.kind != PanelKind::kIntermediates) continue;
@@ -114,7 +125,8 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
       else
         h << esc(p.errorNote);
       h << "</td><td>";
-      for (const auto& [name, value] : p.counters) h << esc(name) << ": " << fixed(value, 3) << "<br>";
+      for (const auto& [name, value] : p.counters)
+        h << esc(name) << ": " << fixed(value, 3) << "<br>";
       h << "</td>";
     }
     h << "<td class=paper>" << esc(p.spec.paperNumbers) << "</td></tr>\n";
@@ -135,7 +147,8 @@ void writePivot(std::ostream& h, const FigureResult& f) {
     cell[{row, col}] = &p;
   }
   h << "<table><tr><th></th>";
-  for (const auto& c : cols) h << "<th>" << esc(c) << "<br>ours / <span class=paper>paper</span></th>";
+  for (const auto& c : cols)
+    h << "<th>" << esc(c) << "<br>ours / <span class=paper>paper</span></th>";
   h << "</tr>\n";
   for (const auto& r : rows) {
     h << "<tr><th>" << esc(r) << "</th>";
@@ -158,7 +171,8 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
   bool any = false;
   for (const PanelResult& p : f.panels) any = any || p.twin.has_value();
   if (!any) return;
-  h << "<h4>Legacy vs modern</h4><div class=grid style=\"grid-template-columns: repeat(3, 1fr)\">\n";
+  h << "<h4>Legacy vs modern</h4><div class=grid style=\"grid-template-columns: repeat(3, "
+       "1fr)\">\n";
   for (const PanelResult& p : f.panels) {
     if (!p.twin) continue;
     const TwinResult& t = *p.twin;
@@ -184,8 +198,8 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   h << "<article id=\"" << esc(s.id) << "\"><h3>" << esc(s.paperFigure) << " — " << esc(s.title)
     << " <small>(<code>" << esc(s.id) << "</code>)</small></h3>\n";
   h << "<p class=caption>" << esc(s.caption) << "</p>\n";
-  h << "<p><small>scene <code>" << esc(s.scene) << "</code>, " << s.width << "x" << s.height
-    << ", " << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
+  h << "<p><small>scene <code>" << esc(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
+    << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
     << " s; regenerate: <code>shadowlab figures --only " << esc(s.id) << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
@@ -216,7 +230,8 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   } else {
     for (const PanelResult& p : f.panels)
       if (!p.ok && p.spec.kind != PanelKind::kPlot) {
-        h << "<p class=bad>missing panels: " << esc(p.reason) << " (and possibly others, see the table)</p>\n";
+        h << "<p class=bad>missing panels: " << esc(p.reason)
+          << " (and possibly others, see the table)</p>\n";
         break;
       }
   }
@@ -233,7 +248,8 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   if (!s.paperNumbers.empty())
     h << "<p class=paper>The paper's numbers: " << esc(s.paperNumbers) << "</p>\n";
   bool pivot = s.table && !f.panels.empty();
-  for (const PanelResult& p : f.panels) pivot = pivot && p.spec.label.find(" S=") != std::string::npos;
+  for (const PanelResult& p : f.panels)
+    pivot = pivot && p.spec.label.find(" S=") != std::string::npos;
   if (pivot)
     writePivot(h, f);
   else
@@ -252,9 +268,12 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
   h << "<p>Rendered " << esc(info.date) << " with " << esc(info.renderer) << " in "
     << fixed(info.totalSeconds, 0)
-    << " s. Times are ours on this machine and are meant to be compared with each other; the "
-       "papers' numbers (blue) come from 2001-2007 hardware. Missing panels are in red with "
-       "the reason.</p>\n";
+    << " s. Times are ours on this machine: one frame per panel, in a fresh GL context (so "
+       "they include shader compilation and first-use costs; <code>shadowlab bench</code> "
+       "measures steady frames), meant to be compared with each other; the papers' numbers "
+       "(blue) come from 2001-2007 hardware. Error: the visibility mask against the ray-traced "
+       "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
+       "red with the reason.</p>\n";
   // Index with a status per figure.
   h << "<nav><table><tr><th>paper</th><th>figure</th><th>id</th><th>panels made</th></tr>\n";
   for (const FigureResult& f : figures) {

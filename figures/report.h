@@ -13,7 +13,7 @@
 namespace sl::figures {
 
 struct ImageFile {
-  std::string file;     // relative to the report
+  std::string file;  // relative to the report
   std::string caption;
 };
 
@@ -31,7 +31,7 @@ struct PanelResult {
   std::string reason;             // why it is missing or failed (shown in red)
   std::vector<ImageFile> images;  // the panel's image(s); several for intermediates
   std::vector<ImageFile> closeups;
-  double milliseconds = 0;        // Frame::totalMilliseconds()
+  double milliseconds = 0;  // Frame::totalMilliseconds()
   std::vector<PassTime> passes;
   std::map<std::string, double> counters;
   std::optional<MaskDifference> error;  // against the figure's reference

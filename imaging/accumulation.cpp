@@ -8,8 +8,10 @@
 //   MULT   A <- value * A
 //   ADD    A <- A + value
 // Operations act on the scissor box when the scissor test is enabled. The buffer keeps each
-// component as 16-bit signed fixed point in [-1, 1] (the precision of the visuals the
-// project asks for, core/context.cpp kAccumBits), so results quantise as a real one does.
+// component as 16-bit signed fixed point k / 32767 in [-1, 1] (the precision of the visuals
+// the project asks for, core/context.cpp kAccumBits), so results quantise as a real one's.
+// Every operation is a table lookup per component: an 8-bit colour has 256 values and a
+// 16-bit accumulator 65536, so the arithmetic is done once per value, in double precision.
 #include <cmath>
 
 #include "imaging/internal.h"
@@ -17,13 +19,15 @@
 namespace sl::imaging::detail {
 namespace {
 
-constexpr float kAccumSteps = 32767.0f;  // 16-bit signed fixed point: v = k / 32767
+constexpr double kAccumSteps = 32767.0;  // 16-bit signed fixed point: v = k / 32767
+constexpr int32_t kAccumMin = -32767, kAccumMax = 32767;
 
-// "Accumulation buffer values are taken to be signed values in [-1, 1]".
-float quantize(float v) {
-  if (!(v > -1.0f)) return v != v ? 0.0f : -1.0f;
-  if (v >= 1.0f) return 1.0f;
-  return std::nearbyint(v * kAccumSteps) / kAccumSteps;
+// "Accumulation buffer values are taken to be signed values in [-1, 1]": values pushed
+// outside are undefined by the specification; the emulation saturates them.
+int16_t toFixed(double v) {
+  if (!(v == v)) return 0;
+  const double k = std::nearbyint(v * kAccumSteps);
+  return int16_t(std::clamp(k, double(kAccumMin), double(kAccumMax)));
 }
 
 struct Box {
@@ -35,7 +39,7 @@ void ensureBuffer(State& s) {
   if (s.accumWidth == w && s.accumHeight == h) return;
   s.accumWidth = w;
   s.accumHeight = h;
-  s.accum.assign(size_t(w) * h * 4, 0.0f);
+  s.accum.assign(size_t(w) * h * 4, 0);
 }
 
 Box region(State& s) {
@@ -51,14 +55,54 @@ Box region(State& s) {
   return b;
 }
 
+// Applies op(accumulator value, index of the group component in the box) to the box.
 template <class Op>
 void forEach(State& s, const Box& b, const Op& op) {
   const int w = b.x1 - b.x0;
   parallelRows(b.y1 - b.y0, size_t(w) * 4, [&](int r0, int r1) {
     for (int y = b.y0 + r0; y < b.y0 + r1; ++y) {
-      float* a = s.accum.data() + (size_t(y) * s.accumWidth + b.x0) * 4;
-      for (int i = 0; i < w * 4; ++i) a[i] = quantize(op(a[i], size_t(y - b.y0) * w * 4 + i));
+      int16_t* a = s.accum.data() + (size_t(y) * s.accumWidth + b.x0) * 4;
+      const size_t base = size_t(y - b.y0) * w * 4;
+      for (int i = 0; i < w * 4; ++i) a[i] = op(a[i], base + i);
     }
+  });
+}
+
+GLenum colorType(const State& s) {
+  switch (s.context->spec().color) {
+    case ColorFormat::kRgba8: return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16: return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f: return GL_FLOAT;
+  }
+  return GL_FLOAT;
+}
+
+// ACCUM / LOAD: A <- keep * A + value * C. For 8-bit colour, value * C is tabled per byte.
+void accumulateColor(State& s, const Box& b, float value, bool keep) {
+  const int w = b.x1 - b.x0, h = b.y1 - b.y0;
+  if (colorType(s) == GL_UNSIGNED_BYTE) {
+    std::vector<uint8_t> bytes(size_t(w) * h * 4);
+    s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
+    s.driver.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    s.driver.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    s.driver.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    s.driver.PixelStorei(GL_PACK_SKIP_ROWS, 0);
+    s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    s.driver.PopClientAttrib();
+    // value * C in accumulator steps, rounded once per byte value; the accumulator is an
+    // integer, so A + round(value * C) is the rounded sum.
+    int32_t scaled[256];
+    for (int v = 0; v < 256; ++v)
+      scaled[v] = int32_t(std::lround(double(value) * (v / 255.0) * kAccumSteps));
+    forEach(s, b, [&](int16_t a, size_t i) {
+      const int32_t k = (keep ? int32_t(a) : 0) + scaled[bytes[i]];
+      return int16_t(std::clamp(k, kAccumMin, kAccumMax));
+    });
+    return;
+  }
+  const Image4 color = readFramebuffer(s, b.x0, b.y0, w, h);
+  forEach(s, b, [&](int16_t a, size_t i) {
+    return toFixed((keep ? a / kAccumSteps : 0.0) + double(value) * color.px[i]);
   });
 }
 
@@ -67,11 +111,43 @@ void forEach(State& s, const Box& b, const Op& op) {
 void returnToColorBuffer(State& s, const Box& b, float value) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (w <= 0 || h <= 0) return;
-  Image4 image(w, h);
-  for (int y = 0; y < h; ++y) {
-    const float* a = s.accum.data() + (size_t(y + b.y0) * s.accumWidth + b.x0) * 4;
-    float* o = image.row(y);
-    for (int i = 0; i < w * 4; ++i) o[i] = a[i] * value;
+  const GLenum type = colorType(s);
+  std::vector<uint8_t> bytes;
+  std::vector<uint16_t> shorts;
+  std::vector<float> floats;
+  const void* data = nullptr;
+  auto clamp01 = [](double v) { return v > 0.0 ? (v < 1.0 ? v : 1.0) : 0.0; };
+  auto rows = [&](auto&& write) {
+    parallelRows(h, size_t(w) * 4, [&](int r0, int r1) {
+      for (int y = r0; y < r1; ++y) {
+        const int16_t* a = s.accum.data() + (size_t(y + b.y0) * s.accumWidth + b.x0) * 4;
+        for (int i = 0; i < w * 4; ++i) write(size_t(y) * w * 4 + i, a[i]);
+      }
+    });
+  };
+  if (type == GL_UNSIGNED_BYTE) {
+    // One table over all 65535 accumulator values: the final conversion of value * A.
+    std::vector<uint8_t> lut(65536);
+    const double step = double(value) / kAccumSteps;  // value * k / 32767, one multiply each
+    for (int k = kAccumMin; k <= kAccumMax; ++k)
+      lut[size_t(k + 32768)] = uint8_t(clamp01(double(k) * step) * 255.0 + 0.5);
+    bytes.resize(size_t(w) * h * 4);
+    // Raw pointers: a byte store through a vector's operator[] may alias the vector itself,
+    // which would reload its data pointer on every element.
+    uint8_t* const dst = bytes.data();
+    const uint8_t* const table = lut.data();
+    rows([dst, table](size_t i, int16_t a) { dst[i] = table[size_t(a + 32768)]; });
+    data = bytes.data();
+  } else if (type == GL_UNSIGNED_SHORT) {
+    shorts.resize(size_t(w) * h * 4);
+    rows([&](size_t i, int16_t a) {
+      shorts[i] = uint16_t(clamp01(value * (a / kAccumSteps)) * 65535.0 + 0.5);
+    });
+    data = shorts.data();
+  } else {
+    floats.resize(size_t(w) * h * 4);
+    rows([&](size_t i, int16_t a) { floats[i] = float(clamp01(value * (a / kAccumSteps))); });
+    data = floats.data();
   }
   const GlDispatch& gl = s.driver;
   gl.PushAttrib(GL_ENABLE_BIT | GL_CURRENT_BIT | GL_PIXEL_MODE_BIT);
@@ -80,26 +156,6 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
     gl.Disable(cap);
   gl.PixelZoom(1.0f, 1.0f);
   gl.WindowPos2i(b.x0, b.y0);
-  // Final conversion to the buffer's precision, through the driver with identity transfer.
-  const GLenum type = s.context->spec().color == ColorFormat::kRgba8    ? GL_UNSIGNED_BYTE
-                      : s.context->spec().color == ColorFormat::kRgba16 ? GL_UNSIGNED_SHORT
-                                                                        : GL_FLOAT;
-  std::vector<unsigned char> bytes;
-  std::vector<uint16_t> shorts;
-  const void* data = nullptr;
-  for (float& v : image.px) v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-  if (type == GL_UNSIGNED_BYTE) {
-    bytes.resize(image.px.size());
-    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(image.px[i] * 255.0f + 0.5f);
-    data = bytes.data();
-  } else if (type == GL_UNSIGNED_SHORT) {
-    shorts.resize(image.px.size());
-    for (size_t i = 0; i < shorts.size(); ++i)
-      shorts[i] = uint16_t(image.px[i] * 65535.0f + 0.5f);
-    data = shorts.data();
-  } else {
-    data = image.px.data();
-  }
   gl.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
   gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
@@ -123,8 +179,9 @@ void emClear(GLbitfield mask) {
   if ((mask & GL_ACCUM_BUFFER_BIT) != 0) {
     ensureBuffer(s);
     const Box b = region(s);
-    const Rgba clear = s.clearAccum;
-    forEach(s, b, [&](float, size_t i) { return clear[i & 3]; });
+    int16_t clear[4];
+    for (int c = 0; c < 4; ++c) clear[c] = toFixed(s.clearAccum[c]);
+    forEach(s, b, [&](int16_t, size_t i) { return clear[i & 3]; });
     mask &= ~GLbitfield(GL_ACCUM_BUFFER_BIT);
   }
   if (mask != 0) s.driver.Clear(mask);
@@ -136,21 +193,23 @@ void emAccum(GLenum op, GLfloat value) {
     return recordError(s, GL_INVALID_ENUM);
   ensureBuffer(s);
   const Box b = region(s);
-  const int w = b.x1 - b.x0, h = b.y1 - b.y0;
-  if (w <= 0 || h <= 0) return;
+  if (b.x1 <= b.x0 || b.y1 <= b.y0) return;
   switch (op) {
-    case GL_ACCUM:
-    case GL_LOAD: {
-      const Image4 color = readFramebuffer(s, b.x0, b.y0, w, h);
-      if (op == GL_ACCUM) {
-        forEach(s, b, [&](float a, size_t i) { return a + value * color.px[i]; });
-      } else {
-        forEach(s, b, [&](float, size_t i) { return value * color.px[i]; });
-      }
+    case GL_ACCUM: accumulateColor(s, b, value, true); return;
+    case GL_LOAD: accumulateColor(s, b, value, false); return;
+    case GL_MULT: {
+      std::vector<int16_t> lut(65536);
+      for (int k = kAccumMin; k <= kAccumMax; ++k) lut[size_t(k + 32768)] = toFixed(value * (k / kAccumSteps));
+      forEach(s, b, [&](int16_t a, size_t) { return lut[size_t(a + 32768)]; });
       return;
     }
-    case GL_MULT: forEach(s, b, [&](float a, size_t) { return a * value; }); return;
-    case GL_ADD: forEach(s, b, [&](float a, size_t) { return a + value; }); return;
+    case GL_ADD: {
+      const int32_t add = int32_t(std::lround(std::clamp(double(value), -2.0, 2.0) * kAccumSteps));
+      forEach(s, b, [&](int16_t a, size_t) {
+        return int16_t(std::clamp(int32_t(a) + add, kAccumMin, kAccumMax));
+      });
+      return;
+    }
     case GL_RETURN: returnToColorBuffer(s, b, value); return;
     default: return;
   }

@@ -4,6 +4,7 @@
 // REPLICATE_BORDER (HP_convolution_border_modes); 6.1.8 "Convolution Query"; EXT_convolution
 // "Errors").
 #include <cmath>
+#include <functional>
 
 #include "imaging/internal.h"
 
@@ -74,11 +75,7 @@ void defineFilter(ConvolutionFilter& f, GLenum internalformat, const Image4& ima
   f.image = filterImage(image, f);
 }
 
-// A tap of the kernel: offset (n, m) into the (bordered) source and four weights.
-struct Tap {
-  int n, m;
-  float w[4];
-};
+}  // namespace
 
 // Dense weights W[m][n] of the filter (2D, or the row x column product for a separable
 // filter), with pass-through components as a unit tap at the filter centre, then only the
@@ -108,8 +105,6 @@ std::vector<Tap> kernelTaps(const ConvolutionFilter& f, bool separable, int& wf,
   }
   return taps;
 }
-
-}  // namespace
 
 // ---------------------------------------------------------------- the stage (3.6.5)
 // C[i', j'] = sum_n sum_m Cs'[i' + n, j' + m] * Cf[n, m]; REDUCE gives (Ws-Wf+1) x (Hs-Hf+1),
@@ -160,10 +155,28 @@ void convolve(const ConvolutionFilter& f, bool separable, Image4& image) {
   Image4 out(ow, oh);
   parallelRows(oh, size_t(ow) * 4 * (taps.size() + 1), [&](int y0, int y1) {
     for (int j = y0; j < y1; ++j) {
-      float* o = out.row(j);
+      accumulateTaps(taps, [&](int m) { return src->row(j + m); }, ow, out.row(j));
+    }
+  });
+  image = std::move(out);
+}
+
+void accumulateTaps(const std::vector<Tap>& taps, const std::function<const float*(int)>& row,
+                    int ow, float* o) {
+  {
+    {
       for (const Tap& t : taps) {
-        const float* s = src->row(j + t.m) + size_t(t.n) * 4;
+        const float* s = row(t.m) + size_t(t.n) * 4;
         const float w0 = t.w[0], w1 = t.w[1], w2 = t.w[2], w3 = t.w[3];
+        // A tap that feeds one component only (each tap of the packing kernel does) touches
+        // that component alone; adding 0 * x to the others would change nothing for finite x.
+        const int live = (w0 != 0.0f) + (w1 != 0.0f) + (w2 != 0.0f) + (w3 != 0.0f);
+        if (live == 1) {
+          const int c = w0 != 0.0f ? 0 : w1 != 0.0f ? 1 : w2 != 0.0f ? 2 : 3;
+          const float wc = t.w[c];
+          for (int i = 0; i < ow; ++i) o[i * 4 + c] += s[i * 4 + c] * wc;
+          continue;
+        }
         for (int i = 0; i < ow; ++i) {
           o[i * 4 + 0] += s[i * 4 + 0] * w0;
           o[i * 4 + 1] += s[i * 4 + 1] * w1;
@@ -172,8 +185,7 @@ void convolve(const ConvolutionFilter& f, bool separable, Image4& image) {
         }
       }
     }
-  });
-  image = std::move(out);
+  }
 }
 
 // ---------------------------------------------------------------- entry points

@@ -89,6 +89,8 @@ Mode install(GlContext& context) {
   d.PixelTransferf = emPixelTransferf;
   d.PixelTransferi = emPixelTransferi;
   d.GetError = emGetError;
+  d.PushAttrib = emPushAttrib;
+  d.PopAttrib = emPopAttrib;
   d.DrawPixels = emDrawPixels;
   d.ReadPixels = emReadPixels;
   d.CopyPixels = emCopyPixels;

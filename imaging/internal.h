@@ -9,8 +9,11 @@
 // scale/bias and GL_MAP_COLOR (3.6.5), and the enables.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <functional>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "core/context.h"
@@ -124,19 +127,29 @@ struct TransferState {
   Minmax minmax;
 };
 
+// The emulated state glPushAttrib saves (glspec121 6.1.14, tables 6.14-6.16: the imaging
+// enables belong to GL_ENABLE_BIT and GL_PIXEL_MODE_BIT, the scale/bias, border and
+// GL_MAP_COLOR parameters to GL_PIXEL_MODE_BIT; tables, filters and the color matrix stack
+// are not attributes).
+struct AttribSnapshot {
+  GLbitfield mask = 0;
+  TransferState transfer;  // the saved fields only are restored
+};
+
 // Per-context emulation state (stored with GlContext::setLayerState("imaging", ...)).
 struct State {
   GlDispatch driver;  // the entry points as the driver resolved them, before install()
   GlContext* context = nullptr;
   TransferState transfer;
   bool colorMatrixMode = false;  // glMatrixMode(GL_COLOR) is in effect
+  std::vector<AttribSnapshot> attribStack;  // parallel to the driver's attribute stack
   // Sticky error flags raised by the emulation, in the order raised (section 2.5).
   std::vector<GLenum> errors;
   // Accumulation buffer where the visual has none (section 4.2.4); 16-bit signed fixed point.
   bool emulateAccum = false;
   Rgba clearAccum{0, 0, 0, 0};
   int accumWidth = 0, accumHeight = 0;
-  std::vector<float> accum;
+  std::vector<int16_t> accum;  // k / 32767 per component (accumulation.cpp)
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).
@@ -153,6 +166,31 @@ bool pipelineIsIdentity(const TransferState& t, Dimensionality dims);
 bool runPipeline(TransferState& t, Image4& image, Dimensionality dims);
 // The output size of the convolution stage for a source of w x h (REDUCE shrinks it).
 void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
+
+// The pipeline on 8-bit RGBA groups in place, for 8-bit destinations, when only
+// per-component stages and the color matrix are active (fast_paths.cpp). Returns false
+// (bytes untouched) when another stage is active; the general path is then used.
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h);
+bool bytePathApplies(const TransferState& t);
+
+// Convolution on an 8-bit source straight to 8-bit output, in strips of rows that stay in
+// cache, with every stage of 3.6.5 (fast_paths.cpp). `out` receives ow x oh groups; returns
+// false when a sink consumed the groups (nothing to write).
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh);
+// A 2D or separable convolution with a non-empty filter is enabled.
+bool convolveBytesApplies(const TransferState& t);
+
+// A tap of a convolution kernel: offset (n, m) into the (bordered) source, four weights.
+struct Tap {
+  int n, m;
+  float w[4];
+};
+// The non-zero taps of a filter (pass-through components as a unit tap at the centre).
+std::vector<Tap> kernelTaps(const ConvolutionFilter& f, bool separable, int& wf, int& hf);
+// o[0 .. ow*4) += sum over taps of row(m)[n*4 + ...] * w, in tap order (convolution.cpp).
+void accumulateTaps(const std::vector<Tap>& taps, const std::function<const float*(int)>& row,
+                    int ow, float* o);
 
 // ---- stages (one file each) ----
 void applyColorTable(const ColorTable& table, Image4& image);           // color_table.cpp
@@ -188,13 +226,6 @@ void packImage(const Image4& image, void* data, GLenum format, GLenum type,
                const PixelStore& store, bool clamp);
 // Returns internal components as RGBA per table 6.1.
 Rgba tableReturnValue(GLenum baseFormat, const Rgba& stored);
-
-}  // namespace sl::imaging::detail
-
-#include <algorithm>
-#include <thread>
-
-namespace sl::imaging::detail {
 
 constexpr size_t kParallelThreshold = 1u << 16;  // floats of work below which one core is faster
 
@@ -294,6 +325,8 @@ void emGetBooleanv(GLenum, GLboolean*);
 void emGetDoublev(GLenum, GLdouble*);
 void emPixelTransferf(GLenum, GLfloat);
 void emPixelTransferi(GLenum, GLint);
+void emPushAttrib(GLbitfield);
+void emPopAttrib();
 GLenum emGetError();
 
 }  // namespace sl::imaging::detail

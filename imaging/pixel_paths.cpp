@@ -9,6 +9,7 @@
 // precision: unsigned bytes for an 8-bit colour buffer or texture, unsigned shorts for a
 // 16-bit buffer, floats otherwise.
 #include <cmath>
+#include <cstring>
 
 #include "imaging/internal.h"
 
@@ -64,14 +65,16 @@ std::vector<unsigned char> finalConversion(const Image4& image, GLenum type) {
   auto clamp01 = [](float v) { return v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; };
   parallelRows(image.height, size_t(image.width) * 4, [&](int y0, int y1) {
     const size_t b = size_t(y0) * image.width * 4, e = size_t(y1) * image.width * 4;
+    const float* const in = image.px.data();
     if (type == GL_UNSIGNED_BYTE) {
-      for (size_t i = b; i < e; ++i) out[i] = uint8_t(clamp01(image.px[i]) * 255.0f + 0.5f);
+      uint8_t* const o = out.data();  // raw pointer: see accumulation.cpp
+      for (size_t i = b; i < e; ++i) o[i] = uint8_t(clamp01(in[i]) * 255.0f + 0.5f);
     } else if (type == GL_UNSIGNED_SHORT) {
       auto* o = reinterpret_cast<uint16_t*>(out.data());
-      for (size_t i = b; i < e; ++i) o[i] = uint16_t(clamp01(image.px[i]) * 65535.0f + 0.5f);
+      for (size_t i = b; i < e; ++i) o[i] = uint16_t(clamp01(in[i]) * 65535.0f + 0.5f);
     } else {
       auto* o = reinterpret_cast<float*>(out.data());
-      for (size_t i = b; i < e; ++i) o[i] = clamp01(image.px[i]);
+      for (size_t i = b; i < e; ++i) o[i] = clamp01(in[i]);
     }
   });
   return out;
@@ -130,6 +133,23 @@ void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint interna
   }
 }
 
+// ---- the 8-bit path (fast_paths.cpp): bytes in, bytes out, no float images ----
+bool eightBitFramebuffer(const State& s) { return framebufferType(s) == GL_UNSIGNED_BYTE; }
+
+std::vector<uint8_t> readBytes(State& s, int x, int y, int w, int h) {
+  std::vector<uint8_t> bytes(size_t(w) * h * 4);
+  TightPixelStore tight(s.driver);
+  s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+  return bytes;
+}
+
+// Client memory laid out exactly as a tight RGBA8 image (no row length or skips, rows
+// already aligned).
+bool tightRgba8(GLenum format, GLenum type, int w, const PixelStore& store) {
+  return format == GL_RGBA && type == GL_UNSIGNED_BYTE && store.rowLength == 0 &&
+         store.skipPixels == 0 && store.skipRows == 0 && (w * 4) % store.alignment == 0;
+}
+
 bool passThrough(State* s) {
   return s == nullptr || pipelineIsIdentity(s->transfer, Dimensionality::k2D);
 }
@@ -166,6 +186,16 @@ void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* 
   if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0 ||
       !rasterPositionValid(*s))  // invalid raster position: nothing, not even histogram
     return s->driver.DrawPixels(w, h, format, type, data);
+  refreshColorMaps(*s);
+  if (data != nullptr && eightBitFramebuffer(*s) && bytePathApplies(s->transfer) &&
+      tightRgba8(format, type, w, unpackStore(s->driver))) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    std::vector<uint8_t> bytes(p, p + size_t(w) * h * 4);
+    transformBytes(s->transfer, bytes, w, h);
+    TightPixelStore tight(s->driver);
+    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    return;
+  }
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;  // sink
@@ -177,6 +207,14 @@ void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum 
   State* s = currentState();
   if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0)
     return s->driver.ReadPixels(x, y, w, h, format, type, data);
+  refreshColorMaps(*s);
+  if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) &&
+      tightRgba8(format, type, w, packStore(s->driver))) {
+    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    transformBytes(s->transfer, bytes, w, h);
+    std::memcpy(data, bytes.data(), bytes.size());
+    return;
+  }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   // Sink: "no pixel values are returned" (3.6.5 Histogram, Minmax).
@@ -192,6 +230,24 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
   State* s = currentState();
   if (passThrough(s) || type != GL_COLOR || w < 0 || h < 0 || !rasterPositionValid(*s))
     return s->driver.CopyPixels(x, y, w, h, type);
+  refreshColorMaps(*s);
+  if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
+    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    transformBytes(s->transfer, bytes, w, h);
+    TightPixelStore tight(s->driver);
+    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    return;
+  }
+  if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {  // strips, bytes to bytes
+    const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t> out;
+    int ow = 0, oh = 0;
+    if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh)) return;
+    if (ow == 0 || oh == 0) return;
+    TightPixelStore tight(s->driver);
+    s->driver.DrawPixels(ow, oh, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
+    return;
+  }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
@@ -203,6 +259,15 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
   State* s = currentState();
   if (passThrough(s) || w < 0 || h < 0)
     return s->driver.CopyTexImage2D(target, level, internalformat, x, y, w, h, border);
+  refreshColorMaps(*s);
+  if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) && eightBitTexture(internalformat)) {
+    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    transformBytes(s->transfer, bytes, w, h);
+    TightPixelStore tight(s->driver);
+    s->driver.TexImage2D(target, level, GLint(internalformat), w, h, border, GL_RGBA,
+                         GL_UNSIGNED_BYTE, bytes.data());
+    return;
+  }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
@@ -216,6 +281,33 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
   State* s = currentState();
   if (passThrough(s) || w < 0 || h < 0)
     return s->driver.CopyTexSubImage2D(target, level, xoffset, yoffset, x, y, w, h);
+  refreshColorMaps(*s);
+  if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
+    GLint format = 0;
+    s->driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (eightBitTexture(GLenum(format))) {
+      std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+      transformBytes(s->transfer, bytes, w, h);
+      TightPixelStore tight(s->driver);
+      s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
+                              bytes.data());
+      return;
+    }
+  }
+  if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {
+    GLint format = 0;
+    s->driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (eightBitTexture(GLenum(format))) {
+      const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+      std::vector<uint8_t> out;
+      int ow = 0, oh = 0;
+      if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh) || ow == 0 || oh == 0) return;
+      TightPixelStore tight(s->driver);
+      s->driver.TexSubImage2D(target, level, xoffset, yoffset, ow, oh, GL_RGBA,
+                              GL_UNSIGNED_BYTE, out.data());
+      return;
+    }
+  }
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;

@@ -202,4 +202,66 @@ void emPixelTransferf(GLenum pname, GLfloat value) {
 
 void emPixelTransferi(GLenum pname, GLint value) { emPixelTransferf(pname, float(value)); }
 
+namespace {
+
+void copyEnables(const TransferState& from, TransferState& to) {
+  to.colorTableEnabled = from.colorTableEnabled;
+  to.postConvolutionTableEnabled = from.postConvolutionTableEnabled;
+  to.postColorMatrixTableEnabled = from.postColorMatrixTableEnabled;
+  to.convolution1DEnabled = from.convolution1DEnabled;
+  to.convolution2DEnabled = from.convolution2DEnabled;
+  to.separable2DEnabled = from.separable2DEnabled;
+  to.histogramEnabled = from.histogramEnabled;
+  to.minmaxEnabled = from.minmaxEnabled;
+}
+
+void copyPixelMode(const TransferState& from, TransferState& to) {
+  copyEnables(from, to);
+  to.scale = from.scale;
+  to.bias = from.bias;
+  to.mapColor = from.mapColor;
+  to.postConvolutionScale = from.postConvolutionScale;
+  to.postConvolutionBias = from.postConvolutionBias;
+  to.postColorMatrixScale = from.postColorMatrixScale;
+  to.postColorMatrixBias = from.postColorMatrixBias;
+  for (size_t i = 0; i < from.tables.size(); ++i) {
+    to.tables[i].scale = from.tables[i].scale;
+    to.tables[i].bias = from.tables[i].bias;
+  }
+  for (auto member : {&TransferState::conv1D, &TransferState::conv2D, &TransferState::separable2D}) {
+    (to.*member).scale = (from.*member).scale;
+    (to.*member).bias = (from.*member).bias;
+    (to.*member).borderMode = (from.*member).borderMode;
+    (to.*member).borderColor = (from.*member).borderColor;
+  }
+}
+
+}  // namespace
+
+void emPushAttrib(GLbitfield mask) {
+  State& s = *currentState();
+  GLint before = 0, after = 0;
+  s.driver.GetIntegerv(GL_ATTRIB_STACK_DEPTH, &before);
+  s.driver.PushAttrib(mask);
+  s.driver.GetIntegerv(GL_ATTRIB_STACK_DEPTH, &after);
+  if (after == before) return;  // the driver raised GL_STACK_OVERFLOW: nothing pushed
+  AttribSnapshot snap;
+  snap.mask = mask;
+  if ((mask & (GL_PIXEL_MODE_BIT | GL_ENABLE_BIT)) != 0) copyPixelMode(s.transfer, snap.transfer);
+  s.attribStack.push_back(std::move(snap));
+}
+
+void emPopAttrib() {
+  State& s = *currentState();
+  s.driver.PopAttrib();
+  if (s.attribStack.empty()) return;  // the driver raised GL_STACK_UNDERFLOW
+  const AttribSnapshot& snap = s.attribStack.back();
+  if ((snap.mask & GL_PIXEL_MODE_BIT) != 0) {
+    copyPixelMode(snap.transfer, s.transfer);
+  } else if ((snap.mask & GL_ENABLE_BIT) != 0) {
+    copyEnables(snap.transfer, s.transfer);
+  }
+  s.attribStack.pop_back();
+}
+
 }  // namespace sl::imaging::detail

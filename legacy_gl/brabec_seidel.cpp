@@ -21,8 +21,8 @@ glm::mat4 lightEyeToRamp(const Scene& scene, int rampTexels, double bias) {
 glm::mat4 cameraEyeToShadowMap(const Scene& scene, int shadowMapTexels, glm::vec2 offsetTexels) {
   // S: clip [-1, 1] -> texture [0, 1] (Everitt Eq. 2); the offset of Fig. 6 added after the
   // projective division (a translation by offset * q before it).
-  const glm::mat4 offset = glm::translate(
-      glm::mat4(1.0f), glm::vec3(offsetTexels / float(shadowMapTexels), 0.0f));
+  const glm::mat4 offset =
+      glm::translate(glm::mat4(1.0f), glm::vec3(offsetTexels / float(shadowMapTexels), 0.0f));
   const glm::mat4 S = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) *
                       glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
   return offset * S * lightProjection(scene) * lightView(scene.light) *

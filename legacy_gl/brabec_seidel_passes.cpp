@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -17,9 +16,9 @@ using namespace sl::gl;
 
 namespace {
 
-constexpr int kRampTexels8 = 256;      // 2^8 ramp texels: depth quantised to 8 bits
-constexpr int kRampTexels12 = 4096;    // 2^12: the Octane VPro's 12-bit channels (§6)
-constexpr int kRampTexelsFloat = 2;    // two texels 0 and 1, LINEAR: d itself, in float
+constexpr int kRampTexels8 = 256;    // 2^8 ramp texels: depth quantised to 8 bits
+constexpr int kRampTexels12 = 4096;  // 2^12: the Octane VPro's 12-bit channels (§6)
+constexpr int kRampTexelsFloat = 2;  // two texels 0 and 1, LINEAR: d itself, in float
 // At float precision no quantisation step exists; this is the step the colour-table threshold
 // and the depth bias are expressed in (2^-20 of the light's depth range).
 constexpr double kFloatDepthStep = 1.0 / 1048576.0;
@@ -32,7 +31,9 @@ constexpr int kShadowTableWidth = 256;
 constexpr int kShadowTableLastIndex = kShadowTableWidth - 1;
 const float kFarDepth[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // map border and clear value: lit
 
-void setChannelMask(ChannelMask c) { glColorMask(c[0], c[1], c[2], c[3]); }
+void setChannelMask(ChannelMask c) {
+  glColorMask(c[0], c[1], c[2], c[3]);
+}
 
 // Texgen s, t, r, q = x, y, z, w of eye coordinates (§2: "use eye ... coordinates as texture
 // coordinates"): identity EYE_LINEAR planes, given while the modelview is the identity.
@@ -146,8 +147,8 @@ void createRampTexture(RampTexture& ramp, const DepthEncoding& enc) {
 
 void allocateShadowMap(ShadowMapTexture& map, const DepthEncoding& enc, int texels) {
   glBindTexture(GL_TEXTURE_2D, map.name.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GLint(enc.mapFormat), texels, texels, 0, GL_RGBA,
-               GL_UNSIGNED_BYTE, nullptr);
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(enc.mapFormat), texels, texels, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               nullptr);
   // NEAREST: one stored depth per lookup, the comparison happens after (Reeves' order, §3).
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -172,8 +173,8 @@ const char* channelName(int c) {
 void renderLightDepth(const Scene& scene, const DepthEncoding& enc, const RampTexture& ramp,
                       int texels, glm::vec2 jitterTexels, ChannelMask channels, bool clear) {
   // Shifting normalised device x by 2 j / N moves the image by j texels (Fig. 3 jitter).
-  const glm::mat4 jitter = glm::translate(
-      glm::mat4(1.0f), glm::vec3(2.0f * jitterTexels / float(texels), 0.0f));
+  const glm::mat4 jitter =
+      glm::translate(glm::mat4(1.0f), glm::vec3(2.0f * jitterTexels / float(texels), 0.0f));
   glViewport(0, 0, texels, texels);
   setChannelMask(kAllChannels);
   glClearColor(kFarDepth[0], kFarDepth[1], kFarDepth[2], kFarDepth[3]);
@@ -266,8 +267,8 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
 }
 
 namespace {
-void drawProjectedMap(const Scene& scene, const RenderParams& params,
-                      const ShadowMapTexture& map, glm::vec2 offsetTexels) {
+void drawProjectedMap(const Scene& scene, const RenderParams& params, const ShadowMapTexture& map,
+                      glm::vec2 offsetTexels) {
   loadProjectiveTexgen(scene, params, offsetTexels);
   glEnable(GL_TEXTURE_2D);
   glBindTexture(GL_TEXTURE_2D, map.name.id());
@@ -324,7 +325,8 @@ void saturateAlphaByCopy(const RenderParams& params, const DepthEncoding& enc) {
     // in front of the map) and scaled values above 1; two full-window quads blended with
     // EXT_blend_minmax clamp alpha to [0, 1] as the fixed-point buffers of 2001 did by
     // themselves.
-    const float corners[4][2] = {{0, 0}, {float(params.width), 0},
+    const float corners[4][2] = {{0, 0},
+                                 {float(params.width), 0},
                                  {float(params.width), float(params.height)},
                                  {0, float(params.height)}};
     glEnable(GL_BLEND);
@@ -357,7 +359,8 @@ void loadShadowCountTable(const DepthEncoding& enc, int samples) {
   const std::array<double, 4> shares = shadowShares(enc, samples);
   std::vector<float> table(size_t(kShadowTableWidth) * 4, 0.0f);
   for (int i = 1; i < kShadowTableWidth; ++i)
-    for (int c = 0; c < 4; ++c) table[size_t(i * 4 + c)] = float(shares[size_t(c)] / enc.channelMax);
+    for (int c = 0; c < 4; ++c)
+      table[size_t(i * 4 + c)] = float(shares[size_t(c)] / enc.channelMax);
   glColorTable(GL_COLOR_TABLE, enc.tableFormat, kShadowTableWidth, GL_RGBA, GL_FLOAT, table.data());
   setPixelTransferScale(shadowTableScale(enc));
 }
@@ -464,7 +467,9 @@ Image amplified(const Image& image, float gain) {
   return out;
 }
 
-Image alphaOf(const Image& rgba) { return channel(rgba, 3); }
+Image alphaOf(const Image& rgba) {
+  return channel(rgba, 3);
+}
 
 int footprintSide(const RenderParams& params, const std::string& technique) {
   constexpr int kLargestFootprint = 4;  // the paper's largest (§3, §4)

@@ -4,10 +4,9 @@
 #pragma once
 
 #include <array>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/gl.h"
 #include "core/scene.h"
@@ -19,10 +18,10 @@ namespace sl::legacy::bs {
 // How depth is carried in colour channels at one precision (§2, §6).
 struct DepthEncoding {
   Precision precision = Precision::k8;
-  int rampTexels = 256;         // 1D ramp texture width: 2^bits, or 2 (linear) at float
-  bool rampNearest = true;      // NEAREST: the ramp itself quantises depth to its texels
-  double channelMax = 255.0;    // M: one channel's largest value in steps (4095 at 12 bits)
-  double depthStep = 1.0 / 255; // smallest depth difference (fraction of the light's range)
+  int rampTexels = 256;               // 1D ramp texture width: 2^bits, or 2 (linear) at float
+  bool rampNearest = true;            // NEAREST: the ramp itself quantises depth to its texels
+  double channelMax = 255.0;          // M: one channel's largest value in steps (4095 at 12 bits)
+  double depthStep = 1.0 / 255;       // smallest depth difference (fraction of the light's range)
   GLenum rampFormat = GL_INTENSITY8;  // INTENSITY: r = g = b = a = depth under GL_REPLACE
   GLenum mapFormat = GL_RGBA8;        // the shadow map texture
   GLenum tableFormat = GL_RGBA8;      // colour table storage (shares of M, §3 footnote 2)
@@ -96,6 +95,8 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
 // §2 third pass: the shadow map as a projective texture (texture matrix from camera eye to
 // shadow-map coordinates) subtracted from the camera pass by the blending unit
 // (GL_FUNC_REVERSE_SUBTRACT: framebuffer - fragment, clamped at 0). > 0 = shadowed sample.
+// Points behind the light (q < 0) get a mirrored lookup, as in the paper, which does not treat
+// them (Everitt's negative-projection fix is in legacy.hw); the built-in scenes have none.
 void subtractProjectedMap(const Scene& scene, const RenderParams& params,
                           const ShadowMapTexture& map, glm::vec2 offsetTexels,
                           ChannelMask channels);
@@ -137,7 +138,7 @@ void capture(Frame& frame, const RenderParams& params, std::string name, std::st
              const Image& image);
 Image readWindowRgba(const RenderParams& params);
 Image readShadowMap(const ShadowMapTexture& map, int texels);
-Image channelPanels(const Image& rgba);          // R | G | B | A as grey panels side by side
+Image channelPanels(const Image& rgba);           // R | G | B | A as grey panels side by side
 Image amplified(const Image& image, float gain);  // small differences made visible
 Image alphaOf(const Image& rgba);
 

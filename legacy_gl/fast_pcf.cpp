@@ -32,7 +32,7 @@ using namespace sl::gl;
 
 namespace {
 
-constexpr int kPackedSamples = 4;  // one 2x2 region per packed texel
+constexpr int kPackedSamples = 4;                // one 2x2 region per packed texel
 constexpr float kDifferenceDisplayGain = 32.0f;  // a few depth steps made visible in dumps
 constexpr float kHalfTexel = 0.5f;
 
@@ -63,12 +63,16 @@ struct FastPcfState {
   std::vector<std::unique_ptr<bs::ShadowMapTexture>> maps;  // one packed map per phase
 };
 
-std::string phaseTag(const Phase& p) { return p.name.empty() ? "" : " (" + p.name + ")"; }
-std::string phaseFileTag(const Phase& p) { return p.name.empty() ? "" : "-" + p.name; }
+std::string phaseTag(const Phase& p) {
+  return p.name.empty() ? "" : " (" + p.name + ")";
+}
+std::string phaseFileTag(const Phase& p) {
+  return p.name.empty() ? "" : "-" + p.name;
+}
 
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
-void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params,
-                                FastPcfState& s, Frame& frame) {
+void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, FastPcfState& s,
+                                Frame& frame) {
   PassTimer timer(frame, "1 light pass: depth ramp in RGBA");
   bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
                        bs::kAllChannels, true);
@@ -82,8 +86,8 @@ void packNeighboursByConvolution(const RenderParams& params, FastPcfState& s, si
 }
 
 // Pass 3 (§3/§4): the light depth of every visible point in all four channels.
-void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params,
-                                 FastPcfState& s, Frame& frame, const std::string& tag) {
+void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, FastPcfState& s,
+                                 Frame& frame, const std::string& tag) {
   PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag);
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
                         bs::kAllChannels);
@@ -92,8 +96,8 @@ void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params,
 // Pass 4 (Fig. 6): projective packed map, coordinates offset by (ds/2, dt/2), subtracted.
 void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfState& s,
                        size_t phase, const Phase& p, Frame& frame) {
-  PassTimer timer(frame, "4 projective pass: subtract packed map, offset texture coordinates" +
-                             phaseTag(p));
+  PassTimer timer(
+      frame, "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p));
   bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
 }
 
@@ -157,10 +161,11 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   toRgb(bs::readWindowRgba(params)));
     subtractPackedMap(scene, params, s, i, p, frame);
     if (params.capturePasses) {
-      bs::capture(frame, params, "4-mask-before-colour-table" + file + "-rgba-x32",
-                  "Pass 4: camera depth minus the four packed neighbours (R | G | B | A), "
-                  "amplified 32x: > 0 = that neighbour shadows the point",
-                  bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain)));
+      bs::capture(
+          frame, params, "4-mask-before-colour-table" + file + "-rgba-x32",
+          "Pass 4: camera depth minus the four packed neighbours (R | G | B | A), "
+          "amplified 32x: > 0 = that neighbour shadows the point",
+          bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain)));
       bs::capture(frame, params, "5-mask-after-colour-table" + file + "-rgba",
                   "The same read through the colour table only: 0 or 64 (63 in alpha)",
                   bs::channelPanels(bs::readThroughColorTable(params, s.enc, kPackedSamples)));

@@ -31,7 +31,7 @@ using namespace sl::gl;
 
 namespace {
 
-constexpr int kSamplesPerGroup = 4;  // R, G, B, A of one texel (§3)
+constexpr int kSamplesPerGroup = 4;              // R, G, B, A of one texel (§3)
 constexpr float kDifferenceDisplayGain = 32.0f;  // a few depth steps made visible in dumps
 
 struct Sample {
@@ -46,7 +46,8 @@ std::vector<std::vector<Sample>> footprintGroups(int side) {
   for (int k = 0; k < side * side; ++k) {
     const int i = k % side, j = k / side;
     if (k % kSamplesPerGroup == 0) groups.emplace_back();
-    const glm::vec2 at((float(i) + 0.5f) / float(side) - 0.5f, (float(j) + 0.5f) / float(side) - 0.5f);
+    const glm::vec2 at((float(i) + 0.5f) / float(side) - 0.5f,
+                       (float(j) + 0.5f) / float(side) - 0.5f);
     groups.back().push_back({at, k % kSamplesPerGroup});
   }
   return groups;
@@ -139,8 +140,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
       const std::string tag = groupFileTag(g, groups.size());
       for (size_t k = 0; k < groups[g].size(); ++k) {
         const int c = groups[g][k].channel;
-        bs::capture(frame, params,
-                    "1-light-pass" + tag + "-" + bs::channelName(c) + "-channel",
+        bs::capture(frame, params, "1-light-pass" + tag + "-" + bs::channelName(c) + "-channel",
                     "Pass 1: light pass " + std::to_string(g * kSamplesPerGroup + k + 1) +
                         ", image plane jittered to its sub-texel sample, written to " +
                         bs::channelName(c) + " only (Fig. 3)",
@@ -177,8 +177,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   "Pass 4: alpha after the colour matrix summed the channels: share of shadowed "
                   "samples (white = all)",
                   bs::alphaOf(bs::readWindowRgba(params)));
-    if (groups.size() > 1)
-      accumulateGroup(double(samples) / footprintSamples, g == 0, frame, tag);
+    if (groups.size() > 1) accumulateGroup(double(samples) / footprintSamples, g == 0, frame, tag);
   }
   if (groups.size() > 1) {
     {

@@ -48,13 +48,11 @@ void renderDepthRampFromLight(const Scene& scene, const RenderParams& params, Ra
 void renderDepthRampFromCamera(const Scene& scene, const RenderParams& params, RampState& s,
                                Frame& frame) {
   PassTimer timer(frame, "2 camera pass: light depth ramp into alpha");
-  bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
-                        bs::kAlphaOnly);
+  bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc), bs::kAlphaOnly);
 }
 
 // Pass 3 (§2): projective shadow map subtracted from pass 2 (EXT_blend_subtract).
-void subtractShadowMap(const Scene& scene, const RenderParams& params, RampState& s,
-                       Frame& frame) {
+void subtractShadowMap(const Scene& scene, const RenderParams& params, RampState& s, Frame& frame) {
   PassTimer timer(frame, "3 projective pass: subtract shadow map");
   bs::subtractProjectedMap(scene, params, s.map, glm::vec2(0.0f), bs::kAlphaOnly);
 }
@@ -101,7 +99,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     bs::capture(frame, params, "3-difference-alpha",
                 "Pass 3: pass 2 minus the projected map, clamped at 0: > 0 in shadow (raw)", diff);
     bs::capture(frame, params, "3-difference-alpha-x32",
-                "Pass 3 difference amplified 32x for display", bs::amplified(diff, kDifferenceDisplayGain));
+                "Pass 3 difference amplified 32x for display",
+                bs::amplified(diff, kDifferenceDisplayGain));
   }
   saturateShadowMask(params, s, frame);
   if (params.capturePasses)

@@ -37,7 +37,7 @@ glm::vec4 depthPlane(const Scene& scene);
 
 // The depth bias of §2 (--param depth-bias, in 8-bit steps of d at every precision, as
 // legacy_gl), subtracted from d in the camera pass.
-constexpr double kDefaultDepthBiasSteps = 1.5;  // legacy_gl/brabec_seidel_passes.h
+constexpr double kDefaultDepthBiasSteps = 2.0;  // as legacy_gl/brabec_seidel_passes.h
 float depthBias(const RenderParams& params);
 
 // Sets the uniforms of 'faithful' arithmetic that describe the legacy colour buffer and its

@@ -51,7 +51,9 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
   glPolygonOffset(factor, units);
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
+  // Only the casters that have shadow volumes (closed meshes): an open caster in the map would
+  // shadow non-silhouette pixels while its silhouette pixels, decided by the volumes, stayed lit.
+  gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
   glBindTexture(GL_TEXTURE_2D, map.depth.id());
@@ -139,7 +141,9 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
 }
 
-GLuint maskBitFor(MaskKind kind) { return kind == MaskKind::kStencil ? kStencilMaskBit : 0u; }
+GLuint maskBitFor(MaskKind kind) {
+  return kind == MaskKind::kStencil ? kStencilMaskBit : 0u;
+}
 
 // Pass 5 (§3.1 step 3): z-fail stencil updates only at silhouette pixels.
 void drawVolumesThroughMask(const SceneVolumes& volumes, const Program& volumeProgram,
@@ -183,8 +187,10 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   const std::string maskName = params.text("mask", "auto", {"auto", "depth-bounds", "stencil"});
   const bool haveBounds = ctx.caps().depthBoundsTest();
   if (maskName == "depth-bounds" && !haveBounds)
-    throw InputError("modern.hybrid: --param mask=depth-bounds needs GL_EXT_depth_bounds_test, "
-                     "which this driver (" + ctx.caps().renderer + ") lacks; use mask=stencil");
+    throw InputError(
+        "modern.hybrid: --param mask=depth-bounds needs GL_EXT_depth_bounds_test, "
+        "which this driver (" +
+        ctx.caps().renderer + ") lacks; use mask=stencil");
   const MaskKind kind = maskName == "stencil" || (maskName == "auto" && !haveBounds)
                             ? MaskKind::kStencil
                             : MaskKind::kDepthBounds;

@@ -18,7 +18,6 @@
 #include "modern/shadow_volumes.h"
 
 #include <algorithm>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
@@ -57,8 +56,8 @@ SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lig
     g.vertices = Buffer(buffer);
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec4)),
-                 vertices.data(), GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec4)), vertices.data(),
+                 GL_STREAM_DRAW);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
     glEnableVertexAttribArray(0);
     glBindVertexArray(0);
@@ -244,8 +243,7 @@ void fillDepthFromCamera(const GpuScene& gpu, const Program& depthProgram, Frame
 }
 
 // Pass 3 (Everitt–Kilgard, z-fail): count the volume faces behind each visible surface.
-void countVolumeCrossings(const SceneVolumes& volumes, const Program& volumeProgram,
-                          Frame& frame) {
+void countVolumeCrossings(const SceneVolumes& volumes, const Program& volumeProgram, Frame& frame) {
   PassTimer timer(frame, "3 stencil volumes (z-fail)");
   countVolumesZFail(volumes, volumeProgram, 0);
 }

@@ -68,8 +68,7 @@ struct VolumeFill {
   Image overdraw;            // per pixel
 };
 VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolumes& volumes,
-                             const glm::mat4& viewProjection, GLuint maskBit,
-                             bool depthBoundsMask);
+                             const glm::mat4& viewProjection, GLuint maskBit, bool depthBoundsMask);
 
 // Puts the counters every shadow-volume technique reports into frame.counters.
 void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,

@@ -9,11 +9,10 @@
 //     all edges).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/scene.h"
 
@@ -23,9 +22,9 @@ namespace sl::modern {
 // every undirected edge paired with its two triangles.
 struct EdgeAdjacency {
   struct Edge {
-    unsigned a = 0, b = 0;      // welded vertex ids; triangle `first` uses the edge as a -> b
-    unsigned first = 0;         // triangle that walks a -> b
-    unsigned second = 0;        // triangle that walks b -> a
+    unsigned a = 0, b = 0;  // welded vertex ids; triangle `first` uses the edge as a -> b
+    unsigned first = 0;     // triangle that walks a -> b
+    unsigned second = 0;    // triangle that walks b -> a
   };
   std::vector<glm::vec3> positions;   // welded, object space (exactly the mesh's values)
   std::vector<glm::uvec3> triangles;  // welded ids, the mesh's winding (counter-clockwise = out)
@@ -54,8 +53,8 @@ SceneCasters collectClosedCasters(const Scene& scene);
 // triangles, each oriented as it runs in its light-facing triangle (so the blocker lies to the
 // left of a -> b when seen from the light).
 struct Silhouette {
-  std::vector<bool> facesLight;                         // per triangle
-  std::vector<std::pair<unsigned, unsigned>> edges;     // (a, b) welded ids
+  std::vector<bool> facesLight;                      // per triangle
+  std::vector<std::pair<unsigned, unsigned>> edges;  // (a, b) welded ids
 };
 // Chan §4.2 step 2 / Everitt–Kilgard: a triangle faces the light when the light lies on the
 // positive side of its plane. `light` is in the mesh's object space.

@@ -25,9 +25,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <map>
-
 #include <glm/gtc/constants.hpp>
+#include <map>
 
 #include "core/errors.h"
 #include "modern/camera_pass.h"
@@ -41,16 +40,18 @@ float remapSmoothieAlpha(float a, float bOverR) {
   return a >= room ? 1.0f : a / room;
 }
 
-float smoothieFalloff(float v) { return 0.5f - 0.5f * std::cos(glm::pi<float>() * v); }
+float smoothieFalloff(float v) {
+  return 0.5f - 0.5f * std::cos(glm::pi<float>() * v);
+}
 
 namespace {
-constexpr double kDefaultWidth = 0.03;          // t, light screen space (map side = 1)
-constexpr float kDefaultOffsetFactor = 2.0f;    // as modern.hw (Everitt et al. Fig. 3)
+constexpr double kDefaultWidth = 0.03;        // t, light screen space (map side = 1)
+constexpr float kDefaultOffsetFactor = 2.0f;  // as modern.hw (Everitt et al. Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
-constexpr int kFalloffTexels = 256;             // 1D falloff texture (§4.2.1)
-constexpr float kNoSurfaceDepth = 1.0e30f;      // linear depth where nothing is seen: b/r ~ 0
-constexpr float kMinClipW = 1.0e-6f;            // vertices at or behind the light: no smoothie
-constexpr float kMinEdgeLength = 1.0e-7f;       // light NDC; shorter edges have no direction
+constexpr int kFalloffTexels = 256;                  // 1D falloff texture (§4.2.1)
+constexpr float kNoSurfaceDepth = 1.0e30f;           // linear depth where nothing is seen: b/r ~ 0
+constexpr float kMinClipW = 1.0e-6f;                 // vertices at or behind the light: no smoothie
+constexpr float kMinEdgeLength = 1.0e-7f;            // light NDC; shorter edges have no direction
 constexpr float kMaxCornerSegmentRadians = 0.7854f;  // 45 degrees per corner fan triangle
 
 // One smoothie vertex: position in light clip space, root and normal in shadow-map pixels.
@@ -172,9 +173,8 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
 // Pass 1 (§4.3): the blockers' depth with polygon offset (for the umbra test), and the linear
 // depth of the nearest surface of any object, caster or not (r of Eq. 4.1: "the distance from
 // the light source to the receiver using the shadow map").
-RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& program,
-                                            int texels, float factor, float units,
-                                            Frame& frame) {
+RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& program, int texels,
+                                            float factor, float units, Frame& frame) {
   PassTimer timer(frame, "1 shadow map + linear depth");
   const Scene& scene = gpu.scene();
   RenderTarget map = makeRenderTarget(texels, texels, {GL_R32F}, true, GL_DEPTH_COMPONENT24);

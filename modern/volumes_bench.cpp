@@ -1,7 +1,6 @@
 #include "modern/volumes_bench.h"
 
 #include <algorithm>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
@@ -11,11 +10,11 @@
 namespace sl::modern {
 
 namespace {
-constexpr int kCubesPerSide = 5;        // per layer
+constexpr int kCubesPerSide = 5;  // per layer
 constexpr int kLayers = 3;
-constexpr float kCubeSide = 0.45f;      // world units
+constexpr float kCubeSide = 0.45f;  // world units
 constexpr float kCubeSpacing = 1.1f;
-constexpr float kLowestLayer = 1.2f;    // height of the first layer's centres
+constexpr float kLowestLayer = 1.2f;  // height of the first layer's centres
 constexpr float kLayerStep = 0.8f;
 
 double median(std::vector<double> v) {
@@ -40,7 +39,8 @@ Scene fillHeavyScene() {
     for (int i = 0; i < kCubesPerSide; ++i)
       for (int j = 0; j < kCubesPerSide; ++j) {
         Object o;
-        o.name = "cube " + std::to_string(layer) + "/" + std::to_string(i) + "/" + std::to_string(j);
+        o.name =
+            "cube " + std::to_string(layer) + "/" + std::to_string(i) + "/" + std::to_string(j);
         o.mesh = cube;
         const float half = 0.5f * (kCubesPerSide - 1) * kCubeSpacing;
         // Each layer shifted by a third of the spacing so that the columns interleave.
@@ -71,7 +71,8 @@ std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const Re
   std::vector<VolumesBenchRow> rows;
   const std::vector<Technique> all = modern::techniques();
   for (const std::string& name : techniques) {
-    auto it = std::find_if(all.begin(), all.end(), [&](const Technique& t) { return t.name == name; });
+    auto it =
+        std::find_if(all.begin(), all.end(), [&](const Technique& t) { return t.name == name; });
     if (it == all.end()) throw InputError("unknown modern technique '" + name + "'");
     const Technique& t = *it;
     checkParams(t, params, 0);
@@ -103,10 +104,12 @@ std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const Re
 }
 
 nlohmann::json toJson(const VolumesBenchRow& r) {
-  return {{"technique", r.technique}, {"scene", r.scene},     {"device", r.device},
-          {"width", r.width},         {"height", r.height},   {"shadow_map", r.shadowMapTexels},
-          {"frames", r.frames},       {"median_ms", r.medianMs}, {"min_ms", r.minMs},
-          {"passes_median_ms", r.passMedianMs}, {"counters", r.counters}};
+  return {{"technique", r.technique}, {"scene", r.scene},
+          {"device", r.device},       {"width", r.width},
+          {"height", r.height},       {"shadow_map", r.shadowMapTexels},
+          {"frames", r.frames},       {"median_ms", r.medianMs},
+          {"min_ms", r.minMs},        {"passes_median_ms", r.passMedianMs},
+          {"counters", r.counters}};
 }
 
 }  // namespace sl::modern

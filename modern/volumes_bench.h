@@ -5,10 +5,9 @@
 #pragma once
 
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/technique.h"
 
@@ -23,7 +22,7 @@ struct VolumesBenchRow {
   std::string scene;
   std::string device;  // GL renderer string
   int width = 0, height = 0, shadowMapTexels = 0, frames = 0;
-  double medianMs = 0, minMs = 0;           // sum of the technique's timed passes per frame
+  double medianMs = 0, minMs = 0;  // sum of the technique's timed passes per frame
   std::map<std::string, double> passMedianMs;
   std::map<std::string, double> counters;  // of the last frame
 };

@@ -333,14 +333,17 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
       if (points[p].object >= 0)
         for (int k = 0; k < 3; ++k) depth.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
     frame.intermediates.push_back({"1-surface-normals", "surface normals from the GL pass", depth});
-    // Where the surface faces the light (geometric normal): elsewhere the direct term is 0 and
-    // visibility does not change the image (second-depth maps rely on this, Everitt et al.).
-    Image facing(params.width, params.height, 1, 0.0f);
+    // Where direct light can arrive: the surface faces the light (geometric normal) inside the
+    // light's frustum. Elsewhere the direct term is 0 and visibility does not change the image
+    // (second-depth maps rely on this; behind the light, Everitt's techniques force 0).
+    Image region(params.width, params.height, 1, 0.0f);
+    const glm::mat4 view = lightView(scene.light);
     for (size_t p = 0; p < points.size(); ++p)
       if (points[p].object >= 0 &&
-          glm::dot(points[p].geometricNormal, scene.light.position - points[p].position) > 0.0f)
-        facing.data[p] = 1.0f;
-    frame.intermediates.push_back({kFacesLightPass, "surface points facing the light", facing});
+          glm::dot(points[p].geometricNormal, scene.light.position - points[p].position) > 0.0f &&
+          insideLightFrustum(scene.light, view, points[p].position))
+        region.data[p] = 1.0f;
+    frame.intermediates.push_back({kDirectLightRegionPass, "surface points the light can reach", region});
     frame.intermediates.push_back({"3-visibility", "ray-traced visibility", frame.visibility});
   }
   return frame;

@@ -26,8 +26,9 @@ std::vector<Technique> techniques();
 constexpr float kNoGeometryVisibility = 1.0f;
 
 // With RenderParams::capturePasses the references add this intermediate: 1 where a surface
-// point faces the light (geometric normal), 0 elsewhere and where no geometry is seen.
-constexpr const char* kFacesLightPass = "2-faces-light";
+// point faces the light (geometric normal) inside the light's frustum, 0 elsewhere and where no
+// geometry is seen. Error metrics count these pixels: elsewhere visibility changes nothing.
+constexpr const char* kDirectLightRegionPass = "2-direct-light-region";
 
 // Shadow rays start this far (times the scene's bounding-box diagonal) along the surface's
 // geometric normal, so that a surface does not shadow itself through float round-off.

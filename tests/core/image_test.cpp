@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "core/errors.h"
 #include "core/image.h"
 
@@ -75,7 +77,7 @@ TEST(Png, UnwritablePathIsAnInputErrorAndLeavesNoFile) {
   const std::string path = "/nonexistent-dir/x.png";
   EXPECT_THROW(writePng(path, Image(2, 2, 1), 8), InputError);
   EXPECT_FALSE(fs::exists(path));
-  EXPECT_FALSE(fs::exists(path + ".part"));
+  EXPECT_FALSE(fs::exists(path + ".part-" + std::to_string(::getpid())));
 }
 
 TEST(Png, CorruptFileIsAnInputError) {

@@ -85,7 +85,8 @@ Command renderFigure(const std::string& id, const fs::path& dir) {
 std::vector<std::string> imageSources(const std::string& html) {
   std::vector<std::string> out;
   const std::regex img("<img src=\"([^\"]+)\"");
-  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), img); it != std::sregex_iterator();
+       ++it)
     out.push_back((*it)[1]);
   return out;
 }
@@ -114,13 +115,38 @@ std::vector<std::string> consoleErrors(const std::string& log) {
 
 // Every figure issue 7 asks for has an entry (the list is the issue's, typed in here).
 TEST(FigureList, HoldsEveryFigureOfIssue7) {
-  const std::set<std::string> required = {
-      "brabec-fig7", "brabec-fig8", "brabec-fig3-packing", "brabec-fig5-packing",
-      "everitt-fig2", "everitt-fig4", "everitt-fig5", "everitt-fig6", "gems-11-6to9",
-      "csm-fig1", "csm-fig3", "csm-fig4", "csm-fig5", "csm-fig6", "csm-fig7", "csm-fig8",
-      "csm-fig9", "csm-fig10", "csm-table1", "chan-2-4", "chan-2-5", "chan-3-1", "chan-3-5",
-      "chan-3-7", "chan-3-9", "chan-3-10", "chan-3-11", "chan-4-1", "chan-4-4", "chan-4-8",
-      "chan-4-9", "chan-4-10"};
+  const std::set<std::string> required = {"brabec-fig7",
+                                          "brabec-fig8",
+                                          "brabec-fig3-packing",
+                                          "brabec-fig5-packing",
+                                          "everitt-fig2",
+                                          "everitt-fig4",
+                                          "everitt-fig5",
+                                          "everitt-fig6",
+                                          "gems-11-6to9",
+                                          "csm-fig1",
+                                          "csm-fig3",
+                                          "csm-fig4",
+                                          "csm-fig5",
+                                          "csm-fig6",
+                                          "csm-fig7",
+                                          "csm-fig8",
+                                          "csm-fig9",
+                                          "csm-fig10",
+                                          "csm-table1",
+                                          "chan-2-4",
+                                          "chan-2-5",
+                                          "chan-3-1",
+                                          "chan-3-5",
+                                          "chan-3-7",
+                                          "chan-3-9",
+                                          "chan-3-10",
+                                          "chan-3-11",
+                                          "chan-4-1",
+                                          "chan-4-4",
+                                          "chan-4-8",
+                                          "chan-4-9",
+                                          "chan-4-10"};
   std::set<std::string> ids;
   for (const FigureSpec& f : figureList()) {
     EXPECT_TRUE(ids.insert(f.id).second) << "duplicate figure id " << f.id;
@@ -175,7 +201,8 @@ TEST(FiguresCommand, OnlyOneFigureAndMissingPanelsListed) {
   const fs::path dir = outputDir("gems");
   const Command r = renderFigure("gems-11-6to9", dir);
   ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("[1/3] gems-11-6to9"), std::string::npos) << "no progress bar: " << r.output;
+  EXPECT_NE(r.output.find("[1/3] gems-11-6to9"), std::string::npos)
+      << "no progress bar: " << r.output;
   const std::string html = readFile(dir / "report.html");
   ASSERT_FALSE(html.empty());
   EXPECT_EQ(html.find("id=\"brabec-fig7\""), std::string::npos) << "--only rendered more";
@@ -196,7 +223,7 @@ TEST(FiguresCommand, OnlyOneFigureAndMissingPanelsListed) {
 
 TEST(FiguresCommand, UnknownFigureIsAnInputError) {
   const Command r = run(std::string(SHADOWLAB_BINARY) + " figures --out " +
-                    outputDir("unknown").string() + " --only no-such-figure");
+                        outputDir("unknown").string() + " --only no-such-figure");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("unknown figure 'no-such-figure'"), std::string::npos) << r.output;
 }
@@ -220,7 +247,8 @@ TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
   ASSERT_GT(images, 0u);
 
   const fs::path profile = dir / "chromium-profile";
-  const Command dom = run(chromiumCommand(exe, profile) + "--dump-dom file://" + fs::absolute(report).string());
+  const Command dom =
+      run(chromiumCommand(exe, profile) + "--dump-dom file://" + fs::absolute(report).string());
   ASSERT_EQ(dom.status, 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-broken"), 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-ok"), int(images));
@@ -229,8 +257,9 @@ TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
 
   const fs::path shot = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "figures" / "report-screenshot.png";
   fs::remove(shot);
-  const Command s = run(chromiumCommand(exe, profile) + "--window-size=1400,1800 --screenshot=" +
-                    shot.string() + " file://" + fs::absolute(report).string());
+  const Command s =
+      run(chromiumCommand(exe, profile) + "--window-size=1400,1800 --screenshot=" + shot.string() +
+          " file://" + fs::absolute(report).string());
   EXPECT_EQ(s.status, 0) << s.output;
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 0) << s.output;
   std::cout << "screenshot: " << shot << std::endl;
@@ -247,7 +276,7 @@ TEST(ReportInBrowser, CatchesAMissingImage) {
   ASSERT_FALSE(sources.empty());
   fs::remove(dir / sources.front());
   const Command dom = run(chromiumCommand(exe, dir / "chromium-profile") + "--dump-dom file://" +
-                      fs::absolute(dir / "report.html").string());
+                          fs::absolute(dir / "report.html").string());
   // The same file may be shown twice (a panel and its legacy/modern pair): count references.
   const int references = int(std::count(sources.begin(), sources.end(), sources.front()));
   EXPECT_EQ(bodyCount(dom.output, "data-images-broken"), references) << dom.output;

@@ -301,3 +301,74 @@ TEST(Accumulation, ErrorsAndReturnClamps) {
 
 }  // namespace
 }  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// The 8-bit path (fast_paths.cpp) computes exactly what the float path computes: read the
+// same transformed pixels once as floats (general path, then the final conversion by hand)
+// and once as unsigned bytes (byte path).
+TEST(Pipeline, BytePathMatchesFloatPath) {
+  auto ctx = emulatedContext(32, 16);
+  putImage(32, 16, patternImage(32, 16, 77));
+  std::vector<float> t(64 * 4);
+  for (size_t i = 0; i < t.size(); ++i) t[i] = float((i * 37) % 64) / 63.0f;
+  glColorTable(GL_COLOR_TABLE, GL_RGBA, 64, GL_RGBA, GL_FLOAT, t.data());
+  glEnable(GL_COLOR_TABLE);
+  glColorTable(GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_LUMINANCE_ALPHA, 64, GL_RGBA, GL_FLOAT, t.data());
+  glEnable(GL_POST_COLOR_MATRIX_COLOR_TABLE);
+  const float m[16] = {0.3f, 0.2f, -0.1f, 0.25f, 0.5f, 0.1f, 0.2f, 0.25f,
+                       0.0f, 0.6f, 0.3f, 0.25f, 0.1f, 0.0f, 0.5f, 0.25f};
+  glMatrixMode(GL_COLOR);
+  glLoadMatrixf(m);
+  glMatrixMode(GL_MODELVIEW);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_GREEN_SCALE, 1.3f);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_BLUE_BIAS, 0.05f);
+  glPixelTransferf(GL_RED_SCALE, 0.9f);
+  const auto f = readRgbaF(0, 0, 32, 16);
+  const auto b = readRgba8(0, 0, 32, 16);
+  for (size_t i = 0; i < b.size(); ++i) ASSERT_EQ(b[i], toByte(f[i])) << i;
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// glPushAttrib / glPopAttrib save and restore the emulated imaging enables and pixel-mode
+// parameters with the driver's own (6.1.14, tables 6.14-6.16), as legacy passes rely on.
+TEST(Pipeline, PushPopAttribRestoresImagingState) {
+  auto ctx = emulatedContext(2, 2);
+  glPushAttrib(GL_PIXEL_MODE_BIT | GL_ENABLE_BIT);
+  glEnable(GL_COLOR_TABLE);
+  glEnable(GL_CONVOLUTION_2D);
+  glPixelTransferf(GL_RED_SCALE, 0.5f);
+  glPixelTransferf(GL_POST_COLOR_MATRIX_BLUE_BIAS, 0.25f);
+  glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
+  glEnable(GL_DEPTH_TEST);
+  glPopAttrib();
+  EXPECT_FALSE(glIsEnabled(GL_COLOR_TABLE));
+  EXPECT_FALSE(glIsEnabled(GL_CONVOLUTION_2D));
+  EXPECT_FALSE(glIsEnabled(GL_DEPTH_TEST));  // the driver's own state too
+  float v = 0;
+  glGetFloatv(GL_RED_SCALE, &v);
+  EXPECT_EQ(v, 1.0f);
+  glGetFloatv(GL_POST_COLOR_MATRIX_BLUE_BIAS, &v);
+  EXPECT_EQ(v, 0.0f);
+  GLint mode = 0;
+  glGetConvolutionParameteriv(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, &mode);
+  EXPECT_EQ(GLenum(mode), GLenum(GL_REDUCE));
+  // GL_ENABLE_BIT alone restores the enables but keeps pixel-mode parameters.
+  glPushAttrib(GL_ENABLE_BIT);
+  glEnable(GL_HISTOGRAM);
+  glPixelTransferf(GL_GREEN_BIAS, 0.125f);
+  glPopAttrib();
+  EXPECT_FALSE(glIsEnabled(GL_HISTOGRAM));
+  glGetFloatv(GL_GREEN_BIAS, &v);
+  EXPECT_EQ(v, 0.125f);
+  EXPECT_TRUE(drainErrors().empty());
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing

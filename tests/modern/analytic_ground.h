@@ -3,9 +3,8 @@
 // (or a sub-pixel position), intersected with the ground plane y = 0 and the occluder slab.
 #pragma once
 
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "core/scene.h"
 

@@ -66,22 +66,6 @@ void writeFailureArtefacts(const std::string& name, const Frame& legacy, const F
            differenceHeatMap(legacy.visibility, modern.visibility, 1.0f / 16.0f), 8);
 }
 
-// Why the legacy side cannot run at the pair's precision on this back end ("" when it can):
-// EGL pbuffers are 8-bit (core/context.cpp), so legacy 12-bit and float colour is not there.
-std::string missingPrecision(const twins::TwinPair& pair, const RenderParams& legacyParams) {
-  const Technique& legacy = findTechnique(pair.legacy);
-  if (!legacy.needs.colorFromPrecision || pair.precision == Precision::k8) return "";
-  constexpr int kBits12 = 16;    // 12-bit values live in a 16-bit buffer
-  constexpr int kBitsFloat = 32;
-  const int needed = pair.precision == Precision::k12 ? kBits12 : kBitsFloat;
-  auto context = GlContext::create(contextFor(legacy, legacyParams));
-  const int bits = context->caps().redBits;
-  if (bits >= needed) return "";
-  return std::string(backendName(legacyParams.backend)) + " gives the legacy context " +
-         std::to_string(bits) + "-bit colour, not the " + std::to_string(needed) +
-         " bits that precision " + precisionName(pair.precision) + " needs";
-}
-
 class Equivalence : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
@@ -90,7 +74,7 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
     GTEST_SKIP() << "EGL back end unavailable on this machine: " << eglUnavailableReason();
   const RenderParams legacyParams =
       twins::paramsFor(pair, true, kWidth, kHeight, kShadowMapTexels, backend);
-  if (const std::string why = missingPrecision(pair, legacyParams); !why.empty())
+  if (const std::string why = twins::unavailablePrecision(pair, legacyParams); !why.empty())
     GTEST_SKIP() << why;
   const Scene scene = loadScene(sceneName);
   const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, legacyParams);
@@ -116,8 +100,9 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
 
 }  // namespace
 
-namespace twins {
 // Readable test parameters in gtest's messages.
+void PrintTo(Backend backend, std::ostream* os) { *os << backendName(backend); }
+namespace twins {
 void PrintTo(const TwinPair& pair, std::ostream* os) { *os << pair.label; }
 }  // namespace twins
 

@@ -1,21 +1,21 @@
 // modern.smoothies (Chan 2004 ch. 4): the penumbra profile across one occluder edge of the
 // analytic scene against Eq. 4.1 and the falloff computed here from the scene's geometry, the
 // b/r -> 1 limit, and visibility within [0, 1].
+#include "modern/smoothies.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include <glm/gtc/constants.hpp>
-
 #include "apps/registry.h"
+#include "core/errors.h"
 #include "core/primitives.h"
 #include "core/scene_library.h"
 #include "modern/silhouettes.h"
-#include "modern/smoothies.h"
 #include "tests/modern/analytic_ground.h"
 
 namespace sl {
@@ -195,7 +195,8 @@ TEST(Smoothies, VertexWithMoreThanTwoSilhouetteEdges) {
 TEST(Smoothies, WidthOutOfRangeIsAnInputError) {
   RenderParams p = smallParams();
   p.extra["width"] = "0";
-  EXPECT_ANY_THROW(renderTechnique(findTechnique("modern.smoothies"), builtinScene("analytic"), p));
+  EXPECT_THROW(renderTechnique(findTechnique("modern.smoothies"), builtinScene("analytic"), p),
+               InputError);
 }
 
 }  // namespace

@@ -170,8 +170,8 @@ TEST(ShadowVolumes, OnlyOpenCastersIsAnInputError) {
 
 TEST(ShadowVolumes, OpenCastersAreSkippedAndCounted) {
   // brabec: the ground plane casts (castsShadow) but is open; the five solids are closed.
-  const Frame f = renderTechnique(findTechnique("modern.volumes"), builtinScene("brabec"),
-                                  smallParams());
+  const Frame f =
+      renderTechnique(findTechnique("modern.volumes"), builtinScene("brabec"), smallParams());
   EXPECT_EQ(f.counters.at("open_casters_skipped"), 1);
   EXPECT_EQ(f.counters.at("closed_casters"), 5);
 }
@@ -203,8 +203,8 @@ TEST(HybridShadows, EqualsShadowVolumesAtEverySilhouettePixel) {
         }
       EXPECT_GT(count, 50) << name << " " << texels;
       EXPECT_EQ(differ, 0) << name << " " << texels;
-      EXPECT_NEAR(hybrid.counters.at("silhouette_fraction"),
-                  double(count) / (p.width * p.height), 1e-12);
+      EXPECT_NEAR(hybrid.counters.at("silhouette_fraction"), double(count) / (p.width * p.height),
+                  1e-12);
     }
 }
 

@@ -269,29 +269,41 @@ RenderParams baseParams() {
   return p;
 }
 
-// The references of a case, rendered once per case and technique kind.
-const Frame& referenceFor(const Case& c, bool soft) {
+std::filesystem::path outputDir() {
+  const std::filesystem::path dir = std::filesystem::path(SHADOWLAB_TEST_OUTPUT_DIR) / "stability";
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// The references of a case, rendered once per case and technique kind. `withoutOpenCasters`:
+// the scene with every open (non-closed) caster made a non-caster, the documented fallback of
+// the techniques that need closed meshes (they report Frame::counters["open_casters_skipped"]).
+const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters = false) {
   static std::map<std::string, Frame> cache;
   static std::mutex mutex;
   std::lock_guard<std::mutex> lock(mutex);
-  const std::string key = c.name + (soft ? "|soft" : "|hard");
+  const std::string key = c.name + (soft ? "|soft" : "|hard") + (withoutOpenCasters ? "|closed" : "");
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
+  Scene scene = c.scene();
+  if (withoutOpenCasters)
+    for (Object& o : scene.objects)
+      if (!o.mesh->closed) o.castsShadow = false;
   RenderParams p = baseParams();  // with capturePasses: the reference's faces-light mask
-  Frame f = renderTechnique(findTechnique(soft ? "reference.soft" : "reference.hard"), c.scene(), p);
-  const std::filesystem::path dir = std::filesystem::path(SHADOWLAB_TEST_OUTPUT_DIR) / "stability";
-  std::filesystem::create_directories(dir);
-  writePng((dir / (c.name + (soft ? "-soft.png" : "-hard.png"))).string(), f.color);
+  Frame f = renderTechnique(findTechnique(soft ? "reference.soft" : "reference.hard"), scene, p);
+  writePng((outputDir() / (c.name + (soft ? "-soft" : "-hard") + (withoutOpenCasters ? "-closed" : "") +
+                           ".png")).string(),
+           f.color);
   return cache[key] = std::move(f);
 }
 
-// The pixels a case's bound counts: outside the reference's edge band and on surfaces facing
-// the light (elsewhere the direct term is zero and visibility does not change the image).
+// The pixels a case's bound counts: outside the reference's edge band and on surfaces the light
+// can reach (facing it, inside its frustum; elsewhere visibility does not change the image).
 MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
   const Image band = boundaryBand(ref.visibility, kBandPixels);
   const Image* facing = nullptr;
   for (const PassImage& p : ref.intermediates)
-    if (p.name == reference::kFacesLightPass) facing = &p.image;
+    if (p.name == reference::kDirectLightRegionPass) facing = &p.image;
   Image region(kWidth, kHeight, 1);
   for (size_t i = 0; i < band.data.size(); ++i)
     region.data[i] = band.data[i] <= 0.5f && (!facing || facing->data[i] > 0.5f) ? 1.0f : 0.0f;
@@ -305,18 +317,44 @@ struct KnownIssue {
   double bound;
   std::string why;
 };
+// Brabec–Seidel §2-§4 compare colour-encoded depth with a constant bias (no slope-scaled
+// offset): a receiver that casts too self-shadows where its depth changes by more than the
+// bias per texel. At 80 degrees that is tan 80 = 5.7 texel widths per texel; at 89, 57: the
+// lit ground self-shadows wholesale. No bound; finiteness and [0, 1] still hold.
+const char* const kConstantBias =
+    "constant depth bias only (Brabec–Seidel §2, no slope-scaled offset): a grazing receiver "
+    "that also casts self-shadows wholesale";
 const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   static const std::map<std::pair<std::string, std::string>, KnownIssue> kIssues = {
-      {{"grazing80", "legacy.ramp"},
-       {kDegradedButSane,
-        "Brabec–Seidel §2 has a constant depth bias only (no slope-scaled offset): at 80 degrees "
-        "the ground's depth changes by tan 80 = 5.7 texel widths per texel and self-shadows"}},
+      {{"grazing80", "legacy.ramp"}, {1.0, kConstantBias}},
       {{"open_caster", "legacy.second-depth"},
        {-1, "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
             "(InputError) nor falls back"}},
       {{"open_caster", "modern.second-depth"},
        {-1, "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
             "(InputError) nor falls back"}},
+      {{"grazing80", "legacy.pcf"}, {1.0, kConstantBias}},
+      {{"grazing80", "legacy.fast-pcf"}, {1.0, kConstantBias}},
+      {{"grazing80", "modern.ramp"}, {1.0, kConstantBias}},
+      {{"grazing80", "modern.pcf"}, {1.0, kConstantBias}},
+      {{"grazing80", "modern.fast-pcf"}, {1.0, kConstantBias}},
+      {{"grazing89", "legacy.ramp"}, {1.0, kConstantBias}},
+      {{"grazing89", "legacy.pcf"}, {1.0, kConstantBias}},
+      {{"grazing89", "legacy.fast-pcf"}, {1.0, kConstantBias}},
+      {{"grazing89", "modern.ramp"}, {1.0, kConstantBias}},
+      {{"grazing89", "modern.pcf"}, {1.0, kConstantBias}},
+      {{"grazing89", "modern.fast-pcf"}, {1.0, kConstantBias}},
+      {{"grazing80", "modern.smoothies"},
+       {0.05,
+        "the smoothie width t is a light-space constant (Chan §4.2): on ground lit at 80 degrees "
+        "its penumbra stretches 1/cos 80 = 5.8x, about 2.5x the 2-pixel band around the post's "
+        "shadow outline (~2% of the pixels): at most 5%"}},
+      {{"behind_and_around_light", "modern.gems16"},
+       {-1, "BUG (gems): 30% of the pixels wrong with a torus around the light and a box behind "
+            "it (0.01% before main's shared worldToShadowMap change); modern.hw and modern.pcf "
+            "are right on the same scene"}},
+      {{"behind_and_around_light", "modern.gems4"},
+       {-1, "BUG (gems): as modern.gems16"}},
       {{"map_2x2", "modern.csm"},
        {-1, "BUG (csm): GlError 'layered shadow map framebuffer is incomplete' for a 2x2 map"}},
   };
@@ -360,8 +398,16 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
   EXPECT_GE(lo, 0.0f);
   EXPECT_LE(hi, 1.0f);
   const bool soft = t.name.find("smoothie") != std::string::npos || t.name == "reference.soft";
-  const Frame& ref = referenceFor(c, soft);
-  const MaskDifference d = errorWhereItMatters(frame.visibility, ref);
+  MaskDifference d = errorWhereItMatters(frame.visibility, referenceFor(c, soft));
+  auto skipped = frame.counters.find("open_casters_skipped");
+  if (skipped != frame.counters.end() && skipped->second > 0) {
+    // Documented fallback: open casters left out. Right if it matches either reference.
+    const MaskDifference without = errorWhereItMatters(frame.visibility, referenceFor(c, soft, true));
+    std::cout << "[stability] " << c.name << " " << t.name << ": skipped " << skipped->second
+              << " open caster(s); wrong " << 100.0 * without.shareAboveHalf
+              << "% against the reference without them\n";
+    if (without.shareAboveHalf < d.shareAboveHalf) d = without;
+  }
   double bound = c.bound;
   std::string why = c.why;
   if (auto it = knownIssues().find({c.name, t.name}); it != knownIssues().end()) {
@@ -377,6 +423,8 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
             << 100.0 * d.shareAboveHalf << "% (bound " << 100.0 * bound << "%), rmse " << d.rmse
             << "\n";
   EXPECT_LE(d.shareAboveHalf, bound) << why;
+  if (d.shareAboveHalf > bound)
+    writePng((outputDir() / (c.name + "-" + t.name + ".png")).string(), frame.color);
 }
 
 std::vector<Param> allParams() {

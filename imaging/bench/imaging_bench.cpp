@@ -1,0 +1,258 @@
+// imaging_bench — speed of the imaging emulation (issue 3 item 6, issue 10 item 4).
+//
+// Every operation on 512x512, 800x600 and 1024x1024 RGBA8, timed (best of 5 after one warm-up)
+// as a ratio to a memcpy of the same w*h*4 bytes measured in the same run:
+//   * emulated: imaging/ installed on Debian's OSMesa (llvmpipe), the whole GL call;
+//   * reference: the same call natively on Mesa 7.8.2 (../shared/reference-gl), when present;
+//   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
+//     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
+//     driver's read-back and DrawPixels.
+// Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu]
+#include <time.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/context.h"
+#include "imaging/imaging.h"
+#include "imaging/internal.h"
+
+namespace sl::imaging::bench {
+namespace {
+using namespace sl::gl;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kRepetitions = 5;
+// --cpu: time with the process CPU clock (all threads) instead of the wall clock, for a
+// machine shared with other jobs, where wall time measures the queue more than the work.
+bool gCpuClock = false;
+
+double nowMs() {
+  if (gCpuClock) {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+  }
+  return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
+}
+
+double bestMs(const std::function<void()>& run, int reps) {
+  run();  // warm-up
+  double best = 1e30;
+  for (int i = 0; i < reps; ++i) {
+    const double t0 = nowMs();
+    run();
+    best = std::min(best, nowMs() - t0);
+  }
+  return best;
+}
+
+double memcpyMs(size_t bytes, int reps) {
+  std::vector<unsigned char> a(bytes, 1), b(bytes, 2);
+  volatile unsigned char sink = 0;
+  const double ms = bestMs([&] {
+    std::memcpy(b.data(), a.data(), bytes);
+    sink = sink + b[bytes / 2];
+  }, reps * 4);
+  return ms;
+}
+
+// ---- the operations, identical GL calls on either back end ----
+void brabecSeidelTable() {
+  std::vector<uint8_t> table(256 * 4);
+  for (int i = 0; i < 256; ++i)
+    for (int c = 0; c < 4; ++c) table[i * 4 + c] = i == 0 ? 0 : (c == 3 ? 63 : 64);
+  glColorTable(GL_COLOR_TABLE, GL_RGBA, 256, GL_RGBA, GL_UNSIGNED_BYTE, table.data());
+  glEnable(GL_COLOR_TABLE);
+}
+void sumIntoAlpha() {
+  const float m[16] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  glMatrixMode(GL_COLOR);
+  glLoadMatrixf(m);
+  glMatrixMode(GL_MODELVIEW);
+}
+void blur3x3() {
+  float k[9 * 4];
+  const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
+  for (int t = 0; t < 9; ++t)
+    for (int c = 0; c < 4; ++c) k[t * 4 + c] = w[t] / 16.0f;
+  glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, k);
+  glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
+  glEnable(GL_CONVOLUTION_2D);
+}
+void packingKernel() {  // Brabec–Seidel Eq. (1)
+  float k[9 * 4] = {};
+  k[(0 * 3 + 0) * 4 + 0] = 1;
+  k[(0 * 3 + 1) * 4 + 1] = 1;
+  k[(1 * 3 + 0) * 4 + 2] = 1;
+  k[(1 * 3 + 1) * 4 + 3] = 1;
+  glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, k);
+  glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
+  glEnable(GL_CONVOLUTION_2D);
+}
+void resetAll() {
+  for (GLenum cap : {GL_COLOR_TABLE, GL_CONVOLUTION_2D}) glDisable(cap);
+  glMatrixMode(GL_COLOR);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+}
+
+struct Operation {
+  const char* name;
+  std::function<void()> setup;
+  std::function<void(int, int)> run;
+  bool accumulation = false;
+};
+
+void copyPixels(int w, int h) {
+  glWindowPos2i(0, 0);
+  glCopyPixels(0, 0, w, h, GL_COLOR);
+  glFinish();
+}
+
+std::vector<Operation> operations() {
+  return {
+      {"plain copy (glCopyPixels)", [] {}, copyPixels},
+      {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
+      {"+ color table + sum-into-alpha color matrix (Fig. 4)", [] { brabecSeidelTable(); sumIntoAlpha(); }, copyPixels},
+      {"+ 3x3 convolution", blur3x3, copyPixels},
+      {"glCopyTexSubImage2D + 3x3 packing kernel (Eq. 1)", packingKernel,
+       [](int w, int h) {
+         glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, w, h);
+         glFinish();
+       }},
+      {"glAccum(GL_ACCUM, 0.25)", [] {}, [](int, int) { glAccum(GL_ACCUM, 0.25f); glFinish(); }, true},
+      {"glAccum(GL_RETURN, 1)", [] {}, [](int, int) { glAccum(GL_RETURN, 1.0f); glFinish(); }, true},
+  };
+}
+
+// Ratios of every operation on one back end; the context is made once per size.
+std::vector<double> measure(Backend backend, int w, int h, int reps, double& memcpyRatioBase) {
+  std::vector<double> ratios;
+  ContextSpec spec;
+  spec.backend = backend;
+  spec.width = w;
+  spec.height = h;
+  spec.accumulation = backend == Backend::kReference;  // Debian: the emulated buffer
+  auto ctx = GlContext::create(spec);
+  imaging::install(*ctx);
+  std::vector<uint8_t> img(size_t(w) * h * 4);
+  for (size_t i = 0; i < img.size(); ++i) img[i] = uint8_t((i * 2654435761u) >> 24);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glWindowPos2i(0, 0);
+  glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, img.data());
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, img.data());
+  glClear(GL_ACCUM_BUFFER_BIT);
+  const double base = memcpyMs(size_t(w) * h * 4, reps);
+  memcpyRatioBase = base;
+  for (const Operation& op : operations()) {
+    op.setup();
+    const double ms = bestMs([&] { op.run(w, h); }, reps);
+    resetAll();
+    ratios.push_back(ms / base);
+  }
+  glDeleteTextures(1, &tex);
+  return ratios;
+}
+
+// The transform alone (imaging/'s part of the call) on a float image.
+std::vector<double> measureStages(int w, int h, int reps, double base) {
+  using namespace detail;
+  ContextSpec spec;
+  spec.width = 16;
+  spec.height = 16;
+  auto ctx = GlContext::create(spec);
+  imaging::install(*ctx);
+  std::vector<double> ratios;
+  Image4 source(w, h);
+  std::vector<uint8_t> bytes(source.px.size());
+  for (size_t i = 0; i < source.px.size(); ++i) {
+    bytes[i] = uint8_t((i * 2654435761u) >> 24);
+    source.px[i] = float(bytes[i]) / 255.0f;
+  }
+  for (const Operation& op : operations()) {
+    if (op.accumulation) {
+      ratios.push_back(-1.0);
+      continue;
+    }
+    op.setup();
+    State& s = *currentState();
+    double ms = 0, copyMs = 0;
+    if (convolveBytesApplies(s.transfer)) {  // what the call runs for 8-bit buffers
+      std::vector<uint8_t> out;
+      int ow = 0, oh = 0;
+      ms = bestMs([&] { convolveBytes(s.transfer, bytes, w, h, out, ow, oh); }, reps);
+    } else if (bytePathApplies(s.transfer)) {
+      std::vector<uint8_t> work;
+      ms = bestMs([&] {
+        work = bytes;
+        transformBytes(s.transfer, work, w, h);
+      }, reps);
+      copyMs = bestMs([&] { work = bytes; }, reps);
+    } else {
+      Image4 work;
+      ms = bestMs([&] {
+        work = source;
+        runPipeline(s.transfer, work, Dimensionality::k2D);
+      }, reps);
+      copyMs = bestMs([&] { work = source; }, reps);
+    }
+    resetAll();
+    ratios.push_back(std::max(0.0, ms - copyMs) / base);  // the stages, without the copy
+  }
+  return ratios;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+    if (std::strcmp(argv[i], "--cpu") == 0) gCpuClock = true;
+  }
+  const int reps = quick ? 2 : kRepetitions;
+  const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};
+  const std::string refPath = referenceGlPath();
+  const bool haveReference = !refPath.empty() && std::fopen(refPath.c_str(), "r") != nullptr;
+  std::printf("imaging_bench: ratios to memcpy of the same RGBA8 buffer in the same run, best of %d, "
+              "%s time\n", reps, gCpuClock ? "process CPU" : "wall");
+  std::printf("(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s)\n\n",
+              haveReference ? "" : ": NOT FOUND, column empty");
+  std::printf("| operation | size | stage (imaging/ transform) | emulated call | reference call | "
+              "emulated / reference |\n| --- | --- | --- | --- | --- | --- |\n");
+  const auto ops = operations();
+  for (const auto& sz : sizes) {
+    double base = 0, refBase = 0;
+    const auto emulated = measure(Backend::kOsmesa, sz[0], sz[1], reps, base);
+    const auto stages = measureStages(sz[0], sz[1], reps, base);
+    std::vector<double> reference(ops.size(), -1.0);
+    if (haveReference) reference = measure(Backend::kReference, sz[0], sz[1], reps, refBase);
+    for (size_t i = 0; i < ops.size(); ++i) {
+      char stage[32] = "-", ref[32] = "-", speed[32] = "-";
+      if (stages[i] >= 0) std::snprintf(stage, sizeof stage, "%.1fx", stages[i]);
+      if (reference[i] >= 0) {
+        std::snprintf(ref, sizeof ref, "%.0fx", reference[i]);
+        // Both ratios are to a memcpy measured in the same process run: the quotient is the
+        // reference's time over the emulation's (> 1: the emulation is faster).
+        std::snprintf(speed, sizeof speed, "%.2f (%.1fx faster)",
+                      (emulated[i] * base) / (reference[i] * refBase),
+                      (reference[i] * refBase) / (emulated[i] * base));
+      }
+      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s |\n", ops[i].name, sz[0], sz[1], stage,
+                  emulated[i], ref, speed);
+    }
+  }
+  return 0;
+}
+
+}  // namespace sl::imaging::bench
+
+int main(int argc, char** argv) { return sl::imaging::bench::run(argc, argv); }

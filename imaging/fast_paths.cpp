@@ -1,0 +1,277 @@
+// imaging/fast_paths.cpp — the pipeline on 8-bit RGBA spans without float images, for the
+// common case of the Brabec–Seidel passes: 8-bit source, 8-bit destination, only
+// per-component stages (scale/bias, GL_MAP_COLOR, the color tables) and the color matrix.
+//
+// Every per-component stage before the color matrix is a function of one input byte, so it
+// is evaluated once for the 256 possible values by the very same stage code (pixel_transfer,
+// color_table) and kept as a table. The color matrix then sums its non-zero coefficients
+// times those values, in the same order and with the same float operations as
+// applyColorMatrix, so the bytes written are identical to the general path's.
+#include <cstring>
+
+#include "imaging/internal.h"
+
+namespace sl::imaging::detail {
+namespace {
+
+// The final conversion of 4.3.2 / 2.13.9 to a byte.
+inline uint8_t toByte(float v) {
+  const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  return uint8_t(c * 255.0f + 0.5f);
+}
+
+}  // namespace
+
+bool bytePathApplies(const TransferState& t) {
+  return !(t.histogramEnabled || t.minmaxEnabled || t.convolution2DEnabled ||
+           t.separable2DEnabled);
+}
+
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h) {
+  if (!bytePathApplies(t)) return false;
+  // The per-component prefix on the 256 byte values, by the general stages themselves.
+  TransferState prefix = t;
+  prefix.colorMatrixStack = {Matrix4{}};
+  prefix.postColorMatrixScale = {1, 1, 1, 1};
+  prefix.postColorMatrixBias = {0, 0, 0, 0};
+  prefix.postColorMatrixTableEnabled = false;
+  Image4 values(256, 1);
+  for (int v = 0; v < 256; ++v)
+    for (int c = 0; c < 4; ++c) values.px[size_t(v) * 4 + c] = float(v) / 255.0f;
+  runPipeline(prefix, values, Dimensionality::k2D);
+  const Matrix4& m = t.colorMatrixStack.back();
+  if (m.isIdentity()) {
+    // Everything is per component: one byte table per component.
+    TransferState suffix;
+    suffix.postColorMatrixScale = t.postColorMatrixScale;
+    suffix.postColorMatrixBias = t.postColorMatrixBias;
+    suffix.tables[2] = t.tables[2];
+    suffix.postColorMatrixTableEnabled = t.postColorMatrixTableEnabled;
+    runPipeline(suffix, values, Dimensionality::k2D);
+    uint8_t lut[256 * 4];
+    for (int i = 0; i < 256 * 4; ++i) lut[i] = toByte(values.px[size_t(i)]);
+    parallelRows(h, size_t(w), [&](int y0, int y1) {
+      // A local copy of the table: byte stores through p cannot alias it, so the compiler
+      // keeps it in place instead of reloading after every store.
+      uint8_t table[256 * 4];
+      std::memcpy(table, lut, sizeof table);
+      uint8_t* p = bytes.data() + size_t(y0) * w * 4;
+      const size_t n = size_t(y1 - y0) * w * 4;
+      for (size_t i = 0; i < n; i += 4) {
+        const uint32_t v = uint32_t(table[p[i + 0] * 4 + 0]) |
+                           uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
+                           uint32_t(table[p[i + 2] * 4 + 2]) << 16 |
+                           uint32_t(table[p[i + 3] * 4 + 3]) << 24;
+        std::memcpy(p + i, &v, 4);  // RGBA bytes, little-endian
+      }
+    });
+    return true;
+  }
+  // Rows of diag(scale) * Mc as applyColorMatrix forms them; term[r][k][v] = k_rk * L_k(v).
+  float k[16];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) k[r * 4 + c] = m.m[c * 4 + r];
+  struct Term {
+    int component;
+    std::vector<float> product;  // 256 entries
+  };
+  std::array<std::vector<Term>, 4> rows;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) {
+      if (k[r * 4 + c] == 0.0f) continue;  // zero coefficients add nothing
+      Term term{c, std::vector<float>(256)};
+      for (int v = 0; v < 256; ++v) term.product[v] = k[r * 4 + c] * values.px[size_t(v) * 4 + c];
+      rows[r].push_back(std::move(term));
+    }
+  const Rgba scale = t.postColorMatrixScale, bias = t.postColorMatrixBias;
+  const bool scaled = scale != Rgba{1, 1, 1, 1};
+  const bool table = t.postColorMatrixTableEnabled && t.tables[2].width > 0;
+  // The post-color-matrix table as a float -> byte step: index -> final byte.
+  Image4 tableOut;
+  if (table) {
+    tableOut = Image4(t.tables[2].width, 1);
+    for (int i = 0; i < tableOut.width; ++i)
+      for (int c = 0; c < 4; ++c)
+        tableOut.px[size_t(i) * 4 + c] = t.tables[2].width > 1 ? float(i) / float(t.tables[2].width - 1) : 0.0f;
+    applyColorTable(t.tables[2], tableOut);
+  }
+  const float tableScale = table ? float(t.tables[2].width - 1) : 0.0f;
+  bool replaced[4] = {false, false, false, false};  // table 3.13
+  if (table) {
+    const FormatComponents f = componentsOf(t.tables[2].format);
+    replaced[0] = f.r || f.l || f.i;
+    replaced[1] = f.g || f.l || f.i;
+    replaced[2] = f.b || f.l || f.i;
+    replaced[3] = f.a || f.i;
+  }
+  // The conversion of a matrix output to its byte: post scale/bias, post-matrix table
+  // (replaced components only), final conversion.
+  auto finish = [&](int r, float sum) {
+    float v = scaled ? sum * scale[r] + bias[r] : sum + bias[r];
+    if (replaced[r]) {
+      const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      v = tableOut.px[size_t(int(c * tableScale + 0.5f)) * 4 + r];
+    }
+    return toByte(v);
+  };
+  // Flattened terms per output component; a row without terms is a constant byte.
+  struct Row {
+    int count = 0;
+    int component[4] = {0, 0, 0, 0};
+    const float* product[4] = {nullptr, nullptr, nullptr, nullptr};
+    uint8_t constant = 0;
+    bool plain = false;  // no post scale, bias or table: the byte is toByte(sum)
+  };
+  Row flat[4];
+  for (int r = 0; r < 4; ++r) {
+    flat[r].count = int(rows[r].size());
+    for (int i = 0; i < flat[r].count; ++i) {
+      flat[r].component[i] = rows[r][size_t(i)].component;
+      flat[r].product[i] = rows[r][size_t(i)].product.data();
+    }
+    flat[r].constant = finish(r, 0.0f);
+    flat[r].plain = !scaled && bias[r] == 0.0f && !replaced[r];
+  }
+  parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
+    uint8_t* p = bytes.data() + size_t(y0) * w * 4;
+    const size_t n = size_t(y1 - y0) * w;
+    Row local[4];  // locals: the byte stores below cannot alias them
+    for (int r = 0; r < 4; ++r) local[r] = flat[r];
+    for (size_t g = 0; g < n; ++g, p += 4) {
+      const uint8_t in[4] = {p[0], p[1], p[2], p[3]};
+      uint8_t result[4];
+      for (int r = 0; r < 4; ++r) {
+        const Row& row = local[r];
+        if (row.count == 0) {
+          result[r] = row.constant;
+          continue;
+        }
+        float sum = row.product[0][in[row.component[0]]];
+        for (int i = 1; i < row.count; ++i) sum = sum + row.product[i][in[row.component[i]]];
+        result[r] = row.plain ? toByte(sum) : finish(r, sum);
+      }
+      std::memcpy(p, result, 4);
+    }
+  });
+  return true;
+}
+
+}  // namespace sl::imaging::detail
+
+namespace sl::imaging::detail {
+
+// Convolution from 8-bit groups: stages 1-3 (per component) give float values per byte
+// value; the filter runs over strips of padded float rows built on the fly; stages 4-9 run on
+// each output row with the general stage code; the final conversion writes bytes. Same
+// floats, same order of operations as the general path (Image4 throughout), so the same
+// bytes, without whole-image float buffers.
+bool convolveBytesApplies(const TransferState& t) {
+  if (t.convolution2DEnabled) return t.conv2D.width > 0 && t.conv2D.height > 0;
+  if (t.separable2DEnabled) return t.separable2D.width > 0 && !t.separable2D.column.empty();
+  return false;
+}
+
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh) {
+  const bool separable = !t.convolution2DEnabled;
+  const ConvolutionFilter& f = separable ? t.separable2D : t.conv2D;
+  // Stages 1-3 on the 256 byte values.
+  TransferState prefix;
+  prefix.scale = t.scale;
+  prefix.bias = t.bias;
+  prefix.mapColor = t.mapColor;
+  prefix.colorMaps = t.colorMaps;
+  prefix.tables[0] = t.tables[0];
+  prefix.colorTableEnabled = t.colorTableEnabled;
+  Image4 values(256, 1);
+  for (int v = 0; v < 256; ++v)
+    for (int c = 0; c < 4; ++c) values.px[size_t(v) * 4 + c] = float(v) / 255.0f;
+  runPipeline(prefix, values, Dimensionality::k2D);
+  // Stages 5-7 (histogram and minmax are taken on the real state below).
+  TransferState suffix = t;
+  suffix.scale = {1, 1, 1, 1};
+  suffix.bias = {0, 0, 0, 0};
+  suffix.mapColor = false;
+  suffix.colorTableEnabled = false;
+  suffix.convolution2DEnabled = suffix.separable2DEnabled = suffix.convolution1DEnabled = false;
+  suffix.histogramEnabled = suffix.minmaxEnabled = false;
+  const bool postScaleBias = !(t.postConvolutionScale == Rgba{1, 1, 1, 1} &&
+                               t.postConvolutionBias == Rgba{0, 0, 0, 0});
+
+  int wf = 0, hf = 0;
+  const std::vector<Tap> taps = kernelTaps(f, separable, wf, hf);
+  const bool reduce = f.borderMode == GL_REDUCE;
+  ow = reduce ? ws - wf + 1 : ws;
+  oh = reduce ? hs - hf + 1 : hs;
+  if (ow <= 0 || oh <= 0) {
+    ow = oh = 0;
+    out.clear();
+    return true;
+  }
+  const int cw = reduce ? 0 : wf / 2, ch = reduce ? 0 : hf / 2;
+  const int pw = reduce ? ws : ws + wf - 1;  // padded row width
+  const bool replicate = f.borderMode == GL_REPLICATE_BORDER;
+  auto padRow = [&](int py, float* dst) {
+    const int sy = py - ch;
+    for (int x = 0; x < pw; ++x) {
+      const int sx = x - cw;
+      const bool inside = sx >= 0 && sx < ws && sy >= 0 && sy < hs;
+      if (inside || replicate) {
+        const uint8_t* p = src.data() + (size_t(std::clamp(sy, 0, hs - 1)) * ws +
+                                         size_t(std::clamp(sx, 0, ws - 1))) * 4;
+        for (int c = 0; c < 4; ++c) dst[x * 4 + c] = values.px[size_t(p[c]) * 4 + c];
+      } else {
+        for (int c = 0; c < 4; ++c) dst[x * 4 + c] = f.borderColor[c];
+      }
+    }
+  };
+  out.assign(size_t(ow) * oh * 4, 0);
+  const bool counting = t.histogramEnabled || t.minmaxEnabled;
+  bool kept = true;
+  constexpr int kStripRows = 16;
+  auto strip = [&](int j0, int j1) {
+    const int rows = j1 - j0 + hf - 1;
+    std::vector<float> padded(size_t(rows) * pw * 4);
+    for (int r = 0; r < rows; ++r) padRow(j0 + r, padded.data() + size_t(r) * pw * 4);
+    Image4 row(ow, 1);
+    for (int j = j0; j < j1; ++j) {
+      std::fill(row.px.begin(), row.px.end(), 0.0f);
+      accumulateTaps(taps, [&](int m) { return padded.data() + size_t(j - j0 + m) * pw * 4; },
+                     ow, row.px.data());
+      if (postScaleBias)
+        for (size_t i = 0; i < row.px.size(); ++i)
+          row.px[i] = row.px[i] * t.postConvolutionScale[i & 3] + t.postConvolutionBias[i & 3];
+      runPipeline(suffix, row, Dimensionality::k2D);
+      if (t.histogramEnabled) {
+        accumulateHistogram(t.histogram, row);
+        if (t.histogram.sink) {
+          kept = false;
+          continue;
+        }
+      }
+      if (t.minmaxEnabled) {
+        accumulateMinmax(t.minmax, row);
+        if (t.minmax.sink) {
+          kept = false;
+          continue;
+        }
+      }
+      uint8_t* const o = out.data() + size_t(j) * ow * 4;
+      const float* const v = row.px.data();
+      const size_t n = row.px.size();
+      for (size_t i = 0; i < n; ++i) o[i] = toByte(v[i]);
+    }
+  };
+  const int strips = (oh + kStripRows - 1) / kStripRows;
+  auto run = [&](int s0, int s1) {
+    for (int s = s0; s < s1; ++s) strip(s * kStripRows, std::min(oh, (s + 1) * kStripRows));
+  };
+  if (counting) {
+    run(0, strips);  // the tables are shared: one thread
+  } else {
+    parallelRows(strips, size_t(kStripRows) * ow * 4 * (taps.size() + 1), run);
+  }
+  return kept;
+}
+
+}  // namespace sl::imaging::detail
