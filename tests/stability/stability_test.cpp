@@ -349,8 +349,6 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
         "the smoothie width t is a light-space constant (Chan §4.2): on ground lit at 80 degrees "
         "its penumbra stretches 1/cos 80 = 5.8x, about 2.5x the 2-pixel band around the post's "
         "shadow outline (~2% of the pixels): at most 5%"}},
-      {{"map_2x2", "modern.csm"},
-       {-1, "BUG (csm): GlError 'layered shadow map framebuffer is incomplete' for a 2x2 map"}},
   };
   return kIssues;
 }
