@@ -8,10 +8,12 @@
 // Passes:
 //   1. renderDepthFromLight   — light view into a DEPTH_COMPONENT24 texture, polygon offset,
 //                               compare mode and GL_LINEAR (the 2x2 hardware PCF)
-//   2. filterInCameraPass     — camera view; gems_pcf.frag sums offset_lookup (§11.3/§11.4)
+//   2. filterInCameraPass     — camera view; the receiver moved towards the light by the bias,
+//                               gems_pcf.frag sums offset_lookup (§11.3/§11.4)
 #include "modern/gems_pcf.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/errors.h"
@@ -23,20 +25,46 @@ using namespace sl::gl;
 
 namespace {
 // The 4x4 region reaches 2 texels from the lookup point, where one reference depth is compared
-// with the depths of neighbouring texels (the chapter does not discuss bias). A slanted
-// receiver needs twice modern.hw's slope factor. A curved one needs a constant offset of the
-// order of the surface's sag over two texels, which grows with the texel's area: 40000 units
-// of the 24-bit depth buffer (2.4e-3 of the depth range) at 256^2 removed the acne on the
-// brabec spheres (looked at, gems4 dithers it into dots), scaled by (256 / size)^2 for other
-// sizes. Both are --param overridable.
+// with the depths of neighbouring texels (the chapter does not discuss bias).
+//
+// Slope: a slanted receiver needs twice modern.hw's polygon-offset slope factor. The factor
+// multiplies the window-space depth slope, so it is right for any depth mapping.
+//
+// Curvature and the texels' spread: a constant of the order of the receiver's depth change
+// across a texel footprint. DEVIATION (GPU Gems §11.3 gives no bias): we express it in light
+// space, as kDefaultBiasTexels texel footprints along the light ray, and apply it to the
+// receiver in the camera pass (the point moves towards the light by that distance before it is
+// projected; along the ray, so its map coordinates do not change). A footprint at distance r
+// from the light is r * 2 tan(cone / 2) / size, so the bias is the fraction
+// kDefaultBiasTexels * 2 tan(cone / 2) / size of r: it scales with the scene, the map and the
+// distance, and not with the light's depth range.
+//
+// Why not polygon-offset units: the former default, 40000 units at 256^2, is a constant in
+// window depth, and window depth resolves world depth as z^2 (f - n) / (n f). On brabec it was
+// about 0.9 footprints at the spheres, but with a small near plane (near/far 1e-3, or geometry
+// around the light, where the fitted near plane drops to far * 1e-4) it meant whole world
+// units: every receiver moved in front of its casters and 30% of the stability suite's pixels
+// came out lit in the umbra. Units keep modern.hw's 4, the depth buffer's own quantisation.
+//
+// Two footprints: with one, gems4 still dotted the small brabec sphere below its terminator at
+// 256^2 (looked at, 4x close-up); with two that close-up matches the former default within 3%
+// per pixel, and at 512^2 and 1024^2 fewer than 120 of 800x600 pixels differ from it, all on
+// shadow outlines (2 footprints at 1024^2 are 0.016 world units at brabec's objects).
+// All three are --params.
 constexpr float kDefaultOffsetFactor = 4.0f;
-constexpr float kOffsetUnitsAt256 = 40000.0f;
-constexpr float kOffsetUnitsReferenceSize = 256.0f;
-constexpr float kMinOffsetUnits = 4.0f;  // modern.hw's constant
+constexpr float kDefaultOffsetUnits = 4.0f;  // modern.hw's constant, 24-bit depth steps
+constexpr float kDefaultBiasTexels = 2.0f;   // texel footprints along the light ray
+constexpr float kMaxBiasTexels = 16.0f;
+// A map of a few texels has footprints as wide as the light's distance (1x1 at a 70 degree
+// cone: 1.4 of it); moving a receiver by more than this share of its distance would take it
+// past the light's near plane or behind the light. Such a map has no meaningful bias.
+constexpr float kMaxRelativeBias = 0.5f;
 
-float defaultOffsetUnits(int shadowMapTexels) {
-  const float ratio = kOffsetUnitsReferenceSize / float(shadowMapTexels);
-  return std::max(kOffsetUnitsAt256 * ratio * ratio, kMinOffsetUnits);
+// The bias as a fraction of the receiver's distance to the light (see above).
+float relativeBias(const Scene& scene, int shadowMapTexels, float biasTexels) {
+  const float halfCone = glm::radians(scene.light.coneDegrees) * 0.5f;
+  return std::min(biasTexels * 2.0f * std::tan(halfCone) / float(shadowMapTexels),
+                  kMaxRelativeBias);
 }
 
 // Pass 1 (§11.3, "NVIDIA GPUs have built-in percentage-closer filtering"): the depth map
@@ -73,7 +101,7 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
 
 // Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view.
 void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
-                        int samples, Frame& frame) {
+                        int samples, float relativeBias, Frame& frame) {
   PassTimer timer(frame, "2 camera pass, " + std::to_string(samples) + "-sample PCF");
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
@@ -85,6 +113,7 @@ void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const R
   program.set("uWorldToShadowMap", worldToShadowMap(scene));
   const float texel = 1.0f / float(map.width);
   program.set("uTexmapScale", glm::vec2(texel, texel));
+  program.set("uRelativeBias", relativeBias);
   setLightingUniforms(program, scene);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, map.depth.id());
@@ -99,12 +128,14 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   const std::string samples =
       params.text("samples", std::to_string(defaultSamples), {"1", "4", "16"});
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units =
-      float(params.number("offset-units", defaultOffsetUnits(params.shadowMapTexels), -1e7, 1e7));
+  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e7, 1e7));
+  const float biasTexels =
+      float(params.number("bias-texels", kDefaultBiasTexels, 0, kMaxBiasTexels));
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, frame);
-  filterInCameraPass(gpu, params, map, std::stoi(samples), frame);
+  filterInCameraPass(gpu, params, map, std::stoi(samples),
+                     relativeBias(scene, params.shadowMapTexels, biasTexels), frame);
   frame.counters["samples per pixel"] = std::stoi(samples);
   return frame;
 }
@@ -117,7 +148,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.summary = summary;
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"samples", "offset-factor", "offset-units"};
+  t.paramKeys = {"samples", "offset-factor", "offset-units", "bias-texels"};
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);
   };

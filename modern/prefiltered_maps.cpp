@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "core/errors.h"
 
@@ -70,11 +72,11 @@ LayeredMap makeLayeredMap(int size, int layers, GLenum format, bool mipmapped) {
   if (mipmapped)
     while ((size >> m.levels) > 0) ++m.levels;
   glBindTexture(GL_TEXTURE_2D_ARRAY, m.texture.id());
-  for (int level = 0; level < m.levels; ++level) {
-    const int side = std::max(size >> level, 1);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, level, GLint(format), side, side, layers, 0, GL_RGBA,
-                 GL_FLOAT, nullptr);
-  }
+  // Immutable storage, every level at once. Allocated level by level with glTexImage3D, a 2x2
+  // or 3x3 map with two or more layers (two mip levels) came back GL_FRAMEBUFFER_UNSUPPORTED
+  // from Mesa 22 llvmpipe when its layers were attached (stability case map_2x2, modern.csm);
+  // 1x1 and 4x4 and up were complete. With glTexStorage3D every size is.
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, m.levels, format, size, size, layers);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, m.levels - 1);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -105,8 +107,14 @@ void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int 
     }
   }
   glDrawBuffers(GLsizei(buffers.size()), buffers.data());
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw GlError("layered shadow map framebuffer is incomplete");
+  if (const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04X", unsigned(status));
+    throw GlError("layered shadow map framebuffer is incomplete (status " + std::string(code) +
+                  ", layers " + std::to_string(first) + ".." + std::to_string(first + count - 1) +
+                  " of " + std::to_string(map.layers) + ", " + std::to_string(map.size) + "^2)");
+  }
   glViewport(0, 0, map.size, map.size);
 }
 

@@ -11,6 +11,7 @@ in vec3 vWorldNormal;
 uniform sampler2DShadow uShadowMap;
 uniform mat4 uWorldToShadowMap;  // S * P_light * V_light (Everitt Eq. 5)
 uniform vec2 uTexmapScale;       // (1/width, 1/height) of the shadow map (§11.3)
+uniform float uRelativeBias;     // bias / distance to the light (gems_pcf.cpp)
 uniform bool uReceivesShadow;
 #include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
@@ -32,7 +33,10 @@ vec2 ditherOffset(vec2 windowPosition) {
 }
 
 float shadowTest(vec3 world) {
-  vec4 coord = uWorldToShadowMap * vec4(world, 1.0);
+  // DEVIATION (the chapter has no bias): the receiver moves towards the light along the light
+  // ray by uRelativeBias of its distance (gems_pcf.cpp says why); uLightPosition: lighting.glsl.
+  vec3 biased = mix(world, uLightPosition, uRelativeBias);
+  vec4 coord = uWorldToShadowMap * vec4(biased, 1.0);
   if (coord.w <= 0.0) return 0.0;  // behind the light (as modern.hw)
 #if SAMPLES == 16
   float sum = 0.0;

@@ -376,19 +376,6 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
         "the smoothie width t is a light-space constant (Chan §4.2): on ground lit at 80 degrees "
         "its penumbra stretches 1/cos 80 = 5.8x, about 2.5x the 2-pixel band around the post's "
         "shadow outline (~2% of the pixels): at most 5%"}},
-      {{"behind_and_around_light", "modern.gems16"},
-       {-1,
-        "BUG (gems): 30% of the pixels wrong with a torus around the light and a box behind "
-        "it (0.01% before main's shared worldToShadowMap change); modern.hw and modern.pcf "
-        "are right on the same scene"}},
-      {{"behind_and_around_light", "modern.gems4"}, {-1, "BUG (gems): as modern.gems16"}},
-      {{"near_far_1e-3", "modern.gems16"},
-       {-1,
-        "BUG (gems): 30% of the pixels wrong with the light's near/far given explicitly "
-        "(0.02% before main's shared worldToShadowMap change); modern.hw is right"}},
-      {{"near_far_1e-3", "modern.gems4"}, {-1, "BUG (gems): as modern.gems16"}},
-      {{"map_2x2", "modern.csm"},
-       {-1, "BUG (csm): GlError 'layered shadow map framebuffer is incomplete' for a 2x2 map"}},
   };
   return kIssues;
 }
