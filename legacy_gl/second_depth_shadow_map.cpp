@@ -5,8 +5,9 @@
 // unlit by definition, which hides their own acne. Valid for closed objects only.
 //
 // Passes:
-//   1. renderBackFacesFromLight — casters from the light with front faces culled; the depth
-//                                 buffer copied into the DEPTH_COMPONENT map (no offset)
+//   1. renderBackFacesFromLight — closed casters from the light with front faces culled, open
+//                                 casters with both faces and polygon offset (our fallback);
+//                                 the depth buffer copied into the DEPTH_COMPONENT map
 //   2-5. shadeWithShadowMap     — legacy.hw's camera passes (texgen planes, ambient, direct
 //                                 light x shadow test, visibility mask)
 #include "core/errors.h"
@@ -19,6 +20,21 @@ namespace sl::legacy {
 using namespace sl::gl;
 
 namespace {
+
+// DEVIATION (Wang & Molnar 1994; Everitt et al. 2001): the method needs closed casters. An open
+// caster (a quad, a ground plane, a mesh with holes) has no back face behind its front face, so
+// it would cast nothing. Our fallback draws open casters with both faces and legacy.hw's
+// slope-scaled polygon offset: they cast as in legacy.hw, closed casters keep the second depth.
+constexpr float kOpenCasterOffsetFactor = 2.0f;  // glPolygonOffset slope factor, as legacy.hw
+constexpr float kOpenCasterOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
+
+Scene castersOf(const Scene& scene, bool closed) {
+  Scene subset = scene;
+  std::erase_if(subset.objects, [&](const Object& o) {
+    return !o.castsShadow || o.mesh->closed != closed;
+  });
+  return subset;
+}
 
 // Pass 1 (Wang & Molnar via Everitt): the second depth of closed casters = their back faces.
 // Meshes wind counter-clockwise seen from outside (core/primitives.h), so culling GL_FRONT in
@@ -38,9 +54,13 @@ void renderBackFacesFromLight(const Scene& scene, const RenderParams& params, GL
   glCullFace(GL_FRONT);
   loadMatrix(GL_PROJECTION, lightProjection(scene));
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
-  drawScene(scene, Draw::kCasters);
+  drawScene(castersOf(scene, true), Draw::kCasters);
   glDisable(GL_CULL_FACE);
   glCullFace(GL_BACK);
+  glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
+  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  drawScene(castersOf(scene, false), Draw::kCasters);
+  glDisable(GL_POLYGON_OFFSET_FILL);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glBindTexture(GL_TEXTURE_2D, shadowMap);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
@@ -66,7 +86,7 @@ Technique secondDepthShadowMapTechnique() {
   Technique t;
   t.name = "legacy.second-depth";
   t.paper = "Wang & Molnar 1994 second-depth shadow map (Everitt, Rege & Cebenoyan 2001)";
-  t.summary = "only back faces in the shadow map, no polygon offset (closed casters)";
+  t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
   t.paramKeys = {"compare"};

@@ -3,7 +3,8 @@
 // map; no polygon offset; closed casters only. Twin of legacy_gl/second_depth_shadow_map.cpp.
 //
 // Passes:
-//   1. renderBackFacesFromLight — casters from the light with front faces culled
+//   1. renderBackFacesFromLight — closed casters from the light with front faces culled, open
+//                                 casters with both faces and polygon offset (fallback)
 //   2. shadeWithShadowMap       — modern.hw's camera pass on that map
 #include "core/errors.h"
 #include "modern/camera_pass.h"
@@ -14,6 +15,12 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
+
+// DEVIATION (Wang & Molnar 1994; Everitt et al. 2001), as legacy.second-depth: open casters have
+// no back face behind their front face, so they are drawn with both faces and modern.hw's
+// polygon offset; closed casters keep the second depth.
+constexpr float kOpenCasterOffsetFactor = 2.0f;  // glPolygonOffset slope factor, as modern.hw
+constexpr float kOpenCasterOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
 
 // Pass 1 (Wang & Molnar via Everitt): counter-clockwise meshes, GL_FRONT culled in the light's
 // view, so the depth buffer keeps the faces that point away from the light.
@@ -30,10 +37,14 @@ RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, F
   const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
+  auto setModel = [&](const Object& o) { program.set("uModel", o.model); };
+  gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; }, setModel);
   glDisable(GL_CULL_FACE);
   glCullFace(GL_BACK);
+  glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
+  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  gpu.draw([](const Object& o) { return o.castsShadow && !o.mesh->closed; }, setModel);
+  glDisable(GL_POLYGON_OFFSET_FILL);
   setDepthCompareParameters(map.depth.id(), linear);
   return map;
 }
@@ -53,7 +64,7 @@ Technique secondDepthShadowMapTechnique() {
   Technique t;
   t.name = "modern.second-depth";
   t.paper = "Wang & Molnar 1994 second-depth shadow map (Everitt et al. 2001), as GLSL";
-  t.summary = "only back faces in the shadow map (front faces culled), no polygon offset";
+  t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"compare"};

@@ -352,14 +352,6 @@ const char* const kConstantBias =
 const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   static const std::map<std::pair<std::string, std::string>, KnownIssue> kIssues = {
       {{"grazing80", "legacy.ramp"}, {1.0, kConstantBias}},
-      {{"open_caster", "legacy.second-depth"},
-       {-1,
-        "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
-        "(InputError) nor falls back"}},
-      {{"open_caster", "modern.second-depth"},
-       {-1,
-        "BUG (twins): an open caster has no back faces; second-depth neither refuses it "
-        "(InputError) nor falls back"}},
       {{"grazing80", "legacy.pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "legacy.fast-pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "modern.ramp"}, {1.0, kConstantBias}},
