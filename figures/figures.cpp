@@ -26,6 +26,7 @@
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "figures/bench.h"
+#include "figures/bench_report.h"
 #include "figures/diagnostics.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
@@ -548,6 +549,10 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
     results.push_back(std::move(fr));
   }
   ReportInfo info;
+  if (!only) {  // the whole set: the quick bench's table, plots and claims join the report
+    if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
+    info.benchHtml = runQuickBenchForReport(outDir, progress);
+  }
   info.renderer = rendererName();
   info.date = utcNow();
   info.totalSeconds =

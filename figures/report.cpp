@@ -294,6 +294,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
     }
     writeFigure(h, f);
   }
+  h << info.benchHtml;
   // Self-check for readers and for tests/figures/report_test.cpp: every image must have
   // loaded; a broken one is outlined in red, logged to the console and counted on <body>.
   h << "<script>\nwindow.addEventListener('load', function () {\n"

@@ -50,6 +50,7 @@ struct ReportInfo {
   std::string renderer;  // GL_RENDERER of the default back end
   std::string date;
   double totalSeconds = 0;
+  std::string benchHtml;  // the quick bench's section (figures/bench_report.cpp), if it ran
 };
 
 // Writes outDir/report.html (a gallery per paper; missing panels in red with the reason).
