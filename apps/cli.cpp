@@ -37,7 +37,7 @@ const std::map<std::string, std::set<std::string>> kValueOptions = {
     {"compare",
      {"scene", "a", "b", "size", "shadow-map", "filter", "precision", "param", "backend", "diff",
       "threshold"}},
-    {"bench", {"scene", "technique", "csv", "size", "backend", "repeat"}},
+    {"bench", {"scene", "technique", "csv", "size", "backend", "repeat", "out"}},
     {"plan", {"scene", "technique", "size", "shadow-map", "filter", "precision", "param"}},
     {"figures", {"out", "only"}},
 };

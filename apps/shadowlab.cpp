@@ -37,9 +37,15 @@ Exit status: 0 ok, 2 bad input (names, files, numbers), 3 GL failure.
 
 int list() {
   std::cout << "techniques:\n";
-  for (const Technique& t : allTechniques())
+  for (const Technique& t : allTechniques()) {
     std::cout << "  " << t.name << std::string(t.name.size() < 22 ? 22 - t.name.size() : 1, ' ')
               << t.paper << " — " << t.summary << " [" << t.status << "]\n";
+    if (!t.paramKeys.empty()) {
+      std::cout << std::string(24, ' ') << "--param keys:";
+      for (const std::string& k : t.paramKeys) std::cout << " " << k;
+      std::cout << "\n";
+    }
+  }
   std::cout << "scenes:\n";
   for (const std::string& s : builtinSceneNames()) std::cout << "  " << s << " (built in)\n";
   for (const std::string& s : sceneFileNames()) std::cout << "  " << s << " (assets/scenes)\n";

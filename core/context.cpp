@@ -31,6 +31,14 @@ constexpr int kAccumBits = 16;  // per channel; what Brabec–Seidel's accumulat
 
 thread_local GlContext* tCurrentContext = nullptr;
 
+#if defined(__SANITIZE_ADDRESS__)
+// AddressSanitizer refuses RTLD_DEEPBIND. The reference library was linked with -Bsymbolic
+// (its README), so its own calls stay inside it without DEEPBIND too.
+constexpr int kReferenceDlopenFlags = RTLD_NOW | RTLD_LOCAL;
+#else
+constexpr int kReferenceDlopenFlags = RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND;
+#endif
+
 struct Library {
   void* handle = nullptr;
   Library() = default;
@@ -196,7 +204,7 @@ void createReferenceOsmesa(GlContext::Impl& impl, const ContextSpec& spec) {
   if (spec.color != ColorFormat::kRgba8)
     throw GlError("the reference GL renders 8-bit RGBA colour buffers only");
   // Private load (its README): both libraries export the same symbols.
-  openOsmesa(impl, path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND);
+  openOsmesa(impl, path.c_str(), kReferenceDlopenFlags);
   if (impl.osmesa.createContextExt == nullptr) throw GlError(path + " has no OSMesaCreateContextExt");
   impl.osmesaContext = impl.osmesa.createContextExt(OSMESA_RGBA, kDepthBits, kStencilBits,
                                                     spec.accumulation ? kAccumBits : 0, nullptr);

@@ -1,6 +1,7 @@
 #include "core/image.h"
 
 #include <png.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +40,9 @@ void writePng(const std::string& path, const Image& image, int bitDepth) {
   if (colorType < 0 || image.width <= 0 || image.height <= 0)
     throw InputError("cannot write an empty or " + std::to_string(image.channels) +
                      "-channel image to " + path);
-  const std::string temp = path + ".part";
+  // A temporary name of this process alone: parallel writers of one path (ctest runs tests as
+  // parallel processes) each rename a complete file into place, never a half-written one.
+  const std::string temp = path + ".part-" + std::to_string(::getpid());
   File file(std::fopen(temp.c_str(), "wb"));
   if (!file) throw InputError("cannot write " + path + ": " + std::strerror(errno));
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);

@@ -101,7 +101,8 @@ Mesh makeCylinder(float radius, float height, int slices) {
   // side: separate vertices so the caps keep flat normals; closedness is judged on positions
   for (int i = 0; i < slices; ++i) {
     const float t0 = 2.0f * glm::pi<float>() * float(i) / slices;
-    const float t1 = 2.0f * glm::pi<float>() * float(i + 1) / slices;
+    // (i + 1) % slices: the last slice reuses angle 0 exactly, so the seam welds (closed mesh).
+    const float t1 = 2.0f * glm::pi<float>() * float((i + 1) % slices) / slices;
     const glm::vec3 n0(std::cos(t0), 0, -std::sin(t0)), n1(std::cos(t1), 0, -std::sin(t1));
     const unsigned base = unsigned(m.positions.size());
     m.positions.insert(m.positions.end(), {radius * n0 + glm::vec3(0, -h, 0),

@@ -41,6 +41,10 @@ Object object(std::string name, Mesh mesh, glm::mat4 model, glm::vec3 diffuse, b
 glm::mat4 at(glm::vec3 p) { return glm::translate(glm::mat4(1.0f), p); }
 
 constexpr glm::vec3 kGround{0.75f, 0.75f, 0.72f};
+// Fixed-function lighting is evaluated per vertex (glspec121 §2.13): ground planes are
+// tessellated so that the spotlight cone reads as a circle in the legacy images too.
+constexpr int kGroundDivisions = 48;
+constexpr int kBrabecGroundDivisions = 32;  // keeps the scene near its 7000 polygons
 
 // A square occluder parallel to a ground plane, a point-like spotlight straight above: the
 // geometric shadow is a square whose edges follow from similar triangles (tests use it).
@@ -48,7 +52,7 @@ Scene analyticScene() {
   Scene s;
   s.name = "analytic";
   s.description = "unit square occluder 1 unit above a plane, light 4 units above (exact shadow known)";
-  s.objects.push_back(object("ground", makePlane(6, 6), glm::mat4(1), kGround, false, true));
+  s.objects.push_back(object("ground", makePlane(6, 6, kGroundDivisions), glm::mat4(1), kGround, false, true));
   Mesh square = makeBox({1.0f, 0.02f, 1.0f});
   s.objects.push_back(object("occluder", square, at({0, 1.0f, 0}), {0.8f, 0.3f, 0.2f}, true, false));
   s.camera.position = {0, 6.5f, 3.2f};
@@ -69,7 +73,7 @@ Scene brabecScene() {
   Scene s;
   s.name = "brabec";
   s.description = "torus, spheres, boxes and a cylinder on a ground plane, ~7000 triangles (Brabec–Seidel §5)";
-  s.objects.push_back(object("ground", makePlane(12, 12, 8), glm::mat4(1), kGround, true, true));
+  s.objects.push_back(object("ground", makePlane(12, 12, kBrabecGroundDivisions), glm::mat4(1), kGround, true, true));
   s.objects.push_back(object("torus", makeTorus(0.8f, 0.25f, 48, 24),
                              glm::rotate(at({-1.3f, 1.1f, 0.2f}), glm::radians(60.0f), {1, 0, 0}),
                              {0.85f, 0.35f, 0.25f}));
@@ -99,7 +103,7 @@ Scene fenceScene() {
   Scene s;
   s.name = "fence";
   s.description = "a picket fence casting onto objects and ground (Annen et al. Fig. 9)";
-  s.objects.push_back(object("ground", makePlane(12, 12), glm::mat4(1), kGround, false, true));
+  s.objects.push_back(object("ground", makePlane(12, 12, kGroundDivisions), glm::mat4(1), kGround, false, true));
   s.objects.push_back(object("fence", makeFence(4.0f, 1.2f, 12), at({0, 0, 0.8f}),
                              {0.65f, 0.5f, 0.35f}));
   s.objects.push_back(object("box", makeBox({0.7f, 0.7f, 0.7f}), at({-0.8f, 0.35f, -0.6f}),
@@ -123,13 +127,15 @@ Scene treesScene() {
   Scene s;
   s.name = "trees";
   s.description = "procedural trees on a large ground plane (stand-in for the trees of Annen et al.)";
-  s.objects.push_back(object("ground", makePlane(30, 30, 4), glm::mat4(1), kGround, false, true));
+  s.objects.push_back(object("ground", makePlane(30, 30, kGroundDivisions), glm::mat4(1), kGround, false, true));
   const glm::vec3 spots[] = {{0, 0, 0}, {2.5f, 0, -1.5f}, {-2.2f, 0, -2.5f}, {-3, 0, 1.8f},
                              {3.2f, 0, 2.0f}, {0.5f, 0, -5}, {-5, 0, -5}, {5, 0, -6}};
-  int i = 0;
-  for (const glm::vec3& p : spots)
-    s.objects.push_back(object("tree " + std::to_string(i++), makeTree(2.5f + 0.3f * (i % 3)),
-                               at(p), {0.35f, 0.55f, 0.3f}));
+  constexpr float kTreeHeight = 2.5f;     // world units
+  constexpr float kHeightVariation = 0.3f;
+  for (size_t i = 0; i < std::size(spots); ++i)
+    s.objects.push_back(object("tree " + std::to_string(i),
+                               makeTree(kTreeHeight + kHeightVariation * float(i % 3)),
+                               at(spots[i]), {0.35f, 0.55f, 0.3f}));
   s.camera.position = {0, 5, 10};
   s.camera.target = {0, 0.5f, -1};
   s.camera.fovyDegrees = 50;

@@ -1,41 +1,580 @@
+// figures/figures.cpp — `shadowlab figures`: renders every entry of figure_list.cpp into one
+// folder and writes report.html.
+//
+// Steps per figure:
+//   1. resolvePanel      — the technique from the registry, the scene, the parameters; a panel
+//                          whose technique, parameter or buffer does not exist is kept and
+//                          reported as missing with the reason (never skipped silently)
+//   2. renderPanel       — the frame, the close-ups (crop + nearest magnification + red frame)
+//   3. measurePanel      — error of the visibility mask against the figure's reference
+//                          (reference.hard / reference.soft) when that exists
+//   4. renderTwin        — legacy.X beside modern.X with the difference heat map of the masks
+//   5. drawPlots         — gnuplot charts from computed data or the figure's own numbers
 #include "figures/figures.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
 
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
+#include "figures/bench.h"
+#include "figures/bench_report.h"
+#include "figures/diagnostics.h"
+#include "figures/plan.h"
+#include "figures/plots.h"
+#include "figures/report.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
 
-std::vector<FigureInfo> listFigures() { return {{"gallery", "every technique on the default scene"}}; }
+namespace {
+
+constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
+constexpr int kPlotHeight = 560;
+constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
+constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
+constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
+
+const Technique* lookup(const std::string& name) {
+  for (const Technique& t : allTechniques())
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+std::string slug(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)))
+      out += char(std::tolower(static_cast<unsigned char>(c)));
+    else if (!out.empty() && out.back() != '-')
+      out += '-';
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out.substr(0, 48);
+}
+
+// Everything a panel's render depends on, so that equal renders are made once.
+struct Setup {
+  std::string sceneName;
+  int width = 0, height = 0, texels = 0, filter = 2;
+  std::map<std::string, std::string> params;
+  std::optional<float> lightRadius;
+  float cameraDistance = 1;
+  std::string key() const {
+    std::ostringstream s;
+    s << sceneName << "|" << width << "x" << height << "|" << texels << "|" << filter << "|"
+      << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
+    for (const auto& [k, v] : params) s << "|" << k << "=" << v;
+    return s.str();
+  }
+};
+
+Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
+  Setup s;
+  s.sceneName = p.scene.empty() ? fig.scene : p.scene;
+  s.width = p.width ? p.width : fig.width;
+  s.height = p.height ? p.height : fig.height;
+  s.texels = p.shadowMapTexels ? p.shadowMapTexels : fig.shadowMapTexels;
+  s.filter = p.filter ? p.filter : RenderParams{}.filter;
+  s.params = p.params;
+  s.lightRadius = p.lightRadius;
+  s.cameraDistance = p.cameraDistance;
+  return s;
+}
+
+class Renderer {
+ public:
+  explicit Renderer(std::string outDir) : outDir_(std::move(outDir)) {}
+
+  const Scene& scene(const Setup& s) {
+    const std::string key = s.sceneName + "|" + std::to_string(s.lightRadius.value_or(-1)) + "|" +
+                            std::to_string(s.cameraDistance);
+    auto it = scenes_.find(key);
+    if (it != scenes_.end()) return it->second;
+    Scene scene = loadScene(s.sceneName);
+    if (s.lightRadius) scene.light.radius = *s.lightRadius;
+    if (s.cameraDistance != 1.0f) {  // move away along the view direction (minification)
+      scene.camera.position =
+          scene.camera.target + (scene.camera.position - scene.camera.target) * s.cameraDistance;
+      scene.camera.farPlane *= s.cameraDistance;
+    }
+    return scenes_.emplace(key, std::move(scene)).first->second;
+  }
+
+  RenderParams params(const Setup& s, bool capture) const {
+    RenderParams p;
+    p.width = s.width;
+    p.height = s.height;
+    p.shadowMapTexels = s.texels;
+    p.filter = s.filter;
+    p.extra = s.params;
+    p.capturePasses = capture;
+    return p;
+  }
+
+  // Renders (or reuses) a frame. Intermediates are only kept when asked for.
+  std::shared_ptr<const Frame> frame(const Technique& t, const Setup& s, bool capture) {
+    const std::string key = t.name + "|" + s.key() + (capture ? "|capture" : "");
+    auto it = frames_.find(key);
+    if (it != frames_.end()) return it->second;
+    auto f = std::make_shared<const Frame>(renderTechnique(t, scene(s), params(s, capture)));
+    if (!f->color.empty() && !allFinite(f->color)) throw GlError(t.name + " produced NaN or Inf");
+    if (!allFinite(f->visibility)) throw GlError(t.name + " produced a NaN or Inf visibility");
+    frames_[key] = f;
+    return f;
+  }
+
+  const DiagnosticViews& diagnostics(const Setup& s) {
+    const std::string key = s.key();
+    auto it = diagnostics_.find(key);
+    if (it != diagnostics_.end()) return it->second;
+    return diagnostics_
+        .emplace(key, renderDiagnostics(scene(s), s.width, s.height, s.texels, s.height))
+        .first->second;
+  }
+
+  // Frames are large (a 1024x768 frame is ~12 MB): keep them for one figure only.
+  void forgetFrames() { frames_.clear(); }
+
+  std::string write(const std::string& figureId, const std::string& name, const Image& image,
+                    int bitDepth = 8) {
+    const std::string rel = figureId + "/" + name + ".png";
+    writePng((fs::path(outDir_) / rel).string(), image, bitDepth);
+    return rel;
+  }
+  const std::string& outDir() const { return outDir_; }
+
+ private:
+  std::string outDir_;
+  std::map<std::string, Scene> scenes_;
+  std::map<std::string, std::shared_ptr<const Frame>> frames_;
+  std::map<std::string, DiagnosticViews> diagnostics_;
+};
+
+// Step 1: why a panel cannot be made now, or "" when it can.
+std::string missingReason(const PanelSpec& p) {
+  if (p.kind != PanelKind::kRender && p.kind != PanelKind::kIntermediates) return "";
+  const Technique* t = lookup(p.technique);
+  if (t == nullptr) return "technique " + p.technique + " is not available yet";
+  for (const auto& [key, value] : p.params)
+    if (std::find(t->paramKeys.begin(), t->paramKeys.end(), key) == t->paramKeys.end())
+      return p.technique + " has no parameter '" + key + "' (needed: " + key + "=" + value + ")";
+  return "";
+}
+
+std::vector<std::pair<Image, std::string>> splitIntermediate(const PassImage& pass) {
+  std::vector<std::pair<Image, std::string>> out;
+  const std::string caption = pass.caption.empty() ? pass.name : pass.caption;
+  if (pass.image.channels == 4) {
+    // Brabec–Seidel pack four values into R, G, B, A: show each channel on its own.
+    const char* names[] = {"R", "G", "B", "A"};
+    for (int c = 0; c < 4; ++c) out.push_back({channel(pass.image, c), caption + " — " + names[c]});
+  } else {
+    out.push_back({pass.image, caption});
+  }
+  return out;
+}
+
+Image closeupOf(const Image& image, const Closeup& c) {
+  const int x = std::clamp(int(c.x * image.width), 0, image.width - 1);
+  const int y = std::clamp(int(c.y * image.height), 0, image.height - 1);
+  const int w = std::clamp(int(c.w * image.width), 1, image.width - x);
+  const int h = std::clamp(int(c.h * image.height), 1, image.height - y);
+  return magnifyNearest(toRgb(crop(image, x, y, w, h)), c.magnify);
+}
+
+Image framed(const Image& image, const std::vector<Closeup>& closeups) {
+  Image rgb = toRgb(image);
+  for (const Closeup& c : closeups) {
+    const int x = std::clamp(int(c.x * rgb.width), 0, rgb.width - 1);
+    const int y = std::clamp(int(c.y * rgb.height), 0, rgb.height - 1);
+    drawFrame(rgb, x, y, std::clamp(int(c.w * rgb.width), 1, rgb.width - x),
+              std::clamp(int(c.h * rgb.height), 1, rgb.height - y), 2);
+  }
+  return rgb;
+}
+
+std::string twinName(const std::string& name) {
+  if (name.rfind("legacy.", 0) == 0) return "modern." + name.substr(7);
+  if (name.rfind("modern.", 0) == 0) return "legacy." + name.substr(7);
+  return "";
+}
+
+// Steps 2-4 for one panel.
+PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
+  PanelResult out;
+  out.spec = p;
+  const std::string base = (index < 10 ? "0" : "") + std::to_string(index) + "-" + slug(p.label);
+  const Setup setup = setupFor(fig, p);
+  if (std::string why = missingReason(p); !why.empty()) {
+    out.reason = why;
+    return out;
+  }
+  auto addImage = [&](const Image& image, const std::string& caption, bool withCloseups) {
+    const bool close = withCloseups && p.closeups && !fig.closeups.empty();
+    out.images.push_back(
+        {r.write(fig.id, base, close ? framed(image, fig.closeups) : image), caption});
+    if (!close) return;
+    for (size_t i = 0; i < fig.closeups.size(); ++i)
+      out.closeups.push_back(
+          {r.write(fig.id, base + "-closeup" + std::to_string(i),
+                   closeupOf(image, fig.closeups[i])),
+           p.label + " magnified " + std::to_string(fig.closeups[i].magnify) + "x"});
+  };
+  try {
+    switch (p.kind) {
+      case PanelKind::kRender: {
+        const Technique& t = *lookup(p.technique);
+        auto f = r.frame(t, setup, false);
+        out.milliseconds = f->totalMilliseconds();
+        out.passes = f->passes;
+        out.counters = f->counters;
+        if (!fig.table) addImage(p.mask ? f->visibility : f->color, p.label, true);
+        // Step 3: error against the reference.
+        if (fig.reference.empty()) {
+          out.errorNote = "not measured in this figure";
+        } else if (const Technique* ref = lookup(fig.reference); ref == nullptr) {
+          out.errorNote = fig.reference + " not available yet";
+        } else if (ref->name != t.name) {
+          Setup refSetup = setup;
+          refSetup.params.clear();
+          auto rf = r.frame(*ref, refSetup, false);
+          out.error = compareMasks(f->visibility, rf->visibility, 0.5);
+        }
+        // Step 4: the legacy/modern twin.
+        const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t.name)) : nullptr;
+        if (twin != nullptr) {
+          PanelSpec tp = p;
+          tp.technique = twin->name;
+          if (missingReason(tp).empty()) {
+            auto tf = r.frame(*twin, setup, false);
+            TwinResult tr;
+            tr.technique = twin->name;
+            tr.milliseconds = tf->totalMilliseconds();
+            tr.file = r.write(fig.id, base + "-twin", tf->color);
+            tr.diffFile = r.write(fig.id, base + "-twin-diff",
+                                  differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale));
+            tr.difference = compareMasks(f->visibility, tf->visibility, 0.0);
+            out.twin = tr;
+          }
+        }
+        break;
+      }
+      case PanelKind::kIntermediates: {
+        const Technique& t = *lookup(p.technique);
+        auto f = r.frame(t, setup, true);
+        out.milliseconds = f->totalMilliseconds();
+        out.passes = f->passes;
+        out.counters = f->counters;
+        int n = 0;
+        for (const PassImage& pass : f->intermediates) {
+          if (!p.intermediate.empty() && pass.name.find(p.intermediate) == std::string::npos)
+            continue;
+          for (auto& [image, caption] : splitIntermediate(pass)) {
+            out.images.push_back(
+                {r.write(fig.id, base + "-" + std::to_string(n++), image), caption});
+          }
+        }
+        if (out.images.empty()) {
+          std::string names;
+          for (const PassImage& pass : f->intermediates)
+            names += (names.empty() ? "" : ", ") + pass.name;
+          out.reason = p.technique + " gives no intermediate buffer named '*" + p.intermediate +
+                       "*' (it gives: " + (names.empty() ? "none" : names) + ")";
+          return out;
+        }
+        break;
+      }
+      case PanelKind::kLightView:
+        addImage(r.diagnostics(setup).lightView, p.label, false);
+        break;
+      case PanelKind::kShadowMap:
+        addImage(r.diagnostics(setup).shadowMap, p.label, false);
+        break;
+      case PanelKind::kLightDistance:
+        addImage(r.diagnostics(setup).lightDistance, p.label, false);
+        break;
+      case PanelKind::kProjectedMap:
+        addImage(r.diagnostics(setup).projectedMap, p.label, false);
+        break;
+      case PanelKind::kTexelDensity:
+        addImage(r.diagnostics(setup).texelDensity, p.label, false);
+        break;
+      case PanelKind::kPlot:
+        return out;  // drawn in step 5, once the other panels have their numbers
+    }
+  } catch (const std::exception& e) {
+    out.images.clear();
+    out.closeups.clear();
+    out.reason = std::string("failed: ") + e.what();
+    return out;
+  }
+  out.ok = true;
+  return out;
+}
+
+// The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels,
+// then the close-ups; a missing panel is a dark red block of the panel's size.
+Image stackRows(const std::vector<Image>& rows, int gap) {
+  int w = 0, h = 0;
+  for (const Image& r : rows) {
+    w = std::max(w, r.width);
+    h += r.height + (h > 0 ? gap : 0);
+  }
+  Image out(std::max(w, 1), std::max(h, 1), 3, 1.0f);
+  int y0 = h;
+  for (const Image& r : rows) {
+    y0 -= r.height;
+    for (int j = 0; j < r.height; ++j)
+      for (int i = 0; i < r.width; ++i)
+        for (int c = 0; c < 3; ++c) out.at(i, y0 + j, c) = r.at(i, j, c);
+    y0 -= gap;
+  }
+  return out;
+}
+
+Image shrinkToWidth(const Image& image, int maxWidth) {
+  const int factor = (image.width + maxWidth - 1) / maxWidth;
+  if (factor <= 1) return image;
+  Image out(image.width / factor, image.height / factor, image.channels);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < image.channels; ++c) {
+        float sum = 0;
+        for (int j = 0; j < factor; ++j)
+          for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j, c);
+        out.at(x, y, c) = sum / float(factor * factor);
+      }
+  return out;
+}
+
+void writeComposite(Renderer& r, FigureResult& fig) {
+  const FigureSpec& s = fig.spec;
+  if (s.table) return;
+  std::vector<Image> panels, closeups;
+  for (const PanelResult& p : fig.panels) {
+    if (p.spec.kind == PanelKind::kPlot || p.spec.kind == PanelKind::kIntermediates) continue;
+    if (p.ok && !p.images.empty()) {
+      panels.push_back(readPng((fs::path(r.outDir()) / p.images.front().file).string()));
+      for (const ImageFile& c : p.closeups)
+        closeups.push_back(readPng((fs::path(r.outDir()) / c.file).string()));
+    } else {
+      Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height,
+                    3);
+      for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
+      panels.push_back(missing);
+    }
+  }
+  if (panels.empty()) return;
+  constexpr int kGap = 6;
+  std::vector<Image> rows;
+  for (size_t i = 0; i < panels.size(); i += size_t(s.columns))
+    rows.push_back(sideBySide(
+        std::vector<Image>(panels.begin() + long(i),
+                           panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
+        kGap));
+  for (size_t i = 0; i < closeups.size(); i += size_t(s.columns))
+    rows.push_back(
+        sideBySide(std::vector<Image>(
+                       closeups.begin() + long(i),
+                       closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
+                   kGap));
+  fig.composite = r.write(s.id, "figure", shrinkToWidth(stackRows(rows, kGap), kCompositeMaxWidth));
+}
+
+// Step 5: charts.
+void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
+  std::string why;
+  if (!gnuplotAvailable(&why)) {
+    plot.reason = why;
+    return;
+  }
+  const std::string rel = fig.spec.id + "/" + slug(plot.spec.plot) + ".png";
+  const std::string png = (fs::path(r.outDir()) / rel).string();
+  const std::string& chart = plot.spec.plot;
+  std::vector<const PanelResult*> rendered;
+  for (const PanelResult& p : fig.panels)
+    if (p.ok && p.spec.kind == PanelKind::kRender) rendered.push_back(&p);
+  try {
+    if (chart == "csm-reconstruction") {
+      plotLines(csmFigure3Charts(), 2, png, kPlotWidth, kPlotWidth * 3 / 4);
+    } else if (chart == "error-vs-time") {
+      std::vector<std::pair<std::pair<double, double>, std::string>> points;
+      for (const PanelResult* p : rendered)
+        if (p->error) points.push_back({{p->milliseconds, p->error->rmse}, p->spec.technique});
+      if (points.empty()) {
+        plot.reason = "no technique could be measured against " + fig.spec.reference +
+                      " (it or the techniques are not available yet)";
+        return;
+      }
+      plotLabelledPoints("visibility RMSE against " + fig.spec.reference + " vs frame time",
+                         "frame time (ms, log scale)", "RMSE of the visibility mask", points, true,
+                         png, kPlotWidth, kPlotHeight);
+    } else if (chart == "chan-3-10") {
+      // Shares of the image: shadow-volume coverage (volumes) and silhouette pixels (hybrid),
+      // from the counter each panel names.
+      std::vector<std::string> rows;
+      std::vector<std::vector<double>> values;
+      for (const PanelResult* p : rendered) {
+        const auto it = p->counters.find(p->spec.counter);
+        if (p->spec.counter.empty() || it == p->counters.end()) continue;
+        rows.push_back(p->spec.label);
+        values.push_back({100.0 * it->second});  // the counters are fractions of the image
+      }
+      if (rows.empty()) {
+        plot.reason =
+            "no panel reported its counter (modern.hybrid: silhouette_fraction, "
+            "modern.volumes: volume_coverage)";
+        return;
+      }
+      plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows,
+                      {"shadow-volume coverage / silhouette pixels"}, values, png, kPlotWidth,
+                      kPlotHeight);
+    } else if (chart == "chan-3-11") {
+      std::vector<std::string> rows, columns;
+      for (const PanelResult* p : rendered)
+        for (const PassTime& pass : p->passes)
+          if (std::find(columns.begin(), columns.end(), pass.name) == columns.end())
+            columns.push_back(pass.name);
+      std::vector<std::vector<double>> values;
+      for (const PanelResult* p : rendered) {
+        rows.push_back(p->spec.label);
+        std::vector<double> v(columns.size(), 0.0);
+        for (const PassTime& pass : p->passes)
+          v[std::find(columns.begin(), columns.end(), pass.name) - columns.begin()] +=
+              pass.milliseconds;
+        values.push_back(v);
+      }
+      if (rows.empty()) {
+        plot.reason = "no technique of this figure is available yet";
+        return;
+      }
+      plotStackedBars("time per pass (Chan Fig. 3-11)", "ms per frame", rows, columns, values, png,
+                      kPlotWidth, kPlotHeight);
+    } else {
+      plot.reason = "unknown chart '" + chart + "'";
+      return;
+    }
+  } catch (const std::exception& e) {
+    plot.reason = std::string("failed: ") + e.what();
+    return;
+  }
+  plot.images.push_back({rel, plot.spec.label});
+  plot.ok = true;
+}
+
+std::string rendererName() {
+  try {
+    ContextSpec spec;
+    spec.width = spec.height = 16;
+    spec.accumulation = false;
+    auto ctx = GlContext::create(spec);
+    return ctx->caps().renderer + " (" + ctx->caps().version + ")";
+  } catch (const std::exception& e) {
+    return std::string("unknown: ") + e.what();
+  }
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof(buf), "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace
+
+std::vector<FigureInfo> listFigures() {
+  std::vector<FigureInfo> out;
+  for (const FigureSpec& f : figureList())
+    out.push_back({f.id, f.paper + ", " + f.paperFigure + ": " + f.title});
+  return out;
+}
 
 int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress) {
-  if (only && *only != "gallery") throw InputError("unknown figure '" + *only + "'");
+  std::vector<const FigureSpec*> selected;
+  for (const FigureSpec& f : figureList())
+    if (!only || f.id == *only) selected.push_back(&f);
+  if (selected.empty()) {
+    std::string known;
+    for (const FigureSpec& f : figureList()) known += (known.empty() ? "" : ", ") + f.id;
+    throw InputError("unknown figure '" + *only + "' (known: " + known + ")");
+  }
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
-  const Scene scene = loadScene(kDefaultScene);
-  std::ofstream html(fs::path(outDir) / "report.html");
-  html << "<!doctype html><meta charset=utf-8><title>shadowlab report</title><h1>shadowlab</h1>\n";
-  int i = 0;
-  const auto& all = allTechniques();
-  for (const Technique& t : all) {
-    if (progress) std::cerr << "[" << ++i << "/" << all.size() << "] " << t.name << "\n";
-    const Frame f = renderTechnique(t, scene, RenderParams{});
-    writePng((fs::path(outDir) / (t.name + ".png")).string(), f.color);
-    writePng((fs::path(outDir) / (t.name + "-mask.png")).string(), f.visibility, 16);
-    html << "<figure><img src=\"" << t.name << ".png\"><figcaption>" << t.name << " ("
-         << f.totalMilliseconds() << " ms)</figcaption></figure>\n";
+  for (const FigureSpec* f : selected) {
+    fs::create_directories(fs::path(outDir) / f->id, ec);
+    if (ec)
+      throw InputError("cannot create " + (fs::path(outDir) / f->id).string() + ": " +
+                       ec.message());
   }
-  std::cout << "wrote " << (fs::path(outDir) / "report.html").string() << "\n";
+
+  size_t total = 0, done = 0;
+  for (const FigureSpec* f : selected) total += f->panels.size();
+  const auto start = std::chrono::steady_clock::now();
+  Renderer renderer(outDir);
+  std::vector<FigureResult> results;
+  for (const FigureSpec* f : selected) {
+    const auto figureStart = std::chrono::steady_clock::now();
+    FigureResult fr;
+    fr.spec = *f;
+    for (size_t i = 0; i < f->panels.size(); ++i) {
+      if (progress)
+        std::cerr << "[" << ++done << "/" << total << "] " << f->id << " " << f->panels[i].label
+                  << std::endl;
+      fr.panels.push_back(makePanel(renderer, *f, f->panels[i], int(i)));
+      if (progress && !fr.panels.back().ok && f->panels[i].kind != PanelKind::kPlot)
+        std::cerr << "        missing: " << fr.panels.back().reason << std::endl;
+    }
+    for (PanelResult& p : fr.panels)
+      if (p.spec.kind == PanelKind::kPlot) drawPlot(renderer, fr, p);
+    try {
+      writeComposite(renderer, fr);
+    } catch (const std::exception& e) {
+      std::cerr << "        could not compose " << f->id << "/figure.png: " << e.what()
+                << std::endl;
+    }
+    renderer.forgetFrames();
+    fr.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
+    results.push_back(std::move(fr));
+  }
+  ReportInfo info;
+  if (!only) {  // the whole set: the quick bench's table, plots and claims join the report
+    if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
+    info.benchHtml = runQuickBenchForReport(outDir, progress);
+  }
+  info.renderer = rendererName();
+  info.date = utcNow();
+  info.totalSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writeReport(outDir, results, info);
+  int missing = 0, panels = 0;
+  for (const FigureResult& fr : results)
+    for (const PanelResult& p : fr.panels) {
+      ++panels;
+      missing += p.ok ? 0 : 1;
+    }
+  std::cout << "wrote " << (fs::path(outDir) / "report.html").string() << " (" << results.size()
+            << " figures, " << panels - missing << "/" << panels << " panels made, " << missing
+            << " listed as missing, " << std::lround(info.totalSeconds) << " s)" << std::endl;
   return 0;
 }
 
-int runBench(const cli::Args&) { throw InputError("bench is not implemented yet"); }
-int runPlan(const cli::Args&) { throw InputError("plan is not implemented yet"); }
+int runBench(const cli::Args& args) {
+  return runBenchCommand(args);
+}  // figures/bench.cpp
+int runPlan(const cli::Args& args) {
+  return runPlanCommand(args);
+}  // figures/plan.cpp
 
 }  // namespace sl::figures

@@ -21,7 +21,8 @@ void drawScene(const Scene& scene, Draw which, Colors colors) {
     if (which == Draw::kCasters && !o.castsShadow) continue;
     if (which == Draw::kReceivers && !o.receivesShadow) continue;
     if (which == Draw::kNonReceivers && o.receivesShadow) continue;
-    const glm::vec4 diffuse(colors == Colors::kWhite ? glm::vec3(1.0f) : o.diffuse, 1.0f);
+    glm::vec4 diffuse(colors == Colors::kWhite ? glm::vec3(1.0f) : o.diffuse, 1.0f);
+    if (colors == Colors::kBlack) diffuse = glm::vec4(0.0f);
     const glm::vec4 specular(glm::vec3(o.specular), 1.0f);
     glColor4fv(glm::value_ptr(diffuse));
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, glm::value_ptr(diffuse));
@@ -49,10 +50,12 @@ void enableSpotlight(const Scene& scene, LightTerms terms) {
   glEnable(GL_LIGHTING);
   glEnable(GL_LIGHT0);
   glEnable(GL_NORMALIZE);
-  const glm::vec4 noGlobalAmbient(0, 0, 0, 1);
-  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, glm::value_ptr(noGlobalAmbient));
+  // The ambient term goes through the global light-model ambient (glspec121 §2.13.1), not the
+  // light's own ambient, which GL would multiply by the spotlight cone: shadowed and unlit
+  // surfaces keep the same ambient everywhere, as in modern/camera_pass.cpp.
+  glLightModelfv(GL_LIGHT_MODEL_AMBIENT, glm::value_ptr(amb ? ambient : zero));
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, GL_TRUE);
-  glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(amb ? ambient : zero));
+  glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(zero));
   glLightfv(GL_LIGHT0, GL_DIFFUSE, glm::value_ptr(direct ? color : zero));
   glLightfv(GL_LIGHT0, GL_SPECULAR, glm::value_ptr(direct ? color : zero));
   const glm::vec4 position(l.position, 1.0f);
@@ -76,7 +79,8 @@ void setCameraMatrices(const Scene& scene, int width, int height) {
   loadMatrix(GL_MODELVIEW, cameraView(scene.camera));
 }
 
-LightTarget::LightTarget(int texels, bool windowFits, bool needColor) : texels_(texels) {
+LightTarget::LightTarget(int texels, bool windowFits, bool needColor, unsigned colorFormat)
+    : texels_(texels) {
   if (windowFits) return;
   glGenFramebuffers(1, &fbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -88,7 +92,8 @@ LightTarget::LightTarget(int texels, bool windowFits, bool needColor) : texels_(
   if (needColor) {
     glGenTextures(1, &color_);
     glBindTexture(GL_TEXTURE_2D, color_);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texels, texels, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GLint(colorFormat), texels, texels, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 nullptr);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
   } else {
     glDrawBuffer(GL_NONE);

@@ -4,13 +4,16 @@
 
 #include <glm/glm.hpp>
 
+#include "core/gl.h"
+
 #include "core/scene.h"
 #include "core/technique.h"
 
 namespace sl::legacy {
 
 enum class Draw { kAll, kCasters, kReceivers, kNonReceivers };
-enum class Colors { kMaterial, kWhite };
+// kBlack draws colour and alpha 0 (passes that encode values in colour, Brabec–Seidel §2).
+enum class Colors { kMaterial, kWhite, kBlack };
 
 // glMatrixMode(mode); glLoadMatrixf(m).
 void loadMatrix(unsigned mode, const glm::mat4& m);
@@ -37,7 +40,8 @@ void setCameraMatrices(const Scene& scene, int width, int height);
 // window; a map larger than our window would be clipped, so we render it off-screen.
 class LightTarget {
  public:
-  LightTarget(int texels, bool windowFits, bool needColor);
+  // colorFormat: the colour attachment's internal format (the precision of the light pass).
+  LightTarget(int texels, bool windowFits, bool needColor, unsigned colorFormat = GL_RGBA8);
   ~LightTarget();
   LightTarget(const LightTarget&) = delete;
   LightTarget& operator=(const LightTarget&) = delete;

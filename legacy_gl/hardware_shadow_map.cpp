@@ -3,7 +3,9 @@
 //
 // Passes:
 //   1. renderDepthFromLight      — the scene from the light, polygon offset, depth copied
-//                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset")
+//                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset");
+//                                  left out when the pass planner (core/plan.h) finds no caster
+//                                  in the light frustum (--param plan=off keeps it)
 //   2. loadEyeLinearTexgenPlanes — EYE_LINEAR planes E_po = S·P_light·L^-1 specified while the
 //                                  modelview holds the view matrix (Eq. 1-5, Appendix A)
 //   3. renderAmbientPass         — lighting with the ambient term only (Kilgard's note)
@@ -14,10 +16,13 @@
 //   5. renderVisibilityMask      — the comparison result alone, for the --mask output
 #include "legacy_gl/hardware_shadow_map.h"
 
+#include <string>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/errors.h"
+#include "core/plan.h"
 #include "core/gl.h"
 #include "legacy_gl/fixed_function.h"
 
@@ -34,16 +39,19 @@ constexpr float kBehindLightSharpness = 1.0e4f;
 
 struct HwState {
   TextureName shadowMap;
-  TextureName behindLightStep;
 };
 
 // Pass 1 (Everitt Fig. 2, "Polygon offset"): render the casters from the light with slope-scaled
 // polygon offset and copy the depth buffer into the depth texture (glCopyTexSubImage2D reads
 // the depth buffer for a DEPTH_COMPONENT texture, ARB_depth_texture).
 void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwState& s,
-                          float factor, float units, bool linearCompare, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light");
-  const int n = params.shadowMapTexels;
+                          float factor, float units, bool linearCompare, bool casterInFrustum,
+                          Frame& frame) {
+  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
+                                         : "1 depth from light left out (planner: no caster in frustum)");
+  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+  // depth (every comparison passes) replaces the pass.
+  const int n = casterInFrustum ? params.shadowMapTexels : 1;
   LightTarget target(n, n <= params.width && n <= params.height, false);
   target.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -54,7 +62,7 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
   glPolygonOffset(factor, units);
   loadMatrix(GL_PROJECTION, lightProjection(scene));
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
-  drawScene(scene, Draw::kCasters);
+  if (casterInFrustum) drawScene(scene, Draw::kCasters);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
@@ -62,17 +70,7 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
                GL_UNSIGNED_INT, nullptr);
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
-  const GLint filter = linearCompare ? GL_LINEAR : GL_NEAREST;
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-  // Outside the map: the border is the far plane, so nothing there is shadowed.
-  const float farDepth[4] = {1, 1, 1, 1};
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
+  setDepthCompareParameters(linearCompare);
   target.unbind();
 }
 
@@ -80,7 +78,8 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
 // Everitt's notation), the planes E_po = S·P_light·L^-1 are given in world space and GL maps
 // eye coordinates back through (modelview_po)^-1. Texture unit 0 gets (s,t,r,q) for the map;
 // unit 1 gets q alone, scaled, for the behind-the-light step texture.
-void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, HwState& s) {
+void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, GLuint shadowMap,
+                               const TextureName& behindLightStep) {
   setCameraMatrices(scene, params.width, params.height);  // modelview = V^-1 (Everitt)
   const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));  // rows as columns
   const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
@@ -94,7 +93,7 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, H
   }
   loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
   glMatrixMode(GL_MODELVIEW);
-  glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
+  glBindTexture(GL_TEXTURE_2D, shadowMap);
 
   // Unit 1: s = kBehindLightSharpness * q + 0.5 through a 2-texel step (0 behind, 1 in front).
   glActiveTexture(GL_TEXTURE1);
@@ -105,7 +104,7 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, H
   glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
   glTexGenfv(GL_S, GL_EYE_PLANE, glm::value_ptr(stepPlane));
   glEnable(GL_TEXTURE_GEN_S);
-  glBindTexture(GL_TEXTURE_1D, s.behindLightStep.id());
+  glBindTexture(GL_TEXTURE_1D, behindLightStep.id());
   const GLubyte step[2] = {0, 255};
   glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, step);
   glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -125,8 +124,8 @@ void enableShadowTexturing(bool on) {
 }
 
 // Pass 3 (Kilgard's note in Everitt): the ambient term, everywhere, unshadowed.
-void renderAmbientPass(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "3 ambient");
+void renderAmbientPass(const Scene& scene, const RenderParams& params, int pass, Frame& frame) {
+  PassTimer timer(frame, std::to_string(pass) + " ambient");
   setCameraMatrices(scene, params.width, params.height);
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -138,8 +137,9 @@ void renderAmbientPass(const Scene& scene, const RenderParams& params, Frame& fr
 
 // Pass 4 (Everitt "the shadowing result directly modulates the diffuse and specular"): direct
 // light times the comparison result, added on the ambient pass (depth func EQUAL).
-void addShadowedDirectLight(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "4 direct light x shadow test");
+void addShadowedDirectLight(const Scene& scene, const RenderParams& params, int pass,
+                            Frame& frame) {
+  PassTimer timer(frame, std::to_string(pass) + " direct light x shadow test");
   setCameraMatrices(scene, params.width, params.height);
   enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
   glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
@@ -157,8 +157,9 @@ void addShadowedDirectLight(const Scene& scene, const RenderParams& params, Fram
 }
 
 // Pass 5: the comparison result alone (white surfaces, lighting off) read back as the mask.
-Image renderVisibilityMask(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "5 visibility mask");
+Image renderVisibilityMask(const Scene& scene, const RenderParams& params, int pass,
+                           Frame& frame) {
+  PassTimer timer(frame, std::to_string(pass) + " visibility mask");
   setCameraMatrices(scene, params.width, params.height);
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -181,20 +182,47 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
   Frame frame;
   HwState state;
-  renderDepthFromLight(scene, params, state, factor, units, linear, frame);
-  {
-    PassTimer timer(frame, "2 eye-linear texgen planes");
-    loadEyeLinearTexgenPlanes(scene, params, state);
-  }
-  renderAmbientPass(scene, params, frame);
-  addShadowedDirectLight(scene, params, frame);
-  frame.color = readRgb(params.width, params.height);
-  frame.visibility = renderVisibilityMask(scene, params, frame);
+  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
+  renderDepthFromLight(scene, params, state, factor, units, linear, casterInFrustum, frame);
+  shadeWithShadowMap(scene, params, state.shadowMap.id(), 2, frame);
   checkGl("legacy.hw");
   return frame;
 }
 
 }  // namespace
+
+void setDepthCompareParameters(bool linearCompare) {
+  const GLint filter = linearCompare ? GL_LINEAR : GL_NEAREST;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  // Outside the map: the border is the far plane, so nothing there is shadowed.
+  const float farDepth[4] = {1, 1, 1, 1};
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
+}
+
+void shadeWithShadowMap(const Scene& scene, const RenderParams& params, unsigned shadowMap,
+                        int firstPass, Frame& frame) {
+  TextureName behindLightStep;
+  {
+    PassTimer timer(frame, std::to_string(firstPass) + " eye-linear texgen planes");
+    loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep);
+  }
+  renderAmbientPass(scene, params, firstPass + 1, frame);
+  addShadowedDirectLight(scene, params, firstPass + 2, frame);
+  frame.color = readRgb(params.width, params.height);
+  frame.visibility = renderVisibilityMask(scene, params, firstPass + 3, frame);
+  // Leave texturing state as we found it for the caller.
+  glActiveTexture(GL_TEXTURE1);
+  glDisable(GL_TEXTURE_GEN_S);
+  glActiveTexture(GL_TEXTURE0);
+  for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
+    glDisable(e);
+}
 
 glm::mat4 worldToShadowMapTexture(const Scene& scene) {
   // S: [-1,1] clip coordinates to [0,1] texture coordinates (Everitt Eq. 2).
@@ -210,7 +238,7 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "depth texture with hardware comparison, EYE_LINEAR texgen, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
-  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
   t.render = render;
   return t;
 }

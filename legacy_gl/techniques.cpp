@@ -1,10 +1,22 @@
+#include "legacy_gl/brabec_seidel.h"
+#include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/hardware_shadow_map.h"
 #include "legacy_gl/legacy.h"
 
 namespace sl::legacy {
 
+// One line per technique, grouped by paper (the order `shadowlab list` prints).
 std::vector<Technique> techniques() {
-  return {hardwareShadowMapTechnique()};
+  return {
+      // Everitt, Rege & Cebenoyan 2001 and the depth-layer variants
+      hardwareShadowMapTechnique(),
+      wooShadowMapTechnique(),
+      secondDepthShadowMapTechnique(),
+      // Brabec & Seidel 2001
+      rampShadowMapTechnique(),
+      pcfTechnique(),
+      fastPcfTechnique(),
+  };
 }
 
 }  // namespace sl::legacy

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
@@ -54,12 +53,23 @@ Image readAttachment(const RenderTarget& target, int attachment) {
   return image;
 }
 
+namespace {
+// Reads `channels` (GL_RGB or GL_RED) of one colour attachment straight into an image, as the
+// legacy techniques read their window (no RGBA copy to convert afterwards).
+Image readChannels(const RenderTarget& target, int attachment, GLenum format, int channels) {
+  Image image(target.width, target.height, channels);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo.id());
+  glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + attachment));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, target.width, target.height, format, GL_FLOAT, image.data.data());
+  checkGl("read camera target");
+  return image;
+}
+}  // namespace
+
 void readCameraTarget(const RenderTarget& target, Frame& frame) {
-  const Image color = readAttachment(target, 0);
-  frame.color = Image(target.width, target.height, 3);
-  for (size_t p = 0; p < size_t(target.width) * target.height; ++p)
-    for (int c = 0; c < 3; ++c) frame.color.data[p * 3 + c] = color.data[p * 4 + c];
-  frame.visibility = channel(readAttachment(target, 1), 0);
+  frame.color = readChannels(target, 0, GL_RGB, 3);
+  frame.visibility = readChannels(target, 1, GL_RED, 1);
 }
 
 glm::mat4 cameraViewProjection(const Scene& scene, const RenderParams& params) {

@@ -2,17 +2,12 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/context.h"
 #include "core/errors.h"
+#include "core/shaders.h"
 
 namespace sl::modern {
 using namespace sl::gl;
-
-const std::string& shaderSource(const std::string& name) {
-  const auto& all = embeddedShaders();
-  auto it = all.find(name);
-  if (it == all.end()) throw GlError("no shader modern/shaders/" + name + " in this build");
-  return it->second;
-}
 
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
@@ -33,52 +28,43 @@ Framebuffer makeFramebuffer() {
   return Framebuffer(id);
 }
 
-namespace {
-GLuint compile(GLenum type, const std::string& file,
-               const std::vector<std::pair<std::string, std::string>>& defines) {
-  std::string source = shaderSource(file);
-  if (!defines.empty()) {
-    // Defines go right after the #version line (which must stay first).
-    size_t eol = source.find('\n', source.find("#version"));
-    std::string block;
-    for (const auto& [k, v] : defines) block += "#define " + k + " " + v + "\n";
-    source.insert(eol == std::string::npos ? source.size() : eol + 1, block);
-  }
-  GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {0};
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    glDeleteShader(shader);
-    throw GlError("compiling modern/shaders/" + file + ": " + log);
-  }
-  return shader;
-}
-}  // namespace
-
 Program::Program(const std::string& vertexFile, const std::string& fragmentFile,
                  const std::vector<std::pair<std::string, std::string>>& defines,
-                 const std::string& geometryFile) {
-  program_ = GlName<deleteProgram>(glCreateProgram());
-  std::vector<GLuint> shaders = {compile(GL_VERTEX_SHADER, vertexFile, defines),
-                                 compile(GL_FRAGMENT_SHADER, fragmentFile, defines)};
-  if (!geometryFile.empty()) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometryFile, defines));
-  for (GLuint s : shaders) glAttachShader(program_.id(), s);
-  glBindAttribLocation(program_.id(), 0, "aPosition");
-  glBindAttribLocation(program_.id(), 1, "aNormal");
-  glLinkProgram(program_.id());
-  for (GLuint s : shaders) glDeleteShader(s);
-  GLint ok = 0;
-  glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {0};
-    glGetProgramInfoLog(program_.id(), sizeof(log), nullptr, log);
-    throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
+                 const std::string& geometryFile)
+    : program_(compileShaderProgram(vertexFile, fragmentFile, defines, geometryFile)) {}
+
+namespace {
+struct ProgramCache {
+  std::map<std::string, std::unique_ptr<Program>> programs;
+  ProgramCache() = default;
+  ProgramCache(const ProgramCache&) = delete;
+  ProgramCache& operator=(const ProgramCache&) = delete;
+  // Runs after the GL context is gone (GlContext::Impl destroys it first): nothing to delete.
+  ~ProgramCache() {
+    for (auto& entry : programs) entry.second->abandon();
   }
+};
+constexpr const char* kProgramCacheKey = "modern.programs";
+}  // namespace
+
+const Program& cachedProgram(const std::string& vertexFile, const std::string& fragmentFile,
+                             const std::vector<std::pair<std::string, std::string>>& defines) {
+  GlContext* context = GlContext::current();
+  if (context == nullptr) throw GlError("no current GL context for " + fragmentFile);
+  auto* cache = static_cast<ProgramCache*>(context->layerState(kProgramCacheKey));
+  if (cache == nullptr) {
+    auto fresh = std::make_shared<ProgramCache>();
+    cache = fresh.get();
+    context->setLayerState(kProgramCacheKey, fresh);
+  }
+  std::string key = vertexFile + "|" + fragmentFile;
+  for (const auto& [k, v] : defines) key += "|" + k + "=" + v;
+  auto it = cache->programs.find(key);
+  if (it == cache->programs.end())
+    it = cache->programs
+             .emplace(key, std::make_unique<Program>(vertexFile, fragmentFile, defines))
+             .first;
+  return *it->second;
 }
 
 void Program::use() const { glUseProgram(program_.id()); }

@@ -15,9 +15,7 @@
 
 namespace sl::modern {
 
-// The source of modern/shaders/<name> (embedded at build time).
-const std::string& shaderSource(const std::string& name);
-const std::map<std::string, std::string>& embeddedShaders();
+// Shader sources and their compiler: core/shaders.h (modern/shaders/*.glsl, embedded).
 
 // A move-only owner of one GL name; `Deleter` releases it.
 template <void (*Deleter)(GLuint)>
@@ -37,6 +35,8 @@ class GlName {
   GlName(const GlName&) = delete;
   GlName& operator=(const GlName&) = delete;
   GLuint id() const { return id_; }
+  // Gives the name up without deleting it (its context is about to delete it).
+  GLuint release() { return std::exchange(id_, 0); }
   void reset() {
     if (id_ != 0) Deleter(id_);
     id_ = 0;
@@ -78,10 +78,18 @@ class Program {
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat4& m) const;
   GLuint id() const { return program_.id(); }
+  // Leaves the GL program to its context (used when the context itself is being destroyed).
+  void abandon() { program_.release(); }
 
  private:
   GlName<deleteProgram> program_;
 };
+
+// The program for these files and defines, compiled and linked once per context and kept in the
+// context's layer state: a technique rendered many times in one context (benchmarks) compiles
+// its shaders in the first frame only. The context deletes the programs with itself.
+const Program& cachedProgram(const std::string& vertexFile, const std::string& fragmentFile,
+                             const std::vector<std::pair<std::string, std::string>>& defines = {});
 
 // The scene in GPU buffers: one VAO per object (attribute 0 = position, 1 = normal).
 struct GpuObject {

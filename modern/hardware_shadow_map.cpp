@@ -3,11 +3,14 @@
 // uniform matrix. Twin of legacy_gl/hardware_shadow_map.cpp.
 //
 // Passes:
-//   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset
-//   2. shadeWithShadowTest  — camera view; hw_shadow.frag does textureProj on sampler2DShadow
+//   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset;
+//                             left out when the pass planner (core/plan.h) finds no caster in
+//                             the light frustum (--param plan=off keeps it)
+//   2. shadeWithShadowMap   — camera view; hw_shadow.frag does textureProj on sampler2DShadow
 #include "modern/hardware_shadow_map.h"
 
 #include "core/errors.h"
+#include "core/plan.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern {
@@ -19,9 +22,12 @@ constexpr float kDefaultOffsetUnits = 4.0f;
 
 // Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
-                                  float units, bool linear, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light");
-  const int n = params.shadowMapTexels;
+                                  float units, bool linear, bool casterInFrustum, Frame& frame) {
+  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
+                                         : "1 depth from light left out (planner: no caster in frustum)");
+  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+  // depth (every comparison passes) replaces the pass.
+  const int n = casterInFrustum ? params.shadowMapTexels : 1;
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -29,13 +35,20 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(factor, units);
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
+  gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  setDepthCompareParameters(map.depth.id(), linear);
+  return map;
+}
+
+}  // namespace
+
+void setDepthCompareParameters(GLuint depthTexture, bool linear) {
+  glBindTexture(GL_TEXTURE_2D, depthTexture);
   const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
@@ -45,25 +58,30 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  return map;
 }
 
-// Pass 2 (Everitt Eq. 5): shading with the comparison result modulating direct light.
-void shadeWithShadowTest(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
-                         Frame& frame) {
-  PassTimer timer(frame, "2 camera pass with shadow test");
+glm::mat4 worldToShadowMap(const Scene& scene) {
+  // S: [-1,1] clip coordinates to [0,1] texture coordinates (Everitt Eq. 2).
+  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
+  return S * lightProjection(scene) * lightView(scene.light);
+}
+
+// Everitt Eq. 5: shading with the comparison result modulating direct light.
+void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint shadowMap,
+                        const std::string& passName, Frame& frame) {
+  PassTimer timer(frame, passName);
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, false);
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
-  Program program("scene.vert.glsl", "hw_shadow.frag.glsl");
+  glDepthFunc(GL_LESS);
+  const Program& program = cachedProgram("scene.vert.glsl", "hw_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
-  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
-  program.set("uWorldToShadowMap", S * lightProjection(scene) * lightView(scene.light));
+  program.set("uWorldToShadowMap", worldToShadowMap(scene));
   setLightingUniforms(program, scene);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  glBindTexture(GL_TEXTURE_2D, shadowMap);
   program.set("uShadowMap", 0);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
@@ -71,14 +89,17 @@ void shadeWithShadowTest(const GpuScene& gpu, const RenderParams& params, const 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+namespace {
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
   const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
   Frame frame;
   GpuScene gpu(scene);
-  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, frame);
-  shadeWithShadowTest(gpu, params, map, frame);
+  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, casterInFrustum, frame);
+  shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
   return frame;
 }
 }  // namespace
@@ -90,7 +111,7 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "sampler2DShadow with compare mode, hardware 2x2 filtering, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "compare"};
+  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
   t.render = render;
   return t;
 }

@@ -14,6 +14,7 @@ PACKAGES=(
   libembree-dev       # ray-traced reference visibility
   libgtest-dev googletest  # tests
   gnuplot-nox         # plots in the report
+  chromium            # tests/figures: report.html checked in headless Chromium (skips without)
 )
 
 missing=()

@@ -7,16 +7,9 @@ in vec3 vWorldNormal;
 uniform sampler2DShadow uShadowMap;
 uniform mat4 uWorldToShadowMap;   // S · P_light · L^-1 (Everitt Eq. 5)
 uniform bool uReceivesShadow;
-uniform vec3 uDiffuse;
-uniform float uSpecular;
-uniform vec3 uLightPosition;
-uniform vec3 uLightDirection;
-uniform float uSpotCosCutoff;
-uniform vec3 uLightColor;
-uniform float uAmbient;
-uniform vec3 uEyePosition;
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
+#include "lighting.glsl"
 
 // The shadow comparison: 1 = lit. Behind the light (q <= 0) is always shadowed (Everitt,
 // "negative projection").
@@ -26,19 +19,8 @@ float shadowTest(vec3 world) {
   return textureProj(uShadowMap, coord);
 }
 
-// OpenGL fixed-function lighting with one spotlight (glspec121 §2.13.1), split into the
-// ambient term and the direct (diffuse + specular) term that the shadow test modulates.
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;
-  vec3 n = normalize(vWorldNormal);
-  vec3 toLight = normalize(uLightPosition - vWorldPosition);
-  if (!gl_FrontFacing) n = -n;
-  float spot = dot(-toLight, normalize(uLightDirection)) >= uSpotCosCutoff ? 1.0 : 0.0;
-  float diffuse = max(dot(n, toLight), 0.0);
-  vec3 toEye = normalize(uEyePosition - vWorldPosition);
-  float specular = diffuse > 0.0 ? pow(max(dot(n, normalize(toLight + toEye)), 0.0), 32.0) : 0.0;
-  vec3 direct = spot * uLightColor * (uDiffuse * diffuse + vec3(uSpecular) * specular);
-  vec3 ambient = uAmbient * uLightColor * uDiffuse;
-  oColor = vec4(ambient + visibility * direct, 1.0);
+  oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
 }

@@ -1,0 +1,226 @@
+// apps/csm_bench.cpp — frame times of the filtered-shadow techniques and the grid of Annen et
+// al. 2007 Table 1 (shadow map 256..2048, M = 4 / 8 / 16, no blur / 3x3 / 7x7) printed beside
+// the paper's GeForce 8800 GTX frame rates. Built to build/bin/csm_bench.
+//
+//   csm_bench [--quick] [--size WxH] [--repeat N] [--scene S] [--backend osmesa|egl]
+//             [--part techniques|table1|all] [--csv FILE]
+//
+// Each configuration renders in one context: --warmup frames first (shader compilation, first
+// allocation), then --repeat frames; the median wall time of Technique::render (all passes,
+// including read-back of the colour and visibility images) is reported. --quick: 512x384,
+// 1 repeat, no warm-up (the whole grid in a few minutes on llvmpipe).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "apps/cli.h"
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "core/scene_library.h"
+
+namespace sl {
+namespace {
+
+constexpr int kPaperWidth = 1024;  // Table 1: "screen resolution is 1024x768"
+constexpr int kPaperHeight = 768;
+const std::vector<int> kMapSizes = {256, 512, 1024, 2048};
+const std::vector<int> kOrders = {4, 8, 16};
+const std::vector<int> kBlurs = {0, 3, 7};
+
+// Annen et al. 2007, Table 1 (fps, GeForce 8800 GTX, 365k faces, 1024x768), indexed
+// [blur][row][map size]; row 0 of "no blur" is PCF, then M = 4, 8, 16.
+const std::map<int, std::vector<std::vector<int>>> kPaperFps = {
+    {0, {{76, 74, 71, 69}, {64, 62, 60, 50}, {55, 53, 49, 38}, {47, 45, 39, 26}}},
+    {3, {{-1, -1, -1, -1}, {63, 61, 57, 43}, {53, 50, 44, 30}, {42, 39, 32, 19}}},
+    {7, {{-1, -1, -1, -1}, {62, 60, 53, 36}, {52, 49, 41, 24}, {41, 38, 28, 14}}},
+};
+
+struct Options {
+  int width = kPaperWidth;
+  int height = kPaperHeight;
+  int repeat = 2;
+  int warmup = 1;
+  std::string scene = "brabec";
+  Backend backend = Backend::kOsmesa;
+  std::string part = "all";
+  std::string csv;
+};
+
+struct Timing {
+  double medianMs = 0;
+  double minMs = 0;
+};
+
+Timing timeTechnique(const Technique& technique, const Scene& scene, const RenderParams& params,
+                     const Options& o) {
+  checkParams(technique, params, 0);
+  auto context = GlContext::create(contextFor(technique, params));
+  checkParams(technique, params, context->caps().maxTextureSize);
+  std::vector<double> times;
+  for (int i = 0; i < o.warmup + o.repeat; ++i) {
+    const double start = nowMilliseconds();
+    const Frame frame = technique.render(*context, scene, params);
+    const double elapsed = nowMilliseconds() - start;
+    if (i >= o.warmup) times.push_back(elapsed);
+  }
+  std::sort(times.begin(), times.end());
+  return {times[times.size() / 2], times.front()};
+}
+
+RenderParams paramsFor(const Options& o, int mapSize, std::map<std::string, std::string> extra) {
+  RenderParams p;
+  p.width = o.width;
+  p.height = o.height;
+  p.shadowMapTexels = mapSize;
+  p.backend = o.backend;
+  p.extra = std::move(extra);
+  return p;
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  auto value = [&](int& i) -> std::string {
+    if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--quick") {
+      o.width = 512;
+      o.height = 384;
+      o.repeat = 1;
+      o.warmup = 0;
+    } else if (a == "--size") {
+      cli::parseSize(value(i), o.width, o.height);
+    } else if (a == "--repeat") {
+      o.repeat = cli::parsePositiveInt("--repeat", value(i), 1000);
+    } else if (a == "--warmup") {
+      const std::string v = value(i);
+      o.warmup = v == "0" ? 0 : cli::parsePositiveInt("--warmup", v, 100);
+    } else if (a == "--scene") {
+      o.scene = value(i);
+    } else if (a == "--backend") {
+      const std::string b = value(i);
+      if (b == "osmesa")
+        o.backend = Backend::kOsmesa;
+      else if (b == "egl")
+        o.backend = Backend::kEgl;
+      else
+        throw InputError("--backend must be osmesa or egl, got '" + b + "'");
+    } else if (a == "--part") {
+      o.part = value(i);
+      if (o.part != "techniques" && o.part != "table1" && o.part != "all")
+        throw InputError("--part must be techniques, table1 or all, got '" + o.part + "'");
+    } else if (a == "--csv") {
+      o.csv = value(i);
+    } else {
+      throw InputError("unknown option '" + a + "' (see the header of apps/csm_bench.cpp)");
+    }
+  }
+  return o;
+}
+
+std::string fps(double ms) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f", 1000.0 / ms);
+  return b;
+}
+
+int run(int argc, char** argv) {
+  const Options o = parseOptions(argc, argv);
+  const Scene scene = builtinScene(o.scene);
+  std::ofstream csv;
+  if (!o.csv.empty()) {
+    cli::checkWritable(o.csv);
+    csv.open(o.csv);
+    csv << "part,technique,map,order,blur,width,height,median_ms,min_ms,fps\n";
+  }
+  auto record = [&](const std::string& part, const std::string& technique, int map, int order,
+                    int blur, const Timing& t) {
+    if (csv.is_open())
+      csv << part << "," << technique << "," << map << "," << order << "," << blur << "," << o.width
+          << "," << o.height << "," << t.medianMs << "," << t.minMs << "," << 1000.0 / t.medianMs
+          << "\n";
+  };
+  // The driver's one-time start-up (llvmpipe's LLVM initialisation) must not land in the
+  // first configuration's time: one throwaway frame first.
+  {
+    Options once = o;
+    once.warmup = 0;
+    once.repeat = 1;
+    timeTechnique(findTechnique("modern.hw"), scene, paramsFor(once, 256, {}), once);
+  }
+  std::printf("scene %s, %dx%d, %s, %d warm-up + %d timed frames (median)\n\n", o.scene.c_str(),
+              o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa", o.warmup, o.repeat);
+
+  if (o.part != "table1") {
+    std::printf("| technique | ms / frame | fps |\n| --- | ---: | ---: |\n");
+    for (const std::string name :
+         {"modern.hw", "modern.gems4", "modern.gems16", "modern.vsm", "modern.csm"}) {
+      const Timing t = timeTechnique(findTechnique(name), scene, paramsFor(o, 512, {}), o);
+      std::printf("| %s | %.1f | %s |\n", name.c_str(), t.medianMs, fps(t.medianMs).c_str());
+      std::fflush(stdout);
+      record("techniques", name, 512, 0, 0, t);
+    }
+    std::printf("\n(shadow map 512, each technique's default parameters)\n\n");
+  }
+
+  if (o.part != "techniques") {
+    const Technique& pcf = findTechnique("modern.hw");
+    const Technique& csm = findTechnique("modern.csm");
+    for (int blur : kBlurs) {
+      std::printf(
+          "| C = %s | S: 256^2 | 512^2 | 1024^2 | 2048^2 |\n| --- | --- | --- | --- | --- |\n",
+          blur == 0 ? "no" : (std::to_string(blur) + "x" + std::to_string(blur)).c_str());
+      const int firstRow = blur == 0 ? 0 : 1;
+      for (int row = firstRow; row <= int(kOrders.size()); ++row) {
+        const std::string label =
+            row == 0 ? "PCF" : "M = " + std::to_string(kOrders[size_t(row - 1)]);
+        std::printf("| %s |", label.c_str());
+        for (size_t s = 0; s < kMapSizes.size(); ++s) {
+          const int map = kMapSizes[s];
+          Timing t;
+          if (row == 0) {
+            t = timeTechnique(pcf, scene, paramsFor(o, map, {{"compare", "linear"}}), o);
+            record("table1", "modern.hw", map, 0, 0, t);
+          } else {
+            const int order = kOrders[size_t(row - 1)];
+            t = timeTechnique(csm, scene,
+                              paramsFor(o, map,
+                                        {{"order", std::to_string(order)},
+                                         {"blur", std::to_string(blur)},
+                                         {"filtering", "anisotropic"},
+                                         {"anisotropy", "16"}}),
+                              o);
+            record("table1", "modern.csm", map, order, blur, t);
+          }
+          std::printf(" %s fps (paper %d) |", fps(t.medianMs).c_str(),
+                      kPaperFps.at(blur)[size_t(row)][s]);
+          std::fflush(stdout);
+        }
+        std::printf("\n");
+      }
+      std::printf("\n");
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace sl
+
+int main(int argc, char** argv) {
+  try {
+    return sl::run(argc, argv);
+  } catch (const sl::InputError& e) {
+    std::cerr << "csm_bench: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "csm_bench: " << e.what() << "\n";
+    return 1;
+  }
+}

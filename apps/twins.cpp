@@ -1,0 +1,255 @@
+#include "apps/twins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "imaging/imaging.h"
+
+namespace sl::twins {
+namespace {
+
+bool registered(const std::string& name) {
+  for (const Technique& t : allTechniques())
+    if (t.name == name) return true;
+  return false;
+}
+
+// Why a pair of fixed-function and shader code is not bit-exact when it computes the same
+// thing: EYE_LINEAR texgen (planes · (modelview · vertex), per vertex, interpolated) and the
+// shader's matrix · world position round differently in the last float bit.
+const char* kTexgenRounding =
+    "texgen planes (fixed function, per vertex) and the shader's matrix round differently in "
+    "the last float bit: bilinear compare weights may then differ by one 8-bit step, and a depth "
+    "tie (acne where a surface shadows itself) may flip, which happens only where the legacy "
+    "mask itself changes, i.e. on the shadow-boundary band";
+
+std::vector<TwinPair> allPairs() {
+  std::vector<TwinPair> p;
+  auto add = [&](TwinPair t) { p.push_back(std::move(t)); };
+  add({"hw (linear compare)",
+       "legacy.hw",
+       "modern.hw",
+       1,
+       Precision::k8,
+       {},
+       {},
+       false,
+       kTexgenRounding});
+  add({"hw (nearest compare)",
+       "legacy.hw",
+       "modern.hw",
+       1,
+       Precision::k8,
+       {{"compare", "nearest"}},
+       {{"compare", "nearest"}},
+       false,
+       kTexgenRounding});
+  add({"woo",
+       "legacy.woo",
+       "modern.woo",
+       1,
+       Precision::k8,
+       {},
+       {},
+       false,
+       "same as hw; the midpoint depth is averaged on the host (legacy) and in a shader "
+       "(modern), which may round the 24-bit midpoint apart by one unit, a tie only"});
+  add({"second-depth",
+       "legacy.second-depth",
+       "modern.second-depth",
+       1,
+       Precision::k8,
+       {},
+       {},
+       false,
+       "same as hw; without polygon offset the back faces (seen from the light) compare against "
+       "their own depth, so their acne ties are many, all on the back faces' noisy boundary"});
+  const char* kFaithful =
+      "'faithful' arithmetic repeats the legacy quantisation step by step (ramp texel, 8/12-bit "
+      "channel, colour table, colour matrix, accumulation) and texgen.vert forms the texture "
+      "coordinates as the fixed-function vertex stage does, so the masks are identical but where "
+      "a coordinate ties with a texel or ramp-step boundary to float rounding";
+  const char* kFloat =
+      "'float' arithmetic drops the 2001 quantisation on the modern side and the legacy side "
+      "runs with float colour buffers: what remains is texgen rounding (see hw)";
+  add({"ramp faithful 8-bit",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::k8,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithful});
+  add({"ramp faithful 12-bit",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::k12,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithful});
+  add({"ramp float",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
+  for (int f : {2, 3, 4}) {
+    const std::string k = std::to_string(f) + "x" + std::to_string(f);
+    add({"pcf " + k + " faithful 8-bit",
+         "legacy.pcf",
+         "modern.pcf",
+         f,
+         Precision::k8,
+         {},
+         {{"arithmetic", "faithful"}},
+         true,
+         kFaithful});
+  }
+  add({"pcf 2x2 float",
+       "legacy.pcf",
+       "modern.pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
+  for (int f : {2, 4}) {
+    const std::string k = std::to_string(f) + "x" + std::to_string(f);
+    add({"fast-pcf " + k + " faithful 8-bit",
+         "legacy.fast-pcf",
+         "modern.fast-pcf",
+         f,
+         Precision::k8,
+         {},
+         {{"arithmetic", "faithful"}},
+         true,
+         kFaithful});
+  }
+  add({"fast-pcf 2x2 float",
+       "legacy.fast-pcf",
+       "modern.fast-pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "float"}},
+       false,
+       kFloat});
+  return p;
+}
+
+}  // namespace
+
+std::vector<TwinPair> twinPairs() {
+  std::vector<TwinPair> out;
+  for (TwinPair& p : allPairs())
+    if (registered(p.legacy) && registered(p.modern)) out.push_back(std::move(p));
+  return out;
+}
+
+std::vector<std::string> missingPairs() {
+  std::vector<std::string> out;
+  for (const TwinPair& p : allPairs())
+    if (!registered(p.legacy) || !registered(p.modern))
+      out.push_back(p.label + " (" + (registered(p.legacy) ? p.modern : p.legacy) +
+                    " not in this build)");
+  return out;
+}
+
+const std::vector<std::string>& equivalenceScenes() {
+  // analytic (exact answer known), the Brabec–Seidel scene, its dueling-frusta variant, and a
+  // loaded mesh that shadows itself (the Stanford bunny, assets/scenes/bunny.json).
+  static const std::vector<std::string> kScenes = {"analytic", "brabec", "dueling", "bunny"};
+  return kScenes;
+}
+
+Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& modernMask) {
+  Agreement a;
+  a.all = compareMasks(legacyMask, modernMask, 0.0);
+  const Image band = boundaryBand(legacyMask, kBandRadius);
+  // Masks come from 8-bit (or 16-bit) buffers read as float: a one-step difference may carry
+  // float noise of 1e-7, far below half a 16-bit step.
+  constexpr double kReadbackNoise = 1e-6;
+  for (int y = 0; y < legacyMask.height; ++y)
+    for (int x = 0; x < legacyMask.width; ++x) {
+      const double d = std::fabs(double(legacyMask.at(x, y)) - double(modernMask.at(x, y)));
+      const bool onBand = band.at(x, y) > 0.5f;
+      if (d > kIdentical) {
+        ++a.differing;
+        if (!onBand) ++a.differingOutsideBand;
+      }
+      if (d <= kOneStep + kReadbackNoise) continue;
+      ++a.beyondOneStep;
+      if (!onBand) ++a.beyondOutsideBand;
+    }
+  a.shareBeyondOneStep = a.all.pixels > 0 ? double(a.beyondOneStep) / double(a.all.pixels) : 0;
+  std::ostringstream v;
+  if (pair.faithful) {
+    const double share = a.all.pixels > 0 ? double(a.differing) / double(a.all.pixels) : 0.0;
+    a.withinBound = share <= kMaxFaithfulTieShare && a.differingOutsideBand == 0;
+    v << "bound: bit-exact but for ties (<= " << kMaxFaithfulTieShare * 100
+      << "% of pixels, all on the boundary band); measured " << a.differing << " differing pixels, "
+      << a.differingOutsideBand << " off the band, max " << a.all.maxAbs;
+  } else {
+    a.withinBound = a.shareBeyondOneStep <= kMaxShareBeyondOneStep && a.beyondOutsideBand == 0;
+    v << "bound: <= 1/255 on >= 99.9% of pixels, larger only on the boundary band (radius "
+      << kBandRadius << "); measured " << a.beyondOneStep << " pixels beyond 1/255 ("
+      << 100.0 * a.shareBeyondOneStep << "%), " << a.beyondOutsideBand
+      << " of them off the band, max " << a.all.maxAbs;
+  }
+  a.verdict = v.str();
+  return a;
+}
+
+RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int height,
+                       int shadowMapTexels, Backend backend) {
+  RenderParams p;
+  p.width = width;
+  p.height = height;
+  p.shadowMapTexels = shadowMapTexels;
+  p.filter = pair.filter;
+  p.precision = pair.precision;
+  p.backend = backend;
+  p.extra = legacySide ? pair.legacyExtra : pair.modernExtra;
+  return p;
+}
+
+std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams) {
+  const Technique& legacy = findTechnique(pair.legacy);
+  if (!legacy.needs.colorFromPrecision || pair.precision == Precision::k8) return "";
+  constexpr int kBits12 = 16;  // 12-bit values live in a 16-bit buffer
+  constexpr int kBitsFloat = 32;
+  const int needed = pair.precision == Precision::k12 ? kBits12 : kBitsFloat;
+  auto context = GlContext::create(contextFor(legacy, legacyParams));
+  const int bits = context->caps().redBits;
+  if (bits >= needed) return "";
+  return std::string(backendName(legacyParams.backend)) + " gives the legacy context " +
+         std::to_string(bits) + "-bit colour, not the " + std::to_string(needed) +
+         " bits that precision " + precisionName(pair.precision) + " needs";
+}
+
+FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
+                             const RenderParams& params, int frames) {
+  if (frames < 1) throw InputError("the number of timed frames must be at least 1");
+  checkParams(technique, params, 0);
+  auto context = GlContext::create(contextFor(technique, params));
+  checkParams(technique, params, context->caps().maxTextureSize);
+  if (technique.needs.profile == Profile::kCompatibility) imaging::install(*context);
+  technique.render(*context, scene, params);  // warm-up: shader compiles, first-use paths
+  std::vector<double> times;
+  for (int i = 0; i < frames; ++i)
+    times.push_back(technique.render(*context, scene, params).totalMilliseconds());
+  std::sort(times.begin(), times.end());
+  return {times[times.size() / 2], times.front()};
+}
+
+}  // namespace sl::twins

@@ -1,0 +1,168 @@
+// apps/twins_main.cpp — shadowlab-twins: the legacy/modern agreement table and the speed of
+// each pair, as markdown (docs/twins.md is this program's output).
+//
+//   shadowlab-twins [--size WxH] [--shadow-map N] [--backend osmesa|egl] [--scenes a,b,c]
+//                   [--bench-size WxH] [--bench-shadow-map N] [--bench-scene S] [--frames N]
+//                   [--no-agreement] [--no-bench]
+//
+// Agreement: every pair of apps/twins.h on every scene, at the equivalence tests' size by
+// default (320x240, 256^2 map), judged against the pair's bound. Speed: each technique's median
+// frame time (sum of its timed passes, shaders compiled in a warm-up frame) at the paper's
+// configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "apps/cli.h"
+#include "apps/registry.h"
+#include "apps/twins.h"
+#include "core/errors.h"
+#include "core/scene_library.h"
+
+namespace sl {
+namespace {
+
+struct Options {
+  int width = 320, height = 240, shadowMap = 256;  // as tests/modern/equivalence_test.cpp
+  int benchWidth = 800, benchHeight = 600, benchShadowMap = 512;  // Brabec–Seidel §5
+  std::string benchScene = "brabec";
+  int frames = 5;
+  Backend backend = Backend::kOsmesa;
+  std::vector<std::string> scenes = twins::equivalenceScenes();
+  bool agreement = true;
+  bool bench = true;
+};
+
+std::vector<std::string> splitCommas(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InputError(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--size")
+      cli::parseSize(value(), o.width, o.height);
+    else if (a == "--shadow-map")
+      o.shadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
+    else if (a == "--bench-size")
+      cli::parseSize(value(), o.benchWidth, o.benchHeight);
+    else if (a == "--bench-shadow-map")
+      o.benchShadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
+    else if (a == "--bench-scene")
+      o.benchScene = value();
+    else if (a == "--frames")
+      o.frames = cli::parsePositiveInt(a, value(), 1000);
+    else if (a == "--backend")
+      o.backend = parseBackend(value());
+    else if (a == "--scenes")
+      o.scenes = splitCommas(value());
+    else if (a == "--no-agreement")
+      o.agreement = false;
+    else if (a == "--no-bench")
+      o.bench = false;
+    else
+      throw InputError("unknown option " + a + " (see the head of apps/twins_main.cpp)");
+  }
+  return o;
+}
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+void agreementTable(const Options& o) {
+  std::cout << "### Agreement (" << backendName(o.backend) << ", " << o.width << "x" << o.height
+            << ", " << o.shadowMap << "^2 map)\n\n"
+            << "| pair | scene | bound | max difference | differing pixels | > 1/255 | "
+               "> 1/255 off band | within bound |\n"
+            << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  for (const twins::TwinPair& pair : twins::twinPairs())
+    for (const std::string& name : o.scenes) {
+      const Scene scene = loadScene(name);
+      const RenderParams pl =
+          twins::paramsFor(pair, true, o.width, o.height, o.shadowMap, o.backend);
+      const RenderParams pm =
+          twins::paramsFor(pair, false, o.width, o.height, o.shadowMap, o.backend);
+      std::cout << "| " << pair.label << " | " << name << " | "
+                << (pair.faithful ? "faithful (ties only)" : "1/255, band") << " | ";
+      try {
+        if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+          throw InputError(why);
+        const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
+        const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
+        const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
+        std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1) << "/255) | "
+                  << a.differing << " of " << a.all.pixels << " | " << a.beyondOneStep << " | "
+                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " |\n";
+      } catch (const std::exception& e) {
+        std::cout << "not run: " << e.what() << " | | | | |\n";
+      }
+    }
+  for (const std::string& m : twins::missingPairs()) std::cout << "\nnot in this build: " << m;
+  std::cout << "\n";
+}
+
+void benchTable(const Options& o) {
+  std::cout << "### Frame time (" << backendName(o.backend) << ", " << o.benchScene << ", "
+            << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap << "^2 map, "
+            << o.frames << " frames each)\n\n"
+            << "| pair | legacy ms (median / min) | modern ms (median / min) | legacy / modern "
+               "(medians) | legacy / modern (minima) |\n| --- | --- | --- | --- | --- |\n";
+  const Scene scene = loadScene(o.benchScene);
+  for (const twins::TwinPair& pair : twins::twinPairs()) {
+    std::cout << "| " << pair.label << " | ";
+    try {
+      const RenderParams pl =
+          twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend);
+      if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
+        throw InputError(why);
+      const twins::FrameTimes legacy =
+          twins::frameMilliseconds(findTechnique(pair.legacy), scene, pl, o.frames);
+      const twins::FrameTimes modern = twins::frameMilliseconds(
+          findTechnique(pair.modern), scene,
+          twins::paramsFor(pair, false, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
+          o.frames);
+      std::cout << fixed(legacy.median, 1) << " / " << fixed(legacy.minimum, 1) << " | "
+                << fixed(modern.median, 1) << " / " << fixed(modern.minimum, 1) << " | "
+                << fixed(legacy.median / modern.median, 2) << " | "
+                << fixed(legacy.minimum / modern.minimum, 2) << " |\n";
+    } catch (const std::exception& e) {
+      std::cout << "not run: " << e.what() << " | | |\n";
+    }
+    std::cout.flush();
+  }
+}
+
+int run(int argc, char** argv) {
+  const Options o = parse(argc, argv);
+  if (o.agreement) agreementTable(o);
+  if (o.agreement && o.bench) std::cout << "\n";
+  if (o.bench) benchTable(o);
+  return 0;
+}
+
+}  // namespace
+}  // namespace sl
+
+int main(int argc, char** argv) {
+  try {
+    return sl::run(argc, argv);
+  } catch (const sl::InputError& e) {
+    std::cerr << "shadowlab-twins: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "shadowlab-twins: " << e.what() << "\n";
+    return 3;
+  }
+}

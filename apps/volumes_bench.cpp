@@ -1,0 +1,104 @@
+// apps/volumes_bench.cpp — frame times of modern.hw, modern.hybrid, modern.volumes and
+// modern.smoothies (Chan 2004 Figures 3-10, 3-11, 4-8) with the overdraw counters; one JSON
+// object per technique per line. See docs/volumes.md.
+//
+//   volumes_bench [--scene S] [--size WxH] [--shadow-map N] [--frames N]
+//                 [--backend osmesa|egl] [--technique T ...]
+//   volumes_bench --doc-images DIR     the two images of docs/volumes.md
+//
+// S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
+#include "modern/volumes_bench.h"
+
+#include <cstdlib>
+#include <iostream>
+
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "core/image.h"
+#include "core/scene_library.h"
+
+namespace {
+using namespace sl;
+
+// docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
+// smoothies) and the cubes scene with its volume overdraw (Chan Fig. 3-9a) and the hybrid's
+// classification (Fig. 3-5b).
+void writeDocImages(const std::string& dir) {
+  constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
+                kCropH = 90, kMagnify = 3;
+  RenderParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  p.shadowMapTexels = 256;
+  std::vector<Image> crops;
+  for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"}) {
+    const Frame f = renderTechnique(findTechnique(t), builtinScene("brabec"), p);
+    crops.push_back(magnifyNearest(
+        crop(f.color, kCropX, kHeight - kCropTop - kCropH, kCropW, kCropH), kMagnify));
+  }
+  writePng(dir + "/volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png", sideBySide(crops));
+  p.shadowMapTexels = 1024;
+  p.capturePasses = true;
+  const Scene cubes = loadScene("cubes");
+  const Frame v = renderTechnique(findTechnique("modern.volumes"), cubes, p);
+  const Frame h = renderTechnique(findTechnique("modern.hybrid"), cubes, p);
+  std::vector<Image> panels = {v.color};
+  for (const PassImage& i : v.intermediates)
+    if (i.name == "3-volume-overdraw") panels.push_back(i.image);
+  for (const PassImage& i : h.intermediates)
+    if (i.name == "6-classification") panels.push_back(i.image);
+  writePng(dir + "/volumes-cubes-image-overdraw-classification.png", sideBySide(panels));
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace sl;
+  try {
+    std::string sceneName = "cubes";
+    RenderParams params;
+    params.width = 800;
+    params.height = 600;
+    params.shadowMapTexels = 1024;
+    int frames = 10;
+    std::vector<std::string> techniques;
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      const auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw InputError(arg + " needs a value");
+        return argv[++i];
+      };
+      if (arg == "--scene") {
+        sceneName = value();
+      } else if (arg == "--size") {
+        const std::string v = value();
+        if (std::sscanf(v.c_str(), "%dx%d", &params.width, &params.height) != 2)
+          throw InputError("--size wants WxH, got '" + v + "'");
+      } else if (arg == "--shadow-map") {
+        params.shadowMapTexels = std::atoi(value().c_str());
+      } else if (arg == "--frames") {
+        frames = std::atoi(value().c_str());
+      } else if (arg == "--backend") {
+        params.backend = parseBackend(value());
+      } else if (arg == "--doc-images") {
+        writeDocImages(value());
+        return 0;
+      } else if (arg == "--technique") {
+        techniques.push_back(value());
+      } else {
+        throw InputError("unknown option '" + arg + "'");
+      }
+    }
+    if (techniques.empty())
+      techniques = {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"};
+    const Scene scene = loadScene(sceneName);
+    for (const auto& row : modern::benchmarkShadowVolumes(scene, params, techniques, frames))
+      std::cout << modern::toJson(row).dump() << std::endl;
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "volumes_bench: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "volumes_bench: " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,93 @@
+#include "core/shaders.h"
+
+#include "core/errors.h"
+
+namespace sl {
+using namespace sl::gl;
+
+const std::string& shaderSource(const std::string& file) {
+  const auto& all = embeddedShaders();
+  auto it = all.find(file);
+  if (it == all.end()) throw GlError("no shader " + file + " in this build");
+  return it->second;
+}
+
+std::string preprocessShader(const std::string& file, const ShaderDefines& defines) {
+  const std::string& source = shaderSource(file);
+  constexpr size_t kIncludeLength = sizeof("#include \"") - 1;
+  std::string out;
+  size_t pos = 0;
+  while (pos < source.size()) {
+    size_t eol = source.find('\n', pos);
+    if (eol == std::string::npos) eol = source.size();
+    const std::string line = source.substr(pos, eol - pos);
+    if (line.rfind("#include \"", 0) == 0) {
+      const size_t close = line.find('"', kIncludeLength);
+      if (close == std::string::npos) throw GlError("bad #include in " + file);
+      out += shaderSource(line.substr(kIncludeLength, close - kIncludeLength));
+    } else {
+      out += line;
+    }
+    out += '\n';
+    pos = eol + 1;
+  }
+  if (!defines.empty()) {  // after the #version line, which must stay first
+    const size_t eol = out.find('\n', out.find("#version"));
+    std::string block;
+    for (const auto& [name, value] : defines) block += "#define " + name + " " + value + "\n";
+    out.insert(eol == std::string::npos ? out.size() : eol + 1, block);
+  }
+  return out;
+}
+
+namespace {
+GLuint compileStage(GLenum type, const std::string& file, const ShaderDefines& defines) {
+  const std::string source = preprocessShader(file, defines);
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    constexpr int kLogBytes = 4096;
+    char log[kLogBytes] = {0};
+    glGetShaderInfoLog(shader, kLogBytes, nullptr, log);
+    glDeleteShader(shader);
+    throw GlError("compiling " + file + ": " + log);
+  }
+  return shader;
+}
+}  // namespace
+
+GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fragmentFile,
+                            const ShaderDefines& defines, const std::string& geometryFile) {
+  std::vector<GLuint> stages;
+  try {
+    stages.push_back(compileStage(GL_VERTEX_SHADER, vertexFile, defines));
+    stages.push_back(compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines));
+    if (!geometryFile.empty())
+      stages.push_back(compileStage(GL_GEOMETRY_SHADER, geometryFile, defines));
+  } catch (...) {
+    for (GLuint s : stages) glDeleteShader(s);
+    throw;
+  }
+  const GLuint program = glCreateProgram();
+  for (GLuint s : stages) glAttachShader(program, s);
+  glBindAttribLocation(program, 0, "aPosition");
+  glBindAttribLocation(program, 1, "aNormal");
+  glLinkProgram(program);
+  for (GLuint s : stages) glDeleteShader(s);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    constexpr int kLogBytes = 4096;
+    char log[kLogBytes] = {0};
+    glGetProgramInfoLog(program, kLogBytes, nullptr, log);
+    glDeleteProgram(program);
+    throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
+  }
+  return program;
+}
+
+}  // namespace sl

@@ -1,0 +1,96 @@
+#include "figures/bench_report.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "core/errors.h"
+#include "figures/bench.h"
+
+namespace sl::figures {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string number(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+}  // namespace
+
+std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
+  BenchOptions options;
+  options.quick = true;
+  options.outDir = (fs::path(outDir) / "bench").string();
+  options.csvPath = (fs::path(options.outDir) / "bench.csv").string();
+  options.progress = progress;
+  fs::create_directories(options.outDir);
+  std::ofstream json(fs::path(options.outDir) / "bench.jsonl");
+  const BenchResult result = runBenchmark(options, json);
+  writeCsv(*options.csvPath, result.rows);
+  std::vector<std::string> plots;
+  try {
+    plots = writePlots(options.outDir, result);
+  } catch (const InputError& e) {
+    if (progress) std::cerr << "bench: " << e.what() << "\n";
+  }
+  const std::vector<ClaimCheck> claims = checkClaims(result);
+
+  std::ostringstream h;
+  h << "<h2 id=bench>Error against run time (<code>shadowlab bench --quick</code>)</h2>\n"
+    << "<p>Every technique's default variant on the benchmark scenes: the median frame time "
+       "of the timed frames and the error of its visibility mask against the ray-traced "
+       "reference it approximates (reference.soft for smoothies, reference.hard otherwise), "
+       "counted where the light can reach; <em>band</em> = within 2 pixels of a reference "
+       "shadow edge; <em>leak</em> = share of umbra pixels shown more than 20% lit. Every "
+       "variant is in <a href=\"bench/bench.csv\">bench/bench.csv</a>; regenerate with "
+       "<code>shadowlab bench --quick --csv bench.csv</code>.</p>\n";
+  for (const std::string& plot : plots)
+    h << "<figure><img src=\"bench/" << escape(fs::path(plot).filename().string())
+      << "\" alt=\"error against time\"><figcaption>RMSE against median frame time, log "
+         "axes; the Pareto front is the black staircase.</figcaption></figure>\n";
+  h << "<table><tr><th>scene</th><th>technique</th><th>frame ms</th><th>RMSE</th><th>max</th>"
+       "<th>&gt; 0.5</th><th>band RMSE</th><th>leak</th></tr>\n";
+  for (const BenchRow& r : result.rows) {
+    if (r.variant != "default") continue;
+    const ErrorSet& e = r.primary();
+    h << "<tr><td>" << escape(r.scene) << "</td><td><code>" << escape(r.technique)
+      << "</code></td>";
+    if (r.status != "ok") {
+      h << "<td colspan=6 class=bad>" << escape(r.status) << "</td></tr>\n";
+      continue;
+    }
+    h << "<td>" << number(r.frameMs, 1) << "</td><td>" << number(e.all.rmse, 4) << "</td><td>"
+      << number(e.all.maxAbs, 2) << "</td><td>" << number(e.all.shareAboveHalf, 4)
+      << "</td><td>" << number(e.band.rmse, 3) << "</td><td>" << number(e.leakShare, 4)
+      << "</td></tr>\n";
+  }
+  h << "</table>\n<h3>The papers' comparative claims, checked on these measurements</h3>\n"
+    << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
+       "<th>measured</th></tr>\n";
+  for (const ClaimCheck& c : claims)
+    h << "<tr><td>" << escape(c.claim) << "</td><td>" << escape(c.source) << "</td><td>"
+      << escape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
+      << escape(c.verdict) << "</td><td>" << escape(c.measured) << "</td></tr>\n";
+  h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this table. "
+       "The stability suite's summary per technique and case is in docs/bench.md "
+       "(<code>build/bin/test_stability</code> prints every value).</p>\n";
+  return h.str();
+}
+
+}  // namespace sl::figures

@@ -1,0 +1,718 @@
+// figures/figure_list.cpp — the reproduced figures and tables of the five papers, as data.
+//
+// Every figure of issue 7 is listed here, whether or not its techniques exist yet: the
+// report shows a panel whose technique (or parameter, or intermediate buffer) is missing in
+// red with the reason, so nothing is skipped silently. Sizes are the paper's where the size is
+// the point (Brabec–Seidel 800x600, Table 1 1024x768) and 512x384 elsewhere so that the whole
+// set renders in minutes on two cores.
+#include "figures/figure_spec.h"
+
+namespace sl::figures {
+namespace {
+
+using Params = std::map<std::string, std::string>;
+
+PanelSpec render(std::string label, std::string technique, Params params = {}) {
+  PanelSpec p;
+  p.label = std::move(label);
+  p.technique = std::move(technique);
+  p.params = std::move(params);
+  return p;
+}
+
+PanelSpec withMap(PanelSpec p, int texels) {
+  p.shadowMapTexels = texels;
+  return p;
+}
+
+PanelSpec withFilter(PanelSpec p, int filter) {
+  p.filter = filter;
+  return p;
+}
+
+PanelSpec withPaper(PanelSpec p, std::string numbers) {
+  p.paperNumbers = std::move(numbers);
+  return p;
+}
+
+PanelSpec view(std::string label, PanelKind kind) {
+  PanelSpec p;
+  p.label = std::move(label);
+  p.kind = kind;
+  p.closeups = false;
+  return p;
+}
+
+PanelSpec buffers(std::string label, std::string technique, std::string match, Params params = {}) {
+  PanelSpec p = render(std::move(label), std::move(technique), std::move(params));
+  p.kind = PanelKind::kIntermediates;
+  p.intermediate = std::move(match);
+  p.closeups = false;
+  return p;
+}
+
+PanelSpec plot(std::string label, std::string chart) {
+  PanelSpec p;
+  p.label = std::move(label);
+  p.kind = PanelKind::kPlot;
+  p.plot = std::move(chart);
+  p.closeups = false;
+  return p;
+}
+
+// ---------------------------------------------------------------- Brabec & Seidel 2001
+constexpr const char* kBrabec = "Brabec & Seidel 2001";
+
+FigureSpec brabecFig7() {
+  FigureSpec f;
+  f.id = "brabec-fig7";
+  f.paper = kBrabec;
+  f.paperFigure = "Figure 7 (a-h)";
+  f.title = "Shadow filtering compared: unfiltered, PCF 2x2, fast PCF 2x2, fast PCF 4x4";
+  f.caption =
+      "The paper's own comparison at its own size: 800x600 window, 512x512 shadow map, one "
+      "light, a scene of about 7000 triangles (ours is procedural: their model is not "
+      "published). Top row (a-d) the full frames, bottom row (e-h) the red rectangle "
+      "magnified 8x with nearest-neighbour sampling, so that the shadow-map texels and the "
+      "shadow levels of each filter can be counted.";
+  f.scene = "brabec";
+  f.width = 800;
+  f.height = 600;
+  f.shadowMapTexels = 512;
+  f.columns = 4;
+  f.panels = {
+      withPaper(withFilter(render("(a,e) unfiltered (§2)", "legacy.ramp"), 1),
+                "25-30 fps on an SGI Octane VPro/8"),
+      withPaper(withFilter(render("(b,f) PCF 2x2 (§3)", "legacy.pcf"), 2), "about 10 fps"),
+      withPaper(withFilter(render("(c,g) fast PCF 2x2 (§4)", "legacy.fast-pcf"), 2), "15-20 fps"),
+      withPaper(withFilter(render("(d,h) fast PCF 4x4, multipass (§4)", "legacy.fast-pcf"), 4),
+                "about 5 fps"),
+  };
+  f.closeups = {{0.70f, 0.47f, 0.12f, 0.12f, 8}};  // magnified to about the panel's size
+  f.paperNumbers =
+      "§5, SGI Octane VPro/8, 800x600, 512x512 map, times include the shadow map: "
+      "unfiltered 25-30 fps, PCF 2x2 about 10 fps, fast PCF 2x2 15-20 fps, fast PCF 4x4 about 5 "
+      "fps.";
+  return f;
+}
+
+FigureSpec brabecFig8() {
+  FigureSpec f;
+  f.id = "brabec-fig8";
+  f.paper = kBrabec;
+  f.paperFigure = "Figure 8 (a, b)";
+  f.title = "A 1024x1024 map unfiltered vs fast PCF 2x2";
+  f.caption =
+      "Even a 1024x1024 shadow map leaves blocky shadow boundaries without filtering (a); fast "
+      "PCF with a 2x2 footprint smooths them (b). The paper's second test scene is not "
+      "published: we use the Utah teapot on a plane.";
+  f.scene = "teapot";
+  f.width = 800;
+  f.height = 600;
+  f.shadowMapTexels = 1024;
+  f.columns = 2;
+  f.panels = {
+      withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps"),
+      withPaper(withFilter(render("(b) fast PCF 2x2", "legacy.fast-pcf"), 2), "about 10 fps"),
+  };
+  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4}};
+  f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
+  return f;
+}
+
+FigureSpec brabecPacking(const char* id, const char* figure, const char* technique,
+                         const char* title, const char* caption) {
+  FigureSpec f;
+  f.id = id;
+  f.paper = kBrabec;
+  f.paperFigure = figure;
+  f.title = title;
+  f.caption = caption;
+  f.scene = "brabec";
+  f.width = 320;
+  f.height = 240;
+  f.shadowMapTexels = 128;
+  f.columns = 4;
+  f.twins = false;
+  PanelSpec all = buffers("intermediate buffers", technique, "");
+  all.filter = 2;
+  f.panels = {all};
+  return f;
+}
+
+// ---------------------------------------------------------------- Everitt et al. 2001
+constexpr const char* kEveritt = "Everitt, Rege & Cebenoyan 2001";
+
+FigureSpec everittFig2() {
+  FigureSpec f;
+  f.id = "everitt-fig2";
+  f.paper = kEveritt;
+  f.paperFigure = "Figure 2";
+  f.title = "Eye view, light view and the depth map";
+  f.caption =
+      "The shadowed scene from the eye (left), the same scene from the light (centre) and the "
+      "light's depth buffer, the shadow map, with near depths dark and far depths light "
+      "(right; rendered by the figure module itself, depth linearised between the light's "
+      "near and far planes so that the grey levels are readable).";
+  f.columns = 3;
+  f.panels = {render("eye view (legacy.hw)", "legacy.hw"),
+              view("light's view", PanelKind::kLightView),
+              view("shadow map (depth)", PanelKind::kShadowMap)};
+  return f;
+}
+
+FigureSpec everittFig4() {
+  FigureSpec f;
+  f.id = "everitt-fig4";
+  f.paper = kEveritt;
+  f.paperFigure = "Figure 4";
+  f.title = "The depth comparison made visible";
+  f.caption =
+      "Left: the shadowed scene. Centre: each eye pixel's depth in the light's frustum (the "
+      "value r that the texture matrix produces). Right: the shadow map projected onto the "
+      "scene (the value the comparison reads); where centre and right differ, the pixel is in "
+      "shadow.";
+  f.columns = 3;
+  f.panels = {render("shadow-mapped scene", "legacy.hw"),
+              view("distance from the light", PanelKind::kLightDistance),
+              view("shadow map projected on the scene", PanelKind::kProjectedMap)};
+  return f;
+}
+
+FigureSpec everittFig5() {
+  FigureSpec f;
+  f.id = "everitt-fig5";
+  f.paper = kEveritt;
+  f.paperFigure = "Figure 5";
+  f.title = "Nearest vs linear depth comparison on a very low-resolution map";
+  f.caption =
+      "A 32x32 shadow map makes the difference between GL_NEAREST (one comparison per "
+      "lookup: blocky) and GL_LINEAR (four comparisons blended bilinearly, the hardware's 2x2 "
+      "percentage-closer filter) obvious. The paper shows Mark Kilgard's picture; this is our "
+      "scene.";
+  f.shadowMapTexels = 32;
+  f.columns = 2;
+  f.panels = {render("GL_NEAREST", "legacy.hw", {{"compare", "nearest"}}),
+              render("GL_LINEAR", "legacy.hw", {{"compare", "linear"}})};
+  f.closeups = {{0.58f, 0.40f, 0.2f, 0.2f, 3}};
+  return f;
+}
+
+FigureSpec everittFig6() {
+  FigureSpec f;
+  f.id = "everitt-fig6";
+  f.paper = kEveritt;
+  f.paperFigure = "Figure 6";
+  f.title = "Dueling frusta: shadow-map sampling density seen from the eye";
+  f.caption =
+      "The light faces the camera. Left: eye pixels per shadow-map texel (log scale, computed "
+      "per pixel from the screen-space derivatives of the shadow-map coordinate): blue where "
+      "one texel covers 4 or more pixels (the map is magnified and its texels show as blocks), "
+      "green at one pixel per texel, red where 4 or more texels fall into one pixel; grey is "
+      "outside the light's frustum. Centre: the shadowed eye view. Right: the light's "
+      "view; the part of its image that the eye sees up close is tiny.";
+  f.scene = "dueling";
+  f.columns = 3;
+  f.twins = false;
+  f.panels = {view("eye pixels per texel", PanelKind::kTexelDensity),
+              render("eye view (modern.hw)", "modern.hw"),
+              view("light's view", PanelKind::kLightView)};
+  return f;
+}
+
+// ---------------------------------------------------------------- GPU Gems ch. 11
+constexpr const char* kGems = "Bunnell & Pellacini, GPU Gems ch. 11 (2004)";
+
+FigureSpec gemsFigures() {
+  FigureSpec f;
+  f.id = "gems-11-6to9";
+  f.paper = kGems;
+  f.paperFigure = "Figures 11-6, 11-7, 11-8, 11-9";
+  f.title = "One, four dithered and sixteen samples per pixel, and magnified";
+  f.caption =
+      "The chapter's ninja is not available: we use the Stanford bunny. 11-6: one hardware "
+      "2x2 compare per pixel (modern.gems16 with samples=1); 11-7: four samples in the dithered "
+      "pattern of Fig. 11-4; 11-8: sixteen samples at offsets -1.5..1.5 texels. The bottom row "
+      "(11-9) magnifies the shadow edge of each. A 256x256 map makes the differences visible.";
+  f.scene = "bunny";
+  f.shadowMapTexels = 256;
+  f.columns = 3;
+  f.panels = {render("11-6 one sample", "modern.hw", {{"compare", "linear"}}),
+              render("11-7 four dithered samples", "modern.gems4"),
+              render("11-8 sixteen samples", "modern.gems16")};
+  f.closeups = {{0.74f, 0.12f, 0.2f, 0.2f, 4}};
+  f.twins = false;
+  return f;
+}
+
+// ---------------------------------------------------------------- Annen et al. 2007 (CSM)
+constexpr const char* kCsm = "Annen et al. 2007 (Convolution Shadow Maps)";
+
+FigureSpec csmFigure(std::string id, std::string figure, std::string title, std::string caption,
+                     std::string scene, int columns, std::vector<PanelSpec> panels) {
+  FigureSpec f;
+  f.id = std::move(id);
+  f.paper = kCsm;
+  f.paperFigure = std::move(figure);
+  f.title = std::move(title);
+  f.caption = std::move(caption);
+  f.scene = std::move(scene);
+  f.columns = columns;
+  f.panels = std::move(panels);
+  f.twins = false;
+  return f;
+}
+
+PanelSpec far(PanelSpec p, float distance) {
+  p.cameraDistance = distance;
+  return p;
+}
+
+std::vector<FigureSpec> csmFigures() {
+  std::vector<FigureSpec> out;
+  out.push_back(csmFigure(
+      "csm-fig1", "Figure 1", "PCF vs CSM under minification",
+      "Trees seen from far away, so that many shadow-map texels fall into one pixel. PCF "
+      "(hardware 2x2 compare) aliases; CSM filters the basis textures tri-linearly, and an "
+      "extra 5x5 blur hides the map's discretisation. Our trees are procedural stand-ins; "
+      "M = 16 (the paper does not give M for this figure).",
+      "trees", 3,
+      {far(render("PCF", "modern.hw"), 2.5f),
+       far(render("CSM trilinear", "modern.csm",
+                  {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "0"}}),
+           2.5f),
+       far(render("CSM trilinear + 5x5 blur", "modern.csm",
+                  {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}}),
+           2.5f)}));
+  out.back().closeups = {{0.4f, 0.35f, 0.2f, 0.2f, 3}};
+
+  out.push_back(csmFigure(
+      "csm-fig3", "Figure 3 (a-d)", "Reconstructing the shadow test from its Fourier series",
+      "Computed from Eq. 10-14 (not rendered): the shadow test f as a function of d - z. (a) "
+      "truncation order M = 4, 8, 16: steeper but ringing; (b) attenuation exp(-alpha (k/M)^2) "
+      "removes the ringing at the price of a softer step; (c) an offset on d makes lit "
+      "surfaces (d - z = 0) fully lit; (d) scaling by 2 and clamping does too, with a steeper "
+      "step.",
+      "analytic", 1, {plot("reconstruction (a-d)", "csm-reconstruction")}));
+
+  out.push_back(csmFigure(
+      "csm-fig4", "Figure 4 (a, b)", "Scaling f vs offsetting d",
+      "Two squares and a slanted square touching the plane, M = 16, 5x5 Gaussian blur. (a) "
+      "Scaling the reconstruction sharpens shadows; (b) an offset keeps the blur but may show "
+      "limits at contact points.",
+      "squares", 2,
+      {render("(a) scaled by 2", "modern.csm",
+              {{"order", "16"}, {"blur", "5"}, {"scale", "2"}, {"offset", "0"}}),
+       render("(b) offset (the technique's default for M = 16)", "modern.csm",
+              {{"order", "16"}, {"blur", "5"}})}));
+  out.back().closeups = {{0.55f, 0.45f, 0.25f, 0.25f, 3}};
+
+  FigureSpec fig5 = csmFigure(
+      "csm-fig5", "Figure 5", "A shadow map and its basis textures",
+      "The depth map and the first sine and cosine basis textures B_i(z(p)) for M = 16 (the "
+      "layers modern.csm captures), each RGBA channel shown as its own image (the paper "
+      "colours positive blue and negative red; ours show the stored 8-bit value as grey, "
+      "0.5 = zero).",
+      "brabec", 4,
+      {view("shadow map", PanelKind::kShadowMap),
+       buffers("basis textures", "modern.csm", "basis", {{"order", "16"}})});
+  fig5.width = 256;
+  fig5.height = 192;
+  fig5.shadowMapTexels = 256;
+  out.push_back(fig5);
+
+  out.push_back(csmFigure(
+      "csm-fig6", "Figure 6 (a-c)", "Reconstruction order M",
+      "Small M brightens shadows where occluder and receiver are close (the low square, the "
+      "slanted square's contact), because the reconstructed step is smooth; M = 4 is already "
+      "close. Basis stored in 8 bits as in the paper.",
+      "squares", 3,
+      {render("(a) M = 1", "modern.csm", {{"order", "1"}}),
+       render("(b) M = 2", "modern.csm", {{"order", "2"}}),
+       render("(c) M = 4", "modern.csm", {{"order", "4"}})}));
+
+  FigureSpec fig7 = csmFigure(
+      "csm-fig7", "Figure 7 (a-f)", "Filter modes on a scene of high depth complexity",
+      "PCF loses thin branches; CSM with bilinear filtering gives the same picture; tri-linear "
+      "filtering (16x anisotropic) and then 3x3, 5x5, 7x7 blurs improve it step by step. "
+      "2048x2048 map as in the paper; procedural trees stand in for the paper's; M = 16.",
+      "trees", 3,
+      {render("(a) PCF", "modern.hw"),
+       render("(b) CSM bilinear", "modern.csm",
+              {{"order", "16"}, {"filtering", "bilinear"}, {"blur", "0"}}),
+       render("(c) CSM trilinear, 16x aniso", "modern.csm",
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "0"}}),
+       render("(d) + 3x3", "modern.csm",
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "3"}}),
+       render("(e) + 5x5", "modern.csm",
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "5"}}),
+       render("(f) + 7x7", "modern.csm",
+              {{"order", "16"}, {"filtering", "trilinear"}, {"anisotropy", "16"}, {"blur", "7"}})});
+  fig7.shadowMapTexels = 2048;
+  fig7.closeups = {{0.45f, 0.3f, 0.18f, 0.18f, 3}};
+  out.push_back(fig7);
+
+  std::vector<PanelSpec> fig8;
+  for (int texels : {256, 512, 1024})
+    for (const char* blur : {"0", "3", "7"})
+      fig8.push_back(withMap(render(std::to_string(texels) + "², " +
+                                        (blur[0] == '0' ? std::string("no blur")
+                                                        : std::string("blur ") + blur + "x" + blur),
+                                    "modern.csm", {{"order", "16"}, {"blur", blur}}),
+                             texels));
+  out.push_back(csmFigure(
+      "csm-fig8", "Figure 8", "Map resolution x blur size",
+      "Rows: 256, 512 and 1024 texel maps; columns: no blur, 3x3 and 7x7 Gaussian. Blurring "
+      "the basis textures hides the map's blocks and, large enough, imitates soft shadows.",
+      "brabec", 3, fig8));
+  out.back().closeups = {{0.70f, 0.47f, 0.14f, 0.14f, 3}};
+
+  out.push_back(csmFigure(
+      "csm-fig9", "Figure 9 (a, b)", "VSM light leaking vs CSM on the fence",
+      "Objects behind the fence raise the variance inside the filter kernel and VSM leaks "
+      "light into the shadows (a); CSM does not (b). Same 5x5 blur for both.",
+      "fence", 2,
+      {render("(a) VSM", "modern.vsm", {{"blur", "5"}}),
+       render("(b) CSM", "modern.csm", {{"order", "16"}, {"blur", "5"}})}));
+  out.back().closeups = {{0.15f, 0.04f, 0.3f, 0.25f, 3}};
+
+  std::vector<PanelSpec> fig10;
+  for (float d : {1.0f, 2.0f, 3.0f, 4.0f})
+    fig10.push_back(far(render("CSM, distance x" + std::to_string(int(d)), "modern.csm",
+                               {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}}),
+                        d));
+  for (float d : {1.0f, 2.0f, 3.0f, 4.0f})
+    fig10.push_back(far(render("PCF, distance x" + std::to_string(int(d)), "modern.hw"), d));
+  out.push_back(csmFigure(
+      "csm-fig10", "Figure 10", "Minification sequence",
+      "The camera moves away from the trees: top row CSM with tri-linear filtering and a 5x5 "
+      "kernel stays smooth, bottom row PCF for comparison aliases as the shadows shrink.",
+      "trees", 4, fig10));
+
+  // Table 1: frame rates for S x M x C at 1024x768.
+  FigureSpec table = csmFigure(
+      "csm-table1", "Table 1", "Frame rates: map size x order M x convolution",
+      "Frames per second at 1024x768 for shadow maps of 256² to 2048² and M = 4, 8, 16, "
+      "without convolution and with 3x3 and 7x7 kernels, beside the paper's GeForce 8800 GTX "
+      "figures (their scene: 365k faces; ours: the procedural trees, a few thousand). "
+      "Ours run on llvmpipe (2 CPU cores) unless the report says otherwise: compare the "
+      "ratios, not the absolute numbers.",
+      "trees", 4, {});
+  table.width = 1024;
+  table.height = 768;
+  table.table = true;
+  table.reference = "";  // a timing table
+  const char* sizes[] = {"256", "512", "1024", "2048"};
+  const char* paper[3][4][4] = {// C = none: PCF, M=4, M=8, M=16 rows
+                                {{"76", "74", "71", "69"},
+                                 {"64", "62", "60", "50"},
+                                 {"55", "53", "49", "38"},
+                                 {"47", "45", "39", "26"}},
+                                {{"", "", "", ""},
+                                 {"63", "61", "57", "43"},
+                                 {"53", "50", "44", "30"},
+                                 {"42", "39", "32", "19"}},
+                                {{"", "", "", ""},
+                                 {"62", "60", "53", "36"},
+                                 {"52", "49", "41", "24"},
+                                 {"41", "38", "28", "14"}}};
+  const char* blurs[] = {"0", "3", "7"};
+  const char* blurNames[] = {"none", "3x3", "7x7"};
+  const char* orders[] = {"PCF", "4", "8", "16"};
+  for (int c = 0; c < 3; ++c)
+    for (int m = 0; m < 4; ++m) {
+      if (m == 0 && c > 0) continue;
+      for (int s = 0; s < 4; ++s) {
+        const std::string label = std::string("C=") + blurNames[c] + " " +
+                                  (m == 0 ? "PCF" : std::string("M=") + orders[m]) +
+                                  " S=" + sizes[s];
+        PanelSpec p = m == 0 ? render(label, "modern.hw")
+                             : render(label, "modern.csm",
+                                      {{"order", orders[m]},
+                                       {"blur", blurs[c]},
+                                       {"filtering", "trilinear"},
+                                       {"anisotropy", "16"}});
+        p.shadowMapTexels = std::stoi(sizes[s]);
+        p.paperNumbers = std::string(paper[c][m][s]) + " fps";
+        table.panels.push_back(p);
+      }
+    }
+  out.push_back(table);
+  return out;
+}
+
+// ---------------------------------------------------------------- Chan 2004 thesis
+constexpr const char* kChan = "Chan 2004 (MIT thesis)";
+constexpr float kSmoothieWidthPerRadius = 0.5f;  // smoothie width (map side = 1) per unit radius
+
+FigureSpec chanFigure(std::string id, std::string figure, std::string title, std::string caption,
+                      std::string scene, int columns, std::vector<PanelSpec> panels) {
+  FigureSpec f = csmFigure(std::move(id), std::move(figure), std::move(title), std::move(caption),
+                           std::move(scene), columns, std::move(panels));
+  f.paper = kChan;
+  return f;
+}
+
+std::vector<FigureSpec> chanFigures() {
+  std::vector<FigureSpec> out;
+  out.push_back(chanFigure(
+      "chan-2-4", "Figure 2-4 (a-c)", "Depth bias: too little, too much, tuned",
+      "Polygon offset (glPolygonOffset factor, units) on a cylinder standing on a plane: too "
+      "little bias shadows lit surfaces (acne), too much detaches the shadow from the contact "
+      "point, a tuned value does neither.",
+      "cylinder", 3,
+      {render("(a) too little: 0, 0", "legacy.hw", {{"offset-factor", "0"}, {"offset-units", "0"}}),
+       render("(b) too much: 8, 1000000", "legacy.hw",
+              {{"offset-factor", "8"}, {"offset-units", "1000000"}}),
+       render("(c) tuned: 2, 4", "legacy.hw", {{"offset-factor", "2"}, {"offset-units", "4"}})}));
+  out.back().closeups = {{0.33f, 0.30f, 0.22f, 0.22f, 3}};
+
+  std::vector<PanelSpec> aliasing;
+  for (int texels : {256, 512, 1024})
+    aliasing.push_back(withMap(render("(" + std::string(1, char('a' + aliasing.size())) + ") " +
+                                          std::to_string(texels) + "x" + std::to_string(texels),
+                                      "modern.hw", {{"compare", "nearest"}}),
+                               texels));
+  out.push_back(chanFigure("chan-2-5", "Figure 2-5 (a-c)", "Shadow-map aliasing at 256, 512, 1024",
+                           "A cylinder's shadow with 256², 512² and 1024² maps and one "
+                           "nearest comparison per pixel: the stair steps shrink but never "
+                           "vanish.",
+                           "cylinder", 3, aliasing));
+  out.back().closeups = {{0.55f, 0.2f, 0.2f, 0.2f, 3}};
+
+  out.push_back(chanFigure(
+      "chan-3-1", "Figure 3-1 (a-d)", "Hybrid shadows: overview",
+      "(a) the shadow map; (b) the silhouette pixels found by the 2x2 comparison that is "
+      "strictly between 0 and 1, green; (c) shadow volumes drawn only there; (d) the final "
+      "image.",
+      "cylinder", 4,
+      {view("(a) shadow map", PanelKind::kShadowMap),
+       buffers("(b) silhouette pixels", "modern.hybrid", "silhouette"),
+       buffers("(c) shadow volumes at silhouette pixels", "modern.hybrid", "stencil"),
+       render("(d) hybrid result", "modern.hybrid")}));
+
+  FigureSpec f35 = chanFigure(
+      "chan-3-5", "Figure 3-5 (a-d)", "Mixing shadow maps and shadow volumes",
+      "A ball's shadow. (a) a 256² shadow map alone aliases; (b, c) the classification: "
+      "non-silhouette pixels red (shadow map says shadow) and blue (lit), silhouette pixels "
+      "black and green (shadow volumes decide); (d) the hybrid result.",
+      "ball", 4,
+      {render("(a) shadow map 256²", "modern.hw", {{"compare", "nearest"}}),
+       buffers("(b, c) classification", "modern.hybrid", "classif"),
+       render("(d) hybrid", "modern.hybrid")});
+  f35.shadowMapTexels = 256;
+  out.push_back(f35);
+
+  std::vector<PanelSpec> p37;
+  for (const char* scene : {"trees", "dragon", "brabec"}) {
+    PanelSpec sm = render(std::string(scene) + ": shadow map", "modern.hw");
+    PanelSpec hy = render(std::string(scene) + ": hybrid", "modern.hybrid");
+    PanelSpec sv = render(std::string(scene) + ": shadow volumes", "modern.volumes");
+    sm.scene = hy.scene = sv.scene = scene;
+    p37.insert(p37.end(), {sm, hy, sv});
+  }
+  FigureSpec f37 = chanFigure(
+      "chan-3-7", "Figure 3-7", "Image quality: shadow map, hybrid, shadow volumes",
+      "Rows: three scenes of high shadow complexity (our stand-ins: procedural trees, the "
+      "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
+      "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
+      "dragon has holes; the volume-based columns give it the volume of its two-sided surface "
+      "(counted in open_casters_two_sided, docs/volumes.md).",
+      "trees", 3, p37);
+  f37.shadowMapTexels = 1024;
+  out.push_back(f37);
+
+  out.push_back(chanFigure(
+      "chan-3-9", "Figure 3-9 (a-c)", "Fill rate: overdraw vs silhouette pixels",
+      "The dragon in its cage: (a) shadow-volume overdraw, brighter = more layers; (b) the "
+      "hybrid method's silhouette pixels (green), the only pixels where it draws shadow "
+      "volumes; (c) the resulting stencil buffer.",
+      "dragon", 3,
+      {buffers("(a) shadow-volume overdraw", "modern.volumes", "overdraw"),
+       buffers("(b) silhouette pixels", "modern.hybrid", "silhouette"),
+       buffers("(c) stencil", "modern.hybrid", "stencil")}));
+
+  std::vector<PanelSpec> p310;
+  for (const char* scene : {"trees", "dragon", "brabec"}) {
+    PanelSpec sv = render(std::string(scene) + " SV", "modern.volumes");
+    sv.scene = scene;
+    sv.counter = "volume_coverage";
+    p310.push_back(sv);
+    for (int texels : {256, 512, 1024}) {
+      PanelSpec h = withMap(
+          render(std::string(scene) + " H " + std::to_string(texels), "modern.hybrid"), texels);
+      h.scene = scene;
+      h.counter = "silhouette_fraction";
+      p310.push_back(h);
+    }
+  }
+  p310.push_back(plot("pixels drawn", "chan-3-10"));
+  FigureSpec f310 = chanFigure(
+      "chan-3-10", "Figure 3-10", "Shadow-volume coverage and silhouette pixels",
+      "Per scene: the share of the image covered by shadow volumes (with the overdraw factor) "
+      "and the share of silhouette pixels of the hybrid method at 256², 512² and 1024² maps, "
+      "from the techniques' counters.",
+      "trees", 4, p310);
+  f310.table = true;
+  out.push_back(f310);
+
+  std::vector<PanelSpec> p311;
+  for (const char* scene : {"trees", "dragon", "brabec"})
+    for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes"}) {
+      PanelSpec p = render(std::string(scene) + " " + t, t);
+      p.scene = scene;
+      p311.push_back(p);
+    }
+  p311.push_back(plot("time per pass", "chan-3-11"));
+  FigureSpec f311 = chanFigure(
+      "chan-3-11", "Figure 3-11", "Frame time per part: SM, hybrid, SV",
+      "Stacked per-pass times of the shadow map (SM), hybrid (H) and shadow volume (SV) "
+      "algorithms per scene, 1024² maps. llvmpipe on two CPU cores: fill rate dominates as it "
+      "did on the paper's GPU, but the absolute times are not comparable.",
+      "trees", 3, p311);
+  f311.shadowMapTexels = 1024;
+  f311.table = true;
+  out.push_back(f311);
+
+  out.push_back(chanFigure(
+      "chan-4-1", "Figure 4-1 (a-d)", "Smoothies: overview",
+      "(a) the shadow map; (b) smoothie depths; (c) smoothie alpha; (d) the final image with "
+      "soft shadow edges.",
+      "cylinder", 4,
+      {view("(a) shadow map", PanelKind::kShadowMap),
+       buffers("(b) smoothie depth", "modern.smoothies", "smoothie-depth"),
+       buffers("(c) smoothie alpha", "modern.smoothies", "alpha"),
+       withPaper(render("(d) smoothies", "modern.smoothies"), "39 fps, 10,000 triangles")}));
+
+  out.push_back(chanFigure(
+      "chan-4-4", "Figure 4-4 (b, d)", "Original vs remapped smoothie alpha",
+      "With linearly interpolated alpha the penumbra has a fixed width and a discontinuity "
+      "where the box meets the floor (b); remapping alpha by the distance ratio b/r makes it "
+      "grow away from the contact (d).",
+      "brabec", 2,
+      {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
+       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
+  out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
+
+  std::vector<PanelSpec> p48;
+  const char* paperMs[3][4] = {{"16 ms", "129 ms", "19 ms", "19 ms"},
+                               {"16 ms", "132 ms", "19 ms", "20 ms"},
+                               {"17 ms", "142 ms", "22 ms", "24 ms"}};
+  int row = 0;
+  for (int texels : {256, 512, 1024}) {
+    const std::string n = std::to_string(texels) + "²";
+    p48.push_back(
+        withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
+                  paperMs[row][0]));
+    p48.push_back(
+        withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}),
+                texels),
+        paperMs[row][2]));
+    p48.push_back(withPaper(
+        withMap(render(n + " smoothie width 0.1", "modern.smoothies", {{"width", "0.1"}}), texels),
+        paperMs[row][3]));
+    ++row;
+  }
+  FigureSpec f48 = chanFigure(
+      "chan-4-8", "Figure 4-8", "Shadow edges: shadow map, 16-sample PCF, smoothies, with times",
+      "The cylinder's shadow with 256², 512² and 1024² maps (rows). Columns: one comparison "
+      "per pixel; 16-sample PCF (modern.gems16, our stand-in for the paper's bicubic "
+      "16-sample filter); smoothies of size 0.2 and 0.8 in the thesis's units, here widths "
+      "0.025 and 0.1 of the light's image (the same 1:4 ratio). Times per frame beside the "
+      "paper's (GeForce FX 5950 class GPU).",
+      "cylinder", 4, p48);
+  f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};
+  out.push_back(f48);
+
+  std::vector<PanelSpec> p49;
+  for (float radius : {0.05f, 0.1f, 0.2f}) {
+    // The smoothie width stands for the light's size: it grows with the radius.
+    const std::string width = std::to_string(radius * kSmoothieWidthPerRadius).substr(0, 5);
+    PanelSpec s = render("smoothies, light radius " + std::to_string(radius).substr(0, 4),
+                         "modern.smoothies", {{"width", width}});
+    PanelSpec r =
+        render("ray traced, light radius " + std::to_string(radius).substr(0, 4), "reference.soft");
+    s.lightRadius = r.lightRadius = radius;
+    p49.insert(p49.end(), {s, r});
+  }
+  FigureSpec f49 = chanFigure(
+      "chan-4-9", "Figure 4-9", "Smoothies vs ray-traced soft shadows for growing lights",
+      "Left: smoothies (1024² buffer, width 0.5 x the light radius); right: Monte Carlo "
+      "ray-traced visibility of a spherical light (reference.soft). Each row a larger light; the "
+      "error column measures the "
+      "smoothie against the ray tracer with the same light.",
+      "cylinder", 2, p49);
+  f49.shadowMapTexels = 1024;
+  f49.reference = "reference.soft";
+  out.push_back(f49);
+
+  out.push_back(chanFigure(
+      "chan-4-10", "Figure 4-10", "Multiple blockers and receivers",
+      "Box 1 casts a shadow onto box 2 and the ground. Smoothie buffer alpha without (left) "
+      "and with (middle) remapping; with remapping the penumbra is thinner on box 2 than on "
+      "the ground (right).",
+      "boxes", 3,
+      {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
+       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
+       render("result", "modern.smoothies")}));
+  return out;
+}
+
+// ---------------------------------------------------------------- across the papers
+FigureSpec errorAgainstTime() {
+  FigureSpec f;
+  f.id = "error-vs-time";
+  f.paper = "All papers";
+  f.paperFigure = "(ours)";
+  f.title = "Error against the ray-traced reference vs frame time";
+  f.caption =
+      "Every hard-shadow technique on the Brabec scene (512x384, 512² map): RMSE of the "
+      "visibility mask against reference.hard, plotted against the measured frame time.";
+  f.columns = 4;
+  f.twins = false;
+  f.table = true;
+  for (const char* t : {"legacy.ramp", "legacy.pcf", "legacy.fast-pcf", "legacy.hw", "legacy.woo",
+                        "legacy.second-depth", "modern.ramp", "modern.pcf", "modern.fast-pcf",
+                        "modern.hw", "modern.gems4", "modern.gems16", "modern.csm", "modern.vsm",
+                        "modern.volumes", "modern.hybrid"})
+    f.panels.push_back(render(t, t));
+  f.panels.push_back(plot("error vs time", "error-vs-time"));
+  return f;
+}
+
+}  // namespace
+
+const std::vector<FigureSpec>& figureList() {
+  static const std::vector<FigureSpec> list = [] {
+    std::vector<FigureSpec> v;
+    v.push_back(brabecFig7());
+    v.push_back(brabecFig8());
+    v.push_back(brabecPacking(
+        "brabec-fig3-packing", "Figure 3 (teaching figure)", "legacy.pcf",
+        "PCF: four jittered light passes packed into the RGBA channels",
+        "The real intermediate buffers of legacy.pcf (128² map, 320x240 window): each light "
+        "pass writes ramp-encoded depth into one colour channel with a sub-texel jitter "
+        "(stratified sampling, Fig. 3), then the comparison, the colour table and the colour "
+        "matrix of Fig. 4 turn four comparisons into five shadow levels."));
+    v.push_back(brabecPacking(
+        "brabec-fig5-packing", "Figure 5 (teaching figure)", "legacy.fast-pcf",
+        "Fast PCF: neighbour packing by convolution",
+        "The real intermediate buffers of legacy.fast-pcf (128² map, 320x240 window): one "
+        "light pass writes the depth into all four channels, and the 3x3 convolution of Eq. (1) "
+        "packs each texel's three neighbours into its other channels (Fig. 5)."));
+    v.push_back(everittFig2());
+    v.push_back(everittFig4());
+    v.push_back(everittFig5());
+    v.push_back(everittFig6());
+    v.push_back(gemsFigures());
+    for (FigureSpec& f : csmFigures()) v.push_back(std::move(f));
+    for (FigureSpec& f : chanFigures()) v.push_back(std::move(f));
+    v.push_back(errorAgainstTime());
+    return v;
+  }();
+  return list;
+}
+
+}  // namespace sl::figures

@@ -1,0 +1,76 @@
+// figures/figure_spec.h — one declarative entry per reproduced paper figure or table.
+//
+// A figure is plain data: which paper and figure number it reproduces, the scene, and a list
+// of panels laid out in rows of `columns` as the paper lays them out. Each panel names a
+// technique (looked up in apps/registry at run time, so techniques that land later appear
+// without touching this file) or one of the figure module's own diagnostic views (the light's
+// view, the depth map, texel density, plots). figures.cpp renders the entries; report.cpp
+// writes report.html from the results.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sl::figures {
+
+enum class PanelKind {
+  kRender,         // a technique's shaded image (or its visibility mask, see PanelSpec::mask)
+  kIntermediates,  // a technique's intermediate buffers (params.capturePasses)
+  kLightView,      // the scene shaded as seen from the light (Everitt Fig. 2 centre)
+  kShadowMap,      // the light's depth buffer as grey levels (Everitt Fig. 2 right)
+  kLightDistance,  // each eye pixel's distance from the light (Everitt Fig. 4 centre)
+  kProjectedMap,   // the shadow map projected onto the scene (Everitt Fig. 4 right)
+  kTexelDensity,   // shadow-map texels per eye pixel, colour coded (Everitt Fig. 6)
+  kPlot,           // a gnuplot chart made from computed data or from other panels' numbers
+};
+
+// A close-up: a rectangle in fractions of the panel (bottom-left origin, as core/image.h),
+// magnified with nearest-neighbour sampling so the texels stay visible.
+struct Closeup {
+  float x = 0, y = 0, w = 0, h = 0;
+  int magnify = 4;
+};
+
+struct PanelSpec {
+  std::string label;  // "(a) unfiltered"
+  PanelKind kind = PanelKind::kRender;
+  std::string technique;      // registry name; for kLightView..kTexelDensity none is needed
+  std::string scene;          // empty: the figure's scene
+  int width = 0, height = 0;  // 0: the figure's size
+  int shadowMapTexels = 0;    // 0: the figure's
+  int filter = 0;             // 0: RenderParams default
+  std::map<std::string, std::string> params;  // --param key=value
+  std::optional<float> lightRadius;           // overrides the scene's light radius (soft shadows)
+  float cameraDistance = 1.0f;                // > 1 moves the camera away (minification)
+  bool mask = false;                          // show the visibility mask instead of colour
+  std::string intermediate;  // kIntermediates: substring of the PassImage names to show
+  std::string plot;          // kPlot: which chart (see plots.h)
+  std::string counter;       // Frame::counters entry a chart plots for this panel
+  std::string paperNumbers;  // what the paper reports for this panel, quoted, or empty
+  bool closeups = true;      // apply the figure's close-ups to this panel
+};
+
+struct FigureSpec {
+  std::string id;           // "brabec-fig7"
+  std::string paper;        // "Brabec & Seidel 2001"
+  std::string paperFigure;  // "Figure 7 (a-h)"
+  std::string title;
+  std::string caption;  // ours, with any stand-in model named
+  std::string scene = "brabec";
+  int width = 512, height = 384;
+  int shadowMapTexels = 512;
+  int columns = 4;
+  std::vector<PanelSpec> panels;
+  std::vector<Closeup> closeups;
+  std::string reference = "reference.hard";  // error of every render panel against this
+  bool twins = true;         // show legacy.X beside modern.X with the difference image
+  bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
+  std::string paperNumbers;  // the paper's numbers for the whole figure, quoted
+};
+
+// Every figure we reproduce, in paper order.
+const std::vector<FigureSpec>& figureList();
+
+}  // namespace sl::figures

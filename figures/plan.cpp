@@ -1,0 +1,20 @@
+#include "figures/plan.h"
+
+#include <iostream>
+
+#include "apps/registry.h"
+#include "core/plan.h"
+#include "core/scene_library.h"
+
+namespace sl::figures {
+
+int runPlanCommand(const cli::Args& args) {
+  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  const Technique& technique = findTechnique(args.required("technique"));
+  const RenderParams params = cli::renderParams(args);
+  checkParams(technique, params, 0);
+  std::cout << formatPlan(planFrame(scene, technique, params));
+  return 0;
+}
+
+}  // namespace sl::figures

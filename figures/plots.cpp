@@ -1,0 +1,227 @@
+// figures/plots.cpp — gnuplot scripts for the report's charts, and Annen et al. Fig. 3's data.
+#include "figures/plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace sl::figures {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kCurveSamples = 801;         // points per reconstruction curve
+constexpr double kPlotHalfRange = 0.5;     // Fig. 3 shows d - z in [-0.5, 0.5] ("range scaled")
+constexpr double kAttenuationAlpha = 4.0;  // a strong attenuation for Fig. 3 (b)
+
+std::string quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// The PNG terminal: cairo when present (anti-aliased), libgd's otherwise.
+std::string terminalLine(int width, int height) {
+  static const bool cairo = std::system("gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1") == 0;
+  std::ostringstream s;
+  if (cairo)
+    s << "set terminal pngcairo size " << width << "," << height << " font 'sans,10'\n";
+  else
+    s << "set terminal png size " << width << "," << height << "\n";
+  return s.str();
+}
+
+void runScript(const std::string& script, const std::string& pngPath) {
+  const fs::path png(pngPath);
+  const fs::path gp = fs::path(pngPath).replace_extension(".gp");
+  const fs::path log = fs::path(pngPath).replace_extension(".gnuplot.log");
+  {
+    std::ofstream out(gp);
+    if (!out) throw InputError("cannot write " + gp.string());
+    out << script;
+  }
+  std::error_code ec;
+  fs::remove(png, ec);
+  const std::string command =
+      "gnuplot " + quote(gp.string()) + " >" + quote(log.string()) + " 2>&1";
+  const int status = std::system(command.c_str());
+  if (status != 0 || !fs::exists(png)) {
+    std::ifstream in(log);
+    std::string first;
+    std::getline(in, first);
+    throw GlError("gnuplot failed on " + gp.string() + ": " + first);
+  }
+  fs::remove(log, ec);
+}
+
+}  // namespace
+
+bool gnuplotAvailable(std::string* why) {
+  const bool ok = std::system("gnuplot -e 'set terminal png' >/dev/null 2>&1") == 0;
+  if (!ok && why) *why = "gnuplot with a PNG terminal is not installed (Debian: gnuplot-nox)";
+  return ok;
+}
+
+void plotLines(const std::vector<LineChart>& charts, int columns, const std::string& pngPath,
+               int width, int height) {
+  const int rows = (int(charts.size()) + columns - 1) / columns;
+  std::ostringstream s;
+  s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
+  s << "set grid\nset key bottom left\n";
+  int block = 0;
+  for (const LineChart& c : charts)
+    for (const Series& series : c.series) {
+      s << "$d" << block++ << " << EOD\n";
+      for (const auto& [x, y] : series.points) s << x << " " << y << "\n";
+      s << "EOD\n";
+    }
+  s << "set multiplot layout " << rows << "," << columns << "\n";
+  block = 0;
+  for (const LineChart& c : charts) {
+    s << "set title " << quote(c.title) << "\nset xlabel " << quote(c.xLabel) << "\nset ylabel "
+      << quote(c.yLabel) << "\nset xrange [" << c.xMin << ":" << c.xMax << "]\nset yrange ["
+      << c.yMin << ":" << c.yMax << "]\nplot ";
+    for (size_t i = 0; i < c.series.size(); ++i)
+      s << (i ? ", " : "") << "$d" << block++ << " with lines lw 2 title "
+        << quote(c.series[i].title);
+    s << "\n";
+  }
+  s << "unset multiplot\n";
+  runScript(s.str(), pngPath);
+}
+
+void plotLabelledPoints(
+    const std::string& title, const std::string& xLabel, const std::string& yLabel,
+    const std::vector<std::pair<std::pair<double, double>, std::string>>& points, bool logX,
+    const std::string& pngPath, int width, int height) {
+  std::ostringstream s;
+  s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
+  s << "set grid\nset title " << quote(title) << "\nset xlabel " << quote(xLabel) << "\nset ylabel "
+    << quote(yLabel) << "\nunset key\n";
+  if (logX) s << "set logscale x\n";
+  s << "set offsets graph 0.02, graph 0.15, graph 0.05, graph 0.05\n";  // room for labels
+  s << "$d << EOD\n";
+  for (const auto& [xy, label] : points)
+    s << xy.first << " " << xy.second << " " << quote(label) << "\n";
+  s << "EOD\n";
+  s << "plot $d using 1:2 with points pt 7 ps 1.5, $d using 1:2:3 with labels offset char 1,0.6 "
+       "left font ',8'\n";
+  runScript(s.str(), pngPath);
+}
+
+void plotStackedBars(const std::string& title, const std::string& yLabel,
+                     const std::vector<std::string>& rows, const std::vector<std::string>& columns,
+                     const std::vector<std::vector<double>>& values, const std::string& pngPath,
+                     int width, int height) {
+  std::ostringstream s;
+  s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
+  s << "set title " << quote(title) << "\nset ylabel " << quote(yLabel) << "\n"
+    << "set style data histograms\nset style histogram rowstacked\nset style fill solid 0.8 border "
+       "-1\n"
+    << "set boxwidth 0.7\nset xtics rotate by -35 font ',8'\nset key outside right top font ',8'\n"
+    << "set grid ytics\nset yrange [0:*]\n";
+  s << "$d << EOD\n";
+  for (size_t r = 0; r < rows.size(); ++r) {
+    s << quote(rows[r]);
+    for (size_t c = 0; c < columns.size(); ++c) s << " " << values[r][c];
+    s << "\n";
+  }
+  s << "EOD\nplot ";
+  for (size_t c = 0; c < columns.size(); ++c)
+    s << (c ? ", " : "") << "$d using " << c + 2 << (c == 0 ? ":xtic(1)" : "") << " title "
+      << quote(columns[c]);
+  s << "\n";
+  runScript(s.str(), pngPath);
+}
+
+double csmVisibility(double t, int M, double alpha, double offset, double scale, bool clampResult) {
+  // Eq. 10-11: 1/2 S(t) = 2 sum_k sin(c_k t) / c_k approximates H(t) - 1/2; visibility is
+  // 1 - H(d - z) (lit when the receiver is not behind the blocker).
+  double sum = 0.0;
+  for (int k = 1; k <= M; ++k) {
+    const double ck = kPi * (2 * k - 1);
+    const double attenuation = std::exp(-alpha * (double(k) / M) * (double(k) / M));  // §3.2.1
+    sum += attenuation * std::sin(ck * (t - offset)) / ck;
+  }
+  const double v = scale * (0.5 - 2.0 * sum);
+  return clampResult ? std::clamp(v, 0.0, 1.0) : v;
+}
+
+double csmOffsetFor(int M, double alpha) {
+  // The reconstruction's first maximum left of the step: shifting by its distance from 0
+  // makes f go through its maximum (about 1) at d - z = 0 (§3.2.2).
+  constexpr int kSteps = 20000;
+  double best = 0.0, bestValue = -1e9;
+  for (int i = 0; i <= kSteps; ++i) {
+    const double t = -0.5 * double(i) / kSteps;
+    const double v = csmVisibility(t, M, alpha, 0.0, 1.0, false);
+    if (v > bestValue + 1e-12) {
+      bestValue = v;
+      best = t;
+    }
+    if (v < bestValue - 0.05) break;  // past the first lobe
+  }
+  return -best;
+}
+
+std::vector<LineChart> csmFigure3Charts() {
+  auto curve = [](const std::string& title, auto f) {
+    Series s{title, {}};
+    for (int i = 0; i < kCurveSamples; ++i) {
+      const double t = -kPlotHalfRange + 2 * kPlotHalfRange * i / (kCurveSamples - 1);
+      s.points.push_back({t, f(t)});
+    }
+    return s;
+  };
+  auto step = curve("exact step", [](double t) { return t <= 0 ? 1.0 : 0.0; });
+  auto base = [](const std::string& title) {
+    LineChart c;
+    c.title = title;
+    c.xLabel = "d - z";
+    c.yLabel = "reconstructed f";
+    c.xMin = -kPlotHalfRange;
+    c.xMax = kPlotHalfRange;
+    c.yMin = -0.2;
+    c.yMax = 1.3;
+    return c;
+  };
+  std::vector<LineChart> out;
+  LineChart a = base("(a) truncation order M");
+  a.series.push_back(step);
+  for (int M : {4, 8, 16})
+    a.series.push_back(curve("M = " + std::to_string(M),
+                             [M](double t) { return csmVisibility(t, M, 0, 0, 1, false); }));
+  out.push_back(a);
+  LineChart b = base("(b) attenuation, M = 16");
+  b.series.push_back(step);
+  b.series.push_back(
+      curve("alpha = 0", [](double t) { return csmVisibility(t, 16, 0, 0, 1, false); }));
+  b.series.push_back(curve(
+      "alpha = 4", [](double t) { return csmVisibility(t, 16, kAttenuationAlpha, 0, 1, false); }));
+  out.push_back(b);
+  LineChart c = base("(c) offset on d, M = 4");
+  const double offset = csmOffsetFor(4, 0.0);
+  c.series.push_back(step);
+  c.series.push_back(
+      curve("no offset", [](double t) { return csmVisibility(t, 4, 0, 0, 1, true); }));
+  c.series.push_back(curve("offset " + std::to_string(offset).substr(0, 5),
+                           [offset](double t) { return csmVisibility(t, 4, 0, offset, 1, true); }));
+  out.push_back(c);
+  LineChart d = base("(d) scaling f, M = 4");
+  d.series.push_back(step);
+  d.series.push_back(curve("scale 1", [](double t) { return csmVisibility(t, 4, 0, 0, 1, true); }));
+  d.series.push_back(curve("scale 2", [](double t) { return csmVisibility(t, 4, 0, 0, 2, true); }));
+  out.push_back(d);
+  return out;
+}
+
+}  // namespace sl::figures

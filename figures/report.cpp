@@ -1,0 +1,322 @@
+// figures/report.cpp — report.html: one gallery per paper, the figures laid out as the papers
+// lay them out, close-ups, legacy/modern pairs with their difference images, our numbers
+// beside the paper's, and every missing panel in red with the reason.
+#include "figures/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "core/errors.h"
+
+namespace sl::figures {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string esc(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string msAndFps(double ms) {
+  if (ms <= 0) return "";
+  return fixed(ms, 1) + " ms (" + fixed(1000.0 / ms, 1) + " fps)";
+}
+
+const char* kStyle = R"(
+body { font-family: sans-serif; margin: 1.5em; color: #222; max-width: 1700px; }
+h1 { margin-bottom: 0.2em; } h2 { border-bottom: 2px solid #888; margin-top: 2em; }
+article { margin: 1.5em 0 2.5em; }
+.caption { max-width: 70em; }
+.grid { display: grid; gap: 6px; align-items: start; margin: 0.5em 0; }
+figure { margin: 0; }
+figure img { max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; }
+figcaption { font-size: 0.85em; }
+.missing { color: #c00; border: 2px dashed #c00; padding: 0.6em; font-size: 0.9em; }
+.missing b { color: #c00; }
+table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
+td, th { border: 1px solid #bbb; padding: 2px 6px; text-align: left; vertical-align: top; }
+th { background: #eee; }
+.paper { color: #05a; }
+.ok { color: #070; } .bad { color: #c00; }
+.inter { display: flex; flex-wrap: wrap; gap: 6px; }
+.inter figure { max-width: 100%; }
+.inter img { height: 180px; width: auto; }
+nav li { margin: 2px 0; }
+)";
+
+void writePanelCell(std::ostream& h, const PanelResult& p) {
+  if (!p.ok) {
+    h << "<div class=missing><b>missing: " << esc(p.spec.label) << "</b><br>" << esc(p.reason)
+      << "</div>\n";
+    return;
+  }
+  if (p.spec.kind == PanelKind::kIntermediates) {
+    h << "<div><b>" << esc(p.spec.label) << "</b> (" << esc(p.spec.technique)
+      << ")<div class=inter>";
+    for (const ImageFile& im : p.images)
+      h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
+        << esc(im.caption) << "\"></a><figcaption>" << esc(im.caption) << "</figcaption></figure>";
+    h << "</div></div>\n";
+    return;
+  }
+  for (const ImageFile& im : p.images) {
+    h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
+      << esc(im.caption) << "\"></a><figcaption>" << esc(p.spec.label);
+    if (!p.spec.technique.empty()) h << " — <code>" << esc(p.spec.technique) << "</code>";
+    if (p.milliseconds > 0) h << "<br>" << msAndFps(p.milliseconds);
+    if (!p.spec.paperNumbers.empty())
+      h << "<br><span class=paper>paper: " << esc(p.spec.paperNumbers) << "</span>";
+    h << "</figcaption></figure>\n";
+  }
+}
+
+void writeNumbers(std::ostream& h, const FigureResult& f) {
+  bool any = false;
+  for (const PanelResult& p : f.panels)
+    any = any || (p.spec.kind == PanelKind::kRender || p.spec.kind == PanelKind::kIntermediates);
+  if (!any) return;
+  h << "<table><tr><th>panel</th><th>technique</th><th>frame time (ours)</th><th>passes</th>"
+       "<th>error vs "
+    << esc(f.spec.reference.empty() ? "reference" : f.spec.reference)
+    << "</th><th>counters</th><th>paper</th></tr>\n";
+  for (const PanelResult& p : f.panels) {
+    if (p.spec.kind != PanelKind::kRender && p.spec.kind != PanelKind::kIntermediates) continue;
+    h << "<tr><td>" << esc(p.spec.label) << "</td><td><code>" << esc(p.spec.technique)
+      << "</code></td>";
+    if (!p.ok) {
+      h << "<td colspan=4 class=bad>missing: " << esc(p.reason) << "</td>";
+    } else {
+      h << "<td>" << msAndFps(p.milliseconds) << "</td><td>";
+      for (const PassTime& pass : p.passes)
+        h << esc(pass.name) << ": " << fixed(pass.milliseconds, 1) << " ms<br>";
+      h << "</td><td>";
+      if (p.error)
+        h << "RMSE " << fixed(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
+          << fixed(100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
+          << "% of pixels";
+      else
+        h << esc(p.errorNote);
+      h << "</td><td>";
+      for (const auto& [name, value] : p.counters)
+        h << esc(name) << ": " << fixed(value, 3) << "<br>";
+      h << "</td>";
+    }
+    h << "<td class=paper>" << esc(p.spec.paperNumbers) << "</td></tr>\n";
+  }
+  h << "</table>\n";
+}
+
+// CSM Table 1: labels "C=.. M=.. S=.." pivot into rows (C, M) and columns (S).
+void writePivot(std::ostream& h, const FigureResult& f) {
+  std::vector<std::string> rows, cols;
+  std::map<std::pair<std::string, std::string>, const PanelResult*> cell;
+  for (const PanelResult& p : f.panels) {
+    const size_t at = p.spec.label.find(" S=");
+    if (at == std::string::npos) return;
+    const std::string row = p.spec.label.substr(0, at), col = p.spec.label.substr(at + 1);
+    if (std::find(rows.begin(), rows.end(), row) == rows.end()) rows.push_back(row);
+    if (std::find(cols.begin(), cols.end(), col) == cols.end()) cols.push_back(col);
+    cell[{row, col}] = &p;
+  }
+  h << "<table><tr><th></th>";
+  for (const auto& c : cols)
+    h << "<th>" << esc(c) << "<br>ours / <span class=paper>paper</span></th>";
+  h << "</tr>\n";
+  for (const auto& r : rows) {
+    h << "<tr><th>" << esc(r) << "</th>";
+    for (const auto& c : cols) {
+      const PanelResult* p = cell[{r, c}];
+      h << "<td>";
+      if (p && p->ok)
+        h << fixed(1000.0 / p->milliseconds, 1) << " fps";
+      else if (p)
+        h << "<span class=bad>missing: " << esc(p->reason) << "</span>";
+      if (p) h << " / <span class=paper>" << esc(p->spec.paperNumbers) << "</span>";
+      h << "</td>";
+    }
+    h << "</tr>\n";
+  }
+  h << "</table>\n";
+}
+
+void writeTwins(std::ostream& h, const FigureResult& f) {
+  bool any = false;
+  for (const PanelResult& p : f.panels) any = any || p.twin.has_value();
+  if (!any) return;
+  h << "<h4>Legacy vs modern</h4><div class=grid style=\"grid-template-columns: repeat(3, "
+       "1fr)\">\n";
+  for (const PanelResult& p : f.panels) {
+    if (!p.twin) continue;
+    const TwinResult& t = *p.twin;
+    h << "<figure><img src=\"" << esc(p.images.front().file) << "\" alt=\"" << esc(p.spec.technique)
+      << "\"><figcaption><code>" << esc(p.spec.technique) << "</code> " << msAndFps(p.milliseconds)
+      << "</figcaption></figure>\n";
+    h << "<figure><img src=\"" << esc(t.file) << "\" alt=\"" << esc(t.technique)
+      << "\"><figcaption><code>" << esc(t.technique) << "</code> " << msAndFps(t.milliseconds)
+      << "</figcaption></figure>\n";
+    h << "<figure><img src=\"" << esc(t.diffFile)
+      << "\" alt=\"difference\"><figcaption>|visibility difference| (black = equal, white = 1): "
+      << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
+      << fixed(t.difference.maxAbs, 3) << ", RMSE " << fixed(t.difference.rmse, 4)
+      << "</figcaption></figure>\n";
+  }
+  h << "</div>\n";
+}
+
+void writeFigure(std::ostream& h, const FigureResult& f) {
+  const FigureSpec& s = f.spec;
+  int missing = 0;
+  for (const PanelResult& p : f.panels) missing += p.ok ? 0 : 1;
+  h << "<article id=\"" << esc(s.id) << "\"><h3>" << esc(s.paperFigure) << " — " << esc(s.title)
+    << " <small>(<code>" << esc(s.id) << "</code>)</small></h3>\n";
+  h << "<p class=caption>" << esc(s.caption) << "</p>\n";
+  h << "<p><small>scene <code>" << esc(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
+    << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
+    << " s; regenerate: <code>shadowlab figures --only " << esc(s.id) << "</code></small></p>\n";
+  if (missing > 0)
+    h << "<p class=bad>" << missing << " of " << f.panels.size()
+      << " panels missing (reasons below, in red).</p>\n";
+  const std::string grid = "<div class=grid style=\"grid-template-columns: repeat(" +
+                           std::to_string(s.columns) + ", 1fr)\">\n";
+  if (!s.table) {
+    h << grid;
+    for (const PanelResult& p : f.panels)
+      if (p.spec.kind != PanelKind::kPlot) writePanelCell(h, p);
+    h << "</div>\n";
+    bool closeups = false;
+    for (const PanelResult& p : f.panels) closeups = closeups || !p.closeups.empty();
+    if (closeups) {
+      h << "<h4>Close-ups of the red rectangles</h4>" << grid;
+      for (const PanelResult& p : f.panels) {
+        if (p.spec.kind == PanelKind::kPlot || !p.spec.closeups) continue;
+        if (p.closeups.empty()) {
+          writePanelCell(h, p);
+          continue;
+        }
+        for (const ImageFile& im : p.closeups)
+          h << "<figure><img src=\"" << esc(im.file) << "\" alt=\"" << esc(im.caption)
+            << "\"><figcaption>" << esc(im.caption) << "</figcaption></figure>\n";
+      }
+      h << "</div>\n";
+    }
+  } else {
+    for (const PanelResult& p : f.panels)
+      if (!p.ok && p.spec.kind != PanelKind::kPlot) {
+        h << "<p class=bad>missing panels: " << esc(p.reason)
+          << " (and possibly others, see the table)</p>\n";
+        break;
+      }
+  }
+  for (const PanelResult& p : f.panels)
+    if (p.spec.kind == PanelKind::kPlot) {
+      h << "<div class=grid style=\"grid-template-columns: 1fr\">";
+      writePanelCell(h, p);
+      h << "</div>\n";
+    }
+  if (!f.composite.empty())
+    h << "<p><small>The whole figure as one image: <a href=\"" << esc(f.composite) << "\">"
+      << esc(f.composite) << "</a></small></p>\n";
+  writeTwins(h, f);
+  if (!s.paperNumbers.empty())
+    h << "<p class=paper>The paper's numbers: " << esc(s.paperNumbers) << "</p>\n";
+  bool pivot = s.table && !f.panels.empty();
+  for (const PanelResult& p : f.panels)
+    pivot = pivot && p.spec.label.find(" S=") != std::string::npos;
+  if (pivot)
+    writePivot(h, f);
+  else
+    writeNumbers(h, f);
+  h << "</article>\n";
+}
+
+}  // namespace
+
+void writeReport(const std::string& outDir, const std::vector<FigureResult>& figures,
+                 const ReportInfo& info) {
+  std::ostringstream h;
+  h << "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>shadowlab — reproduced "
+       "figures</title><style>"
+    << kStyle << "</style></head><body>\n";
+  h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
+  h << "<p>Rendered " << esc(info.date) << " with " << esc(info.renderer) << " in "
+    << fixed(info.totalSeconds, 0)
+    << " s. Times are ours on this machine: one frame per panel, in a fresh GL context (so "
+       "they include shader compilation and first-use costs; <code>shadowlab bench</code> "
+       "measures steady frames), meant to be compared with each other; the papers' numbers "
+       "(blue) come from 2001-2007 hardware. Error: the visibility mask against the ray-traced "
+       "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
+       "red with the reason.</p>\n";
+  // Index with a status per figure.
+  h << "<nav><table><tr><th>paper</th><th>figure</th><th>id</th><th>panels made</th></tr>\n";
+  for (const FigureResult& f : figures) {
+    int ok = 0;
+    for (const PanelResult& p : f.panels) ok += p.ok ? 1 : 0;
+    const bool complete = ok == int(f.panels.size());
+    h << "<tr><td>" << esc(f.spec.paper) << "</td><td><a href=\"#" << esc(f.spec.id) << "\">"
+      << esc(f.spec.paperFigure) << " — " << esc(f.spec.title) << "</a></td><td><code>"
+      << esc(f.spec.id) << "</code></td><td class=" << (complete ? "ok" : "bad") << ">" << ok
+      << " / " << f.panels.size() << (complete ? "" : " (missing in red)") << "</td></tr>\n";
+  }
+  h << "</table></nav>\n";
+  std::string paper;
+  for (const FigureResult& f : figures) {
+    if (f.spec.paper != paper) {
+      paper = f.spec.paper;
+      h << "<h2>" << esc(paper) << "</h2>\n";
+    }
+    writeFigure(h, f);
+  }
+  h << info.benchHtml;
+  // Self-check for readers and for tests/figures/report_test.cpp: every image must have
+  // loaded; a broken one is outlined in red, logged to the console and counted on <body>.
+  h << "<script>\nwindow.addEventListener('load', function () {\n"
+       "  var ok = 0, broken = 0;\n"
+       "  document.querySelectorAll('img').forEach(function (img) {\n"
+       "    if (img.complete && img.naturalWidth > 0) { ok++; return; }\n"
+       "    broken++; img.style.outline = '3px solid red';\n"
+       "    console.error('missing image: ' + img.getAttribute('src'));\n"
+       "  });\n"
+       "  document.body.setAttribute('data-images-ok', ok);\n"
+       "  document.body.setAttribute('data-images-broken', broken);\n"
+       "});\n</script>\n";
+  h << "</body></html>\n";
+  const fs::path path = fs::path(outDir) / "report.html";
+  const fs::path tmp = fs::path(outDir) / "report.html.tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw InputError("cannot write " + tmp.string());
+    out << h.str();
+    if (!out) throw InputError("cannot write " + tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+}  // namespace sl::figures

@@ -1,0 +1,97 @@
+// legacy.second-depth — Yulan Wang & Steven Molnar, "Second-Depth Shadow Mapping", UNC TR94-019,
+// 1994, as Everitt, Rege & Cebenoyan 2001 summarise it ("Advantages and Limitations"): only
+// back faces (as seen from the light) go into the shadow map, so a lit front face lies a whole
+// object thickness in front of the stored depth and needs no polygon offset. Back faces are
+// unlit by definition, which hides their own acne. Valid for closed objects only.
+//
+// Passes:
+//   1. renderBackFacesFromLight — closed casters from the light with front faces culled, open
+//                                 casters with both faces and polygon offset (our fallback);
+//                                 the depth buffer copied into the DEPTH_COMPONENT map
+//   2-5. shadeWithShadowMap     — legacy.hw's camera passes (texgen planes, ambient, direct
+//                                 light x shadow test, visibility mask)
+#include "core/errors.h"
+#include "core/gl.h"
+#include "legacy_gl/depth_layer_shadow_maps.h"
+#include "legacy_gl/fixed_function.h"
+#include "legacy_gl/hardware_shadow_map.h"
+
+namespace sl::legacy {
+using namespace sl::gl;
+
+namespace {
+
+// DEVIATION (Wang & Molnar 1994; Everitt et al. 2001): the method needs closed casters. An open
+// caster (a quad, a ground plane, a mesh with holes) has no back face behind its front face, so
+// it would cast nothing. Our fallback draws open casters with both faces and legacy.hw's
+// slope-scaled polygon offset: they cast as in legacy.hw, closed casters keep the second depth.
+constexpr float kOpenCasterOffsetFactor = 2.0f;  // glPolygonOffset slope factor, as legacy.hw
+constexpr float kOpenCasterOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
+
+Scene castersOf(const Scene& scene, bool closed) {
+  Scene subset = scene;
+  std::erase_if(subset.objects, [&](const Object& o) {
+    return !o.castsShadow || o.mesh->closed != closed;
+  });
+  return subset;
+}
+
+// Pass 1 (Wang & Molnar via Everitt): the second depth of closed casters = their back faces.
+// Meshes wind counter-clockwise seen from outside (core/primitives.h), so culling GL_FRONT in
+// the light's view keeps the faces that point away from the light.
+void renderBackFacesFromLight(const Scene& scene, const RenderParams& params, GLuint shadowMap,
+                              bool linearCompare, Frame& frame) {
+  PassTimer timer(frame, "1 back faces from light");
+  const int n = params.shadowMapTexels;
+  LightTarget target(n, n <= params.width && n <= params.height, false);
+  target.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glFrontFace(GL_CCW);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  loadMatrix(GL_PROJECTION, lightProjection(scene));
+  loadMatrix(GL_MODELVIEW, lightView(scene.light));
+  drawScene(castersOf(scene, true), Draw::kCasters);
+  glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
+  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  drawScene(castersOf(scene, false), Draw::kCasters);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glBindTexture(GL_TEXTURE_2D, shadowMap);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+               nullptr);
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
+  setDepthCompareParameters(linearCompare);
+  target.unbind();
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  Frame frame;
+  TextureName shadowMap;
+  renderBackFacesFromLight(scene, params, shadowMap.id(), linear, frame);
+  shadeWithShadowMap(scene, params, shadowMap.id(), 2, frame);
+  checkGl("legacy.second-depth");
+  return frame;
+}
+
+}  // namespace
+
+Technique secondDepthShadowMapTechnique() {
+  Technique t;
+  t.name = "legacy.second-depth";
+  t.paper = "Wang & Molnar 1994 second-depth shadow map (Everitt, Rege & Cebenoyan 2001)";
+  t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCompatibility;
+  t.paramKeys = {"compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::legacy

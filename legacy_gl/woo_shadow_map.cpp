@@ -1,0 +1,179 @@
+// legacy.woo — Andrew Woo's midpoint shadow map, as Everitt, Rege & Cebenoyan 2001 describe it
+// ("Advantages and Limitations": the map holds the average of the nearest and second-nearest
+// depth layers seen from the light, made with depth peeling), in OpenGL 1.x + ARB_shadow.
+// Chan 2004 §2 explains why a bias is needed at all; Woo's midpoint removes the polygon-offset
+// fudge factor: a lit surface lies half a layer in front of the stored depth.
+//
+// Passes:
+//   1. renderFirstDepthLayer  — casters from the light, nearest depth z1 (no polygon offset)
+//   2. peelSecondDepthLayer   — casters again; the z1 map as an ARB_shadow texture (GEQUAL)
+//                               and the alpha test keep only fragments behind z1, so the
+//                               depth buffer ends with the second layer z2 (depth peeling)
+//   3. storeMidpointDepth     — (z1 + z2) / 2 into the DEPTH_COMPONENT shadow map
+//   4-7. shadeWithShadowMap   — legacy.hw's camera passes (texgen planes, ambient, direct light
+//                               x shadow test, visibility mask) on the midpoint map
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/gl.h"
+#include "legacy_gl/depth_layer_shadow_maps.h"
+#include "legacy_gl/fixed_function.h"
+#include "legacy_gl/hardware_shadow_map.h"
+
+namespace sl::legacy {
+using namespace sl::gl;
+
+namespace {
+
+// Depth peeling's own tolerance, in window depth [0,1]: a fragment counts as "behind" the
+// first layer when its texgen depth r/q exceeds z1 by more than this. r/q and the rasterised
+// z of the very same fragment differ only by float rounding (~1e-7) and the 24-bit storage of
+// z1 (6e-8), so 2^-20 (16 depth units) separates the layer from itself and nothing else.
+constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
+constexpr float kAlphaTestThreshold = 0.5f;  // ARB_shadow gives 0 or 1 with GL_NEAREST
+
+// Pass 1 (Everitt, Woo paragraph): nearest depth layer from the light, without polygon offset.
+std::vector<float> renderFirstDepthLayer(const Scene& scene, int n, LightTarget& target,
+                                         GLuint firstLayer, Frame& frame) {
+  PassTimer timer(frame, "1 first depth layer");
+  target.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  loadMatrix(GL_PROJECTION, lightProjection(scene));
+  loadMatrix(GL_MODELVIEW, lightView(scene.light));
+  drawScene(scene, Draw::kCasters);
+  glBindTexture(GL_TEXTURE_2D, firstLayer);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+               nullptr);
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
+  std::vector<float> z1(size_t(n) * n);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT, z1.data());
+  return z1;
+}
+
+// Pass 2 (Everitt, Woo paragraph and his depth peeling [2]): the first layer, projected from
+// the light onto the casters with EYE_LINEAR texgen, peels itself away. The ARB_shadow result
+// (r - kPeelEpsilon >= z1) goes to alpha (DEPTH_TEXTURE_MODE ALPHA) and the alpha test drops
+// fragments that are not behind z1; the depth test then keeps the nearest of the rest = z2.
+std::vector<float> peelSecondDepthLayer(const Scene& scene, int n, LightTarget& target,
+                                        GLuint firstLayer, Frame& frame) {
+  PassTimer timer(frame, "2 peel to second depth layer");
+  target.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  loadMatrix(GL_PROJECTION, lightProjection(scene));
+  loadMatrix(GL_MODELVIEW, lightView(scene.light));  // planes given in world space (Eq. 5)
+  const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));
+  const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
+  const GLenum enables[4] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R,
+                             GL_TEXTURE_GEN_Q};
+  glActiveTexture(GL_TEXTURE0);
+  for (int i = 0; i < 4; ++i) {
+    glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+    glTexGenfv(coords[i], GL_EYE_PLANE, glm::value_ptr(planes[i]));
+    glEnable(enables[i]);
+  }
+  // r' = r - kPeelEpsilon * q: the texture matrix moves the reference depth, not the map.
+  loadMatrix(GL_TEXTURE, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -kPeelEpsilon)));
+  glMatrixMode(GL_MODELVIEW);
+  glBindTexture(GL_TEXTURE_2D, firstLayer);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+  glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_ALPHA);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glEnable(GL_TEXTURE_2D);
+  glEnable(GL_ALPHA_TEST);
+  glAlphaFunc(GL_GREATER, kAlphaTestThreshold);
+  drawScene(scene, Draw::kCasters, Colors::kWhite);
+  glDisable(GL_ALPHA_TEST);
+  glDisable(GL_TEXTURE_2D);
+  for (GLenum e : enables) glDisable(e);
+  loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
+  glMatrixMode(GL_MODELVIEW);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  std::vector<float> z2(size_t(n) * n);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT, z2.data());
+  target.unbind();
+  return z2;
+}
+
+// Pass 3 (Woo's midpoint): the map holds (z1 + z2) / 2. Where nothing lies behind z1 the
+// cleared depth 1 stands in for z2.
+// DEVIATION (Everitt, Woo paragraph): the GeForce3 wrote the average as the fragment depth
+// during the peel (texture-shader depth replace); OpenGL 1.x fixed function cannot write a
+// computed depth, so the two layers are averaged on the host between glReadPixels and
+// glTexImage2D. The nearest averaged fragment is the average of the two nearest layers, so
+// the map is the same.
+void storeMidpointDepth(int n, const std::vector<float>& z1, const std::vector<float>& z2,
+                        GLuint midpointMap, bool linearCompare, Frame& frame) {
+  PassTimer timer(frame, "3 midpoint of the layers");
+  std::vector<float> mid(z1.size());
+  for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
+  glBindTexture(GL_TEXTURE_2D, midpointMap);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+               mid.data());
+  setDepthCompareParameters(linearCompare);
+}
+
+PassImage depthImage(const std::string& name, const std::string& caption, int n,
+                     const std::vector<float>& z) {
+  Image image(n, n, 1);
+  image.data = z;
+  return {name, caption, image};
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const int n = params.shadowMapTexels;
+  Frame frame;
+  TextureName firstLayer;
+  TextureName midpointMap;
+  std::vector<float> z1, z2;
+  {
+    LightTarget target(n, n <= params.width && n <= params.height, false);
+    z1 = renderFirstDepthLayer(scene, n, target, firstLayer.id(), frame);
+    z2 = peelSecondDepthLayer(scene, n, target, firstLayer.id(), frame);
+  }
+  storeMidpointDepth(n, z1, z2, midpointMap.id(), linear, frame);
+  if (params.capturePasses) {
+    std::vector<float> mid(z1.size());
+    for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
+    frame.intermediates.push_back(
+        depthImage("1-first-depth-layer", "nearest depth from the light (z1)", n, z1));
+    frame.intermediates.push_back(
+        depthImage("2-second-depth-layer", "depth after peeling z1 away (z2)", n, z2));
+    frame.intermediates.push_back(
+        depthImage("3-midpoint-shadow-map", "Woo's midpoint (z1 + z2) / 2", n, mid));
+  }
+  shadeWithShadowMap(scene, params, midpointMap.id(), 4, frame);
+  checkGl("legacy.woo");
+  return frame;
+}
+
+}  // namespace
+
+Technique wooShadowMapTechnique() {
+  Technique t;
+  t.name = "legacy.woo";
+  t.paper =
+      "Woo's midpoint shadow map (Everitt, Rege & Cebenoyan 2001, Advantages and Limitations)";
+  t.summary = "depth peeling of two layers from the light, map = their midpoint, no polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCompatibility;
+  t.paramKeys = {"compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::legacy

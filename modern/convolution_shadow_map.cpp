@@ -1,0 +1,268 @@
+// modern.csm — Convolution Shadow Maps. Annen T., Mertens T., Bekaert P., Seidel H.-P.,
+// Kautz J.: "Convolution Shadow Maps", Eurographics Symposium on Rendering 2007.
+//
+// The binary shadow test f(d, z) (Eq. 1) is expanded in a truncated Fourier series (Eq. 10-14)
+// whose terms are separable in d and z, so that the basis images sin(c_k z(p)), cos(c_k z(p))
+// can be filtered like any texture (Eq. 8) before the test is reconstructed per pixel.
+//
+// Passes:
+//   1. renderLinearDepthFromLight — linear light-space depth z(p) into an R32F map (§4.1)
+//   2. computeBasisTextures       — sin(c_k z), cos(c_k z), k = 1..M, packed four per RGBA
+//                                   layer, written several layers at a time with MRT (§4.1)
+//   3. blurBasisTextures          — separable Gaussian 3x3 / 5x5 / 7x7 (§4.1), optional
+//   4. buildBasisMipmaps          — mip-maps, tri-linear + anisotropic filtering (§4, Table 1)
+//   5. reconstructInCameraPass    — Eq. 13 with attenuation (§3.2.1), offset and scale
+//                                   (§3.2.2), clamp to [0, 1] (§4.1); csm_shadow.frag
+#include "modern/convolution_shadow_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.h"
+#include "modern/camera_pass.h"
+#include "modern/prefiltered_maps.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+constexpr int kDefaultOrder = 16;      // M of Fig. 4, 5 (Table 1 also measures 4 and 8)
+constexpr int kMaxOrder = 64;          // 32 RGBA layers
+constexpr double kDefaultAlpha = 1.0;  // §3.2.1; removes most of the Gibbs overshoot
+constexpr double kMaxAlpha = 50.0;
+constexpr double kMaxOffset = 0.5;  // in linear depth units (the whole range is 1)
+constexpr double kMaxScale = 8.0;
+constexpr int kDefaultBlurTaps = 3;                        // 3x3 (Table 1's middle block)
+constexpr int kChannelsPerLayer = 4;                       // RGBA
+constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
+constexpr int kOffsetSearchSteps = 20000;  // resolution of the default-offset search on (0, 1]
+
+struct CsmSettings {
+  int order = kDefaultOrder;  // M
+  double alpha = kDefaultAlpha;
+  double offset = 0.0;         // subtracted from d (§3.2.2)
+  double scale = 1.0;          // multiplies f (§3.2.2)
+  GLenum format = GL_RGBA8;    // storage of the basis layers
+  bool encodeUnsigned = true;  // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
+  int blurTaps = kDefaultBlurTaps;
+  MapFiltering filtering;
+  int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
+  int layers() const { return 2 * sinLayers(); }
+  // Linear depth is stored scaled by 1 - offset, so that t = z - d + offset stays inside one
+  // period (-1, 1] of the square wave S(t) of Eq. 10 for every z, d in the map.
+  float depthScale() const { return float(1.0 - offset); }
+};
+
+CsmSettings parseSettings(const GlContext& context, const RenderParams& params) {
+  CsmSettings s;
+  s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
+  s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
+  // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset.
+  const auto offset = params.extra.find("offset");
+  s.offset = offset == params.extra.end() || offset->second == "auto"
+                 ? csmDefaultOffset(s.order, s.alpha)
+                 : params.number("offset", 0.0, 0.0, kMaxOffset);
+  // "auto" (or no value): 1 / f(offset) where the attenuated step tops out below 1 (small M
+  // with alpha > 0: M = 1, alpha = 1 peaks at 0.73), so that lit surfaces are lit (§3.2.2:
+  // "after offsetting, f goes through 1"); 1 otherwise. §3.2.2's own alternative is 2.
+  const auto scale = params.extra.find("scale");
+  if (scale == params.extra.end() || scale->second == "auto") {
+    s.scale = std::max(1.0, 1.0 / csmReconstructedStep(s.offset, s.order, s.alpha));
+  } else {
+    s.scale = params.number("scale", 1.0, 1.0, kMaxScale);
+  }
+  const std::string storage = params.text("storage", "8", {"8", "16", "float"});
+  s.format = storage == "8" ? GL_RGBA8 : storage == "16" ? GL_RGBA16F : GL_RGBA32F;
+  s.encodeUnsigned = storage == "8";
+  if (params.extra.count("blur") == 0) {
+    s.blurTaps = kDefaultBlurTaps;
+  } else {
+    s.blurTaps = parseBlurTaps(params);
+  }
+  s.filtering = parseFiltering(context, params);
+  const double bytesPerTexel = storage == "8" ? 4 : storage == "16" ? 8 : 16;
+  const double bytes = double(params.shadowMapTexels) * params.shadowMapTexels * s.layers() *
+                       bytesPerTexel * (s.filtering.mipmaps ? 4.0 / 3.0 : 1.0);
+  if (bytes > kMaxMapBytes)
+    throw InputError("modern.csm: M=" + std::to_string(s.order) + " at " +
+                     std::to_string(params.shadowMapTexels) + "^2 with storage=" + storage +
+                     " needs " + std::to_string(int(bytes / (1024 * 1024))) +
+                     " MiB of basis textures (limit 2048 MiB)");
+  return s;
+}
+
+// Pass 1 (§4.1): linear depth from the light ("we use linear depth values [BAS03]").
+RenderTarget renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
+                                        const CsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "1 linear depth from light");
+  const int n = params.shadowMapTexels;
+  RenderTarget map = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
+  map.bind();
+  const float far[4] = {s.depthScale(), 0, 0, 1};  // no blocker: the far end of the range
+  glClearBufferfv(GL_COLOR, 0, far);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  Program program("scene.vert.glsl", "light_linear_depth.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  setLinearDepthUniforms(program, gpu.scene());
+  program.set("uDepthScale", s.depthScale());
+  gpu.draw([](const Object& o) { return o.castsShadow; },
+           [&](const Object& o) { program.set("uModel", o.model); });
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return map;
+}
+
+// Pass 2 (§4.1, Eq. 14): the basis images B_i(z(p)), as many layers per pass as the
+// context has draw buffers ("with four MRTs only two additional render passes").
+LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "2 basis textures (MRT)");
+  LayeredMap basis = makeLayeredMap(depth.width, s.layers(), s.format, s.filtering.mipmaps);
+  Program program("fullscreen.vert.glsl", "csm_basis.frag.glsl");
+  program.use();
+  program.set("uLinearDepth", 0);
+  program.set("uOrder", s.order);
+  program.set("uSinLayers", s.sinLayers());
+  program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
+  glDisable(GL_DEPTH_TEST);
+  const Framebuffer fbo = makeFramebuffer();
+  const FullScreenTriangle triangle;
+  const int perPass = layersPerPass();
+  int passes = 0;
+  for (int first = 0; first < basis.layers; first += perPass, ++passes) {
+    const int count = std::min(perPass, basis.layers - first);
+    attachLayers(fbo, basis, first, count);
+    program.set("uFirstLayer", first);
+    program.set("uLayerCount", count);
+    triangle.draw();
+  }
+  frame.counters["basis render passes"] = passes;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return basis;
+}
+
+// Pass 3 (§4.1): "a separable Gaussian filter kernel on the textures".
+void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
+  if (s.blurTaps > 0) blurLayers(basis, s.blurTaps, "3 separable Gaussian", frame);
+}
+
+// Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and
+// anisotropic) filtering: "no shader magic is needed".
+void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "4 mip-maps");
+  buildMipmapsAndSetFiltering(basis, s.filtering);
+}
+
+// Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test.
+void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
+                             const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction");
+  const Scene& scene = gpu.scene();
+  RenderTarget target = makeCameraTarget(params, true);
+  clearCameraTarget(target);
+  glEnable(GL_DEPTH_TEST);
+  Program program("scene.vert.glsl", "csm_shadow.frag.glsl");
+  program.use();
+  program.set("uViewProjection", cameraViewProjection(scene, params));
+  program.set("uWorldToShadowMap", worldToShadowMap(scene));
+  setLinearDepthUniforms(program, scene);
+  program.set("uDepthScale", s.depthScale());
+  program.set("uOrder", s.order);
+  program.set("uSinLayers", s.sinLayers());
+  program.set("uAlpha", float(s.alpha));
+  program.set("uOffset", float(s.offset));
+  program.set("uScale", float(s.scale));
+  program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
+  setLightingUniforms(program, scene);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, basis.texture.id());
+  program.set("uBasis", 0);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(program, o); });
+  readCameraTarget(target, frame);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
+void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const CsmSettings& s,
+                   Frame& frame) {
+  const Image linear = readAttachment(depth, 0);
+  frame.intermediates.push_back(
+      {"1-linear-depth", "linear light-space depth z(p) (§4.1)", channel(linear, 0)});
+  // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one, the
+  // stored values with [-1, 1] shown as [0, 1].
+  const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
+  const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
+  auto range = [&](int layer) {
+    const int first = kChannelsPerLayer * layer + 1;
+    return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
+  };
+  for (int layer = 0; layer < s.sinLayers(); ++layer)
+    frame.intermediates.push_back({"2-basis-sin-" + range(layer),
+                                   "sin(c_k z), " + range(layer) + ", after blur (Fig. 5)",
+                                   readLayer(basis, layer, scale, bias)});
+  frame.intermediates.push_back({"2-basis-cos-" + range(0),
+                                 "cos(c_k z), " + range(0) + ", after blur",
+                                 readLayer(basis, s.sinLayers(), scale, bias)});
+}
+
+Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
+  const CsmSettings s = parseSettings(context, params);
+  Frame frame;
+  GpuScene gpu(scene);
+  const RenderTarget depth = renderLinearDepthFromLight(gpu, params, s, frame);
+  const LayeredMap basis = computeBasisTextures(depth, s, frame);
+  blurBasisTextures(basis, s, frame);
+  if (params.capturePasses) capturePasses(depth, basis, s, frame);
+  buildBasisMipmaps(basis, s, frame);
+  reconstructInCameraPass(gpu, params, basis, s, frame);
+  frame.counters["order M"] = s.order;
+  frame.counters["offset"] = s.offset;
+  frame.counters["scale"] = s.scale;
+  frame.counters["basis layers"] = s.layers();
+  frame.counters["anisotropy"] = s.filtering.anisotropy;
+  return frame;
+}
+}  // namespace
+
+double csmReconstructedStep(double t, int order, double alpha) {
+  double f = 0.5;
+  for (int k = 1; k <= order; ++k) {
+    const double ck = std::numbers::pi * (2.0 * k - 1.0);
+    const double attenuation = std::exp(-alpha * (double(k) / order) * (double(k) / order));
+    f += attenuation * (2.0 / ck) * std::sin(ck * t);
+  }
+  return f;
+}
+
+double csmDefaultOffset(int order, double alpha) {
+  if (order < 1) throw InputError("CSM truncation order must be at least 1");
+  // Walk up the step from t = 0 until it stops rising.
+  double previous = csmReconstructedStep(0.0, order, alpha);
+  for (int i = 1; i <= kOffsetSearchSteps; ++i) {
+    const double t = double(i) / kOffsetSearchSteps;
+    const double value = csmReconstructedStep(t, order, alpha);
+    if (value < previous) return std::min(double(i - 1) / kOffsetSearchSteps, kMaxOffset);
+    previous = value;
+  }
+  return kMaxOffset;
+}
+
+Technique convolutionShadowMapTechnique() {
+  Technique t;
+  t.name = "modern.csm";
+  t.paper = "Annen, Mertens, Bekaert, Seidel & Kautz 2007, Convolution Shadow Maps";
+  t.summary =
+      "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering", "anisotropy"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

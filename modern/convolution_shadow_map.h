@@ -1,0 +1,22 @@
+// modern/convolution_shadow_map.h — modern.csm: Convolution Shadow Maps (Annen, Mertens,
+// Bekaert, Seidel & Kautz 2007).
+#pragma once
+
+#include "core/technique.h"
+
+namespace sl::modern {
+
+Technique convolutionShadowMapTechnique();
+
+// The truncated, attenuated Fourier reconstruction of the shadow test as a function of
+// t = z - d (Eq. 11 with §3.2.1): 1/2 + sum_{k=1..M} exp(-alpha (k/M)^2) (2/c_k) sin(c_k t),
+// c_k = pi (2k - 1). It is what the shader evaluates through Eq. 13 for unfiltered maps.
+// (Eq. 11 is printed with sin(c_k (d - z)), the step of H(d - z) = 1 in SHADOW; Eq. 13 and
+// Eq. 1's f, 1 = lit, expand sin(c_k (z - d)); we follow Eq. 13.)
+double csmReconstructedStep(double t, int order, double alpha);
+
+// §3.2.2 offset used when --param offset is not given: the t > 0 of the first maximum of the
+// reconstructed step, so that a lit surface (z = d) reconstructs to the top of the step.
+double csmDefaultOffset(int order, double alpha);
+
+}  // namespace sl::modern

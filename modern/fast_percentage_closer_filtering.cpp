@@ -1,0 +1,115 @@
+// modern.fast-pcf — Brabec & Seidel 2001 §4: fast percentage-closer filtering by packing four
+// neighbouring texels of ONE light pass into a texel (the 3x3 convolution of Eq. 1, Figure 5),
+// as shaders. Twin of legacy_gl's legacy.fast-pcf.
+//
+// Passes:
+//   1. renderDepthAsColourFromLight — one light pass, encoded depth in all four channels (§4)
+//   2. packNeighbours               — fast_pcf_pack.frag: Eq. (1)'s kernel gathers the lower-left,
+//                                     lower-middle, middle-left and centre texels into R, G, B, A
+//                                     (Figure 5); for 4x4 footprints four phases gather the
+//                                     upper-left, upper-right, lower-left, lower-right regions
+//   3. shadowTestAndShade           — pcf_shadow.frag with the (ds/2, dt/2) texture-coordinate
+//                                     offset (Figure 6, shifted by one texel per 4x4 phase); the
+//                                     phases summed as the accumulation buffer does (20 levels)
+#include <string>
+
+#include "core/errors.h"
+#include "modern/brabec_seidel.h"
+#include "modern/brabec_seidel_techniques.h"
+#include "modern/camera_pass.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+
+// A phase: which 2x2 region of the 3x3 neighbourhood the kernel gathers (its lower-left pixel
+// relative to the centre) and the lookup offset that centres the footprint (Figure 6).
+struct Phase {
+  glm::ivec2 regionOrigin;
+  glm::vec2 offsetTexels;
+};
+
+// 2x2: Eq. (1) gathers the region {x-1, x} x {y-1, y}, centred half a texel below-left of the
+// texel, so the lookup moves by (+ds/2, +dt/2) (Figure 6).
+const std::vector<Phase> kFootprint2 = {{{-1, -1}, {0.5f, 0.5f}}};
+// 4x4: the footprint {c-2 .. c+1}^2 around c = round(p) as four 2x2 regions. A region with
+// origin -1 looked up at p - 1/2 covers {c-2, c-1}; origin 0 looked up at p + 1/2 covers {c, c+1}.
+const std::vector<Phase> kFootprint4 = {{{-1, -1}, {-0.5f, -0.5f}},  // lower left
+                                        {{0, -1}, {0.5f, -0.5f}},    // lower right
+                                        {{-1, 0}, {-0.5f, 0.5f}},    // upper left
+                                        {{0, 0}, {0.5f, 0.5f}}};     // upper right
+
+// Pass 1 (§4): the scene from the light once, encoded depth in R, G, B and A.
+RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParams& params,
+                                          const Texture& ramp, Frame& frame) {
+  PassTimer timer(frame, "1 light pass: depth as colour in RGBA");
+  RenderTarget map = bs::makeEncodedDepthTarget(params);
+  bs::renderEncodedDepth(gpu, params, ramp, map, glm::bvec4(true), glm::vec2(0.0f));
+  return map;
+}
+
+// Pass 2 (§4, Eq. 1, Figure 5): neighbour packing, one packed map per phase.
+std::vector<RenderTarget> packNeighbours(const RenderParams& params, const RenderTarget& encoded,
+                                         const std::vector<Phase>& phases, Frame& frame) {
+  PassTimer timer(frame, "2 convolution packing (Eq. 1)");
+  std::vector<RenderTarget> packed;
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
+  FullScreenTriangle triangle;
+  glDisable(GL_DEPTH_TEST);
+  for (const Phase& phase : phases) {
+    const int n = params.shadowMapTexels;
+    packed.push_back(makeRenderTarget(n, n, {bs::encodedDepthFormat(params)}, false));
+    packed.back().bind();
+    program.use();
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, encoded.color[0].id());
+    program.set("uEncodedDepth", 0);
+    gl::glUniform2i(program.uniform("uRegionOrigin"), phase.regionOrigin.x, phase.regionOrigin.y);
+    triangle.draw();
+    bs::setMapSampling(packed.back().color[0].id());
+  }
+  glEnable(GL_DEPTH_TEST);
+  return packed;
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  if (params.filter != 2 && params.filter != 4)
+    throw InputError("modern.fast-pcf takes footprints 2 and 4 (--filter), got " +
+                     std::to_string(params.filter));
+  const std::vector<Phase>& phases = params.filter == 2 ? kFootprint2 : kFootprint4;
+  Frame frame;
+  GpuScene gpu(scene);
+  const Texture ramp = bs::makeRampTexture(params);
+  const RenderTarget encoded = renderDepthAsColourFromLight(gpu, params, ramp, frame);
+  const std::vector<RenderTarget> packed = packNeighbours(params, encoded, phases, frame);
+  std::vector<bs::SampleGroup> groups;
+  for (size_t q = 0; q < packed.size(); ++q) {
+    groups.push_back({packed[q].color[0].id(), 4, phases[q].offsetTexels});
+    if (params.capturePasses)
+      frame.intermediates.push_back({"2-packed-neighbours-" + std::to_string(q),
+                                     "four neighbours packed in R, G, B, A (Figure 5)",
+                                     readAttachment(packed[q], 0)});
+  }
+  {
+    PassTimer timer(frame, "3 camera pass: shadow test, colour table, colour matrix");
+    bs::shadowTestAndShade(gpu, params, ramp, groups, frame);
+  }
+  return frame;
+}
+
+}  // namespace
+
+Technique fastPercentageCloserFilteringTechnique() {
+  Technique t;
+  t.name = "modern.fast-pcf";
+  t.paper = "Brabec & Seidel 2001, §4 (as GLSL)";
+  t.summary = "neighbour packing of Eq. 1 in a shader, (ds/2, dt/2) offset; 2x2 and 4x4";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = bs::paramKeys();
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

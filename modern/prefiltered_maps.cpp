@@ -1,0 +1,184 @@
+#include "modern/prefiltered_maps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/errors.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+constexpr int kMaxOutputsPerPass = 8;    // separable_gaussian.frag declares 8 outputs
+constexpr float kMaxAnisotropy = 16.0f;  // Annen Table 1: "16x anisotropic tri-linear"
+constexpr int kMaxBlurTaps = 7;          // 7x7, the largest kernel of Annen Table 1
+const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";
+}  // namespace
+
+void setLinearDepthUniforms(const Program& program, const Scene& scene) {
+  const DepthRange range = lightDepthRange(scene);
+  program.set("uLightView", lightView(scene.light));
+  program.set("uLightNear", range.nearPlane);
+  program.set("uLightFar", range.farPlane);
+}
+
+int parseBlurTaps(const RenderParams& params) {
+  const int taps = params.integer("blur", 0, 0, kMaxBlurTaps);
+  if (taps != 0 && taps != 1 && taps != 3 && taps != 5 && taps != 7)
+    throw InputError("--param blur=" + std::to_string(taps) +
+                     ": the Gaussian kernel must be 0 or 1 (none), 3, 5 or 7 texels wide");
+  return taps <= 1 ? 0 : taps;
+}
+
+std::vector<float> binomialWeights(int taps) {
+  // Row taps-1 of Pascal's triangle over 2^(taps-1): the binomial approximation of a Gaussian.
+  std::vector<float> w(size_t(taps), 1.0f);
+  for (int i = 1; i < taps; ++i) w[size_t(i)] = w[size_t(i - 1)] * float(taps - i) / float(i);
+  const float total = std::ldexp(1.0f, taps - 1);
+  for (float& v : w) v /= total;
+  return w;
+}
+
+MapFiltering parseFiltering(const GlContext& context, const RenderParams& params) {
+  MapFiltering f;
+  const std::string mode =
+      params.text("filtering", "anisotropic", {"anisotropic", "trilinear", "bilinear", "nearest"});
+  f.mipmaps = mode == "anisotropic" || mode == "trilinear";
+  f.linear = mode != "nearest";
+  // "anisotropic" is Table 1's "16x anisotropic tri-linear"; an explicit --param anisotropy
+  // applies to "trilinear" too.
+  const float fallback = mode == "anisotropic" ? kMaxAnisotropy : 1.0f;
+  const float asked = float(params.number("anisotropy", fallback, 1, kMaxAnisotropy));
+  if (!context.caps().hasExtension(kAnisotropicExtension)) {
+    f.anisotropy = 1.0f;
+  } else {
+    float most = 1.0f;
+    glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &most);
+    f.anisotropy = std::clamp(asked, 1.0f, std::max(most, 1.0f));
+  }
+  if (!f.mipmaps) f.anisotropy = 1.0f;  // anisotropic filtering refines the mip footprint
+  return f;
+}
+
+LayeredMap makeLayeredMap(int size, int layers, GLenum format, bool mipmapped) {
+  LayeredMap m;
+  m.texture = makeTexture();
+  m.size = size;
+  m.layers = layers;
+  m.format = format;
+  m.levels = 1;
+  if (mipmapped)
+    while ((size >> m.levels) > 0) ++m.levels;
+  glBindTexture(GL_TEXTURE_2D_ARRAY, m.texture.id());
+  // Immutable storage, every level at once. Allocated level by level with glTexImage3D, a 2x2
+  // or 3x3 map with two or more layers (two mip levels) came back GL_FRAMEBUFFER_UNSUPPORTED
+  // from Mesa 22 llvmpipe when its layers were attached (stability case map_2x2, modern.csm);
+  // 1x1 and 4x4 and up were complete. With glTexStorage3D every size is.
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, m.levels, format, size, size, layers);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, m.levels - 1);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  checkGl("allocate layered shadow map");
+  return m;
+}
+
+int layersPerPass() {
+  GLint most = 1;
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &most);
+  return std::clamp(int(most), 1, kMaxOutputsPerPass);
+}
+
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  std::vector<GLenum> buffers;
+  for (int i = 0; i < kMaxOutputsPerPass; ++i) {
+    const GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    if (i < count) {
+      glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, map.texture.id(), 0, first + i);
+      buffers.push_back(attachment);
+    } else if (i < layersPerPass()) {
+      glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, 0, 0, 0);
+    }
+  }
+  glDrawBuffers(GLsizei(buffers.size()), buffers.data());
+  if (const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04X", unsigned(status));
+    throw GlError("layered shadow map framebuffer is incomplete (status " + std::string(code) +
+                  ", layers " + std::to_string(first) + ".." + std::to_string(first + count - 1) +
+                  " of " + std::to_string(map.layers) + ", " + std::to_string(map.size) + "^2)");
+  }
+  glViewport(0, 0, map.size, map.size);
+}
+
+void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame& frame) {
+  PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
+  const LayeredMap scratch = makeLayeredMap(map.size, map.layers, map.format, false);
+  const std::vector<float> weights = binomialWeights(taps);
+  Program program("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
+  program.use();
+  program.set("uSource", 0);
+  program.set("uTaps", taps);
+  glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+  const Framebuffer fbo = makeFramebuffer();
+  const FullScreenTriangle triangle;
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  const int perPass = layersPerPass();
+  // Horizontal: map -> scratch; vertical: scratch -> map (the separable kernel, §4.1).
+  const LayeredMap* passes[2][2] = {{&map, &scratch}, {&scratch, &map}};
+  for (int direction = 0; direction < 2; ++direction) {
+    const LayeredMap& source = *passes[direction][0];
+    const LayeredMap& target = *passes[direction][1];
+    glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glUniform2i(program.uniform("uStep"), direction == 0 ? 1 : 0, direction == 0 ? 0 : 1);
+    for (int first = 0; first < map.layers; first += perPass) {
+      const int count = std::min(perPass, map.layers - first);
+      attachLayers(fbo, target, first, count);
+      program.set("uFirstLayer", first);
+      program.set("uLayerCount", count);
+      triangle.draw();
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
+void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering) {
+  glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
+  if (filtering.mipmaps && map.levels > 1) glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  const GLint magnify = filtering.linear ? GL_LINEAR : GL_NEAREST;
+  const GLint minify = filtering.mipmaps && map.levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : magnify;
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, minify);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, magnify);
+  if (filtering.anisotropy > 1.0f)
+    glTexParameterf(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_ANISOTROPY, filtering.anisotropy);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  checkGl("mip-maps and filtering of the shadow map");
+}
+
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias) {
+  const Framebuffer fbo = makeFramebuffer();
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.id());
+  glFramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.texture.id(), 0, layer);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  Image rgba(map.size, map.size, 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, map.size, map.size, GL_RGBA, GL_FLOAT, rgba.data.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  checkGl("read shadow map layer");
+  for (float& v : rgba.data) v = std::clamp(v * scale + bias, 0.0f, 1.0f);
+  return rgba;
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,74 @@
+// modern/prefiltered_maps.h — what Convolution Shadow Maps (Annen et al. 2007) and Variance
+// Shadow Maps (Donnelly & Lauritzen 2006) share: a shadow map that is an ordinary filterable
+// texture, so that it can be blurred with a separable Gaussian (Annen §4.1) and mip-mapped
+// with tri-linear and anisotropic filtering (Annen §4, Table 1). Module-internal header.
+//
+// The maps are 2D array textures: one layer per RGBA basis texture (CSM) or one RG layer
+// (VSM), so that any truncation order M needs one sampler only.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/technique.h"
+#include "modern/gl_objects.h"
+#include "modern/hardware_shadow_map.h"
+
+namespace sl::modern {
+
+// Linear light-space depth (Annen §4.1 "we use linear depth values [BAS03]"):
+// d = (distance along the light's view axis - near) / (far - near), in [0, 1] over the fitted
+// light frustum. Sets uLightView, uLightNear, uLightFar on `program`.
+void setLinearDepthUniforms(const Program& program, const Scene& scene);
+
+// The separable blur of Annen §4.1: n x n binomial weights (the discrete Gaussian), n in
+// {3, 5, 7}; blur = 0 or 1 (a 1x1 kernel) means none, returned as 0. Parsed from
+// --param blur=0|1|3|5|7 (InputError otherwise).
+int parseBlurTaps(const RenderParams& params);
+std::vector<float> binomialWeights(int taps);  // sums to 1
+
+// How the map is sampled in the camera pass.
+struct MapFiltering {
+  bool mipmaps = true;      // trilinear (GL_LINEAR_MIPMAP_LINEAR) when true
+  bool linear = true;       // bilinear magnification/minification within a level
+  float anisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
+};
+// --param filtering=anisotropic|trilinear|bilinear|nearest (anisotropic = tri-linear with
+// --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped
+// to what the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent.
+MapFiltering parseFiltering(const GlContext& context, const RenderParams& params);
+
+// A square 2D array texture with `layers` layers of `format`, and a full mip chain when
+// `mipmapped`.
+struct LayeredMap {
+  Texture texture;
+  int size = 0;
+  int layers = 0;
+  GLenum format = GL_RGBA8;
+  int levels = 1;
+};
+LayeredMap makeLayeredMap(int size, int layers, GLenum format, bool mipmapped);
+
+// How many colour attachments one pass may write (GL_MAX_DRAW_BUFFERS, at most 8: the
+// shaders declare 8 outputs).
+int layersPerPass();
+
+// Binds `fbo` with layers [first, first + count) of level 0 of `map` as colour attachments
+// 0..count-1, sets the draw buffers and the viewport.
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count);
+
+// Annen §4.1: separable Gaussian blur of every layer (horizontal into a scratch map, then
+// vertical back), `taps` in {3, 5, 7}; encoded 8-bit values blur correctly because the
+// encoding is affine.
+void blurLayers(const LayeredMap& map, int taps, const std::string& passName, Frame& frame);
+
+// Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
+void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
+
+// worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.
+
+// One layer of a layered map as a 4-channel float image (for --dump-passes), each value
+// mapped to value * scale + bias and clamped to [0, 1].
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias);
+
+}  // namespace sl::modern

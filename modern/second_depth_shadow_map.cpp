@@ -1,0 +1,75 @@
+// modern.second-depth — Wang & Molnar's second-depth shadow map (UNC TR94-019, 1994, as
+// Everitt, Rege & Cebenoyan 2001 summarise it): only back faces, seen from the light, in the
+// map; no polygon offset; closed casters only. Twin of legacy_gl/second_depth_shadow_map.cpp.
+//
+// Passes:
+//   1. renderBackFacesFromLight — closed casters from the light with front faces culled, open
+//                                 casters with both faces and polygon offset (fallback)
+//   2. shadeWithShadowMap       — modern.hw's camera pass on that map
+#include "core/errors.h"
+#include "modern/camera_pass.h"
+#include "modern/depth_layer_shadow_maps.h"
+#include "modern/hardware_shadow_map.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+
+// DEVIATION (Wang & Molnar 1994; Everitt et al. 2001), as legacy.second-depth: open casters have
+// no back face behind their front face, so they are drawn with both faces and modern.hw's
+// polygon offset; closed casters keep the second depth.
+constexpr float kOpenCasterOffsetFactor = 2.0f;  // glPolygonOffset slope factor, as modern.hw
+constexpr float kOpenCasterOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
+
+// Pass 1 (Wang & Molnar via Everitt): counter-clockwise meshes, GL_FRONT culled in the light's
+// view, so the depth buffer keeps the faces that point away from the light.
+RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, Frame& frame) {
+  PassTimer timer(frame, "1 back faces from light");
+  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+  map.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glFrontFace(GL_CCW);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  auto setModel = [&](const Object& o) { program.set("uModel", o.model); };
+  gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; }, setModel);
+  glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
+  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  gpu.draw([](const Object& o) { return o.castsShadow && !o.mesh->closed; }, setModel);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  setDepthCompareParameters(map.depth.id(), linear);
+  return map;
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  Frame frame;
+  GpuScene gpu(scene);
+  RenderTarget map = renderBackFacesFromLight(gpu, params.shadowMapTexels, linear, frame);
+  shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
+  return frame;
+}
+
+}  // namespace
+
+Technique secondDepthShadowMapTechnique() {
+  Technique t;
+  t.name = "modern.second-depth";
+  t.paper = "Wang & Molnar 1994 second-depth shadow map (Everitt et al. 2001), as GLSL";
+  t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = {"compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,73 @@
+// modern/shadow_volumes.h — modern.volumes (Everitt & Kilgard 2002 z-fail stencil shadow
+// volumes) and the pieces of it that modern.hybrid (Chan 2004 ch. 3) reuses.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/technique.h"
+#include "modern/gl_objects.h"
+#include "modern/silhouettes.h"
+
+namespace sl::modern {
+
+Technique shadowVolumesTechnique();
+
+// ---- shared with modern.hybrid (module-internal) ----
+
+// Stencil layout: the low 7 bits count volume crossings (modulo 128); bit 7 is the computation
+// mask of modern.hybrid where the driver has no depth bounds test.
+constexpr GLuint kStencilCountBits = 0x7F;
+constexpr GLuint kStencilMaskBit = 0x80;
+
+// One blocker's shadow volume in a vertex buffer (object space, vec4 positions).
+struct GpuVolume {
+  VertexArray vao;
+  Buffer vertices;
+  GLsizei vertexCount = 0;
+  glm::mat4 model{1.0f};
+};
+struct SceneVolumes {
+  std::vector<GpuVolume> volumes;
+  long long silhouetteEdges = 0;
+  long long triangles = 0;
+};
+// Everitt–Kilgard: silhouette edges on the CPU and the capped volumes, uploaded.
+SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lightWorld);
+void drawVolumes(const SceneVolumes& volumes, const Program& program);
+
+// Everitt–Kilgard's infinite far plane: the camera projection with far -> infinity (tweaked by
+// kInfinityEpsilon so that w = 0 vertices do not clip), so the volumes' back caps are never
+// clipped away.
+glm::mat4 infiniteCameraViewProjection(const Scene& scene, const RenderParams& params);
+
+// The camera target with a depth-stencil attachment (DEPTH24_STENCIL8): colour 0 = shaded,
+// 1 = visibility (R32F), then `extraColor` formats.
+RenderTarget makeStencilCameraTarget(const RenderParams& params,
+                                     const std::vector<GLenum>& extraColor = {});
+
+// Z-fail stencil counting (Everitt–Kilgard): back faces increment, front faces decrement where
+// the volume fragment fails the depth test. Colour and depth writes off. When `maskBit` is not
+// 0, only pixels whose stencil has that bit set are touched (the computation mask).
+void countVolumesZFail(const SceneVolumes& volumes, const Program& volumeProgram, GLuint maskBit);
+
+// Final shading from the stencil: shadowed where the count is non-zero, lit where it is zero
+// (restricted to mask-bit pixels when `maskBit` is not 0). Depth test LEQUAL, no depth writes.
+void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit);
+
+// Chan §3.3.2 / Figure 3-10: how many shadow-polygon fragments are rasterised. Draws every
+// volume with depth test and stencil test off (`maskBit` 0) or restricted to the mask bit,
+// additive into a float buffer; returns the per-pixel overdraw image.
+struct VolumeFill {
+  double fragments = 0;      // shadow-polygon pixels
+  double coveredPixels = 0;  // pixels with at least one
+  Image overdraw;            // per pixel
+};
+VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolumes& volumes,
+                             const glm::mat4& viewProjection, GLuint maskBit, bool depthBoundsMask);
+
+// Puts the counters every shadow-volume technique reports into frame.counters.
+void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,
+                          const VolumeFill& fill, const RenderParams& params, Frame& frame);
+
+}  // namespace sl::modern

@@ -1,0 +1,144 @@
+// modern.vsm — Variance Shadow Maps. Donnelly W., Lauritzen A.: "Variance Shadow Maps",
+// Symposium on Interactive 3D Graphics and Games 2006 — as Annen et al. 2007 compare against
+// it (§2: "a statistical upper bound ... noticeable artifacts (light leaking)", Fig. 9).
+// The filtering (blur, mip-maps, anisotropy) is the same as modern.csm's, so the two differ
+// only in what the map stores and how the shadow test is reconstructed.
+//
+// Passes:
+//   1. renderMomentsFromLight — (d, d^2) of linear light depth into an RG float layer
+//   2. blurMoments            — separable Gaussian 3x3 / 5x5 / 7x7 (as Annen §4.1), optional
+//   3. buildMomentMipmaps     — mip-maps, tri-linear + anisotropic filtering
+//   4. chebyshevInCameraPass  — p_max = s^2 / (s^2 + (d - mu)^2) with a minimum variance and
+//                               optional light-bleeding reduction; vsm_shadow.frag
+#include "modern/variance_shadow_map.h"
+
+#include "core/errors.h"
+#include "modern/camera_pass.h"
+#include "modern/prefiltered_maps.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+constexpr double kDefaultMinVariance = 1e-5;  // (linear depth)^2: ~ (0.3% of the range)^2
+constexpr double kMaxMinVariance = 0.25;      // the largest variance of values in [0, 1]
+constexpr double kDefaultBleedReduction = 0.0;
+constexpr double kMaxBleedReduction = 0.99;  // 1 would divide by zero
+constexpr int kDefaultBlurTaps = 3;          // same default as modern.csm
+
+struct VsmSettings {
+  double minVariance = kDefaultMinVariance;
+  double bleedReduction = kDefaultBleedReduction;
+  GLenum format = GL_RGBA32F;
+  int blurTaps = kDefaultBlurTaps;
+  MapFiltering filtering;
+};
+
+VsmSettings parseSettings(const GlContext& context, const RenderParams& params) {
+  VsmSettings s;
+  s.minVariance = params.number("min-variance", kDefaultMinVariance, 0.0, kMaxMinVariance);
+  s.bleedReduction =
+      params.number("bleed-reduction", kDefaultBleedReduction, 0.0, kMaxBleedReduction);
+  // 8-bit moments cannot hold d^2 - d^2 differences: VSM needs float storage.
+  s.format = params.text("storage", "float", {"16", "float"}) == "16" ? GL_RGBA16F : GL_RGBA32F;
+  s.blurTaps = params.extra.count("blur") ? parseBlurTaps(params) : kDefaultBlurTaps;
+  s.filtering = parseFiltering(context, params);
+  return s;
+}
+
+// Pass 1: the first two moments of the linear light depth.
+LayeredMap renderMomentsFromLight(const GpuScene& gpu, const RenderParams& params,
+                                  const VsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "1 moments from light");
+  const int n = params.shadowMapTexels;
+  LayeredMap moments = makeLayeredMap(n, 1, s.format, s.filtering.mipmaps);
+  const Framebuffer fbo = makeFramebuffer();
+  attachLayers(fbo, moments, 0, 1);
+  Renderbuffer depth;
+  GLuint id = 0;
+  glGenRenderbuffers(1, &id);
+  depth = Renderbuffer(id);
+  glBindRenderbuffer(GL_RENDERBUFFER, id);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, n, n);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
+  const float far[4] = {1, 1, 0, 1};  // no blocker: depth 1, depth^2 1
+  glClearBufferfv(GL_COLOR, 0, far);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  Program program("scene.vert.glsl", "vsm_moments.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  setLinearDepthUniforms(program, gpu.scene());
+  gpu.draw([](const Object& o) { return o.castsShadow; },
+           [&](const Object& o) { program.set("uModel", o.model); });
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return moments;
+}
+
+// Pass 2: the same separable Gaussian as modern.csm.
+void blurMoments(const LayeredMap& moments, const VsmSettings& s, Frame& frame) {
+  if (s.blurTaps > 0) blurLayers(moments, s.blurTaps, "2 separable Gaussian", frame);
+}
+
+// Pass 3: mip-maps and filtering state.
+void buildMomentMipmaps(const LayeredMap& moments, const VsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "3 mip-maps");
+  buildMipmapsAndSetFiltering(moments, s.filtering);
+}
+
+// Pass 4: Chebyshev's one-tailed inequality in the camera view.
+void chebyshevInCameraPass(const GpuScene& gpu, const RenderParams& params,
+                           const LayeredMap& moments, const VsmSettings& s, Frame& frame) {
+  PassTimer timer(frame, "4 camera pass, Chebyshev bound");
+  const Scene& scene = gpu.scene();
+  RenderTarget target = makeCameraTarget(params, true);
+  clearCameraTarget(target);
+  glEnable(GL_DEPTH_TEST);
+  Program program("scene.vert.glsl", "vsm_shadow.frag.glsl");
+  program.use();
+  program.set("uViewProjection", cameraViewProjection(scene, params));
+  program.set("uWorldToShadowMap", worldToShadowMap(scene));
+  setLinearDepthUniforms(program, scene);
+  program.set("uMinVariance", float(s.minVariance));
+  program.set("uBleedReduction", float(s.bleedReduction));
+  setLightingUniforms(program, scene);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, moments.texture.id());
+  program.set("uMoments", 0);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(program, o); });
+  readCameraTarget(target, frame);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
+Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
+  const VsmSettings s = parseSettings(context, params);
+  Frame frame;
+  GpuScene gpu(scene);
+  const LayeredMap moments = renderMomentsFromLight(gpu, params, s, frame);
+  blurMoments(moments, s, frame);
+  if (params.capturePasses)
+    frame.intermediates.push_back({"1-moments-mean", "filtered mean depth E[z]",
+                                   channel(readLayer(moments, 0, 1.0f, 0.0f), 0)});
+  buildMomentMipmaps(moments, s, frame);
+  chebyshevInCameraPass(gpu, params, moments, s, frame);
+  frame.counters["anisotropy"] = s.filtering.anisotropy;
+  return frame;
+}
+}  // namespace
+
+Technique varianceShadowMapTechnique() {
+  Technique t;
+  t.name = "modern.vsm";
+  t.paper = "Donnelly & Lauritzen 2006, Variance Shadow Maps (Annen et al. 2007's comparison)";
+  t.summary = "moments (d, d^2) blurred and mip-mapped, Chebyshev upper bound; leaks light";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = {"min-variance", "bleed-reduction", "storage", "blur", "filtering", "anisotropy"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,66 @@
+#include "modern/volumes_bench.h"
+
+#include <algorithm>
+
+#include "core/errors.h"
+#include "modern/modern.h"
+
+namespace sl::modern {
+
+namespace {
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+}  // namespace
+
+std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const RenderParams& params,
+                                                    const std::vector<std::string>& techniques,
+                                                    int frames, int warmup) {
+  if (frames < 1) throw InputError("benchmark needs at least one frame");
+  std::vector<VolumesBenchRow> rows;
+  const std::vector<Technique> all = modern::techniques();
+  for (const std::string& name : techniques) {
+    auto it =
+        std::find_if(all.begin(), all.end(), [&](const Technique& t) { return t.name == name; });
+    if (it == all.end()) throw InputError("unknown modern technique '" + name + "'");
+    const Technique& t = *it;
+    checkParams(t, params, 0);
+    auto context = GlContext::create(contextFor(t, params));
+    checkParams(t, params, context->caps().maxTextureSize);
+    VolumesBenchRow row;
+    row.technique = name;
+    row.scene = scene.name;
+    row.device = context->caps().renderer;
+    row.width = params.width;
+    row.height = params.height;
+    row.shadowMapTexels = params.shadowMapTexels;
+    row.frames = frames;
+    std::vector<double> totals;
+    std::map<std::string, std::vector<double>> passes;
+    for (int i = 0; i < warmup + frames; ++i) {
+      const Frame f = t.render(*context, scene, params);
+      if (i < warmup) continue;
+      totals.push_back(f.totalMilliseconds());
+      for (const PassTime& p : f.passes) passes[p.name].push_back(p.milliseconds);
+      row.counters = f.counters;
+    }
+    row.medianMs = median(totals);
+    row.minMs = *std::min_element(totals.begin(), totals.end());
+    for (auto& [pass, times] : passes) row.passMedianMs[pass] = median(times);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+nlohmann::json toJson(const VolumesBenchRow& r) {
+  return {{"technique", r.technique}, {"scene", r.scene},
+          {"device", r.device},       {"width", r.width},
+          {"height", r.height},       {"shadow_map", r.shadowMapTexels},
+          {"frames", r.frames},       {"median_ms", r.medianMs},
+          {"min_ms", r.minMs},        {"passes_median_ms", r.passMedianMs},
+          {"counters", r.counters}};
+}
+
+}  // namespace sl::modern

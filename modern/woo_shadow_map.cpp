@@ -1,0 +1,120 @@
+// modern.woo — Woo's midpoint shadow map (Everitt, Rege & Cebenoyan 2001, "Advantages and
+// Limitations": average of the nearest and second-nearest depth layers from the light, made by
+// depth peeling) as shaders. Twin of legacy_gl/woo_shadow_map.cpp.
+//
+// Passes:
+//   1. renderFirstDepthLayer — casters from the light into depth texture z1 (no offset)
+//   2. peelSecondDepthLayer  — casters again; woo_peel.frag discards what is not behind z1,
+//                              the depth test keeps the second layer z2
+//   3. storeMidpointDepth    — woo_midpoint.frag writes gl_FragDepth = (z1 + z2) / 2
+//   4. shadeWithShadowMap    — modern.hw's camera pass on the midpoint map
+#include "core/errors.h"
+#include "modern/camera_pass.h"
+#include "modern/depth_layer_shadow_maps.h"
+#include "modern/hardware_shadow_map.h"
+
+namespace sl::modern {
+using namespace sl::gl;
+
+namespace {
+
+// Same tolerance as legacy.woo (see legacy_gl/woo_shadow_map.cpp): 2^-20 in window depth.
+constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
+
+RenderTarget makeDepthMap(int n) {
+  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+  map.bind();
+  glClear(GL_DEPTH_BUFFER_BIT);
+  return map;
+}
+
+// Pass 1 (Everitt, Woo paragraph): nearest depth layer from the light, without polygon offset.
+RenderTarget renderFirstDepthLayer(const GpuScene& gpu, int n, Frame& frame) {
+  PassTimer timer(frame, "1 first depth layer");
+  RenderTarget map = makeDepthMap(n);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  gpu.draw([](const Object& o) { return o.castsShadow; },
+           [&](const Object& o) { program.set("uModel", o.model); });
+  return map;
+}
+
+// Pass 2 (Everitt, depth peeling [2]): keep only fragments behind the first layer.
+RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget& first,
+                                  Frame& frame) {
+  PassTimer timer(frame, "2 peel to second depth layer");
+  glBindTexture(GL_TEXTURE_2D, first.depth.id());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+  RenderTarget map = makeDepthMap(n);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  const Program& program = cachedProgram("scene.vert.glsl", "woo_peel.frag.glsl");
+  program.use();
+  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+  program.set("uWorldToShadowMap", worldToShadowMap(gpu.scene()));
+  program.set("uPeelEpsilon", kPeelEpsilon);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, first.depth.id());
+  program.set("uFirstLayer", 0);
+  gpu.draw([](const Object& o) { return o.castsShadow; },
+           [&](const Object& o) { program.set("uModel", o.model); });
+  return map;
+}
+
+// Pass 3 (Woo's midpoint): (z1 + z2) / 2 as the depth of a full-screen triangle.
+RenderTarget storeMidpointDepth(int n, const RenderTarget& first, const RenderTarget& second,
+                                bool linear, Frame& frame) {
+  PassTimer timer(frame, "3 midpoint of the layers");
+  for (GLuint t : {first.depth.id(), second.depth.id()}) {
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  }
+  RenderTarget map = makeDepthMap(n);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "woo_midpoint.frag.glsl");
+  program.use();
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, first.depth.id());
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, second.depth.id());
+  glActiveTexture(GL_TEXTURE0);
+  program.set("uFirstLayer", 0);
+  program.set("uSecondLayer", 1);
+  FullScreenTriangle().draw();
+  glDepthFunc(GL_LESS);
+  setDepthCompareParameters(map.depth.id(), linear);
+  return map;
+}
+
+Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
+  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const int n = params.shadowMapTexels;
+  Frame frame;
+  GpuScene gpu(scene);
+  RenderTarget first = renderFirstDepthLayer(gpu, n, frame);
+  RenderTarget second = peelSecondDepthLayer(gpu, n, first, frame);
+  RenderTarget midpoint = storeMidpointDepth(n, first, second, linear, frame);
+  shadeWithShadowMap(gpu, params, midpoint.depth.id(), "4 camera pass with shadow test", frame);
+  return frame;
+}
+
+}  // namespace
+
+Technique wooShadowMapTechnique() {
+  Technique t;
+  t.name = "modern.woo";
+  t.paper = "Woo's midpoint shadow map (Everitt, Rege & Cebenoyan 2001), as GLSL";
+  t.summary = "depth peeling in a shader, midpoint written as gl_FragDepth, no polygon offset";
+  t.status = "complete";
+  t.needs.profile = Profile::kCore;
+  t.paramKeys = {"compare"};
+  t.render = render;
+  return t;
+}
+
+}  // namespace sl::modern

@@ -1,0 +1,380 @@
+// reference.hard and reference.soft — ray-traced visibility, the ground truth of every error
+// figure (Chan 2004 §4.5 compares smoothies against ray-traced soft shadows the same way).
+//
+// Passes:
+//   1. rasteriseSurfacePoints — GL: world position, normals, object per camera pixel
+//                               (reference/surface_buffer.cpp)
+//   2. buildOcclusionScene    — Embree 3: the casters (Object::castsShadow) as triangle meshes
+//   3. castShadowRays         — per pixel, shadow rays from the surface point to the light:
+//                               hard: one ray to the point light; soft: stratified rays to a
+//                               disk of SpotLight::radius facing the point (the silhouette of
+//                               the spherical light), split in two independent halves
+//   4. shadeFromVisibility    — ambient + visibility * direct, the lighting of
+//                               modern/shaders/hw_shadow.frag.glsl, for figures
+#include "reference/reference.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <thread>
+
+#include "core/errors.h"
+#include "reference/surface_buffer.h"
+
+namespace sl::reference {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kSpecularExponent = 32.0f;  // as in hw_shadow.frag.glsl
+constexpr int kMinSoftRays = 4;
+constexpr int kMaxSoftRays = 16384;
+constexpr unsigned kSoftSeed = 20011u;  // fixed: the reference is deterministic
+constexpr int kRowsPerTask = 4;         // work unit of the worker threads
+
+struct DeviceDeleter {
+  void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+};
+struct SceneDeleter {
+  void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+using DevicePtr = std::unique_ptr<std::remove_pointer_t<RTCDevice>, DeviceDeleter>;
+using ScenePtr = std::unique_ptr<std::remove_pointer_t<RTCScene>, SceneDeleter>;
+
+struct Occluders {
+  DevicePtr device;
+  ScenePtr scene;
+};
+
+// Pass 2: every caster's triangles in world space in one Embree scene (robust mode: rays that
+// graze an edge shared by two triangles are not let through).
+Occluders buildOcclusionScene(const Scene& scene) {
+  Occluders o;
+  o.device.reset(rtcNewDevice("threads=2"));
+  if (!o.device) throw GlError("Embree: cannot create a device");
+  o.scene.reset(rtcNewScene(o.device.get()));
+  rtcSetSceneFlags(o.scene.get(), RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(o.scene.get(), RTC_BUILD_QUALITY_HIGH);
+  for (const Object& object : scene.objects) {
+    if (!object.castsShadow || !object.mesh || object.mesh->indices.empty()) continue;
+    const Mesh& mesh = *object.mesh;
+    RTCGeometry geometry = rtcNewGeometry(o.device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      const glm::vec3 w = glm::vec3(object.model * glm::vec4(mesh.positions[i], 1.0f));
+      vertices[3 * i] = w.x;
+      vertices[3 * i + 1] = w.y;
+      vertices[3 * i + 2] = w.z;
+    }
+    auto* indices = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(unsigned), mesh.indices.size() / 3));
+    std::copy(mesh.indices.begin(), mesh.indices.begin() + (mesh.indices.size() / 3) * 3, indices);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(o.scene.get(), geometry);
+    rtcReleaseGeometry(geometry);
+  }
+  rtcCommitScene(o.scene.get());
+  if (rtcGetDeviceError(o.device.get()) != RTC_ERROR_NONE)
+    throw GlError("Embree: building the occluder scene failed");
+  return o;
+}
+
+// True when the segment from `origin` to `target` crosses a caster.
+bool occluded(RTCScene scene, const glm::vec3& origin, const glm::vec3& target) {
+  const glm::vec3 d = target - origin;
+  const float length = glm::length(d);
+  if (!(length > 0.0f)) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = d.x / length;
+  ray.dir_y = d.y / length;
+  ray.dir_z = d.z / length;
+  ray.tnear = 0.0f;
+  ray.tfar = length;
+  ray.time = 0.0f;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+  rtcOccluded1(scene, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+// Inside the light's square frustum (cone x cone), in front of the light.
+bool insideLightFrustum(const SpotLight& light, const glm::mat4& view, const glm::vec3& p) {
+  const glm::vec3 l = glm::vec3(view * glm::vec4(p, 1.0f));
+  if (l.z >= 0.0f) return false;
+  const float t = std::tan(glm::radians(0.5f * light.coneDegrees));
+  return std::fabs(l.x) <= -l.z * t && std::fabs(l.y) <= -l.z * t;
+}
+
+// Runs body(y) for every row on all cores (std::thread; the rows are handed out in chunks).
+template <class Body>
+void forEachRow(int height, Body body) {
+  const unsigned workers = std::max(1u, std::min(std::thread::hardware_concurrency(), 16u));
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int start; (start = next.fetch_add(kRowsPerTask)) < height;)
+      for (int y = start; y < std::min(height, start + kRowsPerTask); ++y) body(y);
+  };
+  std::vector<std::thread> threads;
+  for (unsigned i = 1; i < workers; ++i) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+}
+
+struct Visibility {
+  Image mask;           // 1 channel
+  double noiseRms = 0;  // soft only: RMS estimated standard error over penumbra pixels
+  double noiseMax = 0;  // soft only: largest per-pixel estimated standard error
+  long long penumbraPixels = 0;
+  long long rays = 0;
+};
+
+// The shadow-ray origin: the surface point moved off the surface along its geometric normal.
+glm::vec3 rayOrigin(const SurfacePoint& s, float offset) {
+  return s.position + offset * s.geometricNormal;
+}
+
+float sceneDiagonal(const Scene& scene) {
+  const Bounds b = sceneBounds(scene);
+  return b.empty() ? 1.0f : std::max(glm::length(b.hi - b.lo), 1e-30f);
+}
+
+// Pass 3 (hard): one shadow ray per pixel to the point light.
+Visibility castHardShadowRays(const Scene& scene, const std::vector<SurfacePoint>& points,
+                              const RenderParams& params, RTCScene occluders) {
+  Visibility v;
+  v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
+  const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  const glm::mat4 view = lightView(scene.light);
+  std::atomic<long long> rays{0};
+  forEachRow(params.height, [&](int y) {
+    long long count = 0;
+    for (int x = 0; x < params.width; ++x) {
+      const SurfacePoint& s = points[size_t(y) * params.width + x];
+      if (s.object < 0 || !scene.objects[s.object].receivesShadow) continue;
+      if (!insideLightFrustum(scene.light, view, s.position)) continue;
+      ++count;
+      v.mask.at(x, y) =
+          occluded(occluders, rayOrigin(s, offset), scene.light.position) ? 0.0f : 1.0f;
+    }
+    rays += count;
+  });
+  v.rays = rays;
+  return v;
+}
+
+// A point of the unit disk from a point of the unit square (Shirley–Chiu concentric map: keeps
+// the strata of the square compact and of equal area on the disk).
+glm::vec2 concentricDisk(float u, float v) {
+  const float a = 2.0f * u - 1.0f, b = 2.0f * v - 1.0f;
+  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f};
+  float r, phi;
+  if (std::fabs(a) > std::fabs(b)) {
+    r = a;
+    phi = (kPi / 4.0f) * (b / a);
+  } else {
+    r = b;
+    phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
+  }
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+// Pass 3 (soft): the spherical light of radius r seen from a surface point is a disk of
+// radius r facing the point (its silhouette; for r much smaller than the distance, the disk
+// and the sphere's solid angle agree to O((r/d)^2)). Its visible fraction is estimated with
+// `rays` stratified samples: two independent jittered estimates A and B on an n x n grid of
+// equal-area strata each (n*n = rays/2); the mask is (A + B) / 2 and |A - B| / 2 estimates its
+// standard error per pixel (E[(A-B)^2]/4 = Var((A+B)/2) for independent, equally distributed
+// A and B).
+Visibility castSoftShadowRays(const Scene& scene, const std::vector<SurfacePoint>& points,
+                              const RenderParams& params, RTCScene occluders, int rays) {
+  Visibility v;
+  v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
+  const int n = std::max(1, int(std::lround(std::sqrt(rays / 2.0))));
+  const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  const glm::mat4 view = lightView(scene.light);
+  const SpotLight& light = scene.light;
+  std::vector<double> rowNoiseSquares(params.height, 0.0), rowNoiseMax(params.height, 0.0);
+  std::vector<long long> rowPenumbra(params.height, 0), rowRays(params.height, 0);
+  forEachRow(params.height, [&](int y) {
+    std::mt19937 rng(kSoftSeed + unsigned(y));  // per row: the result is thread-count independent
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    for (int x = 0; x < params.width; ++x) {
+      const SurfacePoint& s = points[size_t(y) * params.width + x];
+      if (s.object < 0 || !scene.objects[s.object].receivesShadow) continue;
+      if (!insideLightFrustum(light, view, s.position)) continue;
+      const glm::vec3 origin = rayOrigin(s, offset);
+      const glm::vec3 toLight = light.position - origin;
+      const float distance = glm::length(toLight);
+      if (!(distance > 0.0f)) continue;
+      // An orthonormal frame of the disk facing the point.
+      const glm::vec3 w = toLight / distance;
+      const glm::vec3 helper = std::fabs(w.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+      const glm::vec3 e1 = glm::normalize(glm::cross(w, helper));
+      const glm::vec3 e2 = glm::cross(w, e1);
+      int litHalf[2] = {0, 0};
+      for (int half = 0; half < 2; ++half)
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) {
+            const glm::vec2 d = concentricDisk((i + jitter(rng)) / n, (j + jitter(rng)) / n);
+            const glm::vec3 target = light.position + light.radius * (d.x * e1 + d.y * e2);
+            if (!occluded(occluders, origin, target)) ++litHalf[half];
+          }
+      const float a = float(litHalf[0]) / float(n * n), b = float(litHalf[1]) / float(n * n);
+      const float value = 0.5f * (a + b);
+      v.mask.at(x, y) = value;
+      rowRays[y] += 2LL * n * n;
+      if (value > 0.0f && value < 1.0f) {
+        const double standardError = 0.5 * std::fabs(a - b);
+        rowNoiseSquares[y] += standardError * standardError;
+        rowNoiseMax[y] = std::max(rowNoiseMax[y], standardError);
+        ++rowPenumbra[y];
+      }
+    }
+  });
+  double squares = 0;
+  for (int y = 0; y < params.height; ++y) {
+    squares += rowNoiseSquares[y];
+    v.noiseMax = std::max(v.noiseMax, rowNoiseMax[y]);
+    v.penumbraPixels += rowPenumbra[y];
+    v.rays += rowRays[y];
+  }
+  v.noiseRms = v.penumbraPixels > 0 ? std::sqrt(squares / double(v.penumbraPixels)) : 0.0;
+  return v;
+}
+
+// Pass 4: OpenGL spotlight lighting split into ambient + visibility * direct, exactly the terms
+// of modern/shaders/hw_shadow.frag.glsl (glspec121 §2.13.1).
+Image shadeFromVisibility(const Scene& scene, const std::vector<SurfacePoint>& points,
+                          const Image& visibility) {
+  Image color(visibility.width, visibility.height, 3, 0.0f);
+  const SpotLight& l = scene.light;
+  const glm::vec3 spotDirection = glm::normalize(l.target - l.position);
+  const float cosCutoff = std::cos(glm::radians(0.5f * l.coneDegrees));
+  for (size_t p = 0; p < points.size(); ++p) {
+    const SurfacePoint& s = points[p];
+    if (s.object < 0) continue;
+    const Object& o = scene.objects[s.object];
+    const glm::vec3 n = s.shadingNormal;
+    const glm::vec3 toLight = glm::normalize(l.position - s.position);
+    const float spot = glm::dot(-toLight, spotDirection) >= cosCutoff ? 1.0f : 0.0f;
+    const float diffuse = std::max(glm::dot(n, toLight), 0.0f);
+    const glm::vec3 toEye = glm::normalize(scene.camera.position - s.position);
+    const float specular =
+        diffuse > 0.0f ? std::pow(std::max(glm::dot(n, glm::normalize(toLight + toEye)), 0.0f),
+                                  kSpecularExponent)
+                       : 0.0f;
+    const glm::vec3 direct =
+        spot * l.color * (o.diffuse * diffuse + glm::vec3(o.specular) * specular);
+    const glm::vec3 ambient = l.ambient * l.color * o.diffuse;
+    const glm::vec3 c = ambient + visibility.data[p] * direct;
+    for (int k = 0; k < 3; ++k) color.data[p * 3 + k] = std::isfinite(c[k]) ? c[k] : 0.0f;
+  }
+  return color;
+}
+
+// Surface points with unusable normals (a mesh without normals, a zero-area triangle) get the
+// other normal, or the direction to the camera: never a NaN ray.
+void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye) {
+  auto usable = [](const glm::vec3& n) {
+    return std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && glm::length(n) > 0.5f;
+  };
+  for (SurfacePoint& s : points) {
+    if (s.object < 0) continue;
+    if (!usable(s.geometricNormal))
+      s.geometricNormal =
+          usable(s.shadingNormal) ? s.shadingNormal : glm::normalize(eye - s.position);
+    if (!usable(s.shadingNormal)) s.shadingNormal = s.geometricNormal;
+    if (!usable(s.geometricNormal)) s.geometricNormal = s.shadingNormal = glm::vec3(0, 1, 0);
+  }
+}
+
+Frame renderReference(const Scene& scene, const RenderParams& params, bool soft) {
+  const int softRays = params.integer("rays", kDefaultSoftRays, kMinSoftRays, kMaxSoftRays);
+  Frame frame;
+  std::vector<SurfacePoint> points;
+  {
+    PassTimer timer(frame, "1 surface points (GL)");
+    points = rasteriseSurfacePoints(scene, params);
+    repairNormals(points, scene.camera.position);
+  }
+  const double buildStart = nowMilliseconds();
+  Occluders occluders = buildOcclusionScene(scene);
+  frame.passes.push_back({"2 build occluder BVH (Embree)", nowMilliseconds() - buildStart});
+  const double castStart = nowMilliseconds();
+  Visibility v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
+                      : castHardShadowRays(scene, points, params, occluders.scene.get());
+  frame.passes.push_back({soft ? "3 soft shadow rays (Embree)" : "3 shadow rays (Embree)",
+                          nowMilliseconds() - castStart});
+  const double shadeStart = nowMilliseconds();
+  frame.color = shadeFromVisibility(scene, points, v.mask);
+  frame.visibility = std::move(v.mask);
+  frame.passes.push_back({"4 shade", nowMilliseconds() - shadeStart});
+  frame.counters["rays"] = double(v.rays);
+  frame.counters["ray_offset_world"] = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  if (soft) {
+    const long n = std::max(1L, std::lround(std::sqrt(softRays / 2.0)));
+    frame.counters["rays_per_pixel"] = double(2 * n * n);
+    frame.counters["penumbra_pixels"] = double(v.penumbraPixels);
+    frame.counters["noise_rms_standard_error"] = v.noiseRms;
+    frame.counters["noise_max_standard_error"] = v.noiseMax;
+  }
+  if (params.capturePasses) {
+    Image depth(params.width, params.height, 3, 0.0f);
+    for (size_t p = 0; p < points.size(); ++p)
+      if (points[p].object >= 0)
+        for (int k = 0; k < 3; ++k)
+          depth.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
+    frame.intermediates.push_back({"1-surface-normals", "surface normals from the GL pass", depth});
+    // Where direct light can arrive: the surface faces the light (geometric normal) inside the
+    // light's frustum. Elsewhere the direct term is 0 and visibility does not change the image
+    // (second-depth maps rely on this; behind the light, Everitt's techniques force 0).
+    Image region(params.width, params.height, 1, 0.0f);
+    const glm::mat4 view = lightView(scene.light);
+    for (size_t p = 0; p < points.size(); ++p)
+      if (points[p].object >= 0 &&
+          glm::dot(points[p].geometricNormal, scene.light.position - points[p].position) > 0.0f &&
+          insideLightFrustum(scene.light, view, points[p].position))
+        region.data[p] = 1.0f;
+    frame.intermediates.push_back(
+        {kDirectLightRegionPass, "surface points the light can reach", region});
+    frame.intermediates.push_back({"3-visibility", "ray-traced visibility", frame.visibility});
+  }
+  return frame;
+}
+
+}  // namespace
+
+std::vector<Technique> techniques() {
+  Technique hard;
+  hard.name = "reference.hard";
+  hard.paper = "ray traced (Embree 3)";
+  hard.summary = "exact point-light visibility: one shadow ray per camera pixel";
+  hard.status = "complete";
+  hard.needs.profile = Profile::kCore;
+  hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
+    return renderReference(s, p, false);
+  };
+  Technique soft = hard;
+  soft.name = "reference.soft";
+  soft.summary = "Monte Carlo visibility of a spherical light of SpotLight::radius, " +
+                 std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
+  soft.paramKeys = {"rays"};
+  soft.render = [](GlContext&, const Scene& s, const RenderParams& p) {
+    return renderReference(s, p, true);
+  };
+  return {hard, soft};
+}
+
+}  // namespace sl::reference

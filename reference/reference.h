@@ -1,0 +1,45 @@
+// reference/reference.h — ray-traced ground truth for every error figure (public header).
+//
+//   reference.hard  exact visibility of the point light per camera pixel (Embree shadow rays)
+//   reference.soft  Monte Carlo visibility of a spherical light of SpotLight::radius
+//
+// Both rasterise the camera's surface points with GL (the same camera and the same vertex
+// transform as the modern camera pass), so every technique's mask lines up pixel for pixel
+// with the reference, and then cast shadow rays from those points with Embree 3.
+#pragma once
+
+#include <vector>
+
+#include "core/technique.h"
+
+namespace sl::reference {
+
+std::vector<Technique> techniques();
+
+// The conventions every reference mask follows (tests and the bench rely on them):
+//  * a pixel that sees no geometry is lit (1), like the cleared visibility of the techniques;
+//  * a pixel on an object with receivesShadow == false is lit (1);
+//  * a pixel outside the light's square frustum (cone x cone, in front of the light) is lit
+//    (1): the spotlight sends nothing there and the shadow-map techniques clamp to a lit
+//    border there too;
+//  * only objects with castsShadow occlude.
+constexpr float kNoGeometryVisibility = 1.0f;
+
+// With RenderParams::capturePasses the references add this intermediate: 1 where a surface
+// point faces the light (geometric normal) inside the light's frustum, 0 elsewhere and where no
+// geometry is seen. Error metrics count these pixels: elsewhere visibility changes nothing.
+constexpr const char* kDirectLightRegionPass = "2-direct-light-region";
+
+// Shadow rays start this far (times the scene's bounding-box diagonal) along the surface's
+// geometric normal, so that a surface does not shadow itself through float round-off.
+constexpr float kRayOffsetPerSceneDiagonal = 1e-4f;
+
+// reference.soft: rays per pixel, 2 n^2 (two independent stratified halves of n x n strata
+// on the light's disk, whose difference estimates the standard error; see reference.cpp).
+// --param rays=N is rounded to the nearest 2 n^2. With n = 12 the estimated standard error is
+// at most 1 / (2 n^1.5) = 0.012 at a straight shadow edge (tests/reference/reference_test.cpp
+// derives the bound and checks the measured value).
+constexpr int kDefaultSoftStrataPerSide = 12;
+constexpr int kDefaultSoftRays = 2 * kDefaultSoftStrataPerSide * kDefaultSoftStrataPerSide;  // 288
+
+}  // namespace sl::reference

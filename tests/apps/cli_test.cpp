@@ -1,0 +1,179 @@
+// The shadowlab command as a user runs it: outputs on success, and for every kind of bad
+// input one line on stderr, exit status 2, and no output file (DESIGN.md "Contracts").
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/image.h"
+
+namespace sl {
+namespace {
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+// One directory per test: ctest runs the cases as parallel processes.
+fs::path dir() {
+  std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : name)
+    if (c == '/') c = '_';
+  fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "cli" / name;
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult shadowlab(const std::string& args) {
+  const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
+  const std::string cmd = std::string(SHADOWLAB_BINARY) + " " + args + " >" + out.string() +
+                          " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+// Input files are written while the test list is built (before any test runs), into a
+// directory per process, since every ctest process builds the list anew.
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path d =
+      fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "cli" / ("inputs-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const fs::path p = d / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p.string();
+}
+
+constexpr const char* kSmall = " --size 96x72 --shadow-map 64";
+
+TEST(Cli, RenderWritesImageAndSixteenBitMask) {
+  const fs::path png = dir() / "ok.png", mask = dir() / "ok-mask.png";
+  fs::remove(png);
+  fs::remove(mask);
+  const CommandResult r = shadowlab("render --scene analytic --technique legacy.hw" + std::string(kSmall) +
+                          " --out " + png.string() + " --mask " + mask.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image image = readPng(png.string());
+  EXPECT_EQ(image.width, 96);
+  EXPECT_EQ(image.height, 72);
+  const Image m = readPng(mask.string());
+  EXPECT_EQ(m.channels, 1);
+  // The analytic scene has both lit ground and the occluder's umbra in view.
+  float lo = 1, hi = 0;
+  for (float v : m.data) lo = std::min(lo, v), hi = std::max(hi, v);
+  EXPECT_EQ(lo, 0.0f);
+  EXPECT_EQ(hi, 1.0f);
+  EXPECT_NE(r.out.find("\"frame_ms\""), std::string::npos);
+}
+
+TEST(Cli, ListAndHelp) {
+  const CommandResult list = shadowlab("list");
+  EXPECT_EQ(list.status, 0);
+  EXPECT_NE(list.out.find("legacy.hw"), std::string::npos);
+  EXPECT_NE(list.out.find("brabec"), std::string::npos);
+  const CommandResult help = shadowlab("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("render"), std::string::npos);
+}
+
+TEST(Cli, CompareReportsStatisticsAsJson) {
+  const fs::path diff = dir() / "diff.png";
+  const CommandResult r = shadowlab("compare --scene analytic --a legacy.hw --b modern.hw" +
+                          std::string(kSmall) + " --diff " + diff.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"mismatching\"", "\"max_abs\"", "\"rmse\"", "\"a_frame_ms\""})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  EXPECT_TRUE(fs::exists(diff));
+}
+
+struct BadInput {
+  const char* what;
+  std::string args;
+};
+
+class CliBadInput : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(CliBadInput, OneLineOnStderrExitTwoNoOutput) {
+  const fs::path out = dir() / "bad.png", mask = dir() / "bad-mask.png";
+  fs::remove(out);
+  fs::remove(mask);
+  std::string args = GetParam().args;
+  for (auto [key, value] : {std::pair{std::string("@OUT"), out.string()},
+                            std::pair{std::string("@MASK"), mask.string()}})
+    for (size_t p; (p = args.find(key)) != std::string::npos;) args.replace(p, key.size(), value);
+  const CommandResult r = shadowlab(args);
+  EXPECT_EQ(r.status, 2) << GetParam().what << ": " << r.err;
+  EXPECT_FALSE(r.err.empty());
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.find("terminate"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out)) << GetParam().what;
+  EXPECT_FALSE(fs::exists(mask)) << GetParam().what;
+  for (const auto& entry : fs::directory_iterator(out.parent_path()))  // no temporary left
+    EXPECT_EQ(entry.path().string().find(".part-"), std::string::npos) << entry.path();
+}
+
+std::vector<BadInput> badInputs() {
+  const std::string base = "render --technique legacy.hw --size 64x48 --out @OUT --mask @MASK ";
+  const std::string malformedJson = write("malformed.json", "{\"objects\": [ {\"mesh\": ");
+  const std::string badObjScene = write(
+      "badobj.json",
+      "{\"objects\": [{\"mesh\": {\"file\": \"" + write("broken.obj", "v 1 2\nf 1 2 7\n") + "\"}}]}");
+  const std::string truncatedPly = write(
+      "truncated.ply",
+      "ply\nformat binary_little_endian 1.0\nelement vertex 50\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 10\n"
+      "property list uchar int vertex_indices\nend_header\n" + std::string(17, '\0'));
+  const std::string badPlyScene =
+      write("badply.json", "{\"objects\": [{\"mesh\": {\"file\": \"" + truncatedPly + "\"}}]}");
+  return {
+      {"unknown scene", base + "--scene nowhere"},
+      {"unknown technique", "render --scene analytic --technique legacy.nothing --out @OUT"},
+      {"malformed JSON", base + "--scene " + malformedJson},
+      {"malformed OBJ", base + "--scene " + badObjScene},
+      {"truncated PLY", base + "--scene " + badPlyScene},
+      {"missing scene file", base + "--scene /no/such/file.json"},
+      {"NaN size", "render --scene analytic --technique legacy.hw --size nanxnan --out @OUT"},
+      {"negative size", "render --scene analytic --technique legacy.hw --size -4x30 --out @OUT"},
+      {"zero-area window", "render --scene analytic --technique legacy.hw --size 0x0 --out @OUT"},
+      {"shadow map 0", base + "--scene analytic --shadow-map 0"},
+      {"shadow map above GL max", base + "--scene analytic --shadow-map 60000"},
+      {"NaN parameter", base + "--scene analytic --param offset-factor=nan"},
+      {"unknown parameter", base + "--scene analytic --param wobble=3"},
+      {"bad precision", base + "--scene analytic --precision 9"},
+      {"bad backend", base + "--scene analytic --backend vulkan"},
+      {"unwritable output", "render --scene analytic --technique legacy.hw --size 64x48 --out "
+                            "/proc/nonexistent/x.png"},
+      {"mask in missing dir", "render --scene analytic --technique legacy.hw --size 64x48 --out "
+                              "@OUT --mask /nonexistent-dir/m.png"},
+      {"missing --out", "render --scene analytic --technique legacy.hw"},
+      {"unknown option", "render --scene analytic --technique legacy.hw --out @OUT --colour red"},
+      {"unknown command", "paint"},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()),
+                         [](const auto& info) {
+                           std::string n = info.param.what;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace sl

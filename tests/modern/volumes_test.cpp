@@ -1,0 +1,372 @@
+// modern.volumes (Everitt & Kilgard 2002) and modern.hybrid (Chan 2004 ch. 3): the analytic
+// shadow, hybrid = volumes at every silhouette pixel, agreement with a hard shadow map away
+// from edges, the counters of Chan Figures 3-9/3-10, and the geometry (adjacency, silhouettes,
+// closed volumes).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "core/metrics.h"
+#include "core/primitives.h"
+#include "core/scene_library.h"
+#include "modern/silhouettes.h"
+#include "tests/modern/analytic_ground.h"
+
+namespace sl {
+namespace {
+
+RenderParams smallParams(int shadowMap = 512) {
+  RenderParams p;
+  p.width = 320;
+  p.height = 240;
+  p.shadowMapTexels = shadowMap;
+  return p;
+}
+
+void saveArtefact(const std::string& name, const Image& image) {
+  std::filesystem::create_directories(SHADOWLAB_TEST_OUTPUT_DIR);
+  writePng(std::string(SHADOWLAB_TEST_OUTPUT_DIR) + "/" + name + ".png", image);
+}
+
+// ---------------------------------------------------------------- geometry
+
+TEST(ShadowVolumeGeometry, BoxAdjacencyWeldsCornersAndPairsEveryEdge) {
+  // A box has 8 corners, 12 triangles and 18 edges (Euler: V - E + F = 2); makeBox repeats its
+  // corners per face (24 vertices) for flat normals.
+  const Mesh box = makeBox({1, 1, 1});
+  const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(box, "box");
+  EXPECT_EQ(adj.positions.size(), 8u);
+  EXPECT_EQ(adj.triangles.size(), 12u);
+  EXPECT_EQ(adj.edges.size(), 18u);
+}
+
+TEST(ShadowVolumeGeometry, OpenMeshIsJudgedOpen) {
+  // A plane has boundary edges: not closed, whatever Mesh::closed says.
+  Mesh plane = makePlane(2, 2);
+  plane.closed = true;
+  EXPECT_FALSE(modern::buildEdgeAdjacency(plane, "ground").closed);
+  EXPECT_TRUE(modern::buildEdgeAdjacency(makeBox({1, 1, 1}), "box").closed);
+}
+
+TEST(ShadowVolumeGeometry, ZeroAreaTrianglesAreDroppedAndTheBoxStaysClosed) {
+  // The stability suite's degenerate box: a collinear triangle, a triangle with one corner three
+  // times and one with a repeated corner, flagged open. Dropping the three leaves the box's 12
+  // triangles, which pair up into its 18 edges: closed again.
+  Mesh box = makeBox({0.8f, 0.8f, 0.8f});
+  const unsigned base = unsigned(box.positions.size());
+  for (float x : {0.0f, 0.1f, 0.2f}) box.positions.push_back({x, 0, 0}), box.normals.push_back({});
+  for (unsigned i : {base, base + 1, base + 2, base, base, base, 0u, 0u, 1u})
+    box.indices.push_back(i);
+  box.closed = false;
+  const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(box, "degenerate box");
+  EXPECT_EQ(adj.droppedDegenerate, 3);
+  EXPECT_EQ(adj.triangles.size(), 12u);
+  EXPECT_EQ(adj.edges.size(), 18u);
+  EXPECT_TRUE(adj.closed);
+}
+
+TEST(ShadowVolumeGeometry, IndexBeyondThePositionsIsAnInputErrorNamingTheObject) {
+  Mesh quad = makeQuad(1, 1);
+  quad.indices.back() = 99;
+  try {
+    modern::buildEdgeAdjacency(quad, "broken quad");
+    FAIL() << "index 99 of 4 positions";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("broken quad"), std::string::npos) << e.what();
+  }
+}
+
+// Every directed edge of a volume (points at infinity distinct from finite ones) is walked as
+// often as its reverse: the volume is a closed, consistently oriented surface, so z-fail
+// counting is exact. `once`: additionally each directed edge exactly once (a 2-manifold volume).
+void expectClosedVolume(const std::vector<glm::vec4>& v, bool once, const std::string& what) {
+  ASSERT_EQ(v.size() % 3, 0u) << what;
+  using Key = std::tuple<float, float, float, float>;
+  const auto key = [](const glm::vec4& p) { return Key(p.x, p.y, p.z, p.w); };
+  std::map<std::pair<Key, Key>, int> directed;
+  for (size_t t = 0; t < v.size(); t += 3)
+    for (int e = 0; e < 3; ++e) ++directed[{key(v[t + e]), key(v[t + (e + 1) % 3])}];
+  for (const auto& [edge, count] : directed) {
+    if (once) {
+      EXPECT_EQ(count, 1) << what;
+    }
+    auto twin = directed.find({edge.second, edge.first});
+    ASSERT_NE(twin, directed.end()) << what;
+    EXPECT_EQ(twin->second, count) << what;
+  }
+}
+
+TEST(ShadowVolumeGeometry, OpenMeshVolumesAreClosed) {
+  // Open meshes get the volume of their two-sided solid: a quad (4 boundary edges, each a
+  // silhouette once), a tessellated plane (its 4 * 3 boundary edges; interior edges cancel), and
+  // a box without its top face lit from several sides (boundary and fold edges).
+  Mesh openBox = makeBox({1, 1, 1});
+  Mesh openTop = openBox;
+  openTop.indices.clear();
+  for (size_t t = 0; t < openBox.indices.size(); t += 3) {
+    bool top = true;
+    for (int k = 0; k < 3; ++k) top = top && openBox.positions[openBox.indices[t + k]].y > 0.4f;
+    if (!top)
+      for (int k = 0; k < 3; ++k) openTop.indices.push_back(openBox.indices[t + k]);
+  }
+  openTop.closed = false;
+  const struct {
+    std::string name;
+    Mesh mesh;
+    size_t boundaryEdges;
+  } meshes[] = {
+      {"quad", makeQuad(1, 1), 4}, {"plane", makePlane(2, 2, 3), 12}, {"open box", openTop, 4}};
+  for (const auto& [name, mesh, boundaryEdges] : meshes) {
+    const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(mesh, name);
+    ASSERT_FALSE(adj.closed) << name;
+    int folds = 0;
+    for (const glm::vec3 light : {glm::vec3(0.3f, 5, 0.2f), glm::vec3(0.2f, -4, 0.1f),
+                                  glm::vec3(-3.1f, 0.3f, 2.9f), glm::vec3(0.1f, 0.2f, 0.05f)}) {
+      const modern::Silhouette s = modern::findSilhouette(adj, light);
+      EXPECT_TRUE(s.twoSided);
+      ASSERT_EQ(s.quads.size(), s.edges.size());
+      int once = 0;
+      for (int q : s.quads) once += q == 1;
+      EXPECT_GE(size_t(once), boundaryEdges) << name;  // every boundary edge, once
+      folds += int(s.quads.size()) - once;
+      expectClosedVolume(modern::buildShadowVolume(adj, s, light), false, name);
+    }
+    // Beside the open box, a light faces two of its side faces and not the other two (nor the
+    // bottom): the edges between a facing and a non-facing face are folds (two quads each).
+    // Flat meshes have none.
+    if (name == "open box")
+      EXPECT_GT(folds, 0);
+    else
+      EXPECT_EQ(folds, 0) << name;
+  }
+  // A flat mesh has no fold: from any light off its plane the silhouette is its boundary.
+  const modern::EdgeAdjacency plane = modern::buildEdgeAdjacency(makePlane(2, 2, 3), "plane");
+  EXPECT_EQ(modern::findSilhouette(plane, {0.3f, 5, 0.2f}).edges.size(), 12u);
+  EXPECT_EQ(modern::findSilhouette(plane, {0.3f, -5, 0.2f}).edges.size(), 12u);
+}
+
+TEST(ShadowVolumeGeometry, BoxSilhouetteFromAboveIsTheTopSquare) {
+  // Light straight above a unit box: only the top face faces it; the four side faces face away
+  // (the light is inside their back half-space), so the silhouette is the top face's 4 edges,
+  // oriented counter-clockwise seen from above (blocker to the left of a -> b).
+  const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(makeBox({1, 1, 1}), "box");
+  const modern::Silhouette s = modern::findSilhouette(adj, {0, 3, 0});
+  ASSERT_EQ(s.edges.size(), 4u);
+  for (const auto& [a, b] : s.edges) {
+    const glm::vec3 pa = adj.positions[a], pb = adj.positions[b];
+    EXPECT_FLOAT_EQ(pa.y, 0.5f);
+    EXPECT_FLOAT_EQ(pb.y, 0.5f);
+    // Counter-clockwise seen from +y: the centre lies to the left, cross((b-a), (c-a)).y > 0.
+    EXPECT_GT(glm::cross(pb - pa, glm::vec3(0, 0.5f, 0) - pa).y, 0.0f);
+  }
+}
+
+TEST(ShadowVolumeGeometry, VolumesAreClosedAndConsistentlyOriented) {
+  // Every directed edge of the capped volume must be matched by its reverse (closed, outward
+  // orientation), points at infinity counted as distinct vertices. Sphere, torus and box, with
+  // lights in general position.
+  const Mesh meshes[] = {makeSphere(0.6f, 24, 12), makeTorus(0.8f, 0.25f, 24, 12),
+                         makeBox({0.8f, 0.5f, 0.3f}), makeCylinder(0.2f, 2.0f, 16)};
+  for (const Mesh& m : meshes) {
+    const modern::EdgeAdjacency adj = modern::buildEdgeAdjacency(m, "mesh");
+    const glm::vec3 light(-3.1f, 7.3f, 2.9f);
+    const modern::Silhouette s = modern::findSilhouette(adj, light);
+    EXPECT_FALSE(s.edges.empty());
+    expectClosedVolume(modern::buildShadowVolume(adj, s, light), true, "closed mesh");
+    // Silhouette loops are closed: every silhouette vertex has an even number of edges.
+    std::map<unsigned, int> degree;
+    for (const auto& [a, b] : s.edges) ++degree[a], ++degree[b];
+    for (const auto& [vertex, d] : degree) EXPECT_EQ(d % 2, 0);
+  }
+}
+
+// ---------------------------------------------------------------- modern.volumes
+
+struct AnalyticCheck {
+  int checked = 0, shadowed = 0, wrong = 0;
+};
+// Pixels of the analytic scene whose whole footprint (3x3 sub-samples) lies on one side of the
+// shadow edge, and how many of them `visibility` gets wrong. The point light (0,4,0) above the
+// occluder's top at y = 1.01 casts the square |x|, |z| <= 0.5 * 4 / (4 - 1.01) on the ground
+// (similar triangles).
+AnalyticCheck checkAnalyticSquare(const Scene& scene, const RenderParams& p,
+                                  const Image& visibility) {
+  const float half = testing::kOccluderHalfSide * 4.0f / (4.0f - testing::kOccluderTop);
+  AnalyticCheck c;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      int inside = 0, samples = 0;
+      for (float dy : {0.0f, 0.5f, 1.0f})
+        for (float dx : {0.0f, 0.5f, 1.0f}) {
+          auto g = testing::groundPoint(scene, p.width, p.height, x + dx, y + dy);
+          if (!g) continue;
+          ++samples;
+          inside += std::abs(g->x) <= half && std::abs(g->z) <= half;
+        }
+      if (samples != 9 || (inside != 0 && inside != 9)) continue;
+      const float expected = inside == 9 ? 0.0f : 1.0f;
+      ++c.checked;
+      c.shadowed += inside == 9;
+      if (visibility.at(x, y) != expected) ++c.wrong;
+    }
+  return c;
+}
+
+TEST(ShadowVolumes, AnalyticSquareShadowIsExact) {
+  // Shadow volumes are exact per pixel sample: every ground pixel whose whole footprint lies on
+  // one side of the edge must have exactly that visibility.
+  const Scene scene = builtinScene("analytic");
+  const RenderParams p = smallParams();
+  const Frame f = renderTechnique(findTechnique("modern.volumes"), scene, p);
+  const AnalyticCheck c = checkAnalyticSquare(scene, p, f.visibility);
+  EXPECT_GT(c.checked, p.width * p.height / 2);
+  EXPECT_GT(c.shadowed, 1000);  // the square covers a few thousand pixels at 320x240
+  EXPECT_EQ(c.wrong, 0);
+  if (c.wrong) saveArtefact("volumes_analytic_mask", f.visibility);
+  EXPECT_EQ(f.counters.at("silhouette_edges"), 4);  // the top square (light straight above)
+}
+
+TEST(ShadowVolumes, OpenQuadCastsTheSameExactSquare) {
+  // The slab replaced by a single open quad at its top (y = 1.01), facing the light and facing
+  // away from it, with the open ground casting too: the two-sided volumes must give the same
+  // exact square (the ground's own volume lies below the ground and shadows nothing visible).
+  for (float degrees : {-90.0f, 90.0f}) {  // quad normal +y (faces the light), -y (away)
+    Scene scene = builtinScene("analytic");
+    scene.objects[0].castsShadow = true;
+    scene.objects[1].mesh = std::make_shared<const Mesh>(makeQuad(1, 1));
+    scene.objects[1].model =
+        glm::rotate(glm::translate(glm::mat4(1), {0, testing::kOccluderTop, 0}),
+                    glm::radians(degrees), {1, 0, 0});
+    for (const std::string t : {"modern.volumes", "modern.hybrid"}) {
+      const RenderParams p = smallParams();
+      const Frame f = renderTechnique(findTechnique(t), scene, p);
+      const AnalyticCheck c = checkAnalyticSquare(scene, p, f.visibility);
+      EXPECT_GT(c.shadowed, 1000) << t << " " << degrees;
+      EXPECT_EQ(c.wrong, 0) << t << " " << degrees;
+      if (c.wrong) saveArtefact("volumes_open_quad_" + t, f.visibility);
+      EXPECT_EQ(f.counters.at("open_casters_two_sided"), 2) << t;
+      EXPECT_EQ(f.counters.at("closed_casters"), 0) << t;
+    }
+  }
+}
+
+TEST(ShadowVolumes, AgreeWithNearestShadowMapAwayFromEdges) {
+  // A hard shadow map (modern.hw, nearest compare, 2048^2) and shadow volumes answer the same
+  // point-light question; they may differ only near shadow boundaries (shadow-map sampling) and
+  // where the polygon offset moves the shadow-map edge (contacts). Outside a band of 3 pixels
+  // around either image's boundaries, at most 0.1% of the pixels may differ: what may remain
+  // is a polygon-offset light leak at a contact point (the box and small sphere touch the
+  // ground in brabec), a few pixels each. (Measured: none on either scene.)
+  for (const std::string name : {"analytic", "brabec"}) {
+    const Scene scene = builtinScene(name);
+    RenderParams p = smallParams(2048);
+    const Frame vol = renderTechnique(findTechnique("modern.volumes"), scene, p);
+    p.extra["compare"] = "nearest";
+    const Frame hw = renderTechnique(findTechnique("modern.hw"), scene, p);
+    Image away = boundaryBand(vol.visibility, 3);
+    const Image band2 = boundaryBand(hw.visibility, 3);
+    for (size_t i = 0; i < away.data.size(); ++i)
+      away.data[i] = (away.data[i] > 0.5f || band2.data[i] > 0.5f) ? 0.0f : 1.0f;
+    const MaskDifference d = compareMasksWithin(vol.visibility, hw.visibility, away, 0.5);
+    EXPECT_GT(d.pixels, p.width * p.height / 2) << name;
+    EXPECT_LE(double(d.mismatching), 0.001 * double(d.pixels)) << name;
+    if (d.mismatching > 0)
+      saveArtefact("volumes_vs_hw_" + name, differenceHeatMap(vol.visibility, hw.visibility));
+  }
+}
+
+TEST(ShadowVolumes, OpenCastersGetTwoSidedVolumesAndAreCounted) {
+  // brabec: the ground plane casts (castsShadow) but is open; the five solids are closed.
+  const Frame f =
+      renderTechnique(findTechnique("modern.volumes"), builtinScene("brabec"), smallParams());
+  EXPECT_EQ(f.counters.at("open_casters_two_sided"), 1);
+  EXPECT_EQ(f.counters.at("closed_casters"), 5);
+}
+
+TEST(ShadowVolumes, CubesSceneFileIsTheFillHeavyScene) {
+  // assets/scenes/cubes.json (volumes_bench's default): a non-casting ground and 3 layers of 5x5
+  // closed cubes, all inside the light's cone (each cube has a silhouette of 6 edges from a
+  // point light in general position; 75 * 6 = 450).
+  const Scene cubes = loadScene("cubes");
+  ASSERT_EQ(cubes.objects.size(), 76u);
+  EXPECT_FALSE(cubes.objects[0].castsShadow);
+  const Frame f = renderTechnique(findTechnique("modern.volumes"), cubes, smallParams());
+  EXPECT_EQ(f.counters.at("closed_casters"), 75);
+  EXPECT_EQ(f.counters.at("silhouette_edges"), 450);
+}
+
+// ---------------------------------------------------------------- modern.hybrid
+
+TEST(HybridShadows, EqualsShadowVolumesAtEverySilhouettePixel) {
+  // Chan §3.1: at silhouette pixels the hybrid's answer IS the shadow-volume answer (same
+  // volumes, same depth buffer, same z-fail counting), so the masks must be identical there,
+  // bit for bit. Several shadow-map sizes change which pixels are silhouette pixels.
+  for (const std::string name : {"analytic", "brabec", "fence"})
+    for (int texels : {128, 512}) {
+      const Scene scene = builtinScene(name);
+      RenderParams p = smallParams(texels);
+      p.capturePasses = true;
+      const Frame hybrid = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+      p.capturePasses = false;
+      const Frame volumes = renderTechnique(findTechnique("modern.volumes"), scene, p);
+      const Image* silhouette = nullptr;
+      for (const PassImage& i : hybrid.intermediates)
+        if (i.name == "3-silhouette-pixels") silhouette = &i.image;
+      ASSERT_NE(silhouette, nullptr);
+      long long count = 0, differ = 0;
+      for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x) {
+          if (silhouette->at(x, y) < 0.5f) continue;
+          ++count;
+          differ += hybrid.visibility.at(x, y) != volumes.visibility.at(x, y);
+        }
+      EXPECT_GT(count, 50) << name << " " << texels;
+      EXPECT_EQ(differ, 0) << name << " " << texels;
+      EXPECT_NEAR(hybrid.counters.at("silhouette_fraction"), double(count) / (p.width * p.height),
+                  1e-12);
+    }
+}
+
+TEST(HybridShadows, CountersInRange) {
+  // Chan Figure 3-10: the silhouette share is far below the share covered by shadow volumes;
+  // masked rasterisation touches only silhouette pixels, so masked overdraw <= full overdraw
+  // and masked overdraw <= volume overdraw at silhouette pixels <= silhouette share * peak.
+  for (const std::string name : {"analytic", "brabec", "trees"}) {
+    const Frame f =
+        renderTechnique(findTechnique("modern.hybrid"), builtinScene(name), smallParams(256));
+    const auto& c = f.counters;
+    EXPECT_GT(c.at("silhouette_fraction"), 0.0) << name;
+    EXPECT_LT(c.at("silhouette_fraction"), c.at("volume_coverage")) << name;
+    EXPECT_GT(c.at("volume_coverage"), 0.0) << name;
+    EXPECT_LE(c.at("volume_coverage"), 1.0) << name;
+    EXPECT_GE(c.at("volume_overdraw"), c.at("volume_coverage")) << name;
+    EXPECT_GT(c.at("masked_overdraw"), 0.0) << name;
+    EXPECT_LT(c.at("masked_overdraw"), c.at("volume_overdraw")) << name;
+    EXPECT_EQ(c.at("mask_depth_bounds"), 0.0) << "llvmpipe has no EXT_depth_bounds_test";
+  }
+}
+
+TEST(HybridShadows, DepthBoundsMaskRefusedWithoutTheExtension) {
+  RenderParams p = smallParams();
+  p.extra["mask"] = "depth-bounds";
+  EXPECT_THROW(renderTechnique(findTechnique("modern.hybrid"), builtinScene("analytic"), p),
+               InputError);
+}
+
+TEST(ShadowVolumes, VisibilityIsBinaryAndFinite) {
+  // Hard shadows: every visibility value is exactly 0 or 1 (stencil decides, or the shadow map
+  // away from silhouettes in the hybrid).
+  for (const std::string t : {"modern.volumes", "modern.hybrid"})
+    for (const std::string name : {"brabec", "fence", "trees", "dueling"}) {
+      const Frame f = renderTechnique(findTechnique(t), builtinScene(name), smallParams(256));
+      ASSERT_TRUE(allFinite(f.visibility)) << t << " " << name;
+      for (float v : f.visibility.data) ASSERT_TRUE(v == 0.0f || v == 1.0f) << t << " " << name;
+    }
+}
+
+}  // namespace
+}  // namespace sl

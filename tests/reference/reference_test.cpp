@@ -1,0 +1,237 @@
+// reference.hard and reference.soft against answers computed independently of any renderer:
+// the analytic scene's shadow follows from similar triangles (hard) and from the area of a
+// disk cut by a line (soft).
+#include "reference/reference.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
+#include <iostream>
+#include <optional>
+
+#include "apps/registry.h"
+#include "core/scene_library.h"
+
+namespace sl {
+namespace {
+
+constexpr int kWidth = 400;  // small window: the whole suite stays within seconds
+constexpr int kHeight = 300;
+
+// The analytic scene's geometry (core/scene_library.cpp analyticScene): light 4 units above
+// the plane y = 0, a 1 x 0.02 x 1 box centred 1 unit above it, ground 6 x 6.
+constexpr float kLightHeight = 4.0f;
+constexpr float kOccluderHalf = 0.5f;
+constexpr float kOccluderTop = 1.01f;
+constexpr float kOccluderBottom = 0.99f;
+constexpr float kGroundHalf = 3.0f;
+
+RenderParams smallParams() {
+  RenderParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  return p;
+}
+
+void save(const Frame& f, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(SHADOWLAB_TEST_OUTPUT_DIR) / "reference";
+  std::filesystem::create_directories(dir);
+  writePng((dir / (name + ".png")).string(), f.color);
+  writePng((dir / (name + "-mask.png")).string(), f.visibility, 16);
+}
+
+// The world-space ray through window position (wx, wy) of the scene's camera.
+struct Ray {
+  glm::vec3 origin, direction;
+};
+Ray cameraRay(const Scene& s, float wx, float wy) {
+  const glm::mat4 view = cameraView(s.camera);
+  const glm::mat4 proj = cameraProjection(s.camera, float(kWidth) / float(kHeight));
+  const glm::vec4 viewport(0, 0, kWidth, kHeight);
+  const glm::vec3 nearPoint = glm::unProject(glm::vec3(wx, wy, 0.0f), view, proj, viewport);
+  const glm::vec3 farPoint = glm::unProject(glm::vec3(wx, wy, 1.0f), view, proj, viewport);
+  return {nearPoint, glm::normalize(farPoint - nearPoint)};
+}
+
+std::optional<glm::vec3> hitPlaneY(const Ray& r, float y) {
+  if (std::fabs(r.direction.y) < 1e-9f) return std::nullopt;
+  const float t = (y - r.origin.y) / r.direction.y;
+  if (t <= 0) return std::nullopt;
+  return r.origin + t * r.direction;
+}
+
+// What the camera sees at a window position: 'o' occluder (a non-receiver: lit), 's' ground in
+// the exact shadow, 'l' lit ground, 'n' nothing. The occluder's top face is the first thing a
+// ray from above meets; its side faces are 0.02 high and covered by the corner test below.
+char classify(const Scene& s, float wx, float wy) {
+  const Ray r = cameraRay(s, wx, wy);
+  for (float y : {kOccluderTop, kOccluderBottom})
+    if (auto p = hitPlaneY(r, y))
+      if (std::fabs(p->x) <= kOccluderHalf && std::fabs(p->z) <= kOccluderHalf) return 'o';
+  auto g = hitPlaneY(r, 0.0f);
+  if (!g || std::fabs(g->x) > kGroundHalf || std::fabs(g->z) > kGroundHalf) return 'n';
+  // Similar triangles: the box's top face (nearest the light) casts the largest square,
+  // half side 0.5 * 4 / (4 - 1.01).
+  const float half = kOccluderHalf * kLightHeight / (kLightHeight - kOccluderTop);
+  return std::fabs(g->x) < half && std::fabs(g->z) < half ? 's' : 'l';
+}
+
+TEST(ReferenceHard, AnalyticShadowSquareMatchesSimilarTriangles) {
+  const Scene scene = builtinScene("analytic");
+  const Frame f = renderTechnique(findTechnique("reference.hard"), scene, smallParams());
+  save(f, "hard-analytic");
+  ASSERT_EQ(f.visibility.width, kWidth);
+  int checked = 0, shadowed = 0, wrong = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      // A pixel counts only when its centre and its four corners see the same thing: pixels
+      // straddling the shadow edge or the occluder's outline are left out.
+      const char c = classify(scene, x + 0.5f, y + 0.5f);
+      bool uniform = true;
+      for (float dx : {0.0f, 1.0f})
+        for (float dy : {0.0f, 1.0f}) uniform = uniform && classify(scene, x + dx, y + dy) == c;
+      if (!uniform) continue;
+      const float expected = c == 's' ? 0.0f : 1.0f;
+      ++checked;
+      shadowed += c == 's';
+      if (f.visibility.at(x, y) != expected) ++wrong;
+    }
+  EXPECT_GT(shadowed, 1000) << "the shadow square must be in view";
+  EXPECT_GT(checked, kWidth * kHeight * 9 / 10);
+  // Exact: away from the edge, one ray per pixel decides visibility with no tolerance.
+  EXPECT_EQ(wrong, 0) << "of " << checked << " pixels";
+}
+
+TEST(ReferenceHard, OnlyValuesZeroOrOneAndEmptyPixelsLit) {
+  Scene scene = builtinScene("brabec");
+  scene.camera.fovyDegrees = 80;  // the background is in view
+  const Frame f = renderTechnique(findTechnique("reference.hard"), scene, smallParams());
+  EXPECT_EQ(f.visibility.at(0, kHeight - 1), 1.0f) << "top-left corner sees the sky";
+  int zeros = 0;
+  for (float v : f.visibility.data) {
+    ASSERT_TRUE(v == 0.0f || v == 1.0f);
+    zeros += v == 0.0f;
+  }
+  EXPECT_GT(zeros, 100);
+  EXPECT_TRUE(allFinite(f.color));
+}
+
+// A light of radius 0 is a point: every soft ray goes to the centre, so soft == hard exactly.
+TEST(ReferenceSoft, ZeroRadiusEqualsHard) {
+  Scene scene = builtinScene("brabec");
+  scene.light.radius = 0.0f;
+  RenderParams p = smallParams();
+  p.extra["rays"] = "8";
+  const Frame soft = renderTechnique(findTechnique("reference.soft"), scene, p);
+  const Frame hard = renderTechnique(findTechnique("reference.hard"), scene, smallParams());
+  ASSERT_EQ(soft.visibility.data.size(), hard.visibility.data.size());
+  EXPECT_EQ(soft.visibility.data, hard.visibility.data);
+}
+
+// Visible fraction of a unit disk beyond a chord at signed offset t (t = -1: all, t = 1: none).
+double diskFractionBeyond(double t) {
+  t = std::clamp(t, -1.0, 1.0);
+  return (std::acos(t) - t * std::sqrt(1.0 - t * t)) / M_PI;
+}
+
+// The t at which diskFractionBeyond(t) == fraction (bisection; the function decreases).
+double chordForFraction(double fraction) {
+  double lo = -1, hi = 1;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (diskFractionBeyond(mid) > fraction ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+struct Sample {
+  double x;  // ground position across the right shadow edge
+  double v;  // reference.soft visibility
+};
+
+TEST(ReferenceSoft, AnalyticPenumbraWidthMatchesGeometry) {
+  Scene scene = builtinScene("analytic");
+  constexpr float kRadius = 0.5f;  // wide penumbra: about 20 pixels at 400x300
+  scene.light.radius = kRadius;
+  const Frame f = renderTechnique(findTechnique("reference.soft"), scene, smallParams());
+  save(f, "soft-analytic");
+  // Ground pixels across the right edge (x > 0), away from the square's corners (|z| < 0.3:
+  // the corner penumbrae start at |z| = 0.57).
+  std::vector<Sample> samples;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (classify(scene, x + 0.5f, y + 0.5f) == 'o') continue;
+      auto g = hitPlaneY(cameraRay(scene, x + 0.5f, y + 0.5f), 0.0f);
+      if (!g || std::fabs(g->z) > 0.3f || g->x < 0.4f || g->x > 1.0f) continue;
+      samples.push_back({g->x, f.visibility.at(x, y)});
+    }
+  ASSERT_GT(samples.size(), 200u);
+
+  // Geometry (similar triangles through the occluder's top edge at height h = 1.01, light
+  // disk of radius r at height H = 4): the line from ground point x over the edge reaches the
+  // light's height at x_c = x + (0.5 - x) H / h; the light is visible beyond x_c. The
+  // penumbra spans x_c in [-r, r], i.e. a width W = 2 r h / (H - h) = 2 r (H - h_o) / h_o
+  // measured from the light (h_o = H - h: the classic formula w = r_L (d_r - d_o) / d_o).
+  const double H = kLightHeight, h = kOccluderTop, r = kRadius;
+  auto chordAt = [&](double x) { return (x + (kOccluderHalf - x) * H / h) / r; };
+  const double width = 2.0 * r * h / (H - h);
+
+  // Measured: where the visibility crosses 10% and 90% (averaged over the pixels nearest each
+  // crossing) against where the disk-segment profile crosses them.
+  auto crossing = [&](double level) {
+    double sum = 0;
+    int n = 0;
+    for (const Sample& s : samples)
+      if (std::fabs(s.v - level) < 0.05) sum += s.x, ++n;
+    EXPECT_GT(n, 3) << "level " << level;
+    return n ? sum / n : 0.0;
+  };
+  // x where chordAt(x) == t: chordAt is linear, x = (t r - 0.5 H / h) / (1 - H / h).
+  auto xForChord = [&](double t) { return (t * r - kOccluderHalf * H / h) / (1.0 - H / h); };
+  const double expected1090 = xForChord(chordForFraction(0.9)) - xForChord(chordForFraction(0.1));
+  const double measured1090 = crossing(0.9) - crossing(0.1);
+  // Bound 8%: the light disk faces each point instead of lying horizontal (its extent along x
+  // shrinks by cos 9.5 degrees: 1.4%), the 0.1-wide bands around each level average pixels on
+  // a curve (about 3% of the 10-90 width for this slope) and the Monte Carlo noise (standard
+  // error 0.012, i.e. 0.004 units at this slope: 3%).
+  std::cout << "penumbra 10-90 width: measured " << measured1090 << ", expected " << expected1090
+            << " (full width W = " << width << ")\n";
+  EXPECT_NEAR(measured1090, expected1090, 0.08 * expected1090)
+      << "full penumbra width W = " << width;
+  EXPECT_NEAR(expected1090 / width, 0.687, 0.001) << "disk-segment 10-90 share of W";
+
+  // Pointwise: every pixel's visibility against the disk-segment profile. Bound 0.1: 4
+  // standard errors of the estimator (4 x 0.012) plus the slope times the tilt shift (a
+  // position error of 1.4% of W = 0.005 units times a slope of at most 4 / (pi W / 2)... = 0.03)
+  // plus margin for the occluder's 0.02 thickness (which edge bounds the umbra side).
+  double worst = 0;
+  for (const Sample& s : samples)
+    worst = std::max(worst, std::fabs(s.v - diskFractionBeyond(chordAt(s.x))));
+  std::cout << "largest |visibility - disk-segment profile|: " << worst << "\n";
+  EXPECT_LT(worst, 0.1);
+}
+
+TEST(ReferenceSoft, NoiseEstimateBelowStatedBound) {
+  Scene scene = builtinScene("brabec");
+  scene.light.radius = 0.2f;
+  const Frame f = renderTechnique(findTechnique("reference.soft"), scene, smallParams());
+  save(f, "soft-brabec");
+  ASSERT_TRUE(f.counters.count("noise_rms_standard_error"));
+  EXPECT_EQ(f.counters.at("rays_per_pixel"), reference::kDefaultSoftRays);
+  EXPECT_GT(f.counters.at("penumbra_pixels"), 500);
+  // Bound: each half is a mean over n^2 strata of which a shadow edge crosses at most about
+  // 2n, each a Bernoulli variable of variance <= 1/4: Var(half) <= 2n / (4 n^4) = 1 / (2 n^3);
+  // the mask averages two halves: standard error <= 1 / (2 n^1.5) = 0.012 for n = 12.
+  const double n = reference::kDefaultSoftStrataPerSide;
+  const double bound = 1.0 / (2.0 * std::pow(n, 1.5));
+  std::cout << "estimated standard error: RMS " << f.counters.at("noise_rms_standard_error")
+            << ", max " << f.counters.at("noise_max_standard_error") << ", bound " << bound << "\n";
+  EXPECT_LT(f.counters.at("noise_rms_standard_error"), bound);
+  for (float v : f.visibility.data) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+}
+
+}  // namespace
+}  // namespace sl
