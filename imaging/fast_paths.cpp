@@ -20,6 +20,38 @@ inline uint8_t toByte(float v) {
   return uint8_t(c * 255.0f + 0.5f);
 }
 
+// One output component of the color-matrix byte path (transformBytes).
+struct RowPlan {
+  enum Kind { kConstant, kTable, kFloat } kind = kConstant;
+  int count = 0;                              // non-zero matrix coefficients in the row
+  int component[4] = {0, 0, 0, 0};            // input component of each term
+  const float* product[4] = {};               // kFloat: 256 products per term
+  std::array<std::array<uint32_t, 256>, 4> index{};  // kTable: byte -> offset into table
+  std::vector<uint8_t> table;                 // kTable: final byte per combination
+  uint8_t constant = 0;                       // kConstant
+  bool plain = false;                         // kFloat: the byte is toByte(sum)
+};
+constexpr size_t kMaxCombinedTable = 1u << 16;  // entries (bytes) of one combined table
+constexpr size_t kChunkGroups = 512;             // RGBA groups per branch-free pass
+
+// out[g * 4] = table[sum of the terms' offsets for group g]; N terms.
+template <int N>
+void tableRow(const RowPlan& plan, const uint8_t* in, uint8_t* out, size_t m) {
+  const uint8_t* const table = plan.table.data();
+  const uint32_t* o[N];
+  int c[N];
+  for (int i = 0; i < N; ++i) {
+    o[i] = plan.index[size_t(i)].data();
+    c[i] = plan.component[i];
+  }
+  for (size_t g = 0; g < m; ++g) {
+    const uint8_t* const x = in + g * 4;
+    uint32_t k = o[0][x[c[0]]];
+    for (int i = 1; i < N; ++i) k += o[i][x[c[i]]];
+    out[g * 4] = table[k];
+  }
+}
+
 }  // namespace
 
 bool bytePathApplies(const TransferState& t) {
@@ -113,43 +145,97 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     }
     return toByte(v);
   };
-  // Flattened terms per output component; a row without terms is a constant byte.
-  struct Row {
-    int count = 0;
-    int component[4] = {0, 0, 0, 0};
-    const float* product[4] = {nullptr, nullptr, nullptr, nullptr};
-    uint8_t constant = 0;
-    bool plain = false;  // no post scale, bias or table: the byte is toByte(sum)
-  };
-  Row flat[4];
+  // Each output component is a function of at most four input bytes through its terms'
+  // products. Where those products take few distinct floats (the Brabec-Seidel table leaves
+  // two per component), the whole conversion of a row is one byte table indexed by the
+  // distinct-value indices, filled by the very same float sums and `finish` as below, so the
+  // bytes are identical; otherwise the floats are summed per pixel.
+  std::array<RowPlan, 4> plans;
   for (int r = 0; r < 4; ++r) {
-    flat[r].count = int(rows[r].size());
-    for (int i = 0; i < flat[r].count; ++i) {
-      flat[r].component[i] = rows[r][size_t(i)].component;
-      flat[r].product[i] = rows[r][size_t(i)].product.data();
+    RowPlan& plan = plans[size_t(r)];
+    plan.count = int(rows[r].size());
+    const bool plain = !scaled && bias[r] == 0.0f && !replaced[r];
+    auto convert = [&](float sum) { return plain ? toByte(sum) : finish(r, sum); };
+    if (plan.count == 0) {
+      plan.kind = RowPlan::kConstant;
+      plan.constant = finish(r, 0.0f);
+      continue;
     }
-    flat[r].constant = finish(r, 0.0f);
-    flat[r].plain = !scaled && bias[r] == 0.0f && !replaced[r];
+    std::array<std::vector<float>, 4> distinct;
+    size_t combos = 1;
+    for (int i = 0; i < plan.count; ++i) {
+      const Term& term = rows[r][size_t(i)];
+      plan.component[i] = term.component;
+      plan.product[i] = term.product.data();
+      std::array<uint32_t, 256> index{};
+      for (int v = 0; v < 256; ++v) {
+        const float x = term.product[size_t(v)];
+        size_t j = 0;  // bitwise equality: -0 and NaN payloads stay distinct
+        while (j < distinct[i].size() && std::memcmp(&distinct[i][j], &x, sizeof x) != 0) ++j;
+        if (j == distinct[i].size()) distinct[i].push_back(x);
+        index[size_t(v)] = uint32_t(j);
+      }
+      plan.index[i] = index;
+      combos *= distinct[i].size();
+    }
+    if (combos > kMaxCombinedTable) {
+      plan.kind = RowPlan::kFloat;
+      plan.plain = plain;
+      continue;
+    }
+    plan.kind = RowPlan::kTable;
+    // Strides: term 0 varies slowest. offset_i[v] = index_i(v) * stride_i.
+    uint32_t stride = 1;
+    std::array<uint32_t, 4> strides{};
+    for (int i = plan.count - 1; i >= 0; --i) {
+      strides[size_t(i)] = stride;
+      stride *= uint32_t(distinct[i].size());
+    }
+    for (int i = 0; i < plan.count; ++i)
+      for (int v = 0; v < 256; ++v) plan.index[i][size_t(v)] *= strides[size_t(i)];
+    plan.table.resize(combos);
+    for (size_t k = 0; k < combos; ++k) {
+      float sum = distinct[0][k / strides[0] % distinct[0].size()];
+      for (int i = 1; i < plan.count; ++i)
+        sum = sum + distinct[i][k / strides[size_t(i)] % distinct[i].size()];
+      plan.table[k] = convert(sum);
+    }
   }
   parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
-    uint8_t* p = bytes.data() + size_t(y0) * w * 4;
+    uint8_t* const p = bytes.data() + size_t(y0) * w * 4;
     const size_t n = size_t(y1 - y0) * w;
-    Row local[4];  // locals: the byte stores below cannot alias them
-    for (int r = 0; r < 4; ++r) local[r] = flat[r];
-    for (size_t g = 0; g < n; ++g, p += 4) {
-      const uint8_t in[4] = {p[0], p[1], p[2], p[3]};
-      uint8_t result[4];
+    // Chunks of groups: the inputs are copied aside so that each output component can be
+    // written in its own branch-free pass.
+    uint8_t in[kChunkGroups * 4];
+    for (size_t g0 = 0; g0 < n; g0 += kChunkGroups) {
+      const size_t m = std::min(kChunkGroups, n - g0);
+      uint8_t* const q = p + g0 * 4;
+      std::memcpy(in, q, m * 4);
       for (int r = 0; r < 4; ++r) {
-        const Row& row = local[r];
-        if (row.count == 0) {
-          result[r] = row.constant;
-          continue;
+        const RowPlan& plan = plans[size_t(r)];
+        switch (plan.kind) {
+          case RowPlan::kConstant:
+            for (size_t g = 0; g < m; ++g) q[g * 4 + r] = plan.constant;
+            break;
+          case RowPlan::kTable:
+            switch (plan.count) {
+              case 1: tableRow<1>(plan, in, q + r, m); break;
+              case 2: tableRow<2>(plan, in, q + r, m); break;
+              case 3: tableRow<3>(plan, in, q + r, m); break;
+              default: tableRow<4>(plan, in, q + r, m); break;
+            }
+            break;
+          case RowPlan::kFloat:
+            for (size_t g = 0; g < m; ++g) {
+              const uint8_t* const x = in + g * 4;
+              float sum = plan.product[0][x[plan.component[0]]];
+              for (int i = 1; i < plan.count; ++i)
+                sum = sum + plan.product[i][x[plan.component[i]]];
+              q[g * 4 + r] = plan.plain ? toByte(sum) : finish(r, sum);
+            }
+            break;
         }
-        float sum = row.product[0][in[row.component[0]]];
-        for (int i = 1; i < row.count; ++i) sum = sum + row.product[i][in[row.component[i]]];
-        result[r] = row.plain ? toByte(sum) : finish(r, sum);
       }
-      std::memcpy(p, result, 4);
     }
   });
   return true;
