@@ -52,6 +52,16 @@ void tableRow(const RowPlan& plan, const uint8_t* in, uint8_t* out, size_t m) {
   }
 }
 
+// toByte over a span, written so that it vectorises: max/min in the operand order that
+// keeps toByte's answers (NaN and -0 give 0), and no aliasing between the spans.
+void toBytes(const float* __restrict v, uint8_t* __restrict o, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    float c = v[i] > 0.0f ? v[i] : 0.0f;
+    c = c < 1.0f ? c : 1.0f;
+    o[i] = uint8_t(int32_t(c * 255.0f + 0.5f));
+  }
+}
+
 }  // namespace
 
 bool bytePathApplies(const TransferState& t) {
@@ -298,6 +308,29 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
   const bool replicate = f.borderMode == GL_REPLICATE_BORDER;
   auto padRow = [&](int py, float* dst) {
     const int sy = py - ch;
+    if (sy >= 0 && sy < hs) {
+      // Inside rows: the source span straight through the stage 1-3 values, then the
+      // border columns (the same values the general loop below gives them).
+      const uint8_t* const row = src.data() + size_t(sy) * ws * 4;
+      const float* const lut = values.px.data();
+      const int x0 = reduce ? 0 : cw;
+      float* const d = dst + size_t(x0) * 4;
+      for (int i = 0; i < ws * 4; i += 4) {
+        d[i + 0] = lut[size_t(row[i + 0]) * 4 + 0];
+        d[i + 1] = lut[size_t(row[i + 1]) * 4 + 1];
+        d[i + 2] = lut[size_t(row[i + 2]) * 4 + 2];
+        d[i + 3] = lut[size_t(row[i + 3]) * 4 + 3];
+      }
+      if (reduce) return;
+      for (int x = 0; x < cw; ++x)
+        for (int c = 0; c < 4; ++c)
+          dst[x * 4 + c] = replicate ? lut[size_t(row[c]) * 4 + c] : f.borderColor[c];
+      for (int x = cw + ws; x < pw; ++x)
+        for (int c = 0; c < 4; ++c)
+          dst[x * 4 + c] =
+              replicate ? lut[size_t(row[size_t(ws - 1) * 4 + c]) * 4 + c] : f.borderColor[c];
+      return;
+    }
     for (int x = 0; x < pw; ++x) {
       const int sx = x - cw;
       const bool inside = sx >= 0 && sx < ws && sy >= 0 && sy < hs;
@@ -343,10 +376,7 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
           continue;
         }
       }
-      uint8_t* const o = out.data() + size_t(j) * ow * 4;
-      const float* const v = row.px.data();
-      const size_t n = row.px.size();
-      for (size_t i = 0; i < n; ++i) o[i] = toByte(v[i]);
+      toBytes(row.px.data(), out.data() + size_t(j) * ow * 4, row.px.size());
     }
   };
   const int strips = (oh + kStripRows - 1) / kStripRows;
