@@ -9,6 +9,10 @@
 // applyColorMatrix, so the bytes written are identical to the general path's.
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "imaging/internal.h"
 
 namespace sl::imaging::detail {
@@ -52,14 +56,25 @@ void tableRow(const RowPlan& plan, const uint8_t* in, uint8_t* out, size_t m) {
   }
 }
 
-// toByte over a span, written so that it vectorises: max/min in the operand order that
-// keeps toByte's answers (NaN and -0 give 0), and no aliasing between the spans.
-void toBytes(const float* __restrict v, uint8_t* __restrict o, size_t n) {
-  for (size_t i = 0; i < n; ++i) {
-    float c = v[i] > 0.0f ? v[i] : 0.0f;
-    c = c < 1.0f ? c : 1.0f;
-    o[i] = uint8_t(int32_t(c * 255.0f + 0.5f));
+// toByte over a span, four floats at a time where SSE2 is there: maxps(v, 0) is v > 0 ? v : 0
+// and minps(c, 1) is c < 1 ? c : 1, toByte's own comparisons (NaN and -0 give 0), then the same
+// multiply, add and truncation.
+void toBytes(const float* v, uint8_t* o, size_t n) {
+  size_t i = 0;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+  auto convert = [&](const float* p) {
+    const __m128 c = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(p), zero), one);
+    return _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(c, scale), half));
+  };
+  for (; i + 16 <= n; i += 16) {
+    const __m128i lo = _mm_packs_epi32(convert(v + i), convert(v + i + 4));
+    const __m128i hi = _mm_packs_epi32(convert(v + i + 8), convert(v + i + 12));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(o + i), _mm_packus_epi16(lo, hi));
   }
+#endif
+  for (; i < n; ++i) o[i] = toByte(v[i]);
 }
 
 }  // namespace
