@@ -359,15 +359,16 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
       }
     }
   };
-  out.assign(size_t(ow) * oh * 4, 0);
+  out.resize(size_t(ow) * oh * 4);  // every row is written below unless a sink drops it
   const bool counting = t.histogramEnabled || t.minmaxEnabled;
   bool kept = true;
   constexpr int kStripRows = 16;
-  auto strip = [&](int j0, int j1) {
+  // `padded` and `row` are per-thread buffers reused across strips (a strip of a wide image
+  // is larger than malloc's mmap threshold, which would map and fault it anew each time).
+  auto strip = [&](int j0, int j1, std::vector<float>& padded, Image4& row) {
     const int rows = j1 - j0 + hf - 1;
-    std::vector<float> padded(size_t(rows) * pw * 4);
+    padded.resize(size_t(rows) * pw * 4);  // every row is written by padRow
     for (int r = 0; r < rows; ++r) padRow(j0 + r, padded.data() + size_t(r) * pw * 4);
-    Image4 row(ow, 1);
     for (int j = j0; j < j1; ++j) {
       std::fill(row.px.begin(), row.px.end(), 0.0f);
       accumulateTaps(
@@ -396,7 +397,10 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
   };
   const int strips = (oh + kStripRows - 1) / kStripRows;
   auto run = [&](int s0, int s1) {
-    for (int s = s0; s < s1; ++s) strip(s * kStripRows, std::min(oh, (s + 1) * kStripRows));
+    std::vector<float> padded;
+    Image4 row(ow, 1);
+    for (int s = s0; s < s1; ++s)
+      strip(s * kStripRows, std::min(oh, (s + 1) * kStripRows), padded, row);
   };
   if (counting) {
     run(0, strips);  // the tables are shared: one thread

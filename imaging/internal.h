@@ -150,6 +150,9 @@ struct State {
   Rgba clearAccum{0, 0, 0, 0};
   int accumWidth = 0, accumHeight = 0;
   std::vector<int16_t> accum;  // k / 32767 per component (accumulation.cpp)
+  // Byte buffers the 8-bit paths reuse from call to call (pixel_paths.cpp), so that a
+  // repeated glCopyPixels does not allocate and page-fault a fresh image each time.
+  std::vector<uint8_t> scratchIn, scratchOut;
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).

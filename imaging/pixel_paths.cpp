@@ -152,8 +152,10 @@ bool eightBitFramebuffer(const State& s) {
   return framebufferType(s) == GL_UNSIGNED_BYTE;
 }
 
-std::vector<uint8_t> readBytes(State& s, int x, int y, int w, int h) {
-  std::vector<uint8_t> bytes(size_t(w) * h * 4);
+// Reads into the state's reusable input buffer; valid until the next readBytes.
+std::vector<uint8_t>& readBytes(State& s, int x, int y, int w, int h) {
+  std::vector<uint8_t>& bytes = s.scratchIn;
+  bytes.resize(size_t(w) * h * 4);  // every byte is overwritten by the read
   TightPixelStore tight(s.driver);
   s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
   return bytes;
@@ -225,7 +227,7 @@ void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum 
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) &&
       tightRgba8(format, type, w, packStore(s->driver))) {
-    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
     std::memcpy(data, bytes.data(), bytes.size());
     return;
@@ -247,15 +249,15 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
     return s->driver.CopyPixels(x, y, w, h, type);
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
-    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
     TightPixelStore tight(s->driver);
     s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
     return;
   }
   if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {  // strips, bytes to bytes
-    const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
-    std::vector<uint8_t> out;
+    const std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t>& out = s->scratchOut;
     int ow = 0, oh = 0;
     if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh)) return;
     if (ow == 0 || oh == 0) return;
@@ -276,7 +278,7 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
     return s->driver.CopyTexImage2D(target, level, internalformat, x, y, w, h, border);
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) && eightBitTexture(internalformat)) {
-    std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+    std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
     TightPixelStore tight(s->driver);
     s->driver.TexImage2D(target, level, GLint(internalformat), w, h, border, GL_RGBA,
@@ -301,7 +303,7 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
     GLint format = 0;
     s->driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
     if (eightBitTexture(GLenum(format))) {
-      std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
+      std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
       transformBytes(s->transfer, bytes, w, h);
       TightPixelStore tight(s->driver);
       s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
@@ -313,8 +315,8 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
     GLint format = 0;
     s->driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
     if (eightBitTexture(GLenum(format))) {
-      const std::vector<uint8_t> bytes = readBytes(*s, x, y, w, h);
-      std::vector<uint8_t> out;
+      const std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
+      std::vector<uint8_t>& out = s->scratchOut;
       int ow = 0, oh = 0;
       if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh) || ow == 0 || oh == 0) return;
       TightPixelStore tight(s->driver);
