@@ -84,7 +84,8 @@ GLenum colorType(const State& s) {
 void accumulateColor(State& s, const Box& b, float value, bool keep) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (colorType(s) == GL_UNSIGNED_BYTE) {
-    std::vector<uint8_t> bytes(size_t(w) * h * 4);
+    std::vector<uint8_t>& bytes = s.scratchIn;  // reused across calls
+    bytes.resize(size_t(w) * h * 4);             // every byte is overwritten by the read
     s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
     s.driver.PixelStorei(GL_PACK_ALIGNMENT, 1);
     s.driver.PixelStorei(GL_PACK_ROW_LENGTH, 0);
@@ -97,8 +98,9 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
     int32_t scaled[256];
     for (int v = 0; v < 256; ++v)
       scaled[v] = int32_t(std::lround(double(value) * (v / 255.0) * kAccumSteps));
+    const uint8_t* const color = bytes.data();
     forEach(s, b, [&](int16_t a, size_t i) {
-      const int32_t k = (keep ? int32_t(a) : 0) + scaled[bytes[i]];
+      const int32_t k = (keep ? int32_t(a) : 0) + scaled[color[i]];
       return int16_t(std::clamp(k, kAccumMin, kAccumMax));
     });
     return;
@@ -115,7 +117,7 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (w <= 0 || h <= 0) return;
   const GLenum type = colorType(s);
-  std::vector<uint8_t> bytes;
+  std::vector<uint8_t>& bytes = s.scratchOut;  // reused across calls
   std::vector<uint16_t> shorts;
   std::vector<float> floats;
   const void* data = nullptr;

@@ -107,7 +107,7 @@ struct Operation {
   const char* name;
   std::function<void()> setup;
   std::function<void(int, int)> run;
-  bool accumulation = false;
+  bool noStage = false;  // no imaging/ transform of its own (accumulation buffer, floor rows)
 };
 
 void copyPixels(int w, int h) {
@@ -116,8 +116,28 @@ void copyPixels(int w, int h) {
   glFinish();
 }
 
+// The floor under every emulated call: the driver's own read-back and draw of the 8-bit
+// image, with nothing of imaging/ in between (the pipeline is identity, so both forward).
+void readBack(int w, int h) {
+  static std::vector<uint8_t> pixels;
+  pixels.resize(size_t(w) * h * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+}
+void readBackAndDraw(int w, int h) {
+  static std::vector<uint8_t> pixels;
+  pixels.resize(size_t(w) * h * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glWindowPos2i(0, 0);
+  glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glFinish();
+}
+
 std::vector<Operation> operations() {
   return {
+      {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true},
+      {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true},
       {"plain copy (glCopyPixels)", [] {}, copyPixels},
       {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
       {"+ color table + sum-into-alpha color matrix (Fig. 4)",
@@ -195,7 +215,7 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
     source.px[i] = float(bytes[i]) / 255.0f;
   }
   for (const Operation& op : operations()) {
-    if (op.accumulation) {
+    if (op.noStage) {
       ratios.push_back(-1.0);
       continue;
     }
