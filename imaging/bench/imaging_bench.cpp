@@ -7,7 +7,7 @@
 //   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
 //     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
 //     driver's read-back and DrawPixels.
-// Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu]
+// Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu] [--only TEXT]
 #include <time.h>
 
 #include <chrono>
@@ -30,6 +30,8 @@ constexpr int kRepetitions = 5;
 // --cpu: time with the process CPU clock (all threads) instead of the wall clock, for a
 // machine shared with other jobs, where wall time measures the queue more than the work.
 bool gCpuClock = false;
+// --only TEXT: only the operations whose name contains TEXT (for profiling one of them).
+std::string gOnly;
 
 double nowMs() {
   if (gCpuClock) {
@@ -134,7 +136,16 @@ void readBackAndDraw(int w, int h) {
   glFinish();
 }
 
+std::vector<Operation> allOperations();
 std::vector<Operation> operations() {
+  std::vector<Operation> ops;
+  for (Operation& op : allOperations())
+    if (gOnly.empty() || std::string(op.name).find(gOnly) != std::string::npos)
+      ops.push_back(std::move(op));
+  return ops;
+}
+
+std::vector<Operation> allOperations() {
   return {
       {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true},
       {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true},
@@ -258,6 +269,7 @@ int run(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--quick") == 0) quick = true;
     if (std::strcmp(argv[i], "--cpu") == 0) gCpuClock = true;
+    if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) gOnly = argv[++i];
   }
   const int reps = quick ? 2 : kRepetitions;
   const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};
