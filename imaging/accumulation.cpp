@@ -13,6 +13,7 @@
 // Every operation is a table lookup per component: an 8-bit colour has 256 values and a
 // 16-bit accumulator 65536, so the arithmetic is done once per value, in double precision.
 #include <cmath>
+#include <cstring>
 
 #include "imaging/internal.h"
 
@@ -132,10 +133,16 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
   };
   if (type == GL_UNSIGNED_BYTE) {
     // One table over all 65535 accumulator values: the final conversion of value * A.
-    std::vector<uint8_t> lut(65536);
-    const double step = double(value) / kAccumSteps;  // value * k / 32767, one multiply each
-    for (int k = kAccumMin; k <= kAccumMax; ++k)
-      lut[size_t(k + 32768)] = uint8_t(clamp01(double(k) * step) * 255.0 + 0.5);
+    std::vector<uint8_t>& lut = s.returnTable;
+    // Bitwise comparison: -0 and 0, or two NaNs, are not assumed to build the same table.
+    if (!s.returnTableValid || std::memcmp(&s.returnTableValue, &value, sizeof value) != 0) {
+      lut.assign(65536, 0);
+      const double step = double(value) / kAccumSteps;  // value * k / 32767, one multiply each
+      for (int k = kAccumMin; k <= kAccumMax; ++k)
+        lut[size_t(k + 32768)] = uint8_t(clamp01(double(k) * step) * 255.0 + 0.5);
+      s.returnTableValue = value;
+      s.returnTableValid = true;
+    }
     bytes.resize(size_t(w) * h * 4);
     // Raw pointers: a byte store through a vector's operator[] may alias the vector itself,
     // which would reload its data pointer on every element.

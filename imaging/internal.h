@@ -153,6 +153,11 @@ struct State {
   // Byte buffers the 8-bit paths reuse from call to call (pixel_paths.cpp), so that a
   // repeated glCopyPixels does not allocate and page-fault a fresh image each time.
   std::vector<uint8_t> scratchIn, scratchOut;
+  // GL_RETURN's 65536-entry byte table for 8-bit colour, kept for the value it was built for
+  // (a frame returns with the same value again and again).
+  bool returnTableValid = false;
+  float returnTableValue = 0.0f;
+  std::vector<uint8_t> returnTable;
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).
