@@ -86,7 +86,7 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (colorType(s) == GL_UNSIGNED_BYTE) {
     std::vector<uint8_t>& bytes = s.scratchIn;  // reused across calls
-    bytes.resize(size_t(w) * h * 4);             // every byte is overwritten by the read
+    bytes.resize(size_t(w) * h * 4);            // every byte is overwritten by the read
     s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
     s.driver.PixelStorei(GL_PACK_ALIGNMENT, 1);
     s.driver.PixelStorei(GL_PACK_ROW_LENGTH, 0);

@@ -27,16 +27,16 @@ inline uint8_t toByte(float v) {
 // One output component of the color-matrix byte path (transformBytes).
 struct RowPlan {
   enum Kind { kConstant, kTable, kFloat } kind = kConstant;
-  int count = 0;                              // non-zero matrix coefficients in the row
-  int component[4] = {0, 0, 0, 0};            // input component of each term
-  const float* product[4] = {};               // kFloat: 256 products per term
+  int count = 0;                                     // non-zero matrix coefficients in the row
+  int component[4] = {0, 0, 0, 0};                   // input component of each term
+  const float* product[4] = {};                      // kFloat: 256 products per term
   std::array<std::array<uint32_t, 256>, 4> index{};  // kTable: byte -> offset into table
-  std::vector<uint8_t> table;                 // kTable: final byte per combination
-  uint8_t constant = 0;                       // kConstant
-  bool plain = false;                         // kFloat: the byte is toByte(sum)
+  std::vector<uint8_t> table;                        // kTable: final byte per combination
+  uint8_t constant = 0;                              // kConstant
+  bool plain = false;                                // kFloat: the byte is toByte(sum)
 };
 constexpr size_t kMaxCombinedTable = 1u << 16;  // entries (bytes) of one combined table
-constexpr size_t kChunkGroups = 512;             // RGBA groups per branch-free pass
+constexpr size_t kChunkGroups = 512;            // RGBA groups per branch-free pass
 
 // out[g * 4] = table[sum of the terms' offsets for group g]; N terms.
 template <int N>
@@ -244,10 +244,18 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
             break;
           case RowPlan::kTable:
             switch (plan.count) {
-              case 1: tableRow<1>(plan, in, q + r, m); break;
-              case 2: tableRow<2>(plan, in, q + r, m); break;
-              case 3: tableRow<3>(plan, in, q + r, m); break;
-              default: tableRow<4>(plan, in, q + r, m); break;
+              case 1:
+                tableRow<1>(plan, in, q + r, m);
+                break;
+              case 2:
+                tableRow<2>(plan, in, q + r, m);
+                break;
+              case 3:
+                tableRow<3>(plan, in, q + r, m);
+                break;
+              default:
+                tableRow<4>(plan, in, q + r, m);
+                break;
             }
             break;
           case RowPlan::kFloat:
