@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
   libosmesa6-dev      # Mesa OSMesa (llvmpipe): the embedded GL, no GPU or display needed
-  libegl-dev libegl1-mesa-dev  # EGL back end (Mesa here, NVIDIA on GPU machines)
+  libegl-dev libegl1-mesa-dev libgl1-mesa-dri  # EGL back end (Mesa llvmpipe here, NVIDIA on GPU machines)
   libglm-dev          # vector and matrix math
   libpng-dev zlib1g-dev  # PNG images, gzip-compressed meshes
   nlohmann-json3-dev  # scene files and machine-readable output
@@ -32,4 +32,4 @@ fi
 echo "installing: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+apt-get install -y -qq "${missing[@]}" >/dev/null
