@@ -87,9 +87,8 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
     h << "<tr><td>" << escape(c.claim) << "</td><td>" << escape(c.source) << "</td><td>"
       << escape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
       << escape(c.verdict) << "</td><td>" << escape(c.measured) << "</td></tr>\n";
-  h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this table. "
-       "The stability suite's summary per technique and case is in docs/bench.md "
-       "(<code>build/bin/test_stability</code> prints every value).</p>\n";
+  h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this "
+       "table.</p>\n";
   return h.str();
 }
 

@@ -27,6 +27,7 @@
 #include "core/scene_library.h"
 #include "figures/bench.h"
 #include "figures/bench_report.h"
+#include "figures/stability.h"
 #include "figures/diagnostics.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
@@ -552,6 +553,8 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
   if (!only) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);
+    if (progress) std::cerr << "[stability] every technique on every stability case" << std::endl;
+    info.benchHtml += stability::summaryHtml(progress);
   }
   info.renderer = rendererName();
   info.date = utcNow();

@@ -1,0 +1,73 @@
+// figures/stability.h — the stability suite's stiff and extreme cases (issue 8 item 3) as a
+// library: tests/stability asserts on them, and the report (`shadowlab figures`) summarises
+// every technique's behaviour on them in a table.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/metrics.h"
+#include "core/technique.h"
+
+namespace sl::figures::stability {
+
+constexpr int kWidth = 160;  // small windows keep the suite within minutes on two cores
+constexpr int kHeight = 120;
+constexpr int kBandPixels = 2;             // errors this close to a reference edge are allowed
+constexpr double kWellConditioned = 0.02;  // share of pixels wrong by > 0.5 outside the band
+constexpr double kDegradedButSane = 0.5;   // where a resource runs out: "not garbage"
+
+struct Case {
+  std::string name;
+  std::function<Scene()> scene;
+  std::function<void(RenderParams&)> params;
+  // Empty when the case applies to the technique; otherwise why it is skipped.
+  std::function<std::string(const Technique&)> skip;
+  double bound;     // share of pixels with |v - reference| > 0.5 outside the band
+  std::string why;  // why the bound is right
+};
+
+// Per-technique exceptions, each with its reason: a bound >= 0 replaces the case's bound (a
+// documented limitation of the technique); a bound < 0 is a known bug, reported and skipped.
+struct KnownIssue {
+  double bound;
+  std::string why;
+};
+
+const std::vector<Case>& cases();
+const Case& findCase(const std::string& name);
+const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues();
+Scene stage();  // the baseline scene
+bool isReference(const Technique& t);
+RenderParams baseParams();
+// The ray-traced reference of a case (cached). `withoutOpenCasters`: every open caster made a
+// non-caster (the documented fallback of techniques that need closed meshes).
+const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters = false);
+// The error counted by a case: outside the reference's edge band, on surfaces the light reaches.
+MaskDifference errorWhereItMatters(const Image& visibility, const Frame& reference);
+
+// One (case, technique) run and what it measured.
+struct Outcome {
+  enum class Kind { kNotApplicable, kRefused, kKnownBug, kMeasured };
+  Kind kind = Kind::kMeasured;
+  std::string note;  // why not applicable, the InputError, or the known bug
+  Frame frame;
+  bool finite = true;     // no NaN/Inf in colour, visibility or any intermediate
+  float lowest = 0.0f;    // visibility range
+  float highest = 1.0f;
+  MaskDifference error;   // errorWhereItMatters (the better of the two references on fallback)
+  double bound = 0.0;
+  std::string why;
+  const Frame* reference = nullptr;
+  bool withinBound() const { return error.shareAboveHalf <= bound; }
+};
+// Renders the case with the technique; a GlError propagates (it is a failure).
+Outcome evaluate(const Case& c, const Technique& t);
+
+// The report's table: every case x every technique (runs them all, ~30 s on two cores).
+std::string summaryHtml(bool progress);
+
+}  // namespace sl::figures::stability
