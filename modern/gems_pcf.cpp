@@ -18,6 +18,7 @@
 
 #include "core/errors.h"
 #include "modern/camera_pass.h"
+#include "modern/hardware_shadow_map.h"
 #include "modern/prefiltered_maps.h"
 
 namespace sl::modern {
@@ -86,15 +87,7 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  const float farDepth[4] = {1, 1, 1, 1};  // outside the map: no blocker
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
   glBindTexture(GL_TEXTURE_2D, 0);
   return map;
 }

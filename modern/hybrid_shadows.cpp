@@ -23,6 +23,7 @@
 
 #include "core/errors.h"
 #include "modern/camera_pass.h"
+#include "modern/hardware_shadow_map.h"
 #include "modern/shadow_volumes.h"
 
 namespace sl::modern {
@@ -56,16 +57,8 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
   gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
   // GL_LINEAR with compare mode = the 2x2 percentage-closer filter of Figure 3-3.
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  const float farDepth[4] = {1, 1, 1, 1};
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, farDepth);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
   glBindTexture(GL_TEXTURE_2D, 0);
   return map;
 }
