@@ -37,6 +37,9 @@ struct RowPlan {
 };
 constexpr size_t kMaxCombinedTable = 1u << 16;  // entries (bytes) of one combined table
 constexpr size_t kChunkGroups = 512;            // RGBA groups per branch-free pass
+// The vector maps do a group in about an eighth of the scalar loop's time: the work measure
+// that decides whether a second thread pays is divided by this.
+constexpr size_t kVectorSpeedup = 8;
 
 // out[g * 4] = table[sum of the terms' offsets for group g]; N terms.
 template <int N>
@@ -83,7 +86,7 @@ bool bytePathApplies(const TransferState& t) {
   return !(t.histogramEnabled || t.minmaxEnabled || t.convolution2DEnabled || t.separable2DEnabled);
 }
 
-bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h) {
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h, BytePath path) {
   if (!bytePathApplies(t)) return false;
   // The per-component prefix on the 256 byte values, by the general stages themselves.
   TransferState prefix = t;
@@ -106,19 +109,28 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
     runPipeline(suffix, values, Dimensionality::k2D);
     uint8_t lut[256 * 4];
     for (int i = 0; i < 256 * 4; ++i) lut[i] = toByte(values.px[size_t(i)]);
-    parallelRows(h, size_t(w), [&](int y0, int y1) {
+    auto scalar = [&lut](uint8_t* p, size_t groups) {
       // A local copy of the table: byte stores through p cannot alias it, so the compiler
       // keeps it in place instead of reloading after every store.
       uint8_t table[256 * 4];
       std::memcpy(table, lut, sizeof table);
-      uint8_t* p = bytes.data() + size_t(y0) * w * 4;
-      const size_t n = size_t(y1 - y0) * w * 4;
-      for (size_t i = 0; i < n; i += 4) {
+      for (size_t i = 0; i < groups * 4; i += 4) {
         const uint32_t v =
             uint32_t(table[p[i + 0] * 4 + 0]) | uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
             uint32_t(table[p[i + 2] * 4 + 2]) << 16 | uint32_t(table[p[i + 3] * 4 + 3]) << 24;
         std::memcpy(p + i, &v, 4);  // RGBA bytes, little-endian
       }
+    };
+    // A table with few steps per component (the Brabec-Seidel table has one) is evaluated as
+    // byte comparisons, 32 bytes at a time (byte_maps.cpp).
+    StepMap steps;
+    const bool vector =
+        path == BytePath::kFastest && vectorMapsAvailable() && planStepMap(lut, steps);
+    parallelRows(h, vector ? size_t(w) / kVectorSpeedup : size_t(w), [&](int y0, int y1) {
+      uint8_t* p = bytes.data() + size_t(y0) * w * 4;
+      const size_t n = size_t(y1 - y0) * w * 4;
+      const size_t done = vector ? applyStepMap(steps, p, n) : 0;
+      scalar(p + done, (n - done) / 4);
     });
     return true;
   }
@@ -226,9 +238,7 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
       plan.table[k] = convert(sum);
     }
   }
-  parallelRows(h, size_t(w) * 4, [&](int y0, int y1) {
-    uint8_t* const p = bytes.data() + size_t(y0) * w * 4;
-    const size_t n = size_t(y1 - y0) * w;
+  auto scalar = [&](uint8_t* const p, const size_t n) {
     // Chunks of groups: the inputs are copied aside so that each output component can be
     // written in its own branch-free pass.
     uint8_t in[kChunkGroups * 4];
@@ -270,6 +280,26 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h)
         }
       }
     }
+  };
+  // Where each component's prefix values fall into few runs and the groups into at most 16
+  // classes (Brabec-Seidel's table and sum-into-alpha matrix: 2 x 2 x 2 x 2), every group is
+  // a shuffle of its class index into bytes the scalar loop gave one group of each class
+  // (byte_maps.cpp).
+  bool matters[4] = {false, false, false, false};
+  for (int r = 0; r < 4; ++r)
+    for (const Term& term : rows[r]) matters[term.component] = true;
+  auto samePrefix = [&values](int c, int v) {
+    return std::memcmp(&values.px[size_t(v) * 4 + c], &values.px[size_t(v - 1) * 4 + c],
+                       sizeof(float)) == 0;  // bitwise: the products are then bitwise equal
+  };
+  ClassMap classes;
+  const bool vector = path == BytePath::kFastest && vectorMapsAvailable() &&
+                      planClassMap(samePrefix, matters, scalar, classes);
+  parallelRows(h, vector ? size_t(w) / kVectorSpeedup : size_t(w) * 4, [&](int y0, int y1) {
+    uint8_t* const p = bytes.data() + size_t(y0) * w * 4;
+    const size_t n = size_t(y1 - y0) * w * 4;
+    const size_t done = vector ? applyClassMap(classes, p, n) : 0;
+    scalar(p + done, (n - done) / 4);
   });
   return true;
 }

@@ -178,8 +178,47 @@ void convolvedSize(const TransferState& t, Dimensionality dims, int& w, int& h);
 // The pipeline on 8-bit RGBA groups in place, for 8-bit destinations, when only
 // per-component stages and the color matrix are active (fast_paths.cpp). Returns false
 // (bytes untouched) when another stage is active; the general path is then used.
-bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h);
+// kScalar forces the scalar loops (tests compare them with the vector maps).
+enum class BytePath { kFastest, kScalar };
+bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
+                    BytePath path = BytePath::kFastest);
 bool bytePathApplies(const TransferState& t);
+
+// ---- vector maps of the 8-bit path (byte_maps.cpp) ----
+constexpr int kMaxByteSteps = 4;  // breakpoints per component the vector maps test
+constexpr int kMaxClasses = 16;   // classes of RGBA groups: one 16-byte shuffle table
+// out = base + sum over k of (x >= at[k] ? delta[k] : 0), per component, in byte arithmetic.
+struct StepMap {
+  int steps = 0;
+  uint8_t base[4] = {};
+  uint8_t at[kMaxByteSteps][4] = {};
+  uint8_t delta[kMaxByteSteps][4] = {};
+};
+// class = sum over k of (x >= at[k] ? weight[k] : 0) over the group's four bytes; the output
+// group is table[r][class] for the components that vary, constant[r] for the others.
+struct ClassMap {
+  int steps = 0;
+  uint8_t at[kMaxByteSteps][4] = {};
+  uint8_t weight[kMaxByteSteps][4] = {};
+  uint8_t table[4][kMaxClasses] = {};
+  bool varies[4] = {false, false, false, false};
+  uint8_t constant[4] = {};
+};
+// The values v (1..255) where the step function changes: false when there are more than
+// kMaxByteSteps.
+bool findSteps(const std::function<bool(int)>& sameAsPrevious, int& count,
+               uint8_t at[kMaxByteSteps]);
+// From a per-component byte table (lut[v * 4 + c]); false when a component has too many steps.
+bool planStepMap(const uint8_t lut[256 * 4], StepMap& map);
+// From the prefix values of the components that matter (sameAsPrevious(c, v): value v of
+// component c equals value v - 1) and the scalar transform, run on one group per class.
+bool planClassMap(const std::function<bool(int, int)>& sameAsPrevious, const bool matters[4],
+                  const std::function<void(uint8_t*, size_t)>& scalar, ClassMap& map);
+bool vectorMapsAvailable();  // AVX2 on this processor
+// Apply a map to the leading whole vectors of p[0 .. n) bytes in place; returns the bytes done
+// (the caller's scalar loop does the rest).
+size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);
+size_t applyClassMap(const ClassMap& map, uint8_t* p, size_t n);
 
 // Convolution on an 8-bit source straight to 8-bit output, in strips of rows that stay in
 // cache, with every stage of 3.6.5 (fast_paths.cpp). `out` receives ow x oh groups; returns

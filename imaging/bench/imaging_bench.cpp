@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -71,6 +72,15 @@ void brabecSeidelTable() {
   for (int i = 0; i < 256; ++i)
     for (int c = 0; c < 4; ++c) table[i * 4 + c] = i == 0 ? 0 : (c == 3 ? 63 : 64);
   glColorTable(GL_COLOR_TABLE, GL_RGBA, 256, GL_RGBA, GL_UNSIGNED_BYTE, table.data());
+  glEnable(GL_COLOR_TABLE);
+}
+// A table with a different entry for every byte (a gamma curve): no step structure, so the
+// per-byte table lookup, not the vector step map.
+void gammaTable() {
+  std::vector<float> table(256 * 4);
+  for (int i = 0; i < 256; ++i)
+    for (int c = 0; c < 4; ++c) table[size_t(i * 4 + c)] = std::pow(float(i) / 255.0f, 1.0f / 2.2f);
+  glColorTable(GL_COLOR_TABLE, GL_RGBA, 256, GL_RGBA, GL_FLOAT, table.data());
   glEnable(GL_COLOR_TABLE);
 }
 void sumIntoAlpha() {
@@ -151,6 +161,7 @@ std::vector<Operation> allOperations() {
       {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true},
       {"plain copy (glCopyPixels)", [] {}, copyPixels},
       {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
+      {"+ RGBA color table (gamma 1/2.2, 256 distinct entries)", gammaTable, copyPixels},
       {"+ color table + sum-into-alpha color matrix (Fig. 4)",
        [] {
          brabecSeidelTable();

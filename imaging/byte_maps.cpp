@@ -1,0 +1,228 @@
+// imaging/byte_maps.cpp — vector evaluation of the 8-bit path (fast_paths.cpp) when its
+// per-component prefix is piecewise constant, as in every Brabec–Seidel pass: the colour
+// table of their Section 3 sends 0 to 0 and every other value to 64 (63 in alpha), so each
+// component takes two values and an RGBA group one of sixteen.
+//
+// Both maps here are exact: they never compute a colour. They classify each input byte by
+// the runs of equal values of a table that the scalar path built with the specification's
+// own stage code, and copy that table's output.
+//   * stepBytes: each output byte is a function of the same component of the input
+//     (identity colour matrix) with a few steps: out = base + sum of the steps at or below
+//     the input byte, in byte arithmetic.
+//   * classBytes: the colour matrix mixes components, but the input group falls into at most
+//     sixteen classes (runs of each component's prefix values, combined); the output group of
+//     each class is computed once by the scalar path on a representative group, and every
+//     group is a 16-entry byte shuffle (pshufb) of its class index.
+// AVX2 when the processor has it (checked at run time: the build targets baseline x86-64),
+// else the caller's scalar loop.
+#include <cstring>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define SL_HAVE_X86_VECTORS 1
+#endif
+
+#include "imaging/internal.h"
+
+namespace sl::imaging::detail {
+namespace {
+
+constexpr size_t kVectorBytes = 32;  // one AVX2 register: eight RGBA8 groups
+
+// The four bytes of an RGBA group as one little-endian 32-bit pattern.
+uint32_t packGroup(const uint8_t b[4]) {
+  return uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24;
+}
+
+#if defined(SL_HAVE_X86_VECTORS)
+// x >= threshold, per unsigned byte: max(x, t) == x.
+__attribute__((target("avx2"))) inline __m256i atLeast(__m256i x, __m256i threshold) {
+  return _mm256_cmpeq_epi8(_mm256_max_epu8(x, threshold), x);
+}
+
+template <int Steps>
+__attribute__((target("avx2"))) void stepBytesAvx2(const StepMap& map, uint8_t* p, size_t n) {
+  const __m256i base = _mm256_set1_epi32(int(packGroup(map.base)));
+  __m256i at[Steps], delta[Steps];
+  for (int k = 0; k < Steps; ++k) {
+    at[k] = _mm256_set1_epi32(int(packGroup(map.at[k])));
+    delta[k] = _mm256_set1_epi32(int(packGroup(map.delta[k])));
+  }
+  for (size_t i = 0; i + kVectorBytes <= n; i += kVectorBytes) {
+    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + i));
+    __m256i out = base;
+    for (int k = 0; k < Steps; ++k)
+      out = _mm256_add_epi8(out, _mm256_and_si256(atLeast(x, at[k]), delta[k]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i), out);
+  }
+}
+
+template <int Steps>
+__attribute__((target("avx2"))) void classBytesAvx2(const ClassMap& map, uint8_t* p, size_t n) {
+  __m256i at[Steps], weight[Steps];
+  for (int k = 0; k < Steps; ++k) {
+    at[k] = _mm256_set1_epi32(int(packGroup(map.at[k])));
+    weight[k] = _mm256_set1_epi32(int(packGroup(map.weight[k])));
+  }
+  const __m256i constant = _mm256_set1_epi32(int(packGroup(map.constant)));
+  const __m256i lowByte = _mm256_set1_epi32(0xff);
+  __m256i table[4], position[4];
+  int varying = 0;
+  for (int r = 0; r < 4; ++r) {
+    if (!map.varies[r]) continue;
+    table[varying] = _mm256_broadcastsi128_si256(
+        _mm_loadu_si128(reinterpret_cast<const __m128i*>(map.table[r])));
+    position[varying] = _mm256_set1_epi32(int(0xffu << (8 * r)));
+    ++varying;
+  }
+  for (size_t i = 0; i + kVectorBytes <= n; i += kVectorBytes) {
+    const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p + i));
+    // Each byte: its component's class times the component's stride.
+    __m256i part = _mm256_setzero_si256();
+    for (int k = 0; k < Steps; ++k)
+      part = _mm256_add_epi8(part, _mm256_and_si256(atLeast(x, at[k]), weight[k]));
+    // The group's class: the sum of its four bytes (below 16, so no carries), in every byte.
+    __m256i cls = _mm256_add_epi32(part, _mm256_srli_epi32(part, 16));
+    cls = _mm256_and_si256(_mm256_add_epi32(cls, _mm256_srli_epi32(cls, 8)), lowByte);
+    cls = _mm256_or_si256(cls, _mm256_slli_epi32(cls, 8));
+    cls = _mm256_or_si256(cls, _mm256_slli_epi32(cls, 16));
+    __m256i out = constant;
+    for (int r = 0; r < varying; ++r)
+      out = _mm256_or_si256(out, _mm256_and_si256(_mm256_shuffle_epi8(table[r], cls), position[r]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i), out);
+  }
+}
+#endif
+
+bool haveAvx2() {
+#if defined(SL_HAVE_X86_VECTORS)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
+// Breakpoints of v -> equal(v - 1, v) over the 256 byte values, at most kMaxByteSteps.
+bool findSteps(const std::function<bool(int)>& sameAsPrevious, int& count,
+               uint8_t at[kMaxByteSteps]) {
+  count = 0;
+  for (int v = 1; v < 256; ++v) {
+    if (sameAsPrevious(v)) continue;
+    if (count == kMaxByteSteps) return false;
+    at[count++] = uint8_t(v);
+  }
+  return true;
+}
+
+bool planStepMap(const uint8_t lut[256 * 4], StepMap& map) {
+  map = StepMap{};
+  int count[4] = {0, 0, 0, 0};
+  uint8_t at[4][kMaxByteSteps] = {};
+  for (int c = 0; c < 4; ++c) {
+    auto same = [&](int v) { return lut[v * 4 + c] == lut[(v - 1) * 4 + c]; };
+    if (!findSteps(same, count[c], at[c])) return false;
+    map.steps = std::max(map.steps, count[c]);
+    map.base[c] = lut[c];
+  }
+  // A component with fewer steps pads with "x >= 0" steps that add nothing.
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < count[c]; ++k) {
+      map.at[k][c] = at[c][k];
+      map.delta[k][c] = uint8_t(lut[at[c][k] * 4 + c] - lut[(at[c][k] - 1) * 4 + c]);  // mod 256
+    }
+  return true;
+}
+
+bool planClassMap(const std::function<bool(int, int)>& sameAsPrevious, const bool matters[4],
+                  const std::function<void(uint8_t*, size_t)>& scalar, ClassMap& map) {
+  map = ClassMap{};
+  int count[4] = {0, 0, 0, 0};
+  uint8_t at[4][kMaxByteSteps] = {};
+  int classes[4] = {1, 1, 1, 1}, stride[4] = {0, 0, 0, 0};
+  int combinations = 1;
+  for (int c = 0; c < 4; ++c) {
+    if (!matters[c]) continue;
+    if (!findSteps([&](int v) { return sameAsPrevious(c, v); }, count[c], at[c])) return false;
+    classes[c] = count[c] + 1;
+    stride[c] = combinations;
+    combinations *= classes[c];
+    if (combinations > kMaxClasses) return false;
+    map.steps = std::max(map.steps, count[c]);
+  }
+  for (int c = 0; c < 4; ++c)
+    for (int k = 0; k < count[c]; ++k) {
+      map.at[k][c] = at[c][k];
+      map.weight[k][c] = uint8_t(stride[c]);
+    }
+  // One representative group per class (the first byte of each run), through the scalar path.
+  std::vector<uint8_t> groups(size_t(kMaxClasses) * 4, 0);
+  for (int i = 0; i < combinations; ++i)
+    for (int c = 0; c < 4; ++c) {
+      if (!matters[c]) continue;
+      const int run = i / stride[c] % classes[c];
+      groups[size_t(i) * 4 + c] = run == 0 ? 0 : at[c][run - 1];
+    }
+  scalar(groups.data(), size_t(combinations));
+  for (int r = 0; r < 4; ++r) {
+    for (int i = 0; i < kMaxClasses; ++i)
+      map.table[r][i] = groups[size_t(i < combinations ? i : 0) * 4 + r];
+    map.varies[r] = false;
+    for (int i = 1; i < combinations; ++i) map.varies[r] |= map.table[r][i] != map.table[r][0];
+    map.constant[r] = map.varies[r] ? 0 : map.table[r][0];
+  }
+  return true;
+}
+
+bool vectorMapsAvailable() { return haveAvx2(); }
+
+size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n) {
+#if defined(SL_HAVE_X86_VECTORS)
+  switch (map.steps) {
+    case 0:
+    case 1:
+      stepBytesAvx2<1>(map, p, n);
+      break;
+    case 2:
+      stepBytesAvx2<2>(map, p, n);
+      break;
+    case 3:
+      stepBytesAvx2<3>(map, p, n);
+      break;
+    default:
+      stepBytesAvx2<4>(map, p, n);
+      break;
+  }
+  return n / kVectorBytes * kVectorBytes;
+#else
+  (void)map, (void)p, (void)n;
+  return 0;
+#endif
+}
+
+size_t applyClassMap(const ClassMap& map, uint8_t* p, size_t n) {
+#if defined(SL_HAVE_X86_VECTORS)
+  switch (map.steps) {
+    case 0:
+    case 1:
+      classBytesAvx2<1>(map, p, n);
+      break;
+    case 2:
+      classBytesAvx2<2>(map, p, n);
+      break;
+    case 3:
+      classBytesAvx2<3>(map, p, n);
+      break;
+    default:
+      classBytesAvx2<4>(map, p, n);
+      break;
+  }
+  return n / kVectorBytes * kVectorBytes;
+#else
+  (void)map, (void)p, (void)n;
+  return 0;
+#endif
+}
+
+}  // namespace sl::imaging::detail
