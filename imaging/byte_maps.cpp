@@ -175,54 +175,41 @@ bool planClassMap(const std::function<bool(int, int)>& sameAsPrevious, const boo
   return true;
 }
 
-bool vectorMapsAvailable() { return haveAvx2(); }
+bool vectorMapsAvailable() {
+  return haveAvx2();
+}
+
+#if defined(SL_HAVE_X86_VECTORS)
+namespace {
+// The kernel unrolled for the map's number of steps (1 to kMaxByteSteps).
+template <class Map>
+using Kernel = void (*)(const Map&, uint8_t*, size_t);
+template <class Map>
+size_t applyKernel(const Map& map, uint8_t* p, size_t n,
+                   const Kernel<Map> (&kernels)[kMaxByteSteps]) {
+  kernels[std::clamp(map.steps, 1, kMaxByteSteps) - 1](map, p, n);
+  return n / kVectorBytes * kVectorBytes;
+}
+}  // namespace
 
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n) {
-#if defined(SL_HAVE_X86_VECTORS)
-  switch (map.steps) {
-    case 0:
-    case 1:
-      stepBytesAvx2<1>(map, p, n);
-      break;
-    case 2:
-      stepBytesAvx2<2>(map, p, n);
-      break;
-    case 3:
-      stepBytesAvx2<3>(map, p, n);
-      break;
-    default:
-      stepBytesAvx2<4>(map, p, n);
-      break;
-  }
-  return n / kVectorBytes * kVectorBytes;
-#else
-  (void)map, (void)p, (void)n;
-  return 0;
-#endif
+  static constexpr Kernel<StepMap> kKernels[kMaxByteSteps] = {&stepBytesAvx2<1>, &stepBytesAvx2<2>,
+                                                              &stepBytesAvx2<3>, &stepBytesAvx2<4>};
+  return applyKernel(map, p, n, kKernels);
 }
 
 size_t applyClassMap(const ClassMap& map, uint8_t* p, size_t n) {
-#if defined(SL_HAVE_X86_VECTORS)
-  switch (map.steps) {
-    case 0:
-    case 1:
-      classBytesAvx2<1>(map, p, n);
-      break;
-    case 2:
-      classBytesAvx2<2>(map, p, n);
-      break;
-    case 3:
-      classBytesAvx2<3>(map, p, n);
-      break;
-    default:
-      classBytesAvx2<4>(map, p, n);
-      break;
-  }
-  return n / kVectorBytes * kVectorBytes;
-#else
-  (void)map, (void)p, (void)n;
-  return 0;
-#endif
+  static constexpr Kernel<ClassMap> kKernels[kMaxByteSteps] = {
+      &classBytesAvx2<1>, &classBytesAvx2<2>, &classBytesAvx2<3>, &classBytesAvx2<4>};
+  return applyKernel(map, p, n, kKernels);
 }
+#else
+size_t applyStepMap(const StepMap&, uint8_t*, size_t) {
+  return 0;
+}
+size_t applyClassMap(const ClassMap&, uint8_t*, size_t) {
+  return 0;
+}
+#endif
 
 }  // namespace sl::imaging::detail

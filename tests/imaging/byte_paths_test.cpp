@@ -32,8 +32,7 @@ std::vector<uint8_t> randomBytes(int w, int h, std::mt19937& rng) {
   return bytes;
 }
 
-std::vector<uint8_t> generalPath(TransferState t, const std::vector<uint8_t>& bytes, int w,
-                                 int h) {
+std::vector<uint8_t> generalPath(TransferState t, const std::vector<uint8_t>& bytes, int w, int h) {
   Image4 image(w, h);
   for (size_t i = 0; i < bytes.size(); ++i) image.px[i] = float(bytes[i]) / 255.0f;  // table 2.6
   EXPECT_TRUE(runPipeline(t, image, Dimensionality::k2D));
@@ -61,9 +60,9 @@ void expectSameBytes(const TransferState& state, const std::string& name) {
         if (bytes[i] != expected[i] && differing++ == 0) first = i;
       EXPECT_EQ(differing, 0u) << name << " " << w << "x" << h
                                << (path == BytePath::kScalar ? " scalar" : " fastest")
-                               << ": first at byte " << first << " (source "
-                               << int(source[first]) << ", got " << int(bytes[first])
-                               << ", expected " << int(expected[first]) << ")";
+                               << ": first at byte " << first << " (source " << int(source[first])
+                               << ", got " << int(bytes[first]) << ", expected "
+                               << int(expected[first]) << ")";
     }
   }
 }
@@ -116,9 +115,11 @@ TEST(BytePaths, BrabecSeidelTableWithSumIntoAlphaMatrix) {
   ClassMap map;
   auto same = [](int, int v) { return v != 1; };  // the table's only step is at 1
   const bool matters[4] = {true, true, true, true};
-  ASSERT_TRUE(planClassMap(same, matters, [](uint8_t*, size_t) {}, map));
+  ASSERT_TRUE(planClassMap(
+      same, matters, [](uint8_t*, size_t) {}, map));
   EXPECT_EQ(map.steps, 1);
-  EXPECT_EQ(map.weight[0][0] + map.weight[0][1] + map.weight[0][2] + map.weight[0][3], 1 + 2 + 4 + 8);
+  EXPECT_EQ(map.weight[0][0] + map.weight[0][1] + map.weight[0][2] + map.weight[0][3],
+            1 + 2 + 4 + 8);
 }
 
 TEST(BytePaths, SeveralStepsPerComponentWithPostMatrixScaleAndBias) {
@@ -170,7 +171,8 @@ TEST(BytePaths, RampTableHasTooManyStepsForTheVectorMaps) {
 TEST(BytePaths, TwoComponentsThreeClassesEachThroughMatrix) {
   // The matrix reads G and A only: 3 x 3 = 9 classes; R and B bytes must not matter.
   TransferState t;
-  t.tables[0] = tableOf([](int i, int c) { return float((i >= 90) + (i >= 170)) * 0.3f + 0.01f * c; });
+  t.tables[0] =
+      tableOf([](int i, int c) { return float((i >= 90) + (i >= 170)) * 0.3f + 0.01f * c; });
   t.colorTableEnabled = true;
   Matrix4 m;
   m.m = {0, 0, 0, 0, 1, 0.5f, 0, 0, 0, 0, 0, 0, 0, 0.5f, 1, 1};
