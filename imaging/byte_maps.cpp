@@ -65,14 +65,18 @@ __attribute__((target("avx2"))) void classBytesAvx2(const ClassMap& map, uint8_t
     weight[k] = _mm256_set1_epi32(int(packGroup(map.weight[k])));
   }
   const __m256i constant = _mm256_set1_epi32(int(packGroup(map.constant)));
-  const __m256i lowByte = _mm256_set1_epi32(0xff);
-  __m256i table[4], position[4];
+  const __m256i ones8 = _mm256_set1_epi8(1), ones16 = _mm256_set1_epi16(1);
+  // For each component that varies: its 16-entry table, and the shuffle-index bits that keep
+  // only its byte of the group (an index with the high bit set gives 0).
+  __m256i table[4], others[4];
+  int shift[4] = {0, 0, 0, 0};
   int varying = 0;
   for (int r = 0; r < 4; ++r) {
     if (!map.varies[r]) continue;
     table[varying] = _mm256_broadcastsi128_si256(
         _mm_loadu_si128(reinterpret_cast<const __m128i*>(map.table[r])));
-    position[varying] = _mm256_set1_epi32(int(0xffu << (8 * r)));
+    others[varying] = _mm256_set1_epi32(int(0x80808080u & ~(0xffu << (8 * r))));
+    shift[varying] = 8 * r;
     ++varying;
   }
   for (size_t i = 0; i + kVectorBytes <= n; i += kVectorBytes) {
@@ -81,14 +85,15 @@ __attribute__((target("avx2"))) void classBytesAvx2(const ClassMap& map, uint8_t
     __m256i part = _mm256_setzero_si256();
     for (int k = 0; k < Steps; ++k)
       part = _mm256_add_epi8(part, _mm256_and_si256(atLeast(x, at[k]), weight[k]));
-    // The group's class: the sum of its four bytes (below 16, so no carries), in every byte.
-    __m256i cls = _mm256_add_epi32(part, _mm256_srli_epi32(part, 16));
-    cls = _mm256_and_si256(_mm256_add_epi32(cls, _mm256_srli_epi32(cls, 8)), lowByte);
-    cls = _mm256_or_si256(cls, _mm256_slli_epi32(cls, 8));
-    cls = _mm256_or_si256(cls, _mm256_slli_epi32(cls, 16));
+    // The group's class, the sum of its four bytes, in the group's low byte (zeros above):
+    // byte pairs summed to 16 bits, then 16-bit pairs to 32.
+    const __m256i cls = _mm256_madd_epi16(_mm256_maddubs_epi16(part, ones8), ones16);
     __m256i out = constant;
-    for (int r = 0; r < varying; ++r)
-      out = _mm256_or_si256(out, _mm256_and_si256(_mm256_shuffle_epi8(table[r], cls), position[r]));
+    for (int r = 0; r < varying; ++r) {
+      const __m256i index = _mm256_or_si256(_mm256_sll_epi32(cls, _mm_cvtsi32_si128(shift[r])),
+                                            others[r]);
+      out = _mm256_or_si256(out, _mm256_shuffle_epi8(table[r], index));
+    }
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i), out);
   }
 }
