@@ -109,16 +109,21 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
     runPipeline(suffix, values, Dimensionality::k2D);
     uint8_t lut[256 * 4];
     for (int i = 0; i < 256 * 4; ++i) lut[i] = toByte(values.px[size_t(i)]);
-    auto scalar = [&lut](uint8_t* p, size_t groups) {
-      // A local copy of the table: byte stores through p cannot alias it, so the compiler
-      // keeps it in place instead of reloading after every store.
-      uint8_t table[256 * 4];
-      std::memcpy(table, lut, sizeof table);
+    // Four tables of 32-bit words, each with its component's byte in place: a group is one
+    // 32-bit load, four lookups ORed together and one store.
+    std::array<std::array<uint32_t, 256>, 4> words;
+    for (int c = 0; c < 4; ++c)
+      for (int v = 0; v < 256; ++v) words[size_t(c)][size_t(v)] = uint32_t(lut[v * 4 + c]) << (8 * c);
+    auto scalar = [&words](uint8_t* p, size_t groups) {
+      const uint32_t* const r = words[0].data();
+      const uint32_t* const g = words[1].data();
+      const uint32_t* const b = words[2].data();
+      const uint32_t* const a = words[3].data();
       for (size_t i = 0; i < groups * 4; i += 4) {
-        const uint32_t v =
-            uint32_t(table[p[i + 0] * 4 + 0]) | uint32_t(table[p[i + 1] * 4 + 1]) << 8 |
-            uint32_t(table[p[i + 2] * 4 + 2]) << 16 | uint32_t(table[p[i + 3] * 4 + 3]) << 24;
-        std::memcpy(p + i, &v, 4);  // RGBA bytes, little-endian
+        uint32_t x;
+        std::memcpy(&x, p + i, 4);  // RGBA bytes, little-endian
+        const uint32_t v = r[x & 0xff] | g[(x >> 8) & 0xff] | b[(x >> 16) & 0xff] | a[x >> 24];
+        std::memcpy(p + i, &v, 4);
       }
     };
     // A table with few steps per component (the Brabec-Seidel table has one) is evaluated as
