@@ -29,7 +29,8 @@ struct RowPlan {
   enum Kind { kConstant, kTable, kFloat } kind = kConstant;
   int count = 0;                                     // non-zero matrix coefficients in the row
   int component[4] = {0, 0, 0, 0};                   // input component of each term
-  const float* product[4] = {};                      // kFloat: 256 products per term
+  const float* product[4] = {};                      // 256 products per term
+  float coefficient[4] = {0, 0, 0, 0};               // kFloat: the term's matrix coefficient
   std::array<std::array<uint32_t, 256>, 4> index{};  // kTable: byte -> offset into table
   std::vector<uint8_t> table;                        // kTable: final byte per combination
   uint8_t constant = 0;                              // kConstant
@@ -113,7 +114,8 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
     // 32-bit load, four lookups ORed together and one store.
     std::array<std::array<uint32_t, 256>, 4> words;
     for (int c = 0; c < 4; ++c)
-      for (int v = 0; v < 256; ++v) words[size_t(c)][size_t(v)] = uint32_t(lut[v * 4 + c]) << (8 * c);
+      for (int v = 0; v < 256; ++v)
+        words[size_t(c)][size_t(v)] = uint32_t(lut[v * 4 + c]) << (8 * c);
     auto scalar = [&words](uint8_t* p, size_t groups) {
       const uint32_t* const r = words[0].data();
       const uint32_t* const g = words[1].data();
@@ -145,13 +147,14 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
     for (int c = 0; c < 4; ++c) k[r * 4 + c] = m.m[c * 4 + r];
   struct Term {
     int component;
-    std::vector<float> product;  // 256 entries
+    float coefficient;
+    std::vector<float> product;  // 256 entries: coefficient times the prefix value
   };
   std::array<std::vector<Term>, 4> rows;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) {
       if (k[r * 4 + c] == 0.0f) continue;  // zero coefficients add nothing
-      Term term{c, std::vector<float>(256)};
+      Term term{c, k[r * 4 + c], std::vector<float>(256)};
       for (int v = 0; v < 256; ++v) term.product[v] = k[r * 4 + c] * values.px[size_t(v) * 4 + c];
       rows[r].push_back(std::move(term));
     }
@@ -187,6 +190,20 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
     }
     return toByte(v);
   };
+  // `finish` before its final conversion, over a span of sums in place.
+  auto finishSpan = [&](int r, float* v, size_t m) {
+    const float sr = scale[size_t(r)], br = bias[size_t(r)];
+    if (scaled) {
+      for (size_t g = 0; g < m; ++g) v[g] = v[g] * sr + br;
+    } else {
+      for (size_t g = 0; g < m; ++g) v[g] = v[g] + br;
+    }
+    if (!replaced[r]) return;
+    for (size_t g = 0; g < m; ++g) {
+      const float c = v[g] > 0.0f ? (v[g] < 1.0f ? v[g] : 1.0f) : 0.0f;
+      v[g] = tableOut.px[size_t(int(c * tableScale + 0.5f)) * 4 + r];
+    }
+  };
   // Each output component is a function of at most four input bytes through its terms'
   // products. Where those products take few distinct floats (the Brabec-Seidel table leaves
   // two per component), the whole conversion of a row is one byte table indexed by the
@@ -209,13 +226,21 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
       const Term& term = rows[r][size_t(i)];
       plan.component[i] = term.component;
       plan.product[i] = term.product.data();
-      std::array<uint32_t, 256> index{};
+      plan.coefficient[i] = term.coefficient;
+      // The distinct values by their bits (-0 and NaN payloads stay distinct), through a
+      // sort of (bits, byte) pairs: 256 log 256 steps, not 256^2 comparisons.
+      std::array<std::pair<uint32_t, int>, 256> keyed;
       for (int v = 0; v < 256; ++v) {
-        const float x = term.product[size_t(v)];
-        size_t j = 0;  // bitwise equality: -0 and NaN payloads stay distinct
-        while (j < distinct[i].size() && std::memcmp(&distinct[i][j], &x, sizeof x) != 0) ++j;
-        if (j == distinct[i].size()) distinct[i].push_back(x);
-        index[size_t(v)] = uint32_t(j);
+        uint32_t bits;
+        std::memcpy(&bits, &term.product[size_t(v)], sizeof bits);
+        keyed[size_t(v)] = {bits, v};
+      }
+      std::sort(keyed.begin(), keyed.end());
+      std::array<uint32_t, 256> index{};
+      for (size_t k = 0; k < keyed.size(); ++k) {
+        if (k == 0 || keyed[k].first != keyed[k - 1].first)
+          distinct[i].push_back(term.product[size_t(keyed[k].second)]);
+        index[size_t(keyed[k].second)] = uint32_t(distinct[i].size() - 1);
       }
       plan.index[i] = index;
       combos *= distinct[i].size();
@@ -243,14 +268,22 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
       plan.table[k] = convert(sum);
     }
   }
+  bool planar[4] = {false, false, false, false};  // prefix values a kFloat row reads
+  for (const RowPlan& plan : plans)
+    if (plan.kind == RowPlan::kFloat)
+      for (int i = 0; i < plan.count; ++i) planar[plan.component[i]] = true;
   auto scalar = [&](uint8_t* const p, const size_t n) {
     // Chunks of groups: the inputs are copied aside so that each output component can be
     // written in its own branch-free pass.
     uint8_t in[kChunkGroups * 4];
+    float prefix[4][kChunkGroups];  // kFloat rows: the prefix value of each component, planar
     for (size_t g0 = 0; g0 < n; g0 += kChunkGroups) {
       const size_t m = std::min(kChunkGroups, n - g0);
       uint8_t* const q = p + g0 * 4;
       std::memcpy(in, q, m * 4);
+      for (int c = 0; c < 4; ++c)
+        if (planar[c])
+          for (size_t g = 0; g < m; ++g) prefix[c][g] = values.px[size_t(in[g * 4 + c]) * 4 + c];
       for (int r = 0; r < 4; ++r) {
         const RowPlan& plan = plans[size_t(r)];
         switch (plan.kind) {
@@ -273,15 +306,25 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
                 break;
             }
             break;
-          case RowPlan::kFloat:
-            for (size_t g = 0; g < m; ++g) {
-              const uint8_t* const x = in + g * 4;
-              float sum = plan.product[0][x[plan.component[0]]];
-              for (int i = 1; i < plan.count; ++i)
-                sum = sum + plan.product[i][x[plan.component[i]]];
-              q[g * 4 + r] = plan.plain ? toByte(sum) : finish(r, sum);
+          case RowPlan::kFloat: {
+            // Term by term over the chunk: per group the same products (coefficient times
+            // prefix value, as in the product tables) added in the same order as
+            // applyColorMatrix, so the multiplies, sums and conversion vectorise.
+            float sum[kChunkGroups];
+            uint8_t out[kChunkGroups];
+            const float k0 = plan.coefficient[0];
+            const float* const first = prefix[plan.component[0]];
+            for (size_t g = 0; g < m; ++g) sum[g] = k0 * first[g];
+            for (int i = 1; i < plan.count; ++i) {
+              const float ki = plan.coefficient[i];
+              const float* const term = prefix[plan.component[i]];
+              for (size_t g = 0; g < m; ++g) sum[g] = sum[g] + ki * term[g];
             }
+            if (!plan.plain) finishSpan(r, sum, m);
+            toBytes(sum, out, m);
+            for (size_t g = 0; g < m; ++g) q[g * 4 + r] = out[g];
             break;
+          }
         }
       }
     }

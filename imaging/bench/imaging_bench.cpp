@@ -89,6 +89,15 @@ void sumIntoAlpha() {
   glLoadMatrixf(m);
   glMatrixMode(GL_MODELVIEW);
 }
+// A dense colour matrix with no table before it (every byte value distinct): the float sum
+// per group, the general case of the byte path.
+void luminanceMatrix() {
+  const float m[16] = {0.299f, 0.299f, 0.299f, 0, 0.587f, 0.587f, 0.587f, 0,
+                       0.114f, 0.114f, 0.114f, 0, 0,      0,      0,      1};
+  glMatrixMode(GL_COLOR);
+  glLoadMatrixf(m);
+  glMatrixMode(GL_MODELVIEW);
+}
 void blur3x3() {
   float k[9 * 4];
   const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
@@ -168,6 +177,7 @@ std::vector<Operation> allOperations() {
          sumIntoAlpha();
        },
        copyPixels},
+      {"+ colour matrix alone (RGB to luminance, dense 3x3 block)", luminanceMatrix, copyPixels},
       {"+ 3x3 convolution", blur3x3, copyPixels},
       {"glCopyTexSubImage2D + 3x3 packing kernel (Eq. 1)", packingKernel,
        [](int w, int h) {

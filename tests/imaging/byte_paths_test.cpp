@@ -159,6 +159,22 @@ TEST(BytePaths, ScaleAndBiasThresholdWithMatrix) {
   expectSameBytes(t, "scale/bias ramp + matrix");
 }
 
+TEST(BytePaths, DenseMatrixOnEveryByteValueWithPostMatrixStages) {
+  // No table before the matrix: 256 distinct values per component, so every row sums floats
+  // per group (the general case), then post-matrix scale/bias and a post-matrix table.
+  TransferState t;
+  Matrix4 m;
+  m.m = {0.299f, 0.5f, -0.2f, 0.1f, 0.587f, -0.3f, 0.7f, 0.2f,
+         0.114f, 0.8f, 0.4f,  0.3f, 0.05f,  0.0f,  0.1f, 0.4f};
+  t.colorMatrixStack = {m};
+  expectSameBytes(t, "dense matrix");
+  t.postColorMatrixScale = {1.5f, 0.5f, 2.0f, 1.0f};
+  t.postColorMatrixBias = {-0.1f, 0.2f, 0.0f, 0.05f};
+  t.tables[2] = tableOf([](int i, int c) { return std::sqrt(i / 255.0f) * (0.5f + 0.125f * c); });
+  t.postColorMatrixTableEnabled = true;
+  expectSameBytes(t, "dense matrix, post scale/bias and table");
+}
+
 TEST(BytePaths, RampTableHasTooManyStepsForTheVectorMaps) {
   TransferState t;
   t.tables[0] = tableOf([](int i, int c) { return std::pow(i / 255.0f, 1.0f + 0.3f * c); });
