@@ -13,8 +13,9 @@
 //     sixteen classes (runs of each component's prefix values, combined); the output group of
 //     each class is computed once by the scalar path on a representative group, and every
 //     group is a 16-entry byte shuffle (pshufb) of its class index.
-// AVX2 when the processor has it (checked at run time: the build targets baseline x86-64),
-// else the caller's scalar loop.
+//   * tableBytesVbmi: any per-component byte table, by byte permutes over its 256 entries.
+// AVX2 (the maps) and AVX-512 VBMI (the tables) when the processor has them, checked at run
+// time (the build targets baseline x86-64); else the caller's scalar loop.
 #include <cstring>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -27,7 +28,8 @@
 namespace sl::imaging::detail {
 namespace {
 
-constexpr size_t kVectorBytes = 32;  // one AVX2 register: eight RGBA8 groups
+constexpr size_t kVectorBytes = 32;      // one AVX2 register: eight RGBA8 groups
+constexpr size_t kWideVectorBytes = 64;  // one AVX-512 register: sixteen groups
 
 // The four bytes of an RGBA group as one little-endian 32-bit pattern.
 uint32_t packGroup(const uint8_t b[4]) {
@@ -90,11 +92,36 @@ __attribute__((target("avx2"))) void classBytesAvx2(const ClassMap& map, uint8_t
     const __m256i cls = _mm256_madd_epi16(_mm256_maddubs_epi16(part, ones8), ones16);
     __m256i out = constant;
     for (int r = 0; r < varying; ++r) {
-      const __m256i index = _mm256_or_si256(_mm256_sll_epi32(cls, _mm_cvtsi32_si128(shift[r])),
-                                            others[r]);
+      const __m256i index =
+          _mm256_or_si256(_mm256_sll_epi32(cls, _mm_cvtsi32_si128(shift[r])), others[r]);
       out = _mm256_or_si256(out, _mm256_shuffle_epi8(table[r], index));
     }
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(p + i), out);
+  }
+}
+
+// Any per-component byte table, 64 bytes at a time (AVX-512 VBMI): each component's 256
+// entries are four registers; two two-register byte permutes give entries 0-127 and
+// 128-255, the index's top bit picks one, and a per-position mask keeps the component's bytes.
+__attribute__((target("avx512f,avx512bw,avx512vbmi"))) void tableBytesVbmi(const uint8_t* lut,
+                                                                           uint8_t* p, size_t n) {
+  __m512i quarter[4][4];
+  for (int c = 0; c < 4; ++c) {
+    alignas(64) uint8_t plane[256];
+    for (int v = 0; v < 256; ++v) plane[v] = lut[v * 4 + c];
+    for (int q = 0; q < 4; ++q) quarter[c][q] = _mm512_load_si512(plane + 64 * q);
+  }
+  constexpr __mmask64 kFirstOfGroup = 0x1111111111111111ull;  // byte 0 of every group
+  for (size_t i = 0; i + kWideVectorBytes <= n; i += kWideVectorBytes) {
+    const __m512i x = _mm512_loadu_si512(p + i);
+    const __mmask64 upper = _mm512_movepi8_mask(x);  // index >= 128
+    __m512i out = _mm512_setzero_si512();
+    for (int c = 0; c < 4; ++c) {
+      const __m512i low = _mm512_permutex2var_epi8(quarter[c][0], x, quarter[c][1]);
+      const __m512i high = _mm512_permutex2var_epi8(quarter[c][2], x, quarter[c][3]);
+      out = _mm512_mask_mov_epi8(out, kFirstOfGroup << c, _mm512_mask_blend_epi8(upper, low, high));
+    }
+    _mm512_storeu_si512(p + i, out);
   }
 }
 #endif
@@ -178,6 +205,24 @@ bool planClassMap(const std::function<bool(int, int)>& sameAsPrevious, const boo
     map.constant[r] = map.varies[r] ? 0 : map.table[r][0];
   }
   return true;
+}
+
+bool vectorTablesAvailable() {
+#if defined(SL_HAVE_X86_VECTORS)
+  return __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vbmi");
+#else
+  return false;
+#endif
+}
+
+size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n) {
+#if defined(SL_HAVE_X86_VECTORS)
+  tableBytesVbmi(lut, p, n);
+  return n / kWideVectorBytes * kWideVectorBytes;
+#else
+  (void)lut, (void)p, (void)n;
+  return 0;
+#endif
 }
 
 bool vectorMapsAvailable() {

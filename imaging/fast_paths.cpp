@@ -131,12 +131,17 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
     // A table with few steps per component (the Brabec-Seidel table has one) is evaluated as
     // byte comparisons, 32 bytes at a time (byte_maps.cpp).
     StepMap steps;
-    const bool vector =
-        path == BytePath::kFastest && vectorMapsAvailable() && planStepMap(lut, steps);
+    const bool fastest = path == BytePath::kFastest;
+    const bool stepped = fastest && vectorMapsAvailable() && planStepMap(lut, steps);
+    // Any other table: byte permutes over the 256 entries where the processor has them.
+    const bool permuted = fastest && !stepped && vectorTablesAvailable();
+    const bool vector = stepped || permuted;
     parallelRows(h, vector ? size_t(w) / kVectorSpeedup : size_t(w), [&](int y0, int y1) {
       uint8_t* p = bytes.data() + size_t(y0) * w * 4;
       const size_t n = size_t(y1 - y0) * w * 4;
-      const size_t done = vector ? applyStepMap(steps, p, n) : 0;
+      const size_t done = stepped    ? applyStepMap(steps, p, n)
+                          : permuted ? applyByteTable(lut, p, n)
+                                     : 0;
       scalar(p + done, (n - done) / 4);
     });
     return true;

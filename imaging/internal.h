@@ -214,7 +214,11 @@ bool planStepMap(const uint8_t lut[256 * 4], StepMap& map);
 // component c equals value v - 1) and the scalar transform, run on one group per class.
 bool planClassMap(const std::function<bool(int, int)>& sameAsPrevious, const bool matters[4],
                   const std::function<void(uint8_t*, size_t)>& scalar, ClassMap& map);
-bool vectorMapsAvailable();  // AVX2 on this processor
+bool vectorMapsAvailable();    // AVX2 on this processor
+bool vectorTablesAvailable();  // AVX-512 VBMI (byte permutes) on this processor
+// Any per-component byte table (lut[v * 4 + c]) on the leading 64-byte blocks of p[0 .. n)
+// in place; returns the bytes done.
+size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n);
 // Apply a map to the leading whole vectors of p[0 .. n) bytes in place; returns the bytes done
 // (the caller's scalar loop does the rest).
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);
