@@ -22,6 +22,7 @@ namespace {
 
 constexpr double kAccumSteps = 32767.0;  // 16-bit signed fixed point: v = k / 32767
 constexpr int32_t kAccumMin = -32767, kAccumMax = 32767;
+constexpr size_t kVectorSpeedup = 8;  // the permute path's work per component, against scalar
 
 // "Accumulation buffer values are taken to be signed values in [-1, 1]": values pushed
 // outside are undefined by the specification; the emulation saturates them.
@@ -99,10 +100,26 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
     int32_t scaled[256];
     for (int v = 0; v < 256; ++v)
       scaled[v] = int32_t(std::lround(double(value) * (v / 255.0) * kAccumSteps));
-    const uint8_t* const color = bytes.data();
-    forEach(s, b, [&](int16_t a, size_t i) {
-      const int32_t k = (keep ? int32_t(a) : 0) + scaled[color[i]];
-      return int16_t(std::clamp(k, kAccumMin, kAccumMax));
+    // Where every value * C fits the accumulator (|value| <= 1), whole rows go through byte
+    // permutes of the table (byte_maps.cpp); the rest of each row, or every row, through it
+    // one component at a time.
+    int16_t words[256];
+    bool fits = true;
+    for (int v = 0; v < 256; ++v) {
+      fits = fits && scaled[v] >= kAccumMin && scaled[v] <= kAccumMax;
+      words[v] = int16_t(std::clamp(scaled[v], kAccumMin, kAccumMax));
+    }
+    const size_t n = size_t(w) * 4;
+    parallelRows(h, fits ? n / kVectorSpeedup : n, [&](int r0, int r1) {
+      for (int y = r0; y < r1; ++y) {
+        const uint8_t* const color = bytes.data() + size_t(y) * n;
+        int16_t* const a = s.accum.data() + (size_t(y + b.y0) * s.accumWidth + b.x0) * 4;
+        const size_t done = fits ? accumulateBytes(words, keep, color, a, n) : 0;
+        for (size_t i = done; i < n; ++i) {
+          const int32_t k = (keep ? int32_t(a[i]) : 0) + scaled[color[i]];
+          a[i] = int16_t(std::clamp(k, kAccumMin, kAccumMax));
+        }
+      }
     });
     return;
   }

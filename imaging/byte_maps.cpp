@@ -124,6 +124,54 @@ __attribute__((target("avx512f,avx512bw,avx512vbmi"))) void tableBytesVbmi(const
     _mm512_storeu_si512(p + i, out);
   }
 }
+
+// The 16-bit words of a 256-entry table at 64 byte indices, as two registers of 32 words in
+// the indices' order: the low and high bytes are looked up like tableBytesVbmi, then
+// interleaved (within 128-bit lanes) and the lanes put back in order.
+struct WordTable {
+  __m512i low[4], high[4];  // quarters of the low and high bytes of the 256 entries
+};
+__attribute__((target("avx512f,avx512bw,avx512vbmi"))) inline __m512i lookupQuarters(
+    const __m512i (&quarter)[4], __m512i x, __mmask64 upper) {
+  return _mm512_mask_blend_epi8(upper, _mm512_permutex2var_epi8(quarter[0], x, quarter[1]),
+                                _mm512_permutex2var_epi8(quarter[2], x, quarter[3]));
+}
+
+__attribute__((target("avx512f,avx512bw,avx512vbmi"))) size_t accumulateBytesVbmi(
+    const int16_t scaled[256], bool keep, const uint8_t* color, int16_t* accum, size_t n) {
+  WordTable table;
+  alignas(64) uint8_t low[256], high[256];
+  for (int v = 0; v < 256; ++v) {
+    const auto word = uint16_t(scaled[v]);
+    low[v] = uint8_t(word & 0xff);
+    high[v] = uint8_t(word >> 8);
+  }
+  for (int q = 0; q < 4; ++q) {
+    table.low[q] = _mm512_load_si512(low + 64 * q);
+    table.high[q] = _mm512_load_si512(high + 64 * q);
+  }
+  // Lanes 0-1 of the interleaved low half and of the high half, then lanes 2-3 (as qwords).
+  const __m512i firstHalf = _mm512_set_epi64(11, 10, 3, 2, 9, 8, 1, 0);
+  const __m512i secondHalf = _mm512_set_epi64(15, 14, 7, 6, 13, 12, 5, 4);
+  const __m512i floor = _mm512_set1_epi16(-32767);  // kAccumMin: the saturated add gives -32768
+  size_t i = 0;
+  for (; i + kWideVectorBytes <= n; i += kWideVectorBytes) {
+    const __m512i x = _mm512_loadu_si512(color + i);
+    const __mmask64 upper = _mm512_movepi8_mask(x);
+    const __m512i lo = lookupQuarters(table.low, x, upper);
+    const __m512i hi = lookupQuarters(table.high, x, upper);
+    const __m512i a = _mm512_unpacklo_epi8(lo, hi), b = _mm512_unpackhi_epi8(lo, hi);
+    __m512i s0 = _mm512_permutex2var_epi64(a, firstHalf, b);
+    __m512i s1 = _mm512_permutex2var_epi64(a, secondHalf, b);
+    if (keep) {
+      s0 = _mm512_adds_epi16(_mm512_loadu_si512(accum + i), s0);
+      s1 = _mm512_adds_epi16(_mm512_loadu_si512(accum + i + 32), s1);
+    }
+    _mm512_storeu_si512(accum + i, _mm512_max_epi16(s0, floor));
+    _mm512_storeu_si512(accum + i + 32, _mm512_max_epi16(s1, floor));
+  }
+  return i;
+}
 #endif
 
 bool haveAvx2() {
@@ -223,6 +271,15 @@ size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n) {
   (void)lut, (void)p, (void)n;
   return 0;
 #endif
+}
+
+size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* color, int16_t* accum,
+                       size_t n) {
+#if defined(SL_HAVE_X86_VECTORS)
+  if (vectorTablesAvailable()) return accumulateBytesVbmi(scaled, keep, color, accum, n);
+#endif
+  (void)scaled, (void)keep, (void)color, (void)accum, (void)n;
+  return 0;
 }
 
 bool vectorMapsAvailable() {

@@ -219,6 +219,11 @@ bool vectorTablesAvailable();  // AVX-512 VBMI (byte permutes) on this processor
 // Any per-component byte table (lut[v * 4 + c]) on the leading 64-byte blocks of p[0 .. n)
 // in place; returns the bytes done.
 size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n);
+// GL_ACCUM / GL_LOAD on 8-bit colour (accumulation.cpp): accum[i] = clamp((keep ? accum[i] :
+// 0) + scaled[color[i]], -32767, 32767) for the leading 64-component blocks of n, by byte
+// permutes (AVX-512 VBMI) where the processor has them; returns the components done.
+size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* color, int16_t* accum,
+                       size_t n);
 // Apply a map to the leading whole vectors of p[0 .. n) bytes in place; returns the bytes done
 // (the caller's scalar loop does the rest).
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);

@@ -216,3 +216,41 @@ TEST(BytePaths, FourStepsPerComponentIdentityMatrix) {
 
 }  // namespace
 }  // namespace sl::imaging::detail
+
+namespace sl::imaging::detail {
+namespace {
+
+// GL_ACCUM / GL_LOAD on 8-bit colour (accumulation.cpp) through accumulateBytes against the
+// specification's A <- keep * A + value * C in 16-bit steps with the clamp to [-1, 1]
+// (glspec121 4.2.4; the step table is the emulation's, so the comparison is exact), for
+// values of both signs, accumulators at both limits and rows that are not whole blocks.
+TEST(BytePaths, AccumulateBytesEqualsTheScalarSum) {
+  constexpr int kSteps = 32767;  // accumulator: k / 32767
+  constexpr size_t kComponents = 64 * 9 + 28;
+  std::mt19937 rng(kSeed);
+  std::uniform_int_distribution<int> byte(0, 255), step(-kSteps, kSteps);
+  for (const float value : {0.25f, 1.0f, -1.0f, -0.37f, 0.0f})
+    for (const bool keep : {true, false}) {
+      int16_t scaled[256];
+      for (int v = 0; v < 256; ++v)
+        scaled[v] = int16_t(std::lround(double(value) * (v / 255.0) * kSteps));
+      std::vector<uint8_t> color(kComponents);
+      std::vector<int16_t> accum(kComponents);
+      for (size_t i = 0; i < kComponents; ++i) {
+        color[i] = uint8_t(i < 256 ? i : byte(rng));
+        accum[i] = int16_t(i % 7 == 0 ? kSteps : i % 7 == 1 ? -kSteps : step(rng));
+      }
+      std::vector<int16_t> expected = accum;
+      for (size_t i = 0; i < kComponents; ++i)
+        expected[i] =
+            int16_t(std::clamp((keep ? int(accum[i]) : 0) + scaled[color[i]], -kSteps, kSteps));
+      const size_t done = accumulateBytes(scaled, keep, color.data(), accum.data(), kComponents);
+      EXPECT_EQ(done % 64, 0u);
+      if (vectorTablesAvailable()) EXPECT_EQ(done, kComponents / 64 * 64);
+      for (size_t i = 0; i < done; ++i)
+        ASSERT_EQ(accum[i], expected[i]) << "value " << value << " keep " << keep << " at " << i;
+    }
+}
+
+}  // namespace
+}  // namespace sl::imaging::detail
