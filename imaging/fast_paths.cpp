@@ -289,8 +289,8 @@ bool convolveBytesApplies(const TransferState& t) {
   return false;
 }
 
-bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
-                   std::vector<uint8_t>& out, int& ow, int& oh) {
+bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                         std::vector<uint8_t>& out, int& ow, int& oh) {
   const bool separable = !t.convolution2DEnabled;
   const ConvolutionFilter& f = separable ? t.separable2D : t.conv2D;
   // Stages 1-3 on the 256 byte values.
