@@ -166,6 +166,18 @@ bool finishRow(Convolution& cv, TransferState* counting, Image4& row, uint8_t* o
   return true;
 }
 
+// The instruction set of this call: SSE2 (every x86-64) or AVX2 functions of both forms.
+struct RowConversion;
+struct RowSums;
+struct Kernels {
+  // Form 1, identity tables: groups [x, xb) of an output row where component c of group x is
+  // byte c of base[c] + 4x; returns the first group not written.
+  int (*blend)(const uint8_t* const* base, uint8_t* out, int x, int xb) = nullptr;
+  void (*convert)(const RowConversion&, const uint8_t*, float*, int) = nullptr;
+  void (*sums)(const RowSums&, float*, uint8_t*) = nullptr;
+  void (*bytes)(const RowSums&, float*, uint8_t*) = nullptr;
+};
+
 // ---------------------------------------------------------------- form 1: byte gather
 // Output byte c of group (x, y) = table[c][source byte c at (x + dx[c], y + dy[c])], the
 // coordinates clamped under REPLICATE and table[c][kBorderEntry] outside under CONSTANT.
@@ -212,8 +224,8 @@ bool planGather(Convolution& cv, GatherPlan& plan) {
 }
 
 // Rows [y0, y1) of the gather.
-void gatherRows(const Convolution& cv, const GatherPlan& plan, const uint8_t* src, uint8_t* out,
-                int y0, int y1) {
+void gatherRows(const Convolution& cv, const GatherPlan& plan, const Kernels& k, const uint8_t* src,
+                uint8_t* out, int y0, int y1) {
   const int ws = cv.ws, hs = cv.hs, ow = cv.ow;
   // The interior columns, where every component's source column is inside the image.
   int xa = 0, xb = ow;
@@ -253,23 +265,11 @@ void gatherRows(const Convolution& cv, const GatherPlan& plan, const uint8_t* sr
     const uint8_t* s[kGroup];
     for (int c = 0; c < kGroup; ++c) s[c] = rows[c] + ptrdiff_t(plan.dx[c]) * kGroup + c;
     int x = xa;
-#if defined(__SSE2__)
-    if (plan.identity) {
-      // Identity tables: each output byte IS its source byte, so four groups at a time are
-      // the OR of each component's source bytes under that component's byte mask.
-      __m128i mask[kGroup];
-      for (int c = 0; c < kGroup; ++c) mask[c] = _mm_set1_epi32(int(0xFFu << (8 * c)));
-      for (; x + 4 <= xb; x += 4) {
-        __m128i v = _mm_setzero_si128();
-        for (int c = 0; c < kGroup; ++c) {
-          const __m128i in =
-              _mm_loadu_si128(reinterpret_cast<const __m128i*>(s[c] - c + size_t(x) * kGroup));
-          v = _mm_or_si128(v, _mm_and_si128(in, mask[c]));
-        }
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(o + size_t(x) * kGroup), v);
-      }
+    if (plan.identity && k.blend != nullptr) {
+      const uint8_t* base[kGroup];
+      for (int c = 0; c < kGroup; ++c) base[c] = s[c] - c;
+      x = k.blend(base, o, x, xb);
     }
-#endif
     for (; x < xb; ++x) {
       const size_t i = size_t(x) * kGroup;
       const uint32_t v = uint32_t(plan.table[0][s[0][i]]) | uint32_t(plan.table[1][s[1][i]]) << 8 |
@@ -310,6 +310,25 @@ struct RowSums {
 };
 
 #if defined(__SSE2__)
+// Identity tables: each output byte IS its source byte, so four groups at a time are the OR of
+// each component's source bytes under that component's byte mask.
+int blendSse2(const uint8_t* const* sources, uint8_t* out, int x, int xb) {
+  const uint8_t* base[kGroup];  // a local copy: the stores through `out` cannot alias it
+  std::memcpy(base, sources, sizeof base);
+  __m128i mask[kGroup];
+  for (int c = 0; c < kGroup; ++c) mask[c] = _mm_set1_epi32(int(0xFFu << (8 * c)));
+  for (; x + 4 <= xb; x += 4) {
+    __m128i v = _mm_setzero_si128();
+    for (int c = 0; c < kGroup; ++c) {
+      const __m128i in =
+          _mm_loadu_si128(reinterpret_cast<const __m128i*>(base[c] + size_t(x) * kGroup));
+      v = _mm_or_si128(v, _mm_and_si128(in, mask[c]));
+    }
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + size_t(x) * kGroup), v);
+  }
+  return x;
+}
+
 // Baseline x86-64: four floats (one group) per vector.
 void convertSse2(const RowConversion& rc, const uint8_t* in, float* out, int n) {
   const __m128 hi = _mm_set1_ps(rc.hi), lo = _mm_set1_ps(rc.lo);
@@ -374,7 +393,24 @@ void sumRowSse2(const RowSums& r, float* sums, uint8_t* bytes) {
 #if defined(SL_CONVOLUTION_X86)
 #pragma GCC push_options
 #pragma GCC target("avx2")  // NOT "fma": the multiply and the add must stay two roundings
-// AVX2: eight floats (two groups) per vector.
+// AVX2: eight groups of bytes, or eight floats (two groups), per vector.
+int blendAvx2(const uint8_t* const* sources, uint8_t* out, int x, int xb) {
+  const uint8_t* base[kGroup];  // a local copy: the stores through `out` cannot alias it
+  std::memcpy(base, sources, sizeof base);
+  __m256i mask[kGroup];
+  for (int c = 0; c < kGroup; ++c) mask[c] = _mm256_set1_epi32(int(0xFFu << (8 * c)));
+  for (; x + 8 <= xb; x += 8) {
+    __m256i v = _mm256_setzero_si256();
+    for (int c = 0; c < kGroup; ++c) {
+      const __m256i in =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(base[c] + size_t(x) * kGroup));
+      v = _mm256_or_si256(v, _mm256_and_si256(in, mask[c]));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + size_t(x) * kGroup), v);
+  }
+  return blendSse2(base, out, x, xb);
+}
+
 inline __m256 broadcastGroup(const float* p) {  // (p0 p1 p2 p3 p0 p1 p2 p3)
   const __m128 g = _mm_loadu_ps(p);
   return _mm256_insertf128_ps(_mm256_castps128_ps256(g), g, 1);
@@ -467,22 +503,15 @@ void sumRowAvx2(const RowSums& r, float* sums, uint8_t* bytes) {
 #pragma GCC pop_options
 #endif
 
-// The instruction set of form 2 for this call.
-struct Kernels {
-  void (*convert)(const RowConversion&, const uint8_t*, float*, int) = nullptr;
-  void (*sums)(const RowSums&, float*, uint8_t*) = nullptr;
-  void (*bytes)(const RowSums&, float*, uint8_t*) = nullptr;
-};
-
 bool chooseKernels(SimdLevel simd, Kernels& k) {
 #if defined(SL_CONVOLUTION_X86)
   if (simd == SimdLevel::kBest && __builtin_cpu_supports("avx2")) {
-    k = {convertAvx2, sumRowAvx2<false>, sumRowAvx2<true>};
+    k = {blendAvx2, convertAvx2, sumRowAvx2<false>, sumRowAvx2<true>};
     return true;
   }
 #endif
 #if defined(__SSE2__)
-  k = {convertSse2, sumRowSse2<false>, sumRowSse2<true>};
+  k = {blendSse2, convertSse2, sumRowSse2<false>, sumRowSse2<true>};
   return true;
 #else
   (void)simd;
@@ -595,8 +624,9 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
   const bool counting = t.histogramEnabled || t.minmaxEnabled;
   GatherPlan plan;
   if (!counting && planGather(cv, plan)) {
-    parallelRows(oh, size_t(ow) * kGroup,
-                 [&](int y0, int y1) { gatherRows(cv, plan, src.data(), out.data(), y0, y1); });
+    // One core: the gather moves bytes at nearly memory speed, and a second thread's start
+    // (tens of microseconds on this kind of machine) cost more than it saved when measured.
+    gatherRows(cv, plan, kernels, src.data(), out.data(), 0, oh);
     return true;
   }
   const RowConversion rc = chooseConversion(t, cv, kernels);
