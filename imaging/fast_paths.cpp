@@ -365,15 +365,16 @@ namespace sl::imaging::detail {
 // value; the filter runs over strips of padded float rows built on the fly; stages 4-9 run on
 // each output row with the general stage code; the final conversion writes bytes. Same
 // floats, same order of operations as the general path (Image4 throughout), so the same
-// bytes, without whole-image float buffers.
+// bytes, without whole-image float buffers. convolveBytes (convolution_bytes.cpp) runs this
+// strip form only where its faster forms do not apply (non-finite stage values).
 bool convolveBytesApplies(const TransferState& t) {
   if (t.convolution2DEnabled) return t.conv2D.width > 0 && t.conv2D.height > 0;
   if (t.separable2DEnabled) return t.separable2D.width > 0 && !t.separable2D.column.empty();
   return false;
 }
 
-bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
-                   std::vector<uint8_t>& out, int& ow, int& oh) {
+bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                         std::vector<uint8_t>& out, int& ow, int& oh) {
   const bool separable = !t.convolution2DEnabled;
   const ConvolutionFilter& f = separable ? t.separable2D : t.conv2D;
   // Stages 1-3 on the 256 byte values.

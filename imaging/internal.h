@@ -229,11 +229,19 @@ size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* colo
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);
 size_t applyClassMap(const ClassMap& map, uint8_t* p, size_t n);
 
-// Convolution on an 8-bit source straight to 8-bit output, in strips of rows that stay in
-// cache, with every stage of 3.6.5 (fast_paths.cpp). `out` receives ow x oh groups; returns
-// false when a sink consumed the groups (nothing to write).
+// Convolution on an 8-bit source straight to 8-bit output with every stage of 3.6.5
+// (convolution_bytes.cpp): a byte gather for kernels with one tap per component, else SIMD
+// sums over rows that stay in cache; bytes identical to runPipeline's. `out` receives
+// ow x oh groups; returns false when a sink consumed the groups (nothing to write).
+// `simd` selects the instruction set of the sums: kBest (AVX2 where the CPU has it) or
+// kBaseline (SSE2, what every x86-64 has; the tests run both).
+enum class SimdLevel { kBest, kBaseline };
 bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
-                   std::vector<uint8_t>& out, int& ow, int& oh);
+                   std::vector<uint8_t>& out, int& ow, int& oh, SimdLevel simd = SimdLevel::kBest);
+// The same in strips of float rows with the general stage code (fast_paths.cpp): the
+// fallback where the fast paths' conditions do not hold (non-finite stage values).
+bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                         std::vector<uint8_t>& out, int& ow, int& oh);
 // A 2D or separable convolution with a non-empty filter is enabled.
 bool convolveBytesApplies(const TransferState& t);
 

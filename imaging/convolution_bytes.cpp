@@ -1,0 +1,641 @@
+// imaging/convolution_bytes.cpp — the convolution stage of glspec121 3.6.5 on 8-bit RGBA
+// sources for 8-bit destinations (glCopyPixels, glCopyTexSubImage2D of an 8-bit framebuffer),
+// fast and bit-identical to the general float path (runPipeline on an Image4, then the final
+// conversion of 4.3.2).
+//
+// The general path computes, per output group and component c: stages 1-3 of each source
+// byte (one float per byte value), then C = 0.0f + s_1 * w_1c + s_2 * w_2c + ... over the
+// taps of kernelTaps() in their order, one float multiply and one float add per term
+// (accumulateTaps), then the post-convolution scale/bias C * scale + bias, stages 5-7 and the
+// final conversion. The two forms here compute exactly those floats:
+//   1. byte gather (gatherRows): when every component has at most one non-zero tap — the
+//      Brabec-Seidel packing kernel of their Eq. (1) has one per component, weight 1 — and
+//      every later stage works per component, output byte c is a function of ONE source byte
+//      (or of the border colour). The function is tabulated for the 256 byte values and the
+//      border by the very same stage code, so the pass is a byte gather.
+//   2. SIMD sums (sumRow*): any other kernel. Padded rows of stage 1-3 floats are converted
+//      once into a ring of Hf rows that stays in cache; each output vector is summed over the
+//      taps in kernelTaps' order with separate multiply and add instructions (no FMA: the
+//      AVX2 code is compiled for "avx2" only, so the compiler cannot contract them), then
+//      scaled, biased and converted to bytes in registers when stages 5-9 are identity.
+//
+// Why terms with a zero weight may be skipped (form 1) or added (form 2) although the general
+// path skips some and adds others: the sum starts at +0.0f and a round-to-nearest sum is -0
+// only when both addends are -0, so the running sum is never -0; adding +-0 (a finite value
+// times a zero weight) to anything but -0 returns it unchanged. Both forms therefore require
+// finite stage 1-3 values and a finite border colour; otherwise the strip path of
+// fast_paths.cpp (the general stage code on float rows) runs instead.
+//
+// Separable filters: the general path convolves with the dense product kernel
+// row[n] * column[m] (kernelTaps), not a row pass then a column pass (which rounds
+// differently), so form 2 runs that same product kernel.
+#include <cmath>
+#include <cstring>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define SL_CONVOLUTION_X86 1
+#endif
+
+#include "imaging/internal.h"
+
+namespace sl::imaging::detail {
+namespace {
+
+constexpr int kByteValues = 256;                // source byte values 0..255
+constexpr int kBorderEntry = kByteValues;       // a component table's entry for the border
+constexpr int kTableEntries = kByteValues + 1;  // byte values, then the border colour
+constexpr int kGroup = 4;                       // floats (or bytes) per RGBA group
+constexpr int kMaxTaps = kMaxConvolutionWidth * kMaxConvolutionHeight;
+constexpr float kOneOver255 = 1.0f / 255.0f;           // only to split 1/255 into hi + lo below
+constexpr uint32_t kSixteenBitMantissa = 0xFFFFFF00u;  // clears 8 of float's 24 mantissa bits
+
+// The final conversion of 4.3.2 / 2.13.9 to a byte (fast_paths.cpp's toByte).
+inline uint8_t toByte(float v) {
+  const float c = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  return uint8_t(c * 255.0f + 0.5f);
+}
+
+// toByte over a span; SSE2 four at a time: maxps(v, 0) is v > 0 ? v : 0 (NaN gives 0) and
+// minps(c, 1) is c < 1 ? c : 1, toByte's own comparisons, then the same multiply, add and
+// truncation.
+void rowToBytes(const float* v, uint8_t* o, size_t n) {
+  size_t i = 0;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
+  for (; i + 4 <= n; i += 4) {
+    const __m128 c = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(v + i), zero), one);
+    const __m128i q = _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(c, scale), half));
+    const __m128i w = _mm_packs_epi32(q, q);
+    const int bytes = _mm_cvtsi128_si32(_mm_packus_epi16(w, w));
+    std::memcpy(o + i, &bytes, 4);
+  }
+#endif
+  for (; i < n; ++i) o[i] = toByte(v[i]);
+}
+
+bool finiteValues(const float* v, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+// Everything both forms need: the filter geometry, stages 1-3 of the 256 byte values and the
+// stages after the convolution.
+struct Convolution {
+  std::vector<Tap> taps;
+  int wf = 0, hf = 0;  // filter size
+  int cw = 0, ch = 0;  // Cw, Ch (0 under REDUCE): output (i, j) reads padded (i + n, j + m)
+  int ws = 0, hs = 0, ow = 0, oh = 0;
+  int pw = 0;  // padded row width in groups
+  bool reduce = false, replicate = false;
+  Rgba border{};
+  Image4 values{kByteValues, 1};  // stages 1-3 of byte value v, component c: px[v * 4 + c]
+  TransferState suffix;           // stages 5-7 (stage 4's scale/bias is applied separately)
+  bool suffixIdentity = true;
+  bool perComponent = true;  // stages 5-7 map each component alone (identity color matrix)
+  bool postScaleBias = false;
+  Rgba postScale{1, 1, 1, 1}, postBias{0, 0, 0, 0};
+};
+
+// Stages 1-3 of the 256 byte values, per component, by the general stage code.
+void stageValues(const TransferState& t, Image4& values) {
+  TransferState prefix = t;  // (a copy: GCC 12 warns on TransferState's default constructor)
+  prefix.convolution1DEnabled = prefix.convolution2DEnabled = prefix.separable2DEnabled = false;
+  prefix.postConvolutionTableEnabled = prefix.postColorMatrixTableEnabled = false;
+  prefix.colorMatrixStack = {Matrix4{}};
+  prefix.postColorMatrixScale = {1, 1, 1, 1};
+  prefix.postColorMatrixBias = {0, 0, 0, 0};
+  prefix.histogramEnabled = prefix.minmaxEnabled = false;
+  for (int v = 0; v < kByteValues; ++v)
+    for (int c = 0; c < kGroup; ++c) values.px[size_t(v) * kGroup + c] = float(v) / 255.0f;
+  runPipeline(prefix, values, Dimensionality::k2D);
+}
+
+Convolution prepare(const TransferState& t, int ws, int hs) {
+  Convolution cv;
+  const bool separable = !t.convolution2DEnabled;
+  const ConvolutionFilter& f = separable ? t.separable2D : t.conv2D;
+  cv.taps = kernelTaps(f, separable, cv.wf, cv.hf);
+  cv.reduce = f.borderMode == GL_REDUCE;
+  cv.replicate = f.borderMode == GL_REPLICATE_BORDER;
+  cv.border = f.borderColor;
+  cv.ws = ws;
+  cv.hs = hs;
+  cv.ow = cv.reduce ? ws - cv.wf + 1 : ws;
+  cv.oh = cv.reduce ? hs - cv.hf + 1 : hs;
+  cv.cw = cv.reduce ? 0 : cv.wf / 2;
+  cv.ch = cv.reduce ? 0 : cv.hf / 2;
+  cv.pw = cv.reduce ? ws : ws + cv.wf - 1;
+  stageValues(t, cv.values);
+  // Stages 5-7 only (histogram and minmax are taken on the caller's state).
+  TransferState& s = cv.suffix;
+  s = t;
+  s.scale = {1, 1, 1, 1};
+  s.bias = {0, 0, 0, 0};
+  s.mapColor = false;
+  s.colorTableEnabled = false;
+  s.convolution1DEnabled = s.convolution2DEnabled = s.separable2DEnabled = false;
+  s.histogramEnabled = s.minmaxEnabled = false;
+  cv.suffixIdentity = pipelineIsIdentity(s, Dimensionality::k2D);
+  cv.perComponent = s.colorMatrixStack.back().isIdentity();
+  cv.postScale = t.postConvolutionScale;
+  cv.postBias = t.postConvolutionBias;
+  cv.postScaleBias = !(cv.postScale == Rgba{1, 1, 1, 1} && cv.postBias == Rgba{0, 0, 0, 0});
+  return cv;
+}
+
+// The post-convolution scale/bias (as runPipeline's scaleBias forms it), stages 5-7, then
+// histogram and minmax on `counting` (when given), then the final conversion of one row of
+// sums. False when a sink took the row (nothing written).
+bool finishRow(Convolution& cv, TransferState* counting, Image4& row, uint8_t* out) {
+  if (cv.postScaleBias)
+    for (size_t i = 0; i < row.px.size(); ++i)
+      row.px[i] = row.px[i] * cv.postScale[i & 3] + cv.postBias[i & 3];
+  if (!cv.suffixIdentity) runPipeline(cv.suffix, row, Dimensionality::k2D);
+  if (counting != nullptr && counting->histogramEnabled) {
+    accumulateHistogram(counting->histogram, row);
+    if (counting->histogram.sink) return false;
+  }
+  if (counting != nullptr && counting->minmaxEnabled) {
+    accumulateMinmax(counting->minmax, row);
+    if (counting->minmax.sink) return false;
+  }
+  rowToBytes(row.px.data(), out, row.px.size());
+  return true;
+}
+
+// The instruction set of this call: SSE2 (every x86-64) or AVX2 functions of both forms.
+struct RowConversion;
+struct RowSums;
+struct Kernels {
+  // Form 1, identity tables: groups [x, xb) of an output row where component c of group x is
+  // byte c of base[c] + 4x; returns the first group not written.
+  int (*blend)(const uint8_t* const* base, uint8_t* out, int x, int xb) = nullptr;
+  void (*convert)(const RowConversion&, const uint8_t*, float*, int) = nullptr;
+  void (*sums)(const RowSums&, float*, uint8_t*) = nullptr;
+  void (*bytes)(const RowSums&, float*, uint8_t*) = nullptr;
+};
+
+// ---------------------------------------------------------------- form 1: byte gather
+// Output byte c of group (x, y) = table[c][source byte c at (x + dx[c], y + dy[c])], the
+// coordinates clamped under REPLICATE and table[c][kBorderEntry] outside under CONSTANT.
+struct GatherPlan {
+  int dx[kGroup] = {}, dy[kGroup] = {};  // n - Cw, m - Ch of the component's tap
+  uint8_t table[kGroup][kTableEntries] = {};
+  bool identity = true;  // every table maps each byte value to itself
+};
+
+// Builds the plan when every component has at most one non-zero tap and stages 5-7 are per
+// component. table[c][v] is what the general path gives a group whose only contributing
+// source value is v: the sum 0.0f + value * weight (accumulateTaps' operations; a component
+// without a tap sums to 0.0f), then finishRow — the same code the sums go through.
+bool planGather(Convolution& cv, GatherPlan& plan) {
+  if (!cv.perComponent) return false;
+  int tapOf[kGroup] = {-1, -1, -1, -1};
+  for (size_t i = 0; i < cv.taps.size(); ++i)
+    for (int c = 0; c < kGroup; ++c) {
+      if (cv.taps[i].w[c] == 0.0f) continue;
+      if (tapOf[c] >= 0) return false;
+      tapOf[c] = int(i);
+    }
+  Image4 sums(kTableEntries, 1);
+  for (int c = 0; c < kGroup; ++c) {
+    const Tap* tap = tapOf[c] >= 0 ? &cv.taps[size_t(tapOf[c])] : nullptr;
+    // No tap: a constant table; the centre keeps the (unused) source reads in range.
+    plan.dx[c] = tap != nullptr ? tap->n - cv.cw : 0;
+    plan.dy[c] = tap != nullptr ? tap->m - cv.ch : 0;
+    for (int v = 0; v < kTableEntries; ++v) {
+      const float x = v == kBorderEntry ? cv.border[c] : cv.values.px[size_t(v) * kGroup + c];
+      float sum = 0.0f;
+      if (tap != nullptr) sum += x * tap->w[c];
+      sums.px[size_t(v) * kGroup + c] = sum;
+    }
+  }
+  uint8_t bytes[kTableEntries * kGroup];
+  finishRow(cv, nullptr, sums, bytes);
+  for (int v = 0; v < kTableEntries; ++v)
+    for (int c = 0; c < kGroup; ++c) {
+      plan.table[c][v] = bytes[v * kGroup + c];
+      if (v < kByteValues && bytes[v * kGroup + c] != v) plan.identity = false;
+    }
+  return true;
+}
+
+// Rows [y0, y1) of the gather.
+void gatherRows(const Convolution& cv, const GatherPlan& plan, const Kernels& k, const uint8_t* src,
+                uint8_t* out, int y0, int y1) {
+  const int ws = cv.ws, hs = cv.hs, ow = cv.ow;
+  // The interior columns, where every component's source column is inside the image.
+  int xa = 0, xb = ow;
+  for (int c = 0; c < kGroup; ++c) {
+    xa = std::max(xa, -plan.dx[c]);
+    xb = std::min(xb, ws - plan.dx[c]);
+  }
+  for (int y = y0; y < y1; ++y) {
+    const uint8_t* rows[kGroup];
+    bool borderRow = false;  // some component reads a CONSTANT border row
+    for (int c = 0; c < kGroup; ++c) {
+      int sy = y + plan.dy[c];
+      if (sy < 0 || sy >= hs) {
+        borderRow = borderRow || !cv.replicate;
+        sy = std::clamp(sy, 0, hs - 1);
+      }
+      rows[c] = src + size_t(sy) * ws * kGroup;
+    }
+    uint8_t* const o = out + size_t(y) * ow * kGroup;
+    // Any group, with the border rules: the edges, and whole rows that touch a border row.
+    auto gatherGroup = [&](int x) {
+      for (int c = 0; c < kGroup; ++c) {
+        const int sy = y + plan.dy[c], sx = x + plan.dx[c];
+        const bool inside = sx >= 0 && sx < ws && sy >= 0 && sy < hs;
+        o[x * kGroup + c] =
+            inside || cv.replicate
+                ? plan.table[c][rows[c][size_t(std::clamp(sx, 0, ws - 1)) * kGroup + c]]
+                : plan.table[c][kBorderEntry];
+      }
+    };
+    if (borderRow || xa >= xb) {
+      for (int x = 0; x < ow; ++x) gatherGroup(x);
+      continue;
+    }
+    for (int x = 0; x < xa; ++x) gatherGroup(x);
+    for (int x = xb; x < ow; ++x) gatherGroup(x);
+    const uint8_t* s[kGroup];
+    for (int c = 0; c < kGroup; ++c) s[c] = rows[c] + ptrdiff_t(plan.dx[c]) * kGroup + c;
+    int x = xa;
+    if (plan.identity && k.blend != nullptr) {
+      const uint8_t* base[kGroup];
+      for (int c = 0; c < kGroup; ++c) base[c] = s[c] - c;
+      x = k.blend(base, o, x, xb);
+    }
+    for (; x < xb; ++x) {
+      const size_t i = size_t(x) * kGroup;
+      const uint32_t v = uint32_t(plan.table[0][s[0][i]]) | uint32_t(plan.table[1][s[1][i]]) << 8 |
+                         uint32_t(plan.table[2][s[2][i]]) << 16 |
+                         uint32_t(plan.table[3][s[3][i]]) << 24;
+      std::memcpy(o + i, &v, 4);  // RGBA bytes, little-endian
+    }
+  }
+}
+
+// ---------------------------------------------------------------- form 2: SIMD sums
+// Stages 1-3 of a source row as floats. Where the stages are at most the stage 1 scale/bias,
+// v / 255 is computed as v * hi + v * lo (1/255 = hi + lo, hi with 16 significant bits so that
+// v * hi is exact), then * scale + bias; this form is used only after it reproduced the
+// table (the general stage code's floats) bit for bit on all 256 byte values.
+struct RowConversion {
+  bool arithmetic = false;
+  float hi = 0.0f, lo = 0.0f;
+  bool scaled = false;
+  Rgba scale{1, 1, 1, 1}, bias{0, 0, 0, 0};
+  const float* table = nullptr;  // Convolution::values.px
+};
+
+void convertTable(const RowConversion& rc, const uint8_t* in, float* out, int n) {
+  for (int i = 0; i < n; i += kGroup)
+    for (int c = 0; c < kGroup; ++c) out[i + c] = rc.table[size_t(in[i + c]) * kGroup + c];
+}
+
+// One output row: sources[t] is the first float tap t reads (output group 0).
+struct RowSums {
+  const float* const* sources;
+  const Tap* taps;
+  int count;   // taps
+  int floats;  // ow * 4
+  bool postScaleBias;
+  const float* postScale;  // 4 floats
+  const float* postBias;
+};
+
+#if defined(__SSE2__)
+// Identity tables: each output byte IS its source byte, so four groups at a time are the OR of
+// each component's source bytes under that component's byte mask.
+int blendSse2(const uint8_t* const* sources, uint8_t* out, int x, int xb) {
+  const uint8_t* base[kGroup];  // a local copy: the stores through `out` cannot alias it
+  std::memcpy(base, sources, sizeof base);
+  __m128i mask[kGroup];
+  for (int c = 0; c < kGroup; ++c) mask[c] = _mm_set1_epi32(int(0xFFu << (8 * c)));
+  for (; x + 4 <= xb; x += 4) {
+    __m128i v = _mm_setzero_si128();
+    for (int c = 0; c < kGroup; ++c) {
+      const __m128i in =
+          _mm_loadu_si128(reinterpret_cast<const __m128i*>(base[c] + size_t(x) * kGroup));
+      v = _mm_or_si128(v, _mm_and_si128(in, mask[c]));
+    }
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + size_t(x) * kGroup), v);
+  }
+  return x;
+}
+
+// Baseline x86-64: four floats (one group) per vector.
+void convertSse2(const RowConversion& rc, const uint8_t* in, float* out, int n) {
+  const __m128 hi = _mm_set1_ps(rc.hi), lo = _mm_set1_ps(rc.lo);
+  const __m128 scale = _mm_loadu_ps(rc.scale.data()), bias = _mm_loadu_ps(rc.bias.data());
+  const __m128i zero = _mm_setzero_si128();
+  for (int i = 0; i < n; i += kGroup) {
+    int word;
+    std::memcpy(&word, in + i, 4);
+    const __m128i b = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(word), zero), zero);
+    const __m128 f = _mm_cvtepi32_ps(b);
+    __m128 v = _mm_add_ps(_mm_mul_ps(f, hi), _mm_mul_ps(f, lo));
+    if (rc.scaled) v = _mm_add_ps(_mm_mul_ps(v, scale), bias);
+    _mm_storeu_ps(out + i, v);
+  }
+}
+
+inline void storeBytes4(__m128 v, uint8_t* o) {
+  const __m128 c = _mm_min_ps(_mm_max_ps(v, _mm_setzero_ps()), _mm_set1_ps(1.0f));
+  const __m128i q =
+      _mm_cvttps_epi32(_mm_add_ps(_mm_mul_ps(c, _mm_set1_ps(255.0f)), _mm_set1_ps(0.5f)));
+  const __m128i w = _mm_packs_epi32(q, q);
+  const int bytes = _mm_cvtsi128_si32(_mm_packus_epi16(w, w));
+  std::memcpy(o, &bytes, 4);
+}
+
+constexpr int kSse2Block = 4;  // vectors summed side by side (independent add chains)
+
+// sums (or bytes, when kBytes: post scale/bias and final conversion in registers) of one row.
+template <bool kBytes>
+void sumRowSse2(const RowSums& r, float* sums, uint8_t* bytes) {
+  __m128 w[kMaxTaps];
+  for (int t = 0; t < r.count; ++t) w[t] = _mm_loadu_ps(r.taps[t].w);
+  const __m128 scale = _mm_loadu_ps(r.postScale), bias = _mm_loadu_ps(r.postBias);
+  auto finish = [&](__m128 acc, int i) {
+    if constexpr (kBytes) {
+      if (r.postScaleBias) acc = _mm_add_ps(_mm_mul_ps(acc, scale), bias);
+      storeBytes4(acc, bytes + i);
+    } else {
+      _mm_storeu_ps(sums + i, acc);
+    }
+  };
+  int i = 0;
+  for (; i + kGroup * kSse2Block <= r.floats; i += kGroup * kSse2Block) {
+    __m128 acc[kSse2Block];
+    for (int k = 0; k < kSse2Block; ++k) acc[k] = _mm_setzero_ps();
+    for (int t = 0; t < r.count; ++t) {
+      const float* p = r.sources[t] + i;
+      for (int k = 0; k < kSse2Block; ++k)
+        acc[k] = _mm_add_ps(acc[k], _mm_mul_ps(_mm_loadu_ps(p + kGroup * k), w[t]));
+    }
+    for (int k = 0; k < kSse2Block; ++k) finish(acc[k], i + kGroup * k);
+  }
+  for (; i < r.floats; i += kGroup) {
+    __m128 acc = _mm_setzero_ps();
+    for (int t = 0; t < r.count; ++t)
+      acc = _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(r.sources[t] + i), w[t]));
+    finish(acc, i);
+  }
+}
+#endif
+
+#if defined(SL_CONVOLUTION_X86)
+#pragma GCC push_options
+#pragma GCC target("avx2")  // NOT "fma": the multiply and the add must stay two roundings
+// AVX2: eight groups of bytes, or eight floats (two groups), per vector.
+int blendAvx2(const uint8_t* const* sources, uint8_t* out, int x, int xb) {
+  const uint8_t* base[kGroup];  // a local copy: the stores through `out` cannot alias it
+  std::memcpy(base, sources, sizeof base);
+  __m256i mask[kGroup];
+  for (int c = 0; c < kGroup; ++c) mask[c] = _mm256_set1_epi32(int(0xFFu << (8 * c)));
+  for (; x + 8 <= xb; x += 8) {
+    __m256i v = _mm256_setzero_si256();
+    for (int c = 0; c < kGroup; ++c) {
+      const __m256i in =
+          _mm256_loadu_si256(reinterpret_cast<const __m256i*>(base[c] + size_t(x) * kGroup));
+      v = _mm256_or_si256(v, _mm256_and_si256(in, mask[c]));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + size_t(x) * kGroup), v);
+  }
+  return blendSse2(base, out, x, xb);
+}
+
+inline __m256 broadcastGroup(const float* p) {  // (p0 p1 p2 p3 p0 p1 p2 p3)
+  const __m128 g = _mm_loadu_ps(p);
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(g), g, 1);
+}
+
+void convertAvx2(const RowConversion& rc, const uint8_t* in, float* out, int n) {
+  const __m256 hi = _mm256_set1_ps(rc.hi), lo = _mm256_set1_ps(rc.lo);
+  const __m256 scale = broadcastGroup(rc.scale.data());
+  const __m256 bias = broadcastGroup(rc.bias.data());
+  int i = 0;
+  for (; i + 2 * kGroup <= n; i += 2 * kGroup) {
+    const __m256 f = _mm256_cvtepi32_ps(
+        _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + i))));
+    __m256 v = _mm256_add_ps(_mm256_mul_ps(f, hi), _mm256_mul_ps(f, lo));
+    if (rc.scaled) v = _mm256_add_ps(_mm256_mul_ps(v, scale), bias);
+    _mm256_storeu_ps(out + i, v);
+  }
+  if (i < n) {  // one group left
+    int word;
+    std::memcpy(&word, in + i, 4);
+    const __m128 f = _mm_cvtepi32_ps(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(word)));
+    __m128 v = _mm_add_ps(_mm_mul_ps(f, _mm256_castps256_ps128(hi)),
+                          _mm_mul_ps(f, _mm256_castps256_ps128(lo)));
+    if (rc.scaled)
+      v = _mm_add_ps(_mm_mul_ps(v, _mm256_castps256_ps128(scale)), _mm256_castps256_ps128(bias));
+    _mm_storeu_ps(out + i, v);
+  }
+}
+
+inline void storeBytes8(__m256 v, uint8_t* o) {
+  const __m256 c = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
+  const __m256i q = _mm256_cvttps_epi32(
+      _mm256_add_ps(_mm256_mul_ps(c, _mm256_set1_ps(255.0f)), _mm256_set1_ps(0.5f)));
+  const __m128i w = _mm_packs_epi32(_mm256_castsi256_si128(q), _mm256_extracti128_si256(q, 1));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(o), _mm_packus_epi16(w, w));
+}
+
+constexpr int kAvx2Block = 8;  // vectors summed side by side (independent add chains)
+
+template <bool kBytes>
+void sumRowAvx2(const RowSums& r, float* sums, uint8_t* bytes) {
+  __m256 w[kMaxTaps];
+  for (int t = 0; t < r.count; ++t) w[t] = broadcastGroup(r.taps[t].w);
+  const __m256 scale = broadcastGroup(r.postScale);
+  const __m256 bias = broadcastGroup(r.postBias);
+  int i = 0;
+  for (; i + 2 * kGroup * kAvx2Block <= r.floats; i += 2 * kGroup * kAvx2Block) {
+    __m256 acc[kAvx2Block];
+    for (int k = 0; k < kAvx2Block; ++k) acc[k] = _mm256_setzero_ps();
+    for (int t = 0; t < r.count; ++t) {
+      const float* p = r.sources[t] + i;
+      for (int k = 0; k < kAvx2Block; ++k)
+        acc[k] = _mm256_add_ps(acc[k], _mm256_mul_ps(_mm256_loadu_ps(p + 2 * kGroup * k), w[t]));
+    }
+    for (int k = 0; k < kAvx2Block; ++k) {
+      if constexpr (kBytes) {
+        if (r.postScaleBias) acc[k] = _mm256_add_ps(_mm256_mul_ps(acc[k], scale), bias);
+        storeBytes8(acc[k], bytes + i + 2 * kGroup * k);
+      } else {
+        _mm256_storeu_ps(sums + i + 2 * kGroup * k, acc[k]);
+      }
+    }
+  }
+  for (; i + 2 * kGroup <= r.floats; i += 2 * kGroup) {
+    __m256 acc = _mm256_setzero_ps();
+    for (int t = 0; t < r.count; ++t)
+      acc = _mm256_add_ps(acc, _mm256_mul_ps(_mm256_loadu_ps(r.sources[t] + i), w[t]));
+    if constexpr (kBytes) {
+      if (r.postScaleBias) acc = _mm256_add_ps(_mm256_mul_ps(acc, scale), bias);
+      storeBytes8(acc, bytes + i);
+    } else {
+      _mm256_storeu_ps(sums + i, acc);
+    }
+  }
+  if (i < r.floats) {  // one group left
+    __m128 acc = _mm_setzero_ps();
+    for (int t = 0; t < r.count; ++t)
+      acc =
+          _mm_add_ps(acc, _mm_mul_ps(_mm_loadu_ps(r.sources[t] + i), _mm256_castps256_ps128(w[t])));
+    if constexpr (kBytes) {
+      if (r.postScaleBias)
+        acc = _mm_add_ps(_mm_mul_ps(acc, _mm256_castps256_ps128(scale)),
+                         _mm256_castps256_ps128(bias));
+      storeBytes4(acc, bytes + i);
+    } else {
+      _mm_storeu_ps(sums + i, acc);
+    }
+  }
+}
+#pragma GCC pop_options
+#endif
+
+bool chooseKernels(SimdLevel simd, Kernels& k) {
+#if defined(SL_CONVOLUTION_X86)
+  if (simd == SimdLevel::kBest && __builtin_cpu_supports("avx2")) {
+    k = {blendAvx2, convertAvx2, sumRowAvx2<false>, sumRowAvx2<true>};
+    return true;
+  }
+#endif
+#if defined(__SSE2__)
+  k = {blendSse2, convertSse2, sumRowSse2<false>, sumRowSse2<true>};
+  return true;
+#else
+  (void)simd;
+  return false;
+#endif
+}
+
+// Chooses the arithmetic conversion when it reproduces the table exactly.
+RowConversion chooseConversion(const TransferState& t, const Convolution& cv, const Kernels& k) {
+  RowConversion rc;
+  rc.table = cv.values.px.data();
+  const bool prefixIsScaleBias = !t.mapColor && !(t.colorTableEnabled && t.tables[0].width > 0);
+  if (!prefixIsScaleBias) return rc;
+  // hi: 1/255 rounded to float, low 8 mantissa bits cleared; lo: the rest, rounded.
+  float hi = kOneOver255;
+  uint32_t bits;
+  std::memcpy(&bits, &hi, 4);
+  bits &= kSixteenBitMantissa;
+  std::memcpy(&hi, &bits, 4);
+  rc.hi = hi;
+  rc.lo = float(1.0 / 255.0 - double(hi));
+  rc.scaled = !(t.scale == Rgba{1, 1, 1, 1} && t.bias == Rgba{0, 0, 0, 0});
+  rc.scale = t.scale;
+  rc.bias = t.bias;
+  uint8_t ramp[kByteValues * kGroup];
+  for (int v = 0; v < kByteValues; ++v)
+    for (int c = 0; c < kGroup; ++c) ramp[v * kGroup + c] = uint8_t(v);
+  float converted[kByteValues * kGroup];
+  k.convert(rc, ramp, converted, kByteValues * kGroup);
+  rc.arithmetic = std::memcmp(converted, cv.values.px.data(), sizeof converted) == 0;
+  return rc;
+}
+
+// Padded row py (3.6.5: Cw / Ch columns and rows of border colour or replicated edge around
+// the source; none under REDUCE) as stage 1-3 floats.
+void padRow(const Convolution& cv, const RowConversion& rc, const Kernels& k, const uint8_t* src,
+            int py, float* dst) {
+  const int sy = py - cv.ch;
+  if (!cv.reduce && !cv.replicate && (sy < 0 || sy >= cv.hs)) {
+    for (int x = 0; x < cv.pw; ++x)
+      for (int c = 0; c < kGroup; ++c) dst[x * kGroup + c] = cv.border[c];
+    return;
+  }
+  const uint8_t* row = src + size_t(std::clamp(sy, 0, cv.hs - 1)) * cv.ws * kGroup;
+  float* const inside = dst + size_t(cv.cw) * kGroup;
+  if (rc.arithmetic) {
+    k.convert(rc, row, inside, cv.ws * kGroup);
+  } else {
+    convertTable(rc, row, inside, cv.ws * kGroup);
+  }
+  if (cv.reduce) return;
+  const float* first = inside;
+  const float* last = inside + size_t(cv.ws - 1) * kGroup;
+  for (int x = 0; x < cv.cw; ++x)
+    for (int c = 0; c < kGroup; ++c) dst[x * kGroup + c] = cv.replicate ? first[c] : cv.border[c];
+  for (int x = cv.cw + cv.ws; x < cv.pw; ++x)
+    for (int c = 0; c < kGroup; ++c) dst[x * kGroup + c] = cv.replicate ? last[c] : cv.border[c];
+}
+
+// Output rows [y0, y1) of form 2: a ring of Hf padded rows, each converted once.
+bool sumRows(Convolution& cv, const RowConversion& rc, const Kernels& k, TransferState* counting,
+             const uint8_t* src, uint8_t* out, int y0, int y1) {
+  const int hf = cv.hf;
+  const size_t rowFloats = size_t(cv.pw) * kGroup;
+  std::vector<float> ring(size_t(hf) * rowFloats);  // every row is written by padRow
+  auto slot = [&](int py) { return ring.data() + size_t(py % hf) * rowFloats; };
+  const bool fused = cv.suffixIdentity && counting == nullptr;
+  Image4 row = fused ? Image4() : Image4(cv.ow, 1);
+  const float* sources[kMaxTaps];
+  RowSums r{sources,          cv.taps.data(),      int(cv.taps.size()), cv.ow * kGroup,
+            cv.postScaleBias, cv.postScale.data(), cv.postBias.data()};
+  bool kept = true;
+  for (int py = y0; py < y0 + hf - 1; ++py) padRow(cv, rc, k, src, py, slot(py));
+  for (int j = y0; j < y1; ++j) {
+    padRow(cv, rc, k, src, j + hf - 1, slot(j + hf - 1));
+    for (size_t t = 0; t < cv.taps.size(); ++t)
+      sources[t] = slot(j + cv.taps[t].m) + size_t(cv.taps[t].n) * kGroup;
+    uint8_t* const o = out + size_t(j) * cv.ow * kGroup;
+    if (fused) {
+      k.bytes(r, nullptr, o);
+      continue;
+    }
+    RowSums raw = r;
+    raw.postScaleBias = false;  // finishRow applies it
+    k.sums(raw, row.px.data(), nullptr);
+    kept = finishRow(cv, counting, row, o) && kept;
+  }
+  return kept;
+}
+
+}  // namespace
+
+bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
+                   std::vector<uint8_t>& out, int& ow, int& oh, SimdLevel simd) {
+  Convolution cv = prepare(t, ws, hs);
+  ow = cv.ow;
+  oh = cv.oh;
+  if (ow <= 0 || oh <= 0) {  // REDUCE with a filter larger than the image: no output
+    ow = oh = 0;
+    out.clear();
+    return true;
+  }
+  // The zero-weight argument at the top of the file needs finite values.
+  const bool finite = finiteValues(cv.values.px.data(), cv.values.px.size()) &&
+                      (cv.reduce || cv.replicate || finiteValues(cv.border.data(), kGroup));
+  Kernels kernels;
+  if (!finite || !chooseKernels(simd, kernels))
+    return convolveBytesStrips(t, src, ws, hs, out, ow, oh);
+  out.resize(size_t(ow) * oh * kGroup);  // every byte is written below unless a sink takes it
+  const bool counting = t.histogramEnabled || t.minmaxEnabled;
+  GatherPlan plan;
+  if (!counting && planGather(cv, plan)) {
+    // One core: the gather moves bytes at nearly memory speed, and a second thread's start
+    // (tens of microseconds on this kind of machine) cost more than it saved when measured.
+    gatherRows(cv, plan, kernels, src.data(), out.data(), 0, oh);
+    return true;
+  }
+  const RowConversion rc = chooseConversion(t, cv, kernels);
+  if (counting)
+    return sumRows(cv, rc, kernels, &t, src.data(), out.data(), 0, oh);  // shared tables
+  parallelRows(oh, size_t(ow) * kGroup * (cv.taps.size() + 1), [&](int y0, int y1) {
+    sumRows(cv, rc, kernels, nullptr, src.data(), out.data(), y0, y1);
+  });
+  return true;
+}
+
+}  // namespace sl::imaging::detail

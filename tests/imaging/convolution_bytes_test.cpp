@@ -1,0 +1,292 @@
+// The 8-bit convolution path (imaging/convolution_bytes.cpp: byte gather for one tap per
+// component, SIMD sums otherwise) gives exactly the bytes of the general float path:
+// runPipeline on an Image4 of the same source (each byte as v / 255), then the final
+// conversion of 4.3.2 (round(clamp(c) * 255)). Both instruction sets of the sums are checked
+// (AVX2 where this CPU has it, and the SSE2 baseline), on random images, every border mode,
+// odd sizes, and the stages before and after the convolution. Exact equality is the
+// expectation: the fast path claims the same float operations in the same order.
+#include <random>
+
+#include "imaging/imaging_test_util.h"
+#include "imaging/internal.h"
+
+namespace sl::imaging::testing {
+namespace {
+
+using detail::ConvolutionFilter;
+using detail::Dimensionality;
+using detail::Image4;
+using detail::Rgba;
+using detail::SimdLevel;
+using detail::TransferState;
+
+struct Size {
+  int w, h;
+};
+// Odd widths and heights (1, 3, 17), a square, and one large enough to run on both cores.
+const Size kSizes[] = {{1, 1}, {3, 2}, {17, 5}, {1, 9}, {16, 16}, {33, 17}, {256, 192}};
+
+// The general path: runPipeline on floats, then 4.3.2's conversion of each component.
+std::vector<uint8_t> generalPath(TransferState t, const std::vector<uint8_t>& src, int w, int h,
+                                 int& ow, int& oh, bool& kept) {
+  Image4 image(w, h);
+  for (size_t i = 0; i < src.size(); ++i) image.px[i] = float(src[i]) / 255.0f;
+  kept = detail::runPipeline(t, image, Dimensionality::k2D);
+  ow = image.width;
+  oh = image.height;
+  std::vector<uint8_t> out(image.px.size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = toByte(image.px[i]);
+  return out;
+}
+
+// Runs both paths on random images of every size and asserts equal bytes.
+void expectSameBytes(const TransferState& state, const char* what,
+                     const std::vector<Size>& sizes = {std::begin(kSizes), std::end(kSizes)}) {
+  unsigned seed = 1;
+  for (const Size& size : sizes) {
+    const std::vector<uint8_t> src = patternImage(size.w, size.h, seed++);
+    int gw = 0, gh = 0;
+    bool generalKept = true;
+    const std::vector<uint8_t> expected =
+        generalPath(state, src, size.w, size.h, gw, gh, generalKept);
+    for (SimdLevel simd : {SimdLevel::kBest, SimdLevel::kBaseline}) {
+      SCOPED_TRACE(::testing::Message() << what << " " << size.w << "x" << size.h << " simd "
+                                        << (simd == SimdLevel::kBest ? "best" : "baseline"));
+      TransferState t = state;
+      std::vector<uint8_t> out(3, 0xCD);  // not the right size: the path must size it
+      int ow = -1, oh = -1;
+      const bool kept = detail::convolveBytes(t, src, size.w, size.h, out, ow, oh, simd);
+      ASSERT_EQ(kept, generalKept);
+      if (gw == 0 || gh == 0) {  // REDUCE by a filter larger than the image: "simply null"
+        EXPECT_EQ(size_t(ow) * size_t(oh), 0u);
+        EXPECT_TRUE(out.empty());
+        continue;
+      }
+      ASSERT_EQ(ow, gw);
+      ASSERT_EQ(oh, gh);
+      if (!kept) continue;
+      ASSERT_EQ(out.size(), expected.size());
+      for (size_t i = 0; i < out.size(); ++i)
+        ASSERT_EQ(int(out[i]), int(expected[i]))
+            << "group " << i / 4 << " (x " << (i / 4) % size_t(std::max(ow, 1)) << ", y "
+            << (i / 4) / size_t(std::max(ow, 1)) << ") component " << i % 4;
+    }
+  }
+}
+
+ConvolutionFilter filter2D(int w, int h, const std::vector<float>& rgba, GLenum border,
+                           Rgba borderColor = {0, 0, 0, 0}, GLenum format = GL_RGBA) {
+  ConvolutionFilter f;
+  f.format = format;
+  f.internalFormat = format;
+  f.width = w;
+  f.height = h;
+  f.image.resize(size_t(w) * h);
+  for (size_t k = 0; k < f.image.size(); ++k)
+    for (int c = 0; c < 4; ++c) f.image[k][c] = rgba[k * 4 + c];
+  f.borderMode = border;
+  f.borderColor = borderColor;
+  return f;
+}
+
+TransferState with2D(const ConvolutionFilter& f) {
+  TransferState t;
+  t.conv2D = f;
+  t.convolution2DEnabled = true;
+  return t;
+}
+
+// Brabec–Seidel Eq. (1): R from (0,0), G from (1,0), B from (0,1), A from (1,1), weight 1.
+std::vector<float> packingKernel() {
+  std::vector<float> k(9 * 4, 0.0f);
+  k[(0 * 3 + 0) * 4 + 0] = 1;
+  k[(0 * 3 + 1) * 4 + 1] = 1;
+  k[(1 * 3 + 0) * 4 + 2] = 1;
+  k[(1 * 3 + 1) * 4 + 3] = 1;
+  return k;
+}
+
+std::vector<float> randomKernel(int w, int h, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> weight(-0.6f, 0.9f);  // negative weights included
+  std::vector<float> k(size_t(w) * h * 4);
+  for (float& v : k) v = weight(rng);
+  return k;
+}
+
+const Rgba kBorderColor = {0.25f, 0.9f, -0.3f, 1.5f};  // unclamped, as the spec allows
+const GLenum kBorders[] = {GL_REDUCE, GL_CONSTANT_BORDER, GL_REPLICATE_BORDER};
+
+const char* borderName(GLenum b) {
+  return b == GL_REDUCE ? "REDUCE" : b == GL_CONSTANT_BORDER ? "CONSTANT" : "REPLICATE";
+}
+
+TEST(ConvolutionBytes, PackingKernelEveryBorderMode) {
+  for (GLenum border : kBorders)
+    expectSameBytes(with2D(filter2D(3, 3, packingKernel(), border, kBorderColor)),
+                    borderName(border));
+}
+
+TEST(ConvolutionBytes, PackingKernelWithStagesAroundIt) {
+  // Non-identity component tables (the gather's table pass), a post-convolution scale/bias
+  // that pushes some values out of [0, 1], and the border colour through all of them.
+  for (GLenum border : kBorders) {
+    TransferState t = with2D(filter2D(3, 3, packingKernel(), border, kBorderColor));
+    t.scale = {0.8f, 1.1f, 1.0f, 0.5f};
+    t.bias = {0.05f, -0.1f, 0.0f, 0.2f};
+    t.postConvolutionScale = {1.5f, 0.5f, -1.0f, 2.0f};
+    t.postConvolutionBias = {-0.2f, 0.1f, 1.0f, 0.0f};
+    t.tables[2].format = t.tables[2].internalFormat = GL_RGBA;
+    t.tables[2].width = 16;
+    for (int i = 0; i < 16; ++i)
+      t.tables[2].entries.push_back({float(15 - i) / 15.0f, float(i * i) / 225.0f, 0.5f, 1.0f});
+    t.postColorMatrixTableEnabled = true;
+    expectSameBytes(t, borderName(border));
+  }
+}
+
+TEST(ConvolutionBytes, PackingKernelThenColorMatrix) {
+  // A color matrix mixes the components: no longer one source byte per output byte, so the
+  // SIMD sums run the packing kernel.
+  TransferState t = with2D(filter2D(3, 3, packingKernel(), GL_REPLICATE_BORDER));
+  t.colorMatrixStack.back().m = {0.5f, 0.1f, 0.0f, 0.25f, 0.5f, 0.9f, 0.0f, 0.25f,
+                                 0.0f, 0.0f, 1.0f, 0.25f, 0.0f, 0.0f, 0.0f, 0.25f};
+  expectSameBytes(t, "packing kernel + sum-into-alpha-like matrix");
+}
+
+TEST(ConvolutionBytes, Blur3x3EveryBorderMode) {
+  const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
+  std::vector<float> k(9 * 4);
+  for (int t = 0; t < 9; ++t)
+    for (int c = 0; c < 4; ++c) k[t * 4 + c] = w[t] / 16.0f;
+  for (GLenum border : kBorders)
+    expectSameBytes(with2D(filter2D(3, 3, k, border, kBorderColor)), borderName(border));
+}
+
+TEST(ConvolutionBytes, Random5x5And9x9WithNegativeWeights) {
+  for (GLenum border : kBorders) {
+    expectSameBytes(with2D(filter2D(5, 5, randomKernel(5, 5, 11), border, kBorderColor)),
+                    borderName(border));
+    expectSameBytes(with2D(filter2D(9, 9, randomKernel(9, 9, 12), border, kBorderColor)),
+                    borderName(border));
+  }
+  // Even and non-square sizes: Cw = floor(Wf / 2) puts the centre right of the middle.
+  expectSameBytes(with2D(filter2D(4, 2, randomKernel(4, 2, 13), GL_CONSTANT_BORDER, kBorderColor)),
+                  "4x2");
+  expectSameBytes(with2D(filter2D(1, 7, randomKernel(1, 7, 14), GL_REPLICATE_BORDER)), "1x7");
+}
+
+TEST(ConvolutionBytes, SparseKernelSkipsZeroTaps) {
+  // Zero taps and taps feeding one component only (accumulateTaps skips the others).
+  std::vector<float> k(5 * 5 * 4, 0.0f);
+  k[(0 * 5 + 0) * 4 + 0] = 0.5f;
+  k[(0 * 5 + 4) * 4 + 0] = -0.25f;
+  k[(2 * 5 + 2) * 4 + 1] = 1.0f;
+  k[(4 * 5 + 1) * 4 + 2] = 0.75f;
+  k[(3 * 5 + 3) * 4 + 3] = 1.0f;
+  k[(3 * 5 + 3) * 4 + 2] = 0.5f;
+  for (GLenum border : kBorders)
+    expectSameBytes(with2D(filter2D(5, 5, k, border, kBorderColor)), borderName(border));
+}
+
+TEST(ConvolutionBytes, SeparableFilter) {
+  for (GLenum border : kBorders) {
+    TransferState t;
+    ConvolutionFilter& f = t.separable2D;
+    f.width = 7;
+    f.height = 3;
+    const std::vector<float> row = randomKernel(7, 1, 21), column = randomKernel(3, 1, 22);
+    for (int n = 0; n < 7; ++n)
+      f.row.push_back({row[n * 4], row[n * 4 + 1], row[n * 4 + 2], row[n * 4 + 3]});
+    for (int m = 0; m < 3; ++m)
+      f.column.push_back({column[m * 4], column[m * 4 + 1], column[m * 4 + 2], column[m * 4 + 3]});
+    f.borderMode = border;
+    f.borderColor = kBorderColor;
+    t.separable2DEnabled = true;
+    expectSameBytes(t, borderName(border));
+  }
+}
+
+TEST(ConvolutionBytes, PostConvolutionScaleBias) {
+  for (GLenum border : kBorders) {
+    TransferState t = with2D(filter2D(3, 3, randomKernel(3, 3, 31), border, kBorderColor));
+    t.postConvolutionScale = {1.7f, 0.3f, -0.5f, 2.5f};
+    t.postConvolutionBias = {-0.1f, 0.4f, 0.9f, -0.6f};
+    expectSameBytes(t, borderName(border));
+  }
+}
+
+TEST(ConvolutionBytes, ColorTablesBeforeAndAfter) {
+  TransferState t =
+      with2D(filter2D(3, 3, randomKernel(3, 3, 41), GL_CONSTANT_BORDER, kBorderColor));
+  auto table = [](int width, int shift) {
+    detail::ColorTable ct;
+    ct.format = ct.internalFormat = GL_RGBA;
+    ct.width = width;
+    for (int i = 0; i < width; ++i)
+      ct.entries.push_back({float((i * 7 + shift) % width) / float(width - 1),
+                            float((i * 3 + shift) % width) / float(width - 1),
+                            1.0f - float(i) / float(width - 1), 0.5f});
+    return ct;
+  };
+  t.tables[0] = table(32, 1);
+  t.colorTableEnabled = true;  // before: the table form of stages 1-3
+  t.tables[1] = table(64, 5);
+  t.postConvolutionTableEnabled = true;
+  t.tables[2] = table(16, 2);
+  t.tables[2].format = GL_LUMINANCE;
+  t.postColorMatrixTableEnabled = true;
+  expectSameBytes(t, "tables before and after");
+  // Stage 1 scale/bias alone: the arithmetic conversion of the source rows.
+  TransferState s = with2D(filter2D(3, 3, randomKernel(3, 3, 42), GL_REPLICATE_BORDER));
+  s.scale = {1.25f, 0.5f, -1.0f, 1.0f};
+  s.bias = {0.0f, 0.25f, 1.0f, -0.125f};
+  expectSameBytes(s, "stage 1 scale/bias");
+}
+
+TEST(ConvolutionBytes, PassThroughComponentsOfLuminanceFilter) {
+  // Table 3.14: a LUMINANCE filter convolves R, G, B and passes A under the filter centre.
+  ConvolutionFilter f =
+      filter2D(3, 3, randomKernel(3, 3, 51), GL_REPLICATE_BORDER, {}, GL_LUMINANCE);
+  for (Rgba& v : f.image) v[1] = v[2] = v[0], v[3] = 0.0f;  // what filterImage stores
+  expectSameBytes(with2D(f), "luminance filter");
+}
+
+TEST(ConvolutionBytes, NonFiniteValuesTakeTheGeneralStrips) {
+  // An infinite stage-1 scale makes infinite source values: zero-weight terms then matter
+  // (Inf * 0 = NaN), so the fast forms step aside; the bytes must still match.
+  TransferState t = with2D(filter2D(3, 3, packingKernel(), GL_CONSTANT_BORDER, kBorderColor));
+  t.scale = {std::numeric_limits<float>::infinity(), 1.0f, 1.0f, 1.0f};
+  expectSameBytes(t, "infinite red scale", {{17, 5}});
+}
+
+TEST(ConvolutionBytes, MinmaxAndHistogramSeeTheSameValues) {
+  TransferState t = with2D(filter2D(3, 3, randomKernel(3, 3, 61), GL_REPLICATE_BORDER));
+  t.minmaxEnabled = true;
+  t.minmax.format = GL_RGBA;
+  detail::resetMinmax(t.minmax);
+  t.histogramEnabled = true;
+  t.histogram.format = GL_RGBA;
+  t.histogram.width = 32;
+  t.histogram.counts.assign(32, {0, 0, 0, 0});
+  expectSameBytes(t, "counting", {{33, 17}});
+  const std::vector<uint8_t> src = patternImage(33, 17, 9);
+  TransferState general = t, fast = t;
+  int ow = 0, oh = 0;
+  bool kept = true;
+  generalPath(general, src, 33, 17, ow, oh, kept);  // (a copy: generalPath takes it by value)
+  Image4 image(33, 17);
+  for (size_t i = 0; i < src.size(); ++i) image.px[i] = float(src[i]) / 255.0f;
+  detail::runPipeline(general, image, Dimensionality::k2D);
+  std::vector<uint8_t> out;
+  detail::convolveBytes(fast, src, 33, 17, out, ow, oh);
+  EXPECT_EQ(fast.minmax.min, general.minmax.min);
+  EXPECT_EQ(fast.minmax.max, general.minmax.max);
+  EXPECT_EQ(fast.histogram.counts, general.histogram.counts);
+  // A sink: nothing written, the general path keeps nothing either.
+  t.minmax.sink = true;
+  expectSameBytes(t, "minmax sink", {{17, 5}});
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
