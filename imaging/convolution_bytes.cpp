@@ -7,7 +7,7 @@
 // byte (one float per byte value), then C = 0.0f + s_1 * w_1c + s_2 * w_2c + ... over the
 // taps of kernelTaps() in their order, one float multiply and one float add per term
 // (accumulateTaps), then the post-convolution scale/bias C * scale + bias, stages 5-7 and the
-// final conversion. The two forms here compute exactly those floats:
+// final conversion. The three forms here give exactly its bytes:
 //   1. byte gather (gatherRows): when every component has at most one non-zero tap — the
 //      Brabec-Seidel packing kernel of their Eq. (1) has one per component, weight 1 — and
 //      every later stage works per component, output byte c is a function of ONE source byte
@@ -18,6 +18,10 @@
 //      taps in kernelTaps' order with separate multiply and add instructions (no FMA: the
 //      AVX2 code is compiled for "avx2" only, so the compiler cannot contract them), then
 //      scaled, biased and converted to bytes in registers when stages 5-9 are identity.
+//   3. integer sums (dyadicRows): kernels whose weights are multiples of 2^-D (binomial
+//      blurs) on the plain 8-bit prefix with nothing after the convolution: exact integer
+//      sums give every byte but the rounding ties, which are summed again as in form 2
+//      (the error bound that makes this exact is at form 3 below).
 //
 // Why terms with a zero weight may be skipped (form 1) or added (form 2) although the general
 // path skips some and adds others: the sum starts at +0.0f and a round-to-nearest sum is -0
@@ -602,6 +606,176 @@ bool sumRows(Convolution& cv, const RowConversion& rc, const Kernels& k, Transfe
   return kept;
 }
 
+// ---------------------------------------------------------------- form 3: integer sums
+// Dyadic kernels on the plain 8-bit prefix (the binomial blurs: weights N / 2^D, N >= 0), with
+// nothing after the convolution. Stage 1 gives s = float(v / 255), within 2^-25 of v / 255, so
+// the general path's float sum F lies within about 1.1e-6 of R = I / (255 * 2^D), where
+// I = sum of N * v is an exact integer (17 roundings of at most 2^-24 each for sums <= 1, plus
+// the 2^-25 of the stage values, times the weights' sum <= 1). Its byte,
+// trunc(F * 255 + 0.5) in float, is then within 3.2e-4 of X = I / 2^D + 0.5; X is a
+// multiple of 2^-D >= 2^-kMaxDyadicShift = 3.9e-3, so unless X is an integer (I = 2^(D-1)
+// mod 2^D: a rounding tie of the real value) the byte is floor(X) = (I + 2^(D-1)) >> D.
+// Ties, a few percent of the components, are summed again as the general path does, in
+// floats, in tap order. The integer sums are byte pairs times byte weights (pmaddubsw) into
+// 16-bit lanes: pairs of taps whose numerators add up to at most 128 cannot saturate, and
+// the total, at most 255 * 2^D, fits an unsigned 16-bit lane.
+constexpr int kMaxDyadicShift = 8;      // D: weights are multiples of 1/256 at the finest
+constexpr int kMaxPairNumerator = 128;  // 255 * 128 fits pmaddubsw's signed 16-bit result
+constexpr int kMaxTapPairs = (kMaxTaps + 1) / 2;
+constexpr size_t kDyadicSpeedup = 4;  // integer work per tap against float, for parallelRows
+
+bool haveAvx2ForDyadic() {
+#if defined(SL_CONVOLUTION_X86)
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
+
+struct DyadicPlan {
+  int shift = 0;                             // D
+  uint8_t numerator[kMaxTaps][kGroup] = {};  // N of tap t, component c
+  int pairs = 0;                             // taps 2k and 2k + 1 (the last may be alone)
+};
+
+bool planDyadic(const Convolution& cv, DyadicPlan& plan) {
+  if (!cv.suffixIdentity || cv.postScaleBias || !(cv.reduce || cv.replicate)) return false;
+  for (int v = 0; v < kByteValues; ++v)
+    for (int c = 0; c < kGroup; ++c)
+      if (cv.values.px[size_t(v) * kGroup + c] != float(v) / 255.0f) return false;
+  const int taps = int(cv.taps.size());
+  if (taps == 0 || taps > kMaxTaps) return false;
+  // The smallest D for which every weight is an integer multiple of 2^-D.
+  for (plan.shift = 0; plan.shift <= kMaxDyadicShift; ++plan.shift) {
+    const float unit = std::ldexp(1.0f, plan.shift);
+    bool integral = true;
+    for (const Tap& tap : cv.taps)
+      for (int c = 0; c < kGroup; ++c) {
+        const float n = tap.w[c] * unit;  // exact: a power-of-two scaling
+        integral = integral && n == std::floor(n);
+      }
+    if (integral) break;
+  }
+  if (plan.shift > kMaxDyadicShift) return false;
+  const float unit = std::ldexp(1.0f, plan.shift);
+  for (int c = 0; c < kGroup; ++c) {
+    int total = 0;
+    for (int t = 0; t < taps; ++t) {
+      const float n = cv.taps[size_t(t)].w[c] * unit;
+      if (n < 0.0f || n > float(kMaxPairNumerator)) return false;
+      plan.numerator[t][c] = uint8_t(n);
+      total += plan.numerator[t][c];
+    }
+    if (total > (1 << plan.shift)) return false;  // the sum stays within [0, 1]
+    for (int t = 0; t + 1 < taps; t += 2)
+      if (plan.numerator[t][c] + plan.numerator[t + 1][c] > kMaxPairNumerator) return false;
+  }
+  plan.pairs = (taps + 1) / 2;
+  return true;
+}
+
+// The general path's byte for component j of an output row (accumulateTaps' float sum in tap
+// order, then the final conversion): the ties, and the groups after the last whole vector.
+uint8_t exactByte(const Convolution& cv, const uint8_t* const* sources, size_t j) {
+  const int c = int(j % kGroup);
+  float sum = 0.0f;
+  for (size_t t = 0; t < cv.taps.size(); ++t) {
+    const float w = cv.taps[t].w[c];
+    if (w == 0.0f) continue;  // adds +-0 to a sum that is never -0: no change (file header)
+    sum = sum + cv.values.px[size_t(sources[t][j]) * kGroup + size_t(c)] * w;
+  }
+  return toByte(sum);
+}
+
+#if defined(SL_CONVOLUTION_X86)
+// Components [0, n) of one output row from the padded byte rows sources[t] (output group 0);
+// returns how many were written (whole vectors of 32).
+__attribute__((target("avx2"))) size_t dyadicRowAvx2(const Convolution& cv, const DyadicPlan& plan,
+                                                     const uint8_t* const* sources, uint8_t* out,
+                                                     size_t n) {
+  __m256i weights[kMaxTapPairs];
+  for (int k = 0; k < plan.pairs; ++k) {
+    const int a = 2 * k, b = 2 * k + 1;
+    uint8_t pattern[2 * kGroup];  // (N_a, N_b) per component, as unpack interleaves them
+    for (int c = 0; c < kGroup; ++c) {
+      pattern[2 * c] = plan.numerator[a][c];
+      pattern[2 * c + 1] = b < int(cv.taps.size()) ? plan.numerator[b][c] : 0;
+    }
+    uint64_t bits;
+    std::memcpy(&bits, pattern, sizeof bits);
+    weights[k] = _mm256_set1_epi64x(int64_t(bits));
+  }
+  const __m256i half = _mm256_set1_epi16(int16_t(1 << (plan.shift - 1 < 0 ? 0 : plan.shift - 1)));
+  const __m256i fraction = _mm256_set1_epi16(int16_t((1 << plan.shift) - 1));
+  const __m128i shift = _mm_cvtsi32_si128(plan.shift);
+  const bool unit = plan.shift == 0;  // D = 0: integer weights, no rounding and no ties
+  const int taps = int(cv.taps.size());
+  size_t i = 0;
+  for (; i + 32 <= n; i += 32) {
+    __m256i low = _mm256_setzero_si256(), high = _mm256_setzero_si256();
+    for (int k = 0; k < plan.pairs; ++k) {
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sources[2 * k] + i));
+      const __m256i b =
+          2 * k + 1 < taps
+              ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(sources[2 * k + 1] + i))
+              : _mm256_setzero_si256();
+      low = _mm256_add_epi16(low, _mm256_maddubs_epi16(_mm256_unpacklo_epi8(a, b), weights[k]));
+      high = _mm256_add_epi16(high, _mm256_maddubs_epi16(_mm256_unpackhi_epi8(a, b), weights[k]));
+    }
+    __m256i bytes;
+    uint32_t ties = 0;
+    if (unit) {
+      bytes = _mm256_packus_epi16(low, high);
+    } else {
+      const __m256i tieLow = _mm256_cmpeq_epi16(_mm256_and_si256(low, fraction), half);
+      const __m256i tieHigh = _mm256_cmpeq_epi16(_mm256_and_si256(high, fraction), half);
+      ties = uint32_t(_mm256_movemask_epi8(_mm256_packs_epi16(tieLow, tieHigh)));
+      low = _mm256_srl_epi16(_mm256_add_epi16(low, half), shift);
+      high = _mm256_srl_epi16(_mm256_add_epi16(high, half), shift);
+      bytes = _mm256_packus_epi16(low, high);  // unpack and pack are both per lane: in order
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + i), bytes);
+    for (; ties != 0; ties &= ties - 1) {
+      const size_t j = i + size_t(__builtin_ctz(ties));
+      out[j] = exactByte(cv, sources, j);
+    }
+  }
+  return i;
+}
+#endif
+
+// Rows [y0, y1) by integer sums: a ring of Hf padded byte rows (the edge replicated under
+// REPLICATE; none under REDUCE).
+void dyadicRows(const Convolution& cv, const DyadicPlan& plan, const uint8_t* src, uint8_t* out,
+                int y0, int y1) {
+  const int hf = cv.hf;
+  const size_t rowBytes = size_t(cv.pw) * kGroup;
+  std::vector<uint8_t> ring(size_t(hf) * rowBytes + 32);  // + a vector of slack for the loads
+  auto slot = [&](int py) { return ring.data() + size_t(py % hf) * rowBytes; };
+  auto pad = [&](int py) {
+    uint8_t* const dst = slot(py);
+    const uint8_t* const row = src + size_t(std::clamp(py - cv.ch, 0, cv.hs - 1)) * cv.ws * kGroup;
+    std::memcpy(dst + size_t(cv.cw) * kGroup, row, size_t(cv.ws) * kGroup);
+    for (int x = 0; x < cv.cw; ++x) std::memcpy(dst + size_t(x) * kGroup, row, kGroup);
+    for (int x = cv.cw + cv.ws; x < cv.pw; ++x)
+      std::memcpy(dst + size_t(x) * kGroup, row + size_t(cv.ws - 1) * kGroup, kGroup);
+  };
+  const uint8_t* sources[kMaxTaps];
+  const size_t n = size_t(cv.ow) * kGroup;
+  for (int py = y0; py < y0 + hf - 1; ++py) pad(py);
+  for (int j = y0; j < y1; ++j) {
+    pad(j + hf - 1);
+    for (size_t t = 0; t < cv.taps.size(); ++t)
+      sources[t] = slot(j + cv.taps[t].m) + size_t(cv.taps[t].n) * kGroup;
+    uint8_t* const o = out + size_t(j) * n;
+    size_t done = 0;
+#if defined(SL_CONVOLUTION_X86)
+    done = dyadicRowAvx2(cv, plan, sources, o, n);
+#endif
+    for (size_t i = done; i < n; ++i) o[i] = exactByte(cv, sources, i);
+  }
+}
+
 }  // namespace
 
 bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, int hs,
@@ -627,6 +801,12 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
     // One core: the gather moves bytes at nearly memory speed, and a second thread's start
     // (tens of microseconds on this kind of machine) cost more than it saved when measured.
     gatherRows(cv, plan, kernels, src.data(), out.data(), 0, oh);
+    return true;
+  }
+  DyadicPlan dyadic;
+  if (!counting && simd == SimdLevel::kBest && haveAvx2ForDyadic() && planDyadic(cv, dyadic)) {
+    parallelRows(oh, size_t(ow) * kGroup * (cv.taps.size() + 1) / kDyadicSpeedup,
+                 [&](int y0, int y1) { dyadicRows(cv, dyadic, src.data(), out.data(), y0, y1); });
     return true;
   }
   const RowConversion rc = chooseConversion(t, cv, kernels);

@@ -163,6 +163,75 @@ TEST(ConvolutionBytes, Blur3x3EveryBorderMode) {
     expectSameBytes(with2D(filter2D(3, 3, k, border, kBorderColor)), borderName(border));
 }
 
+// Dyadic kernels (weights N / 2^D) on the plain 8-bit prefix take the integer sums
+// (convolution_bytes.cpp form 3): bytes from (I + 2^(D-1)) >> D, and the rounding ties
+// (I = 2^(D-1) mod 2^D) summed again in floats. The expectation is the float path's bytes.
+std::vector<float> outerProduct(const std::vector<int>& a, const std::vector<int>& b, int unit) {
+  std::vector<float> k(a.size() * b.size() * 4);
+  for (size_t m = 0; m < a.size(); ++m)
+    for (size_t n = 0; n < b.size(); ++n)
+      for (int c = 0; c < 4; ++c) k[(m * b.size() + n) * 4 + c] = float(a[m] * b[n]) / float(unit);
+  return k;
+}
+
+TEST(ConvolutionBytes, DyadicBinomialKernelsWithRoundingTies) {
+  for (GLenum border : {GLenum(GL_REDUCE), GLenum(GL_REPLICATE_BORDER)}) {
+    expectSameBytes(with2D(filter2D(3, 3, outerProduct({1, 2, 1}, {1, 2, 1}, 16), border)),
+                    borderName(border));
+    expectSameBytes(
+        with2D(filter2D(5, 5, outerProduct({1, 4, 6, 4, 1}, {1, 4, 6, 4, 1}, 256), border)),
+        borderName(border));
+    expectSameBytes(with2D(filter2D(3, 1, outerProduct({1}, {1, 2, 1}, 4), border)),
+                    borderName(border));
+  }
+  // The largest test image really has ties for the 3x3 binomial (I = 8 mod 16), so the float
+  // re-summation is exercised, not only the integer bytes.
+  const std::vector<uint8_t> src = patternImage(256, 192, 7);
+  int ties = 0;
+  for (int y = 1; y + 1 < 192; ++y)
+    for (int x = 1; x + 1 < 256; ++x)
+      for (int c = 0; c < 4; ++c) {
+        int sum = 0;
+        const int w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
+        for (int m = 0; m < 3; ++m)
+          for (int n = 0; n < 3; ++n)
+            sum +=
+                w[m * 3 + n] * src[(size_t(y + m - 1) * 256 + size_t(x + n - 1)) * 4 + size_t(c)];
+        ties += sum % 16 == 8;
+      }
+  EXPECT_GT(ties, 1000);
+}
+
+TEST(ConvolutionBytes, DyadicWeightsDifferentPerComponentAndSumsBelowOne) {
+  // R: 3x3 binomial; G: a cross summing to 1 in eighths; B: numerators 3 (not powers of two,
+  // so the float products round) summing to 15/16; A: every tap 1/32 (9/32 in all).
+  const int r[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1}, g[9] = {0, 1, 0, 1, 4, 1, 0, 1, 0},
+            b[9] = {1, 1, 1, 3, 3, 3, 1, 1, 1};
+  std::vector<float> k(9 * 4);
+  for (int t = 0; t < 9; ++t) {
+    k[t * 4 + 0] = float(r[t]) / 16.0f;
+    k[t * 4 + 1] = float(g[t]) / 8.0f;
+    k[t * 4 + 2] = float(b[t]) / 16.0f;
+    k[t * 4 + 3] = 1.0f / 32.0f;
+  }
+  for (GLenum border : {GLenum(GL_REDUCE), GLenum(GL_REPLICATE_BORDER)})
+    expectSameBytes(with2D(filter2D(3, 3, k, border)), borderName(border));
+}
+
+TEST(ConvolutionBytes, DyadicKernelsOutsideTheIntegerLimits) {
+  // A pair of numerators above 128 (pmaddubsw could saturate) and a sum above 1: both must
+  // take the float sums, with the same bytes.
+  std::vector<float> heavy(9 * 4, 0.0f), over(9 * 4, 0.0f);
+  for (int c = 0; c < 4; ++c) {
+    heavy[0 * 4 + c] = 127.0f / 256.0f;  // odd numerators: D = 8 is the smallest
+    heavy[1 * 4 + c] = 127.0f / 256.0f;
+    heavy[4 * 4 + c] = 2.0f / 256.0f;
+    for (int t = 0; t < 9; ++t) over[t * 4 + c] = 0.25f;
+  }
+  expectSameBytes(with2D(filter2D(3, 3, heavy, GL_REPLICATE_BORDER)), "pair above 128");
+  expectSameBytes(with2D(filter2D(3, 3, over, GL_REPLICATE_BORDER)), "sum above 1");
+}
+
 TEST(ConvolutionBytes, Random5x5And9x9WithNegativeWeights) {
   for (GLenum border : kBorders) {
     expectSameBytes(with2D(filter2D(5, 5, randomKernel(5, 5, 11), border, kBorderColor)),
