@@ -2,6 +2,8 @@
 // Specification": glMatrixMode(GL_COLOR) makes the matrix commands of 2.10.2 act on the top
 // of the color matrix stack), the stage of 3.6.5 "Color Matrix Transformation" with its
 // post-color-matrix scale and bias, and 6.1.6 "Color Matrix Query" (state.cpp answers it).
+#include <cmath>
+
 #include "imaging/internal.h"
 
 namespace sl::imaging::detail {
@@ -146,6 +148,163 @@ void emTranslatef(GLfloat x, GLfloat y, GLfloat z) {
   Matrix4 m;
   m.m[12] = x, m.m[13] = y, m.m[14] = z;
   top(s) = multiply(top(s), m);
+}
+
+}  // namespace sl::imaging::detail
+
+namespace sl::imaging::detail {
+namespace {
+
+constexpr double kDegreesToRadians = 3.14159265358979323846 / 180.0;
+// Rotation about an axis this short is left out, as Mesa does (the specification asks for a
+// unit axis and leaves a zero one undefined).
+constexpr double kMinimumAxisLength = 1.0e-4;
+
+// The current (color) matrix times m: what every matrix command of 2.10.2 does.
+void multiplyTop(State& s, const Matrix4& m) {
+  top(s) = multiply(top(s), m);
+}
+
+Matrix4 fromRows(const double r[16]) {  // row-major values -> column-major matrix
+  Matrix4 m;
+  for (int row = 0; row < 4; ++row)
+    for (int c = 0; c < 4; ++c) m.m[size_t(c * 4 + row)] = float(r[row * 4 + c]);
+  return m;
+}
+
+// 2.10.2 Rotate: R = u u^T + cos(theta) (I - u u^T) + sin(theta) S, u the unit axis.
+Matrix4 rotation(double degrees, double x, double y, double z) {
+  const double length = std::sqrt(x * x + y * y + z * z);
+  if (length <= kMinimumAxisLength) return Matrix4{};
+  x /= length, y /= length, z /= length;
+  const double c = std::cos(degrees * kDegreesToRadians), s = std::sin(degrees * kDegreesToRadians);
+  const double u[3] = {x, y, z};
+  const double skew[9] = {0, -z, y, z, 0, -x, -y, x, 0};
+  double r[16] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      r[i * 4 + j] = u[i] * u[j] + c * ((i == j ? 1.0 : 0.0) - u[i] * u[j]) + s * skew[i * 3 + j];
+  return fromRows(r);
+}
+
+// 2.10.2 Ortho; INVALID_VALUE when l = r, b = t or n = f.
+bool orthographic(double l, double r, double b, double t, double n, double f, Matrix4& m) {
+  if (l == r || b == t || n == f) return false;
+  const double rows[16] = {2 / (r - l),
+                           0,
+                           0,
+                           -(r + l) / (r - l),
+                           0,
+                           2 / (t - b),
+                           0,
+                           -(t + b) / (t - b),
+                           0,
+                           0,
+                           -2 / (f - n),
+                           -(f + n) / (f - n),
+                           0,
+                           0,
+                           0,
+                           1};
+  m = fromRows(rows);
+  return true;
+}
+
+// 2.10.2 Frustum; INVALID_VALUE when n or f is not positive, or l = r, b = t, n = f.
+bool perspective(double l, double r, double b, double t, double n, double f, Matrix4& m) {
+  if (n <= 0 || f <= 0 || l == r || b == t || n == f) return false;
+  const double rows[16] = {2 * n / (r - l),
+                           0,
+                           (r + l) / (r - l),
+                           0,
+                           0,
+                           2 * n / (t - b),
+                           (t + b) / (t - b),
+                           0,
+                           0,
+                           0,
+                           -(f + n) / (f - n),
+                           -2 * f * n / (f - n),
+                           0,
+                           0,
+                           -1,
+                           0};
+  m = fromRows(rows);
+  return true;
+}
+
+template <class T>
+Matrix4 transposed(const T* v) {  // 2.10.2 LoadTransposeMatrix: the rows are given
+  Matrix4 m;
+  for (int row = 0; row < 4; ++row)
+    for (int c = 0; c < 4; ++c) m.m[size_t(c * 4 + row)] = float(v[row * 4 + c]);
+  return m;
+}
+
+}  // namespace
+
+void emScaled(GLdouble x, GLdouble y, GLdouble z) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Scaled(x, y, z);
+  emScalef(GLfloat(x), GLfloat(y), GLfloat(z));
+}
+
+void emTranslated(GLdouble x, GLdouble y, GLdouble z) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Translated(x, y, z);
+  emTranslatef(GLfloat(x), GLfloat(y), GLfloat(z));
+}
+
+void emRotatef(GLfloat angle, GLfloat x, GLfloat y, GLfloat z) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Rotatef(angle, x, y, z);
+  multiplyTop(s, rotation(angle, x, y, z));
+}
+
+void emRotated(GLdouble angle, GLdouble x, GLdouble y, GLdouble z) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Rotated(angle, x, y, z);
+  multiplyTop(s, rotation(angle, x, y, z));
+}
+
+void emOrtho(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Ortho(l, r, b, t, n, f);
+  Matrix4 m;
+  if (!orthographic(l, r, b, t, n, f, m)) return recordError(s, GL_INVALID_VALUE);
+  multiplyTop(s, m);
+}
+
+void emFrustum(GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.Frustum(l, r, b, t, n, f);
+  Matrix4 m;
+  if (!perspective(l, r, b, t, n, f, m)) return recordError(s, GL_INVALID_VALUE);
+  multiplyTop(s, m);
+}
+
+void emLoadTransposeMatrixf(const GLfloat* m) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.LoadTransposeMatrixf(m);
+  top(s) = transposed(m);
+}
+
+void emLoadTransposeMatrixd(const GLdouble* m) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.LoadTransposeMatrixd(m);
+  top(s) = transposed(m);
+}
+
+void emMultTransposeMatrixf(const GLfloat* m) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.MultTransposeMatrixf(m);
+  multiplyTop(s, transposed(m));
+}
+
+void emMultTransposeMatrixd(const GLdouble* m) {
+  State& s = *currentState();
+  if (!s.colorMatrixMode) return s.driver.MultTransposeMatrixd(m);
+  multiplyTop(s, transposed(m));
 }
 
 }  // namespace sl::imaging::detail

@@ -82,6 +82,16 @@ Mode install(GlContext& context) {
   d.PopMatrix = emPopMatrix;
   d.Scalef = emScalef;
   d.Translatef = emTranslatef;
+  d.Scaled = emScaled;
+  d.Translated = emTranslated;
+  d.Rotatef = emRotatef;
+  d.Rotated = emRotated;
+  d.Ortho = emOrtho;
+  d.Frustum = emFrustum;
+  d.LoadTransposeMatrixf = emLoadTransposeMatrixf;
+  d.LoadTransposeMatrixd = emLoadTransposeMatrixd;
+  d.MultTransposeMatrixf = emMultTransposeMatrixf;
+  d.MultTransposeMatrixd = emMultTransposeMatrixd;
   d.GetIntegerv = emGetIntegerv;
   d.GetFloatv = emGetFloatv;
   d.GetBooleanv = emGetBooleanv;

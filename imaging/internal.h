@@ -363,6 +363,16 @@ void emPushMatrix();
 void emPopMatrix();
 void emScalef(GLfloat, GLfloat, GLfloat);
 void emTranslatef(GLfloat, GLfloat, GLfloat);
+void emScaled(GLdouble, GLdouble, GLdouble);
+void emTranslated(GLdouble, GLdouble, GLdouble);
+void emRotatef(GLfloat, GLfloat, GLfloat, GLfloat);
+void emRotated(GLdouble, GLdouble, GLdouble, GLdouble);
+void emOrtho(GLdouble, GLdouble, GLdouble, GLdouble, GLdouble, GLdouble);
+void emFrustum(GLdouble, GLdouble, GLdouble, GLdouble, GLdouble, GLdouble);
+void emLoadTransposeMatrixf(const GLfloat*);
+void emLoadTransposeMatrixd(const GLdouble*);
+void emMultTransposeMatrixf(const GLfloat*);
+void emMultTransposeMatrixd(const GLdouble*);
 // pixel_paths.cpp
 void emDrawPixels(GLsizei, GLsizei, GLenum, GLenum, const void*);
 void emReadPixels(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void*);

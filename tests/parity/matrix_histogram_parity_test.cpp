@@ -66,6 +66,65 @@ TEST(ColorMatrixStackParity, PushMultiplyPopOverflowUnderflow) {
   });
 }
 
+// The matrix commands of 2.10.2 on the colour matrix (3.6.3): each command, the matrix read
+// back, and a copy through the result. The matrices keep every exact result at least 0.1 step
+// from a rounding tie: integer entries or fifths (no halves, whose products of odd bytes are
+// exact ties); the rotations' cos 90 degrees is about 1e-8, far below a step.
+class ColorMatrixCommandParity : public ::testing::TestWithParam<int> {};
+TEST_P(ColorMatrixCommandParity, CommandQueryAndCopy) {
+  SL_REQUIRE_REFERENCE();
+  const int k = GetParam();
+  checkParity([k](Outcome& o) {
+    putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 121 + k));
+    glMatrixMode(GL_COLOR);
+    const float rows[16] = {0.6f, 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0.2f, 0.4f, 0, 0.4f};
+    const double swap[16] = {0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    switch (k) {
+      case 0:
+        glRotatef(90.0f, 0.0f, 0.0f, 1.0f);
+        break;
+      case 1:
+        glRotated(180.0, 1.0, 0.0, 0.0);
+        break;
+      case 2:
+        glOrtho(0.0, 2.0, 0.0, 2.0, -1.0, 1.0);
+        break;
+      case 3:
+        glFrustum(-1.0, 1.0, -1.0, 1.0, 1.0, 3.0);
+        break;
+      case 4:
+        glScaled(0.4, 0.8, 1.0);  // results stay below 0.8: clear of departure F's band
+        glTranslated(1.0, -1.0, 0.0);
+        break;
+      case 5:
+        glLoadTransposeMatrixf(rows);
+        glMultTransposeMatrixd(swap);
+        break;
+      case 6:  // errors: l = r, n <= 0, n = f; the matrix stays the identity
+        glOrtho(1.0, 1.0, 0.0, 1.0, 0.0, 1.0);
+        glFrustum(-1.0, 1.0, -1.0, 1.0, 0.0, 1.0);
+        glFrustum(-1.0, 1.0, -1.0, 1.0, 2.0, 2.0);
+        break;
+      default:
+        break;
+    }
+    const auto e = drainErrors();
+    o.errors.insert(o.errors.end(), e.begin(), e.end());
+    float m[16];
+    glGetFloatv(GL_COLOR_MATRIX, m);
+    o.floats.insert(o.floats.end(), m, m + 16);
+    glMatrixMode(GL_MODELVIEW);
+    glWindowPos2i(kParityW / 2, 0);
+    glCopyPixels(0, 0, kParityW / 2, kParityH, GL_COLOR);
+    glMatrixMode(GL_COLOR);
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    appendBytes(o, readWindow());
+  });
+}
+INSTANTIATE_TEST_SUITE_P(RotateOrthoFrustumScaleTranslateTranspose, ColorMatrixCommandParity,
+                         ::testing::Range(0, 7));
+
 // Post-color-matrix scale and bias, with and without a matrix.
 class PostMatrixScaleBiasParity : public ::testing::TestWithParam<int> {};
 TEST_P(PostMatrixScaleBiasParity, CopyPixels) {
