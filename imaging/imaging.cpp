@@ -108,6 +108,10 @@ Mode install(GlContext& context) {
   d.CopyTexSubImage2D = emCopyTexSubImage2D;
   d.TexImage2D = emTexImage2D;
   d.TexSubImage2D = emTexSubImage2D;
+  d.TexImage1D = emTexImage1D;
+  d.TexSubImage1D = emTexSubImage1D;
+  d.CopyTexImage1D = emCopyTexImage1D;
+  d.CopyTexSubImage1D = emCopyTexSubImage1D;
   if (s.emulateAccum) {
     d.Accum = emAccum;
     d.ClearAccum = emClearAccum;

@@ -381,6 +381,10 @@ void emCopyTexImage2D(GLenum, GLint, GLenum, GLint, GLint, GLsizei, GLsizei, GLi
 void emCopyTexSubImage2D(GLenum, GLint, GLint, GLint, GLint, GLint, GLsizei, GLsizei);
 void emTexImage2D(GLenum, GLint, GLint, GLsizei, GLsizei, GLint, GLenum, GLenum, const void*);
 void emTexSubImage2D(GLenum, GLint, GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, const void*);
+void emTexImage1D(GLenum, GLint, GLint, GLsizei, GLint, GLenum, GLenum, const void*);
+void emTexSubImage1D(GLenum, GLint, GLint, GLsizei, GLenum, GLenum, const void*);
+void emCopyTexImage1D(GLenum, GLint, GLenum, GLint, GLint, GLsizei, GLint);
+void emCopyTexSubImage1D(GLenum, GLint, GLint, GLint, GLint, GLsizei);
 // Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
 // the final expansion to RGBA": no pixel transfer), through the driver.
 Image4 readFramebuffer(State& s, int x, int y, int w, int h);

@@ -1,6 +1,7 @@
 // imaging/pixel_paths.cpp — the commands whose pixels go through the pixel-transfer
 // operations (glspec121 3.6.4 DrawPixels, 4.3.2 ReadPixels, 4.3.3 CopyPixels, 3.8.1-3.8.2
-// TexImage2D, TexSubImage2D, CopyTexImage2D, CopyTexSubImage2D).
+// TexImage2D, TexSubImage2D, CopyTexImage2D, CopyTexSubImage2D, and their one-dimensional
+// forms, the only ones GL_CONVOLUTION_1D applies to).
 //
 // When every stage is identity the call goes to the driver untouched. Otherwise the groups
 // are read (client memory or framebuffer), transformed by runPipeline (pixel_transfer.cpp),
@@ -147,6 +148,29 @@ void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint interna
   }
 }
 
+// The one-dimensional twin of uploadTexture (3.8.1 TexImage1D, 3.8.2 TexSubImage1D).
+void uploadTexture1D(State& s, bool sub, GLenum target, GLint level, GLint internalformat,
+                     GLint xoffset, GLint border, const Image4* image, int w) {
+  GLenum type = GL_FLOAT;
+  if (sub) {
+    GLint format = 0;
+    s.driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    if (eightBitTexture(GLenum(format))) type = GL_UNSIGNED_BYTE;
+  } else if (eightBitTexture(GLenum(internalformat))) {
+    type = GL_UNSIGNED_BYTE;
+  }
+  std::vector<unsigned char> data;
+  if (image != nullptr) data = finalConversion(*image, type);
+  TightPixelStore tight(s.driver);
+  const void* p = image != nullptr ? data.data() : nullptr;
+  if (sub) {
+    if (image == nullptr || w == 0) return;
+    s.driver.TexSubImage1D(target, level, xoffset, w, GL_RGBA, type, p);
+  } else {
+    s.driver.TexImage1D(target, level, internalformat, w, border, GL_RGBA, type, p);
+  }
+}
+
 // ---- the 8-bit path (fast_paths.cpp): bytes in, bytes out, no float images ----
 bool eightBitFramebuffer(const State& s) {
   return framebufferType(s) == GL_UNSIGNED_BYTE;
@@ -168,8 +192,8 @@ bool tightRgba8(GLenum format, GLenum type, int w, const PixelStore& store) {
          store.skipPixels == 0 && store.skipRows == 0 && (w * 4) % store.alignment == 0;
 }
 
-bool passThrough(State* s) {
-  return s == nullptr || pipelineIsIdentity(s->transfer, Dimensionality::k2D);
+bool passThrough(State* s, Dimensionality dims = Dimensionality::k2D) {
+  return s == nullptr || pipelineIsIdentity(s->transfer, dims);
 }
 
 }  // namespace
@@ -361,6 +385,65 @@ void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, G
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
   uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width, image.height);
+}
+
+// ---- one-dimensional textures: the only images GL_CONVOLUTION_1D applies to (3.6.5
+// "Convolution": "the one-dimensional convolution filter is applied only to the one-
+// dimensional texture images passed to TexImage1D, TexSubImage1D, CopyTexImage1D, and
+// CopyTexSubImage1D"; the 2D filters do not apply to them). The same sentence adds images
+// "returned by GetTexImage", but 6.1.4 says "No pixel transfer operations are performed" on
+// them; GetTexImage is left to the driver, as the reference implementation does. ----
+
+void emTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei w, GLint border,
+                  GLenum format, GLenum type, const void* data) {
+  State* s = currentState();
+  if (passThrough(s, Dimensionality::k1D) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0)
+    return s->driver.TexImage1D(target, level, internalformat, w, border, format, type, data);
+  if (data == nullptr) {  // REDUCE shrinks the width even without data (as for 2D)
+    int cw = w, ch = 1;
+    convolvedSize(s->transfer, Dimensionality::k1D, cw, ch);
+    return s->driver.TexImage1D(target, level, internalformat, cw, border, format, type, nullptr);
+  }
+  Image4 image = unpackImage(data, w, 1, format, type, unpackStore(s->driver));
+  refreshColorMaps(*s);
+  const bool kept = runPipeline(s->transfer, image, Dimensionality::k1D);
+  uploadTexture1D(*s, false, target, level, internalformat, 0, border, kept ? &image : nullptr,
+                  image.width);
+}
+
+void emTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei w, GLenum format,
+                     GLenum type, const void* data) {
+  State* s = currentState();
+  if (passThrough(s, Dimensionality::k1D) || checkColorFormat(format, type) != GL_NO_ERROR ||
+      w < 0 || data == nullptr)
+    return s->driver.TexSubImage1D(target, level, xoffset, w, format, type, data);
+  Image4 image = unpackImage(data, w, 1, format, type, unpackStore(s->driver));
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k1D)) return;
+  uploadTexture1D(*s, true, target, level, 0, xoffset, 0, &image, image.width);
+}
+
+void emCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
+                      GLsizei w, GLint border) {
+  State* s = currentState();
+  if (passThrough(s, Dimensionality::k1D) || w < 0)
+    return s->driver.CopyTexImage1D(target, level, internalformat, x, y, w, border);
+  Image4 image = readFramebuffer(*s, x, y, w, 1);
+  refreshColorMaps(*s);
+  const bool kept = runPipeline(s->transfer, image, Dimensionality::k1D);
+  // A sink leaves texture memory undefined but still (re)defines the texture's state.
+  uploadTexture1D(*s, false, target, level, GLint(internalformat), 0, border,
+                  kept ? &image : nullptr, image.width);
+}
+
+void emCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei w) {
+  State* s = currentState();
+  if (passThrough(s, Dimensionality::k1D) || w < 0)
+    return s->driver.CopyTexSubImage1D(target, level, xoffset, x, y, w);
+  Image4 image = readFramebuffer(*s, x, y, w, 1);
+  refreshColorMaps(*s);
+  if (!runPipeline(s->transfer, image, Dimensionality::k1D)) return;
+  uploadTexture1D(*s, true, target, level, 0, xoffset, 0, &image, image.width);
 }
 
 }  // namespace sl::imaging::detail

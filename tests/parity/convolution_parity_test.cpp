@@ -275,3 +275,71 @@ TEST(BrabecSeidelParity, PackingKernelOnCopyTexSubImage) {
 
 }  // namespace
 }  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// One-dimensional filters (3.6.5: GL_CONVOLUTION_1D applies only to the one-dimensional
+// texture commands) of widths 1 to 9 under the three border modes, on glTexImage1D (client
+// bytes) and glCopyTexImage1D (framebuffer row); the RGBA8 texture read back with
+// glGetTexImage (no pixel transfer, 6.1.4) and its width (REDUCE: W - Wf + 1).
+struct Filter1DCase {
+  int width;
+  GLenum border;
+  bool copy;
+};
+std::vector<Filter1DCase> filter1DCases() {
+  std::vector<Filter1DCase> cases;
+  for (int w : {1, 3, 5, 7, 9})
+    for (GLenum b : {GLenum(GL_REDUCE), GLenum(GL_CONSTANT_BORDER), GLenum(GL_REPLICATE_BORDER)})
+      for (bool copy : {false, true})
+        // glCopyTexImage1D under REDUCE is departure G (departures_test.cpp).
+        if (!(copy && b == GL_REDUCE)) cases.push_back({w, b, copy});
+  return cases;
+}
+class Filter1DParity : public ::testing::TestWithParam<Filter1DCase> {};
+TEST_P(Filter1DParity, TextureImage) {
+  SL_REQUIRE_REFERENCE();
+  const Filter1DCase c = GetParam();
+  checkParity([c](Outcome& o) {
+    constexpr int kRow = 16;
+    const std::vector<uint8_t> row = patternImage(kRow, 1, 131 + unsigned(c.width));
+    const std::vector<float> f = weights(c.width, 141 + unsigned(c.width));
+    glConvolutionFilter1D(GL_CONVOLUTION_1D, GL_RGBA, c.width, GL_RGBA, GL_FLOAT, f.data());
+    glConvolutionParameteri(GL_CONVOLUTION_1D, GL_CONVOLUTION_BORDER_MODE, GLint(c.border));
+    const float borderColor[4] = {0.2f, 0.6f, 0.0f, 1.0f};
+    glConvolutionParameterfv(GL_CONVOLUTION_1D, GL_CONVOLUTION_BORDER_COLOR, borderColor);
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_1D, tex);
+    glEnable(GL_CONVOLUTION_1D);
+    if (c.copy) {
+      putImage(kRow, 1, row);
+      glCopyTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA8, 0, 0, kRow, 0);
+    } else {
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      glTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA8, kRow, 0, GL_RGBA, GL_UNSIGNED_BYTE, row.data());
+    }
+    glDisable(GL_CONVOLUTION_1D);
+    GLint width = 0;
+    glGetTexLevelParameteriv(GL_TEXTURE_1D, 0, GL_TEXTURE_WIDTH, &width);
+    o.floats.push_back(float(width));
+    std::vector<uint8_t> texels(size_t(std::max(width, 0)) * 4, 0xCD);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (width > 0) glGetTexImage(GL_TEXTURE_1D, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    appendBytes(o, texels);
+    glDeleteTextures(1, &tex);
+  });
+}
+INSTANTIATE_TEST_SUITE_P(WidthsBordersPaths, Filter1DParity, ::testing::ValuesIn(filter1DCases()),
+                         [](const ::testing::TestParamInfo<Filter1DCase>& info) {
+                           const Filter1DCase& c = info.param;
+                           return std::string(c.copy ? "CopyTexImage1D_" : "TexImage1D_") +
+                                  std::to_string(c.width) +
+                                  (c.border == GL_REDUCE            ? "_reduce"
+                                   : c.border == GL_CONSTANT_BORDER ? "_constant"
+                                                                    : "_replicate");
+                         });
+
+}  // namespace
+}  // namespace sl::imaging::testing

@@ -280,6 +280,45 @@ TEST(Departures, AdditionalF_ReferenceSaturatesAbove0996) {
   EXPECT_EQ(r.bytes[4], 255);
 }
 
+// G. glCopyTexImage1D under a GL_REDUCE 1D filter defines a texture of the convolved width
+//    W - Wf + 1 (3.8.2: processed as TexImage1D; 3.6.5: REDUCE "the resulting image is
+//    smaller", as glCopyTexImage2D does on both); the reference keeps the source width W and
+//    fills the last Wf - 1 texels with 0 (found by the 1D parity cases).
+TEST(Departures, AdditionalG_CopyTexImage1DReduceKeepsTheSourceWidth) {
+  SL_REQUIRE_REFERENCE();
+  constexpr int kRow = 8, kFilterWidth = 3;
+  auto scenario = [](Outcome& o) {
+    putImage(kRow, 1, std::vector<uint8_t>(size_t(kRow) * 4, 200));
+    const float f[kFilterWidth * 4] = {0.2f, 0.2f, 0.2f, 0.2f, 0.4f, 0.4f,
+                                       0.4f, 0.4f, 0.2f, 0.2f, 0.2f, 0.2f};  // sums to 0.8
+    glConvolutionFilter1D(GL_CONVOLUTION_1D, GL_RGBA, kFilterWidth, GL_RGBA, GL_FLOAT, f);
+    glEnable(GL_CONVOLUTION_1D);  // REDUCE: the initial border mode
+    GLuint tex = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_1D, tex);
+    glCopyTexImage1D(GL_TEXTURE_1D, 0, GL_RGBA8, 0, 0, kRow, 0);
+    glDisable(GL_CONVOLUTION_1D);
+    GLint width = 0;
+    glGetTexLevelParameteriv(GL_TEXTURE_1D, 0, GL_TEXTURE_WIDTH, &width);
+    o.floats.push_back(float(width));
+    std::vector<uint8_t> texels(size_t(width) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_1D, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+    appendBytes(o, texels);
+    glDeleteTextures(1, &tex);
+  };
+  const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
+  EXPECT_EQ(e.floats[0], float(kRow - kFilterWidth + 1));
+  EXPECT_EQ(r.floats[0], float(kRow));
+  ASSERT_EQ(e.bytes.size(), size_t(kRow - kFilterWidth + 1) * 4);
+  ASSERT_EQ(r.bytes.size(), size_t(kRow) * 4);
+  for (size_t i = 0; i < e.bytes.size(); ++i) {
+    EXPECT_EQ(e.bytes[i], 160) << i;  // 0.8 * 200
+    EXPECT_EQ(r.bytes[i], 160) << i;  // the convolved texels agree
+  }
+  for (size_t i = e.bytes.size(); i < r.bytes.size(); ++i) EXPECT_EQ(r.bytes[i], 0) << i;
+}
+
 // Exact rounding ties may go either way in single precision (the reference README): both
 // implementations agree everywhere except at pixels where the test proves the exact value
 // is a tie, and there by one step.
