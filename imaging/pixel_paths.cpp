@@ -126,8 +126,12 @@ void drawImage(State& s, const Image4& image) {
   s.driver.DrawPixels(image.width, image.height, GL_RGBA, type, data.data());
 }
 
-void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint internalformat,
-                   GLint xoffset, GLint yoffset, GLint border, const Image4* image, int w, int h) {
+// Writes a transformed image into a texture of 1 or 2 dimensions (3.8.1 TexImage1D/2D, 3.8.2
+// TexSubImage1D/2D) in the texture's precision: unsigned bytes for an 8-bit internal format,
+// floats otherwise. A null image (a sink) still defines the texture, without data.
+void uploadTexture(State& s, Dimensionality dims, bool sub, GLenum target, GLint level,
+                   GLint internalformat, GLint xoffset, GLint yoffset, GLint border,
+                   const Image4* image, int w, int h) {
   GLenum type = GL_FLOAT;
   if (sub) {
     GLint format = 0;
@@ -140,35 +144,14 @@ void uploadTexture(State& s, bool sub, GLenum target, GLint level, GLint interna
   if (image != nullptr) data = finalConversion(*image, type);
   TightPixelStore tight(s.driver);
   const void* p = image != nullptr ? data.data() : nullptr;
+  const bool oneD = dims == Dimensionality::k1D;
   if (sub) {
     if (image == nullptr || w == 0 || h == 0) return;
-    s.driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, type, p);
-  } else {
-    s.driver.TexImage2D(target, level, internalformat, w, h, border, GL_RGBA, type, p);
+    if (oneD) return s.driver.TexSubImage1D(target, level, xoffset, w, GL_RGBA, type, p);
+    return s.driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, type, p);
   }
-}
-
-// The one-dimensional twin of uploadTexture (3.8.1 TexImage1D, 3.8.2 TexSubImage1D).
-void uploadTexture1D(State& s, bool sub, GLenum target, GLint level, GLint internalformat,
-                     GLint xoffset, GLint border, const Image4* image, int w) {
-  GLenum type = GL_FLOAT;
-  if (sub) {
-    GLint format = 0;
-    s.driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    if (eightBitTexture(GLenum(format))) type = GL_UNSIGNED_BYTE;
-  } else if (eightBitTexture(GLenum(internalformat))) {
-    type = GL_UNSIGNED_BYTE;
-  }
-  std::vector<unsigned char> data;
-  if (image != nullptr) data = finalConversion(*image, type);
-  TightPixelStore tight(s.driver);
-  const void* p = image != nullptr ? data.data() : nullptr;
-  if (sub) {
-    if (image == nullptr || w == 0) return;
-    s.driver.TexSubImage1D(target, level, xoffset, w, GL_RGBA, type, p);
-  } else {
-    s.driver.TexImage1D(target, level, internalformat, w, border, GL_RGBA, type, p);
-  }
+  if (oneD) return s.driver.TexImage1D(target, level, internalformat, w, border, GL_RGBA, type, p);
+  s.driver.TexImage2D(target, level, internalformat, w, h, border, GL_RGBA, type, p);
 }
 
 // ---- the 8-bit path (fast_paths.cpp): bytes in, bytes out, no float images ----
@@ -313,7 +296,7 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
   refreshColorMaps(*s);
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
   // A sink leaves texture memory undefined but still (re)defines the texture's state.
-  uploadTexture(*s, false, target, level, GLint(internalformat), 0, 0, border,
+  uploadTexture(*s, Dimensionality::k2D, false, target, level, GLint(internalformat), 0, 0, border,
                 kept ? &image : nullptr, image.width, image.height);
 }
 
@@ -352,7 +335,8 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
   Image4 image = readFramebuffer(*s, x, y, w, h);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
-  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width, image.height);
+  uploadTexture(*s, Dimensionality::k2D, true, target, level, 0, xoffset, yoffset, 0, &image,
+                image.width, image.height);
 }
 
 void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, GLsizei h,
@@ -371,8 +355,8 @@ void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, G
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
-  uploadTexture(*s, false, target, level, internalformat, 0, 0, border, kept ? &image : nullptr,
-                image.width, image.height);
+  uploadTexture(*s, Dimensionality::k2D, false, target, level, internalformat, 0, 0, border,
+                kept ? &image : nullptr, image.width, image.height);
 }
 
 void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei w, GLsizei h,
@@ -384,7 +368,8 @@ void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, G
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
-  uploadTexture(*s, true, target, level, 0, xoffset, yoffset, 0, &image, image.width, image.height);
+  uploadTexture(*s, Dimensionality::k2D, true, target, level, 0, xoffset, yoffset, 0, &image,
+                image.width, image.height);
 }
 
 // ---- one-dimensional textures: the only images GL_CONVOLUTION_1D applies to (3.6.5
@@ -407,8 +392,8 @@ void emTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei w, G
   Image4 image = unpackImage(data, w, 1, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k1D);
-  uploadTexture1D(*s, false, target, level, internalformat, 0, border, kept ? &image : nullptr,
-                  image.width);
+  uploadTexture(*s, Dimensionality::k1D, false, target, level, internalformat, 0, 0, border,
+                kept ? &image : nullptr, image.width, 1);
 }
 
 void emTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei w, GLenum format,
@@ -420,7 +405,8 @@ void emTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei w, GLenu
   Image4 image = unpackImage(data, w, 1, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k1D)) return;
-  uploadTexture1D(*s, true, target, level, 0, xoffset, 0, &image, image.width);
+  uploadTexture(*s, Dimensionality::k1D, true, target, level, 0, xoffset, 0, 0, &image, image.width,
+                1);
 }
 
 void emCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
@@ -432,8 +418,8 @@ void emCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x
   refreshColorMaps(*s);
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k1D);
   // A sink leaves texture memory undefined but still (re)defines the texture's state.
-  uploadTexture1D(*s, false, target, level, GLint(internalformat), 0, border,
-                  kept ? &image : nullptr, image.width);
+  uploadTexture(*s, Dimensionality::k1D, false, target, level, GLint(internalformat), 0, 0, border,
+                kept ? &image : nullptr, image.width, 1);
 }
 
 void emCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei w) {
@@ -443,7 +429,8 @@ void emCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLi
   Image4 image = readFramebuffer(*s, x, y, w, 1);
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k1D)) return;
-  uploadTexture1D(*s, true, target, level, 0, xoffset, 0, &image, image.width);
+  uploadTexture(*s, Dimensionality::k1D, true, target, level, 0, xoffset, 0, 0, &image, image.width,
+                1);
 }
 
 }  // namespace sl::imaging::detail
