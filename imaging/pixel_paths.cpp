@@ -377,7 +377,7 @@ void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, G
 // dimensional texture images passed to TexImage1D, TexSubImage1D, CopyTexImage1D, and
 // CopyTexSubImage1D"; the 2D filters do not apply to them). The same sentence adds images
 // "returned by GetTexImage", but 6.1.4 says "No pixel transfer operations are performed" on
-// them; GetTexImage is left to the driver, as the reference implementation does. ----
+// them; GetTexImage is left to the driver, as 6.1.4 says. ----
 
 void emTexImage1D(GLenum target, GLint level, GLint internalformat, GLsizei w, GLint border,
                   GLenum format, GLenum type, const void* data) {
