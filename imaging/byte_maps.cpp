@@ -3,9 +3,9 @@
 // table of their Section 3 sends 0 to 0 and every other value to 64 (63 in alpha), so each
 // component takes two values and an RGBA group one of sixteen.
 //
-// Both maps here are exact: they never compute a colour. They classify each input byte by
-// the runs of equal values of a table that the scalar path built with the specification's
-// own stage code, and copy that table's output.
+// Every form here is exact: none computes a colour. Each looks up, or classifies each input
+// byte by the runs of, a table that the scalar path built with the specification's own
+// stage code, and copies that table's output.
 //   * stepBytes: each output byte is a function of the same component of the input
 //     (identity colour matrix) with a few steps: out = base + sum of the steps at or below
 //     the input byte, in byte arithmetic.
@@ -14,6 +14,8 @@
 //     each class is computed once by the scalar path on a representative group, and every
 //     group is a 16-entry byte shuffle (pshufb) of its class index.
 //   * tableBytesVbmi: any per-component byte table, by byte permutes over its 256 entries.
+//   * accumulateBytesVbmi: GL_ACCUM / GL_LOAD (accumulation.cpp), the 256 value * C steps
+//     looked up the same way and added with saturating 16-bit adds.
 // AVX2 (the maps) and AVX-512 VBMI (the tables) when the processor has them, checked at run
 // time (the build targets baseline x86-64); else the caller's scalar loop.
 #include <cstring>
