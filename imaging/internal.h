@@ -133,7 +133,8 @@ struct TransferState {
 // are not attributes).
 struct AttribSnapshot {
   GLbitfield mask = 0;
-  TransferState transfer;  // the saved fields only are restored
+  TransferState transfer;        // the saved fields only are restored
+  bool colorMatrixMode = false;  // GL_TRANSFORM_BIT saves MATRIX_MODE (table 6.7): GL_COLOR too
 };
 
 // Per-context emulation state (stored with GlContext::setLayerState("imaging", ...)).

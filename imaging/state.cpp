@@ -131,6 +131,11 @@ bool emulatedQuery(State& s, GLenum pname, double* v, int& n) {
       n = 16;
       for (int i = 0; i < 16; ++i) v[i] = s.transfer.colorMatrixStack.back().m[i];
       return true;
+    case GL_TRANSPOSE_COLOR_MATRIX:  // glspec14 6.1.2: the same matrix, row by row
+      n = 16;
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) v[r * 4 + c] = s.transfer.colorMatrixStack.back().m[c * 4 + r];
+      return true;
     case GL_COLOR_MATRIX_STACK_DEPTH:
       v[0] = double(s.transfer.colorMatrixStack.size());
       return true;
@@ -295,6 +300,7 @@ void emPushAttrib(GLbitfield mask) {
   AttribSnapshot snap;
   snap.mask = mask;
   if ((mask & (GL_PIXEL_MODE_BIT | GL_ENABLE_BIT)) != 0) copyPixelMode(s.transfer, snap.transfer);
+  snap.colorMatrixMode = s.colorMatrixMode;
   s.attribStack.push_back(std::move(snap));
 }
 
@@ -308,6 +314,7 @@ void emPopAttrib() {
   } else if ((snap.mask & GL_ENABLE_BIT) != 0) {
     copyEnables(snap.transfer, s.transfer);
   }
+  if ((snap.mask & GL_TRANSFORM_BIT) != 0) s.colorMatrixMode = snap.colorMatrixMode;
   s.attribStack.pop_back();
 }
 

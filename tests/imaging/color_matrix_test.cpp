@@ -109,6 +109,26 @@ TEST_F(ColorMatrixCommands, OtherModesReachTheDriver) {
                "colour matrix untouched");
 }
 
+TEST_F(ColorMatrixCommands, TransposeQueryAndTransformBitKeepTheColorMode) {
+  const float rows[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+  glLoadTransposeMatrixf(rows);
+  float transposed[16];
+  glGetFloatv(GL_TRANSPOSE_COLOR_MATRIX, transposed);  // glspec14 6.1.2: row by row
+  for (int i = 0; i < 16; ++i) EXPECT_EQ(transposed[i], rows[i]) << i;
+  // GL_TRANSFORM_BIT saves MATRIX_MODE (table 6.7), GL_COLOR included: after the pop, matrix
+  // commands act on the colour matrix again.
+  glPushAttrib(GL_TRANSFORM_BIT);
+  glMatrixMode(GL_MODELVIEW);
+  glPopAttrib();
+  glLoadIdentity();
+  expectMatrix(colorMatrix(), fromRows({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}), 0,
+               "identity loaded into the colour matrix after the pop");
+  GLint mode = 0;
+  glGetIntegerv(GL_MATRIX_MODE, &mode);
+  EXPECT_EQ(GLenum(mode), GLenum(GL_COLOR));
+  EXPECT_TRUE(drainErrors().empty());
+}
+
 TEST_F(ColorMatrixCommands, CopyPixelsThroughARotatedMatrix) {
   // 90 degrees about z: R' = -G (clamped to 0 at the end), G' = R, B' = B, A' = A (3.6.5).
   glMatrixMode(GL_MODELVIEW);

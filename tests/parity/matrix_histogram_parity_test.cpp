@@ -125,6 +125,31 @@ TEST_P(ColorMatrixCommandParity, CommandQueryAndCopy) {
 INSTANTIATE_TEST_SUITE_P(RotateOrthoFrustumScaleTranslateTranspose, ColorMatrixCommandParity,
                          ::testing::Range(0, 7));
 
+// The transpose query (glspec14 6.1.2) and GL_TRANSFORM_BIT saving GL_COLOR as the matrix
+// mode (table 6.7).
+TEST(ColorMatrixCommandParity, TransposeQueryAndTransformBit) {
+  SL_REQUIRE_REFERENCE();
+  checkParity([](Outcome& o) {
+    glMatrixMode(GL_COLOR);
+    const float m[16] = {0.6f, 0.2f, 0, 0, 0, 1, 0.4f, 0, 0, 0, 1, 0, 0.2f, 0, 0, 1};
+    glLoadMatrixf(m);
+    float t[16];
+    glGetFloatv(GL_TRANSPOSE_COLOR_MATRIX, t);
+    o.floats.insert(o.floats.end(), t, t + 16);
+    glPushAttrib(GL_TRANSFORM_BIT);
+    glMatrixMode(GL_MODELVIEW);
+    glPopAttrib();
+    GLint mode = 0;
+    glGetIntegerv(GL_MATRIX_MODE, &mode);
+    o.floats.push_back(float(mode));
+    glLoadIdentity();  // the colour matrix, if the pop restored GL_COLOR
+    float c[16];
+    glGetFloatv(GL_COLOR_MATRIX, c);
+    o.floats.insert(o.floats.end(), c, c + 16);
+    glMatrixMode(GL_MODELVIEW);
+  });
+}
+
 // Post-color-matrix scale and bias, with and without a matrix.
 class PostMatrixScaleBiasParity : public ::testing::TestWithParam<int> {};
 TEST_P(PostMatrixScaleBiasParity, CopyPixels) {
