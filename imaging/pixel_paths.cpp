@@ -72,6 +72,31 @@ bool eightBitTexture(GLenum internalformat) {
   }
 }
 
+// A depth internal format: glCopyTexImage then copies depth components (3.8.2), which the
+// RGBA stages of 3.6.5 never touch, so the call belongs to the driver.
+bool depthTexture(GLenum internalformat) {
+  switch (internalformat) {
+    case GL_DEPTH_COMPONENT:
+    case GL_DEPTH_COMPONENT16:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH_COMPONENT32:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH_STENCIL:
+    case GL_DEPTH24_STENCIL8:
+    case GL_DEPTH32F_STENCIL8:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The internal format of an existing texture level (for the sub-image copies).
+GLenum levelFormat(const State& s, GLenum target, GLint level) {
+  GLint format = 0;
+  s.driver.GetTexLevelParameteriv(target, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+  return GLenum(format);
+}
+
 // "Final Conversion": each component clamped to [0,1] (NaN becomes 0), then converted to the
 // client type with round-to-nearest (table 4.7), as a tight RGBA array.
 std::vector<unsigned char> finalConversion(const Image4& image, GLenum type) {
@@ -281,7 +306,7 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
 void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
                       GLsizei w, GLsizei h, GLint border) {
   State* s = currentState();
-  if (passThrough(s) || w < 0 || h < 0)
+  if (passThrough(s) || w < 0 || h < 0 || depthTexture(internalformat))
     return s->driver.CopyTexImage2D(target, level, internalformat, x, y, w, h, border);
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) && eightBitTexture(internalformat)) {
@@ -303,7 +328,7 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
 void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLint x, GLint y,
                          GLsizei w, GLsizei h) {
   State* s = currentState();
-  if (passThrough(s) || w < 0 || h < 0)
+  if (passThrough(s) || w < 0 || h < 0 || depthTexture(levelFormat(*s, target, level)))
     return s->driver.CopyTexSubImage2D(target, level, xoffset, yoffset, x, y, w, h);
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
@@ -412,7 +437,7 @@ void emTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLsizei w, GLenu
 void emCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x, GLint y,
                       GLsizei w, GLint border) {
   State* s = currentState();
-  if (passThrough(s, Dimensionality::k1D) || w < 0)
+  if (passThrough(s, Dimensionality::k1D) || w < 0 || depthTexture(internalformat))
     return s->driver.CopyTexImage1D(target, level, internalformat, x, y, w, border);
   Image4 image = readFramebuffer(*s, x, y, w, 1);
   refreshColorMaps(*s);
@@ -424,7 +449,7 @@ void emCopyTexImage1D(GLenum target, GLint level, GLenum internalformat, GLint x
 
 void emCopyTexSubImage1D(GLenum target, GLint level, GLint xoffset, GLint x, GLint y, GLsizei w) {
   State* s = currentState();
-  if (passThrough(s, Dimensionality::k1D) || w < 0)
+  if (passThrough(s, Dimensionality::k1D) || w < 0 || depthTexture(levelFormat(*s, target, level)))
     return s->driver.CopyTexSubImage1D(target, level, xoffset, x, y, w);
   Image4 image = readFramebuffer(*s, x, y, w, 1);
   refreshColorMaps(*s);

@@ -373,3 +373,36 @@ TEST(Pipeline, PushPopAttribRestoresImagingState) {
 
 }  // namespace
 }  // namespace sl::imaging::testing
+
+namespace sl::imaging::testing {
+namespace {
+
+// glCopyTexImage2D / glCopyTexSubImage2D with a depth internal format copy depth components
+// (3.8.2); the RGBA stages of 3.6.5 do not apply, even while they are enabled.
+TEST(CopyTexImage, DepthTexturesBypassTheColourStages) {
+  auto ctx = emulatedContext(4, 4);
+  glClearDepth(0.25);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glPixelTransferf(GL_RED_SCALE, 0.5f);  // a colour stage that is not identity
+  GLuint tex = 0;
+  glGenTextures(1, &tex);
+  glBindTexture(GL_TEXTURE_2D, tex);
+  glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 0, 0, 4, 4, 0);
+  EXPECT_TRUE(drainErrors().empty());
+  glClearDepth(0.75);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, 2, 4);  // the left half becomes 0.75
+  EXPECT_TRUE(drainErrors().empty());
+  glPixelTransferf(GL_RED_SCALE, 1.0f);
+  std::vector<float> depth(16, -1.0f);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  constexpr float kDepthStep = 1.0f / 16777215.0f;  // one step of the 24-bit depth buffer
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      EXPECT_NEAR(depth[size_t(y * 4 + x)], x < 2 ? 0.75f : 0.25f, kDepthStep) << x << "," << y;
+  glDeleteTextures(1, &tex);
+}
+
+}  // namespace
+}  // namespace sl::imaging::testing
