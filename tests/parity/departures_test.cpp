@@ -283,7 +283,8 @@ TEST(Departures, AdditionalF_ReferenceSaturatesAbove0996) {
 // G. glCopyTexImage1D under a GL_REDUCE 1D filter defines a texture of the convolved width
 //    W - Wf + 1 (3.8.2: processed as TexImage1D; 3.6.5: REDUCE "the resulting image is
 //    smaller", as glCopyTexImage2D does on both); the reference keeps the source width W and
-//    fills the last Wf - 1 texels with 0 (found by the 1D parity cases).
+//    leaves the last Wf - 1 texels undefined (uninitialised memory: zeros in most runs, other
+//    bytes in some), after the convolved ones (found by the 1D parity cases).
 TEST(Departures, AdditionalG_CopyTexImage1DReduceKeepsTheSourceWidth) {
   SL_REQUIRE_REFERENCE();
   constexpr int kRow = 8, kFilterWidth = 3;
@@ -316,7 +317,6 @@ TEST(Departures, AdditionalG_CopyTexImage1DReduceKeepsTheSourceWidth) {
     EXPECT_EQ(e.bytes[i], 160) << i;  // 0.8 * 200
     EXPECT_EQ(r.bytes[i], 160) << i;  // the convolved texels agree
   }
-  for (size_t i = e.bytes.size(); i < r.bytes.size(); ++i) EXPECT_EQ(r.bytes[i], 0) << i;
 }
 
 // Exact rounding ties may go either way in single precision (the reference README): both
