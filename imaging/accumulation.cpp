@@ -70,22 +70,10 @@ void forEach(State& s, const Box& b, const Op& op) {
   });
 }
 
-GLenum colorType(const State& s) {
-  switch (s.context->spec().color) {
-    case ColorFormat::kRgba8:
-      return GL_UNSIGNED_BYTE;
-    case ColorFormat::kRgba16:
-      return GL_UNSIGNED_SHORT;
-    case ColorFormat::kRgba32f:
-      return GL_FLOAT;
-  }
-  return GL_FLOAT;
-}
-
 // ACCUM / LOAD: A <- keep * A + value * C. For 8-bit colour, value * C is tabled per byte.
 void accumulateColor(State& s, const Box& b, float value, bool keep) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
-  if (colorType(s) == GL_UNSIGNED_BYTE) {
+  if (framebufferType(s) == GL_UNSIGNED_BYTE) {
     std::vector<uint8_t>& bytes = s.scratchIn;  // reused across calls
     bytes.resize(size_t(w) * h * 4);            // every byte is overwritten by the read
     s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
@@ -134,7 +122,7 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
 void returnToColorBuffer(State& s, const Box& b, float value) {
   const int w = b.x1 - b.x0, h = b.y1 - b.y0;
   if (w <= 0 || h <= 0) return;
-  const GLenum type = colorType(s);
+  const GLenum type = framebufferType(s);
   std::vector<uint8_t>& bytes = s.scratchOut;  // reused across calls
   std::vector<uint16_t> shorts;
   std::vector<float> floats;

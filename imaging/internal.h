@@ -389,6 +389,9 @@ void emCopyTexSubImage1D(GLenum, GLint, GLint, GLint, GLint, GLsizei);
 // Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
 // the final expansion to RGBA": no pixel transfer), through the driver.
 Image4 readFramebuffer(State& s, int x, int y, int w, int h);
+// The client type that carries the colour buffer's precision without loss: unsigned bytes for
+// 8-bit, unsigned shorts for 16-bit, floats otherwise (pixel_paths.cpp).
+GLenum framebufferType(const State& s);
 // accumulation.cpp
 void emAccum(GLenum, GLfloat);
 void emClearAccum(GLfloat, GLfloat, GLfloat, GLfloat);

@@ -15,6 +15,20 @@
 #include "imaging/internal.h"
 
 namespace sl::imaging::detail {
+
+// The client type that carries the destination's precision without loss.
+GLenum framebufferType(const State& s) {
+  switch (s.context->spec().color) {
+    case ColorFormat::kRgba8:
+      return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16:
+      return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f:
+      return GL_FLOAT;
+  }
+  return GL_FLOAT;
+}
+
 namespace {
 
 // Saves the client pixel-store state and sets tight packing for the emulation's own
@@ -36,19 +50,6 @@ class TightPixelStore {
  private:
   const GlDispatch& gl_;
 };
-
-// The client type that carries the destination's precision without loss.
-GLenum framebufferType(const State& s) {
-  switch (s.context->spec().color) {
-    case ColorFormat::kRgba8:
-      return GL_UNSIGNED_BYTE;
-    case ColorFormat::kRgba16:
-      return GL_UNSIGNED_SHORT;
-    case ColorFormat::kRgba32f:
-      return GL_FLOAT;
-  }
-  return GL_FLOAT;
-}
 
 bool eightBitTexture(GLenum internalformat) {
   switch (internalformat) {
