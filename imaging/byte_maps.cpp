@@ -186,6 +186,8 @@ bool haveAvx2() {
 
 }  // namespace
 
+namespace {
+
 // Breakpoints of v -> equal(v - 1, v) over the 256 byte values, at most kMaxByteSteps.
 bool findSteps(const std::function<bool(int)>& sameAsPrevious, int& count,
                uint8_t at[kMaxByteSteps]) {
@@ -197,6 +199,8 @@ bool findSteps(const std::function<bool(int)>& sameAsPrevious, int& count,
   }
   return true;
 }
+
+}  // namespace
 
 bool planStepMap(const uint8_t lut[256 * 4], StepMap& map) {
   map = StepMap{};

@@ -205,10 +205,6 @@ struct ClassMap {
   bool varies[4] = {false, false, false, false};
   uint8_t constant[4] = {};
 };
-// The values v (1..255) where the step function changes: false when there are more than
-// kMaxByteSteps.
-bool findSteps(const std::function<bool(int)>& sameAsPrevious, int& count,
-               uint8_t at[kMaxByteSteps]);
 // From a per-component byte table (lut[v * 4 + c]); false when a component has too many steps.
 bool planStepMap(const uint8_t lut[256 * 4], StepMap& map);
 // From the prefix values of the components that matter (sameAsPrevious(c, v): value v of
