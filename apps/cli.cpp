@@ -1,10 +1,11 @@
 #include "apps/cli.h"
 
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <set>
-
-#include <unistd.h>
 
 #include "core/errors.h"
 
@@ -12,8 +13,7 @@ namespace sl::cli {
 namespace fs = std::filesystem;
 
 bool Args::has(const std::string& key) const {
-  return options.count(key) != 0 ||
-         std::find(flags.begin(), flags.end(), key) != flags.end();
+  return options.count(key) != 0 || std::find(flags.begin(), flags.end(), key) != flags.end();
 }
 
 std::optional<std::string> Args::value(const std::string& key) const {
@@ -29,53 +29,125 @@ std::string Args::required(const std::string& key) const {
 }
 
 namespace {
-const std::map<std::string, std::set<std::string>> kValueOptions = {
-    {"list", {}},
-    {"render",
-     {"scene", "technique", "size", "shadow-map", "filter", "precision", "param", "backend", "out",
-      "mask", "dump-passes"}},
-    {"compare",
-     {"scene", "a", "b", "size", "shadow-map", "filter", "precision", "param", "backend", "diff",
-      "threshold"}},
-    {"bench", {"scene", "technique", "csv", "size", "backend", "repeat", "out"}},
-    {"plan", {"scene", "technique", "size", "shadow-map", "filter", "precision", "param"}},
-    {"figures", {"out", "only"}},
+
+// One option of a command: its name (without "--"), its value's form, and its help line.
+struct OptionSpec {
+  const char* name;
+  const char* value;  // what the value looks like in the help ("WxH"); nullptr: a flag
+  const char* help;
 };
-const std::map<std::string, std::set<std::string>> kFlagOptions = {
-    {"list", {}}, {"render", {}}, {"compare", {}}, {"bench", {"quick"}},
-    {"plan", {}}, {"figures", {"no-progress"}},
+struct CommandSpec {
+  const char* name;
+  const char* summary;
+  std::vector<OptionSpec> options;
 };
+
+// The rendering options shared by render, compare and plan (DESIGN.md "Contracts").
+std::vector<OptionSpec> renderOptions() {
+  return {
+      {"scene", "S", "scene name (shadowlab list) or a scene .json file [brabec]"},
+      {"size", "WxH", "window WxH [800x600]"},
+      {"shadow-map", "N", "shadow map side in texels [512]"},
+      {"filter", "K", "PCF footprint K (K x K samples) [2]"},
+      {"precision", "8|12|float", "colour precision of the legacy passes: 8, 12 or float [8]"},
+      {"param", "KEY=VALUE", "key=value, repeatable (shadowlab list shows each technique's keys)"},
+      {"backend", "NAME", "osmesa, reference (Mesa 7.8.2, native imaging) or egl [osmesa]"},
+  };
+}
+
+std::vector<OptionSpec> join(std::vector<OptionSpec> a, const std::vector<OptionSpec>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// Every command and its options: the single source of `--help` and of what parse() accepts.
+const std::vector<CommandSpec>& commandSpecs() {
+  static const std::vector<CommandSpec> kCommands = {
+      {"list", "techniques (with their --param keys), scenes and figures", {}},
+      {"render",
+       "render one technique into an image (and its visibility mask and intermediate buffers)",
+       join({{"technique", "T", "technique name (shadowlab list), required"},
+             {"out", "PATH", "colour image, PNG, required"},
+             {"mask", "PNG", "light visibility (1 = lit, 0 = umbra) as a 16-bit grey PNG"},
+             {"dump-passes", "DIR", "directory for every intermediate buffer, one PNG each"}},
+            renderOptions())},
+      {"compare", "render two techniques and compare their visibility masks (one JSON line)",
+       join({{"a", "T1", "first technique, required"},
+             {"b", "T2", "second technique, required"},
+             {"diff", "PNG", "difference heat map, PNG"},
+             {"threshold", "X", "pixels differing by more than this count as mismatching [0]"}},
+            renderOptions())},
+      {"bench",
+       "error against run time for every technique and a sweep of its parameters",
+       {{"quick", nullptr, "the quick sweep (two scenes, 256x192; the main job's report uses it)"},
+        {"scene", "S", "only this scene [the benchmark scenes]"},
+        {"technique", "T", "only this technique (all its variants)"},
+        {"csv", "FILE", "also write every row as CSV"},
+        {"size", "WxH", "window WxH [quick 256x192, full 400x300]"},
+        {"backend", "NAME", "osmesa, reference or egl [osmesa]"},
+        {"repeat", "N", "timed frames per variant (after the warm-up frames)"},
+        {"out", "PATH", "directory for plots and their data [out/bench]"}}},
+      {"plan", "the passes a frame of a technique needs, those left out, and why",
+       join({{"technique", "T", "technique name, required"}}, renderOptions())},
+      {"figures",
+       "the main job: every reproduced paper figure and report.html",
+       {{"out", "PATH", "output directory [out/figures]"},
+        {"only", "ID", "only this figure id (shadowlab list)"},
+        {"no-progress", nullptr, "no progress lines on stderr"}}},
+  };
+  return kCommands;
+}
+
 }  // namespace
 
 Args parse(int argc, char** argv) {
-  Args a;
   if (argc < 2) throw InputError("no command given (try: shadowlab --help)");
-  a.command = argv[1];
-  auto values = kValueOptions.find(a.command);
-  if (values == kValueOptions.end())
-    throw InputError("unknown command '" + a.command + "' (try: shadowlab --help)");
-  const auto& flags = kFlagOptions.at(a.command);
-  for (int i = 2; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg.rfind("--", 0) != 0) throw InputError("unexpected argument '" + arg + "'");
-    std::string key = arg.substr(2);
-    std::optional<std::string> inlineValue;
-    if (auto eq = key.find('='); eq != std::string::npos && values->second.count(key.substr(0, eq))) {
-      inlineValue = key.substr(eq + 1);
-      key = key.substr(0, eq);
+  const auto& commands = commandSpecs();
+  if (std::none_of(commands.begin(), commands.end(),
+                   [&](const CommandSpec& c) { return argv[1] == std::string(c.name); }))
+    throw InputError("unknown command '" + std::string(argv[1]) + "' (try: shadowlab --help)");
+  CLI::App app{"shadowlab", "shadowlab"};
+  app.require_subcommand(1, 1);
+  app.set_help_flag();  // top-level help is apps/shadowlab.cpp's usage text
+  std::map<std::string, std::map<std::string, CLI::Option*>> options;
+  for (const CommandSpec& c : commands) {
+    CLI::App* sub = app.add_subcommand(c.name, c.summary);
+    sub->set_help_flag("-h,--help", "print this help and exit");
+    for (const OptionSpec& o : c.options) {
+      const std::string flag = std::string("--") + o.name;
+      CLI::Option* option = o.value ? sub->add_option(flag, o.help)
+                                          ->type_name(o.value)
+                                          ->type_size(1)
+                                          ->allow_extra_args(false)
+                                          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+                                    : sub->add_flag(flag, o.help);
+      options[c.name][o.name] = option;
     }
-    if (flags.count(key)) {
-      a.flags.push_back(key);
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    // `shadowlab COMMAND --help`: the command's options, on stdout (exit status 0).
+    for (CLI::App* sub : app.get_subcommands()) throw HelpRequested{sub->help("shadowlab")};
+    throw HelpRequested{app.help()};
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw InputError(what + " (try: shadowlab " +
+                     (app.get_subcommands().empty()
+                          ? std::string("--help")
+                          : app.get_subcommands()[0]->get_name() + " --help") +
+                     ")");
+  }
+  Args a;
+  a.command = app.get_subcommands().at(0)->get_name();
+  for (const auto& [name, option] : options[a.command]) {
+    if (option->count() == 0) continue;
+    if (option->get_expected_min() == 0) {
+      a.flags.push_back(name);
       continue;
     }
-    if (!values->second.count(key))
-      throw InputError("'" + a.command + "' has no option --" + key);
-    if (inlineValue) {
-      a.options[key].push_back(*inlineValue);
-      continue;
-    }
-    if (i + 1 >= argc) throw InputError("--" + key + " needs a value");
-    a.options[key].push_back(argv[++i]);
+    a.options[name] = option->results();
   }
   return a;
 }
@@ -107,7 +179,8 @@ RenderParams renderParams(const Args& args) {
   RenderParams p;
   if (auto v = args.value("size")) parseSize(*v, p.width, p.height);
   constexpr int kLargestShadowMap = 1 << 16;  // the GL maximum is checked once a context exists
-  if (auto v = args.value("shadow-map")) p.shadowMapTexels = parsePositiveInt("--shadow-map", *v, kLargestShadowMap);
+  if (auto v = args.value("shadow-map"))
+    p.shadowMapTexels = parsePositiveInt("--shadow-map", *v, kLargestShadowMap);
   if (auto v = args.value("filter")) p.filter = parsePositiveInt("--filter", *v, 16);
   if (auto v = args.value("precision")) p.precision = parsePrecision(*v);
   if (auto v = args.value("backend")) p.backend = parseBackend(*v);

@@ -20,7 +20,15 @@ struct Args {
   std::string required(const std::string& key) const;
 };
 
-// Options that take a value and flags that do not, per command (unknown options are errors).
+// `shadowlab COMMAND --help`: parse() throws this with the command's help text, which the
+// caller prints on stdout with exit status 0.
+struct HelpRequested {
+  std::string text;
+};
+
+// Parses `shadowlab COMMAND [options]` with CLI11: the options that take a value and the flags
+// that do not, per command, each with its help line (apps/cli.cpp commandSpecs). An unknown
+// command or option, a missing value or a stray argument is an InputError of one line.
 Args parse(int argc, char** argv);
 
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);

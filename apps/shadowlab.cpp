@@ -31,6 +31,7 @@ usage:
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
   shadowlab figures [--out DIR] [--only ID]        the main job: every figure + report.html
 
+`shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
 Exit status: 0 ok, 2 bad input (names, files, numbers), 3 GL failure.
 )";
@@ -124,7 +125,13 @@ int run(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  const cli::Args args = cli::parse(argc, argv);
+  cli::Args args;
+  try {
+    args = cli::parse(argc, argv);
+  } catch (const cli::HelpRequested& help) {
+    std::cout << help.text;
+    return 0;
+  }
   if (args.command == "list") return list();
   if (args.command == "render") return render(args);
   if (args.command == "compare") return compare(args);

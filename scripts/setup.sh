@@ -10,6 +10,7 @@ PACKAGES=(
   libglm-dev          # vector and matrix math
   libpng-dev zlib1g-dev  # PNG images, gzip-compressed meshes
   nlohmann-json3-dev  # scene files and machine-readable output
+  libcli11-dev        # command-line parsing (shadowlab COMMAND --help)
   libassimp-dev       # OBJ and PLY meshes
   libembree-dev       # ray-traced reference visibility
   libgtest-dev googletest  # tests

@@ -1,13 +1,17 @@
 // The shadowlab command as a user runs it: outputs on success, and for every kind of bad
 // input one line on stderr, exit status 2, and no output file (DESIGN.md "Contracts").
+#include "apps/cli.h"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
+#include "core/errors.h"
 #include "core/image.h"
 
 namespace sl {
@@ -39,8 +43,8 @@ std::string slurp(const fs::path& p) {
 
 CommandResult shadowlab(const std::string& args) {
   const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
-  const std::string cmd = std::string(SHADOWLAB_BINARY) + " " + args + " >" + out.string() +
-                          " 2>" + err.string();
+  const std::string cmd =
+      std::string(SHADOWLAB_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -66,8 +70,9 @@ TEST(Cli, RenderWritesImageAndSixteenBitMask) {
   const fs::path png = dir() / "ok.png", mask = dir() / "ok-mask.png";
   fs::remove(png);
   fs::remove(mask);
-  const CommandResult r = shadowlab("render --scene analytic --technique legacy.hw" + std::string(kSmall) +
-                          " --out " + png.string() + " --mask " + mask.string());
+  const CommandResult r =
+      shadowlab("render --scene analytic --technique legacy.hw" + std::string(kSmall) + " --out " +
+                png.string() + " --mask " + mask.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const Image image = readPng(png.string());
   EXPECT_EQ(image.width, 96);
@@ -92,10 +97,67 @@ TEST(Cli, ListAndHelp) {
   EXPECT_NE(help.out.find("render"), std::string::npos);
 }
 
+// Every command answers --help with its own options on stdout and exit status 0 (issue 14
+// item 7), and runs nothing: no output file appears.
+TEST(Cli, EveryCommandHasHelp) {
+  const std::map<std::string, std::vector<std::string>> expected = {
+      {"list", {}},
+      {"render", {"--technique", "--out", "--mask", "--dump-passes", "--param", "--backend"}},
+      {"compare", {"--a", "--b", "--diff", "--threshold", "--size"}},
+      {"bench", {"--quick", "--scene", "--technique", "--csv", "--repeat", "--out"}},
+      {"plan", {"--technique", "--shadow-map", "--param"}},
+      {"figures", {"--out", "--only", "--no-progress"}},
+  };
+  for (const auto& [command, options] : expected) {
+    for (const char* flag : {" --help", " -h"}) {
+      const CommandResult r = shadowlab(command + flag);
+      EXPECT_EQ(r.status, 0) << command << flag << ": " << r.err;
+      EXPECT_TRUE(r.err.empty()) << command << flag << ": " << r.err;
+      EXPECT_NE(r.out.find(command), std::string::npos) << command << flag << ": " << r.out;
+      for (const std::string& option : options)
+        EXPECT_NE(r.out.find(option), std::string::npos) << command << " lacks " << option;
+    }
+  }
+  // --help wins over other arguments and renders nothing.
+  const fs::path png = dir() / "not-written.png";
+  fs::remove(png);
+  const CommandResult r =
+      shadowlab("render --scene analytic --technique legacy.hw --out " + png.string() + " --help");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(png));
+}
+
+// Repeated --param options accumulate; a repeated single-valued option keeps its last value
+// (as before the move to CLI11); --key=value works like --key value.
+cli::Args parseLine(std::vector<std::string> words) {
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  return cli::parse(int(argv.size()), argv.data());
+}
+
+TEST(Cli, RepeatedAndInlineOptions) {
+  const cli::Args a = parseLine({"shadowlab", "plan", "--technique", "modern.csm", "--param",
+                                 "order=8", "--param=blur=3", "--size=64x48", "--size", "96x72"});
+  EXPECT_EQ(a.command, "plan");
+  const RenderParams p = cli::renderParams(a);
+  EXPECT_EQ(p.extra.at("order"), "8");
+  EXPECT_EQ(p.extra.at("blur"), "3");
+  EXPECT_EQ(p.width, 96);
+  EXPECT_EQ(p.height, 72);
+  const cli::Args b = parseLine({"shadowlab", "bench", "--quick", "--scene", "fence"});
+  EXPECT_TRUE(b.has("quick"));
+  EXPECT_FALSE(b.has("csv"));
+  EXPECT_EQ(b.value("scene").value_or(""), "fence");
+  EXPECT_THROW(parseLine({"shadowlab", "plan", "--param"}), InputError);
+  EXPECT_THROW(parseLine({"shadowlab", "plan", "--quick"}), InputError);
+  EXPECT_THROW(parseLine({"shadowlab", "bench", "stray"}), InputError);
+  EXPECT_THROW(parseLine({"shadowlab", "bench", "--help"}), cli::HelpRequested);
+}
+
 TEST(Cli, CompareReportsStatisticsAsJson) {
   const fs::path diff = dir() / "diff.png";
   const CommandResult r = shadowlab("compare --scene analytic --a legacy.hw --b modern.hw" +
-                          std::string(kSmall) + " --diff " + diff.string());
+                                    std::string(kSmall) + " --diff " + diff.string());
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* key : {"\"mismatching\"", "\"max_abs\"", "\"rmse\"", "\"a_frame_ms\""})
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
@@ -131,14 +193,15 @@ TEST_P(CliBadInput, OneLineOnStderrExitTwoNoOutput) {
 std::vector<BadInput> badInputs() {
   const std::string base = "render --technique legacy.hw --size 64x48 --out @OUT --mask @MASK ";
   const std::string malformedJson = write("malformed.json", "{\"objects\": [ {\"mesh\": ");
-  const std::string badObjScene = write(
-      "badobj.json",
-      "{\"objects\": [{\"mesh\": {\"file\": \"" + write("broken.obj", "v 1 2\nf 1 2 7\n") + "\"}}]}");
-  const std::string truncatedPly = write(
-      "truncated.ply",
-      "ply\nformat binary_little_endian 1.0\nelement vertex 50\nproperty float x\n"
-      "property float y\nproperty float z\nelement face 10\n"
-      "property list uchar int vertex_indices\nend_header\n" + std::string(17, '\0'));
+  const std::string badObjScene =
+      write("badobj.json", "{\"objects\": [{\"mesh\": {\"file\": \"" +
+                               write("broken.obj", "v 1 2\nf 1 2 7\n") + "\"}}]}");
+  const std::string truncatedPly =
+      write("truncated.ply",
+            "ply\nformat binary_little_endian 1.0\nelement vertex 50\nproperty float x\n"
+            "property float y\nproperty float z\nelement face 10\n"
+            "property list uchar int vertex_indices\nend_header\n" +
+                std::string(17, '\0'));
   const std::string badPlyScene =
       write("badply.json", "{\"objects\": [{\"mesh\": {\"file\": \"" + truncatedPly + "\"}}]}");
   return {
@@ -157,23 +220,28 @@ std::vector<BadInput> badInputs() {
       {"unknown parameter", base + "--scene analytic --param wobble=3"},
       {"bad precision", base + "--scene analytic --precision 9"},
       {"bad backend", base + "--scene analytic --backend vulkan"},
-      {"unwritable output", "render --scene analytic --technique legacy.hw --size 64x48 --out "
-                            "/proc/nonexistent/x.png"},
-      {"mask in missing dir", "render --scene analytic --technique legacy.hw --size 64x48 --out "
-                              "@OUT --mask /nonexistent-dir/m.png"},
+      {"unwritable output",
+       "render --scene analytic --technique legacy.hw --size 64x48 --out "
+       "/proc/nonexistent/x.png"},
+      {"mask in missing dir",
+       "render --scene analytic --technique legacy.hw --size 64x48 --out "
+       "@OUT --mask /nonexistent-dir/m.png"},
       {"missing --out", "render --scene analytic --technique legacy.hw"},
       {"unknown option", "render --scene analytic --technique legacy.hw --out @OUT --colour red"},
       {"unknown command", "paint"},
+      {"stray argument", "render --scene analytic --technique legacy.hw --out @OUT extra"},
+      {"option without its value", "render --scene analytic --technique legacy.hw --out"},
+      {"bench option on render",
+       "render --scene analytic --technique legacy.hw --out @OUT --quick"},
   };
 }
 
-INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()),
-                         [](const auto& info) {
-                           std::string n = info.param.what;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()), [](const auto& info) {
+  std::string n = info.param.what;
+  for (char& c : n)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return n;
+});
 
 }  // namespace
 }  // namespace sl
