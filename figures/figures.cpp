@@ -42,6 +42,7 @@ constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
 constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
+constexpr int kCompositeGap = 6;          // pixels between its tiles and rows
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 
 const Technique* lookup(const std::string& name) {
@@ -360,11 +361,12 @@ Image shrinkToWidth(const Image& image, int maxWidth) {
 
 // What one panel contributes to figure.png: its images (a buffer panel gives every buffer it
 // shows, a chart its chart) or, when it could not be made, one dark red block of its size.
-std::vector<Image> compositeTiles(const Renderer& r, const FigureSpec& s, const PanelResult& p) {
+std::vector<Image> compositeTiles(const std::string& outDir, const FigureSpec& s,
+                                  const PanelResult& p) {
   std::vector<Image> tiles;
   if (p.ok) {
     for (const ImageFile& image : p.images)
-      tiles.push_back(readPng((fs::path(r.outDir()) / image.file).string()));
+      tiles.push_back(readPng((fs::path(outDir) / image.file).string()));
     if (!tiles.empty()) return tiles;
   }
   Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);
@@ -374,29 +376,9 @@ std::vector<Image> compositeTiles(const Renderer& r, const FigureSpec& s, const 
 }
 
 void writeComposite(Renderer& r, FigureResult& fig) {
-  const FigureSpec& s = fig.spec;
-  if (s.table) return;
-  std::vector<Image> panels, closeups;
-  for (const PanelResult& p : fig.panels) {
-    for (Image& tile : compositeTiles(r, s, p)) panels.push_back(std::move(tile));
-    for (const ImageFile& c : p.closeups)
-      closeups.push_back(readPng((fs::path(r.outDir()) / c.file).string()));
-  }
-  if (panels.empty()) return;
-  constexpr int kGap = 6;
-  std::vector<Image> rows;
-  for (size_t i = 0; i < panels.size(); i += size_t(s.columns))
-    rows.push_back(sideBySide(
-        std::vector<Image>(panels.begin() + long(i),
-                           panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
-        kGap));
-  for (size_t i = 0; i < closeups.size(); i += size_t(s.columns))
-    rows.push_back(
-        sideBySide(std::vector<Image>(
-                       closeups.begin() + long(i),
-                       closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
-                   kGap));
-  fig.composite = r.write(s.id, "figure", shrinkToWidth(stackRows(rows, kGap), kCompositeMaxWidth));
+  if (fig.spec.table) return;
+  const Image composite = composeFigure(fig, r.outDir());
+  if (!composite.empty()) fig.composite = r.write(fig.spec.id, "figure", composite);
 }
 
 // Step 5: charts.
@@ -500,6 +482,26 @@ std::string utcNow() {
 }
 
 }  // namespace
+
+Image composeFigure(const FigureResult& fig, const std::string& outDir) {
+  const FigureSpec& s = fig.spec;
+  std::vector<Image> panels, closeups;
+  for (const PanelResult& p : fig.panels) {
+    for (Image& tile : compositeTiles(outDir, s, p)) panels.push_back(std::move(tile));
+    for (const ImageFile& c : p.closeups)
+      closeups.push_back(readPng((fs::path(outDir) / c.file).string()));
+  }
+  if (panels.empty()) return Image();
+  std::vector<Image> rows;
+  const size_t columns = size_t(std::max(s.columns, 1));
+  for (const std::vector<Image>* tiles : {&panels, &closeups})
+    for (size_t i = 0; i < tiles->size(); i += columns)
+      rows.push_back(sideBySide(
+          std::vector<Image>(tiles->begin() + long(i),
+                             tiles->begin() + long(std::min(tiles->size(), i + columns))),
+          kCompositeGap));
+  return shrinkToWidth(stackRows(rows, kCompositeGap), kCompositeMaxWidth);
+}
 
 std::vector<FigureInfo> listFigures() {
   std::vector<FigureInfo> out;
