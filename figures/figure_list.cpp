@@ -51,6 +51,11 @@ PanelSpec buffers(std::string label, std::string technique, std::string match, P
   return p;
 }
 
+PanelSpec withCloseups(PanelSpec p) {
+  p.closeups = true;
+  return p;
+}
+
 PanelSpec plot(std::string label, std::string chart) {
   PanelSpec p;
   p.label = std::move(label);
@@ -483,13 +488,17 @@ std::vector<FigureSpec> chanFigures() {
   out.push_back(chanFigure(
       "chan-3-1", "Figure 3-1 (a-d)", "Hybrid shadows: overview",
       "(a) the shadow map; (b) the silhouette pixels found by the 2x2 comparison that is "
-      "strictly between 0 and 1, green; (c) shadow volumes drawn only there; (d) the final "
-      "image.",
+      "strictly between 0 and 1 (white here); (c) shadow volumes drawn only there: the stencil "
+      "buffer they leave, black where the count is non-zero (in shadow), so only the silhouette "
+      "pixels in shadow are black; (d) the final image. Bottom row: the shadow's end magnified "
+      "3x.",
       "cylinder", 4,
       {view("(a) shadow map", PanelKind::kShadowMap),
-       buffers("(b) silhouette pixels", "modern.hybrid", "silhouette"),
-       buffers("(c) shadow volumes at silhouette pixels", "modern.hybrid", "stencil"),
+       withCloseups(buffers("(b) silhouette pixels", "modern.hybrid", "silhouette")),
+       withCloseups(buffers("(c) shadow volumes at silhouette pixels: the stencil buffer",
+                            "modern.hybrid", "stencil")),
        render("(d) hybrid result", "modern.hybrid")}));
+  out.back().closeups = {{0.50f, 0.22f, 0.2f, 0.25f, 3}};  // the rounded end of the shadow
 
   FigureSpec f35 = chanFigure(
       "chan-3-5", "Figure 3-5 (a-d)", "Mixing shadow maps and shadow volumes",
@@ -503,12 +512,20 @@ std::vector<FigureSpec> chanFigures() {
   f35.shadowMapTexels = 256;
   out.push_back(f35);
 
+  // Per scene, the 80x80-pixel window where modern.hw and modern.volumes disagree most (found
+  // with `shadowlab compare --diff` at 512x384, 1024² map): a tree crown's terminator, the
+  // dragon's body, the torus's inner rim.
+  const std::pair<const char*, Closeup> scenes37[] = {
+      {"trees", {0.734f, 0.365f, 0.156f, 0.208f, 3}},
+      {"dragon", {0.469f, 0.313f, 0.156f, 0.208f, 3}},
+      {"brabec", {0.313f, 0.417f, 0.156f, 0.208f, 3}}};
   std::vector<PanelSpec> p37;
-  for (const char* scene : {"trees", "dragon", "brabec"}) {
+  for (const auto& [scene, closeup] : scenes37) {
     PanelSpec sm = render(std::string(scene) + ": shadow map", "modern.hw");
     PanelSpec hy = render(std::string(scene) + ": hybrid", "modern.hybrid");
     PanelSpec sv = render(std::string(scene) + ": shadow volumes", "modern.volumes");
     sm.scene = hy.scene = sv.scene = scene;
+    sm.ownCloseups = hy.ownCloseups = sv.ownCloseups = {closeup};
     p37.insert(p37.end(), {sm, hy, sv});
   }
   FigureSpec f37 = chanFigure(
@@ -517,7 +534,9 @@ std::vector<FigureSpec> chanFigures() {
       "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
       "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
       "dragon has holes; the volume-based columns give it the volume of its two-sided surface "
-      "(counted in open_casters_two_sided, docs/volumes.md).",
+      "(counted in open_casters_two_sided, docs/volumes.md). Below: per row, the window where the "
+      "shadow map and the shadow volumes differ most, magnified 3x (self-shadowing at the "
+      "terminators of curved blockers, stair steps of the map).",
       "trees", 3, p37);
   f37.shadowMapTexels = 1024;
   out.push_back(f37);
@@ -525,12 +544,14 @@ std::vector<FigureSpec> chanFigures() {
   out.push_back(chanFigure(
       "chan-3-9", "Figure 3-9 (a-c)", "Fill rate: overdraw vs silhouette pixels",
       "The dragon in its cage: (a) shadow-volume overdraw, brighter = more layers; (b) the "
-      "hybrid method's silhouette pixels (green), the only pixels where it draws shadow "
-      "volumes; (c) the resulting stencil buffer.",
+      "hybrid method's silhouette pixels (white here), the only pixels where it draws shadow "
+      "volumes; (c) the resulting stencil buffer, black where the count is non-zero (in "
+      "shadow), as Chan shows it. Bottom row: the dragon magnified 3x.",
       "dragon", 3,
-      {buffers("(a) shadow-volume overdraw", "modern.volumes", "overdraw"),
-       buffers("(b) silhouette pixels", "modern.hybrid", "silhouette"),
-       buffers("(c) stencil", "modern.hybrid", "stencil")}));
+      {withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "overdraw")),
+       withCloseups(buffers("(b) silhouette pixels", "modern.hybrid", "silhouette")),
+       withCloseups(buffers("(c) stencil", "modern.hybrid", "stencil"))}));
+  out.back().closeups = {{0.469f, 0.313f, 0.156f, 0.208f, 3}};  // the dragon, as in Fig. 3-7
 
   std::vector<PanelSpec> p310;
   for (const char* scene : {"trees", "dragon", "brabec"}) {
@@ -584,15 +605,24 @@ std::vector<FigureSpec> chanFigures() {
        buffers("(c) smoothie alpha", "modern.smoothies", "alpha"),
        withPaper(render("(d) smoothies", "modern.smoothies"), "39 fps, 10,000 triangles")}));
 
+  // Figs. 4-4 and 4-10 use wider smoothies than the technique's default (t = 0.03) so that the
+  // difference between linear and remapped alpha spans enough pixels to be seen.
+  constexpr const char* kContactWidth = "0.06";  // t, light screen space (map side = 1)
+  constexpr const char* kBoxesWidth = "0.08";
   out.push_back(chanFigure(
       "chan-4-4", "Figure 4-4 (b, d)", "Original vs remapped smoothie alpha",
-      "With linearly interpolated alpha the penumbra has a fixed width and a discontinuity "
-      "where the box meets the floor (b); remapping alpha by the distance ratio b/r makes it "
-      "grow away from the contact (d).",
-      "brabec", 2,
-      {render("(b) original alpha", "modern.smoothies", {{"remap", "false"}}),
-       render("(d) remapped alpha (the technique's default)", "modern.smoothies")}));
-  out.back().closeups = {{0.48f, 0.52f, 0.14f, 0.14f, 4}};
+      "A box standing on a floor (the figure's own scene), smoothie width t = 0.06. (b) With "
+      "linearly interpolated alpha (--param remap=false) the penumbra has the fixed width t and "
+      "the smoothie darkens the lit floor in front of the box where box and floor meet, a "
+      "shadow that does not come from the box (Chan's \"contact error\"); (d) remapping alpha by "
+      "the distance ratio b/r (Eq. 4.1) makes the penumbra vanish at the contact and grow away "
+      "from it. Bottom: the box-floor contact magnified 3x.",
+      "contact", 2,
+      {render("(b) original alpha (remap=false)", "modern.smoothies",
+              {{"remap", "false"}, {"width", kContactWidth}}),
+       render("(d) remapped alpha (Eq. 4.1, the default)", "modern.smoothies",
+              {{"width", kContactWidth}})}));
+  out.back().closeups = {{0.22f, 0.22f, 0.36f, 0.3f, 3}};  // the box's front foot and its shadow
 
   std::vector<PanelSpec> p48;
   const char* paperMs[3][4] = {{"16 ms", "129 ms", "19 ms", "19 ms"},
@@ -650,13 +680,20 @@ std::vector<FigureSpec> chanFigures() {
 
   out.push_back(chanFigure(
       "chan-4-10", "Figure 4-10", "Multiple blockers and receivers",
-      "Box 1 casts a shadow onto box 2 and the ground. Smoothie buffer alpha without (left) "
-      "and with (middle) remapping; with remapping the penumbra is thinner on box 2 than on "
-      "the ground (right).",
+      "Box 1 (orange, above) casts a shadow onto box 2 (blue) and the ground; smoothie width "
+      "t = 0.08. The smoothie buffer's alpha without remapping (left: the same thickness on "
+      "both receivers) and with it (middle: thinner where box 1's shadow falls on box 2's top, "
+      "which is closer to it); right: the result, seen so that box 1's shadow shows on box 2's "
+      "top (the dark corner) and on the ground in front of box 2. Bottom: box 1's shadow edge "
+      "on box 2 (harder) and on the ground (softer), magnified 3x.",
       "boxes", 3,
-      {buffers("alpha, not remapped", "modern.smoothies", "alpha", {{"remap", "false"}}),
-       buffers("alpha, remapped (the technique's default)", "modern.smoothies", "alpha"),
-       render("result", "modern.smoothies")}));
+      {buffers("smoothie buffer, alpha not remapped", "modern.smoothies", "alpha",
+               {{"remap", "false"}, {"width", kBoxesWidth}}),
+       buffers("smoothie buffer, alpha remapped (Eq. 4.1)", "modern.smoothies", "alpha",
+               {{"width", kBoxesWidth}}),
+       render("result (remapped)", "modern.smoothies", {{"width", kBoxesWidth}})}));
+  out.back().closeups = {{0.34f, 0.46f, 0.16f, 0.2f, 3},   // box 1's shadow edge on box 2
+                         {0.52f, 0.22f, 0.16f, 0.2f, 3}};  // and on the ground
   return out;
 }
 

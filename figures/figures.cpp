@@ -42,6 +42,7 @@ constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
 constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
+constexpr int kCompositeGap = 6;          // pixels between its tiles and rows
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 
 const Technique* lookup(const std::string& name) {
@@ -219,16 +220,18 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
     out.reason = why;
     return out;
   }
-  auto addImage = [&](const Image& image, const std::string& caption, bool withCloseups) {
-    const bool close = withCloseups && p.closeups && !fig.closeups.empty();
-    out.images.push_back(
-        {r.write(fig.id, base, close ? framed(image, fig.closeups) : image), caption});
+  const std::vector<Closeup>& closeups = p.ownCloseups.empty() ? fig.closeups : p.ownCloseups;
+  // `name` tells a buffer panel's images apart ("" for a panel's one image).
+  auto addImage = [&](const Image& image, const std::string& caption, bool withCloseups,
+                      const std::string& name = "") {
+    const bool close = withCloseups && p.closeups && !closeups.empty();
+    const std::string file = base + name;
+    out.images.push_back({r.write(fig.id, file, close ? framed(image, closeups) : image), caption});
     if (!close) return;
-    for (size_t i = 0; i < fig.closeups.size(); ++i)
+    for (size_t i = 0; i < closeups.size(); ++i)
       out.closeups.push_back(
-          {r.write(fig.id, base + "-closeup" + std::to_string(i),
-                   closeupOf(image, fig.closeups[i])),
-           p.label + " magnified " + std::to_string(fig.closeups[i].magnify) + "x"});
+          {r.write(fig.id, file + "-closeup" + std::to_string(i), closeupOf(image, closeups[i])),
+           caption + " magnified " + std::to_string(closeups[i].magnify) + "x"});
   };
   try {
     switch (p.kind) {
@@ -279,10 +282,8 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         for (const PassImage& pass : f->intermediates) {
           if (!p.intermediate.empty() && pass.name.find(p.intermediate) == std::string::npos)
             continue;
-          for (auto& [image, caption] : splitIntermediate(pass)) {
-            out.images.push_back(
-                {r.write(fig.id, base + "-" + std::to_string(n++), image), caption});
-          }
+          for (auto& [image, caption] : splitIntermediate(pass))
+            addImage(image, caption, true, "-" + std::to_string(n++));
         }
         if (out.images.empty()) {
           std::string names;
@@ -322,8 +323,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
   return out;
 }
 
-// The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels,
-// then the close-ups; a missing panel is a dark red block of the panel's size.
+// The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels
+// (every buffer of a buffer panel and every chart counts as one), then the close-ups; a panel
+// that could not be made is a dark red block of the panel's size.
 Image stackRows(const std::vector<Image>& rows, int gap) {
   int w = 0, h = 0;
   for (const Image& r : rows) {
@@ -357,38 +359,26 @@ Image shrinkToWidth(const Image& image, int maxWidth) {
   return out;
 }
 
-void writeComposite(Renderer& r, FigureResult& fig) {
-  const FigureSpec& s = fig.spec;
-  if (s.table) return;
-  std::vector<Image> panels, closeups;
-  for (const PanelResult& p : fig.panels) {
-    if (p.spec.kind == PanelKind::kPlot || p.spec.kind == PanelKind::kIntermediates) continue;
-    if (p.ok && !p.images.empty()) {
-      panels.push_back(readPng((fs::path(r.outDir()) / p.images.front().file).string()));
-      for (const ImageFile& c : p.closeups)
-        closeups.push_back(readPng((fs::path(r.outDir()) / c.file).string()));
-    } else {
-      Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height,
-                    3);
-      for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
-      panels.push_back(missing);
-    }
+// What one panel contributes to figure.png: its images (a buffer panel gives every buffer it
+// shows, a chart its chart) or, when it could not be made, one dark red block of its size.
+std::vector<Image> compositeTiles(const std::string& outDir, const FigureSpec& s,
+                                  const PanelResult& p) {
+  std::vector<Image> tiles;
+  if (p.ok) {
+    for (const ImageFile& image : p.images)
+      tiles.push_back(readPng((fs::path(outDir) / image.file).string()));
+    if (!tiles.empty()) return tiles;
   }
-  if (panels.empty()) return;
-  constexpr int kGap = 6;
-  std::vector<Image> rows;
-  for (size_t i = 0; i < panels.size(); i += size_t(s.columns))
-    rows.push_back(sideBySide(
-        std::vector<Image>(panels.begin() + long(i),
-                           panels.begin() + long(std::min(panels.size(), i + size_t(s.columns)))),
-        kGap));
-  for (size_t i = 0; i < closeups.size(); i += size_t(s.columns))
-    rows.push_back(
-        sideBySide(std::vector<Image>(
-                       closeups.begin() + long(i),
-                       closeups.begin() + long(std::min(closeups.size(), i + size_t(s.columns)))),
-                   kGap));
-  fig.composite = r.write(s.id, "figure", shrinkToWidth(stackRows(rows, kGap), kCompositeMaxWidth));
+  Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);
+  for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
+  tiles.push_back(std::move(missing));
+  return tiles;
+}
+
+void writeComposite(Renderer& r, FigureResult& fig) {
+  if (fig.spec.table) return;
+  const Image composite = composeFigure(fig, r.outDir());
+  if (!composite.empty()) fig.composite = r.write(fig.spec.id, "figure", composite);
 }
 
 // Step 5: charts.
@@ -492,6 +482,26 @@ std::string utcNow() {
 }
 
 }  // namespace
+
+Image composeFigure(const FigureResult& fig, const std::string& outDir) {
+  const FigureSpec& s = fig.spec;
+  std::vector<Image> panels, closeups;
+  for (const PanelResult& p : fig.panels) {
+    for (Image& tile : compositeTiles(outDir, s, p)) panels.push_back(std::move(tile));
+    for (const ImageFile& c : p.closeups)
+      closeups.push_back(readPng((fs::path(outDir) / c.file).string()));
+  }
+  if (panels.empty()) return Image();
+  std::vector<Image> rows;
+  const size_t columns = size_t(std::max(s.columns, 1));
+  for (const std::vector<Image>* tiles : {&panels, &closeups})
+    for (size_t i = 0; i < tiles->size(); i += columns)
+      rows.push_back(sideBySide(
+          std::vector<Image>(tiles->begin() + long(i),
+                             tiles->begin() + long(std::min(tiles->size(), i + columns))),
+          kCompositeGap));
+  return shrinkToWidth(stackRows(rows, kCompositeGap), kCompositeMaxWidth);
+}
 
 std::vector<FigureInfo> listFigures() {
   std::vector<FigureInfo> out;

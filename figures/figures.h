@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "apps/cli.h"
+#include "core/image.h"
+#include "figures/report.h"
 
 namespace sl::figures {
 
@@ -19,6 +21,14 @@ std::vector<FigureInfo> listFigures();
 // Renders every figure (or only `only`) into outDir and writes outDir/report.html.
 int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress);
 int runBench(const cli::Args& args);
+
+// figure.png: the figure laid out as the paper lays it out, in rows of spec.columns tiles, then
+// the close-ups in rows of spec.columns. Every panel gives its tiles in order: each image it
+// made (a buffer panel every buffer it shows, a chart its chart), or one dark red block of the
+// panel's size when it could not be made. Tiles are top-aligned, 6 pixels apart; a composite
+// wider than 1600 pixels is shrunk by the smallest integer factor that fits (box filter).
+// Images are read from outDir (the files PanelResult names). A figure without panels: empty.
+Image composeFigure(const FigureResult& fig, const std::string& outDir);
 int runPlan(const cli::Args& args);
 
 }  // namespace sl::figures

@@ -237,6 +237,11 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
         {"6-classification",
          "red/blue: shadow map shadowed/lit; black/green: volumes shadowed/lit (Chan Fig. 3-5b)",
          classificationImage(silhouette, frame.visibility)});
+    frame.intermediates.push_back(
+        {"5-stencil-count",
+         "stencil buffer: volumes counted at silhouette pixels only, black = non-zero (Chan Fig. "
+         "3-1c, 3-9c)",
+         stencilCountImage(target)});
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return frame;

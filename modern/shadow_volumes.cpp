@@ -200,6 +200,19 @@ VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolume
   return fill;
 }
 
+Image stencilCountImage(const RenderTarget& cameraTarget) {
+  std::vector<GLubyte> stencil(size_t(cameraTarget.width) * size_t(cameraTarget.height));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, cameraTarget.fbo.id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, cameraTarget.width, cameraTarget.height, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE,
+               stencil.data());
+  checkGl("read stencil");
+  Image image(cameraTarget.width, cameraTarget.height, 1);
+  for (size_t i = 0; i < stencil.size(); ++i)
+    image.data[i] = (stencil[i] & kStencilCountBits) != 0 ? 0.0f : 1.0f;
+  return image;
+}
+
 void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,
                           const VolumeFill& fill, const RenderParams& params, Frame& frame) {
   const double pixels = double(params.width) * params.height;
@@ -279,6 +292,10 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
                                    "shadow-volume overdraw per pixel, scaled to the peak of " +
                                        std::to_string(int(peak)) + " (Chan Fig. 3-9a)",
                                    overdraw});
+    frame.intermediates.push_back(
+        {"3-stencil-count",
+         "stencil buffer after z-fail counting: black = non-zero count (in shadow)",
+         stencilCountImage(target)});
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return frame;

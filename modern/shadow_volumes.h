@@ -66,6 +66,12 @@ struct VolumeFill {
 VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolumes& volumes,
                              const glm::mat4& viewProjection, GLuint maskBit, bool depthBoundsMask);
 
+// Capture (Chan Figs. 3-1c and 3-9c): the stencil buffer of a camera target made by
+// makeStencilCameraTarget, as Chan shows it: black where the crossing count (the low 7 bits) is
+// non-zero (in shadow), white where it is zero. Reads the stencil; changes no GL state that a
+// later pass relies on (the read framebuffer binding only).
+Image stencilCountImage(const RenderTarget& cameraTarget);
+
 // Puts the counters every shadow-volume technique reports into frame.counters.
 void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,
                           const VolumeFill& fill, const RenderParams& params, Frame& frame);

@@ -17,9 +17,11 @@
 //        lit, bilinear, sinusoidal falloff texture
 //
 // --param width=t: smoothie width in light-screen-space units, where the shadow map's side is 1
-// (so t = 0.1 is a tenth of the light's view). §4.1 assumes closed blockers; open casters get
-// smoothies on the silhouette of their two-sided solid (boundary edges and folds, see the
-// DEVIATION in modern/silhouettes.h), counted in Frame::counters["open_casters_two_sided"].
+// (so t = 0.1 is a tenth of the light's view). --param remap=false keeps Chan's original,
+// linearly interpolated alpha (§4.2.1 before Eq. 4.1; Figures 4-4b and 4-10 left): a penumbra
+// of fixed width t that does not shrink towards a contact. §4.1 assumes closed blockers; open
+// casters get smoothies on the silhouette of their two-sided solid (boundary edges and folds, see
+// the DEVIATION in modern/silhouettes.h), counted in Frame::counters["open_casters_two_sided"].
 #include "modern/smoothies.h"
 
 #include <algorithm>
@@ -38,6 +40,11 @@ using namespace sl::gl;
 float remapSmoothieAlpha(float a, float bOverR) {
   const float room = 1.0f - bOverR;
   return a >= room ? 1.0f : a / room;
+}
+
+float smoothieAlpha(float a, float bOverR, bool remap) {
+  if (remap) return remapSmoothieAlpha(a, bOverR);
+  return bOverR >= 1.0f ? 1.0f : a;
 }
 
 float smoothieFalloff(float v) {
@@ -257,7 +264,7 @@ RenderTarget renderSmoothieDepth(const GpuSmoothies& smoothies, const Program& p
 
 // Pass 3 (§4.2.1, §4.3): alpha per smoothie pixel, Eq. 4.1, minimum blending into a = 1.
 void renderSmoothieAlpha(const GpuSmoothies& smoothies, const RenderTarget& buffer,
-                         const RenderTarget& map, const Program& program, double width,
+                         const RenderTarget& map, const Program& program, double width, bool remap,
                          Frame& frame) {
   PassTimer timer(frame, "3 smoothie alpha (min blending)");
   buffer.bind();
@@ -272,10 +279,29 @@ void renderSmoothieAlpha(const GpuSmoothies& smoothies, const RenderTarget& buff
   glBindTexture(GL_TEXTURE_2D, map.color[0].id());
   program.set("uLinearDepth", 0);
   program.set("uWidthPixels", float(width * buffer.width));
+  program.set("uRemap", remap ? 1 : 0);
   drawSmoothies(smoothies);
   glBlendEquation(GL_FUNC_ADD);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
+}
+
+// Capture (Figure 4-1b): the smoothie buffer's depth, linearised between the light's near and
+// far planes (0 = near, 1 = far or no smoothie), on the grey scale of the figures' shadow map.
+Image linearSmoothieDepth(const RenderTarget& buffer, const Scene& scene) {
+  Image depth(buffer.width, buffer.height, 1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, buffer.fbo.id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, buffer.width, buffer.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data.data());
+  checkGl("read smoothie depth");
+  const DepthRange range = lightDepthRange(scene);
+  const float n = range.nearPlane, f = range.farPlane;
+  for (float& d : depth.data) {
+    const float ndc = 2.0f * d - 1.0f;  // glm::perspective's window depth back to eye distance
+    const float eye = 2.0f * n * f / (f + n - ndc * (f - n));
+    d = std::clamp((eye - n) / (f - n), 0.0f, 1.0f);
+  }
+  return depth;
 }
 
 Texture makeFalloffTexture() {
@@ -328,6 +354,7 @@ void shadeWithSmoothies(const GpuScene& gpu, const RenderParams& params, const P
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const double width = params.number("width", kDefaultWidth, 1e-4, 1.0);
+  const bool remap = params.flag("remap", true);
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
   const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
   const int texels = params.shadowMapTexels;
@@ -346,7 +373,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   RenderTarget map =
       renderShadowMapWithLinearDepth(gpu, linearDepthProgram, texels, factor, units, frame);
   RenderTarget smoothie = renderSmoothieDepth(smoothies, smoothieDepthProgram, texels, frame);
-  renderSmoothieAlpha(smoothies, smoothie, map, alphaProgram, width, frame);
+  renderSmoothieAlpha(smoothies, smoothie, map, alphaProgram, width, remap, frame);
   shadeWithSmoothies(gpu, params, shadeProgram, map, smoothie, falloff, frame);
 
   frame.counters["open_casters_two_sided"] = geometry.openTwoSided;
@@ -355,9 +382,16 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   frame.counters["corners_with_more_than_two_edges"] = double(geometry.cornersWithManyEdges);
   frame.counters["corner_squares"] = double(geometry.cornerSquares);
   if (params.capturePasses) {
+    frame.intermediates.push_back(
+        {"2-smoothie-depth",
+         "smoothie buffer depth, linear from the light's near (black) to far plane (white; "
+         "white also where no smoothie lies) (Fig. 4-1b)",
+         linearSmoothieDepth(smoothie, scene)});
     Image alpha = channel(readAttachment(smoothie, 0), 0);
     frame.intermediates.push_back(
-        {"3-smoothie-alpha", "smoothie buffer alpha after Eq. 4.1 and min blending (Fig. 4-1c)",
+        {"3-smoothie-alpha",
+         remap ? "smoothie buffer alpha after Eq. 4.1 and min blending (Fig. 4-1c)"
+               : "smoothie buffer alpha, linear (not remapped), min blending (Fig. 4-10 left)",
          alpha});
     Image linear = channel(readAttachment(map, 0), 0);
     float far = 0;
@@ -378,7 +412,7 @@ Technique smoothiesTechnique() {
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
   t.status = "complete (square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"width", "offset-factor", "offset-units"};
+  t.paramKeys = {"width", "remap", "offset-factor", "offset-units"};
   t.render = render;
   return t;
 }

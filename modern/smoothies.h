@@ -13,6 +13,11 @@ Technique smoothiesTechnique();
 // only happens with a positive divisor. `a` must lie in [0, 1].
 float remapSmoothieAlpha(float a, float bOverR);
 
+// What smoothie_alpha.frag writes for a clamped linear alpha `a` in [0, 1]: Eq. 4.1 when `remap`
+// (the default, --param remap=true), Chan's original linear alpha otherwise (§4.2.1, Figure
+// 4-4b). In both, a smoothie pixel behind the receiver (b/r >= 1) is discarded: 1.
+float smoothieAlpha(float a, float bOverR, bool remap);
+
 // The sinusoidal falloff of §4.2.1 (Parker et al. 1998, Haines 2001): s(v) = (1 - cos(pi v))/2,
 // s(0) = 0, s(1) = 1, slope 0 at both ends; precomputed into a 1D texture.
 float smoothieFalloff(float v);

@@ -57,30 +57,41 @@ TEST(Smoothies, FalloffIsSinusoidal) {
   EXPECT_NEAR(modern::smoothieFalloff(0.25f), (1.0 - std::cos(glm::pi<double>() / 4)) / 2, 1e-7);
 }
 
-TEST(Smoothies, PenumbraProfileAcrossAnAnalyticEdgeFollowsTheFalloff) {
-  // Analytic scene: light at (0,4,0) looking straight down (light x = world x), occluder top face
-  // at y = 1.01, ground at y = 0. Along the ground beyond the occluder's +x edge (|z| small, away
-  // from the corners) the expected visibility is computed here from Chan's definitions alone:
-  //   light screen u = 0.5 + 0.5 x / (depth tan(cone/2)), depth = 4 - y;
-  //   d = u(ground) - u(edge) (map units), a = d / t, b/r = (4 - 1.01) / 4,
-  //   a' = min(1, a / (1 - b/r)), v = (1 - cos(pi a')) / 2; v = 0 where d < 0 (umbra).
-  // Bilinear interpolation of a function linear in the map is exact, so away from the two kinks
-  // (d = 0 and a' = 1, excluded within 2 shadow-map texels) the only errors are float round-off
-  // of the world position (~1e-4 world units, slope <= 6 per unit) and the 256-texel falloff
-  // table (< 1e-4): 0.002 bounds both (6e-4 + 1e-4) with margin.
+TEST(Smoothies, OriginalAlphaIsLinearAndOccludedBehindTheReceiver) {
+  // --param remap=false (§4.2.1 before Eq. 4.1, Fig. 4-4b): a' = a whatever b/r, except that a
+  // smoothie pixel behind its receiver is discarded (Fig. 4-7: "If b/r > 1, smoothie pixel is
+  // occluded"), i.e. 1 under minimum blending. remap=true is Eq. 4.1 (remapSmoothieAlpha).
+  for (float a : {0.0f, 0.1f, 0.5f, 1.0f})
+    for (float f : {0.0f, 0.5f, 0.9f, 0.999f}) {
+      EXPECT_EQ(modern::smoothieAlpha(a, f, false), a) << a << " " << f;
+      EXPECT_EQ(modern::smoothieAlpha(a, f, true), modern::remapSmoothieAlpha(a, f));
+    }
+  for (float f : {1.0f, 1.5f}) EXPECT_EQ(modern::smoothieAlpha(0.2f, f, false), 1.0f);
+}
+
+// The profile of the penumbra beyond the analytic occluder's +x edge, expected from Chan's
+// definitions alone (see the test below); `remap` chooses Eq. 4.1 or the original linear alpha.
+struct Profile {
+  Frame frame;
+  Image expected;  // -1 where the pixel is not checked
+  int checked = 0, penumbra = 0;
+  double worst = 0;
+};
+Profile penumbraProfile(bool remap) {
   const Scene scene = builtinScene("analytic");
   RenderParams p = smallParams(512);
   const double t = 0.2;
   p.extra["width"] = "0.2";
-  const Frame f = renderTechnique(findTechnique("modern.smoothies"), scene, p);
+  p.extra["remap"] = remap ? "true" : "false";
+  Profile out;
+  out.frame = renderTechnique(findTechnique("modern.smoothies"), scene, p);
+  out.expected = Image(p.width, p.height, 1, -1.0f);
   const double tanHalf = std::tan(glm::radians(double(scene.light.coneDegrees) / 2));
   const auto u = [&](double x, double y) { return 0.5 + 0.5 * x / ((4.0 - y) * tanHalf); };
   const double bOverR = (4.0 - testing::kOccluderTop) / 4.0;
   const double uEdge = u(testing::kOccluderHalfSide, testing::kOccluderTop);
   const double texel = 1.0 / p.shadowMapTexels;
-  const double kink = t * (1.0 - bOverR);  // d where a' reaches 1
-  int penumbra = 0, checked = 0;
-  double worst = 0;
+  const double kink = remap ? t * (1.0 - bOverR) : t;  // d where a' reaches 1
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
       auto g = testing::groundPoint(scene, p.width, p.height, x + 0.5f, y + 0.5f);
@@ -88,17 +99,104 @@ TEST(Smoothies, PenumbraProfileAcrossAnAnalyticEdgeFollowsTheFalloff) {
       const double d = u(g->x, 0.0) - uEdge;
       if (std::abs(d) < 2 * texel || std::abs(d - kink) < 2 * texel) continue;
       const double a = d / t;
-      const double aRemapped = d < 0 ? 0.0 : std::min(1.0, a / (1.0 - bOverR));
-      const double expected = d < 0 ? 0.0 : (1.0 - std::cos(glm::pi<double>() * aRemapped)) / 2;
-      const double got = f.visibility.at(x, y);
-      worst = std::max(worst, std::abs(got - expected));
-      ++checked;
-      if (expected > 0.02 && expected < 0.98) ++penumbra;
-      EXPECT_NEAR(got, expected, 0.002) << "pixel " << x << "," << y << " d=" << d;
+      const double alpha = d < 0 ? 0.0 : std::min(1.0, remap ? a / (1.0 - bOverR) : a);
+      const double expected = d < 0 ? 0.0 : (1.0 - std::cos(glm::pi<double>() * alpha)) / 2;
+      out.expected.at(x, y) = float(expected);
+      out.worst = std::max(out.worst, std::abs(out.frame.visibility.at(x, y) - expected));
+      ++out.checked;
+      if (expected > 0.02 && expected < 0.98) ++out.penumbra;
     }
-  EXPECT_GT(checked, 500);
-  EXPECT_GT(penumbra, 40);  // the ramp spans several pixels: t(1 - b/r) = 0.05 of the map
-  RecordProperty("worst_profile_error", std::to_string(worst));
+  return out;
+}
+
+TEST(Smoothies, PenumbraProfileAcrossAnAnalyticEdgeFollowsTheFalloff) {
+  // Analytic scene: light at (0,4,0) looking straight down (light x = world x), occluder top face
+  // at y = 1.01, ground at y = 0. Along the ground beyond the occluder's +x edge (|z| small, away
+  // from the corners) the expected visibility is computed here from Chan's definitions alone:
+  //   light screen u = 0.5 + 0.5 x / (depth tan(cone/2)), depth = 4 - y;
+  //   d = u(ground) - u(edge) (map units), a = d / t, b/r = (4 - 1.01) / 4,
+  //   a' = min(1, a / (1 - b/r)) (remapped, Eq. 4.1) or min(1, a) (remap=false),
+  //   v = (1 - cos(pi a')) / 2; v = 0 where d < 0 (umbra).
+  // Bilinear interpolation of a function linear in the map is exact, so away from the two kinks
+  // (d = 0 and a' = 1, excluded within 2 shadow-map texels) the only errors are float round-off
+  // of the world position (~1e-4 world units, slope <= 6 per unit) and the 256-texel falloff
+  // table (< 1e-4): 0.002 bounds both (6e-4 + 1e-4) with margin.
+  for (bool remap : {true, false}) {
+    const Profile pr = penumbraProfile(remap);
+    for (int y = 0; y < pr.expected.height; ++y)
+      for (int x = 0; x < pr.expected.width; ++x)
+        if (pr.expected.at(x, y) >= 0) {
+          EXPECT_NEAR(pr.frame.visibility.at(x, y), pr.expected.at(x, y), 0.002)
+              << "remap=" << remap << " pixel " << x << "," << y;
+        }
+    EXPECT_GT(pr.checked, 500) << "remap=" << remap;
+    // The ramp spans several pixels: t(1 - b/r) = 0.05 of the map remapped, t = 0.2 not.
+    EXPECT_GT(pr.penumbra, 40) << "remap=" << remap;
+    RecordProperty(remap ? "worst_profile_error" : "worst_profile_error_remap_false",
+                   std::to_string(pr.worst));
+  }
+}
+
+TEST(Smoothies, RemapFalseWidensThePenumbraByOneOverOneMinusBOverR) {
+  // Chan Fig. 4-4b vs 4-4d: on the analytic ground b/r = 0.7475, so the original alpha's ramp is
+  // 1 / (1 - b/r) ~ 4 times as wide as the remapped one. In the remapped ramp the two masks
+  // differ (at its middle the remapped v is 0.5, the original about 0.04); the original mask still
+  // has penumbra where the remapped one is fully lit, and never more light than it.
+  const Profile remapped = penumbraProfile(true);
+  const Profile original = penumbraProfile(false);
+  int differing = 0, onlyOriginalPenumbra = 0;
+  for (int y = 0; y < remapped.frame.visibility.height; ++y)
+    for (int x = 0; x < remapped.frame.visibility.width; ++x) {
+      const float vr = remapped.frame.visibility.at(x, y), vo = original.frame.visibility.at(x, y);
+      // a' is larger when remapped (a / (1 - b/r) >= a) and the falloff increases: vo <= vr, up to
+      // float round-off of the two renders (1e-5).
+      EXPECT_LE(vo, vr + 1e-5f) << x << "," << y;
+      if (vr - vo > 0.1f) ++differing;
+      if (vr > 0.999f && vo < 0.9f) ++onlyOriginalPenumbra;
+    }
+  EXPECT_GT(differing, 40);
+  EXPECT_GT(onlyOriginalPenumbra, 40);
+  EXPECT_GT(original.penumbra, 2 * remapped.penumbra);
+}
+
+TEST(Smoothies, SmoothieDepthCaptureIsTheOccludersLinearDepth) {
+  // Fig. 4-1b: the captured smoothie depth (2-smoothie-depth) is linear from the light's near to
+  // far plane. On the analytic scene every smoothie is built at the occluder's top edges, at
+  // distance 4 - 1.01 along the light's axis, so every texel the smoothies cover holds
+  // (4 - 1.01 - near) / (far - near); uncovered texels hold 1. Tolerance 1e-3: the 24-bit depth
+  // buffer's step near 3 units from the light is far below it, and the depth-to-distance
+  // inversion is exact up to float round-off.
+  const Scene scene = builtinScene("analytic");
+  RenderParams p = smallParams(256);
+  p.extra["width"] = "0.1";
+  p.capturePasses = true;
+  const Frame f = renderTechnique(findTechnique("modern.smoothies"), scene, p);
+  const Image* depth = nullptr;
+  const Image* alpha = nullptr;
+  for (const PassImage& i : f.intermediates) {
+    if (i.name == "2-smoothie-depth") depth = &i.image;
+    if (i.name == "3-smoothie-alpha") alpha = &i.image;
+  }
+  ASSERT_NE(depth, nullptr);
+  ASSERT_NE(alpha, nullptr);
+  const DepthRange range = lightDepthRange(scene);
+  const float expected =
+      (4.0f - testing::kOccluderTop - range.nearPlane) / (range.farPlane - range.nearPlane);
+  int covered = 0;
+  for (int y = 0; y < depth->height; ++y)
+    for (int x = 0; x < depth->width; ++x) {
+      const float d = depth->at(x, y);
+      if (d >= 1.0f) continue;
+      ++covered;
+      EXPECT_NEAR(d, expected, 1e-3) << x << "," << y;
+    }
+  EXPECT_GT(covered, 100);
+  // Where the alpha is strictly inside the ramp, a smoothie is there.
+  for (int y = 0; y < alpha->height; ++y)
+    for (int x = 0; x < alpha->width; ++x)
+      if (alpha->at(x, y) > 0.05f && alpha->at(x, y) < 0.95f) {
+        EXPECT_LT(depth->at(x, y), 1.0f) << x << "," << y;
+      }
 }
 
 TEST(Smoothies, ContactAndEveryBufferStayFiniteWithinUnitRange) {
