@@ -13,6 +13,7 @@
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/technique.h"
+#include "reference/reference.h"  // kPixelParam: the bench and figures use pixel=area
 
 namespace sl::figures {
 
