@@ -674,7 +674,7 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
            << ": visibility error against frame time (Pareto front joined)'\n"
            << "set logscale xy\nset grid\nset key outside right\n"
            << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
-           << "set ylabel 'RMSE of the visibility mask against its reference'\n"
+           << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
            << "plot ";
     for (size_t i = 0; i < techniques.size(); ++i)
       script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "

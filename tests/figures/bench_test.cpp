@@ -198,6 +198,17 @@ TEST(BenchScenes, FarSceneMinifiesTheShadowMap) {
   const double after = planFrame(far, hw, smallParams()).maxShadowTexelsPerPixel;
   std::cout << "texels per pixel: brabec " << before << ", brabec-far " << after << "\n";
   EXPECT_GT(after, 0.75 * kFarCameraFactor * before);
+  // What the claim compares, written for a look (test-output/bench-far/).
+  const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "bench-far";
+  fs::create_directories(dir);
+  RenderParams area = smallParams();
+  area.extra[reference::kPixelParam] = reference::kPixelArea;
+  const Frame truth = renderTechnique(findTechnique("reference.hard"), far, area);
+  writePng((dir / "reference-hard-area.png").string(), truth.color);
+  writePng((dir / "reference-hard-area-mask.png").string(), truth.visibility, 16);
+  for (const char* name : {"modern.csm", "modern.gems16"})
+    writePng((dir / (std::string(name) + "-mask.png")).string(),
+             renderTechnique(findTechnique(name), far, smallParams()).visibility, 16);
 }
 
 // Chan §4.2's width from the light: a caster whose centre lies at depth b on the light's axis.
