@@ -468,9 +468,11 @@ std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
     // Chan §3.3: the hybrid pays off where shadow volumes are fill bound. The scene file is
     // another part of issue 14; without it the claim says so.
     const std::vector<std::string> files = sceneFileNames();
-    if (contains(files, kFillBoundScene))
-      runs.push_back(
-          {loadScene(kFillBoundScene), {"modern.volumes", "modern.hybrid"}, false, false, false});
+    if (contains(files, kFillBoundScene)) {
+      Scene fill = loadScene(kFillBoundScene);
+      fill.name = kFillBoundScene;  // the claim looks for this name, whatever the file calls it
+      runs.push_back({fill, {"modern.volumes", "modern.hybrid"}, false, false, false});
+    }
   }
   return runs;
 }

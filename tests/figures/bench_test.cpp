@@ -300,6 +300,16 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   const ClaimCheck* hybrid = claim(claims, "hybrid-vs-volumes", kFillBoundScene);
   ASSERT_NE(hybrid, nullptr);
   EXPECT_EQ(hybrid->verdict, "not measured (scene not present)");
+  // With the fill-bound scene measured, the hybrid's claim is checked there.
+  BenchResult fill;
+  fill.rows.push_back(claimRow(kFillBoundScene, "modern.hybrid", "default", 0.05, 0.05, 1.0));
+  fill.rows.push_back(claimRow(kFillBoundScene, "modern.volumes", "default", 0.05, 0.05, 2.0));
+  fill.masks[std::string(kFillBoundScene) + "|modern.hybrid|default"] = Image(4, 4, 1, 1.0f);
+  fill.masks[std::string(kFillBoundScene) + "|modern.volumes|default"] = Image(4, 4, 1, 1.0f);
+  const std::vector<ClaimCheck> fillClaims = checkClaims(fill);
+  const ClaimCheck* measured = claim(fillClaims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(measured, nullptr);
+  EXPECT_EQ(measured->verdict, "agrees") << "same masks, half the time: " << measured->measured;
   for (const ClaimCheck& c : claims) {
     if (c.verdict.rfind("not measured", 0) != 0 && c.scene != "-") {
       EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
