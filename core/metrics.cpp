@@ -47,8 +47,8 @@ double meanAbsChange(const Image& a, const Image& b, const Image& region) {
       a.height != region.height)
     throw InputError("masks differ in size: " + std::to_string(a.width) + "x" +
                      std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" +
-                     std::to_string(b.height) + " (region " + std::to_string(region.width) +
-                     "x" + std::to_string(region.height) + ")");
+                     std::to_string(b.height) + " (region " + std::to_string(region.width) + "x" +
+                     std::to_string(region.height) + ")");
   double sum = 0.0;
   long long pixels = 0;
   for (int y = 0; y < a.height; ++y)

@@ -87,8 +87,7 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
       << number(e.all.shareAboveHalf, 4) << "</td><td>" << number(e.band.rmse, 3) << "</td><td>"
       << number(e.leakShare, 4) << "</td><td>"
       << (r.temporalChange >= 0 ? number(r.temporalChange, 5) : std::string("-")) << " ("
-      << (r.referenceTemporalChange >= 0 ? number(r.referenceTemporalChange, 5)
-                                         : std::string("-"))
+      << (r.referenceTemporalChange >= 0 ? number(r.referenceTemporalChange, 5) : std::string("-"))
       << ")</td></tr>\n";
   }
   h << "</table>\n<h3>The papers' comparative claims, checked on these measurements</h3>\n"
@@ -97,8 +96,8 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   for (const ClaimCheck& c : claims)
     h << "<tr><td>" << escape(c.claim) << "</td><td>" << escape(c.source) << "</td><td>"
       << escape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
-      << escape(c.verdict) << "</td><td>" << escape(c.setup) << "</td><td>"
-      << escape(c.measured) << "</td></tr>\n";
+      << escape(c.verdict) << "</td><td>" << escape(c.setup) << "</td><td>" << escape(c.measured)
+      << "</td></tr>\n";
   h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this "
        "table.</p>\n";
   return h.str();
