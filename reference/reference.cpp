@@ -13,9 +13,9 @@
 //                               modern/shaders/hw_shadow.frag.glsl, for figures
 //
 // With --param pixel=area (the pixel-integrated form, issue 14) pass 3 becomes:
-//   3. integratePixelArea     — for each of the N x N sub-pixel strata (their centres, an
-//                               ordered grid: Mitchell 1987's regular supersampling, the box
-//                               filter of the pixel's area):
+//   3. integratePixelArea     — for each of the N x N sub-pixel strata (their centres: an
+//                               ordered-grid supersampling of the pixel's box filter, i.e.
+//                               the mean visibility over the pixel's area):
 //      3a. SurfaceRasteriser::rasterise — pass 1 again with the projection shifted by the
 //                               stratum's offset: each sample has its own surface point
 //      3b. castHardShadowRays / castSoftShadowRaysFromSubsample — the rays of pass 3 from
@@ -269,6 +269,7 @@ Visibility castSoftShadowRays(const Scene& scene, const std::vector<SurfacePoint
   return v;
 }
 
+// Defined with pass 1's helpers below; every sub-pixel surface buffer is repaired the same way.
 void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye);
 
 // Pass 3b (soft, pixel area): the rays of castSoftShadowRays, but each pixel's 2 n^2 light
