@@ -42,6 +42,24 @@ MaskDifference compareMasksWithin(const Image& a, const Image& b, const Image& r
   return compareImpl(a, b, &region, threshold);
 }
 
+double meanAbsChange(const Image& a, const Image& b, const Image& region) {
+  if (a.width != b.width || a.height != b.height || a.width != region.width ||
+      a.height != region.height)
+    throw InputError("masks differ in size: " + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height) + " (region " + std::to_string(region.width) + "x" +
+                     std::to_string(region.height) + ")");
+  double sum = 0.0;
+  long long pixels = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      if (!(region.at(x, y) > 0.5f)) continue;
+      sum += std::fabs(double(a.at(x, y)) - double(b.at(x, y)));
+      ++pixels;
+    }
+  return pixels > 0 ? sum / double(pixels) : 0.0;
+}
+
 Image boundaryBand(const Image& mask, int radius) {
   Image edge(mask.width, mask.height, 1);
   auto lit = [&](int x, int y) { return mask.at(x, y) > 0.5f; };

@@ -22,6 +22,11 @@ MaskDifference compareMasks(const Image& a, const Image& b, double threshold = 0
 MaskDifference compareMasksWithin(const Image& a, const Image& b, const Image& region,
                                   double threshold = 0.0);
 
+// Mean |a - b| (channel 0) over the pixels where `region` (channel 0) is > 0.5; 0 when the
+// region is empty. The bench's temporal-stability metric: a mask against the same technique's
+// mask after a small light motion. Throws InputError on a size mismatch.
+double meanAbsChange(const Image& a, const Image& b, const Image& region);
+
 // Pixels within `radius` pixels of a place where `mask` crosses 0.5 between neighbours
 // (the shadow-boundary band): 1 inside the band, 0 elsewhere.
 Image boundaryBand(const Image& mask, int radius);

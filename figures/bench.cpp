@@ -1,12 +1,16 @@
 // figures/bench.cpp — `shadowlab bench`: error against run time (issue 8 items 1 and 2).
 //
-// For each benchmark scene:
-//   1. renderReferences  — reference.hard and reference.soft at the bench's window size, and
-//                          the shadow-boundary band of each (core/metrics.h boundaryBand)
+// For each benchmark scene (and the claim scenes derived in code, benchSceneSpecs):
+//   1. renderReferences  — reference.hard and reference.soft at the bench's window size in
+//                          both forms (pixel=area, the primary truth, and pixel=centre), the
+//                          shadow-boundary band of each (core/metrics.h boundaryBand), and the
+//                          area references again with the light moved (temporal stability)
 //   2. measureVariant    — per technique and parameter variant: one context, warm-up frames,
-//                          then timed frames (median of the pass-time sums and of each pass)
-//                          and the errors of the last frame's visibility mask against both
-//                          references (RMSE, max, share above 0.5, the same in the band, leak)
+//                          then timed frames (median of the pass-time sums and of each pass),
+//                          the errors of the last frame's visibility mask against the four
+//                          references (RMSE, max, share above 0.5, the same in the band, leak),
+//                          and one more frame with the light moved by a fifth of a texel
+//                          (mean |change| of the mask: temporal stability)
 //   3. outputs           — a JSON object per row on stdout, CSV (--csv), one gnuplot plot per
 //                          scene (error against time, log axes, Pareto front), claim checks
 #include "figures/bench.h"
@@ -15,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
@@ -115,50 +120,103 @@ std::string key(const std::string& scene, const std::string& technique,
   return scene + "|" + technique + "|" + variant;
 }
 
-// Pass 1: both references and their boundary bands.
+// Pass 1: the references in both forms, their boundary bands, and the area references with
+// the light moved.
 struct References {
-  Frame hard, soft;
-  Image hardBand, softBand;  // the edge band, within the region
-  Image region;              // where the light can reach (reference::kDirectLightRegionPass)
+  Frame hard, soft;                                        // pixel=area: the primary truth
+  Frame hardPoint, softPoint;                              // pixel=centre
+  Image hardBand, softBand, hardPointBand, softPointBand;  // the edge bands, within the region
+  Image region;  // where the light can reach (reference::kDirectLightRegionPass, pixel centres)
+  bool withSoft = true;
+  // Temporal stability: each reference's mean |change| under lightShiftWorld (< 0: not made).
+  double hardTemporal = -1, softTemporal = -1, hardPointTemporal = -1;
 };
 Image regionBand(const Image& mask, const Image& region) {
   Image band = boundaryBand(mask, kBandRadiusPixels);
   for (size_t i = 0; i < band.data.size(); ++i) band.data[i] *= region.data[i] > 0.5f ? 1.0f : 0.0f;
   return band;
 }
-References renderReferences(const Scene& scene, const RenderParams& base) {
+RenderParams areaParams(const RenderParams& p) {
+  RenderParams a = p;
+  a.extra[reference::kPixelParam] = reference::kPixelArea;
+  return a;
+}
+References renderReferences(const Scene& scene, const RenderParams& base, bool withSoft,
+                            bool temporal) {
   References r;
+  r.withSoft = withSoft;
   RenderParams p = base;
   p.extra.clear();
   p.capturePasses = true;  // for the direct-light region
-  r.hard = renderTechnique(findTechnique("reference.hard"), scene, p);
-  r.soft = renderTechnique(findTechnique("reference.soft"), scene, p);
-  for (const PassImage& i : r.hard.intermediates)
+  const Technique& hard = findTechnique("reference.hard");
+  const Technique& soft = findTechnique("reference.soft");
+  r.hardPoint = renderTechnique(hard, scene, p);
+  r.hard = renderTechnique(hard, scene, areaParams(p));
+  if (withSoft) {
+    r.softPoint = renderTechnique(soft, scene, p);
+    r.soft = renderTechnique(soft, scene, areaParams(p));
+  }
+  for (const PassImage& i : r.hardPoint.intermediates)
     if (i.name == reference::kDirectLightRegionPass) r.region = i.image;
   if (r.region.empty()) r.region = Image(p.width, p.height, 1, 1.0f);
   r.hardBand = regionBand(r.hard.visibility, r.region);
-  r.softBand = regionBand(r.soft.visibility, r.region);
+  r.hardPointBand = regionBand(r.hardPoint.visibility, r.region);
+  if (withSoft) {
+    r.softBand = regionBand(r.soft.visibility, r.region);
+    r.softPointBand = regionBand(r.softPoint.visibility, r.region);
+  }
+  if (temporal) {
+    const Scene moved = shiftLight(scene, lightShiftWorld(scene));
+    p.capturePasses = false;
+    r.hardPointTemporal =
+        meanAbsChange(r.hardPoint.visibility, renderTechnique(hard, moved, p).visibility, r.region);
+    r.hardTemporal = meanAbsChange(
+        r.hard.visibility, renderTechnique(hard, moved, areaParams(p)).visibility, r.region);
+    if (withSoft)
+      r.softTemporal = meanAbsChange(
+          r.soft.visibility, renderTechnique(soft, moved, areaParams(p)).visibility, r.region);
+  }
   return r;
+}
+
+void measureAgainstReferences(BenchRow& row, const Image& mask, const References& refs) {
+  row.hard = measureErrors(mask, refs.hard.visibility, refs.region, refs.hardBand);
+  row.hardPoint = measureErrors(mask, refs.hardPoint.visibility, refs.region, refs.hardPointBand);
+  if (refs.withSoft) {
+    row.soft = measureErrors(mask, refs.soft.visibility, refs.region, refs.softBand);
+    row.softPoint = measureErrors(mask, refs.softPoint.visibility, refs.region, refs.softPointBand);
+  }
+  row.referenceTemporalChange = row.primaryIsSoft() ? refs.softTemporal : refs.hardTemporal;
 }
 
 // Pass 2: one variant, timed on one context.
 BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVariant& v,
-                        const References& refs, int warmup, int timed, bool quick, Image& maskOut) {
+                        const References& refs, int warmup, int timed, bool quick, bool temporal,
+                        Image& maskOut) {
   BenchRow row;
   row.scene = scene.name;
   row.technique = t.name;
   row.variant = v.label;
   row.params = v.params;
-  row.primaryReference = approximatesSoftShadows(t) ? "reference.soft" : "reference.hard";
-  if (refs.hard.visibility.width > 0 &&
-      (t.name == "reference.hard" || t.name == "reference.soft") && v.params.extra.empty()) {
+  row.primaryReference =
+      approximatesSoftShadows(t) && refs.withSoft ? kPrimarySoftReference : kPrimaryHardReference;
+  const auto pixel = v.params.extra.find(reference::kPixelParam);
+  const bool areaForm = pixel != v.params.extra.end() && pixel->second == reference::kPixelArea;
+  if (refs.hard.visibility.width > 0 && isReference(t) &&
+      v.params.extra.size() == (areaForm ? 1u : 0u) &&
+      (t.name == "reference.hard" || refs.withSoft)) {
     // The references were rendered once for this scene (pass 1): their row is that frame.
-    const Frame& f = t.name == "reference.hard" ? refs.hard : refs.soft;
+    const bool soft = t.name == "reference.soft";
+    const Frame& f =
+        soft ? (areaForm ? refs.soft : refs.softPoint) : (areaForm ? refs.hard : refs.hardPoint);
     row.frameMs = row.wallMs = f.totalMilliseconds();
     row.passes = f.passes;
     row.counters = f.counters;
-    row.hard = measureErrors(f.visibility, refs.hard.visibility, refs.region, refs.hardBand);
-    row.soft = measureErrors(f.visibility, refs.soft.visibility, refs.region, refs.softBand);
+    measureAgainstReferences(row, f.visibility, refs);
+    // The reference's own change under the light motion (reference.soft pixel=centre is not
+    // re-rendered: it costs seconds and is not a primary reference).
+    row.temporalChange = soft ? (areaForm ? refs.softTemporal : -1.0)
+                              : (areaForm ? refs.hardTemporal : refs.hardPointTemporal);
     maskOut = f.visibility;
     return row;
   }
@@ -191,8 +249,13 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
     for (const std::string& name : passOrder) row.passes.push_back({name, median(perPass[name])});
     row.counters = last.counters;
     if (!allFinite(last.visibility)) throw GlError("visibility mask has NaN or Inf");
-    row.hard = measureErrors(last.visibility, refs.hard.visibility, refs.region, refs.hardBand);
-    row.soft = measureErrors(last.visibility, refs.soft.visibility, refs.region, refs.softBand);
+    measureAgainstReferences(row, last.visibility, refs);
+    if (temporal) {
+      // One more frame with the light moved by a fifth of a texel (kLightShiftTexels).
+      const Frame moved = t.render(*context, shiftLight(scene, lightShiftWorld(scene)), v.params);
+      if (!allFinite(moved.visibility)) throw GlError("visibility mask has NaN or Inf");
+      row.temporalChange = meanAbsChange(last.visibility, moved.visibility, refs.region);
+    }
     maskOut = std::move(last.visibility);
   } catch (const InputError& e) {
     row.status = std::string("invalid: ") + e.what();
@@ -212,7 +275,7 @@ nlohmann::json errorJson(const ErrorSet& e) {
           {"leak_share", e.leakShare}};
 }
 
-nlohmann::json rowJson(const BenchRow& r) {
+nlohmann::json rowJson(const BenchRow& r, bool withSoft) {
   nlohmann::json j = {
       {"scene", r.scene},   {"technique", r.technique},     {"variant", r.variant},
       {"status", r.status}, {"params", describe(r.params)}, {"reference", r.primaryReference}};
@@ -220,8 +283,14 @@ nlohmann::json rowJson(const BenchRow& r) {
   j["frame_ms"] = r.frameMs;
   j["wall_ms"] = r.wallMs;
   j["error"] = errorJson(r.primary());
-  j["vs_reference_hard"] = errorJson(r.hard);
-  j["vs_reference_soft"] = errorJson(r.soft);
+  j["vs_reference_hard_area"] = errorJson(r.hard);
+  j["vs_reference_hard_centre"] = errorJson(r.hardPoint);
+  if (withSoft) {
+    j["vs_reference_soft_area"] = errorJson(r.soft);
+    j["vs_reference_soft_centre"] = errorJson(r.softPoint);
+  }
+  if (r.temporalChange >= 0) j["temporal_change"] = r.temporalChange;
+  if (r.referenceTemporalChange >= 0) j["reference_temporal_change"] = r.referenceTemporalChange;
   for (const PassTime& p : r.passes) j["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : r.counters) j["counters"][k] = v;
   return j;
@@ -305,6 +374,111 @@ ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& r
   return e;
 }
 
+double lightShiftWorld(const Scene& scene) {
+  const SpotLight& l = scene.light;
+  const double distance = glm::length(l.target - l.position);
+  const double texel = 2.0 * distance * std::tan(glm::radians(0.5 * double(l.coneDegrees))) /
+                       double(kLightShiftMapTexels);
+  return kLightShiftTexels * texel;
+}
+
+Scene shiftLight(const Scene& scene, double world) {
+  Scene moved = scene;
+  // The light's x axis in world space: the first row of the view matrix's rotation.
+  const glm::mat4 view = lightView(scene.light);
+  const glm::vec3 right(view[0][0], view[1][0], view[2][0]);
+  const glm::vec3 step = float(world) * glm::normalize(right);
+  moved.light.position += step;
+  moved.light.target += step;
+  return moved;
+}
+
+Scene farScene(const Scene& scene) {
+  Scene far = scene;
+  far.name = scene.name + kFarSceneSuffix;
+  far.camera.position =
+      scene.camera.target + kFarCameraFactor * (scene.camera.position - scene.camera.target);
+  far.camera.farPlane = std::max(far.camera.farPlane, kFarCameraFactor * scene.camera.farPlane);
+  return far;
+}
+
+// Chan 2004 §4.2: a smoothie edge extends a silhouette edge by t in the light's screen space
+// (map side = 1, i.e. 2 tan(cone / 2) in tangent units); Eq. 4.1 remaps its alpha by
+// 1 / (1 - b / r), so on a receiver at depth r behind a blocker edge at depth b the ramp from
+// 0 to 1 spans t (1 - b / r) outside the hard edge. The spherical light of radius R lights a
+// receiver point fully once the blocker edge, seen from it, clears the light's disk: the true
+// penumbra ends R (r - b) / b beyond the hard edge in world units at depth r, i.e.
+// (R / b) (1 - b / r) in tangent units. Equal for every r when t 2 tan(cone / 2) = R / b:
+//   t = R / (2 b tan(cone / 2)),
+// the light's radius seen from the blocker, in shadow-map sides. b: the casters' depth along
+// the light axis (the centre of each caster's bounding box), averaged over the casters.
+double smoothieWidthFromLight(const Scene& scene) {
+  const SpotLight& l = scene.light;
+  const glm::vec3 axis = glm::normalize(l.target - l.position);
+  double depthSum = 0.0;
+  int casters = 0;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow || !o.mesh) continue;
+    const Bounds b = worldBounds(o);
+    if (b.empty()) continue;
+    const double depth = glm::dot(0.5f * (b.lo + b.hi) - l.position, axis);
+    if (!(depth > 0.0)) continue;  // behind the light: casts nothing into the frustum
+    depthSum += depth;
+    ++casters;
+  }
+  if (casters == 0) return 0.0;
+  const double b = depthSum / casters;
+  return double(l.radius) / (2.0 * b * std::tan(glm::radians(0.5 * double(l.coneDegrees))));
+}
+
+namespace {
+
+// One scene of the run and what is measured on it.
+struct SceneRun {
+  Scene scene;
+  std::vector<std::string> techniques;  // empty: every technique (and its sweep)
+  bool soft = true;                     // render reference.soft (smoothies' truth)
+  bool temporal = true;                 // temporal stability (a frame with the light moved)
+  bool planner = false;                 // the planner scene: plan=on/off only
+};
+
+std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
+  std::vector<SceneRun> runs;
+  const std::vector<std::string> scenes =
+      options.scenes.empty() ? benchScenes(options.quick) : options.scenes;
+  for (const std::string& name : scenes) runs.push_back({loadScene(name), {}, true, true, false});
+  if (options.scenes.empty() || contains(options.scenes, kDefaultScene)) {
+    // What the planner's omissions save (issue 8 item 4): a purpose-built scene where no
+    // caster reaches the light frustum, measured with the planner on and off for every
+    // technique that consults it (declares --param plan).
+    Scene away = loadScene(kDefaultScene);
+    away.name = std::string(kDefaultScene) + "-light-away";
+    away.light.target = away.light.position + glm::vec3(0, 5, 0);  // the light looks up
+    away.light.up = {0, 0, -1};
+    runs.push_back({away, {}, false, false, true});
+    // Annen et al. Fig. 10: the scene moved far away, so that many shadow-map texels fall in
+    // one pixel; CSM against the PCF techniques (and the unfiltered map).
+    runs.push_back({farScene(loadScene(kDefaultScene)),
+                    {"modern.hw", "modern.pcf", "modern.gems16", "modern.csm"},
+                    false,
+                    true,
+                    false});
+  }
+  if (options.scenes.empty()) {
+    // Chan §3.3: the hybrid pays off where shadow volumes are fill bound. The scene file is
+    // another part of issue 14; without it the claim says so.
+    const std::vector<std::string> files = sceneFileNames();
+    if (contains(files, kFillBoundScene)) {
+      Scene fill = loadScene(kFillBoundScene);
+      fill.name = kFillBoundScene;  // the claim looks for this name, whatever the file calls it
+      runs.push_back({fill, {"modern.volumes", "modern.hybrid"}, false, false, false});
+    }
+  }
+  return runs;
+}
+
+}  // namespace
+
 BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
   BenchResult result;
   RenderParams base;
@@ -319,37 +493,47 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
   for (const Technique& t : allTechniques())
     if (!options.technique || t.name == *options.technique) techniques.push_back(&t);
   if (options.technique && techniques.empty()) findTechnique(*options.technique);  // throws
-  const std::vector<std::string> scenes =
-      options.scenes.empty() ? benchScenes(options.quick) : options.scenes;
-  std::vector<Scene> sceneList;
-  for (const std::string& name : scenes) sceneList.push_back(loadScene(name));
-  // What the planner's omissions save (issue 8 item 4): a purpose-built scene where no caster
-  // reaches the light frustum, measured with the planner on and off for every technique that
-  // consults it (declares --param plan).
-  if (options.scenes.empty() || contains(options.scenes, kDefaultScene)) {
-    Scene away = loadScene(kDefaultScene);
-    away.name = std::string(kDefaultScene) + "-light-away";
-    away.light.target = away.light.position + glm::vec3(0, 5, 0);  // the light looks up
-    away.light.up = {0, 0, -1};
-    sceneList.push_back(away);
-  }
-  for (const Scene& scene : sceneList) {
-    const bool plannerScene = scene.name.find("-light-away") != std::string::npos;
+  const std::vector<SceneRun> runs = benchSceneRuns(options);
+  if (options.scenes.empty() && !contains(sceneFileNames(), kFillBoundScene))
+    result.sceneNotes[kFillBoundScene] =
+        "scene not present (assets/scenes/" + std::string(kFillBoundScene) + ".json)";
+  for (const SceneRun& run : runs) {
+    const Scene& scene = run.scene;
+    std::vector<const Technique*> here;
+    for (const Technique* t : techniques)
+      if ((run.techniques.empty() || contains(run.techniques, t->name)) &&
+          (!run.planner || contains(t->paramKeys, "plan")))
+        here.push_back(t);
+    if (here.empty()) continue;
     if (options.progress) std::cerr << "bench: " << scene.name << ": references\n";
-    const References refs = renderReferences(scene, base);
+    const References refs = renderReferences(scene, base, run.soft, run.temporal);
     result.texelsPerPixel[scene.name] = 0.0;
-    for (const Technique* t : techniques) {
+    for (const Technique* t : here) {
       std::vector<BenchVariant> variants;
-      if (plannerScene) {
-        if (!contains(t->paramKeys, "plan")) continue;
+      if (run.planner) {
         // A 2048 map: the full pass clears and fills it, the planned frame does neither.
         RenderParams on = base;
         on.shadowMapTexels = kPlannerShadowMapTexels;
         RenderParams off = on;
         off.extra["plan"] = "off";
         variants = {{"plan=on", on}, {"plan=off", off}};
+      } else if (!run.techniques.empty()) {
+        variants = {{"default", base}};  // a claim scene: the default variants
       } else {
         variants = sweepVariants(*t, base, options.quick);
+        if (isReference(*t)) {
+          if (t->name == "reference.soft" && !run.soft) continue;
+          variants.push_back({std::string(reference::kPixelParam) + "=" + reference::kPixelArea,
+                              areaParams(base)});
+        }
+        if (t->name == "modern.smoothies" && contains(t->paramKeys, "width")) {
+          // Chan §4.2's width t derived from the light's radius (smoothieWidthFromLight).
+          std::ostringstream width;
+          width << std::setprecision(4) << smoothieWidthFromLight(scene);
+          RenderParams p = base;
+          p.extra["width"] = width.str();
+          variants.push_back({kSmoothieWidthFromLightVariant, p});
+        }
       }
       for (const BenchVariant& v : variants) {
         Image mask;
@@ -357,14 +541,15 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
         // contender, and reference.soft costs seconds per frame.
         const bool truth = isReference(*t);
         BenchRow row = measureVariant(*t, scene, v, refs, truth ? 0 : warmup, truth ? 1 : timed,
-                                      options.quick, mask);
+                                      options.quick, run.temporal, mask);
         if (row.status == "ok") {
           result.masks[key(scene.name, t->name, v.label)] = std::move(mask);
+          const double texelsPerPixel = planFrame(scene, *t, v.params).maxShadowTexelsPerPixel;
+          row.counters["plan_max_shadow_texels_per_pixel"] = texelsPerPixel;
           result.texelsPerPixel[scene.name] =
-              std::max(result.texelsPerPixel[scene.name],
-                       planFrame(scene, *t, v.params).maxShadowTexelsPerPixel);
+              std::max(result.texelsPerPixel[scene.name], texelsPerPixel);
         }
-        json << rowJson(row).dump() << "\n" << std::flush;
+        json << rowJson(row, run.soft).dump() << "\n" << std::flush;
         if (options.progress)
           std::cerr << "bench: " << scene.name << " " << t->name << " " << v.label << ": "
                     << (row.status == "ok" ? std::to_string(row.frameMs) + " ms, rmse " +
@@ -404,11 +589,13 @@ void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
   if (!out) throw InputError("cannot write " + path);
   out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
          "params,frame_ms,wall_ms";
-  for (const char* ref : {"hard", "soft"})
+  // hard_*, soft_*: against the pixel-integrated references (pixel=area, the primary truth);
+  // hard_point_*, soft_point_*: against the pixel-centre references.
+  for (const char* ref : {"hard", "soft", "hard_point", "soft_point"})
     for (const char* m : {"rmse", "max_abs", "share_above_half", "band_rmse", "band_max_abs",
                           "band_share_above_half", "leak_share"})
       out << "," << ref << "_" << m;
-  out << ",passes\n";
+  out << ",temporal_change,reference_temporal_change,passes\n";
   auto quoted = [](std::string s) {
     for (char& c : s)
       if (c == '"') c = '\'';
@@ -422,10 +609,15 @@ void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
         << r.params.shadowMapTexels << "," << r.params.filter << ","
         << precisionName(r.params.precision) << "," << quoted(extra) << "," << r.frameMs << ","
         << r.wallMs;
-    for (const ErrorSet* e : {&r.hard, &r.soft})
+    for (const ErrorSet* e : {&r.hard, &r.soft, &r.hardPoint, &r.softPoint})
       out << "," << e->all.rmse << "," << e->all.maxAbs << "," << e->all.shareAboveHalf << ","
           << e->band.rmse << "," << e->band.maxAbs << "," << e->band.shareAboveHalf << ","
           << e->leakShare;
+    // Empty where not measured.
+    for (double v : {r.temporalChange, r.referenceTemporalChange}) {
+      out << ",";
+      if (v >= 0) out << v;
+    }
     std::string passes;
     for (const PassTime& p : r.passes)
       passes += (passes.empty() ? "" : "; ") + p.name + "=" + std::to_string(p.milliseconds);
@@ -484,7 +676,7 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
            << ": visibility error against frame time (Pareto front joined)'\n"
            << "set logscale xy\nset grid\nset key outside right\n"
            << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
-           << "set ylabel 'RMSE of the visibility mask against its reference'\n"
+           << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
            << "plot ";
     for (size_t i = 0; i < techniques.size(); ++i)
       script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "
@@ -533,11 +725,13 @@ int runBenchCommand(const cli::Args& args) {
   for (const ClaimCheck& c : checkClaims(result)) {
     std::cout << nlohmann::json{{"claim", c.id},          {"source", c.source},
                                 {"statement", c.claim},   {"scene", c.scene},
-                                {"measured", c.measured}, {"verdict", c.verdict}}
+                                {"measured", c.measured}, {"verdict", c.verdict},
+                                {"setup", c.setup}}
                      .dump()
               << "\n";
     std::cerr << "claim " << c.id << " (" << c.source << ") on " << c.scene << ": " << c.verdict
-              << "\n    " << c.claim << "\n    measured: " << c.measured << "\n";
+              << "\n    " << c.claim << "\n    setup: " << c.setup
+              << "\n    measured: " << c.measured << "\n";
   }
   return 0;
 }

@@ -55,38 +55,49 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   h << "<h2 id=bench>Error against run time (<code>shadowlab bench --quick</code>)</h2>\n"
     << "<p>Every technique's default variant on the benchmark scenes: the median frame time "
        "of the timed frames and the error of its visibility mask against the ray-traced "
-       "reference it approximates (reference.soft for smoothies, reference.hard otherwise), "
-       "counted where the light can reach; <em>band</em> = within 2 pixels of a reference "
-       "shadow edge; <em>leak</em> = share of umbra pixels shown more than 20% lit. Every "
-       "variant is in <a href=\"bench/bench.csv\">bench/bench.csv</a>; regenerate with "
-       "<code>shadowlab bench --quick --csv bench.csv</code>.</p>\n";
+       "reference, integrated over each pixel's area (<code>--param pixel=area</code>: 8x8 "
+       "sub-pixel shadow rays for reference.hard; rays from 4x4 sub-pixel points for "
+       "reference.soft, the truth of smoothies; reference.hard for every other technique), "
+       "counted where the light can reach; <em>centre</em> = the same RMSE against the "
+       "pixel-centre reference (one ray per pixel, itself aliased); <em>band</em> = within 2 "
+       "pixels of a reference shadow edge; <em>leak</em> = share of umbra pixels shown more "
+       "than 20% lit; <em>temporal</em> = mean |change| of the mask when the light moves "
+       "sideways by a fifth of a 512-map texel, beside the reference's own change (what the "
+       "true shadow moves). Every variant is in <a href=\"bench/bench.csv\">bench/bench.csv</a>; "
+       "regenerate with <code>shadowlab bench --quick --csv bench.csv</code>.</p>\n";
   for (const std::string& plot : plots)
     h << "<figure><img src=\"bench/" << escape(fs::path(plot).filename().string())
       << "\" alt=\"error against time\"><figcaption>RMSE against median frame time, log "
          "axes; the Pareto front is the black staircase.</figcaption></figure>\n";
-  h << "<table><tr><th>scene</th><th>technique</th><th>frame ms</th><th>RMSE</th><th>max</th>"
-       "<th>&gt; 0.5</th><th>band RMSE</th><th>leak</th></tr>\n";
+  h << "<table><tr><th>scene</th><th>technique</th><th>frame ms</th><th>RMSE</th>"
+       "<th>RMSE (centre)</th><th>max</th><th>&gt; 0.5</th><th>band RMSE</th><th>leak</th>"
+       "<th>temporal (reference)</th></tr>\n";
   for (const BenchRow& r : result.rows) {
     if (r.variant != "default") continue;
     const ErrorSet& e = r.primary();
+    const ErrorSet& point = r.primaryIsSoft() ? r.softPoint : r.hardPoint;
     h << "<tr><td>" << escape(r.scene) << "</td><td><code>" << escape(r.technique)
       << "</code></td>";
     if (r.status != "ok") {
-      h << "<td colspan=6 class=bad>" << escape(r.status) << "</td></tr>\n";
+      h << "<td colspan=8 class=bad>" << escape(r.status) << "</td></tr>\n";
       continue;
     }
     h << "<td>" << number(r.frameMs, 1) << "</td><td>" << number(e.all.rmse, 4) << "</td><td>"
-      << number(e.all.maxAbs, 2) << "</td><td>" << number(e.all.shareAboveHalf, 4)
-      << "</td><td>" << number(e.band.rmse, 3) << "</td><td>" << number(e.leakShare, 4)
-      << "</td></tr>\n";
+      << number(point.all.rmse, 4) << "</td><td>" << number(e.all.maxAbs, 2) << "</td><td>"
+      << number(e.all.shareAboveHalf, 4) << "</td><td>" << number(e.band.rmse, 3) << "</td><td>"
+      << number(e.leakShare, 4) << "</td><td>"
+      << (r.temporalChange >= 0 ? number(r.temporalChange, 5) : std::string("-")) << " ("
+      << (r.referenceTemporalChange >= 0 ? number(r.referenceTemporalChange, 5) : std::string("-"))
+      << ")</td></tr>\n";
   }
   h << "</table>\n<h3>The papers' comparative claims, checked on these measurements</h3>\n"
     << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
-       "<th>measured</th></tr>\n";
+       "<th>setup</th><th>measured</th></tr>\n";
   for (const ClaimCheck& c : claims)
     h << "<tr><td>" << escape(c.claim) << "</td><td>" << escape(c.source) << "</td><td>"
       << escape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
-      << escape(c.verdict) << "</td><td>" << escape(c.measured) << "</td></tr>\n";
+      << escape(c.verdict) << "</td><td>" << escape(c.setup) << "</td><td>" << escape(c.measured)
+      << "</td></tr>\n";
   h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this "
        "table.</p>\n";
   return h.str();

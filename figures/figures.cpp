@@ -248,8 +248,20 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         } else if (const Technique* ref = lookup(fig.reference); ref == nullptr) {
           out.errorNote = fig.reference + " not available yet";
         } else if (ref->name != t.name) {
+          // The pixel-integrated form of the reference (--param pixel=area), the truth of a
+          // displayed pixel, as in the bench (figures/bench.h kPrimaryHardReference), with
+          // kFigureReferencePixelSamplesPerSide^2 samples. The reference ignores the shadow
+          // map and the footprint: one frame per scene and size.
           Setup refSetup = setup;
           refSetup.params.clear();
+          refSetup.texels = fig.shadowMapTexels;
+          refSetup.filter = RenderParams{}.filter;
+          if (std::find(ref->paramKeys.begin(), ref->paramKeys.end(), reference::kPixelParam) !=
+              ref->paramKeys.end()) {
+            refSetup.params[reference::kPixelParam] = reference::kPixelArea;
+            refSetup.params[reference::kPixelSamplesParam] =
+                std::to_string(kFigureReferencePixelSamplesPerSide);
+          }
           auto rf = r.frame(*ref, refSetup, false);
           out.error = compareMasks(f->visibility, rf->visibility, 0.5);
         }

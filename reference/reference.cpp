@@ -11,11 +11,24 @@
 //                               the spherical light), split in two independent halves
 //   4. shadeFromVisibility    — ambient + visibility * direct, the lighting of
 //                               modern/shaders/hw_shadow.frag.glsl, for figures
+//
+// With --param pixel=area (the pixel-integrated form, issue 14) pass 3 becomes:
+//   3. integratePixelArea     — for each of the N x N sub-pixel strata (their centres: an
+//                               ordered-grid supersampling of the pixel's box filter, i.e.
+//                               the mean visibility over the pixel's area):
+//      3a. SurfaceRasteriser::rasterise — pass 1 again with the projection shifted by the
+//                               stratum's offset: each sample has its own surface point
+//      3b. castHardShadowRays / castSoftShadowRaysFromSubsample — the rays of pass 3 from
+//                               those points; hard: one ray per sample, averaged; soft: the
+//                               light's strata dealt out to the sub-pixel points
+// Pass 1's pixel-centre points still give the shading and the direct-light region, so the
+// region (where the bench counts errors) is the same in both forms.
 #include "reference/reference.h"
 
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -34,6 +47,8 @@ constexpr int kMinSoftRays = 4;
 constexpr int kMaxSoftRays = 16384;
 constexpr unsigned kSoftSeed = 20011u;  // fixed: the reference is deterministic
 constexpr int kRowsPerTask = 4;         // work unit of the worker threads
+// pixel=area, soft: the seed of the per-pixel dealing of light strata to sub-pixel points.
+constexpr unsigned long long kDealSeed = 0x9E3779B97F4A7C15ull;
 
 struct DeviceDeleter {
   void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
@@ -254,6 +269,143 @@ Visibility castSoftShadowRays(const Scene& scene, const std::vector<SurfacePoint
   return v;
 }
 
+// Defined with pass 1's helpers below; every sub-pixel surface buffer is repaired the same way.
+void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye);
+
+// Pass 3b (soft, pixel area): the rays of castSoftShadowRays, but each pixel's 2 n^2 light
+// strata are dealt out to its S sub-pixel points: stratum k of half h goes to sub-pixel point
+// (k + o_h) mod S, with o_h a per-pixel, per-half offset drawn uniformly from [0, S). Every
+// stratum is used once per half and every sub-pixel point gets n^2 / S of them; averaged over
+// o_h each stratum meets every sub-pixel point equally often, so each half is an unbiased
+// estimate of the visible fraction over pixel area x light disk, and the two halves stay
+// independent (their offsets and jitters are), so |A - B| / 2 still estimates the standard
+// error. Called once per sub-pixel point s with that point's surface buffer; adds the lit
+// rays of each half to litHalves[pixel][half] (sub-samples that see no geometry, a
+// non-receiver or a point outside the frustum count all their rays as lit, the conventions
+// of reference.h).
+void castSoftShadowRaysFromSubsample(const Scene& scene, const std::vector<SurfacePoint>& points,
+                                     const RenderParams& params, RTCScene occluders, int n,
+                                     int subsamples, int subsample,
+                                     std::vector<std::array<int, 2>>& litHalves,
+                                     std::atomic<long long>& rays) {
+  const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  const glm::mat4 view = lightView(scene.light);
+  const SpotLight& light = scene.light;
+  const int strata = n * n;
+  forEachRow(params.height, [&](int y) {
+    // Per row and sub-pixel point: the result is thread-count independent.
+    std::seed_seq seed{kSoftSeed, unsigned(y), unsigned(subsample)};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    long long count = 0;
+    for (int x = 0; x < params.width; ++x) {
+      const size_t p = size_t(y) * params.width + x;
+      int mine[2];
+      for (int half = 0; half < 2; ++half) {
+        // splitmix64 of (pixel, half): the per-pixel offset o_h of the dealing.
+        unsigned long long z = kDealSeed * (2 * p + half + 1);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        z ^= z >> 31;
+        const int o = int(z % unsigned(subsamples));
+        // Strata k in [0, n^2) with (k + o) mod S == subsample.
+        const int first = ((subsample - o) % subsamples + subsamples) % subsamples;
+        mine[half] = first < strata ? (strata - 1 - first) / subsamples + 1 : 0;
+        const SurfacePoint& s = points[p];
+        if (s.object < 0 || !scene.objects[s.object].receivesShadow ||
+            !insideLightFrustum(light, view, s.position)) {
+          litHalves[p][half] += mine[half];  // lit by convention
+          continue;
+        }
+        const glm::vec3 origin = rayOrigin(s, offset);
+        const glm::vec3 toLight = light.position - origin;
+        const float distance = glm::length(toLight);
+        if (!(distance > 0.0f)) {
+          litHalves[p][half] += mine[half];
+          continue;
+        }
+        const glm::vec3 w = toLight / distance;
+        const glm::vec3 helper = std::fabs(w.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+        const glm::vec3 e1 = glm::normalize(glm::cross(w, helper));
+        const glm::vec3 e2 = glm::cross(w, e1);
+        for (int k = first; k < strata; k += subsamples) {
+          const int i = k / n, j = k % n;
+          const glm::vec2 d = concentricDisk((i + jitter(rng)) / n, (j + jitter(rng)) / n);
+          const glm::vec3 target = light.position + light.radius * (d.x * e1 + d.y * e2);
+          if (!occluded(occluders, origin, target)) ++litHalves[p][half];
+          ++count;
+        }
+      }
+    }
+    rays += count;
+  });
+}
+
+// The centre of sub-pixel stratum (i, j) of an N x N grid, relative to the pixel centre.
+glm::vec2 stratumOffset(int i, int j, int n) {
+  return {(float(i) + 0.5f) / float(n) - 0.5f, (float(j) + 0.5f) / float(n) - 0.5f};
+}
+
+// Pass 3 (pixel area): the mean visibility over the N x N sub-pixel strata (see the header
+// comment); the sub-pixel surface buffers are made and used one at a time.
+Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RTCScene occluders,
+                              bool soft, int perSide, int softRays, Frame& frame) {
+  SurfaceRasteriser rasteriser(scene, params);
+  const int subsamples = perSide * perSide;
+  const size_t pixels = size_t(params.width) * params.height;
+  const int n = std::max(1, int(std::lround(std::sqrt(softRays / 2.0))));
+  std::vector<double> sum(pixels, 0.0);
+  std::vector<std::array<int, 2>> litHalves(pixels, {0, 0});
+  std::atomic<long long> softRayCount{0};
+  long long hardRays = 0;
+  double rasterMs = 0.0, rayMs = 0.0;
+  for (int i = 0; i < perSide; ++i)
+    for (int j = 0; j < perSide; ++j) {
+      double start = nowMilliseconds();
+      std::vector<SurfacePoint> points = rasteriser.rasterise(stratumOffset(i, j, perSide));
+      repairNormals(points, scene.camera.position);
+      rasterMs += nowMilliseconds() - start;
+      start = nowMilliseconds();
+      if (soft) {
+        castSoftShadowRaysFromSubsample(scene, points, params, occluders, n, subsamples,
+                                        i * perSide + j, litHalves, softRayCount);
+      } else {
+        const Visibility v = castHardShadowRays(scene, points, params, occluders);
+        for (size_t p = 0; p < pixels; ++p) sum[p] += v.mask.data[p];
+        hardRays += v.rays;
+      }
+      rayMs += nowMilliseconds() - start;
+    }
+  const std::string grid = std::to_string(perSide) + "x" + std::to_string(perSide);
+  frame.passes.push_back({"3a sub-pixel surface points (GL, " + grid + ")", rasterMs});
+  frame.passes.push_back({std::string(soft ? "3b soft shadow rays" : "3b shadow rays") + " from " +
+                              grid + " sub-pixel points (Embree)",
+                          rayMs});
+  Visibility v;
+  v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
+  if (!soft) {
+    for (size_t p = 0; p < pixels; ++p) v.mask.data[p] = float(sum[p] / double(subsamples));
+    v.rays = hardRays;
+    return v;
+  }
+  double squares = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    const float a = float(litHalves[p][0]) / float(n * n);
+    const float b = float(litHalves[p][1]) / float(n * n);
+    const float value = 0.5f * (a + b);
+    v.mask.data[p] = value;
+    if (value > 0.0f && value < 1.0f) {
+      const double standardError = 0.5 * std::fabs(a - b);
+      squares += standardError * standardError;
+      v.noiseMax = std::max(v.noiseMax, standardError);
+      ++v.penumbraPixels;
+    }
+  }
+  v.noiseRms = v.penumbraPixels > 0 ? std::sqrt(squares / double(v.penumbraPixels)) : 0.0;
+  v.rays = softRayCount;
+  return v;
+}
+
 // Pass 4: OpenGL spotlight lighting split into ambient + visibility * direct, exactly the terms
 // of modern/shaders/hw_shadow.frag.glsl (glspec121 §2.13.1).
 Image shadeFromVisibility(const Scene& scene, const std::vector<SurfacePoint>& points,
@@ -302,6 +454,11 @@ void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye) {
 
 Frame renderReference(const Scene& scene, const RenderParams& params, bool soft) {
   const int softRays = params.integer("rays", kDefaultSoftRays, kMinSoftRays, kMaxSoftRays);
+  const bool area =
+      params.text(kPixelParam, kPixelCentre, {kPixelCentre, kPixelArea}) == kPixelArea;
+  const int perSide = params.integer(
+      kPixelSamplesParam, soft ? kDefaultSoftPixelSamplesPerSide : kDefaultHardPixelSamplesPerSide,
+      1, kMaxPixelSamplesPerSide);
   Frame frame;
   std::vector<SurfacePoint> points;
   {
@@ -312,17 +469,23 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
   const double buildStart = nowMilliseconds();
   Occluders occluders = buildOcclusionScene(scene);
   frame.passes.push_back({"2 build occluder BVH (Embree)", nowMilliseconds() - buildStart});
-  const double castStart = nowMilliseconds();
-  Visibility v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
-                      : castHardShadowRays(scene, points, params, occluders.scene.get());
-  frame.passes.push_back({soft ? "3 soft shadow rays (Embree)" : "3 shadow rays (Embree)",
-                          nowMilliseconds() - castStart});
+  Visibility v;
+  if (area) {
+    v = integratePixelArea(scene, params, occluders.scene.get(), soft, perSide, softRays, frame);
+  } else {
+    const double castStart = nowMilliseconds();
+    v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
+             : castHardShadowRays(scene, points, params, occluders.scene.get());
+    frame.passes.push_back({soft ? "3 soft shadow rays (Embree)" : "3 shadow rays (Embree)",
+                            nowMilliseconds() - castStart});
+  }
   const double shadeStart = nowMilliseconds();
   frame.color = shadeFromVisibility(scene, points, v.mask);
   frame.visibility = std::move(v.mask);
   frame.passes.push_back({"4 shade", nowMilliseconds() - shadeStart});
   frame.counters["rays"] = double(v.rays);
   frame.counters["ray_offset_world"] = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  if (area) frame.counters["pixel_samples"] = double(perSide * perSide);
   if (soft) {
     const long n = std::max(1L, std::lround(std::sqrt(softRays / 2.0)));
     frame.counters["rays_per_pixel"] = double(2 * n * n);
@@ -360,7 +523,10 @@ std::vector<Technique> techniques() {
   Technique hard;
   hard.name = "reference.hard";
   hard.paper = "ray traced (Embree 3)";
-  hard.summary = "exact point-light visibility: one shadow ray per camera pixel";
+  hard.summary = "exact point-light visibility: one shadow ray per camera pixel (pixel=area: " +
+                 std::to_string(kDefaultHardPixelSamplesPerSide * kDefaultHardPixelSamplesPerSide) +
+                 " stratified sub-pixel rays, averaged)";
+  hard.paramKeys = {kPixelParam, kPixelSamplesParam};
   hard.status = "complete";
   hard.needs.profile = Profile::kCore;
   hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
@@ -370,7 +536,7 @@ std::vector<Technique> techniques() {
   soft.name = "reference.soft";
   soft.summary = "Monte Carlo visibility of a spherical light of SpotLight::radius, " +
                  std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
-  soft.paramKeys = {"rays"};
+  soft.paramKeys = {"rays", kPixelParam, kPixelSamplesParam};
   soft.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, true);
   };

@@ -3,6 +3,18 @@
 //   reference.hard  exact visibility of the point light per camera pixel (Embree shadow rays)
 //   reference.soft  Monte Carlo visibility of a spherical light of SpotLight::radius
 //
+// Each comes in two forms (--param pixel=...):
+//   centre (default)  the visibility at the pixel centre's surface point: a point sample,
+//                     itself aliased at shadow edges (what every test and figure panel that
+//                     shows "the reference" uses; bit-identical to the references before
+//                     issue 14)
+//   area              the visibility integrated over the pixel's area (box filter): N x N
+//                     stratified sub-pixel surface points (--param pixel-samples=N per side),
+//                     each rasterised at its own sub-pixel position; hard: one shadow ray per
+//                     sub-pixel point, averaged; soft: the light's rays start from the
+//                     sub-pixel points instead of the pixel centre. The bench measures every
+//                     technique against this form (docs/bench.md).
+//
 // Both rasterise the camera's surface points with GL (the same camera and the same vertex
 // transform as the modern camera pass), so every technique's mask lines up pixel for pixel
 // with the reference, and then cast shadow rays from those points with Embree 3.
@@ -41,5 +53,23 @@ constexpr float kRayOffsetPerSceneDiagonal = 1e-4f;
 // derives the bound and checks the measured value).
 constexpr int kDefaultSoftStrataPerSide = 12;
 constexpr int kDefaultSoftRays = 2 * kDefaultSoftStrataPerSide * kDefaultSoftStrataPerSide;  // 288
+
+// --param pixel=centre|area and --param pixel-samples=N (sub-pixel strata per side, N x N
+// samples; 1 = the pixel centre, so pixel=area with N = 1 equals pixel=centre bit for bit).
+constexpr const char* kPixelParam = "pixel";
+constexpr const char* kPixelCentre = "centre";
+constexpr const char* kPixelArea = "area";
+constexpr const char* kPixelSamplesParam = "pixel-samples";
+// Hard: 8 x 8 = 64 sub-pixel samples. The samples sit at the strata's centres (an ordered
+// grid: deterministic, no noise), so at a straight shadow edge crossing a pixel every column
+// of N samples errs by at most half a sample (the midpoint rule is exact for the linear edge):
+// |area visibility - covered fraction| <= 1 / (2N) = 0.0625 for N = 8
+// (tests/reference/reference_test.cpp checks it on the analytic scene).
+constexpr int kDefaultHardPixelSamplesPerSide = 8;
+// Soft: 4 x 4 = 16 sub-pixel points, each the origin of 288 / 16 = 18 of the light's rays (the
+// light's strata are dealt out to the sub-pixel points, see reference.cpp): the same ray count
+// as pixel=centre, so the area form costs 16 extra rasterisations, not more rays.
+constexpr int kDefaultSoftPixelSamplesPerSide = 4;
+constexpr int kMaxPixelSamplesPerSide = 16;
 
 }  // namespace sl::reference

@@ -16,35 +16,37 @@
 namespace sl::reference {
 using namespace sl::gl;
 
-namespace {
-
-constexpr int kAttachments = 3;
+constexpr int kSurfaceAttachments = 3;
 
 // RAII owners of the few GL names this pass creates.
-struct GlObjects {
+struct SurfaceGlObjects {
   GLuint program = 0;
   GLuint framebuffer = 0;
-  GLuint textures[kAttachments + 1] = {0, 0, 0, 0};  // + depth
+  GLuint textures[kSurfaceAttachments + 1] = {0, 0, 0, 0};  // + depth
   std::vector<GLuint> vertexArrays, buffers;
-  GlObjects() = default;
-  GlObjects(const GlObjects&) = delete;
-  GlObjects& operator=(const GlObjects&) = delete;
-  ~GlObjects() {
+  SurfaceGlObjects() = default;
+  SurfaceGlObjects(const SurfaceGlObjects&) = delete;
+  SurfaceGlObjects& operator=(const SurfaceGlObjects&) = delete;
+  ~SurfaceGlObjects() {
     if (program) glDeleteProgram(program);
     if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(kAttachments + 1, textures);
+    glDeleteTextures(kSurfaceAttachments + 1, textures);
     if (!vertexArrays.empty())
       glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
     if (!buffers.empty()) glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
   }
 };
 
+namespace {
+
+constexpr int kAttachments = kSurfaceAttachments;
+
 // reference/shaders/surface_points.{vert,frag}.glsl (embedded, core/shaders.h).
-void buildProgram(GlObjects& gl) {
+void buildProgram(SurfaceGlObjects& gl) {
   gl.program = compileShaderProgram("surface_points.vert.glsl", "surface_points.frag.glsl");
 }
 
-void buildTarget(GlObjects& gl, int width, int height) {
+void buildTarget(SurfaceGlObjects& gl, int width, int height) {
   glGenFramebuffers(1, &gl.framebuffer);
   glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
   glGenTextures(kAttachments + 1, gl.textures);
@@ -66,9 +68,8 @@ void buildTarget(GlObjects& gl, int width, int height) {
     throw GlError("reference surface pass: float render target incomplete");
 }
 
-void uploadAndDraw(GlObjects& gl, const Scene& scene) {
-  const GLint model = glGetUniformLocation(gl.program, "uModel");
-  const GLint objectId = glGetUniformLocation(gl.program, "uObjectId");
+// Uploads every object's positions, normals and indices once (one vertex array per object).
+void upload(SurfaceGlObjects& gl, const Scene& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Mesh& mesh = *scene.objects[i].mesh;
     GLuint vao = 0, vbo[3] = {0, 0, 0};
@@ -92,9 +93,19 @@ void uploadAndDraw(GlObjects& gl, const Scene& scene) {
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, vbo[2]);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(unsigned)),
                  mesh.indices.data(), GL_STATIC_DRAW);
+  }
+  glBindVertexArray(0);
+}
+
+void draw(const SurfaceGlObjects& gl, const Scene& scene) {
+  const GLint model = glGetUniformLocation(gl.program, "uModel");
+  const GLint objectId = glGetUniformLocation(gl.program, "uObjectId");
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    glBindVertexArray(gl.vertexArrays[i]);
     glUniformMatrix4fv(model, 1, GL_FALSE, glm::value_ptr(scene.objects[i].model));
     glUniform1f(objectId, float(i + 1));
-    glDrawElements(GL_TRIANGLES, GLsizei(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, GLsizei(scene.objects[i].mesh->indices.size()), GL_UNSIGNED_INT,
+                   nullptr);
   }
   glBindVertexArray(0);
 }
@@ -109,11 +120,23 @@ std::vector<float> readAttachment(int attachment, int width, int height) {
 
 }  // namespace
 
-std::vector<SurfacePoint> rasteriseSurfacePoints(const Scene& scene, const RenderParams& params) {
-  const int w = params.width, h = params.height;
-  GlObjects gl;
-  buildProgram(gl);
-  buildTarget(gl, w, h);
+struct SurfaceRasteriser::GlState {
+  SurfaceGlObjects objects;
+};
+
+SurfaceRasteriser::SurfaceRasteriser(const Scene& scene, const RenderParams& params)
+    : scene_(scene), width_(params.width), height_(params.height), gl_(new GlState) {
+  buildProgram(gl_->objects);
+  buildTarget(gl_->objects, width_, height_);
+  upload(gl_->objects, scene_);
+}
+
+SurfaceRasteriser::~SurfaceRasteriser() = default;
+
+std::vector<SurfacePoint> SurfaceRasteriser::rasterise(glm::vec2 offsetPixels) {
+  const int w = width_, h = height_;
+  const SurfaceGlObjects& gl = gl_->objects;
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
   glViewport(0, 0, w, h);
   const float none[4] = {0, 0, 0, 0};
   for (int i = 0; i < kAttachments; ++i) glClearBufferfv(GL_COLOR, i, none);
@@ -123,13 +146,25 @@ std::vector<SurfacePoint> rasteriseSurfacePoints(const Scene& scene, const Rende
   glDisable(GL_CULL_FACE);
   glUseProgram(gl.program);
   // The same matrix as modern/camera_pass.cpp cameraViewProjection().
-  const glm::mat4 viewProjection =
-      cameraProjection(scene.camera, float(w) / float(h)) * cameraView(scene.camera);
+  glm::mat4 viewProjection =
+      cameraProjection(scene_.camera, float(w) / float(h)) * cameraView(scene_.camera);
+  // A sub-pixel sample: shift the image by -offset pixels in window space (NDC spans 2 per
+  // window side; a clip-space translation scaled by w), so that the pixel centre rasterises
+  // what lies at (x + 0.5 + offset.x, y + 0.5 + offset.y). Offset 0 keeps the matrix as is.
+  if (offsetPixels != glm::vec2(0.0f)) {
+    glm::mat4 shift(1.0f);
+    shift[3][0] = -2.0f * offsetPixels.x / float(w);
+    shift[3][1] = -2.0f * offsetPixels.y / float(h);
+    viewProjection = shift * viewProjection;
+  }
   glUniformMatrix4fv(glGetUniformLocation(gl.program, "uViewProjection"), 1, GL_FALSE,
                      glm::value_ptr(viewProjection));
-  uploadAndDraw(gl, scene);
+  draw(gl, scene_);
   const std::vector<float> position = readAttachment(0, w, h);
-  const std::vector<float> shading = readAttachment(1, w, h);
+  // Sub-pixel samples only cast shadow rays (the geometric normal offsets their origin); the
+  // shading normal, read for the pixel centre's shading, is left unread there.
+  const bool subpixel = offsetPixels != glm::vec2(0.0f);
+  const std::vector<float> shading = subpixel ? std::vector<float>() : readAttachment(1, w, h);
   const std::vector<float> geometric = readAttachment(2, w, h);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glUseProgram(0);
@@ -139,14 +174,20 @@ std::vector<SurfacePoint> rasteriseSurfacePoints(const Scene& scene, const Rende
   for (size_t p = 0; p < points.size(); ++p) {
     const float* pos = &position[p * 4];
     const int id = int(pos[3] + 0.5f) - 1;
-    if (id < 0 || id >= int(scene.objects.size())) continue;
+    if (id < 0 || id >= int(scene_.objects.size())) continue;
     SurfacePoint& s = points[p];
     s.object = id;
     s.position = {pos[0], pos[1], pos[2]};
-    s.shadingNormal = {shading[p * 4], shading[p * 4 + 1], shading[p * 4 + 2]};
+    s.shadingNormal = subpixel
+                          ? glm::vec3(geometric[p * 4], geometric[p * 4 + 1], geometric[p * 4 + 2])
+                          : glm::vec3(shading[p * 4], shading[p * 4 + 1], shading[p * 4 + 2]);
     s.geometricNormal = {geometric[p * 4], geometric[p * 4 + 1], geometric[p * 4 + 2]};
   }
   return points;
+}
+
+std::vector<SurfacePoint> rasteriseSurfacePoints(const Scene& scene, const RenderParams& params) {
+  return SurfaceRasteriser(scene, params).rasterise({0.0f, 0.0f});
 }
 
 }  // namespace sl::reference

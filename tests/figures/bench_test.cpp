@@ -9,6 +9,9 @@
 #include <sstream>
 
 #include "apps/registry.h"
+#include "core/plan.h"
+#include "core/scene_library.h"
+#include "reference/reference.h"
 
 namespace sl::figures {
 namespace {
@@ -94,14 +97,224 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   std::string header;
   std::getline(csv, header);
   EXPECT_NE(header.find("hard_band_rmse"), std::string::npos);
+  EXPECT_NE(header.find("hard_point_rmse"), std::string::npos) << "the pixel-centre column";
+  EXPECT_NE(header.find("temporal_change"), std::string::npos);
+  EXPECT_NE(json.str().find("\"temporal_change\""), std::string::npos);
+  EXPECT_NE(json.str().find("\"vs_reference_hard_centre\""), std::string::npos);
+  bool farRows = false;
+  for (const BenchRow& row : r.rows)
+    farRows |= row.scene == std::string("brabec") + kFarSceneSuffix;
+  EXPECT_TRUE(farRows) << "modern.hw also runs on the minification scene";
   bool plannerRows = false;
   for (const BenchRow& row : r.rows) plannerRows |= row.scene == "brabec-light-away";
   EXPECT_TRUE(plannerRows);
-  // A plot per scene with a non-zero error (the planner scene has none: no pixel is lit).
+  // A plot per scene with a non-zero error: brabec and the minification scene brabec-far (the
+  // planner scene has none: no pixel is lit).
   const auto plots = writePlots(dir.string(), r);
-  ASSERT_EQ(plots.size(), 1u);
+  ASSERT_EQ(plots.size(), 2u);
   EXPECT_NE(plots[0].find("bench-brabec.png"), std::string::npos);
-  EXPECT_GT(fs::file_size(plots[0]), 1000u);
+  EXPECT_NE(plots[1].find("bench-brabec-far.png"), std::string::npos);
+  for (const std::string& plot : plots) EXPECT_GT(fs::file_size(plot), 1000u);
+}
+
+// ---- Issue 14: temporal stability, the claim scenes, the fair claims -------------------------
+
+constexpr int kSmallWidth = 256, kSmallHeight = 192;  // the quick bench's window
+
+RenderParams smallParams() {
+  RenderParams p;
+  p.width = kSmallWidth;
+  p.height = kSmallHeight;
+  return p;
+}
+
+Image everywhere() {
+  return Image(kSmallWidth, kSmallHeight, 1, 1.0f);
+}
+
+TEST(BenchTemporal, LightShiftIsAFifthOfATexelSideways) {
+  const Scene scene = builtinScene("brabec");
+  const double shift = lightShiftWorld(scene);
+  const SpotLight& l = scene.light;
+  // A 512 map spans 2 d tan(cone / 2) at the target's distance d.
+  const double side = 2.0 * glm::length(l.target - l.position) *
+                      std::tan(glm::radians(0.5 * double(l.coneDegrees)));
+  EXPECT_NEAR(shift, kLightShiftTexels * side / kLightShiftMapTexels, 1e-6 * side);
+  const Scene moved = shiftLight(scene, shift);
+  const glm::vec3 step = moved.light.position - l.position;
+  EXPECT_NEAR(glm::length(step), shift, 1e-5);
+  EXPECT_NEAR(glm::dot(glm::normalize(step), glm::normalize(l.target - l.position)), 0.0, 1e-5)
+      << "sideways: perpendicular to the light's axis";
+  // Float round-off of two additions (positions of size ~10 in float: 1e-6 relative).
+  EXPECT_LT(glm::length((moved.light.target - l.target) - step), 1e-5)
+      << "the target moves with the light";
+}
+
+// The references are deterministic: with the light at rest their masks do not change (the
+// soft one included: its random streams are seeded per row and sub-pixel point).
+TEST(BenchTemporal, ZeroForTheReferencesOfAStaticLight) {
+  const Scene scene = builtinScene("brabec");
+  const Scene still = shiftLight(scene, 0.0);
+  RenderParams p = smallParams();
+  p.extra[reference::kPixelParam] = reference::kPixelArea;
+  for (const char* name : {"reference.hard", "reference.soft"}) {
+    const Frame a = renderTechnique(findTechnique(name), scene, p);
+    const Frame b = renderTechnique(findTechnique(name), still, p);
+    EXPECT_EQ(meanAbsChange(a.visibility, b.visibility, everywhere()), 0.0) << name;
+  }
+}
+
+// A nearest-compare shadow map snaps every edge to its texel grid: a fifth of a texel of light
+// motion flips whole texels' worth of edge pixels, more than the true shadow moves.
+TEST(BenchTemporal, NearestCompareChangesMoreThanTheTruth) {
+  const Scene scene = builtinScene("brabec");
+  const Scene moved = shiftLight(scene, lightShiftWorld(scene));
+  RenderParams p = smallParams();
+  p.extra["compare"] = "nearest";
+  const Technique& hw = findTechnique("modern.hw");
+  const double map = meanAbsChange(renderTechnique(hw, scene, p).visibility,
+                                   renderTechnique(hw, moved, p).visibility, everywhere());
+  RenderParams area = smallParams();
+  area.extra[reference::kPixelParam] = reference::kPixelArea;
+  const Technique& ref = findTechnique("reference.hard");
+  const double truth = meanAbsChange(renderTechnique(ref, scene, area).visibility,
+                                     renderTechnique(ref, moved, area).visibility, everywhere());
+  std::cout << "mean |change| under the light motion: nearest compare " << map
+            << ", reference.hard pixel=area " << truth << "\n";
+  EXPECT_GT(map, 0.0);
+  EXPECT_GT(map, truth);
+}
+
+// The minification scene: the camera 4 times farther from its target sees the same ground at
+// 4 times the distance, so each pixel covers about 4 times as many shadow-map texels (the
+// planner's estimate is a 95th percentile over a view that now also holds more ground: at
+// least three quarters of the factor).
+TEST(BenchScenes, FarSceneMinifiesTheShadowMap) {
+  const Scene near = builtinScene("brabec");
+  const Scene far = farScene(near);
+  EXPECT_EQ(far.name, std::string("brabec") + kFarSceneSuffix);
+  const Technique& hw = findTechnique("modern.hw");
+  const double before = planFrame(near, hw, smallParams()).maxShadowTexelsPerPixel;
+  const double after = planFrame(far, hw, smallParams()).maxShadowTexelsPerPixel;
+  std::cout << "texels per pixel: brabec " << before << ", brabec-far " << after << "\n";
+  EXPECT_GT(after, 0.75 * kFarCameraFactor * before);
+  // What the claim compares, written for a look (test-output/bench-far/).
+  const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "bench-far";
+  fs::create_directories(dir);
+  RenderParams area = smallParams();
+  area.extra[reference::kPixelParam] = reference::kPixelArea;
+  const Frame truth = renderTechnique(findTechnique("reference.hard"), far, area);
+  writePng((dir / "reference-hard-area.png").string(), truth.color);
+  writePng((dir / "reference-hard-area-mask.png").string(), truth.visibility, 16);
+  for (const char* name : {"modern.csm", "modern.gems16"})
+    writePng((dir / (std::string(name) + "-mask.png")).string(),
+             renderTechnique(findTechnique(name), far, smallParams()).visibility, 16);
+}
+
+// Chan §4.2's width from the light: a caster whose centre lies at depth b on the light's axis.
+TEST(BenchScenes, SmoothieWidthIsTheLightRadiusSeenFromTheCaster) {
+  Scene scene = builtinScene("analytic");  // light 4 above the ground, a thin box at 1.0
+  const SpotLight& l = scene.light;
+  double b = 0.0;
+  int casters = 0;
+  for (const Object& o : scene.objects)
+    if (o.castsShadow) {
+      const Bounds box = worldBounds(o);
+      b += glm::length(l.position - 0.5f * (box.lo + box.hi));
+      ++casters;
+    }
+  ASSERT_EQ(casters, 1) << "the analytic scene has one caster, straight below the light";
+  const double expected =
+      double(l.radius) / (2.0 * b * std::tan(glm::radians(0.5 * double(l.coneDegrees))));
+  EXPECT_NEAR(smoothieWidthFromLight(scene), expected, 1e-6);
+  scene.light.radius *= 2.0f;
+  EXPECT_NEAR(smoothieWidthFromLight(scene), 2.0 * expected, 2e-6) << "proportional to R";
+}
+
+BenchRow claimRow(const std::string& scene, const std::string& technique,
+                  const std::string& variant, double areaRmse, double pointRmse, double ms = 10.0) {
+  BenchRow r;
+  r.scene = scene;
+  r.technique = technique;
+  r.variant = variant;
+  r.frameMs = ms;
+  r.primaryReference = kPrimaryHardReference;
+  r.hard.all.rmse = r.soft.all.rmse = areaRmse;
+  r.hardPoint.all.rmse = r.softPoint.all.rmse = pointRmse;
+  return r;
+}
+
+const ClaimCheck* claim(const std::vector<ClaimCheck>& claims, const std::string& id,
+                        const std::string& scene) {
+  for (const ClaimCheck& c : claims)
+    if (c.id == id && c.scene == scene) return &c;
+  return nullptr;
+}
+
+TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
+  BenchResult r;
+  // gems16: better than samples=1 against the pixel area, worse against the pixel centre.
+  r.rows.push_back(claimRow("brabec", "modern.gems16", "default", 0.025, 0.038));
+  r.rows.push_back(claimRow("brabec", "modern.gems16", "samples=1", 0.028, 0.028));
+  // Smoothies: the best width of the sweep beats modern.hw, the width from the light does not.
+  r.rows.push_back(claimRow("brabec", "modern.smoothies", "width=0.01", 0.001, 0.001));
+  r.rows.push_back(
+      claimRow("brabec", "modern.smoothies", kSmoothieWidthFromLightVariant, 0.5, 0.5));
+  r.rows.back().params.extra["width"] = "0.0062";
+  r.rows.push_back(claimRow("brabec", "modern.hw", "default", 0.1, 0.1));
+  // Hybrid and volumes on an ordinary scene: not the fill-bound setting.
+  r.rows.push_back(claimRow("brabec", "modern.hybrid", "default", 0.05, 0.05, 1.0));
+  r.rows.push_back(claimRow("brabec", "modern.volumes", "default", 0.05, 0.05, 2.0));
+  r.masks["brabec|modern.hybrid|default"] = Image(4, 4, 1, 1.0f);
+  r.masks["brabec|modern.volumes|default"] = Image(4, 4, 1, 1.0f);
+  // CSM on a bench scene (no minification) beats PCF; on the far scene it does not.
+  r.rows.push_back(claimRow("brabec", "modern.csm", "default", 0.01, 0.01));
+  r.rows.push_back(claimRow("brabec", "modern.pcf", "default", 0.02, 0.02));
+  const std::string far = std::string("brabec") + kFarSceneSuffix;
+  r.rows.push_back(claimRow(far, "modern.csm", "default", 0.06, 0.08));
+  r.rows.push_back(claimRow(far, "modern.pcf", "default", 0.065, 0.04));
+  r.rows.push_back(claimRow(far, "modern.gems16", "default", 0.05, 0.036));
+  r.sceneNotes[kFillBoundScene] = "scene not present (assets/scenes/fill-bound.json)";
+  const std::vector<ClaimCheck> claims = checkClaims(r);
+
+  const ClaimCheck* gems = claim(claims, "gems16-vs-1", "brabec");
+  ASSERT_NE(gems, nullptr);
+  EXPECT_EQ(gems->verdict, "agrees") << "measured against the pixel area, not the centre";
+  EXPECT_NE(gems->setup.find("pixel=area"), std::string::npos) << gems->setup;
+
+  const ClaimCheck* smoothies = claim(claims, "smoothies-soft", "brabec");
+  ASSERT_NE(smoothies, nullptr);
+  EXPECT_EQ(smoothies->verdict, "disagrees") << "the width from the light, not the sweep's best";
+  EXPECT_NE(smoothies->setup.find("0.0062"), std::string::npos) << smoothies->setup;
+
+  EXPECT_EQ(claim(claims, "csm-minification", "brabec"), nullptr)
+      << "CSM's minification claim is checked on the far scene only";
+  const ClaimCheck* csm = claim(claims, "csm-minification", far);
+  ASSERT_NE(csm, nullptr);
+  EXPECT_EQ(csm->verdict.rfind("disagrees", 0), 0u)
+      << "against the better PCF (gems16, 0.05): " << csm->verdict;
+  EXPECT_NE(csm->measured.find("modern.gems16"), std::string::npos) << csm->measured;
+
+  EXPECT_EQ(claim(claims, "hybrid-vs-volumes", "brabec"), nullptr)
+      << "the hybrid's claim is about fill-bound scenes";
+  const ClaimCheck* hybrid = claim(claims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(hybrid, nullptr);
+  EXPECT_EQ(hybrid->verdict, "not measured (scene not present)");
+  // With the fill-bound scene measured, the hybrid's claim is checked there.
+  BenchResult fill;
+  fill.rows.push_back(claimRow(kFillBoundScene, "modern.hybrid", "default", 0.05, 0.05, 1.0));
+  fill.rows.push_back(claimRow(kFillBoundScene, "modern.volumes", "default", 0.05, 0.05, 2.0));
+  fill.masks[std::string(kFillBoundScene) + "|modern.hybrid|default"] = Image(4, 4, 1, 1.0f);
+  fill.masks[std::string(kFillBoundScene) + "|modern.volumes|default"] = Image(4, 4, 1, 1.0f);
+  const std::vector<ClaimCheck> fillClaims = checkClaims(fill);
+  const ClaimCheck* measured = claim(fillClaims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(measured, nullptr);
+  EXPECT_EQ(measured->verdict, "agrees") << "same masks, half the time: " << measured->measured;
+  for (const ClaimCheck& c : claims) {
+    if (c.verdict.rfind("not measured", 0) != 0 && c.scene != "-") {
+      EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
+    }
+  }
 }
 
 }  // namespace
