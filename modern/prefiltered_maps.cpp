@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/errors.h"
 
 namespace sl::modern {
@@ -14,14 +16,81 @@ namespace {
 constexpr int kMaxOutputsPerPass = 8;    // separable_gaussian.frag declares 8 outputs
 constexpr float kMaxAnisotropy = 16.0f;  // Annen Table 1: "16x anisotropic tri-linear"
 constexpr int kMaxBlurTaps = 7;          // 7x7, the largest kernel of Annen Table 1
+constexpr float kFarAway = 1e30f;       // larger than any light-view distance
+constexpr float kDepthMargin = 0.02f;   // of the span, as lightDepthRange (core/scene.cpp)
+constexpr float kMinDepthSpan = 1e-6f;  // world units: a flat scene still gets a range
+constexpr float kMinNearOverFar = 1e-4f;  // as lightDepthRange
 const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";
 }  // namespace
 
 void setLinearDepthUniforms(const Program& program, const Scene& scene) {
-  const DepthRange range = lightDepthRange(scene);
+  setLinearDepthUniforms(program, scene, lightDepthRange(scene));
+}
+
+void setLinearDepthUniforms(const Program& program, const Scene& scene, const DepthRange& range) {
   program.set("uLightView", lightView(scene.light));
   program.set("uLightNear", range.nearPlane);
   program.set("uLightFar", range.farPlane);
+}
+
+namespace {
+// Light-view vertices of one triangle of `o` (x, y lateral, z = distance along the axis).
+void lightViewTriangle(const glm::mat4& toView, const Mesh& m, size_t t, glm::vec3 v[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3 p = glm::vec3(toView * glm::vec4(m.positions[m.indices[t + k]], 1.0f));
+    v[k] = {p.x, p.y, -p.z};
+  }
+}
+
+// Certainly outside the square cone |x|, |y| <= tangent * z (all three vertices beyond the
+// same lateral plane, or all behind the light).
+bool outsideCone(const glm::vec3 v[3], float tangent) {
+  auto all = [&](auto test) { return test(v[0]) && test(v[1]) && test(v[2]); };
+  return all([&](const glm::vec3& p) { return p.x > tangent * p.z; }) ||
+         all([&](const glm::vec3& p) { return p.x < -tangent * p.z; }) ||
+         all([&](const glm::vec3& p) { return p.y > tangent * p.z; }) ||
+         all([&](const glm::vec3& p) { return p.y < -tangent * p.z; }) ||
+         all([](const glm::vec3& p) { return p.z <= 0.0f; });
+}
+}  // namespace
+
+DepthRange fitShadowingDepthRange(const Scene& scene) {
+  const glm::mat4 view = lightView(scene.light);
+  const float coneTangent = std::tan(glm::radians(0.5f * scene.light.coneDegrees));
+  float casterNear = kFarAway, casterTangent = 0.0f;
+  for (const Object& o : scene.objects) {
+    if (!o.castsShadow || !o.mesh) continue;
+    const glm::mat4 toView = view * o.model;
+    for (size_t t = 0; t + 2 < o.mesh->indices.size(); t += 3) {
+      glm::vec3 v[3];
+      lightViewTriangle(toView, *o.mesh, t, v);
+      if (outsideCone(v, coneTangent)) continue;
+      for (const glm::vec3& p : v) {
+        casterNear = std::min(casterNear, std::max(p.z, 0.0f));
+        casterTangent = std::max(casterTangent, p.z > 0.0f
+                                                    ? std::max(std::fabs(p.x), std::fabs(p.y)) / p.z
+                                                    : coneTangent);
+      }
+    }
+  }
+  if (casterNear >= kFarAway) return lightDepthRange(scene);
+  casterTangent = std::min(casterTangent, coneTangent);
+  float farthest = casterNear;
+  for (const Object& o : scene.objects) {
+    if (!o.receivesShadow || !o.mesh) continue;
+    const glm::mat4 toView = view * o.model;
+    for (size_t t = 0; t + 2 < o.mesh->indices.size(); t += 3) {
+      glm::vec3 v[3];
+      lightViewTriangle(toView, *o.mesh, t, v);
+      if (outsideCone(v, casterTangent)) continue;
+      for (const glm::vec3& p : v) farthest = std::max(farthest, p.z);
+    }
+  }
+  const float span = std::max(farthest - casterNear, kMinDepthSpan);
+  DepthRange r;
+  r.farPlane = farthest + kDepthMargin * span;
+  r.nearPlane = std::max(casterNear - kDepthMargin * span, r.farPlane * kMinNearOverFar);
+  return r;
 }
 
 int parseBlurTaps(const RenderParams& params) {
@@ -88,6 +157,36 @@ LayeredMap makeLayeredMap(int size, int layers, GLenum format, bool mipmapped) {
   return m;
 }
 
+const LayeredMap& reuseLayeredMap(LayeredMap& slot, int size, int layers, GLenum format,
+                                  bool mipmapped) {
+  int levels = 1;
+  if (mipmapped)
+    while ((size >> levels) > 0) ++levels;
+  if (slot.texture.id() == 0 || slot.size != size || slot.layers != layers ||
+      slot.format != format || slot.levels != levels)
+    slot = makeLayeredMap(size, layers, format, mipmapped);
+  return slot;
+}
+
+PrefilterWorkspace::~PrefilterWorkspace() {
+  depth.fbo.release();
+  for (Texture& t : depth.color) t.release();
+  depth.depth.release();
+  map.texture.release();
+  scratch.texture.release();
+  fbo.release();
+}
+
+PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key) {
+  auto* workspace = static_cast<PrefilterWorkspace*>(context.layerState(key));
+  if (workspace == nullptr) {
+    auto fresh = std::make_shared<PrefilterWorkspace>();
+    workspace = fresh.get();
+    context.setLayerState(key, fresh);
+  }
+  return *workspace;
+}
+
 int layersPerPass() {
   GLint most = 1;
   glGetIntegerv(GL_MAX_DRAW_BUFFERS, &most);
@@ -119,10 +218,17 @@ void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int 
 }
 
 void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame& frame) {
+  LayeredMap scratch;
+  blurLayers(map, scratch, taps, name, frame);
+}
+
+void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
+                Frame& frame) {
   PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
-  const LayeredMap scratch = makeLayeredMap(map.size, map.layers, map.format, false);
+  const LayeredMap& scratch =
+      reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
   const std::vector<float> weights = binomialWeights(taps);
-  Program program("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
   program.use();
   program.set("uSource", 0);
   program.set("uTaps", taps);

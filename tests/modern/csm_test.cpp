@@ -51,7 +51,7 @@ struct AnalyticDepths {
 };
 
 AnalyticDepths analyticDepths(const Scene& scene) {
-  const DepthRange range = lightDepthRange(scene);
+  const DepthRange range = modern::csmDepthRange(scene);
   auto linear = [&](float y) {
     const glm::vec4 v = lightView(scene.light) * glm::vec4(0.0f, y, 0.0f, 1.0f);
     return (double(-v.z) - range.nearPlane) / (double(range.farPlane) - range.nearPlane);
