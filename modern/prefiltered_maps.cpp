@@ -228,11 +228,6 @@ void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const 
   const LayeredMap& scratch =
       reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
   const std::vector<float> weights = binomialWeights(taps);
-  const Program& program = cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl");
-  program.use();
-  program.set("uSource", 0);
-  program.set("uTaps", taps);
-  glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
   const Framebuffer fbo = makeFramebuffer();
   const FullScreenTriangle triangle;
   glDisable(GL_DEPTH_TEST);
@@ -247,12 +242,18 @@ void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const 
     glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glUniform2i(program.uniform("uStep"), direction == 0 ? 1 : 0, direction == 0 ? 0 : 1);
     for (int first = 0; first < map.layers; first += perPass) {
       const int count = std::min(perPass, map.layers - first);
+      // One program per (taps, layers per pass): constant loop bounds (the shader's header).
+      const Program& program =
+          cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl",
+                        {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
+      program.use();
+      program.set("uSource", 0);
+      glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+      glUniform2i(program.uniform("uStep"), direction == 0 ? 1 : 0, direction == 0 ? 0 : 1);
       attachLayers(fbo, target, first, count);
       program.set("uFirstLayer", first);
-      program.set("uLayerCount", count);
       triangle.draw();
     }
   }
