@@ -57,7 +57,7 @@ struct CsmSettings {
   float depthScale() const { return float(1.0 - offset); }
 };
 
-CsmSettings parseSettings(const GlContext& context, const Scene& scene,
+CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
                           const RenderParams& params) {
   CsmSettings s;
   s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
@@ -93,8 +93,7 @@ CsmSettings parseSettings(const GlContext& context, const Scene& scene,
   // it out changes nothing but the time (on llvmpipe glGenerateMipmap of M/2 layers is a
   // large share of the frame). mipmaps=always builds it regardless.
   const std::string mipmaps = params.text("mipmaps", "auto", {"auto", "always"});
-  if (s.filtering.mipmaps && mipmaps == "auto" &&
-      planFrame(scene, convolutionShadowMapTechnique(), params).maxShadowTexelsPerPixel <= 1.0) {
+  if (s.filtering.mipmaps && mipmaps == "auto" && texelsPerPixel <= 1.0) {
     s.filtering.mipmaps = false;
     s.filtering.anisotropy = 1.0f;  // anisotropic filtering refines the mip footprint only
     s.mipmapsSkipped = true;
@@ -251,11 +250,19 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
-  const CsmSettings s = parseSettings(context, scene, params);
+  PrefilterWorkspace& work = prefilterWorkspace(context, kWorkspaceKey);
+  // The fitted range and the planner's minification estimate walk every triangle: once per
+  // scene and view, not once per frame.
+  if (std::vector<double> key = sceneViewKey(scene, params); key != work.sceneKey) {
+    work.fittedRange = csmDepthRange(scene);
+    work.texelsPerPixel =
+        planFrame(scene, convolutionShadowMapTechnique(), params).maxShadowTexelsPerPixel;
+    work.sceneKey = std::move(key);
+  }
+  const CsmSettings s = parseSettings(context, work.texelsPerPixel, params);
   Frame frame;
   GpuScene gpu(scene);
-  const DepthRange range = csmDepthRange(scene);
-  PrefilterWorkspace& work = prefilterWorkspace(context, kWorkspaceKey);
+  const DepthRange range = work.fittedRange;
   const RenderTarget& depth = renderLinearDepthFromLight(gpu, params, s, range, work, frame);
   const LayeredMap& basis = computeBasisTextures(depth, s, work, frame);
   blurBasisTextures(basis, s, work, frame);

@@ -44,7 +44,7 @@ struct MapFiltering {
   bool linear = true;       // bilinear magnification/minification within a level
   float anisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
 };
-// --param filtering=anisotropic|trilinear|bilinear|nearest (anisotropic = tri-linear with
+// --param filtering=trilinear (default)|anisotropic|bilinear|nearest (anisotropic = tri-linear with
 // --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped
 // to what the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent.
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params);
@@ -75,12 +75,21 @@ struct PrefilterWorkspace {
   LayeredMap map;
   LayeredMap scratch;
   Framebuffer fbo;
+  // CPU work that depends on the scene and the view only (the fitted depth range, the
+  // planner's minification estimate): kept with the key it was computed for.
+  std::vector<double> sceneKey;
+  DepthRange fittedRange;
+  double texelsPerPixel = 0.0;
   PrefilterWorkspace() = default;
   PrefilterWorkspace(const PrefilterWorkspace&) = delete;
   PrefilterWorkspace& operator=(const PrefilterWorkspace&) = delete;
   ~PrefilterWorkspace();  // gives the names up: the context is gone when this runs
 };
 PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key);
+
+// Every number the fitted range and the minification estimate depend on: camera, light,
+// window and map size, and each object's mesh (address and size), transform and flags.
+std::vector<double> sceneViewKey(const Scene& scene, const RenderParams& params);
 
 // How many colour attachments one pass may write (GL_MAX_DRAW_BUFFERS, at most 8: the
 // shaders declare 8 outputs).

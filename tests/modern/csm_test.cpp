@@ -178,7 +178,7 @@ TEST(Csm, HighOrdersStayFiniteAndInRange) {
 
 TEST(Csm, SpellingsTheFiguresUse) {
   // blur=1 is a 1x1 kernel, i.e. no blur; offset=auto is the default offset; filtering=
-  // anisotropic is the default. Each must give the same image as its plain spelling.
+  // trilinear is the default. Each must give the same image as its plain spelling.
   const Scene scene = builtinScene("analytic");
   auto mask = [&](std::map<std::string, std::string> extra) {
     return renderByName("modern.csm", scene, smallParams(64, 48, 64, std::move(extra))).visibility;
@@ -186,7 +186,7 @@ TEST(Csm, SpellingsTheFiguresUse) {
   EXPECT_EQ(mask({{"blur", "1"}}).data, mask({{"blur", "0"}}).data);
   EXPECT_EQ(mask({{"offset", "auto"}}).data, mask({}).data);
   EXPECT_EQ(mask({{"scale", "auto"}}).data, mask({}).data);
-  EXPECT_EQ(mask({{"filtering", "anisotropic"}}).data, mask({}).data);
+  EXPECT_EQ(mask({{"filtering", "trilinear"}}).data, mask({}).data);
 }
 
 TEST(Csm, BadParametersAreInputErrors) {
