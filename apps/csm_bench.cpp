@@ -147,10 +147,12 @@ void runRatio(const Options& o) {
   const std::vector<std::pair<int, int>> sizes = {{256, 192}, {400, 300}};
   const Technique& hw = findTechnique("modern.hw");
   const Technique& csm = findTechnique("modern.csm");
-  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",              kBenchMap, o.warmup, o.repeat);
+  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
+              kBenchMap, o.warmup, o.repeat);
   for (const auto& [k, v] : o.csmParams) std::printf(", csm %s=%s", k.c_str(), v.c_str());
-  std::printf("\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
-              "| --- | --- | ---: | ---: | ---: | --- |\n");
+  std::printf(
+      "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
+      "| --- | --- | ---: | ---: | ---: | --- |\n");
   for (const std::string name : {"brabec", "fence"}) {
     const Scene scene = builtinScene(name);
     for (const auto& [w, h] : sizes) {

@@ -214,7 +214,8 @@ glm::mat4 yTo(const glm::vec3& direction) {
   const glm::vec3 y(0, 1, 0);
   const glm::vec3 axis = glm::cross(y, direction);
   const float s = glm::length(axis), c = glm::dot(y, direction);
-  if (s < 1e-6f) return c > 0.0f ? glm::mat4(1) : glm::rotate(glm::mat4(1), glm::pi<float>(), {1, 0, 0});
+  if (s < 1e-6f)
+    return c > 0.0f ? glm::mat4(1) : glm::rotate(glm::mat4(1), glm::pi<float>(), {1, 0, 0});
   return glm::rotate(glm::mat4(1), std::atan2(s, c), axis / s);
 }
 
@@ -235,12 +236,12 @@ void addBranch(Mesh& m, const glm::vec3& base, const glm::vec3& direction, float
   const glm::vec3 v = glm::cross(direction, u);
   const float phase = 2.0f * glm::pi<float>() * unitRandom(state);
   for (int i = 0; i < children; ++i) {
-    const float azimuth = phase + 2.0f * glm::pi<float>() * (float(i) + 0.3f * unitRandom(state)) /
-                                      float(children);
+    const float azimuth =
+        phase + 2.0f * glm::pi<float>() * (float(i) + 0.3f * unitRandom(state)) / float(children);
     const float elevation = glm::radians(kBranchElevationDeg * (0.8f + 0.4f * unitRandom(state)));
-    const glm::vec3 d = glm::normalize(std::cos(elevation) * direction +
-                                       std::sin(elevation) * (std::cos(azimuth) * u +
-                                                              std::sin(azimuth) * v));
+    const glm::vec3 d =
+        glm::normalize(std::cos(elevation) * direction +
+                       std::sin(elevation) * (std::cos(azimuth) * u + std::sin(azimuth) * v));
     // Children start a little below the tip, so that the joints overlap.
     addBranch(m, tip - 0.5f * radius * direction, d,
               length * kLengthRatio * (0.85f + 0.3f * unitRandom(state)), radius * kRadiusRatio,

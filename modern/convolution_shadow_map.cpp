@@ -196,8 +196,8 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
 
 // Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test.
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                             const LayeredMap& basis, const CsmSettings& s,
-                             const DepthRange& range, Frame& frame) {
+                             const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
+                             Frame& frame) {
   PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction");
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
@@ -304,7 +304,9 @@ double csmDefaultOffset(int order, double alpha) {
   return kMaxOffset;
 }
 
-DepthRange csmDepthRange(const Scene& scene) { return fitShadowingDepthRange(scene); }
+DepthRange csmDepthRange(const Scene& scene) {
+  return fitShadowingDepthRange(scene);
+}
 
 Technique convolutionShadowMapTechnique() {
   Technique t;
@@ -314,8 +316,8 @@ Technique convolutionShadowMapTechnique() {
       "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"order",  "alpha",     "offset",     "scale",  "storage",
-                 "blur",   "filtering", "anisotropy", "mipmaps"};
+  t.paramKeys = {"order", "alpha",     "offset",     "scale",  "storage",
+                 "blur",  "filtering", "anisotropy", "mipmaps"};
   t.render = render;
   return t;
 }

@@ -4,9 +4,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "core/errors.h"
 
@@ -14,12 +13,12 @@ namespace sl::modern {
 using namespace sl::gl;
 
 namespace {
-constexpr int kMaxOutputsPerPass = 8;    // separable_gaussian.frag declares 8 outputs
-constexpr float kMaxAnisotropy = 16.0f;  // Annen Table 1: "16x anisotropic tri-linear"
-constexpr int kMaxBlurTaps = 7;          // 7x7, the largest kernel of Annen Table 1
-constexpr float kFarAway = 1e30f;       // larger than any light-view distance
-constexpr float kDepthMargin = 0.02f;   // of the span, as lightDepthRange (core/scene.cpp)
-constexpr float kMinDepthSpan = 1e-6f;  // world units: a flat scene still gets a range
+constexpr int kMaxOutputsPerPass = 8;     // separable_gaussian.frag declares 8 outputs
+constexpr float kMaxAnisotropy = 16.0f;   // Annen Table 1: "16x anisotropic tri-linear"
+constexpr int kMaxBlurTaps = 7;           // 7x7, the largest kernel of Annen Table 1
+constexpr float kFarAway = 1e30f;         // larger than any light-view distance
+constexpr float kDepthMargin = 0.02f;     // of the span, as lightDepthRange (core/scene.cpp)
+constexpr float kMinDepthSpan = 1e-6f;    // world units: a flat scene still gets a range
 constexpr float kMinNearOverFar = 1e-4f;  // as lightDepthRange
 const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";
 }  // namespace
@@ -68,9 +67,9 @@ DepthRange fitShadowingDepthRange(const Scene& scene) {
       if (outsideCone(v, coneTangent)) continue;
       for (const glm::vec3& p : v) {
         casterNear = std::min(casterNear, std::max(p.z, 0.0f));
-        casterTangent = std::max(casterTangent, p.z > 0.0f
-                                                    ? std::max(std::fabs(p.x), std::fabs(p.y)) / p.z
-                                                    : coneTangent);
+        casterTangent =
+            std::max(casterTangent,
+                     p.z > 0.0f ? std::max(std::fabs(p.x), std::fabs(p.y)) / p.z : coneTangent);
       }
     }
   }
@@ -256,8 +255,7 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame&
 void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
                 Frame& frame) {
   PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
-  const LayeredMap& scratch =
-      reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
+  const LayeredMap& scratch = reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
   const std::vector<float> weights = binomialWeights(taps);
   const Framebuffer fbo = makeFramebuffer();
   const FullScreenTriangle triangle;

@@ -329,8 +329,9 @@ TEST(Csm, OrderFourUmbraIsDarkWithTheFittedRange) {
 // 16x anisotropic filtering (Mesa llvmpipe's anisotropic path with explicit gradients,
 // textureGrad; csm_shadow.frag now samples with implicit derivatives in uniform control flow).
 // An isolated lit pixel: visibility > 0.5 with at most one 2x2 quad of such pixels in its 5x5
-// neighbourhood, inside the hard shadow map's umbra eroded by one pixel. The trees carry the foliage of the earlier
-// trees scene (core/primitives makeTree), whose wide umbrae the row of dots crossed.
+// neighbourhood, inside the hard shadow map's umbra eroded by one pixel. The trees carry the
+// foliage of the earlier trees scene (core/primitives makeTree), whose wide umbrae the row of dots
+// crossed.
 TEST(Csm, NoIsolatedLitPixelsInTheUmbra) {
   Scene scene = builtinScene("trees");
   constexpr float kTreeHeight = 2.5f, kHeightVariation = 0.3f;  // as the trees scene
@@ -342,13 +343,13 @@ TEST(Csm, NoIsolatedLitPixelsInTheUmbra) {
   const Image hard =
       renderByName("modern.hw", scene, smallParams(kW, kH, kTexels, {{"compare", "nearest"}}))
           .visibility;
-  const Image csm = renderByName("modern.csm", scene,
-                                 smallParams(kW, kH, kTexels,
-                                             {{"order", "16"},
-                                              {"filtering", "anisotropic"},
-                                              {"anisotropy", "16"},
-                                              {"blur", "0"}}))
-                        .visibility;
+  const Image csm =
+      renderByName(
+          "modern.csm", scene,
+          smallParams(
+              kW, kH, kTexels,
+              {{"order", "16"}, {"filtering", "anisotropic"}, {"anisotropy", "16"}, {"blur", "0"}}))
+          .visibility;
   constexpr int kErosion = 1;  // pixel: the umbra's interior, away from CSM's soft edges
   constexpr int kQuadPixels = 4;
   int umbraPixels = 0, isolated = 0;
@@ -413,7 +414,8 @@ TEST(Csm, MipChainLeftOutOnlyWhereNothingMinifies) {
   EXPECT_LE(double(differing), 0.05 * double(skipped.visibility.data.size()));
   // Minified (trees from three times the distance, 2048 map): the chain is built.
   Scene trees = builtinScene("trees");
-  trees.camera.position = trees.camera.target + 3.0f * (trees.camera.position - trees.camera.target);
+  trees.camera.position =
+      trees.camera.target + 3.0f * (trees.camera.position - trees.camera.target);
   const Frame far = renderByName("modern.csm", trees, smallParams(128, 96, 2048, {{"blur", "0"}}));
   EXPECT_EQ(far.counters.at("mip-maps"), 1.0);
 }
