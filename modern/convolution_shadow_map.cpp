@@ -197,7 +197,7 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
 // Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test.
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
                              const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
-                             Frame& frame) {
+                             float nearestCaster, Frame& frame) {
   PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction");
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
@@ -208,6 +208,7 @@ void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));
   setLinearDepthUniforms(program, scene, range);
+  program.set("uNearestCaster", nearestCaster);
   program.set("uDepthScale", s.depthScale());
   program.set("uOrder", s.order);
   program.set("uSinLayers", s.sinLayers());
@@ -254,7 +255,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   // The fitted range and the planner's minification estimate walk every triangle: once per
   // scene and view, not once per frame.
   if (std::vector<double> key = sceneViewKey(scene, params); key != work.sceneKey) {
-    work.fittedRange = csmDepthRange(scene);
+    work.fittedRange = csmDepthRange(scene, &work.nearestCaster);
     work.texelsPerPixel =
         planFrame(scene, convolutionShadowMapTechnique(), params).maxShadowTexelsPerPixel;
     work.sceneKey = std::move(key);
@@ -268,7 +269,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   blurBasisTextures(basis, s, work, frame);
   if (params.capturePasses) capturePasses(depth, basis, s, frame);
   buildBasisMipmaps(basis, s, frame);
-  reconstructInCameraPass(gpu, params, basis, s, range, frame);
+  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, frame);
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;
   frame.counters["order M"] = s.order;
@@ -304,8 +305,8 @@ double csmDefaultOffset(int order, double alpha) {
   return kMaxOffset;
 }
 
-DepthRange csmDepthRange(const Scene& scene) {
-  return fitShadowingDepthRange(scene);
+DepthRange csmDepthRange(const Scene& scene, float* nearestCaster) {
+  return fitShadowingDepthRange(scene, nearestCaster);
 }
 
 Technique convolutionShadowMapTechnique() {

@@ -22,6 +22,8 @@ double csmDefaultOffset(int order, double alpha);
 // The light depth range modern.csm normalises linear depth over (Fig. 6: "a tightly fitted
 // light frustum"): near at the nearest caster inside the light frustum, far at the farthest
 // receiver inside the casters' cone (modern/prefiltered_maps.h, fitShadowingDepthRange).
-DepthRange csmDepthRange(const Scene& scene);
+// `nearestCaster` (optional): the nearest caster's distance along the light axis; receivers
+// nearer than it are lit (the camera pass does not evaluate the series for them).
+DepthRange csmDepthRange(const Scene& scene, float* nearestCaster = nullptr);
 
 }  // namespace sl::modern

@@ -54,7 +54,7 @@ bool outsideCone(const glm::vec3 v[3], float tangent) {
 }
 }  // namespace
 
-DepthRange fitShadowingDepthRange(const Scene& scene) {
+DepthRange fitShadowingDepthRange(const Scene& scene, float* nearestCaster) {
   const glm::mat4 view = lightView(scene.light);
   const float coneTangent = std::tan(glm::radians(0.5f * scene.light.coneDegrees));
   float casterNear = kFarAway, casterTangent = 0.0f;
@@ -73,7 +73,12 @@ DepthRange fitShadowingDepthRange(const Scene& scene) {
       }
     }
   }
-  if (casterNear >= kFarAway) return lightDepthRange(scene);
+  if (casterNear >= kFarAway) {
+    const DepthRange whole = lightDepthRange(scene);
+    if (nearestCaster) *nearestCaster = whole.nearPlane;
+    return whole;
+  }
+  if (nearestCaster) *nearestCaster = casterNear;
   casterTangent = std::min(casterTangent, coneTangent);
   float farthest = casterNear;
   for (const Object& o : scene.objects) {

@@ -29,8 +29,9 @@ void setLinearDepthUniforms(const Program& program, const Scene& scene, const De
 // farthest receiver triangle inside the casters' cone (the cone from the light through the
 // casters' outermost vertex; a receiver outside it has no caster in front of it and is lit
 // whatever its depth). Margins of 2% of the span, as lightDepthRange. The scene's range when
-// no caster reaches the frustum.
-DepthRange fitShadowingDepthRange(const Scene& scene);
+// no caster reaches the frustum. `nearestCaster` (optional) receives the nearest caster's
+// distance along the light axis without the margin (the range's near plane when none).
+DepthRange fitShadowingDepthRange(const Scene& scene, float* nearestCaster = nullptr);
 
 // The separable blur of Annen §4.1: n x n binomial weights (the discrete Gaussian), n in
 // {3, 5, 7}; blur = 0 or 1 (a 1x1 kernel) means none, returned as 0. Parsed from
@@ -79,6 +80,7 @@ struct PrefilterWorkspace {
   // planner's minification estimate): kept with the key it was computed for.
   std::vector<double> sceneKey;
   DepthRange fittedRange;
+  float nearestCaster = 0.0f;
   double texelsPerPixel = 0.0;
   PrefilterWorkspace() = default;
   PrefilterWorkspace(const PrefilterWorkspace&) = delete;

@@ -15,6 +15,7 @@ uniform mat4 uWorldToShadowMap;  // S * P_light * V_light
 uniform mat4 uLightView;
 uniform float uLightNear;
 uniform float uLightFar;
+uniform float uNearestCaster;    // distance along the light axis of the nearest caster
 uniform float uDepthScale;       // the same scale as the stored z (light_linear_depth.frag)
 uniform int uOrder;              // M
 uniform int uSinLayers;          // S = ceil(M / 4)
@@ -76,6 +77,11 @@ float shadowTest(vec3 world) {
   float f = reconstructShadowTest(p, d * uDepthScale - uOffset);
   if (coord.w <= 0.0) return 0.0;  // behind the light (as modern.hw)
   if (any(lessThan(p, vec2(0.0))) || any(greaterThan(p, vec2(1.0)))) return 1.0;  // outside
+  // Nearer than the nearest caster (modern::csmDepthRange): nothing is in front, so lit. Not
+  // left to the series: d is near 0 there (or clamped to it), and beside texels where nothing
+  // blocks (z at the far end) t = z - d + offset reaches 1, the falling edge of the periodic
+  // square wave (Eq. 10), which reconstructs 1/2 or less.
+  if (distanceAlongAxis < uNearestCaster) return 1.0;
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
 }
 
