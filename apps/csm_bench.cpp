@@ -3,7 +3,12 @@
 // the paper's GeForce 8800 GTX frame rates. Built to build/bin/csm_bench.
 //
 //   csm_bench [--quick] [--size WxH] [--repeat N] [--scene S] [--backend osmesa|egl]
-//             [--part techniques|table1|all] [--csv FILE]
+//             [--part techniques|table1|ratio|all] [--csv FILE] [--param key=value ...]
+//
+// --part ratio: modern.csm against modern.hw on the bench scenes (brabec, fence) at the bench
+// sizes (256x192, 400x300), shadow map 512, each technique's defaults plus --param for CSM;
+// the two contexts render alternately (hw, csm, hw, csm, ...) so that both see the same load
+// on a shared machine, and the ratio of medians is printed with CSM's per-pass medians.
 //
 // Each configuration renders in one context: --warmup frames first (shader compilation, first
 // allocation), then --repeat frames; the median wall time of Technique::render (all passes,
@@ -48,6 +53,7 @@ struct Options {
   Backend backend = Backend::kOsmesa;
   std::string part = "all";
   std::string csv;
+  std::map<std::string, std::string> csmParams;  // --param key=value, for --part ratio
 };
 
 struct Timing {
@@ -113,8 +119,14 @@ Options parseOptions(int argc, char** argv) {
         throw InputError("--backend must be osmesa or egl, got '" + b + "'");
     } else if (a == "--part") {
       o.part = value(i);
-      if (o.part != "techniques" && o.part != "table1" && o.part != "all")
-        throw InputError("--part must be techniques, table1 or all, got '" + o.part + "'");
+      if (o.part != "techniques" && o.part != "table1" && o.part != "ratio" && o.part != "all")
+        throw InputError("--part must be techniques, table1, ratio or all, got '" + o.part + "'");
+    } else if (a == "--param") {
+      const std::string kv = value(i);
+      const size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw InputError("--param needs key=value, got '" + kv + "'");
+      o.csmParams[kv.substr(0, eq)] = kv.substr(eq + 1);
     } else if (a == "--csv") {
       o.csv = value(i);
     } else {
@@ -122,6 +134,71 @@ Options parseOptions(int argc, char** argv) {
     }
   }
   return o;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// modern.csm / modern.hw in one run, frames interleaved (see the header).
+void runRatio(const Options& o) {
+  constexpr int kBenchMap = 512;  // RenderParams' default, what shadowlab bench uses
+  const std::vector<std::pair<int, int>> sizes = {{256, 192}, {400, 300}};
+  const Technique& hw = findTechnique("modern.hw");
+  const Technique& csm = findTechnique("modern.csm");
+  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
+              kBenchMap, o.warmup, o.repeat);
+  for (const auto& [k, v] : o.csmParams) std::printf(", csm %s=%s", k.c_str(), v.c_str());
+  std::printf(
+      "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
+      "| --- | --- | ---: | ---: | ---: | --- |\n");
+  for (const std::string name : {"brabec", "fence"}) {
+    const Scene scene = builtinScene(name);
+    for (const auto& [w, h] : sizes) {
+      Options sized = o;
+      sized.width = w;
+      sized.height = h;
+      const RenderParams hwParams = paramsFor(sized, kBenchMap, {});
+      const RenderParams csmParams = paramsFor(sized, kBenchMap, o.csmParams);
+      checkParams(hw, hwParams, 0);
+      checkParams(csm, csmParams, 0);
+      auto hwContext = GlContext::create(contextFor(hw, hwParams));
+      auto csmContext = GlContext::create(contextFor(csm, csmParams));
+      std::vector<double> hwTimes, csmTimes;
+      std::map<std::string, std::vector<double>> passes;
+      std::vector<std::string> passOrder;
+      for (int i = 0; i < o.warmup + o.repeat; ++i) {
+        hwContext->makeCurrent();
+        double start = nowMilliseconds();
+        hw.render(*hwContext, scene, hwParams);
+        const double hwMs = nowMilliseconds() - start;
+        csmContext->makeCurrent();
+        start = nowMilliseconds();
+        const Frame frame = csm.render(*csmContext, scene, csmParams);
+        const double csmMs = nowMilliseconds() - start;
+        if (i < o.warmup) continue;
+        hwTimes.push_back(hwMs);
+        csmTimes.push_back(csmMs);
+        for (const PassTime& p : frame.passes) {
+          if (!passes.count(p.name)) passOrder.push_back(p.name);
+          passes[p.name].push_back(p.milliseconds);
+        }
+      }
+      const double hwMedian = median(hwTimes), csmMedian = median(csmTimes);
+      std::string passText;
+      for (const std::string& p : passOrder) {
+        char b[96];
+        std::snprintf(b, sizeof b, "%s%s %.1f", passText.empty() ? "" : "; ", p.c_str(),
+                      median(passes[p]));
+        passText += b;
+      }
+      std::printf("| %s | %dx%d | %.1f | %.1f | %.1f | %s |\n", name.c_str(), w, h, hwMedian,
+                  csmMedian, csmMedian / hwMedian, passText.c_str());
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\n");
 }
 
 std::string fps(double ms) {
@@ -157,6 +234,10 @@ int run(int argc, char** argv) {
   std::printf("scene %s, %dx%d, %s, %d warm-up + %d timed frames (median)\n\n", o.scene.c_str(),
               o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa", o.warmup, o.repeat);
 
+  if (o.part == "ratio") {
+    runRatio(o);
+    return 0;
+  }
   if (o.part != "table1") {
     std::printf("| technique | ms / frame | fps |\n| --- | ---: | ---: |\n");
     for (const std::string name :

@@ -193,6 +193,72 @@ Mesh makeTree(float height) {
   return m;
 }
 
+namespace {
+constexpr float kTrunkShare = 0.45f;          // trunk length / tree height
+constexpr float kTrunkRadiusShare = 0.035f;   // trunk radius / tree height
+constexpr float kLengthRatio = 0.62f;         // child branch length / parent length
+constexpr float kRadiusRatio = 0.45f;         // child branch radius / parent radius
+constexpr float kBranchElevationDeg = 42.0f;  // child branches from the parent's axis
+constexpr float kLeafShare = 0.035f;          // leaf cluster radius / tree height
+constexpr int kBranchSlices = 8;              // cylinder sides of a branch
+constexpr int kTrunkChildren = 4, kBranchChildren = 3;
+
+// A small deterministic generator (the tree's variations must not depend on the library).
+float unitRandom(unsigned& state) {
+  state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG
+  return float(state >> 8) / float(1u << 24);
+}
+
+// Rotation taking +y to `direction` (unit).
+glm::mat4 yTo(const glm::vec3& direction) {
+  const glm::vec3 y(0, 1, 0);
+  const glm::vec3 axis = glm::cross(y, direction);
+  const float s = glm::length(axis), c = glm::dot(y, direction);
+  if (s < 1e-6f)
+    return c > 0.0f ? glm::mat4(1) : glm::rotate(glm::mat4(1), glm::pi<float>(), {1, 0, 0});
+  return glm::rotate(glm::mat4(1), std::atan2(s, c), axis / s);
+}
+
+void addBranch(Mesh& m, const glm::vec3& base, const glm::vec3& direction, float length,
+               float radius, int level, int levels, float leafRadius, unsigned& state) {
+  appendMesh(m, makeCylinder(radius, length, kBranchSlices),
+             glm::translate(glm::mat4(1), base) * yTo(direction) *
+                 glm::translate(glm::mat4(1), {0, 0.5f * length, 0}));
+  const glm::vec3 tip = base + length * direction;
+  if (level == levels) {
+    appendMesh(m, makeSphere(leafRadius, 8, 5), glm::translate(glm::mat4(1), tip));
+    return;
+  }
+  // Children around the parent's axis, evenly spaced with a random phase and jitter.
+  const int children = level == 0 ? kTrunkChildren : kBranchChildren;
+  const glm::vec3 any = std::fabs(direction.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  const glm::vec3 u = glm::normalize(glm::cross(direction, any));
+  const glm::vec3 v = glm::cross(direction, u);
+  const float phase = 2.0f * glm::pi<float>() * unitRandom(state);
+  for (int i = 0; i < children; ++i) {
+    const float azimuth =
+        phase + 2.0f * glm::pi<float>() * (float(i) + 0.3f * unitRandom(state)) / float(children);
+    const float elevation = glm::radians(kBranchElevationDeg * (0.8f + 0.4f * unitRandom(state)));
+    const glm::vec3 d =
+        glm::normalize(std::cos(elevation) * direction +
+                       std::sin(elevation) * (std::cos(azimuth) * u + std::sin(azimuth) * v));
+    // Children start a little below the tip, so that the joints overlap.
+    addBranch(m, tip - 0.5f * radius * direction, d,
+              length * kLengthRatio * (0.85f + 0.3f * unitRandom(state)), radius * kRadiusRatio,
+              level + 1, levels, leafRadius, state);
+  }
+}
+}  // namespace
+
+Mesh makeBranchedTree(float height, int levels, unsigned seed) {
+  Mesh m;
+  m.closed = true;
+  unsigned state = seed * 2654435761u + 1u;
+  addBranch(m, {0, 0, 0}, {0, 1, 0}, kTrunkShare * height, kTrunkRadiusShare * height, 0,
+            std::max(levels, 0), kLeafShare * height, state);
+  return m;
+}
+
 bool isClosedManifold(const Mesh& mesh) {
   // Weld equal positions, then every undirected edge must be used exactly twice, once in each
   // direction (consistent orientation).

@@ -16,6 +16,11 @@ Mesh makeQuad(float sizeX, float sizeY);                             // z = 0, n
 Mesh makeFence(float length, float height, int pickets);
 // A stylised tree: cylinder trunk and a few spheres of foliage (closed pieces).
 Mesh makeTree(float height);
+// A bare tree with thin branches (Annen et al. Figs. 1, 7, 10: thin branches are what PCF
+// loses under minification): a tapering trunk that splits into `levels` generations of
+// branches (4 from the trunk, then 3 from each branch), each thinner and shorter than its
+// parent, with a small leaf cluster at every tip. Closed pieces; `seed` varies the angles.
+Mesh makeBranchedTree(float height, int levels, unsigned seed);
 
 // Appends b (transformed) to a; keeps `closed` only if both are closed.
 void appendMesh(Mesh& a, const Mesh& b, const glm::mat4& transform);

@@ -122,7 +122,8 @@ Scene fenceScene() {
   return s;
 }
 
-// Trees on a ground plane (CSM Fig. 7 and 10 use trees; ours are procedural).
+// Trees on a ground plane (CSM Figs. 1, 7 and 10 use trees; ours are procedural): bare trees
+// with thin branches, whose shadows are what PCF loses under minification (Fig. 7 a).
 Scene treesScene() {
   Scene s;
   s.name = "trees";
@@ -132,10 +133,12 @@ Scene treesScene() {
                              {3.2f, 0, 2.0f}, {0.5f, 0, -5}, {-5, 0, -5}, {5, 0, -6}};
   constexpr float kTreeHeight = 2.5f;     // world units
   constexpr float kHeightVariation = 0.3f;
+  constexpr int kBranchLevels = 3;  // trunk, then three generations of branches
   for (size_t i = 0; i < std::size(spots); ++i)
-    s.objects.push_back(object("tree " + std::to_string(i),
-                               makeTree(kTreeHeight + kHeightVariation * float(i % 3)),
-                               at(spots[i]), {0.35f, 0.55f, 0.3f}));
+    s.objects.push_back(object(
+        "tree " + std::to_string(i),
+        makeBranchedTree(kTreeHeight + kHeightVariation * float(i % 3), kBranchLevels, unsigned(i)),
+        at(spots[i]), {0.45f, 0.38f, 0.28f}));
   s.camera.position = {0, 5, 10};
   s.camera.target = {0, 0.5f, -1};
   s.camera.fovyDegrees = 50;

@@ -279,7 +279,8 @@ std::vector<FigureSpec> csmFigures() {
       "csm-fig1", "Figure 1", "PCF vs CSM under minification",
       "Trees seen from far away, so that many shadow-map texels fall into one pixel. PCF "
       "(hardware 2x2 compare) aliases; CSM filters the basis textures tri-linearly, and an "
-      "extra 5x5 blur hides the map's discretisation. Our trees are procedural stand-ins; "
+      "extra 5x5 blur hides the map's discretisation. Our trees are procedural stand-ins with "
+      "thin branches; "
       "M = 16 (the paper does not give M for this figure).",
       "trees", 3,
       {far(render("PCF", "modern.hw"), 2.5f),
@@ -329,8 +330,11 @@ std::vector<FigureSpec> csmFigures() {
   out.push_back(csmFigure(
       "csm-fig6", "Figure 6 (a-c)", "Reconstruction order M",
       "Small M brightens shadows where occluder and receiver are close (the low square, the "
-      "slanted square's contact), because the reconstructed step is smooth; M = 4 is already "
-      "close. Basis stored in 8 bits as in the paper.",
+      "slanted square's contact), because the reconstructed step is smooth. With the light "
+      "straight above and the depth range fitted to the casters and receivers in the light "
+      "frustum (the caption's 'tightly fitted light frustum') the low square is a third of "
+      "that range above the plane, and M = 4 already darkens its umbra; the slanted square "
+      "still brightens near its contact. Basis stored in 8 bits as in the paper.",
       "squares", 3,
       {render("(a) M = 1", "modern.csm", {{"order", "1"}}),
        render("(b) M = 2", "modern.csm", {{"order", "2"}}),
@@ -340,7 +344,8 @@ std::vector<FigureSpec> csmFigures() {
       "csm-fig7", "Figure 7 (a-f)", "Filter modes on a scene of high depth complexity",
       "PCF loses thin branches; CSM with bilinear filtering gives the same picture; tri-linear "
       "filtering (16x anisotropic) and then 3x3, 5x5, 7x7 blurs improve it step by step. "
-      "2048x2048 map as in the paper; procedural trees stand in for the paper's; M = 16.",
+      "2048x2048 map as in the paper; procedural trees with thin branches stand in for the "
+      "paper's; M = 16.",
       "trees", 3,
       {render("(a) PCF", "modern.hw"),
        render("(b) CSM bilinear", "modern.csm",

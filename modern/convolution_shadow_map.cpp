@@ -20,6 +20,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/plan.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
 
@@ -37,6 +38,7 @@ constexpr int kDefaultBlurTaps = 3;                        // 3x3 (Table 1's mid
 constexpr int kChannelsPerLayer = 4;                       // RGBA
 constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
 constexpr int kOffsetSearchSteps = 20000;  // resolution of the default-offset search on (0, 1]
+const char* const kWorkspaceKey = "modern.csm.workspace";  // GL objects kept between frames
 
 struct CsmSettings {
   int order = kDefaultOrder;  // M
@@ -47,6 +49,7 @@ struct CsmSettings {
   bool encodeUnsigned = true;  // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
   int blurTaps = kDefaultBlurTaps;
   MapFiltering filtering;
+  bool mipmapsSkipped = false;  // mipmaps=auto and the view does not minify the map
   int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
   int layers() const { return 2 * sinLayers(); }
   // Linear depth is stored scaled by 1 - offset, so that t = z - d + offset stays inside one
@@ -54,7 +57,8 @@ struct CsmSettings {
   float depthScale() const { return float(1.0 - offset); }
 };
 
-CsmSettings parseSettings(const GlContext& context, const RenderParams& params) {
+CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
+                          const RenderParams& params) {
   CsmSettings s;
   s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
   s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
@@ -81,6 +85,19 @@ CsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
     s.blurTaps = parseBlurTaps(params);
   }
   s.filtering = parseFiltering(context, params);
+  // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
+  // mipmaps=auto (the default) the chain is built only when the planner finds that the view
+  // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
+  // percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the
+  // magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving
+  // it out changes nothing but the time (on llvmpipe glGenerateMipmap of M/2 layers is a
+  // large share of the frame). mipmaps=always builds it regardless.
+  const std::string mipmaps = params.text("mipmaps", "auto", {"auto", "always"});
+  if (s.filtering.mipmaps && mipmaps == "auto" && texelsPerPixel <= 1.0) {
+    s.filtering.mipmaps = false;
+    s.filtering.anisotropy = 1.0f;  // anisotropic filtering refines the mip footprint only
+    s.mipmapsSkipped = true;
+  }
   const double bytesPerTexel = storage == "8" ? 4 : storage == "16" ? 8 : 16;
   const double bytes = double(params.shadowMapTexels) * params.shadowMapTexels * s.layers() *
                        bytesPerTexel * (s.filtering.mipmaps ? 4.0 / 3.0 : 1.0);
@@ -92,22 +109,39 @@ CsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
   return s;
 }
 
-// Pass 1 (§4.1): linear depth from the light ("we use linear depth values [BAS03]").
-RenderTarget renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
-                                        const CsmSettings& s, Frame& frame) {
+// exp(-alpha (k/M)^2) (2 / c_k), k = 1..M (§3.2.1, Eq. 14), zero-padded to kMaxOrder: the
+// camera pass's per-term weights.
+std::vector<float> termWeights(const CsmSettings& s) {
+  std::vector<float> w(size_t(kMaxOrder), 0.0f);
+  for (int k = 1; k <= s.order; ++k) {
+    const double ck = std::numbers::pi * (2.0 * k - 1.0);
+    const double ratio = double(k) / s.order;
+    w[size_t(k - 1)] = float(std::exp(-s.alpha * ratio * ratio) * 2.0 / ck);
+  }
+  return w;
+}
+
+// Pass 1 (§4.1): linear depth from the light ("we use linear depth values [BAS03]"), over the
+// depth range fitted to the casters and receivers (Fig. 6: "a tightly fitted light frustum").
+const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
+                                               const CsmSettings& s, const DepthRange& range,
+                                               PrefilterWorkspace& work, Frame& frame) {
   PassTimer timer(frame, "1 linear depth from light");
   const int n = params.shadowMapTexels;
-  RenderTarget map = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
+  if (work.depth.width != n || work.depth.color.empty())
+    work.depth = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
+  const RenderTarget& map = work.depth;
   map.bind();
+  glViewport(0, 0, n, n);
   const float far[4] = {s.depthScale(), 0, 0, 1};  // no blocker: the far end of the range
   glClearBufferfv(GL_COLOR, 0, far);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "light_linear_depth.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "light_linear_depth.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  setLinearDepthUniforms(program, gpu.scene());
+  setLinearDepthUniforms(program, gpu.scene(), range);
   program.set("uDepthScale", s.depthScale());
   gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
@@ -117,10 +151,12 @@ RenderTarget renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams&
 
 // Pass 2 (§4.1, Eq. 14): the basis images B_i(z(p)), as many layers per pass as the
 // context has draw buffers ("with four MRTs only two additional render passes").
-LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s, Frame& frame) {
+const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
+                                       PrefilterWorkspace& work, Frame& frame) {
   PassTimer timer(frame, "2 basis textures (MRT)");
-  LayeredMap basis = makeLayeredMap(depth.width, s.layers(), s.format, s.filtering.mipmaps);
-  Program program("fullscreen.vert.glsl", "csm_basis.frag.glsl");
+  const LayeredMap& basis =
+      reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
+  const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl");
   program.use();
   program.set("uLinearDepth", 0);
   program.set("uOrder", s.order);
@@ -129,13 +165,13 @@ LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
   glDisable(GL_DEPTH_TEST);
-  const Framebuffer fbo = makeFramebuffer();
+  if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
   const FullScreenTriangle triangle;
   const int perPass = layersPerPass();
   int passes = 0;
   for (int first = 0; first < basis.layers; first += perPass, ++passes) {
     const int count = std::min(perPass, basis.layers - first);
-    attachLayers(fbo, basis, first, count);
+    attachLayers(work.fbo, basis, first, count);
     program.set("uFirstLayer", first);
     program.set("uLayerCount", count);
     triangle.draw();
@@ -146,34 +182,38 @@ LayeredMap computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
 }
 
 // Pass 3 (§4.1): "a separable Gaussian filter kernel on the textures".
-void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
-  if (s.blurTaps > 0) blurLayers(basis, s.blurTaps, "3 separable Gaussian", frame);
+void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, PrefilterWorkspace& work,
+                       Frame& frame) {
+  if (s.blurTaps > 0) blurLayers(basis, work.scratch, s.blurTaps, "3 separable Gaussian", frame);
 }
 
 // Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and
 // anisotropic) filtering: "no shader magic is needed".
 void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, "4 mip-maps");
+  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)");
   buildMipmapsAndSetFiltering(basis, s.filtering);
 }
 
 // Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test.
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                             const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
+                             const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
+                             float nearestCaster, Frame& frame) {
   PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction");
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
-  Program program("scene.vert.glsl", "csm_shadow.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));
-  setLinearDepthUniforms(program, scene);
+  setLinearDepthUniforms(program, scene, range);
+  program.set("uNearestCaster", nearestCaster);
   program.set("uDepthScale", s.depthScale());
   program.set("uOrder", s.order);
   program.set("uSinLayers", s.sinLayers());
-  program.set("uAlpha", float(s.alpha));
+  const std::vector<float> weights = termWeights(s);
+  glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
   program.set("uOffset", float(s.offset));
   program.set("uScale", float(s.scale));
   program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
@@ -211,20 +251,33 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
-  const CsmSettings s = parseSettings(context, params);
+  PrefilterWorkspace& work = prefilterWorkspace(context, kWorkspaceKey);
+  // The fitted range and the planner's minification estimate walk every triangle: once per
+  // scene and view, not once per frame.
+  if (std::vector<double> key = sceneViewKey(scene, params); key != work.sceneKey) {
+    work.fittedRange = csmDepthRange(scene, &work.nearestCaster);
+    work.texelsPerPixel =
+        planFrame(scene, convolutionShadowMapTechnique(), params).maxShadowTexelsPerPixel;
+    work.sceneKey = std::move(key);
+  }
+  const CsmSettings s = parseSettings(context, work.texelsPerPixel, params);
   Frame frame;
   GpuScene gpu(scene);
-  const RenderTarget depth = renderLinearDepthFromLight(gpu, params, s, frame);
-  const LayeredMap basis = computeBasisTextures(depth, s, frame);
-  blurBasisTextures(basis, s, frame);
+  const DepthRange range = work.fittedRange;
+  const RenderTarget& depth = renderLinearDepthFromLight(gpu, params, s, range, work, frame);
+  const LayeredMap& basis = computeBasisTextures(depth, s, work, frame);
+  blurBasisTextures(basis, s, work, frame);
   if (params.capturePasses) capturePasses(depth, basis, s, frame);
   buildBasisMipmaps(basis, s, frame);
-  reconstructInCameraPass(gpu, params, basis, s, frame);
+  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, frame);
+  frame.counters["light near"] = range.nearPlane;
+  frame.counters["light far"] = range.farPlane;
   frame.counters["order M"] = s.order;
   frame.counters["offset"] = s.offset;
   frame.counters["scale"] = s.scale;
   frame.counters["basis layers"] = s.layers();
   frame.counters["anisotropy"] = s.filtering.anisotropy;
+  frame.counters["mip-maps"] = s.filtering.mipmaps ? 1 : 0;
   return frame;
 }
 }  // namespace
@@ -252,6 +305,10 @@ double csmDefaultOffset(int order, double alpha) {
   return kMaxOffset;
 }
 
+DepthRange csmDepthRange(const Scene& scene, float* nearestCaster) {
+  return fitShadowingDepthRange(scene, nearestCaster);
+}
+
 Technique convolutionShadowMapTechnique() {
   Technique t;
   t.name = "modern.csm";
@@ -260,7 +317,8 @@ Technique convolutionShadowMapTechnique() {
       "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"order", "alpha", "offset", "scale", "storage", "blur", "filtering", "anisotropy"};
+  t.paramKeys = {"order", "alpha",     "offset",     "scale",  "storage",
+                 "blur",  "filtering", "anisotropy", "mipmaps"};
   t.render = render;
   return t;
 }

@@ -19,4 +19,11 @@ double csmReconstructedStep(double t, int order, double alpha);
 // reconstructed step, so that a lit surface (z = d) reconstructs to the top of the step.
 double csmDefaultOffset(int order, double alpha);
 
+// The light depth range modern.csm normalises linear depth over (Fig. 6: "a tightly fitted
+// light frustum"): near at the nearest caster inside the light frustum, far at the farthest
+// receiver inside the casters' cone (modern/prefiltered_maps.h, fitShadowingDepthRange).
+// `nearestCaster` (optional): the nearest caster's distance along the light axis; receivers
+// nearer than it are lit (the camera pass does not evaluate the series for them).
+DepthRange csmDepthRange(const Scene& scene, float* nearestCaster = nullptr);
+
 }  // namespace sl::modern

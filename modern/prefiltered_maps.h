@@ -20,6 +20,18 @@ namespace sl::modern {
 // d = (distance along the light's view axis - near) / (far - near), in [0, 1] over the fitted
 // light frustum. Sets uLightView, uLightNear, uLightFar on `program`.
 void setLinearDepthUniforms(const Program& program, const Scene& scene);
+// The same with an explicit range (CSM's fitted range, fitShadowingDepthRange).
+void setLinearDepthUniforms(const Program& program, const Scene& scene, const DepthRange& range);
+
+// The light depth range fitted to what can shadow and be shadowed (Annen Fig. 6: "when using a
+// tightly fitted light frustum a single 8-bit RGBA texture usually faithfully reconstructs the
+// shadow test"): near at the nearest caster triangle inside the light frustum, far at the
+// farthest receiver triangle inside the casters' cone (the cone from the light through the
+// casters' outermost vertex; a receiver outside it has no caster in front of it and is lit
+// whatever its depth). Margins of 2% of the span, as lightDepthRange. The scene's range when
+// no caster reaches the frustum. `nearestCaster` (optional) receives the nearest caster's
+// distance along the light axis without the margin (the range's near plane when none).
+DepthRange fitShadowingDepthRange(const Scene& scene, float* nearestCaster = nullptr);
 
 // The separable blur of Annen §4.1: n x n binomial weights (the discrete Gaussian), n in
 // {3, 5, 7}; blur = 0 or 1 (a 1x1 kernel) means none, returned as 0. Parsed from
@@ -33,7 +45,7 @@ struct MapFiltering {
   bool linear = true;       // bilinear magnification/minification within a level
   float anisotropy = 1.0f;  // GL_TEXTURE_MAX_ANISOTROPY (1 = off)
 };
-// --param filtering=anisotropic|trilinear|bilinear|nearest (anisotropic = tri-linear with
+// --param filtering=trilinear (default)|anisotropic|bilinear|nearest (anisotropic = tri-linear with
 // --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped
 // to what the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent.
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params);
@@ -49,6 +61,38 @@ struct LayeredMap {
 };
 LayeredMap makeLayeredMap(int size, int layers, GLenum format, bool mipmapped);
 
+// `slot` reallocated with makeLayeredMap unless it already has this size, layer count, format
+// and mip chain; returns it.
+const LayeredMap& reuseLayeredMap(LayeredMap& slot, int size, int layers, GLenum format,
+                                  bool mipmapped);
+
+// GL objects a prefiltered technique keeps in its context from one frame to the next: the
+// light-depth target, the layered map, the blur's scratch map and a framebuffer. Allocating
+// them every frame (8 layers of 512^2 for M = 16, and as many again for the blur) cost as
+// much as using them on llvmpipe. Owned by the context (GlContext::setLayerState), one per
+// `key`; the context deletes the GL names with itself.
+struct PrefilterWorkspace {
+  RenderTarget depth;
+  LayeredMap map;
+  LayeredMap scratch;
+  Framebuffer fbo;
+  // CPU work that depends on the scene and the view only (the fitted depth range, the
+  // planner's minification estimate): kept with the key it was computed for.
+  std::vector<double> sceneKey;
+  DepthRange fittedRange;
+  float nearestCaster = 0.0f;
+  double texelsPerPixel = 0.0;
+  PrefilterWorkspace() = default;
+  PrefilterWorkspace(const PrefilterWorkspace&) = delete;
+  PrefilterWorkspace& operator=(const PrefilterWorkspace&) = delete;
+  ~PrefilterWorkspace();  // gives the names up: the context is gone when this runs
+};
+PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key);
+
+// Every number the fitted range and the minification estimate depend on: camera, light,
+// window and map size, and each object's mesh (address and size), transform and flags.
+std::vector<double> sceneViewKey(const Scene& scene, const RenderParams& params);
+
 // How many colour attachments one pass may write (GL_MAX_DRAW_BUFFERS, at most 8: the
 // shaders declare 8 outputs).
 int layersPerPass();
@@ -61,6 +105,9 @@ void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int 
 // vertical back), `taps` in {3, 5, 7}; encoded 8-bit values blur correctly because the
 // encoding is affine.
 void blurLayers(const LayeredMap& map, int taps, const std::string& passName, Frame& frame);
+// The same with a caller-kept scratch map (reallocated by reuseLayeredMap when it does not fit).
+void blurLayers(const LayeredMap& map, LayeredMap& scratch, int taps, const std::string& passName,
+                Frame& frame);
 
 // Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);

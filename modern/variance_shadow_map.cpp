@@ -66,7 +66,7 @@ LayeredMap renderMomentsFromLight(const GpuScene& gpu, const RenderParams& param
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  Program program("scene.vert.glsl", "vsm_moments.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "vsm_moments.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   setLinearDepthUniforms(program, gpu.scene());
@@ -95,7 +95,7 @@ void chebyshevInCameraPass(const GpuScene& gpu, const RenderParams& params,
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);
   glEnable(GL_DEPTH_TEST);
-  Program program("scene.vert.glsl", "vsm_shadow.frag.glsl");
+  const Program& program = cachedProgram("scene.vert.glsl", "vsm_shadow.frag.glsl");
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));

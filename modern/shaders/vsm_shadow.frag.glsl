@@ -32,13 +32,14 @@ float chebyshevUpperBound(vec2 moments, float d) {
 float shadowTest(vec3 world) {
   vec4 coord = uWorldToShadowMap * vec4(world, 1.0);
   vec2 p = coord.xy / coord.w;
-  vec2 dpdx = dFdx(p);  // before any branch: derivatives need every pixel of the quad
-  vec2 dpdy = dFdy(p);
+  // The lookup first, for every pixel of the quad (uniform control flow: texture()'s implicit
+  // derivatives choose the mip level and anisotropic footprint); as csm_shadow.frag, which
+  // explains why not textureGrad.
+  vec2 moments = texture(uMoments, vec3(p, 0.0)).xy;
   if (coord.w <= 0.0) return 0.0;  // behind the light (as modern.hw)
   if (any(lessThan(p, vec2(0.0))) || any(greaterThan(p, vec2(1.0)))) return 1.0;  // outside
   float distanceAlongAxis = -(uLightView * vec4(world, 1.0)).z;
   float d = clamp((distanceAlongAxis - uLightNear) / (uLightFar - uLightNear), 0.0, 1.0);
-  vec2 moments = textureGrad(uMoments, vec3(p, 0.0), dpdx, dpdy).xy;
   return clamp(chebyshevUpperBound(moments, d), 0.0, 1.0);
 }
 
