@@ -21,31 +21,26 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
     throw std::invalid_argument("frame timing needs warm-up >= 0 and at least one timed frame");
   SteadyTiming out;
   out.warmupFrames = counts.warmup;
-  // Step 1: warm-up frames, discarded (the last one's wall time decides the slow budget).
-  double lastWarmupWallMs = 0.0;
-  for (int i = 0; i < counts.warmup; ++i) {
-    const double start = nowMilliseconds();
-    renderFrame();
-    lastWarmupWallMs = nowMilliseconds() - start;
-  }
-  out.timedFrames = counts.warmup > 0 && lastWarmupWallMs > counts.slowFrameMs
-                        ? std::min(counts.slowTimed, counts.timed)
-                        : counts.timed;
-  // Step 2: timed frames.
+  // Step 1: warm-up frames, discarded.
+  for (int i = 0; i < counts.warmup; ++i) renderFrame();
+  // Step 2: timed frames; after a first timed frame slower than the budget, no more.
   std::vector<double> sums, walls;
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> perPass;
   Frame frame;
-  for (int i = 0; i < out.timedFrames; ++i) {
+  int frames = counts.timed;
+  for (int i = 0; i < frames; ++i) {
     const double start = nowMilliseconds();
     frame = renderFrame();
     walls.push_back(nowMilliseconds() - start);
+    if (i == 0 && walls.back() > counts.slowFrameMs) frames = std::min(counts.slowTimed, frames);
     sums.push_back(frame.totalMilliseconds());
     for (const PassTime& p : frame.passes) {
       if (!perPass.count(p.name)) order.push_back(p.name);
       perPass[p.name].push_back(p.milliseconds);
     }
   }
+  out.timedFrames = frames;
   // Step 3: medians.
   out.frameMs = median(sums);
   out.minimumFrameMs = *std::min_element(sums.begin(), sums.end());

@@ -28,7 +28,7 @@ namespace sl {
 struct FrameCounts {
   int warmup = 0;  // frames rendered and discarded first
   int timed = 1;   // frames whose median is reported
-  // A technique whose last warm-up frame took longer than this (wall time, ms) is timed over
+  // A technique whose first timed frame took longer than this (wall time, ms) is timed over
   // slowTimed frames instead of `timed` (a run-time budget for 1-2 s frames; still after the
   // warm-up, still a median). Infinity: never.
   double slowFrameMs = std::numeric_limits<double>::infinity();
@@ -42,10 +42,11 @@ constexpr int kWarmupFrames = 2;
 constexpr int kTimedFrames = 5;
 constexpr FrameCounts kSteadyFrames{kWarmupFrames, kTimedFrames};
 // The quick modes (--quick, and shadowlab figures, which renders every figure in one job): one
-// warm-up frame, then the median of three; a technique whose warm-up frame took longer than
-// kQuickSlowFrameMs (CSM with a 2048² map at 1024x768 on llvmpipe: 1-2 s) is timed over one
-// frame after its warm-up. The bound is well above the papers' configurations on llvmpipe
-// (Brabec–Seidel 800x600: 40-600 ms per frame from a quiet to a heavily loaded machine).
+// warm-up frame, then the median of three; a technique whose first frame after the warm-up
+// took longer than kQuickSlowFrameMs (CSM with a 2048² map at 1024x768 on llvmpipe: 1-2 s) is
+// timed over that one frame. The bound is well above the papers' configurations on llvmpipe
+// (Brabec–Seidel 800x600: 40-600 ms per steady frame from a quiet to a heavily loaded
+// machine); a first frame (shader compilation, llvmpipe's code generation) can pass it.
 constexpr int kQuickWarmupFrames = 1;
 constexpr int kQuickTimedFrames = 3;
 constexpr double kQuickSlowFrameMs = 1000.0;

@@ -88,7 +88,7 @@ TEST(SteadyState, PassMissingFromSomeFramesKeepsItsOwnMedian) {
   EXPECT_EQ(t.passes[2].milliseconds, 6.0);
 }
 
-// The slow-frame budget: when the last warm-up frame's wall time exceeds slowFrameMs, only
+// The slow-frame budget: when the first timed frame's wall time exceeds slowFrameMs, only
 // slowTimed frames are timed (after the warm-up all the same). The scripted frames return at
 // once, so a budget of -1 ms is always exceeded and one of +infinity never.
 TEST(SteadyState, SlowBudgetTimesFewerFramesAfterTheWarmup) {
@@ -98,6 +98,7 @@ TEST(SteadyState, SlowBudgetTimesFewerFramesAfterTheWarmup) {
   EXPECT_EQ(s.calls, 2);
   EXPECT_EQ(t.timedFrames, 1);
   EXPECT_EQ(t.frameMs, 3.0);
+  EXPECT_EQ(t.warmupFrames, 1);
 
   Script quick;
   quick.frames = s.frames;
