@@ -165,7 +165,9 @@ void writePivot(std::ostream& h, const FigureResult& f) {
       const PanelResult* p = cell[{r, c}];
       h << "<td>";
       if (p && p->ok)
-        h << fixed(1000.0 / p->milliseconds, 1) << " fps";
+        h << fixed(1000.0 / p->milliseconds, 1) << " fps <small>"
+          << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame")
+          << "</small>";
       else if (p)
         h << "<span class=bad>missing: " << esc(p->reason) << "</span>";
       if (p) h << " / <span class=paper>" << esc(p->spec.paperNumbers) << "</span>";
