@@ -123,8 +123,8 @@ int run(int argc, char** argv) {
                     int blur, const Timing& t) {
     if (csv.is_open())
       csv << part << "," << technique << "," << map << "," << order << "," << blur << "," << o.width
-          << "," << o.height << "," << t.frameMs << "," << t.minimumFrameMs << "," << t.fps()
-          << "," << t.wallMs << "," << t.timedFrames << "\n";
+          << "," << o.height << "," << t.frameMs << "," << t.minimumFrameMs << "," << t.fps() << ","
+          << t.wallMs << "," << t.timedFrames << "\n";
   };
   // The driver's one-time start-up (llvmpipe's LLVM initialisation) must not land in the
   // first configuration's time: one throwaway frame first.
@@ -137,8 +137,7 @@ int run(int argc, char** argv) {
     std::printf("| technique | ms / frame | fps |\n| --- | ---: | ---: |\n");
     for (const std::string name :
          {"modern.hw", "modern.gems4", "modern.gems16", "modern.vsm", "modern.csm"}) {
-      const Timing t =
-          timeTechnique(findTechnique(name), scene, paramsFor(o, 512, {}), o.frames);
+      const Timing t = timeTechnique(findTechnique(name), scene, paramsFor(o, 512, {}), o.frames);
       std::printf("| %s | %.1f | %s |\n", name.c_str(), t.frameMs, fps(t.frameMs).c_str());
       std::fflush(stdout);
       record("techniques", name, 512, 0, 0, t);

@@ -240,7 +240,8 @@ std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legac
 FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
                              const RenderParams& params, int frames) {
   if (frames < 1) throw InputError("the number of timed frames must be at least 1");
-  const SteadyTiming t = timeTechnique(technique, scene, params, FrameCounts{kWarmupFrames, frames});
+  const SteadyTiming t =
+      timeTechnique(technique, scene, params, FrameCounts{kWarmupFrames, frames});
   return {t.frameMs, t.minimumFrameMs};
 }
 

@@ -189,12 +189,10 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
     const TwinResult& t = *p.twin;
     h << "<figure><img src=\"" << esc(p.images.front().file) << "\" alt=\"" << esc(p.spec.technique)
       << "\"><figcaption><code>" << esc(p.spec.technique) << "</code> "
-      << frameTime(p.milliseconds, p.timedFrames)
-      << "</figcaption></figure>\n";
+      << frameTime(p.milliseconds, p.timedFrames) << "</figcaption></figure>\n";
     h << "<figure><img src=\"" << esc(t.file) << "\" alt=\"" << esc(t.technique)
       << "\"><figcaption><code>" << esc(t.technique) << "</code> "
-      << frameTime(t.milliseconds, t.timedFrames)
-      << "</figcaption></figure>\n";
+      << frameTime(t.milliseconds, t.timedFrames) << "</figcaption></figure>\n";
     h << "<figure><img src=\"" << esc(t.diffFile)
       << "\" alt=\"difference\"><figcaption>|visibility difference| (black = equal, white = 1): "
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
@@ -286,7 +284,8 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "GL context, warm-up frames first (shader compilation, first-use allocation), then the "
        "median of the timed frames of the sum of the pass times (\"median of N\"; per pass, "
        "the median of that pass). Other panels are rendered once in a fresh context; their "
-       "time is marked \"first frame\" and includes those first-use costs. Error: the visibility mask against the ray-traced "
+       "time is marked \"first frame\" and includes those first-use costs. Error: the visibility "
+       "mask against the ray-traced "
        "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
        "red with the reason.</p>\n";
   // Index with a status per figure.

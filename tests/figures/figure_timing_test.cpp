@@ -22,8 +22,8 @@ namespace {
 std::string runFigure(const std::string& id, const fs::path& dir, int* status) {
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string command = std::string(SHADOWLAB_BINARY) + " figures --out " + dir.string() +
-                              " --only " + id + " 2>&1";
+  const std::string command =
+      std::string(SHADOWLAB_BINARY) + " figures --out " + dir.string() + " --only " + id + " 2>&1";
   std::string output;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return output;
@@ -76,7 +76,9 @@ TEST(FigureTiming, TimeBesideThePapersNumberIsTheSteadyMedian) {
   // The buffer panel (c), rendered once for its intermediate images, quotes no paper: its time
   // is a first frame, and says so.
   EXPECT_TRUE(std::regex_search(
-      html, std::regex(R"(<td>\(c\) smoothie alpha</td><td><code>modern.smoothies</code></td><td><small>first frame</small> [0-9.]+ ms)")))
+      html,
+      std::regex(
+          R"(<td>\(c\) smoothie alpha</td><td><code>modern.smoothies</code></td><td><small>first frame</small> [0-9.]+ ms)")))
       << "the intermediates panel's single frame is not marked";
 }
 

@@ -36,9 +36,9 @@ void readOnePixelThroughMinmax(const std::vector<uint8_t>& rgba, float redScale,
 TEST(MinmaxQuery, ResetTableReadsTheRepresentableExtremesAsFloat) {
   auto ctx = emulatedContext(2, 2);
   glMinmax(GL_MINMAX, GL_RGBA, GL_FALSE);
-  EXPECT_EQ(minmaxFloats(GL_RGBA, 4), (std::vector<float>{kResetMin, kResetMin, kResetMin,
-                                                          kResetMin, kResetMax, kResetMax,
-                                                          kResetMax, kResetMax}));
+  EXPECT_EQ(minmaxFloats(GL_RGBA, 4),
+            (std::vector<float>{kResetMin, kResetMin, kResetMin, kResetMin, kResetMax, kResetMax,
+                                kResetMax, kResetMax}));
   EXPECT_TRUE(drainErrors().empty());
 }
 
@@ -49,9 +49,8 @@ TEST(MinmaxQuery, ResetTableOfFewerComponentsReadsTable61Constants) {
   EXPECT_EQ(minmaxFloats(GL_RGBA, 4),
             (std::vector<float>{kResetMin, 0, 0, kResetMin, kResetMax, 0, 0, kResetMax}));
   glMinmax(GL_MINMAX, GL_RGB, GL_FALSE);
-  EXPECT_EQ(minmaxFloats(GL_RGBA, 4),
-            (std::vector<float>{kResetMin, kResetMin, kResetMin, 1, kResetMax, kResetMax,
-                                kResetMax, 1}));
+  EXPECT_EQ(minmaxFloats(GL_RGBA, 4), (std::vector<float>{kResetMin, kResetMin, kResetMin, 1,
+                                                          kResetMax, kResetMax, kResetMax, 1}));
 }
 
 // 4.3.2 "Conversion to L" sums R + G + B: three FLT_MAX overflow single precision. The user
@@ -74,7 +73,8 @@ TEST(MinmaxQuery, ResetTableReadsClampedExtremesAsIntegers) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   uint8_t ub[8];
   glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_UNSIGNED_BYTE, ub);
-  EXPECT_EQ(std::vector<uint8_t>(ub, ub + 8), (std::vector<uint8_t>{255, 255, 255, 255, 0, 0, 0, 0}));
+  EXPECT_EQ(std::vector<uint8_t>(ub, ub + 8),
+            (std::vector<uint8_t>{255, 255, 255, 255, 0, 0, 0, 0}));
   GLbyte b[8];
   glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_BYTE, b);
   EXPECT_EQ(b[0], 127);  // table 4.7: c = [(2^8 - 1) f - 1] / 2 at f = 1
@@ -95,7 +95,7 @@ TEST(MinmaxQuery, ResetTableReadsClampedExtremesAsIntegers) {
 TEST(MinmaxQuery, FloatReturnsExtremesOutsideZeroOne) {
   auto ctx = emulatedContext(2, 2);
   glMinmax(GL_MINMAX, GL_RGBA, GL_FALSE);
-  readOnePixelThroughMinmax({200, 60, 120, 255}, 1.5f, 0.0f);  // R = 1.5 * 200/255
+  readOnePixelThroughMinmax({200, 60, 120, 255}, 1.5f, 0.0f);   // R = 1.5 * 200/255
   readOnePixelThroughMinmax({200, 60, 120, 255}, 1.0f, -0.9f);  // R = 200/255 - 0.9
   const std::vector<float> mm = minmaxFloats(GL_RGBA, 4);
   // Tolerance: the emulation computes each in single precision (a few ulps of 1).
@@ -119,9 +119,9 @@ TEST(MinmaxQuery, GetWithResetReturnsTheOldValuesAndResetsEveryComponent) {
   const std::vector<float> red = minmaxFloats(GL_RED, 1, GL_TRUE);
   EXPECT_NEAR(red[0], 200.0f / 255.0f, 1e-6f);
   EXPECT_NEAR(red[1], 200.0f / 255.0f, 1e-6f);
-  EXPECT_EQ(minmaxFloats(GL_RGBA, 4), (std::vector<float>{kResetMin, kResetMin, kResetMin,
-                                                          kResetMin, kResetMax, kResetMax,
-                                                          kResetMax, kResetMax}));
+  EXPECT_EQ(minmaxFloats(GL_RGBA, 4),
+            (std::vector<float>{kResetMin, kResetMin, kResetMin, kResetMin, kResetMax, kResetMax,
+                                kResetMax, kResetMax}));
   // And the table fills again from there; glResetMinmax empties it the same way.
   readOnePixelThroughMinmax({10, 20, 30, 40}, 1.0f, 0.0f);
   EXPECT_NEAR(minmaxFloats(GL_RGBA, 4)[0], 10.0f / 255.0f, 1e-6f);
