@@ -10,10 +10,11 @@
 // the two contexts render alternately (hw, csm, hw, csm, ...) so that both see the same load
 // on a shared machine, and the ratio of medians is printed with CSM's per-pass medians.
 //
-// Each configuration renders in one context: --warmup frames first (shader compilation, first
-// allocation), then --repeat frames; the median wall time of Technique::render (all passes,
-// including read-back of the colour and visibility images) is reported. --quick: 512x384,
-// 1 repeat, no warm-up (the whole grid in a few minutes on llvmpipe).
+// Each configuration is timed at steady state (core/frame_timing.h, apps/registry.h
+// timeTechnique): in one context, --warmup frames first (shader compilation, first
+// allocation), then the median of --repeat frames of the sum of the pass times (default
+// kSteadyFrames: 2 + 5). --quick: 512x384 and kQuickFrames (1 warm-up, median of 3; one timed
+// frame after the warm-up for a configuration slower than 400 ms).
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -47,8 +48,7 @@ const std::map<int, std::vector<std::vector<int>>> kPaperFps = {
 struct Options {
   int width = kPaperWidth;
   int height = kPaperHeight;
-  int repeat = 2;
-  int warmup = 1;
+  FrameCounts frames = kSteadyFrames;
   std::string scene = "brabec";
   Backend backend = Backend::kOsmesa;
   std::string part = "all";
@@ -56,26 +56,7 @@ struct Options {
   std::map<std::string, std::string> csmParams;  // --param key=value, for --part ratio
 };
 
-struct Timing {
-  double medianMs = 0;
-  double minMs = 0;
-};
-
-Timing timeTechnique(const Technique& technique, const Scene& scene, const RenderParams& params,
-                     const Options& o) {
-  checkParams(technique, params, 0);
-  auto context = GlContext::create(contextFor(technique, params));
-  checkParams(technique, params, context->caps().maxTextureSize);
-  std::vector<double> times;
-  for (int i = 0; i < o.warmup + o.repeat; ++i) {
-    const double start = nowMilliseconds();
-    const Frame frame = technique.render(*context, scene, params);
-    const double elapsed = nowMilliseconds() - start;
-    if (i >= o.warmup) times.push_back(elapsed);
-  }
-  std::sort(times.begin(), times.end());
-  return {times[times.size() / 2], times.front()};
-}
+using Timing = SteadyTiming;
 
 RenderParams paramsFor(const Options& o, int mapSize, std::map<std::string, std::string> extra) {
   RenderParams p;
@@ -98,15 +79,14 @@ Options parseOptions(int argc, char** argv) {
     if (a == "--quick") {
       o.width = 512;
       o.height = 384;
-      o.repeat = 1;
-      o.warmup = 0;
+      o.frames = kQuickFrames;
     } else if (a == "--size") {
       cli::parseSize(value(i), o.width, o.height);
     } else if (a == "--repeat") {
-      o.repeat = cli::parsePositiveInt("--repeat", value(i), 1000);
+      o.frames.timed = cli::parsePositiveInt("--repeat", value(i), 1000);
     } else if (a == "--warmup") {
       const std::string v = value(i);
-      o.warmup = v == "0" ? 0 : cli::parsePositiveInt("--warmup", v, 100);
+      o.frames.warmup = v == "0" ? 0 : cli::parsePositiveInt("--warmup", v, 100);
     } else if (a == "--scene") {
       o.scene = value(i);
     } else if (a == "--backend") {
@@ -214,25 +194,21 @@ int run(int argc, char** argv) {
   if (!o.csv.empty()) {
     cli::checkWritable(o.csv);
     csv.open(o.csv);
-    csv << "part,technique,map,order,blur,width,height,median_ms,min_ms,fps\n";
+    csv << "part,technique,map,order,blur,width,height,median_ms,min_ms,fps,wall_ms,timed\n";
   }
   auto record = [&](const std::string& part, const std::string& technique, int map, int order,
                     int blur, const Timing& t) {
     if (csv.is_open())
       csv << part << "," << technique << "," << map << "," << order << "," << blur << "," << o.width
-          << "," << o.height << "," << t.medianMs << "," << t.minMs << "," << 1000.0 / t.medianMs
-          << "\n";
+          << "," << o.height << "," << t.frameMs << "," << t.minimumFrameMs << "," << t.fps() << ","
+          << t.wallMs << "," << t.timedFrames << "\n";
   };
   // The driver's one-time start-up (llvmpipe's LLVM initialisation) must not land in the
   // first configuration's time: one throwaway frame first.
-  {
-    Options once = o;
-    once.warmup = 0;
-    once.repeat = 1;
-    timeTechnique(findTechnique("modern.hw"), scene, paramsFor(once, 256, {}), once);
-  }
-  std::printf("scene %s, %dx%d, %s, %d warm-up + %d timed frames (median)\n\n", o.scene.c_str(),
-              o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa", o.warmup, o.repeat);
+  renderTechnique(findTechnique("modern.hw"), scene, paramsFor(o, 256, {}));
+  std::printf("scene %s, %dx%d, %s, %d warm-up + median of %d timed frames (sum of the passes)\n\n",
+              o.scene.c_str(), o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa",
+              o.frames.warmup, o.frames.timed);
 
   if (o.part == "ratio") {
     runRatio(o);
@@ -242,8 +218,8 @@ int run(int argc, char** argv) {
     std::printf("| technique | ms / frame | fps |\n| --- | ---: | ---: |\n");
     for (const std::string name :
          {"modern.hw", "modern.gems4", "modern.gems16", "modern.vsm", "modern.csm"}) {
-      const Timing t = timeTechnique(findTechnique(name), scene, paramsFor(o, 512, {}), o);
-      std::printf("| %s | %.1f | %s |\n", name.c_str(), t.medianMs, fps(t.medianMs).c_str());
+      const Timing t = timeTechnique(findTechnique(name), scene, paramsFor(o, 512, {}), o.frames);
+      std::printf("| %s | %.1f | %s |\n", name.c_str(), t.frameMs, fps(t.frameMs).c_str());
       std::fflush(stdout);
       record("techniques", name, 512, 0, 0, t);
     }
@@ -266,7 +242,7 @@ int run(int argc, char** argv) {
           const int map = kMapSizes[s];
           Timing t;
           if (row == 0) {
-            t = timeTechnique(pcf, scene, paramsFor(o, map, {{"compare", "linear"}}), o);
+            t = timeTechnique(pcf, scene, paramsFor(o, map, {{"compare", "linear"}}), o.frames);
             record("table1", "modern.hw", map, 0, 0, t);
           } else {
             const int order = kOrders[size_t(row - 1)];
@@ -276,10 +252,10 @@ int run(int argc, char** argv) {
                                          {"blur", std::to_string(blur)},
                                          {"filtering", "anisotropic"},
                                          {"anisotropy", "16"}}),
-                              o);
+                              o.frames);
             record("table1", "modern.csm", map, order, blur, t);
           }
-          std::printf(" %s fps (paper %d) |", fps(t.medianMs).c_str(),
+          std::printf(" %s fps (paper %d) |", fps(t.frameMs).c_str(),
                       kPaperFps.at(blur)[size_t(row)][s]);
           std::fflush(stdout);
         }

@@ -19,13 +19,12 @@ int main(int argc, char** argv) {
       if (a == "--backend" && i + 1 < argc) {
         options.backend = sl::parseBackend(argv[++i]);
       } else if (a == "--frames" && i + 1 < argc) {
-        options.timedFrames = std::stoi(argv[++i]);
-        if (options.timedFrames < 1) throw sl::InputError("--frames must be at least 1");
+        options.frames.timed = std::stoi(argv[++i]);
+        if (options.frames.timed < 1) throw sl::InputError("--frames must be at least 1");
       } else if (a == "--technique" && i + 1 < argc) {
         only = argv[++i];
       } else if (a == "--quick") {
-        options.warmupFrames = 1;
-        options.timedFrames = 3;
+        options.frames = sl::kQuickFrames;
       } else {
         throw sl::InputError(
             "usage: legacy_bench [--backend osmesa|reference] [--frames N] [--quick] "

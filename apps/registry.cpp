@@ -30,12 +30,26 @@ const Technique& findTechnique(const std::string& name) {
   throw InputError("unknown technique '" + name + "' (known: " + known + ")");
 }
 
-Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params) {
+namespace {
+std::unique_ptr<GlContext> contextForRender(const Technique& technique,
+                                            const RenderParams& params) {
   checkParams(technique, params, 0);
   auto context = GlContext::create(contextFor(technique, params));
   checkParams(technique, params, context->caps().maxTextureSize);
   if (technique.needs.profile == Profile::kCompatibility) imaging::install(*context);
+  return context;
+}
+}  // namespace
+
+Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params) {
+  auto context = contextForRender(technique, params);
   return technique.render(*context, scene, params);
+}
+
+SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
+                           const RenderParams& params, const FrameCounts& counts, Frame* last) {
+  auto context = contextForRender(technique, params);
+  return timeSteadyState([&] { return technique.render(*context, scene, params); }, counts, last);
 }
 
 }  // namespace sl

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame_timing.h"
 #include "core/technique.h"
 
 namespace sl {
@@ -14,5 +15,11 @@ const Technique& findTechnique(const std::string& name);  // throws InputError i
 // Creates the context the technique needs (installing the imaging subset, emulated or
 // native, for legacy techniques), validates the parameters against it and renders.
 Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params);
+
+// The steady-state frame time (core/frame_timing.h) of a technique on one context made as
+// renderTechnique makes it; `last` receives the last timed frame.
+SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
+                           const RenderParams& params, const FrameCounts& counts,
+                           Frame* last = nullptr);
 
 }  // namespace sl

@@ -240,16 +240,9 @@ std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legac
 FrameTimes frameMilliseconds(const Technique& technique, const Scene& scene,
                              const RenderParams& params, int frames) {
   if (frames < 1) throw InputError("the number of timed frames must be at least 1");
-  checkParams(technique, params, 0);
-  auto context = GlContext::create(contextFor(technique, params));
-  checkParams(technique, params, context->caps().maxTextureSize);
-  if (technique.needs.profile == Profile::kCompatibility) imaging::install(*context);
-  technique.render(*context, scene, params);  // warm-up: shader compiles, first-use paths
-  std::vector<double> times;
-  for (int i = 0; i < frames; ++i)
-    times.push_back(technique.render(*context, scene, params).totalMilliseconds());
-  std::sort(times.begin(), times.end());
-  return {times[times.size() / 2], times.front()};
+  const SteadyTiming t =
+      timeTechnique(technique, scene, params, FrameCounts{kWarmupFrames, frames});
+  return {t.frameMs, t.minimumFrameMs};
 }
 
 }  // namespace sl::twins

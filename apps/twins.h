@@ -76,8 +76,8 @@ RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int hei
 std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
 
 // Frame time (sum of the technique's timed passes) over `frames` frames rendered in one context
-// after one warm-up frame: the median, and the minimum (the least disturbed by other processes
-// on a shared machine).
+// after kWarmupFrames warm-up frames (core/frame_timing.h, apps/registry.h timeTechnique): the
+// median, and the minimum (the least disturbed by other processes on a shared machine).
 struct FrameTimes {
   double median = 0.0;
   double minimum = 0.0;

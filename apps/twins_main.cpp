@@ -7,7 +7,7 @@
 //
 // Agreement: every pair of apps/twins.h on every scene, at the equivalence tests' size by
 // default (320x240, 256^2 map), judged against the pair's bound. Speed: each technique's median
-// frame time (sum of its timed passes, shaders compiled in a warm-up frame) at the paper's
+// frame time (sum of its timed passes after warm-up frames, core/frame_timing.h) at the paper's
 // configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
 #include <cstdio>
 #include <iostream>
@@ -116,7 +116,7 @@ void agreementTable(const Options& o) {
 void benchTable(const Options& o) {
   std::cout << "### Frame time (" << backendName(o.backend) << ", " << o.benchScene << ", "
             << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap << "^2 map, "
-            << o.frames << " frames each)\n\n"
+            << o.frames << " frames each after " << kWarmupFrames << " warm-up)\n\n"
             << "| pair | legacy ms (median / min) | modern ms (median / min) | legacy / modern "
                "(medians) | legacy / modern (minima) |\n| --- | --- | --- | --- | --- |\n";
   const Scene scene = loadScene(o.benchScene);

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     params.width = 800;
     params.height = 600;
     params.shadowMapTexels = 1024;
-    int frames = 10;
+    int frames = kTimedFrames;  // after kWarmupFrames (core/frame_timing.h)
     std::vector<std::string> techniques;
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];

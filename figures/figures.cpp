@@ -5,7 +5,9 @@
 //   1. resolvePanel      — the technique from the registry, the scene, the parameters; a panel
 //                          whose technique, parameter or buffer does not exist is kept and
 //                          reported as missing with the reason (never skipped silently)
-//   2. renderPanel       — the frame, the close-ups (crop + nearest magnification + red frame)
+//   2. renderPanel       — the frame, the close-ups (crop + nearest magnification + red frame);
+//                          a panel whose time stands beside a paper's number is timed at
+//                          steady state (timedSteadily, core/frame_timing.h)
 //   3. measurePanel      — error of the visibility mask against the figure's reference
 //                          (reference.hard / reference.soft) when that exists
 //   4. renderTwin        — legacy.X beside modern.X with the difference heat map of the masks
@@ -92,6 +94,29 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
   return s;
 }
 
+// Timing. A panel whose time is set beside a paper's number is timed as the benches time a
+// technique (core/frame_timing.h: warm-up frames on one context, then the median of timed
+// frames), with the quick modes' counts so that the whole set stays within the main job's
+// budget.
+constexpr FrameCounts kFigureFrames = kQuickFrames;
+// Charts whose axis is our frame time: every render panel of their figure is timed steadily.
+const std::vector<std::string> kTimeCharts = {"error-vs-time", "chan-3-11"};
+
+// Whether a render panel's time stands beside a paper's number (the panel's or the figure's
+// paperNumbers) or on a chart of times; the other panels are rendered once (their time, shown
+// as a first frame, is not comparable with anything).
+bool timedSteadily(const FigureSpec& fig, const PanelSpec& p) {
+  if (p.kind != PanelKind::kRender) return false;
+  if (!fig.paperNumbers.empty()) return true;
+  for (const PanelSpec& q : fig.panels) {
+    if (!q.paperNumbers.empty() && q.kind == PanelKind::kRender) return true;
+    if (q.kind == PanelKind::kPlot &&
+        std::find(kTimeCharts.begin(), kTimeCharts.end(), q.plot) != kTimeCharts.end())
+      return true;
+  }
+  return false;
+}
+
 class Renderer {
  public:
   explicit Renderer(std::string outDir) : outDir_(std::move(outDir)) {}
@@ -127,11 +152,25 @@ class Renderer {
     const std::string key = t.name + "|" + s.key() + (capture ? "|capture" : "");
     auto it = frames_.find(key);
     if (it != frames_.end()) return it->second;
-    auto f = std::make_shared<const Frame>(renderTechnique(t, scene(s), params(s, capture)));
-    if (!f->color.empty() && !allFinite(f->color)) throw GlError(t.name + " produced NaN or Inf");
-    if (!allFinite(f->visibility)) throw GlError(t.name + " produced a NaN or Inf visibility");
-    frames_[key] = f;
-    return f;
+    return frames_[key] = checked(t, renderTechnique(t, scene(s), params(s, capture)));
+  }
+
+  // A frame whose time is set beside a paper's number: the steady-state median on one context
+  // (core/frame_timing.h, kFigureFrames); the frame kept is the last timed one, and it also
+  // serves later plain requests for the same render.
+  struct Timed {
+    std::shared_ptr<const Frame> frame;
+    SteadyTiming timing;
+  };
+  Timed steadyFrame(const Technique& t, const Setup& s) {
+    const std::string key = t.name + "|" + s.key();
+    auto it = timed_.find(key);
+    if (it != timed_.end()) return it->second;
+    Frame last;
+    const SteadyTiming timing = timeTechnique(t, scene(s), params(s, false), kFigureFrames, &last);
+    Timed timed{checked(t, std::move(last)), timing};
+    frames_[key] = timed.frame;
+    return timed_[key] = timed;
   }
 
   const DiagnosticViews& diagnostics(const Setup& s) {
@@ -144,7 +183,10 @@ class Renderer {
   }
 
   // Frames are large (a 1024x768 frame is ~12 MB): keep them for one figure only.
-  void forgetFrames() { frames_.clear(); }
+  void forgetFrames() {
+    frames_.clear();
+    timed_.clear();
+  }
 
   std::string write(const std::string& figureId, const std::string& name, const Image& image,
                     int bitDepth = 8) {
@@ -155,9 +197,17 @@ class Renderer {
   const std::string& outDir() const { return outDir_; }
 
  private:
+  static std::shared_ptr<const Frame> checked(const Technique& t, Frame frame) {
+    if (!frame.color.empty() && !allFinite(frame.color))
+      throw GlError(t.name + " produced NaN or Inf");
+    if (!allFinite(frame.visibility)) throw GlError(t.name + " produced a NaN or Inf visibility");
+    return std::make_shared<const Frame>(std::move(frame));
+  }
+
   std::string outDir_;
   std::map<std::string, Scene> scenes_;
   std::map<std::string, std::shared_ptr<const Frame>> frames_;
+  std::map<std::string, Timed> timed_;
   std::map<std::string, DiagnosticViews> diagnostics_;
 };
 
@@ -237,9 +287,20 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
     switch (p.kind) {
       case PanelKind::kRender: {
         const Technique& t = *lookup(p.technique);
-        auto f = r.frame(t, setup, false);
-        out.milliseconds = f->totalMilliseconds();
-        out.passes = f->passes;
+        const bool steady = timedSteadily(fig, p);
+        std::shared_ptr<const Frame> f;
+        if (steady) {
+          const Renderer::Timed timed = r.steadyFrame(t, setup);
+          f = timed.frame;
+          out.milliseconds = timed.timing.frameMs;
+          out.passes = timed.timing.passes;
+          out.warmupFrames = timed.timing.warmupFrames;
+          out.timedFrames = timed.timing.timedFrames;
+        } else {
+          f = r.frame(t, setup, false);
+          out.milliseconds = f->totalMilliseconds();
+          out.passes = f->passes;
+        }
         out.counters = f->counters;
         if (!fig.table) addImage(p.mask ? f->visibility : f->color, p.label, true);
         // Step 3: error against the reference.
@@ -271,10 +332,19 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           PanelSpec tp = p;
           tp.technique = twin->name;
           if (missingReason(tp).empty()) {
-            auto tf = r.frame(*twin, setup, false);
+            // Timed as the panel is, so that the two times compare.
+            std::shared_ptr<const Frame> tf;
             TwinResult tr;
+            if (steady) {
+              const Renderer::Timed timed = r.steadyFrame(*twin, setup);
+              tf = timed.frame;
+              tr.milliseconds = timed.timing.frameMs;
+              tr.timedFrames = timed.timing.timedFrames;
+            } else {
+              tf = r.frame(*twin, setup, false);
+              tr.milliseconds = tf->totalMilliseconds();
+            }
             tr.technique = twin->name;
-            tr.milliseconds = tf->totalMilliseconds();
             tr.file = r.write(fig.id, base + "-twin", tf->color);
             tr.diffFile = r.write(fig.id, base + "-twin-diff",
                                   differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale));

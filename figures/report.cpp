@@ -50,6 +50,15 @@ std::string msAndFps(double ms) {
   return fixed(ms, 1) + " ms (" + fixed(1000.0 / ms, 1) + " fps)";
 }
 
+// A frame time and how it was measured: a steady-state median (core/frame_timing.h) or one
+// first frame in a fresh context (marked, as it is not comparable with a paper's number).
+std::string frameTime(double ms, int timedFrames) {
+  if (ms <= 0) return "";
+  if (timedFrames > 0)
+    return msAndFps(ms) + " <small>median of " + std::to_string(timedFrames) + "</small>";
+  return "<small>first frame</small> " + msAndFps(ms);
+}
+
 const char* kStyle = R"(
 body { font-family: sans-serif; margin: 1.5em; color: #222; max-width: 1700px; }
 h1 { margin-bottom: 0.2em; } h2 { border-bottom: 2px solid #888; margin-top: 2em; }
@@ -91,7 +100,7 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
     h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
       << esc(im.caption) << "\"></a><figcaption>" << esc(p.spec.label);
     if (!p.spec.technique.empty()) h << " — <code>" << esc(p.spec.technique) << "</code>";
-    if (p.milliseconds > 0) h << "<br>" << msAndFps(p.milliseconds);
+    if (p.milliseconds > 0) h << "<br>" << frameTime(p.milliseconds, p.timedFrames);
     if (!p.spec.paperNumbers.empty())
       h << "<br><span class=paper>paper: " << esc(p.spec.paperNumbers) << "</span>";
     h << "</figcaption></figure>\n";
@@ -114,7 +123,7 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
     if (!p.ok) {
       h << "<td colspan=4 class=bad>missing: " << esc(p.reason) << "</td>";
     } else {
-      h << "<td>" << msAndFps(p.milliseconds) << "</td><td>";
+      h << "<td>" << frameTime(p.milliseconds, p.timedFrames) << "</td><td>";
       for (const PassTime& pass : p.passes)
         h << esc(pass.name) << ": " << fixed(pass.milliseconds, 1) << " ms<br>";
       h << "</td><td>";
@@ -156,7 +165,9 @@ void writePivot(std::ostream& h, const FigureResult& f) {
       const PanelResult* p = cell[{r, c}];
       h << "<td>";
       if (p && p->ok)
-        h << fixed(1000.0 / p->milliseconds, 1) << " fps";
+        h << fixed(1000.0 / p->milliseconds, 1) << " fps <small>"
+          << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame")
+          << "</small>";
       else if (p)
         h << "<span class=bad>missing: " << esc(p->reason) << "</span>";
       if (p) h << " / <span class=paper>" << esc(p->spec.paperNumbers) << "</span>";
@@ -177,11 +188,11 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
     if (!p.twin) continue;
     const TwinResult& t = *p.twin;
     h << "<figure><img src=\"" << esc(p.images.front().file) << "\" alt=\"" << esc(p.spec.technique)
-      << "\"><figcaption><code>" << esc(p.spec.technique) << "</code> " << msAndFps(p.milliseconds)
-      << "</figcaption></figure>\n";
+      << "\"><figcaption><code>" << esc(p.spec.technique) << "</code> "
+      << frameTime(p.milliseconds, p.timedFrames) << "</figcaption></figure>\n";
     h << "<figure><img src=\"" << esc(t.file) << "\" alt=\"" << esc(t.technique)
-      << "\"><figcaption><code>" << esc(t.technique) << "</code> " << msAndFps(t.milliseconds)
-      << "</figcaption></figure>\n";
+      << "\"><figcaption><code>" << esc(t.technique) << "</code> "
+      << frameTime(t.milliseconds, t.timedFrames) << "</figcaption></figure>\n";
     h << "<figure><img src=\"" << esc(t.diffFile)
       << "\" alt=\"difference\"><figcaption>|visibility difference| (black = equal, white = 1): "
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
@@ -268,10 +279,13 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
   h << "<p>Rendered " << esc(info.date) << " with " << esc(info.renderer) << " in "
     << fixed(info.totalSeconds, 0)
-    << " s. Times are ours on this machine: one frame per panel, in a fresh GL context (so "
-       "they include shader compilation and first-use costs; <code>shadowlab bench</code> "
-       "measures steady frames), meant to be compared with each other; the papers' numbers "
-       "(blue) come from 2001-2007 hardware. Error: the visibility mask against the ray-traced "
+    << " s. Times are ours on this machine. Where a time stands beside a paper's number "
+       "(blue; 2001-2007 hardware) or on a chart of times, it is the steady-state median: one "
+       "GL context, warm-up frames first (shader compilation, first-use allocation), then the "
+       "median of the timed frames of the sum of the pass times (\"median of N\"; per pass, "
+       "the median of that pass). Other panels are rendered once in a fresh context; their "
+       "time is marked \"first frame\" and includes those first-use costs. Error: the visibility "
+       "mask against the ray-traced "
        "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
        "red with the reason.</p>\n";
   // Index with a status per figure.

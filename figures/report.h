@@ -22,6 +22,7 @@ struct TwinResult {
   std::string file;       // its image
   std::string diffFile;   // differenceHeatMap of the two visibility masks
   double milliseconds = 0;
+  int timedFrames = 0;  // as PanelResult::timedFrames
   MaskDifference difference;
 };
 
@@ -31,7 +32,11 @@ struct PanelResult {
   std::string reason;             // why it is missing or failed (shown in red)
   std::vector<ImageFile> images;  // the panel's image(s); several for intermediates
   std::vector<ImageFile> closeups;
-  double milliseconds = 0;  // Frame::totalMilliseconds()
+  // Frame time (sum of the pass times) and per-pass times: the steady-state medians
+  // (core/frame_timing.h) over timedFrames frames after warmupFrames, where the time stands
+  // beside a paper's number; timedFrames 0: one first frame in a fresh context.
+  double milliseconds = 0;
+  int warmupFrames = 0, timedFrames = 0;
   std::vector<PassTime> passes;
   std::map<std::string, double> counters;
   std::optional<MaskDifference> error;  // against the figure's reference

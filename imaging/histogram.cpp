@@ -63,7 +63,9 @@ void accumulateMinmax(Minmax& m, const Image4& image) {
 }
 
 // "a minimum table entry set to the maximum representable value and a maximum table entry
-// set to the minimum representable value"
+// set to the minimum representable value" (3.6.3; 6.1.10 for ResetMinmax and GetMinmax with
+// reset TRUE): the largest finite floats of the table's IEEE single type. What the user reads
+// back from a reset table: emGetMinmax.
 void resetMinmax(Minmax& m) {
   m.min.fill(std::numeric_limits<float>::max());
   m.max.fill(-std::numeric_limits<float>::max());
@@ -208,6 +210,29 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
   if (reset) emResetHistogram(GL_HISTOGRAM);
 }
 
+// 6.1.10 "Minmax Query": "A one-dimensional image of width 2 is returned to values. Pixel
+// processing and component mapping are identical to those of GetTexImage." 6.1.4 "Texture
+// Queries": the groups take their components from table 6.1 and "are then packed and placed in
+// client memory. No pixel transfer operations are performed on this image, but pixel storage
+// modes that are applicable to ReadPixels are applied."
+// What the user reads (the choice of issue 14 item 6, docs/imaging.md "Minmax"):
+//  - type FLOAT: the table's values as they are (table 4.7: c = f). 6.1.4 takes ReadPixels'
+//    storage modes, not its "Final Conversion" clamp to [0,1] (4.3.2), and 3.6.5 gives the
+//    table "at least the same representable range as a floating point number used to represent
+//    colors (section 2.1.1)": an extreme outside [0,1] is what the float query is for.
+//  - a reset table (Minmax, ResetMinmax, GetMinmax with reset TRUE) holds "the maximum
+//    representable value" as each minimum and "the minimum representable value" as each
+//    maximum (3.6.3, 6.1.10). The table is IEEE single, so until a group arrives a FLOAT query
+//    reads min = FLT_MAX and max = -FLT_MAX for each component the table holds (table 6.1's
+//    constants for the others): min > max says "no group since the reset". Not infinities:
+//    2.1.1 requires finite magnitudes and leaves infinities passed to the GL unspecified; a
+//    luminance pack (L = R + G + B, 4.3.2) saturates at +-FLT_MAX (pixel_memory.cpp packImage).
+//  - other types: 4.3.2's clamp to [0,1], then table 4.7 (a normalised integer holds nothing
+//    else): a reset table reads min = the type's largest value, max = 0.
+//  - reset TRUE returns the values before the reset, and resets every value "whether returned
+//    or not" (6.1.10; EXT_histogram reset only the returned ones).
+// The reference (Mesa 7.8.2) departs here (tests/parity/departures_test.cpp, C): it clamps
+// FLOAT results to [0,1] as well, so its reset table reads (1, 1, 1, 1) and (0, 0, 0, 0).
 void emGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
   State& s = *currentState();
   if (target != GL_MINMAX || checkColorFormat(format, type) != GL_NO_ERROR)

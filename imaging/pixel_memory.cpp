@@ -6,6 +6,7 @@
 // values returned by the table, filter and histogram queries.
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "imaging/internal.h"
 
@@ -274,7 +275,11 @@ void packImage(const Image4& image, void* data, GLenum format, GLenum type, cons
   auto* base = static_cast<unsigned char*>(data) + size_t(store.skipRows) * stride +
                size_t(store.skipPixels) * size_t(n) * size;
   auto c01 = [clamp](float v) {
-    if (!clamp) return v;
+    // Unclamped (GL_FLOAT queries of float state: minmax, filters), a value beyond the float
+    // range saturates at +-FLT_MAX instead of reaching the user as an infinity: L = R + G + B
+    // of a reset minmax table is 3 x FLT_MAX (histogram.cpp, emGetMinmax).
+    constexpr float kMax = std::numeric_limits<float>::max();
+    if (!clamp) return v > kMax ? kMax : (v < -kMax ? -kMax : v);
     if (!(v > 0.0f)) return 0.0f;  // also maps NaN to 0: never NaN in a buffer
     return v < 1.0f ? v : 1.0f;
   };

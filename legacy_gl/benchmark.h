@@ -1,12 +1,14 @@
 // legacy_gl/benchmark.h — Brabec & Seidel 2001 §5 timings: every variant in the paper's
 // configuration (800x600 window, the ~7000-triangle brabec scene, 512x512 map, one light),
-// median per pass over several frames after warm-up, beside the paper's SGI Octane VPro/8
-// frame rates. Called by the `legacy_bench` executable (apps/legacy_bench.cpp).
+// timed at steady state (core/frame_timing.h: warm-up frames, then the median frame time and
+// the median per pass), beside the paper's SGI Octane VPro/8 frame rates. Called by the
+// `legacy_bench` executable (apps/legacy_bench.cpp).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "core/frame_timing.h"
 #include "core/scene.h"
 #include "core/technique.h"
 
@@ -26,26 +28,26 @@ struct BenchmarkOptions {
   int width = 800;  // §5
   int height = 600;
   int shadowMapTexels = 512;
-  int warmupFrames = 2;
-  int timedFrames = 7;
+  FrameCounts frames = kSteadyFrames;
   Backend backend = Backend::kOsmesa;
 };
 
 struct BenchmarkResult {
   BenchmarkVariant variant;
   Backend backend = Backend::kOsmesa;
-  double medianFrameMs = 0;  // wall time of a whole render() call (includes the readbacks)
-  double medianPassSumMs = 0;
-  std::vector<PassTime> medianPasses;  // per pass, in pass order
+  // frameMs: median of the pass-time sums (what stands beside the paper's rate); wallMs: the
+  // whole render() call, which adds the read-back of the colour image and the mask; passes:
+  // the median of each pass.
+  SteadyTiming timing;
 };
 
-// Renders each variant warmupFrames + timedFrames times in one context per variant.
+// Times each variant with timeSteadyState on one context per variant.
 std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
                                                    const BenchmarkOptions& options,
                                                    const std::vector<BenchmarkVariant>& variants);
 
-// The README table: variant | paper fps | ours fps (ms) | speed-up over the paper's upper
-// figure; then one per-pass table per variant.
+// The README table: variant | GL | paper fps | ours fps | ours ms/frame | render() wall ms;
+// then one per-pass table per variant.
 std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results);
 
 }  // namespace sl::legacy

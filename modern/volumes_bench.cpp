@@ -3,17 +3,10 @@
 #include <algorithm>
 
 #include "core/errors.h"
+#include "core/frame_timing.h"
 #include "modern/modern.h"
 
 namespace sl::modern {
-
-namespace {
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-}  // namespace
 
 std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const RenderParams& params,
                                                     const std::vector<std::string>& techniques,
@@ -37,18 +30,14 @@ std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const Re
     row.height = params.height;
     row.shadowMapTexels = params.shadowMapTexels;
     row.frames = frames;
-    std::vector<double> totals;
-    std::map<std::string, std::vector<double>> passes;
-    for (int i = 0; i < warmup + frames; ++i) {
-      const Frame f = t.render(*context, scene, params);
-      if (i < warmup) continue;
-      totals.push_back(f.totalMilliseconds());
-      for (const PassTime& p : f.passes) passes[p.name].push_back(p.milliseconds);
-      row.counters = f.counters;
-    }
-    row.medianMs = median(totals);
-    row.minMs = *std::min_element(totals.begin(), totals.end());
-    for (auto& [pass, times] : passes) row.passMedianMs[pass] = median(times);
+    // The steady-state median (core/frame_timing.h).
+    Frame last;
+    const SteadyTiming timing = timeSteadyState([&] { return t.render(*context, scene, params); },
+                                                FrameCounts{warmup, frames}, &last);
+    row.medianMs = timing.frameMs;
+    row.minMs = timing.minimumFrameMs;
+    for (const PassTime& p : timing.passes) row.passMedianMs[p.name] = p.milliseconds;
+    row.counters = last.counters;
     rows.push_back(row);
   }
   return rows;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/frame_timing.h"
 #include "core/technique.h"
 
 namespace sl::modern {
@@ -28,10 +29,11 @@ struct VolumesBenchRow {
 };
 
 // Renders each technique `warmup + frames` times in one context (the warm-up frames let the
-// driver compile its shader variants) and reports the median of the timed frames.
+// driver compile its shader variants) and reports the median of the timed frames
+// (core/frame_timing.h timeSteadyState).
 std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const RenderParams& params,
                                                     const std::vector<std::string>& techniques,
-                                                    int frames, int warmup = 2);
+                                                    int frames, int warmup = kWarmupFrames);
 
 nlohmann::json toJson(const VolumesBenchRow& row);
 

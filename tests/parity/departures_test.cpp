@@ -3,6 +3,8 @@
 // departure for the reference, so the suite shows where and why the two differ.
 // Departure1..8 are listed in ../shared/reference-gl/README.md; Additional* were found by
 // this parity suite (same method: the specification's answer against the measured one).
+#include <cfloat>
+
 #include "parity/parity_util.h"
 
 namespace sl::imaging::testing {
@@ -206,6 +208,48 @@ TEST(Departures, AdditionalC_MinmaxClampsExtremes) {
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
   EXPECT_NEAR(e.floats[4], 1.5f * 200.0f / 255.0f, 1e-6f);  // max R unclamped
   EXPECT_EQ(r.floats[4], 1.0f);
+}
+
+// C, on a reset table (issue 14 item 6; the choice is stated at imaging/histogram.cpp
+//    emGetMinmax): a GL_FLOAT query returns the reset state, "the maximum representable value"
+//    as each minimum and "the minimum representable value" as each maximum (3.6.3, 6.1.10),
+//    which the emulation's IEEE single table holds as +-FLT_MAX; a luminance pack saturates
+//    there. The reference clamps: (1, 1, 1, 1) and (0, 0, 0, 0), and L = 1 + 1 + 1 = 3 for
+//    the minimum (it sums the clamped components without clamping the sum). The normalised
+//    integer types clamp on both sides, and there the two agree.
+TEST(Departures, AdditionalC_ResetMinmaxReadsClampedExtremes) {
+  SL_REQUIRE_REFERENCE();
+  auto scenario = [](Outcome& o) {
+    glMinmax(GL_MINMAX, GL_RGBA, GL_FALSE);
+    float mm[8];
+    glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_FLOAT, mm);
+    o.floats.assign(mm, mm + 8);
+    float l[2];
+    glGetMinmax(GL_MINMAX, GL_FALSE, GL_LUMINANCE, GL_FLOAT, l);
+    o.floats.insert(o.floats.end(), l, l + 2);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    uint8_t ub[8];
+    glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_UNSIGNED_BYTE, ub);
+    o.bytes.assign(ub, ub + 8);
+    GLshort sh[8];
+    glGetMinmax(GL_MINMAX, GL_FALSE, GL_RGBA, GL_SHORT, sh);
+    for (GLshort v : sh) o.floats.push_back(v);
+  };
+  const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
+  ASSERT_EQ(e.floats.size(), 18u);
+  ASSERT_EQ(r.floats.size(), 18u);
+  const std::vector<float> head(e.floats.begin(), e.floats.begin() + 10);
+  EXPECT_EQ(head, (std::vector<float>{FLT_MAX, FLT_MAX, FLT_MAX, FLT_MAX, -FLT_MAX, -FLT_MAX,
+                                      -FLT_MAX, -FLT_MAX, FLT_MAX, -FLT_MAX}));
+  EXPECT_EQ(std::vector<float>(r.floats.begin(), r.floats.begin() + 10),
+            (std::vector<float>{1, 1, 1, 1, 0, 0, 0, 0, 3, 0}));
+  // Integer types: the same from both (min 1.0 and max 0 in the type's scale, table 4.7).
+  EXPECT_EQ(e.bytes, (std::vector<uint8_t>{255, 255, 255, 255, 0, 0, 0, 0}));
+  EXPECT_EQ(r.bytes, e.bytes);
+  EXPECT_EQ(std::vector<float>(e.floats.begin() + 10, e.floats.end()),
+            (std::vector<float>{32767, 32767, 32767, 32767, 0, 0, 0, 0}));
+  EXPECT_EQ(std::vector<float>(r.floats.begin() + 10, r.floats.end()),
+            std::vector<float>(e.floats.begin() + 10, e.floats.end()));
 }
 
 // D. On glCopyTexImage2D / glCopyTexSubImage2D each stage applies once (3.8.2: "processed
