@@ -3,7 +3,9 @@
 // object per technique per line. See docs/volumes.md.
 //
 //   volumes_bench [--scene S] [--size WxH] [--shadow-map N] [--frames N]
-//                 [--backend osmesa|egl] [--technique T ...]
+//                 [--backend osmesa|egl] [--technique T[:key=value,...] ...]
+//   (T:key=value passes --param values to that technique only, e.g. modern.hybrid:mask=stencil;
+//    the row's "technique" is the whole spelling)
 //   volumes_bench --doc-images DIR     the two images of docs/volumes.md
 //
 // S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
@@ -91,8 +93,28 @@ int main(int argc, char** argv) {
     if (techniques.empty())
       techniques = {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"};
     const Scene scene = loadScene(sceneName);
-    for (const auto& row : modern::benchmarkShadowVolumes(scene, params, techniques, frames))
-      std::cout << modern::toJson(row).dump() << std::endl;
+    for (const std::string& spelling : techniques) {
+      // "T:key=value,key=value": the technique's own --param values.
+      RenderParams own = params;
+      const size_t colon = spelling.find(':');
+      const std::string name = spelling.substr(0, colon);
+      if (colon != std::string::npos) {
+        std::string rest = spelling.substr(colon + 1);
+        while (!rest.empty()) {
+          const size_t comma = rest.find(',');
+          const std::string pair = rest.substr(0, comma);
+          const size_t eq = pair.find('=');
+          if (eq == std::string::npos || eq == 0)
+            throw InputError("--technique " + spelling + ": want T:key=value, got '" + pair + "'");
+          own.extra[pair.substr(0, eq)] = pair.substr(eq + 1);
+          rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
+      }
+      for (auto row : modern::benchmarkShadowVolumes(scene, own, {name}, frames)) {
+        row.technique = spelling;
+        std::cout << modern::toJson(row).dump() << std::endl;
+      }
+    }
     return 0;
   } catch (const InputError& e) {
     std::cerr << "volumes_bench: " << e.what() << "\n";
