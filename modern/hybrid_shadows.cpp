@@ -9,7 +9,8 @@
 //   2. findSilhouettesAndBuildVolumes — CPU silhouette edges and capped volumes (as modern.volumes)
 //   3. classifySilhouettePixels — step 2, Figure 3-3: camera pass; 2x2 compare strictly between
 //                                 0 and 1 on a light-facing surface = silhouette pixel; others
-//                                 are shaded from the shadow map; fills the depth buffer
+//                                 are shaded from the shadow map; fills the depth buffer (and,
+//                                 with mask-pass=classify, the stencil mask bit)
 //   4. buildComputationMask     — §3.2: EXT_depth_bounds_test where the driver has it (depth of
 //                                 non-silhouette pixels := 0, bounds [eps, 1]); otherwise a
 //                                 stencil bit (same effect: no stencil update off the mask),
@@ -147,13 +148,23 @@ SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCaste
 // depth buffer keeps the nearest surfaces for the volumes (same vertex shader as the volumes).
 void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
                               const RenderTarget& map, const Program& program,
-                              const glm::mat4& viewProjection, Frame& frame) {
+                              const glm::mat4& viewProjection, bool writeMask, Frame& frame) {
   PassTimer timer(frame, "3 classify silhouette pixels");
   const Scene& scene = gpu.scene();
   target.bind();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
+  if (writeMask) {
+    // DEVIATION (Chan §3.2, "we draw a screen-aligned quad" to set up the mask): the stencil
+    // mask bit is written here, by the fragment that wins the depth test (its stencil reference
+    // is the bit at silhouette pixels, 0 elsewhere), saving the full-screen pass. Chan's
+    // depth-bounds mask cannot be folded in: it overwrites the depth this pass must keep.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glStencilMask(kStencilMaskBit);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  }
   program.use();
   program.set("uViewProjection", viewProjection);
   const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
@@ -164,14 +175,16 @@ void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
   program.set("uShadowMap", 0);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
+  if (writeMask) {
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
 }
 
-// Pass 4 (§3.2): the computation mask from the silhouette tags (with mask=tiles, also the
-// scissor boxes of the tiles that hold silhouette pixels, returned in `tiles`).
-void buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
-                          std::vector<TileRect>& tiles, Frame& frame) {
-  PassTimer timer(frame, "4 computation mask");
-  target.bind();
+// §3.2's screen-aligned quad: the mask from the silhouette tags (depth := 0 off the
+// silhouette for depth bounds, else the stencil bit on it).
+void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind kind) {
   program.use();
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, target.color[2].id());
@@ -206,6 +219,15 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
   glDisable(GL_STENCIL_TEST);
   glStencilMask(0xFF);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+}
+
+// Pass 4 (§3.2): the computation mask from the silhouette tags (with mask=tiles, also the
+// scissor boxes of the tiles that hold silhouette pixels, returned in `tiles`).
+void buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
+                          bool maskWritten, std::vector<TileRect>& tiles, Frame& frame) {
+  PassTimer timer(frame, "4 computation mask");
+  target.bind();
+  if (!maskWritten) drawMaskQuad(target, program, kind);
   if (kind == MaskKind::kStencilTiles) {
     // DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and
     // becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the
@@ -219,7 +241,6 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
     tiles = silhouetteTileRects(tags, target.width, target.height);
   }
 }
-
 GLuint maskBitFor(MaskKind kind) {
   return kind == MaskKind::kDepthBounds ? 0u : kStencilMaskBit;
 }
@@ -291,16 +312,26 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   setLightingUniforms(shadeProgram, scene);
   // Programs are compiled before the timed passes.
   Program mapProgram("scene.vert.glsl", "depth_only.frag.glsl");
-  Program classifyProgram("shadow_volume.vert.glsl", "hybrid_classify.frag.glsl");
+  // mask-pass=classify (default where GL_ARB_shader_stencil_export exists): the stencil mask
+  // bit is written by the classification pass; quad: by Chan's full-screen pass.
+  const std::string maskPass = params.text("mask-pass", "classify", {"classify", "quad"});
+  const bool maskInClassify = kind != MaskKind::kDepthBounds && maskPass == "classify" &&
+                              ctx.caps().hasExtension("GL_ARB_shader_stencil_export");
+  Program classifyProgram(
+      "shadow_volume.vert.glsl", "hybrid_classify.frag.glsl",
+      maskInClassify ? std::vector<std::pair<std::string, std::string>>{
+                           {"MASK_BIT", std::to_string(kStencilMaskBit)}}
+                     : std::vector<std::pair<std::string, std::string>>{});
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});
 
   RenderTarget map = renderShadowMap(gpu, params, mapProgram, factor, units, frame);
   const SceneVolumes volumes = findSilhouettesAndBuildVolumes(scene, casters, frame);
-  classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, frame);
+  classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, maskInClassify,
+                           frame);
   std::vector<TileRect> tiles;
-  buildComputationMask(target, maskProgram, kind, tiles, frame);
+  buildComputationMask(target, maskProgram, kind, maskInClassify, tiles, frame);
   double tilePixels = 0;
   for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
   const bool scissored = kind == MaskKind::kStencilTiles &&
@@ -329,6 +360,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   frame.counters["silhouette_fraction"] = silhouettePixels / pixels;
   frame.counters["masked_overdraw"] = masked.fragments / pixels;
   frame.counters["mask_depth_bounds"] = kind == MaskKind::kDepthBounds ? 1 : 0;
+  frame.counters["mask_in_classification"] = maskInClassify ? 1 : 0;
   if (kind == MaskKind::kStencilTiles) {
     // What the scissor boxes leave to rasterise: their share of the image and the volume
     // fragments inside them (per image pixel, beside volume_overdraw).
@@ -363,7 +395,7 @@ Technique hybridShadowsTechnique() {
   t.status =
       "complete (depth-bounds mask where the driver has it, else stencil bit + scissor tiles)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "mask"};
+  t.paramKeys = {"offset-factor", "offset-units", "mask", "mask-pass"};
   t.render = render;
   return t;
 }

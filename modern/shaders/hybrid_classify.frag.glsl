@@ -5,6 +5,11 @@
 // pixel is final here: lit or shadowed by the shadow map (back faces always in shadow); a
 // silhouette pixel is written shadowed until the stencil count says otherwise.
 #version 330 core
+// MASK_BIT defined (modern.hybrid, mask-pass=classify): this pass also writes the computation
+// mask of §3.2 as the stencil reference of the visible fragment (GL_ARB_shader_stencil_export).
+#ifdef MASK_BIT
+#extension GL_ARB_shader_stencil_export : require
+#endif
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 uniform sampler2DShadow uShadowMap;
@@ -32,4 +37,7 @@ void main() {
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
   oSilhouette = vec4(silhouette ? 1.0 : 0.0, 0.0, 0.0, 1.0);
+#ifdef MASK_BIT
+  gl_FragStencilRefARB = silhouette ? MASK_BIT : 0;
+#endif
 }

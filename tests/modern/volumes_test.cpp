@@ -411,6 +411,34 @@ TEST(HybridShadows, TileMaskGivesTheStencilMasksImageAndCullsWholeTiles) {
   }
 }
 
+TEST(HybridShadows, MaskWrittenByTheClassificationEqualsChansQuadPass) {
+  // mask-pass=classify (the default where GL_ARB_shader_stencil_export exists) writes the
+  // stencil mask bit in the classification pass from the fragment that wins the depth test;
+  // mask-pass=quad is Chan's full-screen pass over the silhouette tags of that same fragment.
+  // The two masks, and so the images, must be identical bit for bit.
+  for (const std::string name : {"brabec", "fence", "fill-bound"})
+    for (const char* mask : {"stencil", "tiles"}) {
+      const Scene scene = loadScene(name);
+      RenderParams p = smallParams(256);
+      p.extra["mask"] = mask;
+      p.extra["mask-pass"] = "quad";
+      const Frame quad = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+      p.extra["mask-pass"] = "classify";
+      const Frame classify = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+      EXPECT_EQ(quad.counters.at("mask_in_classification"), 0.0);
+      if (classify.counters.at("mask_in_classification") == 0.0)
+        GTEST_SKIP() << "driver without GL_ARB_shader_stencil_export";
+      long long differ = 0;
+      for (size_t i = 0; i < quad.color.data.size(); ++i)
+        differ += quad.color.data[i] != classify.color.data[i];
+      for (size_t i = 0; i < quad.visibility.data.size(); ++i)
+        differ += quad.visibility.data[i] != classify.visibility.data[i];
+      EXPECT_EQ(differ, 0) << name << " " << mask;
+      EXPECT_EQ(quad.counters.at("masked_overdraw"), classify.counters.at("masked_overdraw"))
+          << name << " " << mask;
+    }
+}
+
 TEST(HybridShadows, DepthBoundsMaskRefusedWithoutTheExtension) {
   RenderParams p = smallParams();
   p.extra["mask"] = "depth-bounds";
