@@ -567,12 +567,12 @@ std::vector<FigureSpec> chanFigures() {
     return p;
   };
   p311.push_back(fillBound(render("fill-bound SM", "modern.hw")));
-  p311.push_back(fillBound(
-      render("fill-bound H, stencil-bit mask", "modern.hybrid", {{"mask", "stencil"}})));
+  p311.push_back(
+      fillBound(render("fill-bound H, stencil-bit mask", "modern.hybrid", {{"mask", "stencil"}})));
   p311.push_back(fillBound(
       render("fill-bound H, stencil bit + tile boxes", "modern.hybrid", {{"mask", "tiles"}})));
-  p311.push_back(fillBound(withMap(
-      render("fill-bound H 256², tile boxes", "modern.hybrid", {{"mask", "tiles"}}), 256)));
+  p311.push_back(fillBound(
+      withMap(render("fill-bound H 256², tile boxes", "modern.hybrid", {{"mask", "tiles"}}), 256)));
   p311.push_back(fillBound(render("fill-bound SV", "modern.volumes")));
   for (const char* scene : {"trees", "dragon", "brabec"})
     for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes"}) {

@@ -180,6 +180,7 @@ void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
     glStencilMask(0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
+  glDepthFunc(GL_LESS);
 }
 
 // §3.2's screen-aligned quad: the mask from the silhouette tags (depth := 0 off the
@@ -295,7 +296,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
         "which this driver (" +
         ctx.caps().renderer + ") lacks; use mask=tiles or mask=stencil");
   // auto: Chan's depth bounds where the driver has them, else the stencil bit plus tiles.
-  const MaskKind kind = maskName == "stencil"                          ? MaskKind::kStencil
+  const MaskKind kind = maskName == "stencil" ? MaskKind::kStencil
                         : maskName == "tiles" || (maskName == "auto" && !haveBounds)
                             ? MaskKind::kStencilTiles
                             : MaskKind::kDepthBounds;
@@ -312,16 +313,19 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   setLightingUniforms(shadeProgram, scene);
   // Programs are compiled before the timed passes.
   Program mapProgram("scene.vert.glsl", "depth_only.frag.glsl");
-  // mask-pass=classify (default where GL_ARB_shader_stencil_export exists): the stencil mask
-  // bit is written by the classification pass; quad: by Chan's full-screen pass.
-  const std::string maskPass = params.text("mask-pass", "classify", {"classify", "quad"});
+  // mask-pass=quad (default): Chan's full-screen pass sets the stencil mask bit; classify: the
+  // classification pass writes it (where GL_ARB_shader_stencil_export exists). Measured on
+  // llvmpipe: no gain — the pass saved moves into the classification, whose depth test runs
+  // after a shader that writes the stencil reference (docs/volumes.md).
+  const std::string maskPass = params.text("mask-pass", "quad", {"classify", "quad"});
   const bool maskInClassify = kind != MaskKind::kDepthBounds && maskPass == "classify" &&
                               ctx.caps().hasExtension("GL_ARB_shader_stencil_export");
   Program classifyProgram(
       "shadow_volume.vert.glsl", "hybrid_classify.frag.glsl",
-      maskInClassify ? std::vector<std::pair<std::string, std::string>>{
-                           {"MASK_BIT", std::to_string(kStencilMaskBit)}}
-                     : std::vector<std::pair<std::string, std::string>>{});
+      maskInClassify
+          ? std::vector<std::pair<std::string, std::string>>{{"MASK_BIT",
+                                                              std::to_string(kStencilMaskBit)}}
+          : std::vector<std::pair<std::string, std::string>>{});
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});
