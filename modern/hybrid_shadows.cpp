@@ -50,8 +50,9 @@ constexpr int kMaskTilePixels = 64;
 // again per box); when the boxes cover more than this share of the image they skip too few
 // fragments to pay for that, and the volumes are drawn once, through the stencil bit only.
 // Measured at 800x600 (docs/volumes.md): dragon, boxes over 49.5% of the image holding 87% of
-// the volume fragments, made the volume pass 1.6x slower; trees (39%) gained nothing; brabec
-// (30%) and fill-bound (18%) gained.
+// the volume fragments, made the volume pass 1.6x slower; trees (39%) made it slower too;
+// brabec (30%) halved its fragment-shader invocations at about the same time; fill-bound (18%)
+// made it 2.3x cheaper.
 constexpr double kMaxScissoredImageShare = 1.0 / 3.0;
 
 enum class MaskKind { kDepthBounds, kStencil, kStencilTiles };
