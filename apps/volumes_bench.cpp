@@ -6,7 +6,7 @@
 //                 [--backend osmesa|egl] [--technique T[:key=value,...] ...]
 //   (T:key=value passes --param values to that technique only, e.g. modern.hybrid:mask=stencil;
 //    the row's "technique" is the whole spelling)
-//   volumes_bench --doc-images DIR     the two images of docs/volumes.md
+//   volumes_bench --doc-images DIR     the three images of docs/volumes.md
 //
 // S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
 #include "modern/volumes_bench.h"
@@ -23,8 +23,8 @@ namespace {
 using namespace sl;
 
 // docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
-// smoothies) and the cubes scene with its volume overdraw (Chan Fig. 3-9a) and the hybrid's
-// classification (Fig. 3-5b).
+// smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
+// and the hybrid's classification (Fig. 3-5b).
 void writeDocImages(const std::string& dir) {
   constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
                 kCropH = 90, kMagnify = 3;
@@ -50,6 +50,16 @@ void writeDocImages(const std::string& dir) {
   for (const PassImage& i : h.intermediates)
     if (i.name == "6-classification") panels.push_back(i.image);
   writePng(dir + "/volumes-cubes-image-overdraw-classification.png", sideBySide(panels));
+  // fill-bound (Chan's setting): the image, its volume overdraw and the classification.
+  const Scene fillBound = loadScene("fill-bound");
+  const Frame fv = renderTechnique(findTechnique("modern.volumes"), fillBound, p);
+  const Frame fh = renderTechnique(findTechnique("modern.hybrid"), fillBound, p);
+  std::vector<Image> fillPanels = {fv.color};
+  for (const PassImage& i : fv.intermediates)
+    if (i.name == "3-volume-overdraw") fillPanels.push_back(i.image);
+  for (const PassImage& i : fh.intermediates)
+    if (i.name == "6-classification") fillPanels.push_back(i.image);
+  writePng(dir + "/volumes-fill-bound-image-overdraw-classification.png", sideBySide(fillPanels));
 }
 }  // namespace
 
