@@ -225,11 +225,14 @@ void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind k
 
 // Pass 4 (§3.2): the computation mask from the silhouette tags (with mask=tiles, also the
 // scissor boxes of the tiles that hold silhouette pixels, returned in `tiles`).
-void buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
+// Returns whether the later passes are to be scissored to `tiles` (mask=tiles, boxes covering at
+// most kMaxScissoredImageShare of the image); the quad is then drawn inside the boxes only, since
+// every silhouette pixel lies in one and nothing outside them is drawn again.
+bool buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
                           bool maskWritten, std::vector<TileRect>& tiles, Frame& frame) {
   PassTimer timer(frame, "4 computation mask");
   target.bind();
-  if (!maskWritten) drawMaskQuad(target, program, kind);
+  bool scissored = false;
   if (kind == MaskKind::kStencilTiles) {
     // DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and
     // becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the
@@ -241,7 +244,14 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
     glReadPixels(0, 0, target.width, target.height, GL_RED, GL_UNSIGNED_BYTE, tags.data());
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     tiles = silhouetteTileRects(tags, target.width, target.height);
+    double tilePixels = 0;
+    for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
+    scissored =
+        tilePixels <= kMaxScissoredImageShare * double(target.width) * double(target.height);
   }
+  if (!maskWritten)
+    forEachScissorBox(scissored ? &tiles : nullptr, [&] { drawMaskQuad(target, program, kind); });
+  return scissored;
 }
 GLuint maskBitFor(MaskKind kind) {
   return kind == MaskKind::kDepthBounds ? 0u : kStencilMaskBit;
@@ -336,11 +346,8 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, maskInClassify,
                            frame);
   std::vector<TileRect> tiles;
-  buildComputationMask(target, maskProgram, kind, maskInClassify, tiles, frame);
-  double tilePixels = 0;
-  for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
-  const bool scissored = kind == MaskKind::kStencilTiles &&
-                         tilePixels <= kMaxScissoredImageShare * params.width * params.height;
+  const bool scissored =
+      buildComputationMask(target, maskProgram, kind, maskInClassify, tiles, frame);
   const std::vector<TileRect>* scissorBoxes = scissored ? &tiles : nullptr;
   target.bind();
   const double volumeInvocations = countFragmentInvocations(
@@ -369,8 +376,9 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   if (kind == MaskKind::kStencilTiles) {
     // What the scissor boxes leave to rasterise: their share of the image and the volume
     // fragments inside them (per image pixel, beside volume_overdraw).
-    double tileFragments = 0;
+    double tilePixels = 0, tileFragments = 0;
     for (const TileRect& r : tiles) {
+      tilePixels += double(r.width) * r.height;
       for (int y = r.y; y < r.y + r.height; ++y)
         for (int x = r.x; x < r.x + r.width; ++x) tileFragments += all.overdraw.at(x, y);
     }
