@@ -596,12 +596,12 @@ std::vector<FigureSpec> chanFigures() {
       "costs as much, although only 0.061 fragments per pixel update the stencil. It does "
       "skip work outside the scissor box: the tile boxes (64x64 tiles holding silhouette "
       "pixels, 18% of fill-bound) leave 6.6 invocations per pixel and make the volume pass "
-      "about 2.3x cheaper than plain volumes'. The hybrid still does not win on llvmpipe: the "
-      "shadow-mapped classification pass, the 1024² map (24 layers deep) and the mask pass "
-      "cost about what the volume fill saves (median over 4 rounds on fill-bound: H/SV 1.48 at "
-      "1024², 1.00 at 256²; 1.4-1.8 on the other scenes, docs/volumes.md). Chan's 30-100% "
-      "speed-ups rest on the GeForce 6's early tile rejection by depth bounds. The bars are "
-      "single frames on a loaded CPU: compare ratios within this figure, not times.",
+      "about 2.7x cheaper than plain volumes'. With them the hybrid matches plain volumes on "
+      "fill-bound at 1024² and beats them at 256² (medians of 4 rounds, H/SV: 0.98 and 0.78; "
+      "Chan: 30-100% faster); on the other scenes the shadow-mapped classification pass, the "
+      "shadow map and the mask cost more than the fill they save (H/SV 1.2-1.5, "
+      "docs/volumes.md). The bars are single frames on a loaded CPU: compare ratios within "
+      "this figure, not times.",
       "trees", 3, p311);
   f311.width = 800;
   f311.height = 600;
