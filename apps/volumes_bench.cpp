@@ -3,8 +3,10 @@
 // object per technique per line. See docs/volumes.md.
 //
 //   volumes_bench [--scene S] [--size WxH] [--shadow-map N] [--frames N]
-//                 [--backend osmesa|egl] [--technique T ...]
-//   volumes_bench --doc-images DIR     the two images of docs/volumes.md
+//                 [--backend osmesa|egl] [--technique T[:key=value,...] ...]
+//   (T:key=value passes --param values to that technique only, e.g. modern.hybrid:mask=stencil;
+//    the row's "technique" is the whole spelling)
+//   volumes_bench --doc-images DIR     the three images of docs/volumes.md
 //
 // S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
 #include "modern/volumes_bench.h"
@@ -21,8 +23,8 @@ namespace {
 using namespace sl;
 
 // docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
-// smoothies) and the cubes scene with its volume overdraw (Chan Fig. 3-9a) and the hybrid's
-// classification (Fig. 3-5b).
+// smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
+// and the hybrid's classification (Fig. 3-5b).
 void writeDocImages(const std::string& dir) {
   constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
                 kCropH = 90, kMagnify = 3;
@@ -48,6 +50,16 @@ void writeDocImages(const std::string& dir) {
   for (const PassImage& i : h.intermediates)
     if (i.name == "6-classification") panels.push_back(i.image);
   writePng(dir + "/volumes-cubes-image-overdraw-classification.png", sideBySide(panels));
+  // fill-bound (Chan's setting): the image, its volume overdraw and the classification.
+  const Scene fillBound = loadScene("fill-bound");
+  const Frame fv = renderTechnique(findTechnique("modern.volumes"), fillBound, p);
+  const Frame fh = renderTechnique(findTechnique("modern.hybrid"), fillBound, p);
+  std::vector<Image> fillPanels = {fv.color};
+  for (const PassImage& i : fv.intermediates)
+    if (i.name == "3-volume-overdraw") fillPanels.push_back(i.image);
+  for (const PassImage& i : fh.intermediates)
+    if (i.name == "6-classification") fillPanels.push_back(i.image);
+  writePng(dir + "/volumes-fill-bound-image-overdraw-classification.png", sideBySide(fillPanels));
 }
 }  // namespace
 
@@ -91,8 +103,28 @@ int main(int argc, char** argv) {
     if (techniques.empty())
       techniques = {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"};
     const Scene scene = loadScene(sceneName);
-    for (const auto& row : modern::benchmarkShadowVolumes(scene, params, techniques, frames))
-      std::cout << modern::toJson(row).dump() << std::endl;
+    for (const std::string& spelling : techniques) {
+      // "T:key=value,key=value": the technique's own --param values.
+      RenderParams own = params;
+      const size_t colon = spelling.find(':');
+      const std::string name = spelling.substr(0, colon);
+      if (colon != std::string::npos) {
+        std::string rest = spelling.substr(colon + 1);
+        while (!rest.empty()) {
+          const size_t comma = rest.find(',');
+          const std::string pair = rest.substr(0, comma);
+          const size_t eq = pair.find('=');
+          if (eq == std::string::npos || eq == 0)
+            throw InputError("--technique " + spelling + ": want T:key=value, got '" + pair + "'");
+          own.extra[pair.substr(0, eq)] = pair.substr(eq + 1);
+          rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        }
+      }
+      for (auto row : modern::benchmarkShadowVolumes(scene, own, {name}, frames)) {
+        row.technique = spelling;
+        std::cout << modern::toJson(row).dump() << std::endl;
+      }
+    }
     return 0;
   } catch (const InputError& e) {
     std::cerr << "volumes_bench: " << e.what() << "\n";

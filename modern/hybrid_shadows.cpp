@@ -9,17 +9,23 @@
 //   2. findSilhouettesAndBuildVolumes — CPU silhouette edges and capped volumes (as modern.volumes)
 //   3. classifySilhouettePixels — step 2, Figure 3-3: camera pass; 2x2 compare strictly between
 //                                 0 and 1 on a light-facing surface = silhouette pixel; others
-//                                 are shaded from the shadow map; fills the depth buffer
+//                                 are shaded from the shadow map; fills the depth buffer (and,
+//                                 with mask-pass=classify, the stencil mask bit)
 //   4. buildComputationMask     — §3.2: EXT_depth_bounds_test where the driver has it (depth of
 //                                 non-silhouette pixels := 0, bounds [eps, 1]); otherwise a
-//                                 stencil bit (same effect: no stencil update off the mask)
+//                                 stencil bit (same effect: no stencil update off the mask),
+//                                 and with mask=tiles also the screen tiles that hold silhouette
+//                                 pixels (§3.4.2's conservative tile culling, as scissor boxes)
 //   5. drawVolumesThroughMask   — step 3: z-fail stencil counting at silhouette pixels only
-//   6. shadeSilhouettePixels    — step 4: silhouette pixels shaded from the stencil count
+//   6. shadeLitSilhouettePixels — step 4: the scene drawn once where the count is zero (the
+//                                 classification pass already shaded silhouette pixels as
+//                                 shadowed)
 //   (then, untimed: counters of Figures 3-9 and 3-10 — overdraw with and without the mask, the
 //    share of silhouette pixels)
 #include "modern/hybrid_shadows.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "core/errors.h"
 #include "modern/camera_pass.h"
@@ -36,7 +42,76 @@ constexpr float kDefaultOffsetUnits = 4.0f;
 constexpr double kDepthBoundsMin = 0.001;
 constexpr double kDepthBoundsMax = 1.0;
 
-enum class MaskKind { kDepthBounds, kStencil };
+// llvmpipe's rasteriser bins every triangle into 64x64-pixel tiles (TILE_SIZE, Mesa
+// lp_limits.h) after clipping its bounds to the scissor box: the scissor is the only test it
+// applies before rasterisation, so it is the granularity at which a mask can skip work there.
+constexpr int kMaskTilePixels = 64;
+// Each scissor box re-issues every volume's draw call (llvmpipe sets up every volume triangle
+// again per box); when the boxes cover more than this share of the image they skip too few
+// fragments to pay for that, and the volumes are drawn once, through the stencil bit only.
+// Measured at 800x600 (docs/volumes.md): dragon, boxes over 49.5% of the image holding 87% of
+// the volume fragments, made the volume pass 1.6x slower; trees (39%) made it slower too;
+// brabec (30%) halved its fragment-shader invocations at about the same time; fill-bound (18%)
+// made it 2.3x cheaper.
+constexpr double kMaxScissoredImageShare = 1.0 / 3.0;
+
+enum class MaskKind { kDepthBounds, kStencil, kStencilTiles };
+
+// A scissor box in window pixels.
+struct TileRect {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// §3.4.2 ("non-silhouette pixels tend to occupy large contiguous regions of screen space and
+// can benefit from conservative tile-based culling"): the kMaskTilePixels tiles holding at
+// least one silhouette pixel, merged into boxes — runs along each tile row, and runs of equal
+// extent in consecutive rows joined. `tags` is one byte per pixel, rows bottom-up.
+std::vector<TileRect> silhouetteTileRects(const std::vector<unsigned char>& tags, int width,
+                                          int height) {
+  const int tilesX = (width + kMaskTilePixels - 1) / kMaskTilePixels;
+  const int tilesY = (height + kMaskTilePixels - 1) / kMaskTilePixels;
+  std::vector<char> hit(size_t(tilesX) * size_t(tilesY), 0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (tags[size_t(y) * size_t(width) + size_t(x)] != 0)
+        hit[size_t(y / kMaskTilePixels) * size_t(tilesX) + size_t(x / kMaskTilePixels)] = 1;
+  std::vector<TileRect> rects;
+  for (int j = 0; j < tilesY; ++j)
+    for (int i = 0; i < tilesX;) {
+      if (!hit[size_t(j) * size_t(tilesX) + size_t(i)]) {
+        ++i;
+        continue;
+      }
+      const int start = i;
+      while (i < tilesX && hit[size_t(j) * size_t(tilesX) + size_t(i)]) ++i;
+      const TileRect run{start * kMaskTilePixels, j * kMaskTilePixels,
+                         std::min(i * kMaskTilePixels, width) - start * kMaskTilePixels,
+                         std::min((j + 1) * kMaskTilePixels, height) - j * kMaskTilePixels};
+      const auto above = std::find_if(rects.begin(), rects.end(), [&](const TileRect& r) {
+        return r.x == run.x && r.width == run.width && r.y + r.height == run.y;
+      });
+      if (above != rects.end())
+        above->height += run.height;
+      else
+        rects.push_back(run);
+    }
+  return rects;
+}
+
+// Runs `draws` once per box with the scissor test on (once, unscissored, when `rects` is null).
+template <typename Draws>
+void forEachScissorBox(const std::vector<TileRect>* rects, const Draws& draws) {
+  if (rects == nullptr) {
+    draws();
+    return;
+  }
+  glEnable(GL_SCISSOR_TEST);
+  for (const TileRect& r : *rects) {
+    glScissor(r.x, r.y, r.width, r.height);
+    draws();
+  }
+  glDisable(GL_SCISSOR_TEST);
+}
 
 // Pass 1 (§3.1 step 1): an ordinary shadow map, read with the hardware 2x2 compare.
 RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
@@ -74,13 +149,23 @@ SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCaste
 // depth buffer keeps the nearest surfaces for the volumes (same vertex shader as the volumes).
 void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
                               const RenderTarget& map, const Program& program,
-                              const glm::mat4& viewProjection, Frame& frame) {
+                              const glm::mat4& viewProjection, bool writeMask, Frame& frame) {
   PassTimer timer(frame, "3 classify silhouette pixels");
   const Scene& scene = gpu.scene();
   target.bind();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
+  if (writeMask) {
+    // DEVIATION (Chan §3.2, "we draw a screen-aligned quad" to set up the mask): the stencil
+    // mask bit is written here, by the fragment that wins the depth test (its stencil reference
+    // is the bit at silhouette pixels, 0 elsewhere), saving the full-screen pass. Chan's
+    // depth-bounds mask cannot be folded in: it overwrites the depth this pass must keep.
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glStencilMask(kStencilMaskBit);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  }
   program.use();
   program.set("uViewProjection", viewProjection);
   const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
@@ -91,13 +176,17 @@ void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
   program.set("uShadowMap", 0);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
+  if (writeMask) {
+    glDisable(GL_STENCIL_TEST);
+    glStencilMask(0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  glDepthFunc(GL_LESS);
 }
 
-// Pass 4 (§3.2): the computation mask from the silhouette tags.
-void buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
-                          Frame& frame) {
-  PassTimer timer(frame, "4 computation mask");
-  target.bind();
+// §3.2's screen-aligned quad: the mask from the silhouette tags (depth := 0 off the
+// silhouette for depth bounds, else the stencil bit on it).
+void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind kind) {
   program.use();
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, target.color[2].id());
@@ -134,28 +223,60 @@ void buildComputationMask(const RenderTarget& target, const Program& program, Ma
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
 }
 
+// Pass 4 (§3.2): the computation mask from the silhouette tags (with mask=tiles, also the
+// scissor boxes of the tiles that hold silhouette pixels, returned in `tiles`).
+// Returns whether the later passes are to be scissored to `tiles` (mask=tiles, boxes covering at
+// most kMaxScissoredImageShare of the image); the quad is then drawn inside the boxes only, since
+// every silhouette pixel lies in one and nothing outside them is drawn again.
+bool buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
+                          bool maskWritten, std::vector<TileRect>& tiles, Frame& frame) {
+  PassTimer timer(frame, "4 computation mask");
+  target.bind();
+  bool scissored = false;
+  if (kind == MaskKind::kStencilTiles) {
+    // DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and
+    // becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the
+    // scissor; its per-fragment stencil test runs inside the fragment function, after the
+    // rasteriser has already produced every fragment (measured in docs/volumes.md).
+    std::vector<unsigned char> tags(size_t(target.width) * size_t(target.height));
+    glReadBuffer(GL_COLOR_ATTACHMENT2);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, target.width, target.height, GL_RED, GL_UNSIGNED_BYTE, tags.data());
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    tiles = silhouetteTileRects(tags, target.width, target.height);
+    double tilePixels = 0;
+    for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
+    scissored =
+        tilePixels <= kMaxScissoredImageShare * double(target.width) * double(target.height);
+  }
+  if (!maskWritten)
+    forEachScissorBox(scissored ? &tiles : nullptr, [&] { drawMaskQuad(target, program, kind); });
+  return scissored;
+}
 GLuint maskBitFor(MaskKind kind) {
-  return kind == MaskKind::kStencil ? kStencilMaskBit : 0u;
+  return kind == MaskKind::kDepthBounds ? 0u : kStencilMaskBit;
 }
 
 // Pass 5 (§3.1 step 3): z-fail stencil updates only at silhouette pixels.
 void drawVolumesThroughMask(const SceneVolumes& volumes, const Program& volumeProgram,
-                            MaskKind kind, Frame& frame) {
+                            MaskKind kind, const std::vector<TileRect>* tiles, Frame& frame) {
   PassTimer timer(frame, "5 shadow volumes at silhouette pixels");
   if (kind == MaskKind::kDepthBounds) {
     glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
     glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
   }
-  countVolumesZFail(volumes, volumeProgram, maskBitFor(kind));
+  forEachScissorBox(tiles, [&] { countVolumesZFail(volumes, volumeProgram, maskBitFor(kind)); });
   if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
 }
 
-// Pass 6 (§3.1 step 4): silhouette pixels lit where the count is zero, shadowed elsewhere.
-void shadeSilhouettePixels(const GpuScene& gpu, const Program& shadeProgram, MaskKind kind,
-                           Frame& frame) {
+// Pass 6 (§3.1 step 4, "draw and shade the scene only at pixels with stencil values equal to
+// zero"): the silhouette pixels were shaded as shadowed by pass 3; the lit ones (count zero)
+// are drawn here, once.
+void shadeLitSilhouettePixels(const GpuScene& gpu, const Program& shadeProgram, MaskKind kind,
+                              const std::vector<TileRect>* tiles, Frame& frame) {
   PassTimer timer(frame, "6 shade silhouette pixels");
   if (kind == MaskKind::kDepthBounds) glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-  shadeFromStencil(gpu, shadeProgram, maskBitFor(kind));
+  forEachScissorBox(tiles, [&] { shadeLitFromStencil(gpu, shadeProgram, maskBitFor(kind)); });
   if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
 }
 
@@ -177,15 +298,18 @@ Image classificationImage(const Image& silhouette, const Image& visibility) {
 Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
   const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
-  const std::string maskName = params.text("mask", "auto", {"auto", "depth-bounds", "stencil"});
+  const std::string maskName =
+      params.text("mask", "auto", {"auto", "depth-bounds", "stencil", "tiles"});
   const bool haveBounds = ctx.caps().depthBoundsTest();
   if (maskName == "depth-bounds" && !haveBounds)
     throw InputError(
         "modern.hybrid: --param mask=depth-bounds needs GL_EXT_depth_bounds_test, "
         "which this driver (" +
-        ctx.caps().renderer + ") lacks; use mask=stencil");
-  const MaskKind kind = maskName == "stencil" || (maskName == "auto" && !haveBounds)
-                            ? MaskKind::kStencil
+        ctx.caps().renderer + ") lacks; use mask=tiles or mask=stencil");
+  // auto: Chan's depth bounds where the driver has them, else the stencil bit plus tiles.
+  const MaskKind kind = maskName == "stencil" ? MaskKind::kStencil
+                        : maskName == "tiles" || (maskName == "auto" && !haveBounds)
+                            ? MaskKind::kStencilTiles
                             : MaskKind::kDepthBounds;
   Frame frame;
   const SceneCasters casters = collectCasters(scene);
@@ -200,22 +324,39 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   setLightingUniforms(shadeProgram, scene);
   // Programs are compiled before the timed passes.
   Program mapProgram("scene.vert.glsl", "depth_only.frag.glsl");
-  Program classifyProgram("shadow_volume.vert.glsl", "hybrid_classify.frag.glsl");
+  // mask-pass=quad (default): Chan's full-screen pass sets the stencil mask bit; classify: the
+  // classification pass writes it (where GL_ARB_shader_stencil_export exists). Measured on
+  // llvmpipe: no gain — the pass saved moves into the classification, whose depth test runs
+  // after a shader that writes the stencil reference (docs/volumes.md).
+  const std::string maskPass = params.text("mask-pass", "quad", {"classify", "quad"});
+  const bool maskInClassify = kind != MaskKind::kDepthBounds && maskPass == "classify" &&
+                              ctx.caps().hasExtension("GL_ARB_shader_stencil_export");
+  Program classifyProgram(
+      "shadow_volume.vert.glsl", "hybrid_classify.frag.glsl",
+      maskInClassify
+          ? std::vector<std::pair<std::string, std::string>>{{"MASK_BIT",
+                                                              std::to_string(kStencilMaskBit)}}
+          : std::vector<std::pair<std::string, std::string>>{});
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});
 
   RenderTarget map = renderShadowMap(gpu, params, mapProgram, factor, units, frame);
   const SceneVolumes volumes = findSilhouettesAndBuildVolumes(scene, casters, frame);
-  classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, frame);
-  buildComputationMask(target, maskProgram, kind, frame);
+  classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, maskInClassify,
+                           frame);
+  std::vector<TileRect> tiles;
+  const bool scissored =
+      buildComputationMask(target, maskProgram, kind, maskInClassify, tiles, frame);
+  const std::vector<TileRect>* scissorBoxes = scissored ? &tiles : nullptr;
   target.bind();
-  drawVolumesThroughMask(volumes, volumeProgram, kind, frame);
+  const double volumeInvocations = countFragmentInvocations(
+      [&] { drawVolumesThroughMask(volumes, volumeProgram, kind, scissorBoxes, frame); });
   // The colour target has three attachments; the shading pass writes the first two.
   const GLenum shadeBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE};
   glDrawBuffers(3, shadeBuffers);
   if (kind == MaskKind::kDepthBounds) glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
-  shadeSilhouettePixels(gpu, shadeProgram, kind, frame);
+  shadeLitSilhouettePixels(gpu, shadeProgram, kind, scissorBoxes, frame);
   readCameraTarget(target, frame);
 
   // Untimed counters (Chan §3.3.2, Figures 3-9 and 3-10).
@@ -226,10 +367,26 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   const VolumeFill masked = measureVolumeFill(target, volumes, viewProjection, maskBitFor(kind),
                                               kind == MaskKind::kDepthBounds);
   reportVolumeCounters(casters, volumes, all, params, frame);
+  reportVolumePassInvocations(volumeInvocations, params, frame);
   const double pixels = double(params.width) * params.height;
   frame.counters["silhouette_fraction"] = silhouettePixels / pixels;
   frame.counters["masked_overdraw"] = masked.fragments / pixels;
   frame.counters["mask_depth_bounds"] = kind == MaskKind::kDepthBounds ? 1 : 0;
+  frame.counters["mask_in_classification"] = maskInClassify ? 1 : 0;
+  if (kind == MaskKind::kStencilTiles) {
+    // What the scissor boxes leave to rasterise: their share of the image and the volume
+    // fragments inside them (per image pixel, beside volume_overdraw).
+    double tilePixels = 0, tileFragments = 0;
+    for (const TileRect& r : tiles) {
+      tilePixels += double(r.width) * r.height;
+      for (int y = r.y; y < r.y + r.height; ++y)
+        for (int x = r.x; x < r.x + r.width; ++x) tileFragments += all.overdraw.at(x, y);
+    }
+    frame.counters["mask_tiles"] = double(tiles.size());
+    frame.counters["mask_tile_fraction"] = tilePixels / pixels;
+    frame.counters["tile_overdraw"] = tileFragments / pixels;
+    frame.counters["mask_tiles_scissored"] = scissored ? 1 : 0;
+  }
   if (params.capturePasses) {
     frame.intermediates.push_back(
         {"3-silhouette-pixels", "silhouette pixels (Chan Fig. 3-1b, 3-9b)", silhouette});
@@ -253,9 +410,10 @@ Technique hybridShadowsTechnique() {
   t.name = "modern.hybrid";
   t.paper = "Chan 2004 thesis ch. 3 (hybrid shadow maps + shadow volumes, computation masks)";
   t.summary = "shadow map finds silhouette pixels; z-fail volumes only there through a mask";
-  t.status = "complete (depth-bounds mask where the driver has it, stencil-bit mask otherwise)";
+  t.status =
+      "complete (depth-bounds mask where the driver has it, else stencil bit + scissor tiles)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "mask"};
+  t.paramKeys = {"offset-factor", "offset-units", "mask", "mask-pass"};
   t.render = render;
   return t;
 }

@@ -160,6 +160,42 @@ void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint m
   glDepthFunc(GL_LESS);
 }
 
+void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glStencilFunc(GL_EQUAL, GLint(maskBit), kStencilCountBits | maskBit);
+  shadeProgram.use();
+  shadeProgram.set("uVisibility", 1.0f);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(shadeProgram, o); });
+  glDisable(GL_STENCIL_TEST);
+  glStencilMask(0xFF);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
+
+double countFragmentInvocations(const std::function<void()>& draws) {
+  const GlContext* ctx = GlContext::current();
+  if (ctx == nullptr || !ctx->caps().hasExtension("GL_ARB_pipeline_statistics_query")) {
+    draws();
+    return -1;
+  }
+  GLuint query = 0;
+  glGenQueries(1, &query);
+  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+  draws();
+  glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+  GLuint invocations = 0;
+  glGetQueryObjectuiv(query, GL_QUERY_RESULT, &invocations);
+  glDeleteQueries(1, &query);
+  checkGl("fragment-shader invocation query");
+  return double(invocations);
+}
+
 VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolumes& volumes,
                              const glm::mat4& viewProjection, GLuint maskBit,
                              bool depthBoundsMask) {
@@ -226,6 +262,15 @@ void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volum
   frame.counters["volume_overdraw"] = fill.fragments / pixels;
 }
 
+void reportVolumePassInvocations(double invocations, const RenderParams& params, Frame& frame) {
+  // Fragment-shader invocations of the stencil pass per image pixel: beside volume_overdraw
+  // (every rasterised volume fragment) and masked_overdraw (those the mask lets through), what
+  // the driver actually ran. Absent where the driver has no pipeline statistics query.
+  if (invocations >= 0)
+    frame.counters["volume_pass_fs_invocations"] =
+        invocations / (double(params.width) * params.height);
+}
+
 namespace {
 
 // Pass 1 (Everitt–Kilgard; Chan §4.2 step 2): silhouette edges from edge adjacency, volumes.
@@ -277,12 +322,14 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const SceneVolumes volumes = findSilhouettesAndBuildVolumes(scene, casters, frame);
   target.bind();
   fillDepthFromCamera(gpu, depthProgram, frame);
-  countVolumeCrossings(volumes, depthProgram, frame);
+  const double volumeInvocations =
+      countFragmentInvocations([&] { countVolumeCrossings(volumes, depthProgram, frame); });
   shadeWithStencil(gpu, shadeProgram, frame);
   readCameraTarget(target, frame);
 
   const VolumeFill fill = measureVolumeFill(target, volumes, viewProjection, 0, false);
   reportVolumeCounters(casters, volumes, fill, params, frame);
+  reportVolumePassInvocations(volumeInvocations, params, frame);
   if (params.capturePasses) {
     Image overdraw = fill.overdraw;
     float peak = 1.0f;

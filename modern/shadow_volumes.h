@@ -2,6 +2,7 @@
 // volumes) and the pieces of it that modern.hybrid (Chan 2004 ch. 3) reuses.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,17 @@ void countVolumesZFail(const SceneVolumes& volumes, const Program& volumeProgram
 // (restricted to mask-bit pixels when `maskBit` is not 0). Depth test LEQUAL, no depth writes.
 void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit);
 
+// Chan §3.1 step 4: "draw and shade the scene only at pixels with stencil values equal to zero"
+// — one draw, lit, where the count is zero (and the mask bit set when `maskBit` is not 0); the
+// shadowed pixels keep what an earlier pass wrote. Depth test LEQUAL, no depth writes.
+void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit);
+
+// GL_ARB_pipeline_statistics_query (core in GL 4.6): how many fragment-shader invocations the
+// draws issued by `draws` cost — the fragments the rasteriser hands to the fragment stage,
+// whether or not the stencil test then lets them update. -1 where the driver has no such query
+// (`draws` still runs).
+double countFragmentInvocations(const std::function<void()>& draws);
+
 // Chan §3.3.2 / Figure 3-10: how many shadow-polygon fragments are rasterised. Draws every
 // volume with depth test and stencil test off (`maskBit` 0) or restricted to the mask bit,
 // additive into a float buffer; returns the per-pixel overdraw image.
@@ -75,5 +87,9 @@ Image stencilCountImage(const RenderTarget& cameraTarget);
 // Puts the counters every shadow-volume technique reports into frame.counters.
 void reportVolumeCounters(const SceneCasters& casters, const SceneVolumes& volumes,
                           const VolumeFill& fill, const RenderParams& params, Frame& frame);
+
+// frame.counters["volume_pass_fs_invocations"]: `invocations` (from countFragmentInvocations)
+// per image pixel; nothing when the driver had no query (invocations < 0).
+void reportVolumePassInvocations(double invocations, const RenderParams& params, Frame& frame);
 
 }  // namespace sl::modern

@@ -305,9 +305,9 @@ TEST(HybridShadows, EqualsShadowVolumesAtEverySilhouettePixel) {
   // Chan §3.1: at silhouette pixels the hybrid's answer IS the shadow-volume answer (same
   // volumes, same depth buffer, same z-fail counting), so the masks must be identical there,
   // bit for bit. Several shadow-map sizes change which pixels are silhouette pixels.
-  for (const std::string name : {"analytic", "brabec", "fence"})
+  for (const std::string name : {"analytic", "brabec", "fence", "fill-bound"})
     for (int texels : {128, 512}) {
-      const Scene scene = builtinScene(name);
+      const Scene scene = loadScene(name);
       RenderParams p = smallParams(texels);
       p.capturePasses = true;
       const Frame hybrid = renderTechnique(findTechnique("modern.hybrid"), scene, p);
@@ -348,6 +348,95 @@ TEST(HybridShadows, CountersInRange) {
     EXPECT_LT(c.at("masked_overdraw"), c.at("volume_overdraw")) << name;
     EXPECT_EQ(c.at("mask_depth_bounds"), 0.0) << "llvmpipe has no EXT_depth_bounds_test";
   }
+}
+
+TEST(HybridShadows, FillBoundSceneHasHighOverdrawAndFewSilhouettePixels) {
+  // assets/scenes/fill-bound.json, Chan's setting (Fig. 3-9: overdraw 79, 5% silhouette pixels):
+  // 24 floors whose volumes overlap over most of the image. At 800x600 volume_overdraw is
+  // 23.6, coverage 72.5% and the silhouette share 0.19% (1024² map); the bounds below are what
+  // makes the scene fill-bound: more than twice the overdraw of cubes (9.3), over half the
+  // image covered, silhouette pixels under 1% with a 512² map.
+  const Scene scene = loadScene("fill-bound");
+  ASSERT_EQ(scene.objects.size(), 25u);
+  EXPECT_FALSE(scene.objects[0].castsShadow);
+  const Frame f = renderTechnique(findTechnique("modern.hybrid"), scene, smallParams(512));
+  const auto& c = f.counters;
+  EXPECT_EQ(c.at("closed_casters"), 24);
+  EXPECT_GT(c.at("volume_overdraw"), 18.0);
+  EXPECT_GT(c.at("volume_coverage"), 0.5);
+  EXPECT_LT(c.at("silhouette_fraction"), 0.01);
+  EXPECT_LT(c.at("masked_overdraw"), 0.01 * c.at("volume_overdraw"));
+}
+
+TEST(HybridShadows, TileMaskGivesTheStencilMasksImageAndCullsWholeTiles) {
+  // mask=tiles adds scissor boxes (the 64x64 tiles holding silhouette pixels) to the stencil
+  // bit; the scissor only removes fragments the stencil bit would reject, so the image must be
+  // the stencil mask's, bit for bit. On fill-bound the silhouette pixels lie in a few tiles:
+  // the boxes cover part of the image only and hold a fraction of the volume fragments. The
+  // scissor can only remove fragment-shader invocations (fewer on llvmpipe, whose stencil test
+  // runs inside the fragment function; equal on a GPU that rejects by stencil early).
+  for (const std::string name : {"brabec", "cubes", "fill-bound"}) {
+    const Scene scene = loadScene(name);
+    RenderParams p = smallParams(512);
+    if (name == "fill-bound") {
+      // The bench's size: at 320x240 a 64-pixel tile is a twentieth of the image, too coarse
+      // for the culling bounds below (the boxes cover 18% of the image at 800x600).
+      p.width = 800;
+      p.height = 600;
+    }
+    p.extra["mask"] = "stencil";
+    const Frame stencil = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+    p.extra["mask"] = "tiles";
+    const Frame tiles = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+    long long differ = 0;
+    for (size_t i = 0; i < stencil.color.data.size(); ++i)
+      differ += stencil.color.data[i] != tiles.color.data[i];
+    for (size_t i = 0; i < stencil.visibility.data.size(); ++i)
+      differ += stencil.visibility.data[i] != tiles.visibility.data[i];
+    EXPECT_EQ(differ, 0) << name;
+    EXPECT_EQ(stencil.counters.count("mask_tiles"), 0u) << name;
+    ASSERT_EQ(tiles.counters.count("mask_tiles"), 1u) << name;
+    EXPECT_GE(tiles.counters.at("mask_tiles"), 1) << name;
+    EXPECT_LE(tiles.counters.at("mask_tile_fraction"), 1.0) << name;
+    EXPECT_LE(tiles.counters.at("tile_overdraw"), tiles.counters.at("volume_overdraw")) << name;
+    EXPECT_GE(tiles.counters.at("tile_overdraw"), tiles.counters.at("masked_overdraw")) << name;
+    if (name == "fill-bound") {
+      EXPECT_LT(tiles.counters.at("mask_tile_fraction"), 0.5);
+      EXPECT_LT(tiles.counters.at("tile_overdraw"), 0.5 * tiles.counters.at("volume_overdraw"));
+      if (tiles.counters.count("volume_pass_fs_invocations") &&
+          stencil.counters.count("volume_pass_fs_invocations"))
+        EXPECT_LE(tiles.counters.at("volume_pass_fs_invocations"),
+                  stencil.counters.at("volume_pass_fs_invocations"));
+    }
+  }
+}
+
+TEST(HybridShadows, MaskWrittenByTheClassificationEqualsChansQuadPass) {
+  // mask-pass=classify (the default where GL_ARB_shader_stencil_export exists) writes the
+  // stencil mask bit in the classification pass from the fragment that wins the depth test;
+  // mask-pass=quad is Chan's full-screen pass over the silhouette tags of that same fragment.
+  // The two masks, and so the images, must be identical bit for bit.
+  for (const std::string name : {"brabec", "fence", "fill-bound"})
+    for (const char* mask : {"stencil", "tiles"}) {
+      const Scene scene = loadScene(name);
+      RenderParams p = smallParams(256);
+      p.extra["mask"] = mask;
+      p.extra["mask-pass"] = "quad";
+      const Frame quad = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+      p.extra["mask-pass"] = "classify";
+      const Frame classify = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+      EXPECT_EQ(quad.counters.at("mask_in_classification"), 0.0);
+      if (classify.counters.at("mask_in_classification") == 0.0)
+        GTEST_SKIP() << "driver without GL_ARB_shader_stencil_export";
+      long long differ = 0;
+      for (size_t i = 0; i < quad.color.data.size(); ++i)
+        differ += quad.color.data[i] != classify.color.data[i];
+      for (size_t i = 0; i < quad.visibility.data.size(); ++i)
+        differ += quad.visibility.data[i] != classify.visibility.data[i];
+      EXPECT_EQ(differ, 0) << name << " " << mask;
+      EXPECT_EQ(quad.counters.at("masked_overdraw"), classify.counters.at("masked_overdraw"))
+          << name << " " << mask;
+    }
 }
 
 TEST(HybridShadows, DepthBoundsMaskRefusedWithoutTheExtension) {
