@@ -128,7 +128,7 @@ void runRatio(const Options& o) {
   const Technique& hw = findTechnique("modern.hw");
   const Technique& csm = findTechnique("modern.csm");
   std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
-              kBenchMap, o.warmup, o.repeat);
+              kBenchMap, o.frames.warmup, o.frames.timed);
   for (const auto& [k, v] : o.csmParams) std::printf(", csm %s=%s", k.c_str(), v.c_str());
   std::printf(
       "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
@@ -148,7 +148,7 @@ void runRatio(const Options& o) {
       std::vector<double> hwTimes, csmTimes;
       std::map<std::string, std::vector<double>> passes;
       std::vector<std::string> passOrder;
-      for (int i = 0; i < o.warmup + o.repeat; ++i) {
+      for (int i = 0; i < o.frames.warmup + o.frames.timed; ++i) {
         hwContext->makeCurrent();
         double start = nowMilliseconds();
         hw.render(*hwContext, scene, hwParams);
@@ -157,7 +157,7 @@ void runRatio(const Options& o) {
         start = nowMilliseconds();
         const Frame frame = csm.render(*csmContext, scene, csmParams);
         const double csmMs = nowMilliseconds() - start;
-        if (i < o.warmup) continue;
+        if (i < o.frames.warmup) continue;
         hwTimes.push_back(hwMs);
         csmTimes.push_back(csmMs);
         for (const PassTime& p : frame.passes) {
