@@ -257,42 +257,44 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame&
   blurLayers(map, scratch, taps, name, frame);
 }
 
+void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, int taps,
+                            BlurDirection direction, const Framebuffer& fbo) {
+  const std::vector<float> weights = binomialWeights(taps);
+  const FullScreenTriangle triangle;
+  const bool horizontal = direction == BlurDirection::kHorizontal;
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const int perPass = layersPerPass();
+  for (int first = 0; first < source.layers; first += perPass) {
+    const int count = std::min(perPass, source.layers - first);
+    // One program per (taps, layers per pass): constant loop bounds (the shader's header).
+    const Program& program =
+        cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl",
+                      {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
+    program.use();
+    program.set("uSource", 0);
+    glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+    glUniform2i(program.uniform("uStep"), horizontal ? 1 : 0, horizontal ? 0 : 1);
+    attachLayers(fbo, target, first, count);
+    program.set("uFirstLayer", first);
+    triangle.draw();
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+}
+
 void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
                 Frame& frame) {
   PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
   const LayeredMap& scratch = reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
-  const std::vector<float> weights = binomialWeights(taps);
   const Framebuffer fbo = makeFramebuffer();
-  const FullScreenTriangle triangle;
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glActiveTexture(GL_TEXTURE0);
-  const int perPass = layersPerPass();
   // Horizontal: map -> scratch; vertical: scratch -> map (the separable kernel, §4.1).
-  const LayeredMap* passes[2][2] = {{&map, &scratch}, {&scratch, &map}};
-  for (int direction = 0; direction < 2; ++direction) {
-    const LayeredMap& source = *passes[direction][0];
-    const LayeredMap& target = *passes[direction][1];
-    glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    for (int first = 0; first < map.layers; first += perPass) {
-      const int count = std::min(perPass, map.layers - first);
-      // One program per (taps, layers per pass): constant loop bounds (the shader's header).
-      const Program& program =
-          cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl",
-                        {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
-      program.use();
-      program.set("uSource", 0);
-      glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
-      glUniform2i(program.uniform("uStep"), direction == 0 ? 1 : 0, direction == 0 ? 0 : 1);
-      attachLayers(fbo, target, first, count);
-      program.set("uFirstLayer", first);
-      triangle.draw();
-    }
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  blurLayersOneDirection(map, scratch, taps, BlurDirection::kHorizontal, fbo);
+  blurLayersOneDirection(scratch, map, taps, BlurDirection::kVertical, fbo);
 }
 
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering) {

@@ -108,6 +108,11 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& passName, Fr
 // The same with a caller-kept scratch map (reallocated by reuseLayeredMap when it does not fit).
 void blurLayers(const LayeredMap& map, LayeredMap& scratch, int taps, const std::string& passName,
                 Frame& frame);
+// One 1D pass of that blur over every layer: `source` -> `target` (same size and layer count),
+// horizontal or vertical, drawn with `fbo`.
+enum class BlurDirection { kHorizontal, kVertical };
+void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, int taps,
+                            BlurDirection direction, const Framebuffer& fbo);
 
 // Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
