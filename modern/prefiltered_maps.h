@@ -97,9 +97,10 @@ std::vector<double> sceneViewKey(const Scene& scene, const RenderParams& params)
 // shaders declare 8 outputs).
 int layersPerPass();
 
-// Binds `fbo` with layers [first, first + count) of level 0 of `map` as colour attachments
-// 0..count-1, sets the draw buffers and the viewport.
-void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count);
+// Binds `fbo` with layers [first, first + count) of mip level `level` of `map` as colour
+// attachments 0..count-1, sets the draw buffers and the viewport (that level's size).
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count,
+                  int level = 0);
 
 // Annen §4.1: separable Gaussian blur of every layer (horizontal into a scratch map, then
 // vertical back), `taps` in {3, 5, 7}; encoded 8-bit values blur correctly because the
