@@ -22,6 +22,7 @@
 #include "core/primitives.h"
 #include "filtered_shadows_util.h"
 #include "modern/convolution_shadow_map.h"
+#include "modern/prefiltered_maps.h"
 
 namespace sl {
 namespace {
@@ -538,6 +539,73 @@ TEST(Csm, MipChainLeftOutOnlyWhereNothingMinifies) {
       trees.camera.target + 3.0f * (trees.camera.position - trees.camera.target);
   const Frame far = renderByName("modern.csm", trees, smallParams(128, 96, 2048, {{"blur", "0"}}));
   EXPECT_EQ(far.counters.at("mip-maps"), 1.0);
+}
+
+// The mip chain drawn with layered_downsample.frag (issue 14, instead of glGenerateMipmap):
+// every texel of level L is the 2x2 box mean of level L - 1, for every layer, in 8-bit and
+// float storage (Annen §4.1's mip-map, glGenerateMipmap's filter on power-of-two maps).
+TEST(Csm, DrawnMipChainIsTheBoxFilterOfEachLevel) {
+  using namespace sl::gl;
+  const Technique& csm = findTechnique("modern.csm");
+  const RenderParams p = smallParams(16, 16, 64);
+  auto context = GlContext::create(contextFor(csm, p));
+  constexpr int kSize = 32, kLayers = 10;  // 10: more layers than one MRT pass writes (8)
+  for (const GLenum format : {GLenum(GL_RGBA8), GLenum(GL_RGBA32F)}) {
+    const modern::LayeredMap map = modern::makeLayeredMap(kSize, kLayers, format, true);
+    // Level 0: a different value in every texel and channel (a fixed linear congruential
+    // sequence), written texel by texel with scissored clears.
+    const modern::Framebuffer fbo = modern::makeFramebuffer();
+    unsigned state = 12345u;
+    glEnable(GL_SCISSOR_TEST);
+    for (int layer = 0; layer < kLayers; ++layer) {
+      modern::attachLayers(fbo, map, layer, 1);
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+          float value[4];
+          for (float& v : value) {
+            state = state * 1664525u + 1013904223u;
+            v = float(state >> 24) / 255.0f;
+          }
+          glScissor(x, y, 1, 1);
+          glClearBufferfv(GL_COLOR, 0, value);
+        }
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    modern::MapFiltering filtering;  // tri-linear: the chain is built
+    modern::buildMipmapsAndSetFiltering(map, filtering);
+    auto level = [&](int l) {
+      const int side = kSize >> l;
+      std::vector<float> v(size_t(side) * side * kLayers * 4);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTexImage(GL_TEXTURE_2D_ARRAY, l, GL_RGBA, GL_FLOAT, v.data());
+      return v;
+    };
+    double worst = 0.0;
+    for (int l = 1; l < map.levels; ++l) {
+      const std::vector<float> above = level(l - 1), here = level(l);
+      const int side = kSize >> l;
+      for (int layer = 0; layer < kLayers; ++layer)
+        for (int y = 0; y < side; ++y)
+          for (int x = 0; x < side; ++x)
+            for (int c = 0; c < 4; ++c) {
+              auto at = [&](const std::vector<float>& v, int s, int i, int j) {
+                return double(v[((size_t(layer) * s + j) * s + i) * 4 + size_t(c)]);
+              };
+              const double mean = 0.25 * (at(above, 2 * side, 2 * x, 2 * y) +
+                                          at(above, 2 * side, 2 * x + 1, 2 * y) +
+                                          at(above, 2 * side, 2 * x, 2 * y + 1) +
+                                          at(above, 2 * side, 2 * x + 1, 2 * y + 1));
+              worst = std::max(worst, std::fabs(mean - at(here, side, x, y)));
+            }
+    }
+    std::cout << (format == GL_RGBA8 ? "RGBA8" : "RGBA32F") << ": largest difference " << worst
+              << "\n";
+    // 8-bit: one rounding of the mean to the nearest of 255 steps (half a step), plus float
+    // arithmetic; float: float32 sums of four values in [0, 1].
+    EXPECT_LE(worst, format == GL_RGBA8 ? 0.5 / 255.0 + 1e-5 : 1e-6);
+  }
 }
 
 }  // namespace
