@@ -228,8 +228,7 @@ int layersPerPass() {
   return std::clamp(int(most), 1, kMaxOutputsPerPass);
 }
 
-void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count,
-                  int level) {
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count, int level) {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   std::vector<GLenum> buffers;
   for (int i = 0; i < kMaxOutputsPerPass; ++i) {

@@ -466,10 +466,9 @@ TEST(Csm, FusedBasisAndHorizontalBlurEqualStoreThenBlurInFloat) {
   const Scene scene = builtinScene("fence");
   constexpr int kOrder = 16, kTexels = 64;
   for (const int taps : {0, 3, 7}) {
-    RenderParams p = smallParams(64, 48, kTexels,
-                                 {{"order", std::to_string(kOrder)},
-                                  {"blur", std::to_string(taps)},
-                                  {"storage", "float"}});
+    RenderParams p = smallParams(
+        64, 48, kTexels,
+        {{"order", std::to_string(kOrder)}, {"blur", std::to_string(taps)}, {"storage", "float"}});
     p.capturePasses = true;
     const Frame frame = renderByName("modern.csm", scene, p);
     auto find = [&](const std::string& name) -> const Image& {
