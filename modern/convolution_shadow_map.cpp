@@ -179,9 +179,11 @@ const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSetti
   for (int first = 0; first < basis.layers; first += perPass, ++passes) {
     const int count = std::min(perPass, basis.layers - first);
     // One program per (taps, outputs): constant loop bounds (the shader's header).
-    const Program& program =
-        cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl",
-                      {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
+    const bool paired = first == 0 && count == basis.layers;  // all sines and cosines
+    const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl",
+                                           {{"TAPS", std::to_string(taps)},
+                                            {"LAYERS", std::to_string(count)},
+                                            {"PAIRED", paired ? "1" : "0"}});
     program.use();
     program.set("uLinearDepth", 0);
     program.set("uOrder", s.order);

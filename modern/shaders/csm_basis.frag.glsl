@@ -11,15 +11,19 @@
 // evaluated at the TAPS depth texels of the row (binomial weights uWeights, borders clamp, as
 // separable_gaussian.frag), so that the unblurred basis is never stored and read back; the
 // vertical half follows in separable_gaussian.frag. TAPS = 1: the basis itself.
-// TAPS and LAYERS (outputs of this pass) are compile-time defines, so that every loop unrolls
-// and every output index is a constant (convolution_shadow_map.cpp compiles one program per
-// pair).
+// TAPS, LAYERS (outputs of this pass) and PAIRED (1: this pass writes every layer, so the
+// sine and cosine of each k share one rotation) are compile-time defines, so that every loop
+// unrolls and every output index is a constant (convolution_shadow_map.cpp compiles one
+// program per combination).
 #version 330 core
 #ifndef TAPS
 #define TAPS 1
 #endif
 #ifndef LAYERS
 #define LAYERS 8
+#endif
+#ifndef PAIRED
+#define PAIRED 0
 #endif
 uniform sampler2D uLinearDepth;  // z(p), linear light-space depth (§4.1)
 uniform int uOrder;              // M, the truncation order
@@ -45,6 +49,23 @@ void main() {
     // k (angle addition; float32 error ~1e-7 per step, far below the 8-bit step of 1/127).
     vec2 step = vec2(cos(2.0 * PI * z), sin(2.0 * PI * z));
     vec2 first = vec2(cos(PI * z), sin(PI * z));
+#if PAIRED
+    // This pass writes all 2S layers (S = LAYERS / 2 = uSinLayers): sin(c_k z) and cos(c_k z)
+    // of the same k come from one rotation.
+    vec2 pair = first;
+    for (int j = 0; j < LAYERS / 2; ++j) {
+      vec4 s = vec4(0.0), c = vec4(0.0);
+      for (int i = 0; i < 4; ++i) {
+        if (4 * j + i + 1 <= uOrder) {  // 0 beyond M
+          s[i] = pair.y;
+          c[i] = pair.x;
+        }
+        pair = vec2(pair.x * step.x - pair.y * step.y, pair.y * step.x + pair.x * step.y);
+      }
+      sum[j] += uWeights[t] * s;
+      sum[LAYERS / 2 + j] += uWeights[t] * c;
+    }
+#else
     vec2 term = firstK == 1 ? first
                             : vec2(cos(PI * float(2 * firstK - 1) * z),
                                    sin(PI * float(2 * firstK - 1) * z));
@@ -60,6 +81,7 @@ void main() {
       }
       sum[i] += uWeights[t] * v;
     }
+#endif
   }
   for (int i = 0; i < LAYERS; ++i) oLayers[i] = uEncodeUnsigned ? 0.5 + 0.5 * sum[i] : sum[i];
 }
