@@ -90,7 +90,7 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
   // percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the
   // magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving
-  // it out changes nothing but the time (on llvmpipe glGenerateMipmap of M/2 layers is a
+  // it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a
   // large share of the frame). mipmaps=always builds it regardless.
   const std::string mipmaps = params.text("mipmaps", "auto", {"auto", "always"});
   if (s.filtering.mipmaps && mipmaps == "auto" && texelsPerPixel <= 1.0) {

@@ -302,8 +302,8 @@ namespace {
 // DEVIATION (Annen et al. 2007, §4.1: "using the auto-mip-map feature of modern GPUs"): the
 // chain is drawn level by level with layered_downsample.frag, up to GL_MAX_DRAW_BUFFERS layers
 // per draw, instead of glGenerateMipmap. The filter is the same 2x2 box for the power-of-two
-// maps; Mesa 22 llvmpipe's glGenerateMipmap blits every layer of every level on its own
-// (M/2 x log2(size) blits for CSM).
+// maps; on Mesa 22 llvmpipe glGenerateMipmap of CSM's 8 layers of 512^2 took 13-83 ms on the
+// bench scenes, the drawn chain 5-13 ms.
 void drawMipChain(const LayeredMap& map) {
   const Framebuffer fbo = makeFramebuffer();
   const FullScreenTriangle triangle;

@@ -115,7 +115,8 @@ enum class BlurDirection { kHorizontal, kVertical };
 void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, int taps,
                             BlurDirection direction, const Framebuffer& fbo);
 
-// Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
+// Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state. The
+// chain is drawn with MRT, several layers per draw (layered_downsample.frag, a 2x2 box).
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
 
 // worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.
