@@ -440,6 +440,7 @@ struct SceneRun {
   bool soft = true;                     // render reference.soft (smoothies' truth)
   bool temporal = true;                 // temporal stability (a frame with the light moved)
   bool planner = false;                 // the planner scene: plan=on/off only
+  int shadowMapTexels = 0;              // 0: the bench's map; else every variant's map
 };
 
 std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
@@ -456,13 +457,15 @@ std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
     away.light.target = away.light.position + glm::vec3(0, 5, 0);  // the light looks up
     away.light.up = {0, 0, -1};
     runs.push_back({away, {}, false, false, true});
-    // Annen et al. Fig. 10: the scene moved far away, so that many shadow-map texels fall in
-    // one pixel; CSM against the PCF techniques (and the unfiltered map).
-    runs.push_back({farScene(loadScene(kDefaultScene)),
+    // Annen et al. Fig. 10: the trees (thin branches) moved far away, so that many
+    // shadow-map texels fall in one pixel; CSM against the PCF techniques (and the
+    // unfiltered map), all with the kMinificationMapTexels map.
+    runs.push_back({farScene(loadScene(kMinificationScene)),
                     {"modern.hw", "modern.pcf", "modern.gems16", "modern.csm"},
                     false,
                     true,
-                    false});
+                    false,
+                    kMinificationMapTexels});
   }
   if (options.scenes.empty()) {
     // Chan §3.3: the hybrid pays off where shadow volumes are fill bound. The scene file is
@@ -518,7 +521,16 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
         off.extra["plan"] = "off";
         variants = {{"plan=on", on}, {"plan=off", off}};
       } else if (!run.techniques.empty()) {
-        variants = {{"default", base}};  // a claim scene: the default variants
+        // A claim scene: the default variants (modern.csm on the minification scene: Fig. 10's
+        // 5x5 kernel).
+        RenderParams p = base;
+        if (run.shadowMapTexels > 0) p.shadowMapTexels = run.shadowMapTexels;
+        if (run.shadowMapTexels > 0 && t->name == "modern.csm") {
+          p.extra["blur"] = kCsmFig10Blur;
+          variants = {{kCsmFig10Variant, p}};
+        } else {
+          variants = {{"default", p}};
+        }
       } else {
         variants = sweepVariants(*t, base, options.quick);
         if (isReference(*t)) {

@@ -90,7 +90,7 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
   // percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the
   // magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving
-  // it out changes nothing but the time (on llvmpipe glGenerateMipmap of M/2 layers is a
+  // it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a
   // large share of the frame). mipmaps=always builds it regardless.
   const std::string mipmaps = params.text("mipmaps", "auto", {"auto", "always"});
   if (s.filtering.mipmaps && mipmaps == "auto" && texelsPerPixel <= 1.0) {
@@ -150,30 +150,48 @@ const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const Render
 }
 
 // Pass 2 (§4.1, Eq. 14): the basis images B_i(z(p)), as many layers per pass as the
-// context has draw buffers ("with four MRTs only two additional render passes").
+// context has draw buffers ("with four MRTs only two additional render passes"). With a blur,
+// this pass also applies its horizontal half (pass 3): the basis of the kernel's row of depth
+// texels, weighted, so that the unblurred layers are neither stored nor read back.
+// DEVIATION (Annen et al. 2007, §4.1 stores the basis, then blurs it): the same sums in another
+// order, one write and one read of M/2 layers fewer; with 8-bit storage the basis is no
+// longer rounded to 8 bits before the horizontal weights (one rounding fewer, closer to Eq. 8).
 const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
                                        PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, "2 basis textures (MRT)");
+  PassTimer timer(frame, s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)"
+                                        : "2 basis textures (MRT)");
   const LayeredMap& basis =
       reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
-  const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl");
-  program.use();
-  program.set("uLinearDepth", 0);
-  program.set("uOrder", s.order);
-  program.set("uSinLayers", s.sinLayers());
-  program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
+  // Blurred: the horizontal pass's output goes to the scratch map, the vertical one to `basis`.
+  const LayeredMap& target =
+      s.blurTaps > 0 ? reuseLayeredMap(work.scratch, depth.width, s.layers(), s.format, false)
+                     : basis;
+  const int taps = std::max(s.blurTaps, 1);
+  const std::vector<float> weights = binomialWeights(taps);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
   glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
   if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
   const FullScreenTriangle triangle;
   const int perPass = layersPerPass();
   int passes = 0;
   for (int first = 0; first < basis.layers; first += perPass, ++passes) {
     const int count = std::min(perPass, basis.layers - first);
-    attachLayers(work.fbo, basis, first, count);
+    // One program per (taps, outputs): constant loop bounds (the shader's header).
+    const bool paired = first == 0 && count == basis.layers;  // all sines and cosines
+    const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl",
+                                           {{"TAPS", std::to_string(taps)},
+                                            {"LAYERS", std::to_string(count)},
+                                            {"PAIRED", paired ? "1" : "0"}});
+    program.use();
+    program.set("uLinearDepth", 0);
+    program.set("uOrder", s.order);
+    program.set("uSinLayers", s.sinLayers());
+    program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
+    glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+    attachLayers(work.fbo, target, first, count);
     program.set("uFirstLayer", first);
-    program.set("uLayerCount", count);
     triangle.draw();
   }
   frame.counters["basis render passes"] = passes;
@@ -181,10 +199,14 @@ const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSetti
   return basis;
 }
 
-// Pass 3 (§4.1): "a separable Gaussian filter kernel on the textures".
+// Pass 3 (§4.1): "a separable Gaussian filter kernel on the textures": the vertical half (the
+// horizontal one was applied with the basis, pass 2).
 void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, PrefilterWorkspace& work,
                        Frame& frame) {
-  if (s.blurTaps > 0) blurLayers(basis, work.scratch, s.blurTaps, "3 separable Gaussian", frame);
+  if (s.blurTaps == 0) return;
+  PassTimer timer(frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" +
+                             std::to_string(s.blurTaps));
+  blurLayersOneDirection(work.scratch, basis, s.blurTaps, BlurDirection::kVertical, work.fbo);
 }
 
 // Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and

@@ -228,13 +228,13 @@ int layersPerPass() {
   return std::clamp(int(most), 1, kMaxOutputsPerPass);
 }
 
-void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count) {
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count, int level) {
   glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   std::vector<GLenum> buffers;
   for (int i = 0; i < kMaxOutputsPerPass; ++i) {
     const GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + i);
     if (i < count) {
-      glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, map.texture.id(), 0, first + i);
+      glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, map.texture.id(), level, first + i);
       buffers.push_back(attachment);
     } else if (i < layersPerPass()) {
       glFramebufferTextureLayer(GL_FRAMEBUFFER, attachment, 0, 0, 0);
@@ -249,7 +249,8 @@ void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int 
                   ", layers " + std::to_string(first) + ".." + std::to_string(first + count - 1) +
                   " of " + std::to_string(map.layers) + ", " + std::to_string(map.size) + "^2)");
   }
-  glViewport(0, 0, map.size, map.size);
+  const int side = std::max(map.size >> level, 1);
+  glViewport(0, 0, side, side);
 }
 
 void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame& frame) {
@@ -257,47 +258,87 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& name, Frame&
   blurLayers(map, scratch, taps, name, frame);
 }
 
-void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
-                Frame& frame) {
-  PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
-  const LayeredMap& scratch = reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
+void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, int taps,
+                            BlurDirection direction, const Framebuffer& fbo) {
   const std::vector<float> weights = binomialWeights(taps);
-  const Framebuffer fbo = makeFramebuffer();
   const FullScreenTriangle triangle;
+  const bool horizontal = direction == BlurDirection::kHorizontal;
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   const int perPass = layersPerPass();
-  // Horizontal: map -> scratch; vertical: scratch -> map (the separable kernel, §4.1).
-  const LayeredMap* passes[2][2] = {{&map, &scratch}, {&scratch, &map}};
-  for (int direction = 0; direction < 2; ++direction) {
-    const LayeredMap& source = *passes[direction][0];
-    const LayeredMap& target = *passes[direction][1];
-    glBindTexture(GL_TEXTURE_2D_ARRAY, source.texture.id());
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    for (int first = 0; first < map.layers; first += perPass) {
-      const int count = std::min(perPass, map.layers - first);
-      // One program per (taps, layers per pass): constant loop bounds (the shader's header).
-      const Program& program =
-          cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl",
-                        {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
-      program.use();
-      program.set("uSource", 0);
-      glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
-      glUniform2i(program.uniform("uStep"), direction == 0 ? 1 : 0, direction == 0 ? 0 : 1);
-      attachLayers(fbo, target, first, count);
-      program.set("uFirstLayer", first);
-      triangle.draw();
-    }
+  for (int first = 0; first < source.layers; first += perPass) {
+    const int count = std::min(perPass, source.layers - first);
+    // One program per (taps, layers per pass): constant loop bounds (the shader's header).
+    const Program& program =
+        cachedProgram("fullscreen.vert.glsl", "separable_gaussian.frag.glsl",
+                      {{"TAPS", std::to_string(taps)}, {"LAYERS", std::to_string(count)}});
+    program.use();
+    program.set("uSource", 0);
+    glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+    glUniform2i(program.uniform("uStep"), horizontal ? 1 : 0, horizontal ? 0 : 1);
+    attachLayers(fbo, target, first, count);
+    program.set("uFirstLayer", first);
+    triangle.draw();
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
 }
 
-void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering) {
+void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
+                Frame& frame) {
+  PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
+  const LayeredMap& scratch = reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
+  const Framebuffer fbo = makeFramebuffer();
+  // Horizontal: map -> scratch; vertical: scratch -> map (the separable kernel, §4.1).
+  blurLayersOneDirection(map, scratch, taps, BlurDirection::kHorizontal, fbo);
+  blurLayersOneDirection(scratch, map, taps, BlurDirection::kVertical, fbo);
+}
+
+namespace {
+// DEVIATION (Annen et al. 2007, §4.1: "using the auto-mip-map feature of modern GPUs"): the
+// chain is drawn level by level with layered_downsample.frag, up to GL_MAX_DRAW_BUFFERS layers
+// per draw, instead of glGenerateMipmap. The filter is the same 2x2 box for the power-of-two
+// maps; on Mesa 22 llvmpipe glGenerateMipmap of CSM's 8 layers of 512^2 took 13-83 ms on the
+// bench scenes, the drawn chain 5-13 ms.
+void drawMipChain(const LayeredMap& map) {
+  const Framebuffer fbo = makeFramebuffer();
+  const FullScreenTriangle triangle;
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
-  if (filtering.mipmaps && map.levels > 1) glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const int perPass = layersPerPass();
+  for (int level = 1; level < map.levels; ++level) {
+    // Read level - 1 only while level is drawn: no feedback loop (glspec §4.4.3).
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, level - 1);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, level - 1);
+    for (int first = 0; first < map.layers; first += perPass) {
+      const int count = std::min(perPass, map.layers - first);
+      const Program& program = cachedProgram("fullscreen.vert.glsl", "layered_downsample.frag.glsl",
+                                             {{"LAYERS", std::to_string(count)}});
+      program.use();
+      program.set("uSource", 0);
+      program.set("uFirstLayer", first);
+      attachLayers(fbo, map, first, count, level);
+      triangle.draw();
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, map.levels - 1);
+}
+}  // namespace
+
+void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering) {
+  if (filtering.mipmaps && map.levels > 1) drawMipChain(map);
+  glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
   const GLint magnify = filtering.linear ? GL_LINEAR : GL_NEAREST;
   const GLint minify = filtering.mipmaps && map.levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : magnify;
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, minify);

@@ -97,9 +97,10 @@ std::vector<double> sceneViewKey(const Scene& scene, const RenderParams& params)
 // shaders declare 8 outputs).
 int layersPerPass();
 
-// Binds `fbo` with layers [first, first + count) of level 0 of `map` as colour attachments
-// 0..count-1, sets the draw buffers and the viewport.
-void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count);
+// Binds `fbo` with layers [first, first + count) of mip level `level` of `map` as colour
+// attachments 0..count-1, sets the draw buffers and the viewport (that level's size).
+void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int count,
+                  int level = 0);
 
 // Annen §4.1: separable Gaussian blur of every layer (horizontal into a scratch map, then
 // vertical back), `taps` in {3, 5, 7}; encoded 8-bit values blur correctly because the
@@ -108,8 +109,14 @@ void blurLayers(const LayeredMap& map, int taps, const std::string& passName, Fr
 // The same with a caller-kept scratch map (reallocated by reuseLayeredMap when it does not fit).
 void blurLayers(const LayeredMap& map, LayeredMap& scratch, int taps, const std::string& passName,
                 Frame& frame);
+// One 1D pass of that blur over every layer: `source` -> `target` (same size and layer count),
+// horizontal or vertical, drawn with `fbo`.
+enum class BlurDirection { kHorizontal, kVertical };
+void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, int taps,
+                            BlurDirection direction, const Framebuffer& fbo);
 
-// Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state.
+// Annen §4.1: "we then build a mip-map ... (auto-mip-map)" and set the sampling state. The
+// chain is drawn with MRT, several layers per draw (layered_downsample.frag, a 2x2 box).
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
 
 // worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <iostream>
 #include <numbers>
 #include <stdexcept>
 
@@ -21,6 +22,7 @@
 #include "core/primitives.h"
 #include "filtered_shadows_util.h"
 #include "modern/convolution_shadow_map.h"
+#include "modern/prefiltered_maps.h"
 
 namespace sl {
 namespace {
@@ -457,6 +459,61 @@ TEST(Csm, BasisAndBlurMatchEq14AndTheBinomialKernel) {
   }
 }
 
+// The basis pass applies the blur's horizontal half itself (computeBasisTextures): with float
+// storage nothing is rounded, so the stored layers must equal the separable binomial blur of
+// sin(c_k z) (Eq. 14, §4.1), first along x then along y, evaluated here in double precision.
+TEST(Csm, FusedBasisAndHorizontalBlurEqualStoreThenBlurInFloat) {
+  const Scene scene = builtinScene("fence");
+  constexpr int kOrder = 16, kTexels = 64;
+  for (const int taps : {0, 3, 7}) {
+    RenderParams p = smallParams(
+        64, 48, kTexels,
+        {{"order", std::to_string(kOrder)}, {"blur", std::to_string(taps)}, {"storage", "float"}});
+    p.capturePasses = true;
+    const Frame frame = renderByName("modern.csm", scene, p);
+    auto find = [&](const std::string& name) -> const Image& {
+      for (const PassImage& i : frame.intermediates)
+        if (i.name == name) return i.image;
+      throw std::runtime_error("no intermediate " + name);
+    };
+    const Image& depth = find("1-linear-depth");
+    ASSERT_EQ(depth.width, kTexels);
+    const int n = std::max(taps, 1);
+    std::vector<double> w(size_t(n), 1.0);
+    for (int i = 1; i < n; ++i) w[size_t(i)] = w[size_t(i - 1)] * (n - i) / i;
+    for (double& v : w) v /= std::ldexp(1.0, n - 1);
+    auto clampTexel = [&](int v) { return std::clamp(v, 0, kTexels - 1); };
+    double worst = 0.0;
+    for (int layer = 0; layer < kOrder / 4; ++layer) {
+      const Image& stored = find("2-basis-sin-k" + std::to_string(4 * layer + 1) + "-" +
+                                 std::to_string(4 * layer + 4));
+      for (int c = 0; c < 4; ++c) {
+        const double ck = std::numbers::pi * (2 * (4 * layer + c + 1) - 1);
+        std::vector<double> horizontal(size_t(kTexels * kTexels));
+        for (int y = 0; y < kTexels; ++y)
+          for (int x = 0; x < kTexels; ++x) {
+            double sum = 0.0;
+            for (int t = 0; t < n; ++t)
+              sum += w[size_t(t)] * std::sin(ck * depth.at(clampTexel(x + t - n / 2), y));
+            horizontal[size_t(y * kTexels + x)] = sum;
+          }
+        for (int y = 0; y < kTexels; ++y)
+          for (int x = 0; x < kTexels; ++x) {
+            double sum = 0.0;
+            for (int t = 0; t < n; ++t)
+              sum += w[size_t(t)] * horizontal[size_t(clampTexel(y + t - n / 2) * kTexels + x)];
+            // capturePasses shows float layers as 0.5 + 0.5 v.
+            worst = std::max(worst, std::fabs(0.5 + 0.5 * sum - stored.at(x, y, c)));
+          }
+      }
+    }
+    std::cout << "blur " << taps << ": largest difference " << worst << "\n";
+    // float32: c_k z up to 31 pi, by 15 rotations of a float32 sin/cos pair (~1e-7 each) and
+    // float32 weights and sums: a few 1e-6. 1e-4 is still 40 times below one 8-bit step.
+    EXPECT_LE(worst, 1e-4) << "blur " << taps;
+  }
+}
+
 TEST(Csm, MipChainLeftOutOnlyWhereNothingMinifies) {
   // Magnified: the analytic scene at 320x240 with a 64-texel map (every pixel < 1 texel).
   const Scene analytic = builtinScene("analytic");
@@ -481,6 +538,73 @@ TEST(Csm, MipChainLeftOutOnlyWhereNothingMinifies) {
       trees.camera.target + 3.0f * (trees.camera.position - trees.camera.target);
   const Frame far = renderByName("modern.csm", trees, smallParams(128, 96, 2048, {{"blur", "0"}}));
   EXPECT_EQ(far.counters.at("mip-maps"), 1.0);
+}
+
+// The mip chain drawn with layered_downsample.frag (issue 14, instead of glGenerateMipmap):
+// every texel of level L is the 2x2 box mean of level L - 1, for every layer, in 8-bit and
+// float storage (Annen §4.1's mip-map, glGenerateMipmap's filter on power-of-two maps).
+TEST(Csm, DrawnMipChainIsTheBoxFilterOfEachLevel) {
+  using namespace sl::gl;
+  const Technique& csm = findTechnique("modern.csm");
+  const RenderParams p = smallParams(16, 16, 64);
+  auto context = GlContext::create(contextFor(csm, p));
+  constexpr int kSize = 32, kLayers = 10;  // 10: more layers than one MRT pass writes (8)
+  for (const GLenum format : {GLenum(GL_RGBA8), GLenum(GL_RGBA32F)}) {
+    const modern::LayeredMap map = modern::makeLayeredMap(kSize, kLayers, format, true);
+    // Level 0: a different value in every texel and channel (a fixed linear congruential
+    // sequence), written texel by texel with scissored clears.
+    const modern::Framebuffer fbo = modern::makeFramebuffer();
+    unsigned state = 12345u;
+    glEnable(GL_SCISSOR_TEST);
+    for (int layer = 0; layer < kLayers; ++layer) {
+      modern::attachLayers(fbo, map, layer, 1);
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+          float value[4];
+          for (float& v : value) {
+            state = state * 1664525u + 1013904223u;
+            v = float(state >> 24) / 255.0f;
+          }
+          glScissor(x, y, 1, 1);
+          glClearBufferfv(GL_COLOR, 0, value);
+        }
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    modern::MapFiltering filtering;  // tri-linear: the chain is built
+    modern::buildMipmapsAndSetFiltering(map, filtering);
+    auto level = [&](int l) {
+      const int side = kSize >> l;
+      std::vector<float> v(size_t(side) * side * kLayers * 4);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, map.texture.id());
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTexImage(GL_TEXTURE_2D_ARRAY, l, GL_RGBA, GL_FLOAT, v.data());
+      return v;
+    };
+    double worst = 0.0;
+    for (int l = 1; l < map.levels; ++l) {
+      const std::vector<float> above = level(l - 1), here = level(l);
+      const int side = kSize >> l;
+      for (int layer = 0; layer < kLayers; ++layer)
+        for (int y = 0; y < side; ++y)
+          for (int x = 0; x < side; ++x)
+            for (int c = 0; c < 4; ++c) {
+              auto at = [&](const std::vector<float>& v, int s, int i, int j) {
+                return double(v[((size_t(layer) * s + j) * s + i) * 4 + size_t(c)]);
+              };
+              const double mean = 0.25 * (at(above, 2 * side, 2 * x, 2 * y) +
+                                          at(above, 2 * side, 2 * x + 1, 2 * y) +
+                                          at(above, 2 * side, 2 * x, 2 * y + 1) +
+                                          at(above, 2 * side, 2 * x + 1, 2 * y + 1));
+              worst = std::max(worst, std::fabs(mean - at(here, side, x, y)));
+            }
+    }
+    std::cout << (format == GL_RGBA8 ? "RGBA8" : "RGBA32F") << ": largest difference " << worst
+              << "\n";
+    // 8-bit: one rounding of the mean to the nearest of 255 steps (half a step), plus float
+    // arithmetic; float: float32 sums of four values in [0, 1].
+    EXPECT_LE(worst, format == GL_RGBA8 ? 0.5 / 255.0 + 1e-5 : 1e-6);
+  }
 }
 
 }  // namespace
