@@ -110,9 +110,9 @@ std::optional<Options> parseOptions(int argc, char** argv) {
     o.frames.warmup =
         warmup == "0" ? 0 : cli::parsePositiveInt("--warmup", warmup, kMaxWarmupFrames);
   if (!backend.empty()) {
-    o.backend = parseBackend(backend);
-    if (o.backend != Backend::kOsmesa && o.backend != Backend::kEgl)
+    if (backend != "osmesa" && backend != "egl")  // modern.* needs GLSL: not Mesa 7.8.2
       throw InputError("--backend must be osmesa or egl, got '" + backend + "'");
+    o.backend = parseBackend(backend);
   }
   if (o.part != "techniques" && o.part != "table1" && o.part != "ratio" && o.part != "all")
     throw InputError("--part must be techniques, table1, ratio or all, got '" + o.part + "'");
