@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 
 #include "core/errors.h"
 
@@ -150,6 +151,25 @@ Args parse(int argc, char** argv) {
     a.options[name] = option->results();
   }
   return a;
+}
+
+bool parseTool(CLI::App& app, int argc, char** argv) {
+  app.set_help_flag("-h,--help", "print this help and exit");
+  // A repeated single-valued option keeps its last value, as before the move to CLI11.
+  for (CLI::Option* option : app.get_options())
+    if (option->get_multi_option_policy() == CLI::MultiOptionPolicy::Throw)
+      option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return false;
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw InputError(what + " (try: " + app.get_name() + " --help)");
+  }
+  return true;
 }
 
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue) {

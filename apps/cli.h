@@ -9,6 +9,10 @@
 
 #include "core/technique.h"
 
+namespace CLI {
+class App;
+}
+
 namespace sl::cli {
 
 struct Args {
@@ -30,6 +34,13 @@ struct HelpRequested {
 // that do not, per command, each with its help line (apps/cli.cpp commandSpecs). An unknown
 // command or option, a missing value or a stray argument is an InputError of one line.
 Args parse(int argc, char** argv);
+
+// The developer tools' command line (legacy_bench, volumes_bench, shadowlab-twins, csm_bench):
+// parses argv into `app`'s options. `--help`/`-h` prints the app's help (one line per option) on
+// stdout and returns false, and the caller exits with status 0; a CLI11 parse error (unknown
+// option, missing value, stray argument, ...) is an InputError of one line naming `--help`.
+// Validation that throws InputError inside the options' callbacks passes through unchanged.
+[[nodiscard]] bool parseTool(CLI::App& app, int argc, char** argv);
 
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
 void parseSize(const std::string& text, int& width, int& height);  // "800x600"

@@ -15,11 +15,13 @@
 // allocation), then the median of --repeat frames of the sum of the pass times (default
 // kSteadyFrames: 2 + 5). --quick: 512x384 and kQuickFrames (1 warm-up, median of 3; one timed
 // frame after the warm-up for a configuration slower than 400 ms).
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,50 +70,57 @@ RenderParams paramsFor(const Options& o, int mapSize, std::map<std::string, std:
   return p;
 }
 
-Options parseOptions(int argc, char** argv) {
+constexpr int kMaxTimedFrames = 1000;  // --repeat
+constexpr int kMaxWarmupFrames = 100;  // --warmup
+constexpr int kQuickWidth = 512;       // --quick window
+constexpr int kQuickHeight = 384;
+
+// The command line (see the head of this file); std::nullopt after --help.
+std::optional<Options> parseOptions(int argc, char** argv) {
   Options o;
-  auto value = [&](int& i) -> std::string {
-    if (i + 1 >= argc) throw InputError(std::string(argv[i]) + " needs a value");
-    return argv[++i];
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--quick") {
-      o.width = 512;
-      o.height = 384;
-      o.frames = kQuickFrames;
-    } else if (a == "--size") {
-      cli::parseSize(value(i), o.width, o.height);
-    } else if (a == "--repeat") {
-      o.frames.timed = cli::parsePositiveInt("--repeat", value(i), 1000);
-    } else if (a == "--warmup") {
-      const std::string v = value(i);
-      o.frames.warmup = v == "0" ? 0 : cli::parsePositiveInt("--warmup", v, 100);
-    } else if (a == "--scene") {
-      o.scene = value(i);
-    } else if (a == "--backend") {
-      const std::string b = value(i);
-      if (b == "osmesa")
-        o.backend = Backend::kOsmesa;
-      else if (b == "egl")
-        o.backend = Backend::kEgl;
-      else
-        throw InputError("--backend must be osmesa or egl, got '" + b + "'");
-    } else if (a == "--part") {
-      o.part = value(i);
-      if (o.part != "techniques" && o.part != "table1" && o.part != "ratio" && o.part != "all")
-        throw InputError("--part must be techniques, table1, ratio or all, got '" + o.part + "'");
-    } else if (a == "--param") {
-      const std::string kv = value(i);
-      const size_t eq = kv.find('=');
-      if (eq == std::string::npos || eq == 0)
-        throw InputError("--param needs key=value, got '" + kv + "'");
-      o.csmParams[kv.substr(0, eq)] = kv.substr(eq + 1);
-    } else if (a == "--csv") {
-      o.csv = value(i);
-    } else {
-      throw InputError("unknown option '" + a + "' (see the header of apps/csm_bench.cpp)");
-    }
+  bool quick = false;
+  std::string size, repeat, warmup, backend;
+  std::vector<std::string> params;
+  CLI::App app{"frame times of the filtered-shadow techniques and Annen et al. 2007 Table 1",
+               "csm_bench"};
+  app.add_flag("--quick", quick, "512x384 and the quick frame counts (kQuickFrames)");
+  app.add_option("--size", size, "window WxH [1024x768, the paper's]")->type_name("WxH");
+  app.add_option("--repeat", repeat, "timed frames per configuration, after the warm-up")
+      ->type_name("N");
+  app.add_option("--warmup", warmup, "warm-up frames per configuration (0 allowed)")
+      ->type_name("N");
+  app.add_option("--scene", o.scene, "built-in scene [brabec]")->type_name("S");
+  app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
+  app.add_option("--part", o.part, "techniques, table1, ratio or all [all]")->type_name("PART");
+  app.add_option("--csv", o.csv, "also write every row as CSV")->type_name("FILE");
+  app.add_option("--param", params, "key=value for modern.csm in --part ratio (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->type_size(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  if (!cli::parseTool(app, argc, argv)) return std::nullopt;
+  if (quick) {
+    o.width = kQuickWidth;
+    o.height = kQuickHeight;
+    o.frames = kQuickFrames;
+  }
+  if (!size.empty()) cli::parseSize(size, o.width, o.height);
+  if (!repeat.empty()) o.frames.timed = cli::parsePositiveInt("--repeat", repeat, kMaxTimedFrames);
+  if (!warmup.empty())
+    o.frames.warmup =
+        warmup == "0" ? 0 : cli::parsePositiveInt("--warmup", warmup, kMaxWarmupFrames);
+  if (!backend.empty()) {
+    if (backend != "osmesa" && backend != "egl")  // modern.* needs GLSL: not Mesa 7.8.2
+      throw InputError("--backend must be osmesa or egl, got '" + backend + "'");
+    o.backend = parseBackend(backend);
+  }
+  if (o.part != "techniques" && o.part != "table1" && o.part != "ratio" && o.part != "all")
+    throw InputError("--part must be techniques, table1, ratio or all, got '" + o.part + "'");
+  for (const std::string& kv : params) {
+    const size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--param needs key=value, got '" + kv + "'");
+    o.csmParams[kv.substr(0, eq)] = kv.substr(eq + 1);
   }
   return o;
 }
@@ -188,7 +197,9 @@ std::string fps(double ms) {
 }
 
 int run(int argc, char** argv) {
-  const Options o = parseOptions(argc, argv);
+  const std::optional<Options> parsed = parseOptions(argc, argv);
+  if (!parsed) return 0;  // --help
+  const Options& o = *parsed;
   const Scene scene = builtinScene(o.scene);
   std::ofstream csv;
   if (!o.csv.empty()) {

@@ -1,36 +1,41 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
 // paper's Octane VPro/8 frame rates. Prints a markdown table (docs/legacy.md).
 //   legacy_bench [--backend osmesa|reference] [--frames N] [--quick] [--technique T]
-#include <cstring>
+#include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "apps/cli.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "legacy_gl/benchmark.h"
 
+namespace {
+constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
+}
+
 int main(int argc, char** argv) {
   try {
     sl::legacy::BenchmarkOptions options;
+    std::string backend, frames;
     std::string only;  // --technique: keep the variants of one technique
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--backend" && i + 1 < argc) {
-        options.backend = sl::parseBackend(argv[++i]);
-      } else if (a == "--frames" && i + 1 < argc) {
-        options.frames.timed = std::stoi(argv[++i]);
-        if (options.frames.timed < 1) throw sl::InputError("--frames must be at least 1");
-      } else if (a == "--technique" && i + 1 < argc) {
-        only = argv[++i];
-      } else if (a == "--quick") {
-        options.frames = sl::kQuickFrames;
-      } else {
-        throw sl::InputError(
-            "usage: legacy_bench [--backend osmesa|reference] [--frames N] [--quick] "
-                             "[--technique legacy.ramp|legacy.pcf|legacy.fast-pcf]");
-      }
-    }
+    bool quick = false;
+    CLI::App app{"Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates (markdown)",
+                 "legacy_bench"};
+    app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
+        ->type_name("NAME");
+    app.add_option("--frames", frames, "timed frames per variant, after the warm-up frames")
+        ->type_name("N");
+    app.add_flag("--quick", quick, "the quick frame counts (core/frame_timing.h kQuickFrames)");
+    app.add_option("--technique", only, "only legacy.ramp, legacy.pcf or legacy.fast-pcf")
+        ->type_name("T");
+    if (!sl::cli::parseTool(app, argc, argv)) return 0;
+    if (!backend.empty()) options.backend = sl::parseBackend(backend);
+    if (quick) options.frames = sl::kQuickFrames;
+    if (!frames.empty())
+      options.frames.timed = sl::cli::parsePositiveInt("--frames", frames, kMaxTimedFrames);
+
     std::vector<sl::legacy::BenchmarkVariant> variants;
     for (const auto& v : sl::legacy::paperVariants())
       if (only.empty() || v.technique == only) variants.push_back(v);

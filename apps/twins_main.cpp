@@ -9,8 +9,10 @@
 // default (320x240, 256^2 map), judged against the pair's bound. Speed: each technique's median
 // frame time (sum of its timed passes after warm-up frames, core/frame_timing.h) at the paper's
 // configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "apps/cli.h"
@@ -41,37 +43,41 @@ std::vector<std::string> splitCommas(const std::string& s) {
   return out;
 }
 
-Options parse(int argc, char** argv) {
+constexpr int kMaxShadowMap = 1 << 16;  // texels; the GL maximum is checked once a context exists
+constexpr int kMaxFrames = 1000;        // timed frames per technique
+
+// The command line (see the head of this file); std::nullopt after --help.
+std::optional<Options> parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw InputError(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--size")
-      cli::parseSize(value(), o.width, o.height);
-    else if (a == "--shadow-map")
-      o.shadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
-    else if (a == "--bench-size")
-      cli::parseSize(value(), o.benchWidth, o.benchHeight);
-    else if (a == "--bench-shadow-map")
-      o.benchShadowMap = cli::parsePositiveInt(a, value(), 1 << 16);
-    else if (a == "--bench-scene")
-      o.benchScene = value();
-    else if (a == "--frames")
-      o.frames = cli::parsePositiveInt(a, value(), 1000);
-    else if (a == "--backend")
-      o.backend = parseBackend(value());
-    else if (a == "--scenes")
-      o.scenes = splitCommas(value());
-    else if (a == "--no-agreement")
-      o.agreement = false;
-    else if (a == "--no-bench")
-      o.bench = false;
-    else
-      throw InputError("unknown option " + a + " (see the head of apps/twins_main.cpp)");
-  }
+  std::string size, shadowMap, benchSize, benchShadowMap, frames, backend, scenes;
+  bool noAgreement = false, noBench = false;
+  CLI::App app{"the legacy/modern agreement table and the speed of each pair (markdown)",
+               "shadowlab-twins"};
+  app.add_option("--size", size, "agreement window WxH [320x240]")->type_name("WxH");
+  app.add_option("--shadow-map", shadowMap, "agreement shadow map side [256]")->type_name("N");
+  app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
+  app.add_option("--scenes", scenes, "agreement scenes, comma-separated [the equivalence scenes]")
+      ->type_name("a,b,c");
+  app.add_option("--bench-size", benchSize, "frame-time window WxH [800x600]")->type_name("WxH");
+  app.add_option("--bench-shadow-map", benchShadowMap, "frame-time shadow map side [512]")
+      ->type_name("N");
+  app.add_option("--bench-scene", o.benchScene, "frame-time scene [brabec]")->type_name("S");
+  app.add_option("--frames", frames, "timed frames per technique, after the warm-up [5]")
+      ->type_name("N");
+  app.add_flag("--no-agreement", noAgreement, "skip the agreement table");
+  app.add_flag("--no-bench", noBench, "skip the frame-time table");
+  if (!cli::parseTool(app, argc, argv)) return std::nullopt;
+  if (!size.empty()) cli::parseSize(size, o.width, o.height);
+  if (!shadowMap.empty())
+    o.shadowMap = cli::parsePositiveInt("--shadow-map", shadowMap, kMaxShadowMap);
+  if (!benchSize.empty()) cli::parseSize(benchSize, o.benchWidth, o.benchHeight);
+  if (!benchShadowMap.empty())
+    o.benchShadowMap = cli::parsePositiveInt("--bench-shadow-map", benchShadowMap, kMaxShadowMap);
+  if (!frames.empty()) o.frames = cli::parsePositiveInt("--frames", frames, kMaxFrames);
+  if (!backend.empty()) o.backend = parseBackend(backend);
+  if (!scenes.empty()) o.scenes = splitCommas(scenes);
+  o.agreement = !noAgreement;
+  o.bench = !noBench;
   return o;
 }
 
@@ -145,7 +151,9 @@ void benchTable(const Options& o) {
 }
 
 int run(int argc, char** argv) {
-  const Options o = parse(argc, argv);
+  const std::optional<Options> parsed = parse(argc, argv);
+  if (!parsed) return 0;  // --help
+  const Options& o = *parsed;
   if (o.agreement) agreementTable(o);
   if (o.agreement && o.bench) std::cout << "\n";
   if (o.bench) benchTable(o);

@@ -11,9 +11,10 @@
 // S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
 #include "modern/volumes_bench.h"
 
-#include <cstdlib>
+#include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "apps/cli.h"
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
@@ -21,6 +22,9 @@
 
 namespace {
 using namespace sl;
+
+constexpr int kMaxShadowMap = 1 << 16;  // texels; the GL maximum is checked once a context exists
+constexpr int kMaxFrames = 1000;        // timed frames: more would take hours on llvmpipe
 
 // docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
 // smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
@@ -73,32 +77,33 @@ int main(int argc, char** argv) {
     params.shadowMapTexels = 1024;
     int frames = kTimedFrames;  // after kWarmupFrames (core/frame_timing.h)
     std::vector<std::string> techniques;
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      const auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw InputError(arg + " needs a value");
-        return argv[++i];
-      };
-      if (arg == "--scene") {
-        sceneName = value();
-      } else if (arg == "--size") {
-        const std::string v = value();
-        if (std::sscanf(v.c_str(), "%dx%d", &params.width, &params.height) != 2)
-          throw InputError("--size wants WxH, got '" + v + "'");
-      } else if (arg == "--shadow-map") {
-        params.shadowMapTexels = std::atoi(value().c_str());
-      } else if (arg == "--frames") {
-        frames = std::atoi(value().c_str());
-      } else if (arg == "--backend") {
-        params.backend = parseBackend(value());
-      } else if (arg == "--doc-images") {
-        writeDocImages(value());
-        return 0;
-      } else if (arg == "--technique") {
-        techniques.push_back(value());
-      } else {
-        throw InputError("unknown option '" + arg + "'");
-      }
+    std::string size, shadowMap, framesText, backend, docImages;
+    CLI::App app{"frame times and overdraw counters of the shadow-volume techniques (JSON lines)",
+                 "volumes_bench"};
+    app.add_option("--scene", sceneName, "cubes, a built-in scene or a scene file [cubes]")
+        ->type_name("S");
+    app.add_option("--size", size, "window WxH [800x600]")->type_name("WxH");
+    app.add_option("--shadow-map", shadowMap, "shadow map side in texels [1024]")->type_name("N");
+    app.add_option("--frames", framesText, "timed frames per technique, after the warm-up")
+        ->type_name("N");
+    app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
+    app.add_option("--technique", techniques,
+                   "T or T:key=value,... (repeatable) [hw, hybrid, volumes, smoothies]")
+        ->type_name("T")
+        ->type_size(1)
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--doc-images", docImages, "write the three images of docs/volumes.md to DIR")
+        ->type_name("DIR");
+    if (!cli::parseTool(app, argc, argv)) return 0;
+    if (!size.empty()) cli::parseSize(size, params.width, params.height);
+    if (!shadowMap.empty())
+      params.shadowMapTexels = cli::parsePositiveInt("--shadow-map", shadowMap, kMaxShadowMap);
+    if (!framesText.empty()) frames = cli::parsePositiveInt("--frames", framesText, kMaxFrames);
+    if (!backend.empty()) params.backend = parseBackend(backend);
+    if (!docImages.empty()) {
+      writeDocImages(docImages);
+      return 0;
     }
     if (techniques.empty())
       techniques = {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"};

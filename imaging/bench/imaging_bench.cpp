@@ -10,6 +10,8 @@
 // Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu] [--only TEXT]
 #include <time.h>
 
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -290,12 +292,29 @@ std::vector<double> measureStages(int w, int h, int reps, double base) {
 
 }  // namespace
 
+// Exit status for bad command-line input (the project's contract: one line on stderr, 2).
+constexpr int kBadInputStatus = 2;
+
 int run(int argc, char** argv) {
   bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
-    if (std::strcmp(argv[i], "--cpu") == 0) gCpuClock = true;
-    if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) gOnly = argv[++i];
+  // CLI11 directly: imaging/ does not depend on apps/ (apps/cli.h parseTool does the same).
+  CLI::App app{"speed of the imaging emulation as ratios to memcpy (markdown)", "imaging_bench"};
+  app.add_flag("--quick", quick, "best of 2 instead of 5");
+  app.add_flag("--cpu", gCpuClock, "time with the process CPU clock instead of the wall clock");
+  app.add_option("--only", gOnly, "only the operations whose name contains TEXT")
+      ->type_name("TEXT")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.set_help_flag("-h,--help", "print this help and exit");  // listed last, as in the others
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    std::fprintf(stderr, "imaging_bench: %s (try: imaging_bench --help)\n", what.c_str());
+    return kBadInputStatus;
   }
   const int reps = quick ? 2 : kRepetitions;
   const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};

@@ -41,16 +41,19 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-CommandResult shadowlab(const std::string& args) {
+CommandResult runBinary(const std::string& binary, const std::string& args) {
   const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
-  const std::string cmd =
-      std::string(SHADOWLAB_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string cmd = binary + " " + args + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+CommandResult shadowlab(const std::string& args) {
+  return runBinary(SHADOWLAB_BINARY, args);
 }
 
 // Input files are written while the test list is built (before any test runs), into a
@@ -242,6 +245,116 @@ INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()), [](
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return n;
 });
+
+// The developer tools parse their command lines with CLI11 as the shadowlab command does (issue
+// 14 item 7): --help lists every option, and bad input is one line on stderr with exit status
+// 2, found before any benchmark runs (these cases take milliseconds, not the benchmark's minutes).
+struct Tool {
+  const char* name;
+  const char* binary;
+  std::vector<std::string> options;  // every option the tool's header comment documents
+};
+
+const std::vector<Tool>& tools() {
+  static const std::vector<Tool> kTools = {
+      {"legacy_bench", LEGACY_BENCH_BINARY, {"--backend", "--frames", "--quick", "--technique"}},
+      {"volumes_bench",
+       VOLUMES_BENCH_BINARY,
+       {"--scene", "--size", "--shadow-map", "--frames", "--backend", "--technique",
+        "--doc-images"}},
+      {"shadowlab-twins",
+       TWINS_BINARY,
+       {"--size", "--shadow-map", "--backend", "--scenes", "--bench-size", "--bench-shadow-map",
+        "--bench-scene", "--frames", "--no-agreement", "--no-bench"}},
+      {"csm_bench",
+       CSM_BENCH_BINARY,
+       {"--quick", "--size", "--repeat", "--warmup", "--scene", "--backend", "--part", "--csv",
+        "--param"}},
+      {"imaging_bench", IMAGING_BENCH_BINARY, {"--quick", "--cpu", "--only"}},
+  };
+  return kTools;
+}
+
+TEST(ToolCli, EveryToolHasHelp) {
+  for (const Tool& tool : tools())
+    for (const char* flag : {"--help", "-h"}) {
+      const CommandResult r = runBinary(tool.binary, flag);
+      EXPECT_EQ(r.status, 0) << tool.name << " " << flag << ": " << r.err;
+      EXPECT_TRUE(r.err.empty()) << tool.name << " " << flag << ": " << r.err;
+      EXPECT_NE(r.out.find(tool.name), std::string::npos) << tool.name << ": " << r.out;
+      for (const std::string& option : tool.options) {
+        const size_t at = r.out.find("  " + option + " ");  // "--size", not "--bench-size"
+        EXPECT_NE(at, std::string::npos) << tool.name << " --help lacks " << option;
+        if (at == std::string::npos) continue;
+        // One help line per option: the option's line carries its description.
+        const size_t eol = r.out.find('\n', at);
+        const std::string line = r.out.substr(at, eol - at);
+        EXPECT_GT(line.size(), option.size() + 10) << tool.name << ": '" << line << "'";
+      }
+    }
+  // --help wins over the other arguments: nothing is benchmarked (this would take minutes).
+  const CommandResult r = runBinary(LEGACY_BENCH_BINARY, "--technique legacy.pcf --help");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("| variant"), std::string::npos) << r.out;
+}
+
+struct BadToolInput {
+  const char* what;
+  const char* binary;
+  std::string args;
+};
+
+class ToolBadInput : public ::testing::TestWithParam<BadToolInput> {};
+
+TEST_P(ToolBadInput, OneLineOnStderrExitTwoNothingOnStdout) {
+  const CommandResult r = runBinary(GetParam().binary, GetParam().args);
+  EXPECT_EQ(r.status, 2) << GetParam().what << ": " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << GetParam().what << ": " << r.out;
+}
+
+std::vector<BadToolInput> badToolInputs() {
+  return {
+      {"legacy frames not a number", LEGACY_BENCH_BINARY, "--frames five"},
+      {"legacy frames zero", LEGACY_BENCH_BINARY, "--frames 0"},
+      {"legacy frames trailing junk", LEGACY_BENCH_BINARY, "--frames 3x"},
+      {"legacy unknown option", LEGACY_BENCH_BINARY, "--fast"},
+      {"legacy stray argument", LEGACY_BENCH_BINARY, "--quick extra"},
+      {"legacy missing value", LEGACY_BENCH_BINARY, "--frames"},
+      {"legacy bad backend", LEGACY_BENCH_BINARY, "--backend vulkan"},
+      {"legacy unknown technique", LEGACY_BENCH_BINARY, "--technique legacy.nothing"},
+      {"volumes frames not a number", VOLUMES_BENCH_BINARY, "--frames many"},
+      {"volumes shadow map zero", VOLUMES_BENCH_BINARY, "--shadow-map 0"},
+      {"volumes malformed size", VOLUMES_BENCH_BINARY, "--size 800by600"},
+      {"volumes unknown option", VOLUMES_BENCH_BINARY, "--colour red"},
+      {"volumes stray argument", VOLUMES_BENCH_BINARY, "--technique modern.hw extra"},
+      {"twins frames not a number", TWINS_BINARY, "--frames 1.5"},
+      {"twins frames out of range", TWINS_BINARY, "--frames 100000"},
+      {"twins negative shadow map", TWINS_BINARY, "--bench-shadow-map -512"},
+      {"twins unknown option", TWINS_BINARY, "--no-table"},
+      {"twins stray argument", TWINS_BINARY, "--no-bench brabec"},
+      {"csm repeat not a number", CSM_BENCH_BINARY, "--repeat ten"},
+      {"csm negative warmup", CSM_BENCH_BINARY, "--warmup -1"},
+      {"csm malformed size", CSM_BENCH_BINARY, "--size 0x768"},
+      {"csm unknown part", CSM_BENCH_BINARY, "--part figures"},
+      {"csm reference backend", CSM_BENCH_BINARY, "--backend reference"},
+      {"csm malformed param", CSM_BENCH_BINARY, "--param order"},
+      {"csm unknown option", CSM_BENCH_BINARY, "--order 8"},
+      {"csm stray argument", CSM_BENCH_BINARY, "--quick table1"},
+      {"imaging unknown option", IMAGING_BENCH_BINARY, "--fast"},
+      {"imaging stray argument", IMAGING_BENCH_BINARY, "--quick extra"},
+      {"imaging missing value", IMAGING_BENCH_BINARY, "--only"},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(All, ToolBadInput, ::testing::ValuesIn(badToolInputs()),
+                         [](const auto& info) {
+                           std::string n = info.param.what;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace sl
