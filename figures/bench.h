@@ -114,7 +114,8 @@ struct BenchResult {
 //                kMinificationMapTexels map: many shadow-map texels of thin geometry fall in
 //                one pixel, Annen Fig. 10's setting ("when a scene is moved far away from the
 //                camera"); modern.csm with Fig. 10's filtering (tri-linear, 5x5 kernel)
-//   fill-bound   assets/scenes/fill-bound.json when it exists (hybrid vs volumes, Chan §3.3);
+//   fill-bound   assets/scenes/fill-bound.json when it exists (hybrid vs volumes, Chan §3.3),
+//                at kFillBoundWidth x kFillBoundHeight with a kFillBoundMapTexels map;
 //                otherwise sceneNotes["fill-bound"] = "scene not present"
 constexpr const char* kMinificationScene = "trees";
 constexpr float kFarCameraFactor = 3.0f;
@@ -125,6 +126,10 @@ constexpr const char* kCsmFig10Blur = "5";
 constexpr const char* kCsmFig10Variant = "blur=5";
 constexpr const char* kFarSceneSuffix = "-far";
 constexpr const char* kFillBoundScene = "fill-bound";
+// The fill-bound scene is measured in Chan's setting (§3.1 step 1: "a low-resolution shadow
+// map"; Fig. 3-11: full-window frames), not the quick bench's small window: 800x600, 256².
+constexpr int kFillBoundWidth = 800, kFillBoundHeight = 600;
+constexpr int kFillBoundMapTexels = 256;
 Scene farScene(const Scene& scene);
 // The smoothie width t that makes a smoothie's remapped ramp as wide as the true penumbra of
 // the scene's spherical light (Chan 2004 §4.2, Eq. 4.1; see bench.cpp):

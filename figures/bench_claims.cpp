@@ -217,7 +217,10 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         const bool same = inBand.shareAboveHalf < kSameAtSilhouettes;
         const bool cheaper = hybrid->frameMs < volumes->frameMs;
         c.setup =
-            "scene fill-bound (assets/scenes/fill-bound.json), default variants; masks "
+            "scene fill-bound (assets/scenes/fill-bound.json: 24 stacked floors, volume overdraw "
+            "about 24) at " + std::to_string(kFillBoundWidth) + "x" +
+            std::to_string(kFillBoundHeight) + " with a " + std::to_string(kFillBoundMapTexels) +
+            "² map (Chan §3.1 step 1, Fig. 3-11), default variants; masks "
             "compared with each other within 2 pixels of the volumes' shadow edges "
             "(same = under 1% of those pixels differ by > 0.5); median frame times";
         c.measured =
