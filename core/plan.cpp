@@ -304,9 +304,15 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
         params.extra.count("filtering") ? params.extra.at("filtering") : "trilinear";
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
     const std::string rho = fixed(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
-    if (filtering != "trilinear")
+    // Tri-linear and anisotropic filtering read the mip chain (modern/prefiltered_maps.cpp);
+    // mipmaps=always builds it whatever the view does.
+    const bool readsMipChain = filtering == "trilinear" || filtering == "anisotropic";
+    const bool alwaysBuilt = params.extra.count("mipmaps") && params.extra.at("mipmaps") == "always";
+    if (!readsMipChain)
       plan.resources.push_back(
           {"mip chain", false, "filtering=" + filtering + " reads level 0 only"});
+    else if (alwaysBuilt)
+      plan.resources.push_back({"mip chain", true, "mipmaps=always (up to " + rho + ")"});
     else if (plan.maxShadowTexelsPerPixel <= 1.0)
       plan.resources.push_back(
           {"mip chain", false, "the view never minifies the map (at most " + rho + ")"});

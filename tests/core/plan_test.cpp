@@ -182,6 +182,19 @@ TEST(Plan, MipChainOnlyWhenTheViewMinifies) {
     // spotlight's own perspective across the plane: 2% covers the rounding of the sampling.
     EXPECT_NEAR(plan.maxShadowTexelsPerPixel, expected, 0.02 * expected) << "map " << n;
     EXPECT_EQ(item(plan.resources, "mip chain")->kept, expected > 1.0) << "map " << n;
+    // Anisotropic filtering reads the chain as tri-linear does; bilinear reads level 0 only;
+    // mipmaps=always keeps it whatever the view.
+    RenderParams aniso = p;
+    aniso.extra["filtering"] = "anisotropic";
+    EXPECT_EQ(item(planFrame(s, named("modern.csm"), aniso).resources, "mip chain")->kept,
+              expected > 1.0)
+        << "map " << n;
+    RenderParams bilinear = p;
+    bilinear.extra["filtering"] = "bilinear";
+    EXPECT_FALSE(item(planFrame(s, named("modern.csm"), bilinear).resources, "mip chain")->kept);
+    RenderParams always = p;
+    always.extra["mipmaps"] = "always";
+    EXPECT_TRUE(item(planFrame(s, named("modern.csm"), always).resources, "mip chain")->kept);
   }
 }
 
