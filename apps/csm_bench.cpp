@@ -125,11 +125,6 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   return o;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 // modern.csm / modern.hw in one run, frames interleaved (see the header).
 void runRatio(const Options& o) {
   constexpr int kBenchMap = 512;  // RenderParams' default, what shadowlab bench uses

@@ -45,25 +45,22 @@ void writeDocImages(const std::string& dir) {
   writePng(dir + "/volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png", sideBySide(crops));
   p.shadowMapTexels = 1024;
   p.capturePasses = true;
-  const Scene cubes = loadScene("cubes");
-  const Frame v = renderTechnique(findTechnique("modern.volumes"), cubes, p);
-  const Frame h = renderTechnique(findTechnique("modern.hybrid"), cubes, p);
-  std::vector<Image> panels = {v.color};
-  for (const PassImage& i : v.intermediates)
-    if (i.name == "3-volume-overdraw") panels.push_back(i.image);
-  for (const PassImage& i : h.intermediates)
-    if (i.name == "6-classification") panels.push_back(i.image);
-  writePng(dir + "/volumes-cubes-image-overdraw-classification.png", sideBySide(panels));
-  // fill-bound (Chan's setting): the image, its volume overdraw and the classification.
-  const Scene fillBound = loadScene("fill-bound");
-  const Frame fv = renderTechnique(findTechnique("modern.volumes"), fillBound, p);
-  const Frame fh = renderTechnique(findTechnique("modern.hybrid"), fillBound, p);
-  std::vector<Image> fillPanels = {fv.color};
-  for (const PassImage& i : fv.intermediates)
-    if (i.name == "3-volume-overdraw") fillPanels.push_back(i.image);
-  for (const PassImage& i : fh.intermediates)
-    if (i.name == "6-classification") fillPanels.push_back(i.image);
-  writePng(dir + "/volumes-fill-bound-image-overdraw-classification.png", sideBySide(fillPanels));
+  // A scene's image, its volume overdraw and the hybrid's classification, side by side.
+  const auto imageOverdrawClassification = [&](const std::string& sceneName,
+                                               const std::string& file) {
+    const Scene scene = loadScene(sceneName);
+    const Frame v = renderTechnique(findTechnique("modern.volumes"), scene, p);
+    const Frame h = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+    std::vector<Image> panels = {v.color};
+    for (const PassImage& i : v.intermediates)
+      if (i.name == "3-volume-overdraw") panels.push_back(i.image);
+    for (const PassImage& i : h.intermediates)
+      if (i.name == "6-classification") panels.push_back(i.image);
+    writePng(dir + "/" + file, sideBySide(panels));
+  };
+  imageOverdrawClassification("cubes", "volumes-cubes-image-overdraw-classification.png");
+  // fill-bound (Chan's setting).
+  imageOverdrawClassification("fill-bound", "volumes-fill-bound-image-overdraw-classification.png");
 }
 }  // namespace
 

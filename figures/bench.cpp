@@ -25,12 +25,14 @@
 #include <glm/glm.hpp>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "apps/registry.h"
 #include "core/errors.h"
+#include "core/frame_timing.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
@@ -55,17 +57,11 @@ constexpr int kFullWarmup = 2, kFullTimed = 7;
 constexpr int kBandRadiusPixels = 2;
 // A pixel of the reference's umbra "leaks" when the technique shows it more than 20% lit.
 constexpr float kLeakThreshold = 0.2f;
-// --quick: a variant whose warm-up frame takes longer than this is timed once, not 3 times
-// (CSM on llvmpipe takes 0.3-2 s per frame; its median of 3 would take the whole budget).
+// --quick: a variant whose first timed frame takes longer than this is timed over that frame
+// alone, not 3 (CSM on llvmpipe takes 0.3-2 s per frame; its median of 3 would take the whole
+// budget).
 constexpr double kSlowFrameMs = 250.0;
 constexpr int kPlannerShadowMapTexels = 2048;  // the planner scene's map (what a skip saves)
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
@@ -228,28 +224,16 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
     auto context = GlContext::create(contextFor(t, v.params));
     checkParams(t, v.params, context->caps().maxTextureSize);
     if (t.needs.profile == Profile::kCompatibility) imaging::install(*context);
+    // The steady-state median (core/frame_timing.h) on this context, which the temporal frame
+    // below reuses; quick mode's budget times a slow variant over one frame.
     Frame last;
-    std::vector<double> totals, walls;
-    std::map<std::string, std::vector<double>> perPass;
-    std::vector<std::string> passOrder;
-    int frames = warmup + timed;
-    for (int i = 0; i < frames; ++i) {
-      const double start = nowMilliseconds();
-      last = t.render(*context, scene, v.params);
-      const double wall = nowMilliseconds() - start;
-      // A variant slower than kSlowFrameMs after warm-up is timed once (quick mode's budget).
-      if (quick && i == warmup - 1 && wall > kSlowFrameMs) frames = warmup + 1;
-      if (i < warmup) continue;
-      totals.push_back(last.totalMilliseconds());
-      walls.push_back(wall);
-      for (const PassTime& p : last.passes) {
-        if (!perPass.count(p.name)) passOrder.push_back(p.name);
-        perPass[p.name].push_back(p.milliseconds);
-      }
-    }
-    row.frameMs = median(totals);
-    row.wallMs = median(walls);
-    for (const std::string& name : passOrder) row.passes.push_back({name, median(perPass[name])});
+    const FrameCounts counts{warmup, timed,
+                             quick ? kSlowFrameMs : std::numeric_limits<double>::infinity(), 1};
+    const SteadyTiming timing =
+        timeSteadyState([&] { return t.render(*context, scene, v.params); }, counts, &last);
+    row.frameMs = timing.frameMs;
+    row.wallMs = timing.wallMs;
+    row.passes = timing.passes;
     row.counters = last.counters;
     if (!allFinite(last.visibility)) throw GlError("visibility mask has NaN or Inf");
     measureAgainstReferences(row, last.visibility, refs);

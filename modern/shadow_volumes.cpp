@@ -132,50 +132,43 @@ void countVolumesZFail(const SceneVolumes& volumes, const Program& volumeProgram
   glDisable(GL_STENCIL_TEST);
 }
 
-void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit) {
+namespace {
+// One shading draw of the whole scene where the stencil test (func, ref, mask) passes, with
+// `visibility` as the shader's light term. Depth test LEQUAL against the camera pass's depth,
+// no depth or stencil writes.
+void drawWhereStencil(const GpuScene& gpu, const Program& shadeProgram, GLenum func, GLuint ref,
+                      GLuint mask, float visibility) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glStencilFunc(func, GLint(ref), mask);
   shadeProgram.use();
-  const auto all = [](const Object&) { return true; };
-  const auto perObject = [&](const Object& o) { setObjectUniforms(shadeProgram, o); };
-  // Everitt–Kilgard: in shadow where the count is non-zero. With a computation mask, every
-  // masked pixel is drawn as shadowed first and the lit ones overwrite it below.
-  if (maskBit == 0)
-    glStencilFunc(GL_NOTEQUAL, 0, kStencilCountBits);
-  else
-    glStencilFunc(GL_EQUAL, GLint(maskBit), maskBit);
-  shadeProgram.set("uVisibility", 0.0f);
-  gpu.draw(all, perObject);
-  // ...and lit where it is zero.
-  glStencilFunc(GL_EQUAL, GLint(maskBit), kStencilCountBits | maskBit);
-  shadeProgram.set("uVisibility", 1.0f);
-  gpu.draw(all, perObject);
-  glDisable(GL_STENCIL_TEST);
-  glStencilMask(0xFF);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
-}
-
-void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit) {
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_STENCIL_TEST);
-  glStencilMask(0);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  glStencilFunc(GL_EQUAL, GLint(maskBit), kStencilCountBits | maskBit);
-  shadeProgram.use();
-  shadeProgram.set("uVisibility", 1.0f);
+  shadeProgram.set("uVisibility", visibility);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(shadeProgram, o); });
   glDisable(GL_STENCIL_TEST);
   glStencilMask(0xFF);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
+}
+}  // namespace
+
+void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit) {
+  // Everitt–Kilgard: in shadow where the count is non-zero. With a computation mask, every
+  // masked pixel is drawn as shadowed first and the lit ones overwrite it below.
+  if (maskBit == 0)
+    drawWhereStencil(gpu, shadeProgram, GL_NOTEQUAL, 0, kStencilCountBits, 0.0f);
+  else
+    drawWhereStencil(gpu, shadeProgram, GL_EQUAL, maskBit, maskBit, 0.0f);
+  // ...and lit where it is zero.
+  shadeLitFromStencil(gpu, shadeProgram, maskBit);
+}
+
+void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit) {
+  drawWhereStencil(gpu, shadeProgram, GL_EQUAL, maskBit, kStencilCountBits | maskBit, 1.0f);
 }
 
 double countFragmentInvocations(const std::function<void()>& draws) {
