@@ -404,9 +404,10 @@ TEST(HybridShadows, TileMaskGivesTheStencilMasksImageAndCullsWholeTiles) {
       EXPECT_LT(tiles.counters.at("mask_tile_fraction"), 0.5);
       EXPECT_LT(tiles.counters.at("tile_overdraw"), 0.5 * tiles.counters.at("volume_overdraw"));
       if (tiles.counters.count("volume_pass_fs_invocations") &&
-          stencil.counters.count("volume_pass_fs_invocations"))
+          stencil.counters.count("volume_pass_fs_invocations")) {
         EXPECT_LE(tiles.counters.at("volume_pass_fs_invocations"),
                   stencil.counters.at("volume_pass_fs_invocations"));
+      }
     }
   }
 }
