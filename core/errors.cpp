@@ -1,11 +1,19 @@
 #include "core/errors.h"
 
+#include <sstream>
 #include <string>
 
 #include "core/gl.h"
 
 namespace sl {
 using namespace sl::gl;
+
+std::string formatNumber(double value) {
+  std::ostringstream s;
+  s.precision(6);
+  s << value;
+  return s.str();
+}
 
 const char* glErrorName(unsigned error) {
   switch (error) {

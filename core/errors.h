@@ -21,6 +21,9 @@ struct GlError : std::runtime_error {
 // drains every queued error so the next pass starts clean.
 void checkGl(const char* pass);
 
+// A number for a message: shortest form that reads back (0.5, 1e+09, 8e-07), no trailing zeros.
+std::string formatNumber(double value);
+
 // Name of a GL error enum, e.g. "GL_INVALID_ENUM".
 const char* glErrorName(unsigned error);
 

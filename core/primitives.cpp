@@ -2,13 +2,34 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
+#include <string>
 #include <tuple>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/errors.h"
+
 namespace sl {
 namespace {
+
+// The generators' argument checks: one line naming the primitive, the parameter and the bound.
+void checkCount(const char* primitive, const char* parameter, int value, int lo, int hi) {
+  if (value < lo || value > hi)
+    throw InputError(std::string(primitive) + " " + parameter + " must be in [" +
+                     std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+                     std::to_string(value));
+}
+
+void checkLength(const char* primitive, const char* parameter, float value) {
+  if (!(value > 0.0f && value <= kMaxPrimitiveLength)) {
+    std::ostringstream s;
+    s << primitive << " " << parameter << " must be in (0, " << kMaxPrimitiveLength << "], got "
+      << value;
+    throw InputError(s.str());
+  }
+}
 
 void addQuad(Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 n) {
   const unsigned base = unsigned(m.positions.size());
@@ -22,8 +43,10 @@ void addQuad(Mesh& m, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::v
 }  // namespace
 
 Mesh makePlane(float sizeX, float sizeZ, int divisions) {
+  checkLength("plane", "width", sizeX);
+  checkLength("plane", "depth", sizeZ);
+  checkCount("plane", "divisions", divisions, 1, kMaxPlaneDivisions);
   Mesh m;
-  divisions = std::max(divisions, 1);
   for (int j = 0; j <= divisions; ++j)
     for (int i = 0; i <= divisions; ++i) {
       m.positions.push_back({sizeX * (float(i) / divisions - 0.5f), 0.0f,
@@ -41,6 +64,8 @@ Mesh makePlane(float sizeX, float sizeZ, int divisions) {
 }
 
 Mesh makeQuad(float sizeX, float sizeY) {
+  checkLength("quad", "width", sizeX);
+  checkLength("quad", "height", sizeY);
   Mesh m;
   const float x = 0.5f * sizeX, y = 0.5f * sizeY;
   addQuad(m, {-x, -y, 0}, {x, -y, 0}, {x, y, 0}, {-x, y, 0}, {0, 0, 1});
@@ -48,6 +73,9 @@ Mesh makeQuad(float sizeX, float sizeY) {
 }
 
 Mesh makeBox(const glm::vec3& size) {
+  checkLength("box", "extent x", size.x);
+  checkLength("box", "extent y", size.y);
+  checkLength("box", "extent z", size.z);
   Mesh m;
   const glm::vec3 h = 0.5f * size;
   const glm::vec3 p[8] = {{-h.x, -h.y, -h.z}, {h.x, -h.y, -h.z}, {h.x, h.y, -h.z},
@@ -64,6 +92,9 @@ Mesh makeBox(const glm::vec3& size) {
 }
 
 Mesh makeSphere(float radius, int slices, int stacks) {
+  checkLength("sphere", "radius", radius);
+  checkCount("sphere", "slices", slices, kMinSphereSlices, kMaxSphereSlices);
+  checkCount("sphere", "stacks", stacks, kMinSphereStacks, kMaxSphereStacks);
   Mesh m;
   // Poles are single vertices so that the mesh is closed (no degenerate seams).
   m.positions.push_back({0, radius, 0});
@@ -96,6 +127,9 @@ Mesh makeSphere(float radius, int slices, int stacks) {
 }
 
 Mesh makeCylinder(float radius, float height, int slices) {
+  checkLength("cylinder", "radius", radius);
+  checkLength("cylinder", "height", height);
+  checkCount("cylinder", "slices", slices, kMinCylinderSlices, kMaxCylinderSlices);
   Mesh m;
   const float h = 0.5f * height;
   // side: separate vertices so the caps keep flat normals; closedness is judged on positions
@@ -126,6 +160,10 @@ Mesh makeCylinder(float radius, float height, int slices) {
 }
 
 Mesh makeTorus(float major, float minor, int rings, int sides) {
+  checkLength("torus", "major", major);
+  checkLength("torus", "minor", minor);
+  checkCount("torus", "rings", rings, kMinTorusSegments, kMaxTorusSegments);
+  checkCount("torus", "sides", sides, kMinTorusSegments, kMaxTorusSegments);
   Mesh m;
   for (int j = 0; j < rings; ++j) {
     const float u = 2.0f * glm::pi<float>() * float(j) / rings;
@@ -160,9 +198,11 @@ void appendMesh(Mesh& a, const Mesh& b, const glm::mat4& transform) {
 }
 
 Mesh makeFence(float length, float height, int pickets) {
+  checkLength("fence", "length", length);
+  checkLength("fence", "height", height);
+  checkCount("fence", "pickets", pickets, 1, kMaxFencePickets);
   Mesh m;
   m.closed = true;
-  pickets = std::max(pickets, 1);
   const float spacing = length / pickets;
   const float picketWidth = 0.45f * spacing;
   const float depth = 0.05f * height;
@@ -178,6 +218,7 @@ Mesh makeFence(float length, float height, int pickets) {
 }
 
 Mesh makeTree(float height) {
+  checkLength("tree", "height", height);
   Mesh m;
   m.closed = true;
   const float trunk = 0.45f * height;
@@ -251,11 +292,13 @@ void addBranch(Mesh& m, const glm::vec3& base, const glm::vec3& direction, float
 }  // namespace
 
 Mesh makeBranchedTree(float height, int levels, unsigned seed) {
+  checkLength("branched tree", "height", height);
+  checkCount("branched tree", "levels", levels, 0, kMaxTreeLevels);
   Mesh m;
   m.closed = true;
   unsigned state = seed * 2654435761u + 1u;
   addBranch(m, {0, 0, 0}, {0, 1, 0}, kTrunkShare * height, kTrunkRadiusShare * height, 0,
-            std::max(levels, 0), kLeafShare * height, state);
+            levels, kLeafShare * height, state);
   return m;
 }
 

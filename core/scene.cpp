@@ -14,6 +14,9 @@ namespace {
 constexpr float kMinNearOverFar = 1e-4f;
 // Fitted depth ranges are widened by this share so that boundary geometry is not clipped.
 constexpr float kDepthRangeMargin = 0.02f;
+// A scene flat in light space (one receiver facing the light) still gets a depth range of this
+// share of its distance: without it near == far in float and the projection divides by zero.
+constexpr float kMinDepthSpanShare = 1e-3f;
 
 bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -79,7 +82,7 @@ DepthRange lightDepthRange(const Scene& scene) {
     zMin = 0.1f;
     zMax = 1.0f;
   }
-  const float span = std::max(zMax - std::max(zMin, 0.0f), 1e-6f);
+  const float span = std::max(zMax - std::max(zMin, 0.0f), kMinDepthSpanShare * zMax);
   float farPlane = zMax + kDepthRangeMargin * span;
   float nearPlane = std::max(zMin - kDepthRangeMargin * span, farPlane * kMinNearOverFar);
   r.nearPlane = light.nearPlane.value_or(nearPlane);
@@ -92,6 +95,44 @@ glm::mat4 lightProjection(const Scene& scene) {
   return glm::perspective(glm::radians(scene.light.coneDegrees), 1.0f, r.nearPlane, r.farPlane);
 }
 
+namespace {
+
+// One mesh's own consistency: what every technique indexes without checking again.
+void validateMesh(const Mesh& mesh, const std::string& where) {
+  if (mesh.indices.empty()) throw InputError(where + " has no triangles");
+  if (mesh.indices.size() % 3 != 0)
+    throw InputError(where + " has " + std::to_string(mesh.indices.size()) +
+                     " indices, not a multiple of 3");
+  if (mesh.normals.size() != mesh.positions.size())
+    throw InputError(where + " has " + std::to_string(mesh.normals.size()) + " normals for " +
+                     std::to_string(mesh.positions.size()) + " positions");
+  const size_t n = mesh.positions.size();
+  for (unsigned index : mesh.indices)
+    if (index >= n)
+      throw InputError(where + " has vertex index " + std::to_string(index) + " of " +
+                       std::to_string(n) + " vertices");
+  for (size_t i = 0; i < n; ++i)
+    if (!finite(mesh.positions[i]) || !finite(mesh.normals[i]))
+      throw InputError(where + " has a non-finite vertex");
+}
+
+// `up` must be a direction that is not (nearly) parallel to the view direction.
+void validateUp(const glm::vec3& up, const glm::vec3& from, const glm::vec3& to,
+                const std::string& what) {
+  const float length = glm::length(up);
+  if (!(length > 0.0f)) throw InputError(what + " must not be [0, 0, 0]");
+  const glm::vec3 view = glm::normalize(to - from);
+  if (glm::length(glm::cross(up / length, view)) < kMinUpViewSine)
+    throw InputError(what + " is parallel to the view direction (target - position)");
+}
+
+bool withinCoordinateCap(const glm::vec3& v) {
+  return finite(v) && std::fabs(v.x) <= kMaxSceneCoordinate &&
+         std::fabs(v.y) <= kMaxSceneCoordinate && std::fabs(v.z) <= kMaxSceneCoordinate;
+}
+
+}  // namespace
+
 void validateScene(const Scene& scene) {
   const std::string where = "scene '" + scene.name + "': ";
   if (scene.objects.empty()) throw InputError(where + "has no objects");
@@ -100,6 +141,7 @@ void validateScene(const Scene& scene) {
     throw InputError(where + "camera has a non-finite vector");
   if (glm::length(c.target - c.position) <= 0.0f)
     throw InputError(where + "camera position equals its target");
+  validateUp(c.up, c.position, c.target, where + "camera.up");
   if (!(c.fovyDegrees > 0.0f && c.fovyDegrees < 180.0f))
     throw InputError(where + "camera fov must be in (0, 180) degrees");
   if (!(c.nearPlane > 0.0f && c.farPlane > c.nearPlane && std::isfinite(c.farPlane)))
@@ -109,6 +151,9 @@ void validateScene(const Scene& scene) {
     throw InputError(where + "light has a non-finite vector");
   if (glm::length(l.target - l.position) <= 0.0f)
     throw InputError(where + "light position equals its target");
+  // A light `up` parallel to the view is replaced in lightView (any side vector will do for a
+  // square frustum); a zero one has no direction at all.
+  if (!(glm::length(l.up) > 0.0f)) throw InputError(where + "light.up must not be [0, 0, 0]");
   if (!(l.coneDegrees > 0.0f && l.coneDegrees < 180.0f))
     throw InputError(where + "light cone must be in (0, 180) degrees");
   if (l.nearPlane && !(*l.nearPlane > 0.0f && std::isfinite(*l.nearPlane)))
@@ -119,12 +164,38 @@ void validateScene(const Scene& scene) {
     throw InputError(where + "light radius must be >= 0");
   if (!(l.ambient >= 0.0f && l.ambient <= 1.0f))
     throw InputError(where + "light ambient must be in [0, 1]");
+  if (scene.objects.size() > size_t(kMaxSceneObjects))
+    throw InputError(where + "has " + std::to_string(scene.objects.size()) +
+                     " objects; at most " + std::to_string(kMaxSceneObjects));
+  size_t triangles = 0;
   for (const Object& o : scene.objects) {
-    if (!o.mesh || o.mesh->indices.empty())
-      throw InputError(where + "object '" + o.name + "' has no triangles");
+    const std::string what = where + "object '" + o.name + "'";
+    if (!o.mesh) throw InputError(what + " has no triangles");
+    validateMesh(*o.mesh, what);
+    triangles += o.mesh->triangleCount();
+    if (triangles > kMaxSceneTriangles)
+      throw InputError(where + "has more than " + std::to_string(kMaxSceneTriangles) +
+                       " triangles in all; at most " + std::to_string(kMaxSceneTriangles));
     for (int i = 0; i < 4; ++i)
       if (!finite(glm::vec3(o.model[i])) || !std::isfinite(o.model[i][3]))
-        throw InputError(where + "object '" + o.name + "' has a non-finite transform");
+        throw InputError(what + " has a non-finite transform");
+    const Bounds b = worldBounds(o);
+    if (!withinCoordinateCap(b.lo) || !withinCoordinateCap(b.hi))
+      throw InputError(what + " reaches beyond " + formatNumber(kMaxSceneCoordinate) +
+                       " scene units from the origin");
+  }
+  if (!withinCoordinateCap(c.position) || !withinCoordinateCap(c.target) ||
+      !withinCoordinateCap(l.position) || !withinCoordinateCap(l.target))
+    throw InputError(where + "camera and light must lie within " +
+                     formatNumber(kMaxSceneCoordinate) + " scene units of the origin");
+  // The light frustum's depth range as the techniques will use it: a far plane given alone can
+  // fall in front of the fitted near plane (and a near plane given alone behind the fitted far).
+  const DepthRange r = lightDepthRange(scene);
+  if (!(r.nearPlane > 0.0f && r.farPlane > r.nearPlane && std::isfinite(r.farPlane))) {
+    const std::string field = l.farPlane ? "light.far" : "light.near";
+    throw InputError(where + field + " leaves the light an empty depth range (near " +
+                     formatNumber(r.nearPlane) + ", far " + formatNumber(r.farPlane) +
+                     "): give both light.near and light.far, or neither");
   }
 }
 

@@ -14,6 +14,18 @@
 
 namespace sl {
 
+// Scene caps (issue 17), checked by validateScene before anything is drawn; a scene beyond
+// them is an InputError that names the cap. Primitive and mesh-file caps live beside their
+// generators (core/primitives.h, core/mesh_io.h).
+constexpr int kMaxSceneObjects = 4096;             // draw calls per pass stay bounded
+constexpr size_t kMaxSceneTriangles = 16'000'000;  // ~1 GB of vertex data in every technique
+// Coordinates (positions, targets, translations, world-space vertices) at most this far from
+// the origin: a float keeps about 1 unit in 2^24 of its magnitude, and the depth maps need it.
+constexpr double kMaxSceneCoordinate = 1e7;
+// A camera or light `up` must make at least this sine with the view direction (0.06 degrees):
+// closer to parallel, lookAt has no side vector and the image is black.
+constexpr float kMinUpViewSine = 1e-3f;
+
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // one per position

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -166,42 +167,132 @@ glm::vec3 vec3(const json& j, const std::string& what) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
       !j[2].is_number())
     throw InputError(what + " must be an array of three numbers");
-  glm::vec3 v(j[0].get<float>(), j[1].get<float>(), j[2].get<float>());
-  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-    throw InputError(what + " must be finite");
-  return v;
+  // Read as double first: a value beyond float's range must not silently become Inf.
+  const glm::dvec3 d(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+  if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z) ||
+      glm::max(glm::max(std::fabs(d.x), std::fabs(d.y)), std::fabs(d.z)) > kMaxSceneCoordinate)
+    throw InputError(what + " must be finite and at most " + formatNumber(kMaxSceneCoordinate) +
+                     " in magnitude");
+  return glm::vec3(d);
 }
 
 float number(const json& j, const std::string& what) {
   if (!j.is_number()) throw InputError(what + " must be a number");
-  const float v = j.get<float>();
-  if (!std::isfinite(v)) throw InputError(what + " must be finite");
-  return v;
+  const double v = j.get<double>();
+  if (!std::isfinite(v) || std::fabs(v) > kMaxSceneCoordinate)
+    throw InputError(what + " must be finite and at most " + formatNumber(kMaxSceneCoordinate) +
+                     " in magnitude");
+  return float(v);
+}
+
+// A count (slices, divisions, ...): an integer, read before any conversion so that 3e9 or 2.5
+// is refused instead of wrapping around or truncating; the generators check their own caps.
+int integer(const json& j, const std::string& what) {
+  if (!j.is_number()) throw InputError(what + " must be an integer");
+  const double v = j.get<double>();
+  if (!(std::floor(v) == v && v >= double(std::numeric_limits<int>::min()) &&
+        v <= double(std::numeric_limits<int>::max())))
+    throw InputError(what + " must be an integer, got " + formatNumber(v));
+  return int(v);
+}
+
+bool boolean(const json& j, const std::string& what) {
+  if (!j.is_boolean()) throw InputError(what + " must be true or false");
+  return j.get<bool>();
+}
+
+// Strings go into captions, HTML and JSON lines: bytes that are not UTF-8 become U+FFFD here,
+// once, instead of failing later in an output writer.
+std::string utf8(const std::string& raw) {
+  return json::parse(json(raw).dump(-1, ' ', false, json::error_handler_t::replace))
+      .get<std::string>();
+}
+
+std::string stringValue(const json& j, const std::string& what) {
+  if (!j.is_string()) throw InputError(what + " must be a string");
+  return utf8(j.get<std::string>());
+}
+
+// A scene file's objects are read strictly: a key this reader does not know is a typo that
+// would otherwise be ignored silently ("positon", "stack"), so it is an error that lists the
+// keys that are known there.
+const json& strictObject(const json& j, const std::string& what,
+                   std::initializer_list<const char*> known) {
+  if (!j.is_object()) throw InputError(what + " must be a JSON object");
+  for (const auto& [key, value] : j.items()) {
+    if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
+      std::string list;
+      for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
+      throw InputError(what + " has an unknown key \"" + utf8(key) + "\" (known: " + list + ")");
+    }
+  }
+  return j;
 }
 
 Mesh meshFromJson(const json& j, const std::string& where, const std::string& baseDir) {
-  if (!j.is_object()) throw InputError(where + ".mesh must be an object");
+  const std::string what = where + ".mesh";
+  if (!j.is_object()) throw InputError(what + " must be a JSON object");
   if (j.contains("file")) {
-    fs::path p = j.at("file").get<std::string>();
+    strictObject(j, what, {"file", "size"});
+    fs::path p = stringValue(j["file"], what + ".file");
     if (p.is_relative()) p = fs::path(baseDir) / p;
     Mesh m = loadMesh(p.string());
-    if (j.contains("size")) normalizeMesh(m, number(j["size"], where + ".mesh.size"));
+    if (j.contains("size")) normalizeMesh(m, number(j["size"], what + ".size"));
     return m;
   }
-  const std::string kind = j.value("primitive", "");
+  if (!j.contains("primitive"))
+    throw InputError(what + " needs \"file\" or a \"primitive\" (plane, box, sphere, "
+                     "cylinder, torus, quad, fence, tree)");
+  const std::string kind = stringValue(j["primitive"], what + ".primitive");
   auto num = [&](const char* key, float fallback) {
-    return j.contains(key) ? number(j[key], where + ".mesh." + key) : fallback;
+    return j.contains(key) ? number(j[key], what + "." + key) : fallback;
   };
-  if (kind == "plane") return makePlane(num("width", 10), num("depth", 10), int(num("divisions", 1)));
-  if (kind == "box")
-    return makeBox(j.contains("extent") ? vec3(j["extent"], where + ".mesh.extent") : glm::vec3(1));
-  if (kind == "sphere") return makeSphere(num("radius", 1), int(num("slices", 32)), int(num("stacks", 16)));
-  if (kind == "cylinder") return makeCylinder(num("radius", 0.5f), num("height", 1), int(num("slices", 32)));
-  if (kind == "torus") return makeTorus(num("major", 1), num("minor", 0.25f));
-  if (kind == "quad") return makeQuad(num("width", 1), num("height", 1));
-  if (kind == "fence") return makeFence(num("length", 4), num("height", 1), int(num("pickets", 10)));
-  if (kind == "tree") return makeTree(num("height", 2));
-  throw InputError(where + ".mesh needs \"file\" or a \"primitive\" (plane, box, sphere, cylinder, torus, quad, fence, tree), got '" + kind + "'");
+  auto count = [&](const char* key, int fallback) {
+    return j.contains(key) ? integer(j[key], what + "." + key) : fallback;
+  };
+  // Parameters are checked by the generators (core/primitives.h caps); their messages name
+  // the primitive and the parameter, prefixed here with where it is in the file.
+  try {
+    if (kind == "plane") {
+      strictObject(j, what, {"primitive", "width", "depth", "divisions"});
+      return makePlane(num("width", 10), num("depth", 10), count("divisions", 1));
+    }
+    if (kind == "box") {
+      strictObject(j, what, {"primitive", "extent"});
+      return makeBox(j.contains("extent") ? vec3(j["extent"], what + ".extent") : glm::vec3(1));
+    }
+    if (kind == "sphere") {
+      strictObject(j, what, {"primitive", "radius", "slices", "stacks"});
+      return makeSphere(num("radius", 1), count("slices", 32), count("stacks", 16));
+    }
+    if (kind == "cylinder") {
+      strictObject(j, what, {"primitive", "radius", "height", "slices"});
+      return makeCylinder(num("radius", 0.5f), num("height", 1), count("slices", 32));
+    }
+    if (kind == "torus") {
+      strictObject(j, what, {"primitive", "major", "minor", "rings", "sides"});
+      return makeTorus(num("major", 1), num("minor", 0.25f), count("rings", 32),
+                       count("sides", 16));
+    }
+    if (kind == "quad") {
+      strictObject(j, what, {"primitive", "width", "height"});
+      return makeQuad(num("width", 1), num("height", 1));
+    }
+    if (kind == "fence") {
+      strictObject(j, what, {"primitive", "length", "height", "pickets"});
+      return makeFence(num("length", 4), num("height", 1), count("pickets", 10));
+    }
+    if (kind == "tree") {
+      strictObject(j, what, {"primitive", "height"});
+      return makeTree(num("height", 2));
+    }
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    if (message.rfind(what, 0) == 0) throw;
+    throw InputError(what + ": " + message);
+  }
+  throw InputError(what + ".primitive must be one of plane, box, sphere, cylinder, torus, quad, "
+                   "fence, tree; got '" + kind + "'");
 }
 
 }  // namespace
@@ -245,12 +336,14 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
     throw InputError("malformed scene file " + sourceName + ": " + e.what());
   }
   try {
-    if (!doc.is_object()) throw InputError("the document must be a JSON object");
+    strictObject(doc, "the document", {"name", "description", "camera", "light", "objects"});
     Scene s;
-    s.name = doc.value("name", fs::path(sourceName).stem().string());
-    s.description = doc.value("description", "");
+    s.name = doc.contains("name") ? stringValue(doc["name"], "name")
+                                  : utf8(fs::path(sourceName).stem().string());
+    if (doc.contains("description")) s.description = stringValue(doc["description"], "description");
     if (doc.contains("camera")) {
-      const json& c = doc["camera"];
+      const json& c = strictObject(doc["camera"], "camera",
+                             {"position", "target", "up", "fovy", "near", "far"});
       if (c.contains("position")) s.camera.position = vec3(c["position"], "camera.position");
       if (c.contains("target")) s.camera.target = vec3(c["target"], "camera.target");
       if (c.contains("up")) s.camera.up = vec3(c["up"], "camera.up");
@@ -259,7 +352,9 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
       if (c.contains("far")) s.camera.farPlane = number(c["far"], "camera.far");
     }
     if (doc.contains("light")) {
-      const json& l = doc["light"];
+      const json& l = strictObject(doc["light"], "light",
+                             {"position", "target", "up", "cone", "near", "far", "radius",
+                              "ambient", "color"});
       if (l.contains("position")) s.light.position = vec3(l["position"], "light.position");
       if (l.contains("target")) s.light.target = vec3(l["target"], "light.target");
       if (l.contains("up")) s.light.up = vec3(l["up"], "light.up");
@@ -272,13 +367,18 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
     }
     if (!doc.contains("objects") || !doc["objects"].is_array())
       throw InputError("\"objects\" must be an array");
+    if (doc["objects"].size() > size_t(kMaxSceneObjects))
+      throw InputError("\"objects\" has " + std::to_string(doc["objects"].size()) +
+                       " entries; at most " + std::to_string(kMaxSceneObjects));
     int index = 0;
     for (const json& o : doc["objects"]) {
       const std::string where = "objects[" + std::to_string(index++) + "]";
-      if (!o.is_object()) throw InputError(where + " must be an object");
+      strictObject(o, where,
+             {"name", "mesh", "translate", "rotate", "scale", "diffuse", "specular", "casts",
+              "receives"});
       if (!o.contains("mesh")) throw InputError(where + " has no mesh");
       Object obj;
-      obj.name = o.value("name", where);
+      obj.name = o.contains("name") ? stringValue(o["name"], where + ".name") : where;
       obj.mesh = share(meshFromJson(o["mesh"], where, baseDir));
       glm::mat4 m(1.0f);
       if (o.contains("translate")) m = glm::translate(m, vec3(o["translate"], where + ".translate"));
@@ -297,8 +397,8 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
       obj.model = m;
       if (o.contains("diffuse")) obj.diffuse = vec3(o["diffuse"], where + ".diffuse");
       if (o.contains("specular")) obj.specular = number(o["specular"], where + ".specular");
-      obj.castsShadow = o.value("casts", true);
-      obj.receivesShadow = o.value("receives", true);
+      if (o.contains("casts")) obj.castsShadow = boolean(o["casts"], where + ".casts");
+      if (o.contains("receives")) obj.receivesShadow = boolean(o["receives"], where + ".receives");
       s.objects.push_back(std::move(obj));
     }
     validateScene(s);
