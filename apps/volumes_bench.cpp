@@ -140,7 +140,10 @@ int main(int argc, char** argv) {
       }
       for (auto row : modern::benchmarkShadowVolumes(scene, own, {name}, frames)) {
         row.technique = spelling;
-        std::cout << modern::toJson(row).dump() << std::endl;
+        // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
+        std::cout << modern::toJson(row).dump(-1, ' ', false,
+                                              nlohmann::json::error_handler_t::replace)
+                  << std::endl;
       }
     }
     return 0;

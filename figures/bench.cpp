@@ -568,7 +568,11 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
           result.texelsPerPixel[scene.name] =
               std::max(result.texelsPerPixel[scene.name], texelsPerPixel);
         }
-        json << rowJson(row, run.soft).dump() << "\n" << std::flush;
+        // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
+        json
+            << rowJson(row, run.soft).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+            << "\n"
+            << std::flush;
         if (options.progress)
           std::cerr << "bench: " << scene.name << " " << t->name << " " << v.label << ": "
                     << (row.status == "ok" ? std::to_string(row.frameMs) + " ms, rmse " +
@@ -765,7 +769,7 @@ int runBenchCommand(const cli::Args& args) {
                                 {"statement", c.claim},   {"scene", c.scene},
                                 {"measured", c.measured}, {"verdict", c.verdict},
                                 {"setup", c.setup}}
-                     .dump()
+                     .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
               << "\n";
     std::cerr << "claim " << c.id << " (" << c.source << ") on " << c.scene << ": " << c.verdict
               << "\n    " << c.claim << "\n    setup: " << c.setup
