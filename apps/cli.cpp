@@ -1,17 +1,13 @@
 #include "apps/cli.h"
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cmath>
-#include <filesystem>
 #include <iostream>
 
+#include "core/decimal.h"
 #include "core/errors.h"
 
 namespace sl::cli {
-namespace fs = std::filesystem;
 
 bool Args::has(const std::string& key) const {
   return options.count(key) != 0 || std::find(flags.begin(), flags.end(), key) != flags.end();
@@ -70,7 +66,9 @@ const std::vector<CommandSpec>& commandSpecs() {
        join({{"technique", "T", "technique name (shadowlab list), required"},
              {"out", "PATH", "colour image, PNG, required"},
              {"mask", "PNG", "light visibility (1 = lit, 0 = umbra) as a 16-bit grey PNG"},
-             {"dump-passes", "DIR", "directory for every intermediate buffer, one PNG each"}},
+             {"dump-passes", "DIR",
+              "directory for every intermediate buffer, one PNG each (made or replaced as a "
+              "whole at the end; an existing DIR must be empty or hold only a previous dump)"}},
             renderOptions())},
       {"compare", "render two techniques and compare their visibility masks (one JSON line)",
        join({{"a", "T1", "first technique, required"},
@@ -173,18 +171,17 @@ bool parseTool(CLI::App& app, int argc, char** argv) {
 }
 
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue) {
-  size_t used = 0;
-  long long v = 0;
-  try {
-    v = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw InputError(what + " must be a whole number, got '" + text + "'");
-  if (v <= 0 || v > maxValue)
+  const std::optional<long long> v = parseWholeNumber(text);  // strict: digits only
+  if (!v) throw InputError(what + " must be a whole number, got '" + text + "'");
+  if (*v <= 0 || *v > maxValue)
     throw InputError(what + " must lie in 1.." + std::to_string(maxValue) + ", got " + text);
-  return int(v);
+  return int(*v);
+}
+
+double parseNumber(const std::string& what, const std::string& text) {
+  const std::optional<double> v = parseDecimal(text);  // strict: no hex, inf, nan or spaces
+  if (!v) throw InputError(what + " must be a decimal number, got '" + text + "'");
+  return *v;
 }
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -212,17 +209,6 @@ RenderParams renderParams(const Args& args) {
       p.extra[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
   return p;
-}
-
-void checkWritable(const std::string& path) {
-  fs::path p(path);
-  fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw InputError("cannot write " + path + ": directory " + dir.string() + " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw InputError("cannot write " + path + ": directory " + dir.string() + " is not writable");
-  if (fs::is_directory(p, ec)) throw InputError("cannot write " + path + ": it is a directory");
 }
 
 }  // namespace sl::cli

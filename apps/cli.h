@@ -42,11 +42,12 @@ Args parse(int argc, char** argv);
 // Validation that throws InputError inside the options' callbacks passes through unchanged.
 [[nodiscard]] bool parseTool(CLI::App& app, int argc, char** argv);
 
+// Numbers on the command line are strict decimals (core/decimal.h): no hexadecimal, inf, nan,
+// spaces or trailing characters. Each throws InputError naming the option `what`.
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
+double parseNumber(const std::string& what, const std::string& text);
 void parseSize(const std::string& text, int& width, int& height);  // "800x600"
 // Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend.
 RenderParams renderParams(const Args& args);
-// Fails early (before any rendering) if `path` cannot be created: no partial outputs.
-void checkWritable(const std::string& path);
 
 }  // namespace sl::cli

@@ -5,10 +5,13 @@
 //   csm_bench [--quick] [--size WxH] [--repeat N] [--scene S] [--backend osmesa|egl]
 //             [--part techniques|table1|ratio|all] [--csv FILE] [--param key=value ...]
 //
-// --part ratio: modern.csm against modern.hw on the bench scenes (brabec, fence) at the bench
-// sizes (256x192, 400x300), shadow map 512, each technique's defaults plus --param for CSM;
-// the two contexts render alternately (hw, csm, hw, csm, ...) so that both see the same load
-// on a shared machine, and the ratio of medians is printed with CSM's per-pass medians.
+// --part ratio: modern.csm against modern.hw on the bench scenes (brabec, fence; or --scene)
+// at the bench sizes (256x192, 400x300; or --size), shadow map 512, each technique's defaults
+// plus --param for CSM; the two contexts render alternately (hw, csm, hw, csm, ...) so that
+// both see the same load on a shared machine, and the ratio of medians is printed with CSM's
+// per-pass medians. --param applies to this part only, and --csv to the others only (a ratio
+// of interleaved runs is not a row of the CSV): either given with the wrong part is exit 2.
+// --csv is checked before anything runs, written to a temporary and renamed at the end.
 //
 // Each configuration is timed at steady state (core/frame_timing.h, apps/registry.h
 // timeTechnique): in one context, --warmup frames first (shader compilation, first
@@ -19,15 +22,18 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "apps/cli.h"
 #include "apps/registry.h"
 #include "core/errors.h"
+#include "core/output_files.h"
 #include "core/scene_library.h"
 
 namespace sl {
@@ -56,6 +62,8 @@ struct Options {
   std::string part = "all";
   std::string csv;
   std::map<std::string, std::string> csmParams;  // --param key=value, for --part ratio
+  bool sizeGiven = false;                        // --size: --part ratio measures this size only
+  bool sceneGiven = false;                       // --scene: --part ratio measures this scene only
 };
 
 using Timing = SteadyTiming;
@@ -89,10 +97,13 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ->type_name("N");
   app.add_option("--warmup", warmup, "warm-up frames per configuration (0 allowed)")
       ->type_name("N");
-  app.add_option("--scene", o.scene, "built-in scene [brabec]")->type_name("S");
+  CLI::Option* sceneOption =
+      app.add_option("--scene", o.scene, "built-in scene [brabec]")->type_name("S");
   app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
   app.add_option("--part", o.part, "techniques, table1, ratio or all [all]")->type_name("PART");
-  app.add_option("--csv", o.csv, "also write every row as CSV")->type_name("FILE");
+  CLI::Option* csvOption =
+      app.add_option("--csv", o.csv, "also write every row as CSV (not with --part ratio)")
+          ->type_name("FILE");
   app.add_option("--param", params, "key=value for modern.csm in --part ratio (repeatable)")
       ->type_name("KEY=VALUE")
       ->type_size(1)
@@ -104,6 +115,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
     o.height = kQuickHeight;
     o.frames = kQuickFrames;
   }
+  o.sizeGiven = !size.empty();
+  o.sceneGiven = sceneOption->count() > 0;
   if (!size.empty()) cli::parseSize(size, o.width, o.height);
   if (!repeat.empty()) o.frames.timed = cli::parsePositiveInt("--repeat", repeat, kMaxTimedFrames);
   if (!warmup.empty())
@@ -122,13 +135,25 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       throw InputError("--param needs key=value, got '" + kv + "'");
     o.csmParams[kv.substr(0, eq)] = kv.substr(eq + 1);
   }
+  if (!params.empty() && o.part != "ratio")
+    throw InputError("--param applies to --part ratio only, got --part " + o.part);
+  if (csvOption->count() > 0 && o.part == "ratio")
+    throw InputError(
+        "--csv is not written by --part ratio (it prints ratios of interleaved "
+        "runs); use --part techniques, table1 or all");
+  if (csvOption->count() > 0 && o.csv.empty()) throw InputError("--csv: empty file name");
   return o;
 }
 
 // modern.csm / modern.hw in one run, frames interleaved (see the header).
 void runRatio(const Options& o) {
   constexpr int kBenchMap = 512;  // RenderParams' default, what shadowlab bench uses
-  const std::vector<std::pair<int, int>> sizes = {{256, 192}, {400, 300}};
+  const std::vector<std::pair<int, int>> sizes =
+      o.sizeGiven ? std::vector<std::pair<int, int>>{{o.width, o.height}}
+                  : std::vector<std::pair<int, int>>{{256, 192}, {400, 300}};
+  const std::vector<std::string> scenes = o.sceneGiven
+                                              ? std::vector<std::string>{o.scene}
+                                              : std::vector<std::string>{"brabec", "fence"};
   const Technique& hw = findTechnique("modern.hw");
   const Technique& csm = findTechnique("modern.csm");
   std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
@@ -137,7 +162,7 @@ void runRatio(const Options& o) {
   std::printf(
       "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
       "| --- | --- | ---: | ---: | ---: | --- |\n");
-  for (const std::string name : {"brabec", "fence"}) {
+  for (const std::string& name : scenes) {
     const Scene scene = builtinScene(name);
     for (const auto& [w, h] : sizes) {
       Options sized = o;
@@ -191,35 +216,12 @@ std::string fps(double ms) {
   return b;
 }
 
-int run(int argc, char** argv) {
-  const std::optional<Options> parsed = parseOptions(argc, argv);
-  if (!parsed) return 0;  // --help
-  const Options& o = *parsed;
-  const Scene scene = builtinScene(o.scene);
-  std::ofstream csv;
-  if (!o.csv.empty()) {
-    cli::checkWritable(o.csv);
-    csv.open(o.csv);
-    csv << "part,technique,map,order,blur,width,height,median_ms,min_ms,fps,wall_ms,timed\n";
-  }
-  auto record = [&](const std::string& part, const std::string& technique, int map, int order,
-                    int blur, const Timing& t) {
-    if (csv.is_open())
-      csv << part << "," << technique << "," << map << "," << order << "," << blur << "," << o.width
-          << "," << o.height << "," << t.frameMs << "," << t.minimumFrameMs << "," << t.fps() << ","
-          << t.wallMs << "," << t.timedFrames << "\n";
-  };
-  // The driver's one-time start-up (llvmpipe's LLVM initialisation) must not land in the
-  // first configuration's time: one throwaway frame first.
-  renderTechnique(findTechnique("modern.hw"), scene, paramsFor(o, 256, {}));
-  std::printf("scene %s, %dx%d, %s, %d warm-up + median of %d timed frames (sum of the passes)\n\n",
-              o.scene.c_str(), o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa",
-              o.frames.warmup, o.frames.timed);
+// One row of the CSV: part, technique, map, order, blur and the timing.
+using Recorder = std::function<void(const std::string& part, const std::string& technique, int map,
+                                    int order, int blur, const Timing& t)>;
 
-  if (o.part == "ratio") {
-    runRatio(o);
-    return 0;
-  }
+// --part techniques, table1 or all: the techniques' frame times and the Table 1 grid.
+void runTechniquesAndTable1(const Options& o, const Scene& scene, const Recorder& record) {
   if (o.part != "table1") {
     std::printf("| technique | ms / frame | fps |\n| --- | ---: | ---: |\n");
     for (const std::string name :
@@ -269,6 +271,48 @@ int run(int argc, char** argv) {
       }
       std::printf("\n");
     }
+  }
+}
+
+int run(int argc, char** argv) {
+  const std::optional<Options> parsed = parseOptions(argc, argv);
+  if (!parsed) return 0;  // --help
+  const Options& o = *parsed;
+  const Scene scene = builtinScene(o.scene);
+  // The CSV's rows are kept in memory and written at the end (core/output_files.h): a run that
+  // fails or is interrupted leaves no file, and the destination is checked before any work.
+  OutputSet outputs;
+  std::optional<std::string> csvTemporary;
+  std::ostringstream csv;
+  if (!o.csv.empty()) {
+    csvTemporary = outputs.addFile("--csv", o.csv);
+    csv << "part,technique,map,order,blur,width,height,median_ms,min_ms,fps,wall_ms,timed\n";
+  }
+  auto record = [&](const std::string& part, const std::string& technique, int map, int order,
+                    int blur, const Timing& t) {
+    if (csvTemporary)
+      csv << part << "," << technique << "," << map << "," << order << "," << blur << "," << o.width
+          << "," << o.height << "," << t.frameMs << "," << t.minimumFrameMs << "," << t.fps() << ","
+          << t.wallMs << "," << t.timedFrames << "\n";
+  };
+  // The driver's one-time start-up (llvmpipe's LLVM initialisation) must not land in the
+  // first configuration's time: one throwaway frame first.
+  renderTechnique(findTechnique("modern.hw"), scene, paramsFor(o, 256, {}));
+  std::printf("scene %s, %dx%d, %s, %d warm-up + median of %d timed frames (sum of the passes)\n\n",
+              o.scene.c_str(), o.width, o.height, o.backend == Backend::kEgl ? "egl" : "osmesa",
+              o.frames.warmup, o.frames.timed);
+
+  if (o.part == "ratio") {
+    runRatio(o);
+    return 0;
+  }
+  runTechniquesAndTable1(o, scene, record);
+  if (csvTemporary) {
+    std::ofstream file(*csvTemporary, std::ios::binary);
+    file << csv.str();
+    file.close();
+    if (!file) throw InputError("--csv " + o.csv + ": the write failed (disk full?)");
+    outputs.commit();
   }
   return 0;
 }

@@ -41,6 +41,10 @@ std::unique_ptr<GlContext> contextForRender(const Technique& technique,
 }
 }  // namespace
 
+void checkRenderable(const Technique& technique, const RenderParams& params) {
+  contextForRender(technique, params);
+}
+
 Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params) {
   auto context = contextForRender(technique, params);
   return technique.render(*context, scene, params);

@@ -2,13 +2,14 @@
 // Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "apps/cli.h"
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/metrics.h"
+#include "core/output_files.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
 
@@ -19,7 +20,8 @@ namespace fs = std::filesystem;
 constexpr int kExitInputError = 2;
 constexpr int kExitGlError = 3;
 
-const char* kUsage = R"(shadowlab — classic shadow-map antialiasing, legacy OpenGL 1.x beside modern GLSL
+const char* kUsage =
+    R"(shadowlab — classic shadow-map antialiasing, legacy OpenGL 1.x beside modern GLSL
 
 usage:
   shadowlab list                                   techniques, scenes, figures
@@ -33,6 +35,7 @@ usage:
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
+Every output is checked before rendering and appears only when the whole run succeeds.
 Exit status: 0 ok, 2 bad input (names, files, numbers), 3 GL failure.
 )";
 
@@ -56,54 +59,79 @@ int list() {
   return 0;
 }
 
-void writeFrameOutputs(const Frame& frame, const cli::Args& args) {
+// The files a --scene argument reads (core/scene_library.cpp loadScene): the argument itself
+// when it is a file, or assets/scenes/<name>.json. No output may replace them.
+void addSceneInputs(OutputSet& outputs, const std::string& scene) {
+  outputs.addInput(scene);
+  outputs.addInput((fs::path(assetDirectory()) / "scenes" / (scene + ".json")).string());
+}
+
+// One JSON line: built before any output is committed, so that a name that is not UTF-8 (a
+// scene file's name when the file has no "name" key) cannot fail after the files are written;
+// invalid bytes become U+FFFD.
+std::string jsonLine(const nlohmann::json& out) {
+  return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// The destinations of `render`, checked before rendering (core/output_files.h).
+struct RenderOutputs {
+  OutputSet set;
+  std::string image;                // temporary of --out
+  std::optional<std::string> mask;  // temporary of --mask
+  std::optional<std::string> dump;  // temporary directory of --dump-passes
+};
+
+void writeFrameOutputs(const Frame& frame, RenderOutputs& outputs) {
   if (!frame.color.empty() && !allFinite(frame.color)) throw GlError("the image has NaN or Inf");
   if (!allFinite(frame.visibility)) throw GlError("the visibility mask has NaN or Inf");
-  writePng(args.required("out"), frame.color, 8);
-  if (auto mask = args.value("mask")) writePng(*mask, frame.visibility, 16);
-  if (auto dir = args.value("dump-passes")) {
+  outputs.set.beginWriting();
+  writePng(outputs.image, frame.color, 8);
+  if (outputs.mask) writePng(*outputs.mask, frame.visibility, 16);
+  if (outputs.dump)
     for (const PassImage& p : frame.intermediates)
-      writePng((fs::path(*dir) / (p.name + ".png")).string(), p.image, 8);
-  }
+      writePng((fs::path(*outputs.dump) / (p.name + ".png")).string(), p.image, 8);
 }
 
 int render(const cli::Args& args) {
-  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  const std::string sceneName = args.value("scene").value_or(kDefaultScene);
+  const Scene scene = loadScene(sceneName);
   const Technique& technique = findTechnique(args.required("technique"));
   RenderParams params = cli::renderParams(args);
-  cli::checkWritable(args.required("out"));
-  if (auto mask = args.value("mask")) cli::checkWritable(*mask);
+  RenderOutputs outputs;
+  addSceneInputs(outputs.set, sceneName);
+  outputs.image = outputs.set.addFile("--out", args.required("out"));
+  if (auto mask = args.value("mask")) outputs.mask = outputs.set.addFile("--mask", *mask);
   if (auto dir = args.value("dump-passes")) {
-    std::error_code ec;
-    fs::create_directories(*dir, ec);
-    if (ec || !fs::is_directory(*dir)) throw InputError("cannot create directory " + *dir);
+    outputs.dump = outputs.set.addDirectory("--dump-passes", *dir);
     params.capturePasses = true;
   }
   const Frame frame = renderTechnique(technique, scene, params);
-  writeFrameOutputs(frame, args);
+  writeFrameOutputs(frame, outputs);
   nlohmann::json out = {{"technique", technique.name}, {"scene", scene.name},
                         {"frame_ms", frame.totalMilliseconds()}};
   for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
-  std::cout << out.dump() << "\n";
+  const std::string line = jsonLine(out);
+  outputs.set.commit();
+  std::cout << line << "\n";
   return 0;
 }
 
 int compare(const cli::Args& args) {
-  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  const std::string sceneName = args.value("scene").value_or(kDefaultScene);
+  const Scene scene = loadScene(sceneName);
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
   double threshold = 0.0;
   if (auto t = args.value("threshold")) {
-    try {
-      threshold = std::stod(*t);
-    } catch (const std::exception&) {
-      throw InputError("--threshold must be a number, got '" + *t + "'");
-    }
+    threshold = cli::parseNumber("--threshold", *t);
     if (!(threshold >= 0.0 && threshold <= 1.0)) throw InputError("--threshold must lie in [0, 1]");
   }
-  if (auto diff = args.value("diff")) cli::checkWritable(*diff);
+  OutputSet outputs;
+  addSceneInputs(outputs, sceneName);
+  std::optional<std::string> diff;
+  if (auto path = args.value("diff")) diff = outputs.addFile("--diff", *path);
   const Frame fa = renderTechnique(a, scene, params);
   const Frame fb = renderTechnique(b, scene, params);
   const MaskDifference d = compareMasks(fa.visibility, fb.visibility, threshold);
@@ -113,9 +141,10 @@ int compare(const cli::Args& args) {
   out["b"] = b.name;
   out["a_frame_ms"] = fa.totalMilliseconds();
   out["b_frame_ms"] = fb.totalMilliseconds();
-  if (auto diff = args.value("diff"))
-    writePng(*diff, differenceHeatMap(fa.visibility, fb.visibility), 8);
-  std::cout << out.dump() << "\n";
+  const std::string line = jsonLine(out);
+  if (diff) writePng(*diff, differenceHeatMap(fa.visibility, fb.visibility), 8);
+  outputs.commit();
+  std::cout << line << "\n";
   return 0;
 }
 

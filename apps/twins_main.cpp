@@ -56,8 +56,10 @@ std::optional<Options> parse(int argc, char** argv) {
   app.add_option("--size", size, "agreement window WxH [320x240]")->type_name("WxH");
   app.add_option("--shadow-map", shadowMap, "agreement shadow map side [256]")->type_name("N");
   app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
-  app.add_option("--scenes", scenes, "agreement scenes, comma-separated [the equivalence scenes]")
-      ->type_name("a,b,c");
+  CLI::Option* scenesOption =
+      app.add_option("--scenes", scenes,
+                     "agreement scenes, comma-separated [the equivalence scenes]")
+          ->type_name("a,b,c");
   app.add_option("--bench-size", benchSize, "frame-time window WxH [800x600]")->type_name("WxH");
   app.add_option("--bench-shadow-map", benchShadowMap, "frame-time shadow map side [512]")
       ->type_name("N");
@@ -75,7 +77,11 @@ std::optional<Options> parse(int argc, char** argv) {
     o.benchShadowMap = cli::parsePositiveInt("--bench-shadow-map", benchShadowMap, kMaxShadowMap);
   if (!frames.empty()) o.frames = cli::parsePositiveInt("--frames", frames, kMaxFrames);
   if (!backend.empty()) o.backend = parseBackend(backend);
-  if (!scenes.empty()) o.scenes = splitCommas(scenes);
+  if (scenesOption->count() > 0) {
+    o.scenes = splitCommas(scenes);
+    if (o.scenes.empty())
+      throw InputError("--scenes needs at least one scene name, got '" + scenes + "'");
+  }
   o.agreement = !noAgreement;
   o.bench = !noBench;
   return o;
@@ -154,6 +160,10 @@ int run(int argc, char** argv) {
   const std::optional<Options> parsed = parse(argc, argv);
   if (!parsed) return 0;  // --help
   const Options& o = *parsed;
+  // Every scene name is checked before the first table line is printed.
+  if (o.agreement)
+    for (const std::string& name : o.scenes) loadScene(name);
+  if (o.bench) loadScene(o.benchScene);
   if (o.agreement) agreementTable(o);
   if (o.agreement && o.bench) std::cout << "\n";
   if (o.bench) benchTable(o);

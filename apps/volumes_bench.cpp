@@ -12,16 +12,20 @@
 #include "modern/volumes_bench.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "apps/cli.h"
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
+#include "core/output_files.h"
 #include "core/scene_library.h"
 
 namespace {
 using namespace sl;
+namespace fs = std::filesystem;
 
 constexpr int kMaxShadowMap = 1 << 16;  // texels; the GL maximum is checked once a context exists
 constexpr int kMaxFrames = 1000;        // timed frames: more would take hours on llvmpipe
@@ -29,20 +33,30 @@ constexpr int kMaxFrames = 1000;        // timed frames: more would take hours o
 // docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
 // smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
 // and the hybrid's classification (Fig. 3-5b).
+// The three files are checked before rendering and renamed into place together at the end
+// (core/output_files.h): all three or none.
 void writeDocImages(const std::string& dir) {
+  const std::string crops = "volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png";
+  const std::string cubes = "volumes-cubes-image-overdraw-classification.png";
+  const std::string fillBound = "volumes-fill-bound-image-overdraw-classification.png";
+  OutputSet outputs;
+  std::map<std::string, std::string> temporary;
+  for (const std::string& file : {crops, cubes, fillBound})
+    temporary[file] = outputs.addFile("--doc-images", (fs::path(dir) / file).string());
   constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
                 kCropH = 90, kMagnify = 3;
   RenderParams p;
   p.width = kWidth;
   p.height = kHeight;
   p.shadowMapTexels = 256;
-  std::vector<Image> crops;
+  std::vector<Image> cropped;
   for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"}) {
     const Frame f = renderTechnique(findTechnique(t), builtinScene("brabec"), p);
-    crops.push_back(magnifyNearest(
+    cropped.push_back(magnifyNearest(
         crop(f.color, kCropX, kHeight - kCropTop - kCropH, kCropW, kCropH), kMagnify));
   }
-  writePng(dir + "/volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png", sideBySide(crops));
+  std::map<std::string, Image> images;
+  images[crops] = sideBySide(cropped);
   p.shadowMapTexels = 1024;
   p.capturePasses = true;
   // A scene's image, its volume overdraw and the hybrid's classification, side by side.
@@ -56,11 +70,13 @@ void writeDocImages(const std::string& dir) {
       if (i.name == "3-volume-overdraw") panels.push_back(i.image);
     for (const PassImage& i : h.intermediates)
       if (i.name == "6-classification") panels.push_back(i.image);
-    writePng(dir + "/" + file, sideBySide(panels));
+    images[file] = sideBySide(panels);
   };
-  imageOverdrawClassification("cubes", "volumes-cubes-image-overdraw-classification.png");
+  imageOverdrawClassification("cubes", cubes);
   // fill-bound (Chan's setting).
-  imageOverdrawClassification("fill-bound", "volumes-fill-bound-image-overdraw-classification.png");
+  imageOverdrawClassification("fill-bound", fillBound);
+  for (const auto& [file, image] : images) writePng(temporary.at(file), image);
+  outputs.commit();
 }
 }  // namespace
 
@@ -124,7 +140,10 @@ int main(int argc, char** argv) {
       }
       for (auto row : modern::benchmarkShadowVolumes(scene, own, {name}, frames)) {
         row.technique = spelling;
-        std::cout << modern::toJson(row).dump() << std::endl;
+        // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
+        std::cout << modern::toJson(row).dump(-1, ' ', false,
+                                              nlohmann::json::error_handler_t::replace)
+                  << std::endl;
       }
     }
     return 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 
+#include "core/decimal.h"
 #include "core/errors.h"
 
 namespace sl {
@@ -28,16 +29,9 @@ Precision parsePrecision(const std::string& s) {
 
 namespace {
 double parseNumber(const std::string& key, const std::string& value) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != value.size() || value.empty() || !std::isfinite(v))
-    throw InputError("--param " + key + "=" + value + ": not a finite number");
-  return v;
+  const std::optional<double> v = parseDecimal(value);  // strict: no hex, inf, nan or spaces
+  if (!v) throw InputError("--param " + key + "=" + value + ": not a finite decimal number");
+  return *v;
 }
 }  // namespace
 

@@ -33,6 +33,7 @@
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/frame_timing.h"
+#include "core/output_files.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
@@ -567,7 +568,11 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
           result.texelsPerPixel[scene.name] =
               std::max(result.texelsPerPixel[scene.name], texelsPerPixel);
         }
-        json << rowJson(row, run.soft).dump() << "\n" << std::flush;
+        // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
+        json
+            << rowJson(row, run.soft).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+            << "\n"
+            << std::flush;
         if (options.progress)
           std::cerr << "bench: " << scene.name << " " << t->name << " " << v.label << ": "
                     << (row.status == "ok" ? std::to_string(row.frameMs) + " ms, rmse " +
@@ -602,9 +607,9 @@ std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::st
   return front;
 }
 
-void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
-  std::ofstream out(path);
-  if (!out) throw InputError("cannot write " + path);
+namespace {
+// The CSV of writeCsv: one header line, one line per row.
+void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
   out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
          "params,frame_ms,wall_ms";
   // hard_*, soft_*: against the pixel-integrated references (pixel=area, the primary truth);
@@ -641,7 +646,11 @@ void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
       passes += (passes.empty() ? "" : "; ") + p.name + "=" + std::to_string(p.milliseconds);
     out << "," << quoted(passes) << "\n";
   }
-  if (!out) throw InputError("cannot write " + path);
+}
+}  // namespace
+
+void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
+  writeFileAtomically(path, [&](std::ostream& out) { writeCsvRows(out, rows); });
 }
 
 namespace {
@@ -665,52 +674,60 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
   std::vector<std::string> written;
   for (const std::string& scene : scenes) {
     const fs::path base = fs::path(outDir) / ("bench-" + scene);
-    // One data block per technique (gnuplot index), then the Pareto front.
-    std::ofstream data(base.string() + ".dat");
     std::vector<std::string> techniques;
     for (const BenchRow& r : result.rows)
       if (r.scene == scene && r.status == "ok" && r.primary().all.rmse > 0 &&
           !contains(techniques, r.technique))
         techniques.push_back(r.technique);
-    for (const std::string& t : techniques) {
-      data << "# " << t << "\n";
-      for (const BenchRow& r : result.rows)
-        if (r.scene == scene && r.technique == t && r.status == "ok" && r.primary().all.rmse > 0)
-          data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.variant << "\"\n";
-      data << "\n\n";
-    }
-    data << "# pareto front\n";
-    for (size_t i : paretoFront(result.rows, scene)) {
-      const BenchRow& r = result.rows[i];
-      if (r.primary().all.rmse <= 0) continue;
-      data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.technique << " " << r.variant
-           << "\"\n";
-    }
-    data.close();
-    std::ofstream script(base.string() + ".gp");
-    script << "set terminal " << terminal << "\n"
-           << "set output '" << base.string() << ".png'\n"
-           << "set title 'shadowlab bench, scene " << scene
-           << ": visibility error against frame time (Pareto front joined)'\n"
-           << "set logscale xy\nset grid\nset key outside right\n"
-           << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
-           << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
-           << "plot ";
-    for (size_t i = 0; i < techniques.size(); ++i)
-      script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "
-             << (i % 13) + 1 << " ps 1.5 title '" << techniques[i] << "', ";
-    script << "'" << base.string() << ".dat' index " << techniques.size()
-           << " using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', '' index "
-           << techniques.size() << " using 1:2 with points lc rgb 'black' pt 6 ps 2.5 notitle, "
-           << "'' index " << techniques.size()
-           << " using 1:2:3 with labels offset 1,0.8 left font ',7' notitle\n";
-    script.close();
-    const std::string command = "gnuplot '" + base.string() + ".gp' 2>&1";
-    if (techniques.empty() || std::system(command.c_str()) != 0) {
+    // One data block per technique (gnuplot index), then the Pareto front.
+    writeFileAtomically(base.string() + ".dat", [&](std::ostream& data) {
+      for (const std::string& t : techniques) {
+        data << "# " << t << "\n";
+        for (const BenchRow& r : result.rows)
+          if (r.scene == scene && r.technique == t && r.status == "ok" && r.primary().all.rmse > 0)
+            data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.variant << "\"\n";
+        data << "\n\n";
+      }
+      data << "# pareto front\n";
+      for (size_t i : paretoFront(result.rows, scene)) {
+        const BenchRow& r = result.rows[i];
+        if (r.primary().all.rmse <= 0) continue;
+        data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.technique << " " << r.variant
+             << "\"\n";
+      }
+    });
+    // The script names its PNG unless told another name (`out`): the run below draws into a
+    // temporary and renames it, so that a failed gnuplot leaves no half-written PNG.
+    writeFileAtomically(base.string() + ".gp", [&](std::ostream& script) {
+      script << "set terminal " << terminal << "\n"
+             << "if (!exists('out')) out = '" << base.string() << ".png'\n"
+             << "set output out\n"
+             << "set title 'shadowlab bench, scene " << scene
+             << ": visibility error against frame time (Pareto front joined)'\n"
+             << "set logscale xy\nset grid\nset key outside right\n"
+             << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
+             << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
+             << "plot ";
+      for (size_t i = 0; i < techniques.size(); ++i)
+        script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "
+               << (i % 13) + 1 << " ps 1.5 title '" << techniques[i] << "', ";
+      script << "'" << base.string() << ".dat' index " << techniques.size()
+             << " using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', '' index "
+             << techniques.size() << " using 1:2 with points lc rgb 'black' pt 6 ps 2.5 notitle, "
+             << "'' index " << techniques.size()
+             << " using 1:2:3 with labels offset 1,0.8 left font ',7' notitle\n";
+    });
+    const std::string png = base.string() + ".png";
+    const std::string temporaryPng = temporaryName(png).string();
+    const std::string command =
+        "gnuplot -e \"out='" + temporaryPng + "'\" '" + base.string() + ".gp' 2>&1";
+    if (techniques.empty() || std::system(command.c_str()) != 0 ||
+        std::rename(temporaryPng.c_str(), png.c_str()) != 0) {
+      std::remove(temporaryPng.c_str());
       std::cerr << "bench: no plot for " << scene << " (no measured rows or gnuplot failed)\n";
       continue;
     }
-    written.push_back(base.string() + ".png");
+    written.push_back(png);
   }
   return written;
 }
@@ -726,12 +743,19 @@ int runBenchCommand(const cli::Args& args) {
   if (auto b = args.value("backend")) options.backend = parseBackend(*b);
   if (auto r = args.value("repeat"))
     options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
-  if (options.csvPath) cli::checkWritable(*options.csvPath);
-  for (const std::string& s : options.scenes) loadScene(s);  // bad names fail before any work
+  // Bad names and unwritable destinations fail before any work (core/output_files.h): the
+  // CSV is written to a temporary and renamed at the end; the plots' folder must be writable.
+  for (const std::string& s : options.scenes) loadScene(s);
   if (options.technique) findTechnique(*options.technique);
+  OutputSet outputs;
+  for (const std::string& s : options.scenes) outputs.addInput(s);
+  std::optional<std::string> csv;
+  if (options.csvPath) csv = outputs.addFile("--csv", *options.csvPath);
+  checkDirectoryCreatable("--out", options.outDir);
   const BenchResult result = runBenchmark(options, std::cout);
-  if (options.csvPath) {
-    writeCsv(*options.csvPath, result.rows);
+  if (csv) {
+    writeCsv(*csv, result.rows);
+    outputs.commit();
     std::cerr << "bench: wrote " << *options.csvPath << "\n";
   }
   try {
@@ -745,7 +769,7 @@ int runBenchCommand(const cli::Args& args) {
                                 {"statement", c.claim},   {"scene", c.scene},
                                 {"measured", c.measured}, {"verdict", c.verdict},
                                 {"setup", c.setup}}
-                     .dump()
+                     .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
               << "\n";
     std::cerr << "claim " << c.id << " (" << c.source << ") on " << c.scene << ": " << c.verdict
               << "\n    " << c.claim << "\n    setup: " << c.setup

@@ -537,6 +537,10 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
       return;
     }
   } catch (const std::exception& e) {
+    // gnuplot writes the PNG under its final name (figures/plots.cpp): a failed run may have
+    // left part of one, which must not pass for the chart.
+    std::error_code ec;
+    fs::remove(png, ec);
     plot.reason = std::string("failed: ") + e.what();
     return;
   }

@@ -12,7 +12,7 @@ int runPlanCommand(const cli::Args& args) {
   const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
   const Technique& technique = findTechnique(args.required("technique"));
   const RenderParams params = cli::renderParams(args);
-  checkParams(technique, params, 0);
+  checkRenderable(technique, params);  // render's checks, the GL's limits included
   std::cout << formatPlan(planFrame(scene, technique, params));
   return 0;
 }

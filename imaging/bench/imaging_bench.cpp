@@ -316,6 +316,14 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "imaging_bench: %s (try: imaging_bench --help)\n", what.c_str());
     return kBadInputStatus;
   }
+  if (operations().empty()) {
+    std::string known;
+    for (const Operation& op : allOperations())
+      known += (known.empty() ? "" : ", ") + std::string(op.name);
+    std::fprintf(stderr, "imaging_bench: --only '%s' matches no operation (known: %s)\n",
+                 gOnly.c_str(), known.c_str());
+    return kBadInputStatus;
+  }
   const int reps = quick ? 2 : kRepetitions;
   const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};
   const std::string refPath = referenceGlPath();

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/errors.h"
@@ -167,6 +168,13 @@ TEST(Cli, CompareReportsStatisticsAsJson) {
   EXPECT_TRUE(fs::exists(diff));
 }
 
+// No temporary of core/output_files.h (".tmp-", ".old-") or of writePng (".part-") is left.
+void expectNoTemporaries(const fs::path& directory) {
+  for (const auto& entry : fs::directory_iterator(directory))
+    for (const char* mark : {".tmp-", ".old-", ".part-"})
+      EXPECT_EQ(entry.path().filename().string().find(mark), std::string::npos) << entry.path();
+}
+
 struct BadInput {
   const char* what;
   std::string args;
@@ -189,8 +197,7 @@ TEST_P(CliBadInput, OneLineOnStderrExitTwoNoOutput) {
   EXPECT_EQ(r.err.find("terminate"), std::string::npos);
   EXPECT_FALSE(fs::exists(out)) << GetParam().what;
   EXPECT_FALSE(fs::exists(mask)) << GetParam().what;
-  for (const auto& entry : fs::directory_iterator(out.parent_path()))  // no temporary left
-    EXPECT_EQ(entry.path().string().find(".part-"), std::string::npos) << entry.path();
+  expectNoTemporaries(out.parent_path());
 }
 
 std::vector<BadInput> badInputs() {
@@ -236,6 +243,29 @@ std::vector<BadInput> badInputs() {
       {"option without its value", "render --scene analytic --technique legacy.hw --out"},
       {"bench option on render",
        "render --scene analytic --technique legacy.hw --out @OUT --quick"},
+      // Strict decimal numbers (issue 17 item 5): no trailing characters, hex, inf or spaces.
+      {"threshold with trailing junk",
+       "compare --scene analytic --a legacy.hw --b modern.hw --size 64x48 --threshold 0.5abc"},
+      {"hexadecimal threshold",
+       "compare --scene analytic --a legacy.hw --b modern.hw --size 64x48 --threshold 0x0.8"},
+      {"infinite threshold",
+       "compare --scene analytic --a legacy.hw --b modern.hw --size 64x48 --threshold inf"},
+      {"hexadecimal parameter", base + "--scene analytic --param offset-factor=0x10"},
+      {"parameter with a space", base + "--scene analytic --param 'offset-factor= 2'"},
+      {"size with a space",
+       "render --scene analytic --technique legacy.hw --size '64x 48' --out @OUT"},
+      // plan refuses what render refuses: the GL's largest texture included.
+      {"plan shadow map above GL max",
+       "plan --scene analytic --technique legacy.hw --shadow-map 65536"},
+      // Destinations are checked before the bench runs (it would take minutes otherwise).
+      {"bench plots in an unwritable folder",
+       "bench --quick --technique legacy.hw --scene analytic --out /proc/nonexistent/bench"},
+      {"bench CSV in /proc", "bench --quick --technique legacy.hw --csv /proc/bench.csv"},
+      {"compare diff in /proc",
+       "compare --scene analytic --a legacy.hw --b modern.hw --size 64x48 --diff /proc/d.png"},
+      {"dump into an existing file",
+       "render --scene analytic --technique legacy.hw --size 64x48 --out @OUT --dump-passes " +
+           write("not-a-directory.txt", "text")},
   };
 }
 
@@ -345,6 +375,16 @@ std::vector<BadToolInput> badToolInputs() {
       {"imaging unknown option", IMAGING_BENCH_BINARY, "--fast"},
       {"imaging stray argument", IMAGING_BENCH_BINARY, "--quick extra"},
       {"imaging missing value", IMAGING_BENCH_BINARY, "--only"},
+      // issue 17 item 5: found before any work, exit 2, nothing on stdout.
+      {"csm csv in /proc", CSM_BENCH_BINARY, "--csv /proc/x.csv"},
+      {"csm csv with the ratio part", CSM_BENCH_BINARY, "--part ratio --csv /tmp/ratio.csv"},
+      {"csm param without the ratio part", CSM_BENCH_BINARY, "--part table1 --param order=4"},
+      {"csm hexadecimal repeat", CSM_BENCH_BINARY, "--repeat 0x3"},
+      {"twins empty scene list", TWINS_BINARY, "--scenes ''"},
+      {"twins scene list of commas", TWINS_BINARY, "--scenes ,,"},
+      {"twins unknown scene", TWINS_BINARY, "--scenes nowhere --no-bench"},
+      {"imaging only matches nothing", IMAGING_BENCH_BINARY, "--only nomatch"},
+      {"volumes doc images in /proc", VOLUMES_BENCH_BINARY, "--doc-images /proc/docs"},
   };
 }
 
@@ -355,6 +395,149 @@ INSTANTIATE_TEST_SUITE_P(All, ToolBadInput, ::testing::ValuesIn(badToolInputs())
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });
+
+// csm_bench --part ratio measures the --size and --scene it is given (issue 17 item 5), not
+// the bench sizes and scenes.
+TEST(ToolCli, CsmRatioTakesSizeAndScene) {
+  const CommandResult r =
+      runBinary(CSM_BENCH_BINARY, "--part ratio --size 48x36 --scene fence --repeat 1 --warmup 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("| fence | 48x36 |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("256x192"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("| brabec |"), std::string::npos) << r.out;
+}
+
+// Numbers on the command line are strict decimals (core/decimal.h, one parser for all).
+TEST(Cli, StrictDecimalNumbers) {
+  for (const char* good : {"0.5", "-0.5", "+2", ".5", "2.", "1e-3", "3E2"})
+    EXPECT_NO_THROW(cli::parseNumber("--x", good)) << good;
+  EXPECT_EQ(cli::parseNumber("--x", "1e-3"), 1e-3);
+  for (const char* bad : {"", "0.5abc", "0x0.8", "0x10", "inf", "-inf", "nan", " 0.5", "0.5 ", "1e",
+                          "e5", ".", "-", "1e999", "1,5", "0.5\n"})
+    EXPECT_THROW(cli::parseNumber("--x", bad), InputError) << "'" << bad << "'";
+  EXPECT_EQ(cli::parsePositiveInt("--n", "42", 100), 42);
+  for (const char* bad : {"0x10", " 4", "4 ", "4.0", "1e2", "+-4", "99999999999999999999", "0"})
+    EXPECT_THROW(cli::parsePositiveInt("--n", bad, 100), InputError) << "'" << bad << "'";
+}
+
+// A run writes all its outputs or none (issue 17 item 4): every destination is checked before
+// rendering, and an existing --out survives a run that fails.
+struct FailingRun {
+  const char* what;
+  std::string extra;  // @OUT: the existing output; @DIR: the test's directory
+};
+
+class CliOutputsAllOrNone : public ::testing::TestWithParam<FailingRun> {};
+
+TEST_P(CliOutputsAllOrNone, ExistingOutputSurvives) {
+  const fs::path d = dir();
+  const fs::path out = d / "existing.png";
+  std::ofstream(out) << "an earlier result";
+  const fs::path scene = d / "scene.json";
+  std::ofstream(scene) << slurp(fs::path(SHADOWLAB_SOURCE_DIR) / "assets/scenes/squares.json");
+  std::string args = "render --scene " + scene.string() +
+                     " --technique legacy.hw --size 64x48 --out " + out.string() + " " +
+                     GetParam().extra;
+  for (auto [key, value] :
+       {std::pair{std::string("@OUT"), out.string()}, std::pair{std::string("@DIR"), d.string()},
+        std::pair{std::string("@SCENE"), scene.string()}})
+    for (size_t p; (p = args.find(key)) != std::string::npos;) args.replace(p, key.size(), value);
+  const CommandResult r = shadowlab(args);
+  EXPECT_EQ(r.status, 2) << GetParam().what << ": " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(slurp(out), "an earlier result") << GetParam().what;
+  EXPECT_NE(slurp(scene).find("\"squares\""), std::string::npos) << "the scene was replaced";
+  EXPECT_FALSE(fs::exists(d / "dump")) << GetParam().what;
+  EXPECT_FALSE(fs::exists(d / "mask.png")) << GetParam().what;
+  expectNoTemporaries(d);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    All, CliOutputsAllOrNone,
+    ::testing::ValuesIn(std::vector<FailingRun>{
+        {"mask name too long", "--mask @DIR/" + std::string(300, 'm') + ".png"},
+        {"mask in proc", "--mask /proc/mask.png"},
+        {"mask in a missing folder", "--mask @DIR/missing/mask.png"},
+        {"mask equal to out", "--mask @OUT"},
+        {"mask equal to out by another spelling", "--mask @DIR/./existing.png"},
+        {"out equal to the scene file", "--mask @DIR/mask.png --out @SCENE"},
+        {"dump directory holding the out", "--dump-passes @DIR --mask @DIR/mask.png"},
+        {"dump directory name too long", "--dump-passes @DIR/" + std::string(300, 'd')},
+        // Rejected after the destinations were checked: nothing is created, not even the
+        // dump directory.
+        {"unknown parameter", "--mask @DIR/mask.png --dump-passes @DIR/dump --param wobble=3"},
+        {"shadow map above GL max",
+         "--mask @DIR/mask.png --dump-passes @DIR/dump --shadow-map 60000"},
+    }),
+    [](const auto& info) {
+      std::string n = info.param.what;
+      for (char& c : n)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
+
+// A rejected scene leaves no dump directory (issue 17 item 5).
+TEST(Cli, RejectedSceneCreatesNoDumpDirectory) {
+  const fs::path dump = dir() / "dump";
+  fs::remove_all(dump);
+  const CommandResult r = shadowlab("render --scene nowhere --technique legacy.hw --out " +
+                                    (dir() / "x.png").string() + " --dump-passes " + dump.string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_FALSE(fs::exists(dump));
+  expectNoTemporaries(dir());
+}
+
+// --dump-passes: a new directory (missing parents made), replaced as a whole by a later dump,
+// and an existing directory holding anything else than a dump's PNGs is refused untouched.
+TEST(Cli, DumpPassesDirectoryIsReplacedAsAWhole) {
+  const fs::path d = dir();
+  fs::remove_all(d / "nested");
+  const fs::path dump = d / "nested" / "dump";
+  const std::string render = "render --scene analytic --size 64x48 --shadow-map 64 --out " +
+                             (d / "image.png").string() + " --dump-passes " + dump.string();
+  CommandResult r = shadowlab(render + " --technique legacy.pcf");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::set<std::string> first;
+  for (const auto& e : fs::directory_iterator(dump)) first.insert(e.path().filename().string());
+  EXPECT_FALSE(first.empty());
+  r = shadowlab(render + " --technique modern.csm");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::set<std::string> second;
+  for (const auto& e : fs::directory_iterator(dump)) second.insert(e.path().filename().string());
+  EXPECT_FALSE(second.empty());
+  for (const std::string& name : second) EXPECT_EQ(first.count(name), 0u) << name;
+  expectNoTemporaries(d);
+  expectNoTemporaries(d / "nested");
+  std::ofstream(dump / "notes.txt") << "mine";
+  r = shadowlab(render + " --technique legacy.pcf");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("notes.txt"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dump / "notes.txt"), "mine");
+  EXPECT_EQ(fs::exists(dump / *second.begin()), true);
+}
+
+// A scene file named in bytes that are not UTF-8, without a "name" key: the JSON line is
+// built before any file is committed and prints the name with U+FFFD (issue 17 item 4).
+TEST(Cli, NonUtf8SceneNameStillGivesOneJsonLine) {
+  const fs::path d = dir();
+  const fs::path scene = d / "sc\xff\xfe.json";
+  std::string text = slurp(fs::path(SHADOWLAB_SOURCE_DIR) / "assets/scenes/squares.json");
+  text.replace(text.find("\"name\": \"squares\","), std::string("\"name\": \"squares\",").size(),
+               "");
+  std::ofstream(scene) << text;
+  const fs::path out = d / "u.png", mask = d / "u-mask.png";
+  fs::remove(out);
+  fs::remove(mask);
+  const CommandResult r = shadowlab("render --scene '" + scene.string() +
+                                    "' --technique legacy.hw --size 64x48 --out " + out.string() +
+                                    " --mask " + mask.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"scene\":\"sc\xef\xbf\xbd\xef\xbf\xbd\""), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_TRUE(fs::exists(mask));
+  expectNoTemporaries(d);
+}
 
 }  // namespace
 }  // namespace sl
