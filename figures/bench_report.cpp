@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/output_files.h"
 #include "figures/bench.h"
 
 namespace sl::figures {
@@ -40,8 +41,10 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   options.csvPath = (fs::path(options.outDir) / "bench.csv").string();
   options.progress = progress;
   fs::create_directories(options.outDir);
-  std::ofstream json(fs::path(options.outDir) / "bench.jsonl");
+  std::ostringstream json;  // bench.jsonl appears whole, after the bench (issue 17 item 4)
   const BenchResult result = runBenchmark(options, json);
+  writeFileAtomically((fs::path(options.outDir) / "bench.jsonl").string(),
+                      [&](std::ostream& out) { out << json.str(); });
   writeCsv(*options.csvPath, result.rows);
   std::vector<std::string> plots;
   try {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/output_files.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -40,25 +41,37 @@ std::string terminalLine(int width, int height) {
   return s.str();
 }
 
+// Runs a script whose `set output` names `pngPath`: gnuplot draws into a temporary beside it,
+// renamed over `pngPath` only when gnuplot succeeded, so a failed plot never replaces the
+// previous one with a half-drawn file (issue 17 item 4).
 void runScript(const std::string& script, const std::string& pngPath) {
   const fs::path png(pngPath);
+  const fs::path drawing = temporaryName(png, "plot");
   const fs::path gp = fs::path(pngPath).replace_extension(".gp");
   const fs::path log = fs::path(pngPath).replace_extension(".gnuplot.log");
-  {
-    std::ofstream out(gp);
-    if (!out) throw InputError("cannot write " + gp.string());
-    out << script;
-  }
+  const std::string finalOutput = "set output " + quote(pngPath) + "\n";
+  std::string toRun = script;
+  if (const auto at = toRun.find(finalOutput); at != std::string::npos)
+    toRun.replace(at, finalOutput.size(), "set output " + quote(drawing.string()) + "\n");
+  writeFileAtomically(gp.string(), [&](std::ostream& out) { out << script; });
+  const fs::path run = temporaryName(gp, "run");
+  writeFileAtomically(run.string(), [&](std::ostream& out) { out << toRun; });
   std::error_code ec;
-  fs::remove(png, ec);
   const std::string command =
-      "gnuplot " + quote(gp.string()) + " >" + quote(log.string()) + " 2>&1";
+      "gnuplot " + quote(run.string()) + " >" + quote(log.string()) + " 2>&1";
   const int status = std::system(command.c_str());
-  if (status != 0 || !fs::exists(png)) {
+  fs::remove(run, ec);
+  if (status != 0 || !fs::exists(drawing)) {
+    fs::remove(drawing, ec);
     std::ifstream in(log);
     std::string first;
     std::getline(in, first);
     throw GlError("gnuplot failed on " + gp.string() + ": " + first);
+  }
+  fs::rename(drawing, png, ec);
+  if (ec) {
+    fs::remove(drawing, ec);
+    throw InputError("cannot write " + pngPath);
   }
   fs::remove(log, ec);
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/output_files.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -322,15 +323,9 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "  document.body.setAttribute('data-images-broken', broken);\n"
        "});\n</script>\n";
   h << "</body></html>\n";
-  const fs::path path = fs::path(outDir) / "report.html";
-  const fs::path tmp = fs::path(outDir) / "report.html.tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw InputError("cannot write " + tmp.string());
-    out << h.str();
-    if (!out) throw InputError("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
+  // Written to a temporary and renamed: a failed run keeps the previous report whole.
+  writeFileAtomically((fs::path(outDir) / "report.html").string(),
+                      [&](std::ostream& out) { out << h.str(); });
 }
 
 }  // namespace sl::figures

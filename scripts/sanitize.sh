@@ -9,4 +9,6 @@ scripts/setup.sh
 cmake --preset asan >/dev/null
 cmake --build build-asan -j"$(nproc)" --target shadowlab test_core test_apps test_stability
 # Only the suites above are built: the others' ctest entries would be "not found" here.
-ctest --preset asan -j"$(nproc)" -L 'core|apps|stability' "$@"
+# reference.soft's stability cases are left out: 288 Embree rays a pixel take ~20 s each under
+# ASan and exercise no input handling that reference.hard's cases do not.
+ctest --preset asan -j"$(nproc)" -L 'core|apps|stability' -E 'reference_soft' "$@"
