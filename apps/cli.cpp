@@ -211,4 +211,11 @@ RenderParams renderParams(const Args& args) {
   return p;
 }
 
+std::vector<CommonOption> givenCommonOptions(const Args& args) {
+  std::vector<CommonOption> given;
+  for (CommonOption o : allCommonOptions())
+    if (args.has(std::string(optionFlag(o)).substr(2))) given.push_back(o);  // without "--"
+  return given;
+}
+
 }  // namespace sl::cli

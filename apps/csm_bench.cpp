@@ -34,6 +34,7 @@
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/output_files.h"
+#include "core/provenance.h"
 #include "core/scene_library.h"
 
 namespace sl {
@@ -321,6 +322,7 @@ int run(int argc, char** argv) {
 }  // namespace sl
 
 int main(int argc, char** argv) {
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
   try {
     return sl::run(argc, argv);
   } catch (const sl::InputError& e) {

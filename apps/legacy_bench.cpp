@@ -8,6 +8,7 @@
 
 #include "apps/cli.h"
 #include "core/errors.h"
+#include "core/provenance.h"
 #include "core/scene_library.h"
 #include "legacy_gl/benchmark.h"
 
@@ -16,6 +17,7 @@ constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800
 }
 
 int main(int argc, char** argv) {
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
   try {
     sl::legacy::BenchmarkOptions options;
     std::string backend, frames;

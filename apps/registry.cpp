@@ -31,6 +31,54 @@ const Technique& findTechnique(const std::string& name) {
 }
 
 namespace {
+// What a technique that does not read the option is not doing, for the message.
+std::string doesNot(CommonOption o) {
+  switch (o) {
+    case CommonOption::kShadowMap:
+      return "renders no shadow map";
+    case CommonOption::kFilter:
+      return "does not filter";
+    case CommonOption::kPrecision:
+      return "encodes no depth in colour";
+  }
+  return "ignores " + std::string(optionFlag(o));
+}
+
+std::string techniquesThatRead(CommonOption o) {
+  std::string list;
+  for (const Technique& t : allTechniques())
+    if (readsOption(t, o)) list += (list.empty() ? "" : ", ") + t.name;
+  return list.empty() ? "none" : list;
+}
+}  // namespace
+
+void rejectIgnoredOptions(const Technique& technique, const std::vector<CommonOption>& given) {
+  for (CommonOption o : given)
+    if (!readsOption(technique, o))
+      throw InputError(technique.name + " " + doesNot(o) + ": " + optionFlag(o) +
+                       " has no effect on it (techniques that read " + optionFlag(o) + ": " +
+                       techniquesThatRead(o) + ")");
+}
+
+std::vector<std::string> checkOptionsOfPair(const Technique& a, const Technique& b,
+                                            const std::vector<CommonOption>& given) {
+  std::vector<std::string> warnings;
+  for (CommonOption o : given) {
+    const bool readA = readsOption(a, o), readB = readsOption(b, o);
+    if (!readA && !readB)
+      throw InputError("neither " + a.name + " nor " + b.name + " reads " + optionFlag(o) +
+                       ": it has no effect on them (techniques that read " + optionFlag(o) + ": " +
+                       techniquesThatRead(o) + ")");
+    if (!readA || !readB) {
+      const Technique& ignoring = readA ? b : a;
+      warnings.push_back(ignoring.name + " " + doesNot(o) + ": " + optionFlag(o) + " applies to " +
+                         (readA ? a : b).name + " only");
+    }
+  }
+  return warnings;
+}
+
+namespace {
 std::unique_ptr<GlContext> contextForRender(const Technique& technique,
                                             const RenderParams& params) {
   checkParams(technique, params, 0);

@@ -12,6 +12,16 @@ namespace sl {
 const std::vector<Technique>& allTechniques();
 const Technique& findTechnique(const std::string& name);  // throws InputError if unknown
 
+// Options a technique ignores are input errors (issue 21 item 3). `given` are the common
+// options (core/technique.h CommonOption) given explicitly on the command line; throws
+// InputError for the first one `technique` does not read: "legacy.ramp does not filter:
+// --filter has no effect on it (techniques that read --filter: ...)".
+void rejectIgnoredOptions(const Technique& technique, const std::vector<CommonOption>& given);
+// For two techniques rendered with one set of options (`compare`): an option neither reads is
+// an InputError; the lines returned warn of each option that one of them ignores.
+std::vector<std::string> checkOptionsOfPair(const Technique& a, const Technique& b,
+                                            const std::vector<CommonOption>& given);
+
 // Creates the context the technique needs (installing the imaging subset, emulated or
 // native, for legacy techniques), validates the parameters against it and renders.
 Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params);

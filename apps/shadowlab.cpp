@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "core/provenance.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
 
@@ -73,6 +74,44 @@ std::string jsonLine(const nlohmann::json& out) {
   return out.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+// What made an output (issue 21 item 2): the common options as they took effect on the
+// technique(s) rendered: an option none of them reads is null (apps/registry.h refuses it
+// when given).
+nlohmann::json optionsJson(const std::vector<const Technique*>& techniques, const RenderParams& p) {
+  auto anyReads = [&](CommonOption o) {
+    for (const Technique* t : techniques)
+      if (readsOption(*t, o)) return true;
+    return false;
+  };
+  nlohmann::json out;
+  out["size"] = std::to_string(p.width) + "x" + std::to_string(p.height);
+  out["shadow_map"] =
+      anyReads(CommonOption::kShadowMap) ? nlohmann::json(p.shadowMapTexels) : nlohmann::json();
+  out["filter"] = anyReads(CommonOption::kFilter) ? nlohmann::json(p.filter) : nlohmann::json();
+  out["precision"] = anyReads(CommonOption::kPrecision) ? nlohmann::json(precisionName(p.precision))
+                                                        : nlohmann::json();
+  out["backend"] = backendName(p.backend);
+  return out;
+}
+
+// The --params of a render as it used them: given ones and the defaults it read.
+nlohmann::json paramsJson(const RenderParams& p) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, value] : effectiveParams(p)) out[key] = value;
+  return out;
+}
+
+// A render's params with a fresh log of the --param values its technique reads.
+RenderParams withReadLog(RenderParams p) {
+  p.readLog = std::make_shared<ParamReadLog>();
+  return p;
+}
+
+// The PNG text of an output: the command line and the parameters (ASCII JSON).
+Provenance pngProvenance(const nlohmann::json& parameters) {
+  return {commandLine(), parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)};
+}
+
 // The destinations of `render`, checked before rendering (core/output_files.h).
 struct RenderOutputs {
   OutputSet set;
@@ -81,22 +120,23 @@ struct RenderOutputs {
   std::optional<std::string> dump;  // temporary directory of --dump-passes
 };
 
-void writeFrameOutputs(const Frame& frame, RenderOutputs& outputs) {
+void writeFrameOutputs(const Frame& frame, RenderOutputs& outputs, const Provenance& provenance) {
   if (!frame.color.empty() && !allFinite(frame.color)) throw GlError("the image has NaN or Inf");
   if (!allFinite(frame.visibility)) throw GlError("the visibility mask has NaN or Inf");
   outputs.set.beginWriting();
-  writePng(outputs.image, frame.color, 8);
-  if (outputs.mask) writePng(*outputs.mask, frame.visibility, 16);
+  writePng(outputs.image, frame.color, 8, provenance);
+  if (outputs.mask) writePng(*outputs.mask, frame.visibility, 16, provenance);
   if (outputs.dump)
     for (const PassImage& p : frame.intermediates)
-      writePng((fs::path(*outputs.dump) / (p.name + ".png")).string(), p.image, 8);
+      writePng((fs::path(*outputs.dump) / (p.name + ".png")).string(), p.image, 8, provenance);
 }
 
 int render(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const Scene scene = loadScene(sceneName);
   const Technique& technique = findTechnique(args.required("technique"));
-  RenderParams params = cli::renderParams(args);
+  RenderParams params = withReadLog(cli::renderParams(args));
+  rejectIgnoredOptions(technique, cli::givenCommonOptions(args));
   RenderOutputs outputs;
   addSceneInputs(outputs.set, sceneName);
   outputs.image = outputs.set.addFile("--out", args.required("out"));
@@ -106,12 +146,18 @@ int render(const cli::Args& args) {
     params.capturePasses = true;
   }
   const Frame frame = renderTechnique(technique, scene, params);
-  writeFrameOutputs(frame, outputs);
-  nlohmann::json out = {{"technique", technique.name}, {"scene", scene.name},
-                        {"frame_ms", frame.totalMilliseconds()}};
+  nlohmann::json made = optionsJson({&technique}, params);
+  made["technique"] = technique.name;
+  made["scene"] = scene.name;
+  made["params"] = paramsJson(params);
+  nlohmann::json out = made;
+  out["command"] = commandLine();
+  out["commit"] = buildCommit();
+  out["frame_ms"] = frame.totalMilliseconds();
   for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
   const std::string line = jsonLine(out);
+  writeFrameOutputs(frame, outputs, pngProvenance(made));
   outputs.set.commit();
   std::cout << line << "\n";
   return 0;
@@ -123,6 +169,8 @@ int compare(const cli::Args& args) {
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
+  for (const std::string& warning : checkOptionsOfPair(a, b, cli::givenCommonOptions(args)))
+    std::cerr << "shadowlab: warning: " << warning << "\n";
   double threshold = 0.0;
   if (auto t = args.value("threshold")) {
     threshold = cli::parseNumber("--threshold", *t);
@@ -132,17 +180,26 @@ int compare(const cli::Args& args) {
   addSceneInputs(outputs, sceneName);
   std::optional<std::string> diff;
   if (auto path = args.value("diff")) diff = outputs.addFile("--diff", *path);
-  const Frame fa = renderTechnique(a, scene, params);
-  const Frame fb = renderTechnique(b, scene, params);
+  const RenderParams paramsA = withReadLog(params), paramsB = withReadLog(params);
+  const Frame fa = renderTechnique(a, scene, paramsA);
+  const Frame fb = renderTechnique(b, scene, paramsB);
   const MaskDifference d = compareMasks(fa.visibility, fb.visibility, threshold);
+  nlohmann::json made = optionsJson({&a, &b}, params);
+  made["scene"] = scene.name;
+  made["a"] = a.name;
+  made["b"] = b.name;
+  made["a_params"] = paramsJson(paramsA);
+  made["b_params"] = paramsJson(paramsB);
+  made["threshold"] = threshold;
   nlohmann::json out = toJson(d);
-  out["scene"] = scene.name;
-  out["a"] = a.name;
-  out["b"] = b.name;
+  out.update(made);
+  out["command"] = commandLine();
+  out["commit"] = buildCommit();
   out["a_frame_ms"] = fa.totalMilliseconds();
   out["b_frame_ms"] = fb.totalMilliseconds();
   const std::string line = jsonLine(out);
-  if (diff) writePng(*diff, differenceHeatMap(fa.visibility, fb.visibility), 8);
+  if (diff)
+    writePng(*diff, differenceHeatMap(fa.visibility, fb.visibility), 8, pngProvenance(made));
   outputs.commit();
   std::cout << line << "\n";
   return 0;
@@ -168,7 +225,10 @@ int run(int argc, char** argv) {
     return figures::runFigures(args.value("out").value_or("out/figures"), args.value("only"),
                                !args.has("no-progress"));
   if (args.command == "bench") return figures::runBench(args);
-  if (args.command == "plan") return figures::runPlan(args);
+  if (args.command == "plan") {
+    rejectIgnoredOptions(findTechnique(args.required("technique")), cli::givenCommonOptions(args));
+    return figures::runPlan(args);
+  }
   throw InputError("unknown command " + args.command);
 }
 
@@ -176,6 +236,7 @@ int run(int argc, char** argv) {
 }  // namespace sl
 
 int main(int argc, char** argv) {
+  sl::recordCommandLine(argc, argv);
   try {
     return sl::run(argc, argv);
   } catch (const sl::InputError& e) {

@@ -19,6 +19,7 @@
 #include "apps/registry.h"
 #include "apps/twins.h"
 #include "core/errors.h"
+#include "core/provenance.h"
 #include "core/scene_library.h"
 
 namespace sl {
@@ -174,6 +175,7 @@ int run(int argc, char** argv) {
 }  // namespace sl
 
 int main(int argc, char** argv) {
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
   try {
     return sl::run(argc, argv);
   } catch (const sl::InputError& e) {

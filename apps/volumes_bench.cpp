@@ -21,6 +21,7 @@
 #include "core/errors.h"
 #include "core/image.h"
 #include "core/output_files.h"
+#include "core/provenance.h"
 #include "core/scene_library.h"
 
 namespace {
@@ -81,6 +82,7 @@ void writeDocImages(const std::string& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
   using namespace sl;
   try {
     std::string sceneName = "cubes";

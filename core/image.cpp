@@ -32,9 +32,30 @@ int pngColorType(int channels) {
   }
 }
 
+// The tEXt chunks of writePng. tEXt holds Latin-1; every value here is ASCII (the command line
+// is shell-quoted with \xNN escapes, the parameters are JSON with \u escapes), except a
+// caller's own text, whose other bytes libpng stores as they are.
+void setProvenanceText(png_structp png, png_infop info, const Provenance& provenance) {
+  const std::string software = softwareName();
+  const std::string& command = provenance.command.empty() ? commandLine() : provenance.command;
+  std::vector<std::pair<const char*, const std::string*>> entries = {{"Software", &software}};
+  if (!command.empty()) entries.push_back({"shadowlab:command", &command});
+  if (!provenance.parameters.empty())
+    entries.push_back({"shadowlab:parameters", &provenance.parameters});
+  std::vector<png_text> text(entries.size());
+  for (size_t i = 0; i < entries.size(); ++i) {
+    text[i].compression = PNG_TEXT_COMPRESSION_NONE;
+    text[i].key = const_cast<char*>(entries[i].first);
+    text[i].text = const_cast<char*>(entries[i].second->c_str());
+    text[i].text_length = entries[i].second->size();
+  }
+  png_set_text(png, info, text.data(), int(text.size()));  // libpng copies the strings
+}
+
 }  // namespace
 
-void writePng(const std::string& path, const Image& image, int bitDepth) {
+void writePng(const std::string& path, const Image& image, int bitDepth,
+              const Provenance& provenance) {
   if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
   const int colorType = pngColorType(image.channels);
   if (colorType < 0 || image.width <= 0 || image.height <= 0)
@@ -81,6 +102,7 @@ void writePng(const std::string& path, const Image& image, int bitDepth) {
   png_init_io(png, file.get());
   png_set_IHDR(png, info, image.width, image.height, bitDepth, colorType, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  setProvenanceText(png, info, provenance);
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y) png_write_row(png, pixels.data() + rowBytes * y);
   png_write_end(png, nullptr);
@@ -141,6 +163,31 @@ Image readPng(const std::string& path) {
     }
   }
   return image;
+}
+
+std::map<std::string, std::string> readPngText(const std::string& path) {
+  File file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw InputError("cannot open " + path + ": " + std::strerror(errno));
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw InputError("libpng could not start reading " + path);
+  }
+  std::map<std::string, std::string> texts;
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw InputError(path + " is not a valid PNG file");
+  }
+  png_init_io(png, file.get());
+  // The whole file: text chunks may follow the image data (png_read_png reads them into info).
+  png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_textp text = nullptr;
+  const int count = png_get_text(png, info, &text, nullptr);
+  for (int i = 0; i < count; ++i)
+    texts[text[i].key] = std::string(text[i].text, text[i].text ? std::strlen(text[i].text) : 0);
+  png_destroy_read_struct(&png, &info, nullptr);
+  return texts;
 }
 
 Image crop(const Image& image, int x, int y, int w, int h) {

@@ -6,8 +6,11 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
+
+#include "core/provenance.h"
 
 namespace sl {
 
@@ -28,9 +31,14 @@ struct Image {
 // Writes 8- or 16-bit PNG (gray, gray+alpha, RGB or RGBA by channel count). Values are clamped
 // to [0,1] and rounded. Writes to a temporary file first and renames it, so a failure never
 // leaves a partial file. Throws InputError naming the path when it cannot write.
-void writePng(const std::string& path, const Image& image, int bitDepth = 8);
+// tEXt chunks say what made the file (core/provenance.h): "Software" (shadowlab and the
+// commit), "shadowlab:command" (the command line) and, when given, "shadowlab:parameters".
+void writePng(const std::string& path, const Image& image, int bitDepth = 8,
+              const Provenance& provenance = {});
 // Reads any PNG (palette, gray, RGB, with or without alpha, 8 or 16 bit) as float channels.
 Image readPng(const std::string& path);
+// The text chunks (tEXt, zTXt, iTXt) of a PNG, keyword -> text. Throws InputError.
+std::map<std::string, std::string> readPngText(const std::string& path);
 
 // Close-ups as the papers print them.
 Image crop(const Image& image, int x, int y, int w, int h);  // (x, y) = bottom-left corner

@@ -33,9 +33,17 @@ double parseNumber(const std::string& key, const std::string& value) {
   if (!v) throw InputError("--param " + key + "=" + value + ": not a finite decimal number");
   return *v;
 }
+
+// Notes a value a technique read (RenderParams::readLog): the given text, else the default.
+void noteRead(const RenderParams& p, const std::string& key, const std::string& defaultText) {
+  auto it = p.extra.find(key);
+  std::lock_guard<std::mutex> lock(p.readLog->mutex);
+  p.readLog->values[key] = it != p.extra.end() ? it->second : defaultText;
+}
 }  // namespace
 
 double RenderParams::number(const std::string& key, double fallback, double lo, double hi) const {
+  if (readLog) noteRead(*this, key, formatNumber(fallback));
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -46,6 +54,7 @@ double RenderParams::number(const std::string& key, double fallback, double lo, 
 }
 
 int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) const {
+  if (readLog) noteRead(*this, key, std::to_string(fallback));
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -57,6 +66,7 @@ int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) 
 
 std::string RenderParams::text(const std::string& key, const std::string& fallback,
                                const std::vector<std::string>& allowed) const {
+  if (readLog) noteRead(*this, key, fallback);
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
@@ -68,11 +78,45 @@ std::string RenderParams::text(const std::string& key, const std::string& fallba
 }
 
 bool RenderParams::flag(const std::string& key, bool fallback) const {
+  if (readLog) noteRead(*this, key, fallback ? "on" : "off");
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (it->second == "1" || it->second == "true" || it->second == "on") return true;
   if (it->second == "0" || it->second == "false" || it->second == "off") return false;
   throw InputError("--param " + key + "=" + it->second + ": expected on/off");
+}
+
+std::map<std::string, std::string> effectiveParams(const RenderParams& p) {
+  std::map<std::string, std::string> values = p.extra;
+  if (p.readLog) {
+    std::lock_guard<std::mutex> lock(p.readLog->mutex);
+    for (const auto& [key, value] : p.readLog->values) values[key] = value;
+  }
+  return values;
+}
+
+const std::vector<CommonOption>& allCommonOptions() {
+  static const std::vector<CommonOption> kAll = {CommonOption::kShadowMap, CommonOption::kFilter,
+                                                 CommonOption::kPrecision};
+  return kAll;
+}
+
+const char* optionFlag(CommonOption o) {
+  switch (o) {
+    case CommonOption::kShadowMap: return "--shadow-map";
+    case CommonOption::kFilter: return "--filter";
+    case CommonOption::kPrecision: return "--precision";
+  }
+  return "?";
+}
+
+bool readsOption(const Technique& t, CommonOption o) {
+  switch (o) {
+    case CommonOption::kShadowMap: return t.reads.shadowMap;
+    case CommonOption::kFilter: return t.reads.filter;
+    case CommonOption::kPrecision: return t.reads.precision;
+  }
+  return false;
 }
 
 double Frame::totalMilliseconds() const {

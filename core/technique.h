@@ -7,6 +7,8 @@
 
 #include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,13 @@ enum class Precision { k8, k12, kFloat };
 const char* precisionName(Precision p);
 Precision parsePrecision(const std::string& s);  // "8", "12", "float"; throws InputError
 
+// The --param values a render read (RenderParams::readLog): key -> value as --param spells it.
+// Guarded, as a technique may read parameters from worker threads.
+struct ParamReadLog {
+  std::mutex mutex;
+  std::map<std::string, std::string> values;
+};
+
 struct RenderParams {
   int width = 800;             // window, pixels (Brabec–Seidel §5)
   int height = 600;
@@ -32,6 +41,10 @@ struct RenderParams {
   Backend backend = Backend::kOsmesa;
   bool capturePasses = false;  // fill Frame::intermediates (--dump-passes)
   std::map<std::string, std::string> extra;  // --param key=value, technique specific
+  // When set, number/integer/text/flag note every key they are asked for with the value they
+  // return, the technique's default included where the key was not given: the effective
+  // --params of a render (apps/shadowlab.cpp prints them). Copies share the log.
+  std::shared_ptr<ParamReadLog> readLog;
 
   // Typed access to `extra` with range checks; unknown keys are reported by checkParams.
   double number(const std::string& key, double fallback, double lo, double hi) const;
@@ -40,6 +53,11 @@ struct RenderParams {
                    const std::vector<std::string>& allowed) const;
   bool flag(const std::string& key, bool fallback) const;
 };
+
+// The --params of a render: every key given, and every key the technique read through
+// number/integer/text/flag with the value it used (its default where none was given). Without
+// a readLog, the keys given.
+std::map<std::string, std::string> effectiveParams(const RenderParams& p);
 
 struct PassTime {
   std::string name;
@@ -67,6 +85,20 @@ struct ContextNeeds {
   bool colorFromPrecision = false;  // colour buffer format follows RenderParams::precision
 };
 
+// The options of render, compare and plan that only some techniques read; --size and
+// --backend apply to every technique. An option given to a technique that does not read it is
+// an input error (apps/registry.h rejectIgnoredOptions).
+enum class CommonOption { kShadowMap, kFilter, kPrecision };
+const std::vector<CommonOption>& allCommonOptions();
+const char* optionFlag(CommonOption o);  // "--shadow-map"
+
+// Which common options a technique's render reads, declared where the technique is registered.
+struct CommonOptions {
+  bool shadowMap = false;  // RenderParams::shadowMapTexels
+  bool filter = false;     // RenderParams::filter
+  bool precision = false;  // RenderParams::precision
+};
+
 struct Technique {
   std::string name;      // "legacy.pcf"
   std::string paper;     // "Brabec & Seidel 2001, §3"
@@ -74,8 +106,11 @@ struct Technique {
   std::string status;    // "complete", or what is missing
   ContextNeeds needs;
   std::vector<std::string> paramKeys;  // --param keys it understands
+  CommonOptions reads;                 // the common options its render reads
   std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
 };
+
+bool readsOption(const Technique& t, CommonOption o);
 
 // The context a technique needs for the given parameters.
 ContextSpec contextFor(const Technique& t, const RenderParams& p);

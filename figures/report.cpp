@@ -4,6 +4,7 @@
 #include "figures/report.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -11,6 +12,7 @@
 
 #include "core/errors.h"
 #include "core/output_files.h"
+#include "core/provenance.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -58,6 +60,34 @@ std::string frameTime(double ms, int timedFrames) {
   if (timedFrames > 0)
     return msAndFps(ms) + " <small>median of " + std::to_string(timedFrames) + "</small>";
   return "<small>first frame</small> " + msAndFps(ms);
+}
+
+// The CPU of this machine: the first "model name" of /proc/cpuinfo, and the processor count.
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model;
+  int processors = 0;
+  while (std::getline(in, line)) {
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string key = line.substr(0, line.find_last_not_of(" \t", colon - 1) + 1);
+    if (key == "processor") ++processors;
+    if (key == "model name" && model.empty()) {
+      const auto start = line.find_first_not_of(' ', colon + 1);
+      model = start == std::string::npos ? "" : line.substr(start);
+    }
+  }
+  if (model.empty()) model = "unknown CPU";
+  return processors > 0 ? model + " (" + std::to_string(processors) + " logical processors)"
+                        : model;
+}
+
+// The load averages over 1, 5 and 15 minutes as the report is written (getloadavg(3)).
+std::string loadAverages() {
+  constexpr int kAverages = 3;
+  double load[kAverages] = {};
+  if (getloadavg(load, kAverages) != kAverages) return "unknown";
+  return fixed(load[0], 2) + ", " + fixed(load[1], 2) + ", " + fixed(load[2], 2);
 }
 
 const char* kStyle = R"(
@@ -289,6 +319,12 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "mask against the ray-traced "
        "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
        "red with the reason.</p>\n";
+  // What made this report (issue 21 item 2): the source, the command, the machine and its load.
+  h << "<p class=provenance><small>Made by shadowlab <code>" << esc(buildCommit())
+    << "</code>, command <code>" << esc(commandLine().empty() ? "unknown" : commandLine())
+    << "</code>; CPU " << esc(cpuModel()) << "; GL " << esc(info.renderer)
+    << "; load average (1, 5, 15 min) when the report was written: " << loadAverages()
+    << ".</small></p>\n";
   // Index with a status per figure.
   h << "<nav><table><tr><th>paper</th><th>figure</th><th>id</th><th>panels made</th></tr>\n";
   for (const FigureResult& f : figures) {

@@ -214,6 +214,7 @@ Technique fastPcfTechnique() {
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
   t.paramKeys = {"depth-bias"};
+  t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;
 }

@@ -239,6 +239,7 @@ Technique hardwareShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
   t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -213,6 +213,7 @@ Technique pcfTechnique() {
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
   t.paramKeys = {"depth-bias"};
+  t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;
 }

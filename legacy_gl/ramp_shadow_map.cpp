@@ -128,6 +128,7 @@ Technique rampShadowMapTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.needs.colorFromPrecision = true;
   t.paramKeys = {"depth-bias"};
+  t.reads = {.shadowMap = true, .precision = true};
   t.render = render;
   return t;
 }

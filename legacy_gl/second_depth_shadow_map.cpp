@@ -90,6 +90,7 @@ Technique secondDepthShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
   t.paramKeys = {"compare"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

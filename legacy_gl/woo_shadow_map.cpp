@@ -172,6 +172,7 @@ Technique wooShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
   t.paramKeys = {"compare"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -341,6 +341,7 @@ Technique convolutionShadowMapTechnique() {
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"order", "alpha",     "offset",     "scale",  "storage",
                  "blur",  "filtering", "anisotropy", "mipmaps"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -108,6 +108,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();
+  t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;
 }

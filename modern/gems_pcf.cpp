@@ -142,6 +142,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"samples", "offset-factor", "offset-units", "bias-texels"};
+  t.reads = {.shadowMap = true};
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);
   };

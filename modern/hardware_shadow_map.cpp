@@ -112,6 +112,7 @@ Technique hardwareShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -414,6 +414,7 @@ Technique hybridShadowsTechnique() {
       "complete (depth-bounds mask where the driver has it, else stencil bit + scissor tiles)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"offset-factor", "offset-units", "mask", "mask-pass"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

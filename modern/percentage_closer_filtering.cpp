@@ -82,6 +82,7 @@ Technique percentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();
+  t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;
 }

@@ -91,6 +91,7 @@ Technique rampShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();
+  t.reads = {.shadowMap = true, .precision = true};
   t.render = render;
   return t;
 }

@@ -68,6 +68,7 @@ Technique secondDepthShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"compare"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -350,6 +350,7 @@ Technique shadowVolumesTechnique() {
   t.status = "complete (open casters get two-sided volumes)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {};
+  t.reads = {};  // no shadow map, no filter, no colour-encoded depth
   t.render = render;
   return t;
 }

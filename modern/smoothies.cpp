@@ -413,6 +413,7 @@ Technique smoothiesTechnique() {
   t.status = "complete (square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"width", "remap", "offset-factor", "offset-units"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

@@ -137,6 +137,7 @@ Technique varianceShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"min-variance", "bleed-reduction", "storage", "blur", "filtering", "anisotropy"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

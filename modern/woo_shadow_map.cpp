@@ -113,6 +113,7 @@ Technique wooShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"compare"};
+  t.reads = {.shadowMap = true};
   t.render = render;
   return t;
 }

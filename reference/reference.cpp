@@ -527,6 +527,7 @@ std::vector<Technique> techniques() {
                  std::to_string(kDefaultHardPixelSamplesPerSide * kDefaultHardPixelSamplesPerSide) +
                  " stratified sub-pixel rays, averaged)";
   hard.paramKeys = {kPixelParam, kPixelSamplesParam};
+  hard.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
   hard.status = "complete";
   hard.needs.profile = Profile::kCore;
   hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
@@ -537,6 +538,7 @@ std::vector<Technique> techniques() {
   soft.summary = "Monte Carlo visibility of a spherical light of SpotLight::radius, " +
                  std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
   soft.paramKeys = {"rays", kPixelParam, kPixelSamplesParam};
+  soft.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
   soft.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, true);
   };
