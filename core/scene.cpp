@@ -90,6 +90,11 @@ DepthRange lightDepthRange(const Scene& scene) {
   return r;
 }
 
+float lightDepthRoundoffScale(const Scene& scene) {
+  const DepthRange r = lightDepthRange(scene);
+  return std::max(1.0f, 2.0f * r.nearPlane / (r.farPlane - r.nearPlane));
+}
+
 glm::mat4 lightProjection(const Scene& scene) {
   const DepthRange r = lightDepthRange(scene);
   return glm::perspective(glm::radians(scene.light.coneDegrees), 1.0f, r.nearPlane, r.farPlane);

@@ -100,6 +100,15 @@ struct DepthRange {
 };
 DepthRange lightDepthRange(const Scene& scene);
 glm::mat4 lightProjection(const Scene& scene);
+// How many times its own float round-off the projective light depth r/q carries. The depth is
+// (A z + B) / z with A = (f + n) / (f - n) and B = 2 f n / (f - n); when the depth range is
+// narrow compared with its distance from the light (a far light fitted tightly to its scene),
+// the two terms are large and cancel, and r/q keeps about 2n / (f - n) times the round-off of
+// a wide range. Polygon-offset constants and peeling epsilons, which exist to cover that
+// round-off, are multiplied by this factor (at least 1, so wide ranges are unchanged).
+// DEVIATION (Everitt et al. 2001, "Polygon offset"): the paper tunes one constant per scene;
+// without the factor a flat ground under a light 20 units up was all umbra (issue 17).
+float lightDepthRoundoffScale(const Scene& scene);
 
 // Validates a scene (finite numbers, non-degenerate camera and light, at least one object);
 // throws InputError naming the problem.

@@ -59,7 +59,7 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units);
+  glPolygonOffset(factor, units * lightDepthRoundoffScale(scene));
   loadMatrix(GL_PROJECTION, lightProjection(scene));
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
   if (casterInFrustum) drawScene(scene, Draw::kCasters);

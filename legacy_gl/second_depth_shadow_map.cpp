@@ -58,7 +58,8 @@ void renderBackFacesFromLight(const Scene& scene, const RenderParams& params, GL
   glDisable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
-  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  glPolygonOffset(kOpenCasterOffsetFactor,
+                  kOpenCasterOffsetUnits * lightDepthRoundoffScale(scene));
   drawScene(castersOf(scene, false), Draw::kCasters);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

@@ -31,7 +31,9 @@ namespace {
 // Depth peeling's own tolerance, in window depth [0,1]: a fragment counts as "behind" the
 // first layer when its texgen depth r/q exceeds z1 by more than this. r/q and the rasterised
 // z of the very same fragment differ only by float rounding (~1e-7) and the 24-bit storage of
-// z1 (6e-8), so 2^-20 (16 depth units) separates the layer from itself and nothing else.
+// z1 (6e-8), so 2^-20 (16 depth units) separates the layer from itself and nothing else —
+// for a wide depth range; a narrow one far from the light multiplies r/q's round-off, and the
+// tolerance with it (core/scene.h lightDepthRoundoffScale).
 constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
 constexpr float kAlphaTestThreshold = 0.5f;  // ARB_shadow gives 0 or 1 with GL_NEAREST
 
@@ -79,7 +81,8 @@ std::vector<float> peelSecondDepthLayer(const Scene& scene, int n, LightTarget& 
     glEnable(enables[i]);
   }
   // r' = r - kPeelEpsilon * q: the texture matrix moves the reference depth, not the map.
-  loadMatrix(GL_TEXTURE, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -kPeelEpsilon)));
+  const float epsilon = kPeelEpsilon * lightDepthRoundoffScale(scene);
+  loadMatrix(GL_TEXTURE, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -epsilon)));
   glMatrixMode(GL_MODELVIEW);
   glBindTexture(GL_TEXTURE_2D, firstLayer);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -34,7 +34,7 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units);
+  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
   const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));

@@ -124,7 +124,7 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units);
+  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the

@@ -42,7 +42,8 @@ RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, F
   glDisable(GL_CULL_FACE);
   glCullFace(GL_BACK);
   glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
-  glPolygonOffset(kOpenCasterOffsetFactor, kOpenCasterOffsetUnits);
+  glPolygonOffset(kOpenCasterOffsetFactor,
+                  kOpenCasterOffsetUnits * lightDepthRoundoffScale(gpu.scene()));
   gpu.draw([](const Object& o) { return o.castsShadow && !o.mesh->closed; }, setModel);
   glDisable(GL_POLYGON_OFFSET_FILL);
   setDepthCompareParameters(map.depth.id(), linear);

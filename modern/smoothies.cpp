@@ -197,7 +197,7 @@ RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units);
+  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
   const auto setModel = [&](const Object& o) { program.set("uModel", o.model); };
   gpu.draw([](const Object& o) { return o.castsShadow; }, setModel);
   glDisable(GL_POLYGON_OFFSET_FILL);

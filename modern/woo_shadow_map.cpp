@@ -18,7 +18,8 @@ using namespace sl::gl;
 
 namespace {
 
-// Same tolerance as legacy.woo (see legacy_gl/woo_shadow_map.cpp): 2^-20 in window depth.
+// Same tolerance as legacy.woo (see legacy_gl/woo_shadow_map.cpp): 2^-20 in window depth, times
+// lightDepthRoundoffScale (core/scene.h) where the light's depth range is narrow.
 constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
 
 RenderTarget makeDepthMap(int n) {
@@ -56,7 +57,7 @@ RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget
   program.use();
   program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
   program.set("uWorldToShadowMap", worldToShadowMap(gpu.scene()));
-  program.set("uPeelEpsilon", kPeelEpsilon);
+  program.set("uPeelEpsilon", kPeelEpsilon * lightDepthRoundoffScale(gpu.scene()));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, first.depth.id());
   program.set("uFirstLayer", 0);
