@@ -165,6 +165,21 @@ Scene flatDepth() {
   return s;
 }
 
+// The stage with a slab between the light and the sphere, so that the two casters' shadow
+// volumes overlap. `mirrored`: the ground, the box and the slab mirrored by their model
+// matrices (a negative determinant reverses every triangle's winding; issue 17 item 9), the
+// sphere not, so mirrored and unmirrored volumes overlap. The meshes are mirror-symmetric about
+// their own origins: the geometry does not depend on `mirrored`.
+Scene mirroringStage(bool mirrored) {
+  Scene s = stage();
+  s.name = mirrored ? "mirrored" : "mirroring";
+  s.objects.push_back(
+      object("slab", makeBox({0.5f, 0.05f, 0.5f}), at(1.2f, 2.3f, -1.0f), true, true));
+  if (!mirrored) return s;
+  const glm::mat4 flipX = glm::scale(glm::mat4(1), {-1, 1, 1});
+  for (size_t i : {0, 1, 3}) s.objects[i].model = s.objects[i].model * flipX;
+  return s;
+}
 
 bool declares(const Technique& t, const std::string& key) {
   return std::find(t.paramKeys.begin(), t.paramKeys.end(), key) != t.paramKeys.end();
@@ -204,6 +219,9 @@ const std::vector<Case>& cases() {
        "a uniform scale changes no angle and no depth ratio: same as the baseline"},
       {"scaled_1e4", [] { return scaled(1e4f); }, noChange, always, kWellConditioned,
        "a uniform scale changes no angle and no depth ratio: same as the baseline"},
+      {"mirrored", [] { return mirroringStage(true); }, noChange, always, kWellConditioned,
+       "mirrored objects are the stage's geometry: front faces, culling, stencil counts and "
+       "silhouette orientation must follow the outside, not the winding"},
       {"behind_and_around_light", behindAndAround, noChange, always, kWellConditioned,
        "geometry behind the light must not shadow anything in front of it (negative projection)"},
       {"degenerate_triangles", degenerate, noChange, always, kWellConditioned,
@@ -249,6 +267,7 @@ const std::vector<Case>& cases() {
        kWellConditioned,
        "flat caster over a flat receiver: sigma^2 = 0 and the Chebyshev bound must not divide by "
        "it"},
+
   };
   return kCases;
 }
@@ -266,7 +285,6 @@ RenderParams baseParams() {
   p.capturePasses = true;  // every intermediate buffer is checked for NaN/Inf too
   return p;
 }
-
 
 // The references of a case, rendered once per case and technique kind. `withoutOpenCasters`:
 // the scene with every open (non-closed) caster made a non-caster, the documented fallback of
@@ -316,6 +334,7 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
       {{"grazing80", "legacy.ramp"}, {1.0, kConstantBias}},
       {{"grazing80", "legacy.pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "legacy.fast-pcf"}, {1.0, kConstantBias}},
+
       {{"grazing80", "modern.ramp"}, {1.0, kConstantBias}},
       {{"grazing80", "modern.pcf"}, {1.0, kConstantBias}},
       {{"grazing80", "modern.fast-pcf"}, {1.0, kConstantBias}},
@@ -333,7 +352,6 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   };
   return kIssues;
 }
-
 
 Outcome evaluate(const Case& c, const Technique& t) {
   Outcome out;
