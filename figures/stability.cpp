@@ -222,6 +222,9 @@ const std::vector<Case>& cases() {
       {"mirrored", [] { return mirroringStage(true); }, noChange, always, kWellConditioned,
        "mirrored objects are the stage's geometry: front faces, culling, stencil counts and "
        "silhouette orientation must follow the outside, not the winding"},
+      {"scaled_1e6", [] { return scaled(1e6f); }, noChange, always, kWellConditioned,
+       "a uniform scale changes no angle and no depth ratio: same as the baseline (the legacy "
+       "negative-projection step once overflowed llvmpipe's integer texel coordinate here)"},
       {"behind_and_around_light", behindAndAround, noChange, always, kWellConditioned,
        "geometry behind the light must not shadow anything in front of it (negative projection)"},
       {"degenerate_triangles", degenerate, noChange, always, kWellConditioned,
