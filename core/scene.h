@@ -81,7 +81,9 @@ glm::mat4 cameraView(const Camera& camera);
 glm::mat4 cameraProjection(const Camera& camera, float aspect);
 glm::mat4 lightView(const SpotLight& light);
 // The light's perspective frustum: cone angle, aspect 1, and [near, far] from the scene when
-// the light does not fix them (fitted to the bounds of every object in light space).
+// the light does not fix them (fitted to the bounds of every object in light space, near/far
+// at least 1e-4). A given range with near/far below 1e-4 is narrowed to the part of it that
+// holds geometry: a 24-bit depth buffer has no precision left below that.
 struct DepthRange {
   float nearPlane = 0.1f;
   float farPlane = 100.0f;
