@@ -153,7 +153,7 @@ struct CommandResult {
 };
 
 CommandResult renderSceneFile(const std::string& name, double cameraNear, double cone,
-                              const std::filesystem::path& image) {
+                              const std::filesystem::path& image, double boxX = -0.6) {
   const std::filesystem::path dir = outputDir() / ("stiff-" + name);
   std::filesystem::create_directories(dir);
   const std::filesystem::path scene = dir / "scene.json", err = dir / "stderr.txt";
@@ -166,7 +166,8 @@ CommandResult renderSceneFile(const std::string& name, double cameraNear, double
                        << "}, \"objects\": [{\"mesh\": {\"primitive\": \"plane\", "
                           "\"width\": 4, \"depth\": 4}, \"casts\": false}, {\"mesh\": "
                           "{\"primitive\": \"box\", \"extent\": [0.8, 0.8, 0.8]}, "
-                          "\"translate\": [-0.6, 0.8, -0.2]}]}";
+                          "\"translate\": ["
+                       << boxX << ", 0.8, -0.2]}]}";
   std::filesystem::remove(image);
   const std::string command = std::string(SHADOWLAB_BINARY) + " render --scene " + scene.string() +
                               " --technique modern.hw --size 64x48 --out " + image.string() +
@@ -210,6 +211,14 @@ TEST(StabilityStiffRanges, CameraNearFarBelowBoundIsRefusedNamingTheField) {
   const CommandResult stiffest = renderSceneFile("camera", 20 * 1e-5, kStageCone, image);
   EXPECT_EQ(stiffest.status, 0) << stiffest.err;
   EXPECT_TRUE(std::filesystem::exists(image));
+}
+
+// Issue 17 item 8, beyond the scale 1e6 it reports (fixed): world coordinates beyond 1e12 are
+// refused (products of coordinates overflow float in ray and shadow-volume tests from ~2e13).
+TEST(StabilityStiffRanges, WorldCoordinatesBeyondBoundAreRefusedNamingTheObject) {
+  const std::filesystem::path image = outputDir() / "stiff-coordinates.png";
+  expectRefusedNaming(renderSceneFile("coordinates", kStageCameraNear, kStageCone, image, 2e12),
+                      "world coordinates", image);
 }
 
 // Issue 17 item 7: a given light range with near/far below 1e-4 is narrowed to the geometry
