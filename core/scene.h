@@ -20,8 +20,12 @@ namespace sl {
 constexpr int kMaxSceneObjects = 4096;             // draw calls per pass stay bounded
 constexpr size_t kMaxSceneTriangles = 16'000'000;  // ~1 GB of vertex data in every technique
 // Coordinates (positions, targets, translations, world-space vertices) at most this far from
-// the origin: a float keeps about 1 unit in 2^24 of its magnitude, and the depth maps need it.
-constexpr double kMaxSceneCoordinate = 1e7;
+// the origin. Ray-triangle tests (Embree's, the reference's) and the shadow volumes multiply
+// coordinates, whose products overflow float (3.4e38) at large enough scales. Measured on the
+// boxes scene scaled up: with coordinates up to 1.2e13 every technique matched the unscaled
+// scene; at 2.4e13 modern.volumes and modern.hybrid put every receiver in umbra, and from 4e13
+// reference.hard lost shadows. The cap keeps a factor of 10 below the first failure.
+constexpr double kMaxSceneCoordinate = 1e12;
 // A camera or light `up` must make at least this sine with the view direction (0.06 degrees):
 // closer to parallel, lookAt has no side vector and the image is black.
 constexpr float kMinUpViewSine = 1e-3f;
@@ -93,7 +97,9 @@ glm::mat4 cameraView(const Camera& camera);
 glm::mat4 cameraProjection(const Camera& camera, float aspect);
 glm::mat4 lightView(const SpotLight& light);
 // The light's perspective frustum: cone angle, aspect 1, and [near, far] from the scene when
-// the light does not fix them (fitted to the bounds of every object in light space).
+// the light does not fix them (fitted to the bounds of every object in light space, near/far
+// at least 1e-4). A given range with near/far below 1e-4 is narrowed to the part of it that
+// holds geometry: a 24-bit depth buffer has no precision left below that.
 struct DepthRange {
   float nearPlane = 0.1f;
   float farPlane = 100.0f;

@@ -41,6 +41,9 @@ const std::vector<Case>& cases();
 const Case& findCase(const std::string& name);
 const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues();
 Scene stage();  // the baseline scene
+// The stage plus a slab over the sphere; `mirrored`: the same geometry with three of its four
+// objects mirrored by their model matrices.
+Scene mirroringStage(bool mirrored);
 bool isReference(const Technique& t);
 RenderParams baseParams();
 // The ray-traced reference of a case (cached). `withoutOpenCasters`: every open caster made a

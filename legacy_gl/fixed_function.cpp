@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/winding.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -32,6 +33,7 @@ void drawScene(const Scene& scene, Draw which, Colors colors) {
     glMultMatrixf(glm::value_ptr(o.model));
     glVertexPointer(3, GL_FLOAT, 0, o.mesh->positions.data());
     glNormalPointer(GL_FLOAT, 0, o.mesh->normals.data());
+    const FrontFaceForModel frontFace(o.model);  // culling keeps seeing a mirrored outside as front
     glDrawElements(GL_TRIANGLES, GLsizei(o.mesh->indices.size()), GL_UNSIGNED_INT,
                    o.mesh->indices.data());
     glPopMatrix();

@@ -33,9 +33,13 @@ namespace {
 
 constexpr float kDefaultOffsetFactor = 2.0f;  // glPolygonOffset slope factor (Everitt Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
-// Texgen scale of the negative-projection test: q (light eye-space depth, in world units)
-// times this maps any q >= 1e-4 units past the half-texel threshold of the step texture.
-constexpr float kBehindLightSharpness = 1.0e4f;
+// Texgen scale of the negative-projection test, per light far distance: s = 0.5 + q / far
+// (q: light eye-space depth). Any q > 0 lands past the half-texel threshold of the 2-texel step
+// texture, and in-frustum fragments get s in (0.5, 1.5] at every scene scale.
+// It was once 1e4 per world unit: at a scene scale of 1e5 (q ~ 4e5) s*2 reached 8e9, beyond
+// the 32-bit integer texel coordinate llvmpipe converts s to, so the texel index wrapped to
+// the "behind" texel and every receiver came out in umbra (issue 17 item 8).
+constexpr float kBehindLightSharpness = 1.0f;
 
 struct HwState {
   TextureName shadowMap;
@@ -95,11 +99,12 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   glMatrixMode(GL_MODELVIEW);
   glBindTexture(GL_TEXTURE_2D, shadowMap);
 
-  // Unit 1: s = kBehindLightSharpness * q + 0.5 through a 2-texel step (0 behind, 1 in front).
+  // Unit 1: s = kBehindLightSharpness * q / far + 0.5 through a 2-texel step (0 behind, 1 in
+  // front).
   glActiveTexture(GL_TEXTURE1);
   const glm::mat4 light = lightView(scene.light);
   const glm::vec4 depthRow(-light[0][2], -light[1][2], -light[2][2], -light[3][2]);
-  glm::vec4 stepPlane = kBehindLightSharpness * depthRow;
+  glm::vec4 stepPlane = (kBehindLightSharpness / lightDepthRange(scene).farPlane) * depthRow;
   stepPlane.w += 0.5f;
   glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
   glTexGenfv(GL_S, GL_EYE_PLANE, glm::value_ptr(stepPlane));

@@ -12,6 +12,7 @@
 
 #include "core/gl.h"
 #include "core/scene.h"
+#include "core/winding.h"
 
 namespace sl::modern {
 
@@ -112,6 +113,8 @@ class GpuScene {
     for (const GpuObject& o : objects_) {
       if (!select(*o.object)) continue;
       perObject(*o.object);
+      // gl_FrontFacing and culling see a mirrored object's outside as its front (core/winding.h).
+      const FrontFaceForModel frontFace(o.object->model);
       gl::glBindVertexArray(o.vao.id());
       gl::glDrawElements(GL_TRIANGLES, o.indexCount, GL_UNSIGNED_INT, nullptr);
     }

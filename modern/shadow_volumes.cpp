@@ -24,6 +24,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
+#include "core/winding.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern {
@@ -67,6 +68,9 @@ SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lig
 void drawVolumes(const SceneVolumes& volumes, const Program& program) {
   for (const GpuVolume& v : volumes.volumes) {
     program.set("uModel", v.model);
+    // Two-sided stencil counts front faces down and back faces up: a mirrored caster's volume
+    // must keep its outside as the front, or its count cancels another's (core/winding.h).
+    const FrontFaceForModel frontFace(v.model);
     glBindVertexArray(v.vao.id());
     glDrawArrays(GL_TRIANGLES, 0, v.vertexCount);
   }

@@ -29,8 +29,10 @@
 #include <cstddef>
 #include <glm/gtc/constants.hpp>
 #include <map>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/winding.h"
 #include "modern/camera_pass.h"
 #include "modern/silhouettes.h"
 
@@ -123,7 +125,11 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
       std::vector<glm::vec2> arriving, leaving;
     };
     std::map<unsigned, VertexEdges> around;
-    for (const auto& [a, b] : silhouette.edges) {
+    // A mirroring model matrix turns the light-facing triangles clockwise in light space: walk
+    // its silhouette edges the other way round, so the blocker stays on their left.
+    const bool mirrored = mirrors(o.model);
+    for (auto [a, b] : silhouette.edges) {
+      if (mirrored) std::swap(a, b);
       const glm::vec4 ca = clip[a], cb = clip[b];
       if (ca.w <= kMinClipW || cb.w <= kMinClipW) continue;
       const glm::vec2 na = glm::vec2(ca) / ca.w, nb = glm::vec2(cb) / cb.w;

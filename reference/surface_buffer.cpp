@@ -12,6 +12,7 @@
 
 #include "core/errors.h"
 #include "core/shaders.h"
+#include "core/winding.h"
 
 namespace sl::reference {
 using namespace sl::gl;
@@ -104,6 +105,9 @@ void draw(const SurfaceGlObjects& gl, const Scene& scene) {
     glBindVertexArray(gl.vertexArrays[i]);
     glUniformMatrix4fv(model, 1, GL_FALSE, glm::value_ptr(scene.objects[i].model));
     glUniform1f(objectId, float(i + 1));
+    // The fragment shader turns the normals by gl_FrontFacing: a mirrored object's outside
+    // must stay its front (core/winding.h).
+    const FrontFaceForModel frontFace(scene.objects[i].model);
     glDrawElements(GL_TRIANGLES, GLsizei(scene.objects[i].mesh->indices.size()), GL_UNSIGNED_INT,
                    nullptr);
   }

@@ -13,10 +13,14 @@
 // Small windows (160x120) keep the whole suite within about 3 minutes on two cores.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
@@ -102,6 +106,146 @@ std::string paramName(const ::testing::TestParamInfo<Param>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, Stability, ::testing::ValuesIn(allParams()), paramName);
 
+std::vector<std::string> techniqueNames() {
+  std::vector<std::string> out;
+  for (const Technique& t : allTechniques()) out.push_back(t.name);
+  return out;
+}
+
+// Issue 17 item 9: mirroring by the model matrix must change no technique's mask. The mirrored
+// stage is the same geometry with three objects' windings reversed; front faces (gl_FrontFacing,
+// the second-depth map's culling, hybrid's back-face test), the volumes' two-sided stencil counts
+// and the smoothies' silhouette orientation all depend on the winding.
+class StabilityMirroring : public ::testing::TestWithParam<std::string> {};
+
+// The mirrored box and ground split each face along the other diagonal, so depths interpolate
+// from other triangles and differ in the last bits: a shadow-map compare or a sample at a
+// silhouette may turn over on a few edge pixels. 0.3% of 160x120 is 57 pixels, well below the
+// length of one shadow outline (~300 pixels); a winding error turns whole faces (>5%).
+constexpr double kMirroringShare = 0.003;
+
+TEST_P(StabilityMirroring, MirroredObjectsGiveTheUnmirroredMask) {
+  const Technique& t = findTechnique(GetParam());
+  RenderParams p = baseParams();
+  p.capturePasses = false;
+  const Frame plain = renderTechnique(t, mirroringStage(false), p);
+  const Frame mirrored = renderTechnique(t, mirroringStage(true), p);
+  const MaskDifference d = compareMasks(plain.visibility, mirrored.visibility);
+  std::cout << "[stability] mirrored " << t.name << ": " << 100.0 * d.shareAboveHalf
+            << "% of pixels differ by > 0.5, max " << d.maxAbs << "\n";
+  EXPECT_LE(d.shareAboveHalf, kMirroringShare);
+}
+
+INSTANTIATE_TEST_SUITE_P(Techniques, StabilityMirroring, ::testing::ValuesIn(techniqueNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string s = info.param;
+                           for (char& ch : s)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return s;
+                         });
+
+// Issue 17 items 7 and 10 through the command line, as a user meets them: a light cone or a
+// camera depth range that no technique can render right is refused with exit 2 and one line
+// naming the field, and no output file; the bound itself still renders.
+struct CommandResult {
+  int status = -1;
+  std::string err;
+};
+
+CommandResult renderSceneFile(const std::string& name, double cameraNear, double cone,
+                              const std::filesystem::path& image, double boxX = -0.6) {
+  const std::filesystem::path dir = outputDir() / ("stiff-" + name);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path scene = dir / "scene.json", err = dir / "stderr.txt";
+  std::ofstream(scene) << "{\"camera\": {\"position\": [0, 3.2, 2.6], \"target\": [0, 0, -0.2], "
+                          "\"near\": "
+                       << cameraNear
+                       << ", \"far\": 20}, \"light\": {\"position\": [1.5, 3.5, -2], "
+                          "\"target\": [0, 0, 0], \"up\": [0, 1, 0], \"cone\": "
+                       << cone
+                       << "}, \"objects\": [{\"mesh\": {\"primitive\": \"plane\", "
+                          "\"width\": 4, \"depth\": 4}, \"casts\": false}, {\"mesh\": "
+                          "{\"primitive\": \"box\", \"extent\": [0.8, 0.8, 0.8]}, "
+                          "\"translate\": ["
+                       << boxX << ", 0.8, -0.2]}]}";
+  std::filesystem::remove(image);
+  const std::string command = std::string(SHADOWLAB_BINARY) + " render --scene " + scene.string() +
+                              " --technique modern.hw --size 64x48 --out " + image.string() +
+                              " >/dev/null 2>" + err.string();
+  const int raw = std::system(command.c_str());
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(err);
+  std::getline(in, r.err, '\0');
+  return r;
+}
+
+void expectRefusedNaming(const CommandResult& r, const std::string& field,
+                         const std::filesystem::path& image) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(image));
+}
+
+constexpr double kStageCameraNear = 0.5;
+constexpr double kStageCone = 70;
+
+TEST(StabilityStiffRanges, LightConeNear180IsRefusedNamingTheField) {
+  const std::filesystem::path image = outputDir() / "stiff-cone.png";
+  // 179.9 degrees (issue 17 item 7: every shadow-map technique drew an all-lit mask) and 170.
+  for (double cone : {179.9, 170.0})
+    expectRefusedNaming(renderSceneFile("cone", kStageCameraNear, cone, image), "light.cone",
+                        image);
+  const CommandResult widest = renderSceneFile("cone", kStageCameraNear, 160.0, image);
+  EXPECT_EQ(widest.status, 0) << widest.err;
+  EXPECT_TRUE(std::filesystem::exists(image));
+}
+
+TEST(StabilityStiffRanges, CameraNearFarBelowBoundIsRefusedNamingTheField) {
+  const std::filesystem::path image = outputDir() / "stiff-camera.png";
+  // near 1e-12 (issue 17 item 10: modern.volumes streaked) and 1e-6, far 20.
+  for (double cameraNear : {1e-12, 1e-6})
+    expectRefusedNaming(renderSceneFile("camera", cameraNear, kStageCone, image), "camera.near/far",
+                        image);
+  const CommandResult stiffest = renderSceneFile("camera", 20 * 1e-5, kStageCone, image);
+  EXPECT_EQ(stiffest.status, 0) << stiffest.err;
+  EXPECT_TRUE(std::filesystem::exists(image));
+}
+
+// Issue 17 item 8, beyond the scale 1e6 it reports (fixed): world coordinates beyond 1e12 are
+// refused (products of coordinates overflow float in ray and shadow-volume tests from ~2e13).
+TEST(StabilityStiffRanges, WorldCoordinatesBeyondBoundAreRefusedNamingTheObject) {
+  const std::filesystem::path image = outputDir() / "stiff-coordinates.png";
+  expectRefusedNaming(renderSceneFile("coordinates", kStageCameraNear, kStageCone, image, 2e12),
+                      "objects[1].translate", image);
+}
+
+// Issue 17 item 7: a given light range with near/far below 1e-4 is narrowed to the geometry
+// (core/scene.cpp lightDepthRange); a range that clips geometry keeps its clipping plane.
+TEST(StabilityStiffRanges, StiffLightRangeIsNarrowedToTheGeometry) {
+  Scene fitted = stage();
+  const DepthRange fit = lightDepthRange(fitted);
+  Scene given = stage();
+  given.light.nearPlane = 8e-7f;
+  given.light.farPlane = 8.0f;
+  const DepthRange narrowed = lightDepthRange(given);
+  EXPECT_EQ(narrowed.nearPlane, fit.nearPlane);
+  EXPECT_EQ(narrowed.farPlane, fit.farPlane);
+  // A far plane inside the geometry stays where it was given.
+  given.light.farPlane = 0.5f * (fit.nearPlane + fit.farPlane);
+  given.light.nearPlane = *given.light.farPlane * 1e-7f;
+  const DepthRange clipped = lightDepthRange(given);
+  EXPECT_EQ(clipped.nearPlane, fit.nearPlane);
+  EXPECT_EQ(clipped.farPlane, *given.light.farPlane);
+  // A well-conditioned given range is left as given.
+  given.light.nearPlane = 0.01f;
+  given.light.farPlane = 8.0f;
+  const DepthRange kept = lightDepthRange(given);
+  EXPECT_EQ(kept.nearPlane, 0.01f);
+  EXPECT_EQ(kept.farPlane, 8.0f);
+}
+
 // The GL maximum: GL_MAX_TEXTURE_SIZE + 1 is refused with an InputError by every technique;
 // the maximum itself renders (16384^2 depth = 1 GiB on llvmpipe, ~10 s per technique), so it
 // runs for the two hardware-compare techniques here and for all with SHADOWLAB_STABILITY_FULL=1.
@@ -140,12 +284,6 @@ TEST_P(StabilityMaxMap, MaximumRendersOrRefuses) {
   } catch (const InputError& e) {
     std::cout << "[stability] max map " << t.name << ": InputError: " << e.what() << "\n";
   }
-}
-
-std::vector<std::string> techniqueNames() {
-  std::vector<std::string> out;
-  for (const Technique& t : allTechniques()) out.push_back(t.name);
-  return out;
 }
 
 INSTANTIATE_TEST_SUITE_P(Techniques, StabilityMaxMap, ::testing::ValuesIn(techniqueNames()),
