@@ -67,8 +67,9 @@ const std::vector<CommandSpec>& commandSpecs() {
              {"out", "PATH", "colour image, PNG, required"},
              {"mask", "PNG", "light visibility (1 = lit, 0 = umbra) as a 16-bit grey PNG"},
              {"dump-passes", "DIR",
-              "directory for every intermediate buffer, one PNG each (made or replaced as a "
-              "whole at the end; an existing DIR must be empty or hold only a previous dump)"}},
+              "directory for every intermediate buffer, one PNG each in pipeline order, with "
+              "passes.json and index.html (made or replaced as a whole at the end; an existing "
+              "DIR must be empty or hold only a previous dump)"}},
             renderOptions())},
       {"compare", "render two techniques and compare their visibility masks (one JSON line)",
        join({{"a", "T1", "first technique, required"},

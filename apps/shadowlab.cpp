@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
+#include "core/pass_dump.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
@@ -120,15 +121,16 @@ struct RenderOutputs {
   std::optional<std::string> dump;  // temporary directory of --dump-passes
 };
 
-void writeFrameOutputs(const Frame& frame, RenderOutputs& outputs, const Provenance& provenance) {
+// --dump-passes (core/pass_dump.h): the buffers in pipeline order, passes.json, index.html.
+void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, RenderOutputs& outputs,
+                       const Provenance& provenance) {
   if (!frame.color.empty() && !allFinite(frame.color)) throw GlError("the image has NaN or Inf");
   if (!allFinite(frame.visibility)) throw GlError("the visibility mask has NaN or Inf");
+  if (outputs.dump) requireSomethingToDump(frame, dumpHeader.technique);
   outputs.set.beginWriting();
   writePng(outputs.image, frame.color, 8, provenance);
   if (outputs.mask) writePng(*outputs.mask, frame.visibility, 16, provenance);
-  if (outputs.dump)
-    for (const PassImage& p : frame.intermediates)
-      writePng((fs::path(*outputs.dump) / (p.name + ".png")).string(), p.image, 8, provenance);
+  if (outputs.dump) writePassDump(*outputs.dump, frame, dumpHeader, provenance);
 }
 
 int render(const cli::Args& args) {
@@ -157,7 +159,8 @@ int render(const cli::Args& args) {
   for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
   const std::string line = jsonLine(out);
-  writeFrameOutputs(frame, outputs, pngProvenance(made));
+  const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made};
+  writeFrameOutputs(frame, dumpHeader, outputs, pngProvenance(made));
   outputs.set.commit();
   std::cout << line << "\n";
   return 0;

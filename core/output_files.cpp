@@ -202,14 +202,16 @@ std::string OutputSet::addDirectory(const std::string& option, const std::string
   const fs::file_status status = fs::status(d.target, ec);
   if (fs::exists(status)) {
     if (!fs::is_directory(status)) throw InputError(where + ": it exists and is not a directory");
-    // Only an empty directory or a previous dump (*.png files) is replaced.
+    // Only an empty directory or a previous dump (*.png, passes.json, index.html) is replaced.
     for (const fs::directory_entry& entry : fs::directory_iterator(d.target, ec)) {
-      const bool png =
-          entry.is_regular_file(ec) && !entry.is_symlink(ec) && entry.path().extension() == ".png";
-      if (!png)
-        throw InputError(where + ": the directory holds " + entry.path().filename().string() +
-                         ", not only a previous dump's PNG files; give an empty or a new "
-                         "directory (its content is replaced)");
+      const fs::path name = entry.path().filename();
+      const bool dumpFile =
+          entry.is_regular_file(ec) && !entry.is_symlink(ec) &&
+          (name.extension() == ".png" || name == kDumpIndexFiles[0] || name == kDumpIndexFiles[1]);
+      if (!dumpFile)
+        throw InputError(where + ": the directory holds " + name.string() +
+                         ", not only a previous dump's files (*.png, passes.json, index.html); "
+                         "give an empty or a new directory (its content is replaced)");
     }
     if (ec) throw InputError(where + ": cannot read the directory: " + ec.message());
     d.top = d.target;

@@ -25,9 +25,10 @@
 // through a hard link while its replacement is renamed in) and commit() throws InputError.
 //
 // A destination directory that already exists is replaced as a whole on success, but only
-// when it is empty or holds nothing but a previous dump: regular *.png files (what
-// --dump-passes writes). Any other content (another file, a sub-directory) is refused with
-// exit 2, so that a mistyped directory name never deletes a user's files.
+// when it is empty or holds nothing but a previous dump: regular *.png files, passes.json and
+// index.html (what --dump-passes writes, core/pass_dump.h). Any other content (another file, a
+// sub-directory, a link) is refused with exit 2, so that a mistyped directory name never deletes
+// a user's files.
 #pragma once
 
 #include <filesystem>
@@ -37,6 +38,10 @@
 #include <vector>
 
 namespace sl {
+
+// The files of a --dump-passes directory besides its *.png (core/pass_dump.h): a directory
+// holding only these and PNGs is a previous dump, which addDirectory may replace.
+inline constexpr const char* kDumpIndexFiles[2] = {"passes.json", "index.html"};
 
 class OutputSet {
  public:

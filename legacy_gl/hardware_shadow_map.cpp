@@ -22,6 +22,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/plan.h"
 #include "core/gl.h"
 #include "legacy_gl/fixed_function.h"
@@ -180,6 +181,13 @@ Image renderVisibilityMask(const Scene& scene, const RenderParams& params, int p
   return readRedChannel(params.width, params.height);
 }
 
+// --dump-passes: the depth map of pass 1 as grey (Everitt Fig. 2).
+void captureLightDepth(GLuint shadowMap, int texels, Frame& frame) {
+  frame.intermediates.push_back(greyDepth(
+      "1-light-depth", "pass 1 (Everitt Fig. 2): depth from the light with polygon offset",
+      readDepthTexture(shadowMap, texels, texels)));
+}
+
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
   (void)context;
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
@@ -189,9 +197,37 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   HwState state;
   const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
   renderDepthFromLight(scene, params, state, factor, units, linear, casterInFrustum, frame);
+  if (params.capturePasses)
+    captureLightDepth(state.shadowMap.id(), casterInFrustum ? params.shadowMapTexels : 1, frame);
   shadeWithShadowMap(scene, params, state.shadowMap.id(), 2, frame);
   checkGl("legacy.hw");
   return frame;
+}
+
+// --dump-passes: the ambient pass as it stands in the window (Kilgard's note in Everitt).
+void captureAmbientPass(const RenderParams& params, int pass, Frame& frame) {
+  const std::string n = std::to_string(pass);
+  frame.intermediates.push_back(
+      {n + "-ambient",
+       "pass " + n + ": the ambient term alone, unshadowed (Everitt, Kilgard's note)",
+       readRgb(params.width, params.height)});
+}
+
+// --dump-passes: the image after the direct light was added, and the comparison alone.
+void captureShadowTest(int firstPass, Frame& frame) {
+  const std::string direct = std::to_string(firstPass + 2), mask = std::to_string(firstPass + 3);
+  frame.intermediates.push_back(
+      {direct + "-shaded",
+       "pass " + direct +
+           ": + diffuse and specular x the ARB_shadow comparison (Everitt Eq. 5, "
+           "Fig. 5): the final image",
+       frame.color});
+  frame.intermediates.push_back(
+      {mask + "-visibility",
+       "pass " + mask +
+           ": the comparison alone on white surfaces, white = lit, black = shadow "
+           "(what --mask writes)",
+       frame.visibility});
 }
 
 }  // namespace
@@ -218,9 +254,11 @@ void shadeWithShadowMap(const Scene& scene, const RenderParams& params, unsigned
     loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep);
   }
   renderAmbientPass(scene, params, firstPass + 1, frame);
+  if (params.capturePasses) captureAmbientPass(params, firstPass + 1, frame);
   addShadowedDirectLight(scene, params, firstPass + 2, frame);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = renderVisibilityMask(scene, params, firstPass + 3, frame);
+  if (params.capturePasses) captureShadowTest(firstPass, frame);
   // Leave texturing state as we found it for the caller.
   glActiveTexture(GL_TEXTURE1);
   glDisable(GL_TEXTURE_GEN_S);

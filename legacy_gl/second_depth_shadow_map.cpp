@@ -12,6 +12,7 @@
 //                                 light x shadow test, visibility mask)
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/pass_capture.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/hardware_shadow_map.h"
@@ -71,11 +72,21 @@ void renderBackFacesFromLight(const Scene& scene, const RenderParams& params, GL
   target.unbind();
 }
 
+// --dump-passes: the second-depth map of pass 1 as grey (Wang & Molnar via Everitt).
+void captureBackFaceDepth(GLuint shadowMap, int texels, Frame& frame) {
+  frame.intermediates.push_back(greyDepth(
+      "1-second-depth-map",
+      "pass 1 (Wang & Molnar 1994, Everitt \"Advantages and Limitations\"): back faces of "
+      "closed casters from the light, open casters with polygon offset",
+      readDepthTexture(shadowMap, texels, texels)));
+}
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
   Frame frame;
   TextureName shadowMap;
   renderBackFacesFromLight(scene, params, shadowMap.id(), linear, frame);
+  if (params.capturePasses) captureBackFaceDepth(shadowMap.id(), params.shadowMapTexels, frame);
   shadeWithShadowMap(scene, params, shadowMap.id(), 2, frame);
   checkGl("legacy.second-depth");
   return frame;

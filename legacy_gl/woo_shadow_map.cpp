@@ -19,6 +19,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/pass_capture.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/hardware_shadow_map.h"
@@ -129,11 +130,24 @@ void storeMidpointDepth(int n, const std::vector<float>& z1, const std::vector<f
   setDepthCompareParameters(linearCompare);
 }
 
-PassImage depthImage(const std::string& name, const std::string& caption, int n,
-                     const std::vector<float>& z) {
-  Image image(n, n, 1);
-  image.data = z;
-  return {name, caption, image};
+// --dump-passes: z1, z2 and their midpoint as grey on one scale, from the nearest drawn depth
+// (black) to the clear depth 1 (white): one affine map for all three, so that each grey of
+// the midpoint is the mean of the layers' greys, also where z2 is the clear value.
+void captureDepthLayers(int n, const std::vector<float>& z1, const std::vector<float>& z2,
+                        Frame& frame) {
+  Image first(n, n, 1), second(n, n, 1), mid(n, n, 1);
+  first.data = z1;
+  second.data = z2;
+  for (size_t i = 0; i < mid.data.size(); ++i) mid.data[i] = 0.5f * (z1[i] + z2[i]);
+  const WindowDepthSpan range{drawnDepthRange({&first}).lo, kClearDepth};
+  frame.intermediates.push_back(
+      greyDepth("1-first-depth-layer",
+                "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)", first, range));
+  frame.intermediates.push_back(greyDepth("2-second-depth-layer",
+                                          "pass 2: depth after peeling z1 away, z2 (depth peeling)",
+                                          second, range));
+  frame.intermediates.push_back(greyDepth(
+      "3-midpoint-shadow-map", "pass 3: Woo's midpoint (z1 + z2) / 2, the shadow map", mid, range));
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
@@ -149,16 +163,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     z2 = peelSecondDepthLayer(scene, n, target, firstLayer.id(), frame);
   }
   storeMidpointDepth(n, z1, z2, midpointMap.id(), linear, frame);
-  if (params.capturePasses) {
-    std::vector<float> mid(z1.size());
-    for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
-    frame.intermediates.push_back(
-        depthImage("1-first-depth-layer", "nearest depth from the light (z1)", n, z1));
-    frame.intermediates.push_back(
-        depthImage("2-second-depth-layer", "depth after peeling z1 away (z2)", n, z2));
-    frame.intermediates.push_back(
-        depthImage("3-midpoint-shadow-map", "Woo's midpoint (z1 + z2) / 2", n, mid));
-  }
+  if (params.capturePasses) captureDepthLayers(n, z1, z2, frame);
   shadeWithShadowMap(scene, params, midpointMap.id(), 4, frame);
   checkGl("legacy.woo");
   return frame;

@@ -20,6 +20,7 @@
 #include <numbers>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/plan.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
@@ -292,6 +293,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   if (params.capturePasses) capturePasses(depth, basis, s, frame);
   buildBasisMipmaps(basis, s, frame);
   reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, frame);
+  if (params.capturePasses) captureCameraPass(frame, 5, "csm_shadow.frag: Eq. 13 reconstruction");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;
   frame.counters["order M"] = s.order;

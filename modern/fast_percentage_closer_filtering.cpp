@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"
@@ -88,13 +89,17 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     groups.push_back({packed[q].color[0].id(), 4, phases[q].offsetTexels});
     if (params.capturePasses)
       frame.intermediates.push_back({"2-packed-neighbours-" + std::to_string(q),
-                                     "four neighbours packed in R, G, B, A (Figure 5)",
+                                     "pass 2 (Eq. 1, Figure 5): fast_pcf_pack.frag packs four "
+                                     "neighbours of a 2x2 region: R = lower left, G = lower "
+                                     "right, B = upper left, A = upper right",
                                      readAttachment(packed[q], 0)});
   }
   {
     PassTimer timer(frame, "3 camera pass: shadow test, colour table, colour matrix");
     bs::shadowTestAndShade(gpu, params, ramp, groups, frame);
   }
+  if (params.capturePasses)
+    captureCameraPass(frame, 3, "pcf_shadow.frag: shadow test, colour table, colour matrix (§4)");
   return frame;
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/prefiltered_maps.h"
@@ -117,6 +118,18 @@ void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const R
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+// --dump-passes: the depth map of pass 1 as grey and the filtered camera pass.
+void captureMapAndCameraPass(const RenderTarget& map, int samples, Frame& frame) {
+  frame.intermediates.push_back(greyDepth(
+      "1-light-depth",
+      "pass 1 (GPU Gems §11.3): depth from the light with polygon offset, compared with GL_LINEAR "
+      "(hardware 2x2 PCF)",
+      readDepthTexture(map.depth.id(), map.width, map.height)));
+  captureCameraPass(frame, 2,
+                    "gems_pcf.frag, " + std::to_string(samples) + " offset lookups, " +
+                        (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3"));
+}
+
 Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defaultSamples) {
   const std::string samples =
       params.text("samples", std::to_string(defaultSamples), {"1", "4", "16"});
@@ -130,6 +143,7 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   filterInCameraPass(gpu, params, map, std::stoi(samples),
                      relativeBias(scene, params.shadowMapTexels, biasTexels), frame);
   frame.counters["samples per pixel"] = std::stoi(samples);
+  if (params.capturePasses) captureMapAndCameraPass(map, std::stoi(samples), frame);
   return frame;
 }
 

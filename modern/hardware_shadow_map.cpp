@@ -10,6 +10,7 @@
 #include "modern/hardware_shadow_map.h"
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/plan.h"
 #include "modern/camera_pass.h"
 
@@ -91,6 +92,14 @@ void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint 
 
 namespace {
 
+// --dump-passes: the depth texture of pass 1 as grey and the camera pass (Everitt Fig. 2, Eq. 5).
+void captureDepthAndCameraPass(const RenderTarget& map, Frame& frame) {
+  frame.intermediates.push_back(greyDepth(
+      "1-light-depth", "pass 1 (Everitt Fig. 2): depth from the light with polygon offset",
+      readDepthTexture(map.depth.id(), map.width, map.height)));
+  captureCameraPass(frame, 2, "hw_shadow.frag, Everitt Eq. 5: textureProj on sampler2DShadow");
+}
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
   const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
@@ -100,6 +109,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, casterInFrustum, frame);
   shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
+  if (params.capturePasses) captureDepthAndCameraPass(map, frame);
   return frame;
 }
 }  // namespace

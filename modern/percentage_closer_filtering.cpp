@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"
@@ -69,6 +70,8 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     PassTimer timer(frame, "2 camera pass: shadow test, colour table, colour matrix");
     bs::shadowTestAndShade(gpu, params, ramp, groups, frame);
   }
+  if (params.capturePasses)
+    captureCameraPass(frame, 2, "pcf_shadow.frag: shadow test, colour table, colour matrix (§3)");
   return frame;
 }
 

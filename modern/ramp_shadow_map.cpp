@@ -10,6 +10,7 @@
 //                                     minus the projected map, clamped at 0 as subtractive
 //                                     blending does, > 0 = shadowed (footnote 1); shading
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"
@@ -77,6 +78,9 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
                                    "light-space depth through the ramp (Figure 1)",
                                    readAttachment(map, 0)});
   shadowTestAndShade(gpu, params, ramp, map, frame);
+  if (params.capturePasses)
+    captureCameraPass(frame, 2,
+                      "ramp_shadow.frag: ramp depth minus the projected map, Brabec & Seidel §2");
   return frame;
 }
 

@@ -7,6 +7,7 @@
 //                                 casters with both faces and polygon offset (fallback)
 //   2. shadeWithShadowMap       — modern.hw's camera pass on that map
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"
@@ -50,12 +51,23 @@ RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, F
   return map;
 }
 
+// --dump-passes: the second-depth map of pass 1 as grey and the camera pass.
+void captureMapAndCameraPass(const RenderTarget& map, Frame& frame) {
+  frame.intermediates.push_back(greyDepth(
+      "1-second-depth-map",
+      "pass 1 (Wang & Molnar 1994, Everitt \"Advantages and Limitations\"): back faces of "
+      "closed casters from the light, open casters with polygon offset",
+      readDepthTexture(map.depth.id(), map.width, map.height)));
+  captureCameraPass(frame, 2, "hw_shadow.frag on the second-depth map, Everitt Eq. 5");
+}
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderBackFacesFromLight(gpu, params.shadowMapTexels, linear, frame);
   shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
+  if (params.capturePasses) captureMapAndCameraPass(map, frame);
   return frame;
 }
 

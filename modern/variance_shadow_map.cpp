@@ -13,6 +13,7 @@
 #include "modern/variance_shadow_map.h"
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
 
@@ -124,6 +125,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                                    channel(readLayer(moments, 0, 1.0f, 0.0f), 0)});
   buildMomentMipmaps(moments, s, frame);
   chebyshevInCameraPass(gpu, params, moments, s, frame);
+  if (params.capturePasses)
+    captureCameraPass(frame, 4, "vsm_shadow.frag: Chebyshev's bound on the filtered moments");
   frame.counters["anisotropy"] = s.filtering.anisotropy;
   return frame;
 }

@@ -9,6 +9,7 @@
 //   3. storeMidpointDepth    — woo_midpoint.frag writes gl_FragDepth = (z1 + z2) / 2
 //   4. shadeWithShadowMap    — modern.hw's camera pass on the midpoint map
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"
@@ -92,6 +93,26 @@ RenderTarget storeMidpointDepth(int n, const RenderTarget& first, const RenderTa
   return map;
 }
 
+// --dump-passes: z1, z2 and the midpoint on one grey scale (nearest z1 black, the clear depth
+// 1 white: one affine map, as legacy.woo shows them), then the camera pass.
+void captureLayersAndCameraPass(const RenderTarget& first, const RenderTarget& second,
+                                const RenderTarget& midpoint, Frame& frame) {
+  const Image z1 = readDepthTexture(first.depth.id(), first.width, first.height);
+  const Image z2 = readDepthTexture(second.depth.id(), second.width, second.height);
+  const Image mid = readDepthTexture(midpoint.depth.id(), midpoint.width, midpoint.height);
+  const WindowDepthSpan range{drawnDepthRange({&z1}).lo, kClearDepth};
+  frame.intermediates.push_back(
+      greyDepth("1-first-depth-layer",
+                "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)", z1, range));
+  frame.intermediates.push_back(greyDepth(
+      "2-second-depth-layer",
+      "pass 2: woo_peel.frag discards what is not behind z1, the depth test keeps z2", z2, range));
+  frame.intermediates.push_back(greyDepth("3-midpoint-shadow-map",
+                                          "pass 3: woo_midpoint.frag, gl_FragDepth = (z1 + z2) / 2",
+                                          mid, range));
+  captureCameraPass(frame, 4, "hw_shadow.frag on the midpoint map, Everitt Eq. 5");
+}
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
   const int n = params.shadowMapTexels;
@@ -101,6 +122,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   RenderTarget second = peelSecondDepthLayer(gpu, n, first, frame);
   RenderTarget midpoint = storeMidpointDepth(n, first, second, linear, frame);
   shadeWithShadowMap(gpu, params, midpoint.depth.id(), "4 camera pass with shadow test", frame);
+  if (params.capturePasses) captureLayersAndCameraPass(first, second, midpoint, frame);
   return frame;
 }
 

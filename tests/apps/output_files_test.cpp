@@ -104,6 +104,35 @@ TEST(OutputSet, FailedCommitIsUndone) {
   EXPECT_EQ(names(d), (std::set<std::string>{"dump", "first.txt"}));
 }
 
+// A previous dump (PNGs, passes.json, index.html, core/pass_dump.h) is replaced as a whole; a
+// directory holding anything else is refused untouched.
+TEST(OutputSet, ReplacesOnlyAPreviousDump) {
+  const fs::path d = freshDir();
+  fs::create_directories(d / "dump");
+  for (const char* name : {"01-old.png", "passes.json", "index.html"})
+    put(d / "dump" / name, "old");
+  {
+    OutputSet outputs;
+    const std::string dump = outputs.addDirectory("--dump", (d / "dump").string());
+    outputs.beginWriting();
+    put(fs::path(dump) / "01-new.png", "new");
+    put(fs::path(dump) / "passes.json", "{}");
+    outputs.commit();
+  }
+  EXPECT_EQ(names(d / "dump"), (std::set<std::string>{"01-new.png", "passes.json"}));
+  for (const char* other : {"notes.txt", "index.html.bak", "passes.json.txt"}) {
+    put(d / "dump" / other, "mine");
+    OutputSet outputs;
+    EXPECT_THROW(outputs.addDirectory("--dump", (d / "dump").string()), InputError) << other;
+    EXPECT_EQ(slurp(d / "dump" / other), "mine");
+    fs::remove(d / "dump" / other);
+  }
+  fs::create_directories(d / "dump" / "index.html" / "sub");
+  OutputSet outputs;
+  EXPECT_THROW(outputs.addDirectory("--dump", (d / "dump").string()), InputError)
+      << "a directory named index.html is no dump file";
+}
+
 TEST(OutputSet, RefusesCollisionsAndUnsafeDestinations) {
   const fs::path d = freshDir();
   put(d / "scene.json", "{}");

@@ -184,13 +184,17 @@ TEST(DepthLayerShadowMaps, WooMapIsTheMidpointOfTheFirstTwoLayers) {
   p.shadowMapTexels = kMapTexels;
   p.capturePasses = true;
   const Frame f = renderTechnique(findTechnique("legacy.woo"), loadScene("brabec"), p);
-  ASSERT_EQ(f.intermediates.size(), 3u);
+  // The first three are the layers and the map, shown on one affine grey scale (window z from
+  // the nearest layer's depth to 1, core/pass_capture.h), so their relations hold in grey too.
+  ASSERT_GE(f.intermediates.size(), 3u);
   const Image& z1 = f.intermediates[0].image;
   const Image& z2 = f.intermediates[1].image;
   const Image& mid = f.intermediates[2].image;
   long between = 0, peeled = 0;
   for (size_t i = 0; i < mid.data.size(); ++i) {
-    EXPECT_FLOAT_EQ(mid.data[i], 0.5f * (z1.data[i] + z2.data[i]));
+    // 1e-5: float rounding of window z (6e-8) magnified by the grey mapping (z - lo) / (1 - lo),
+    // 1 / (1 - lo) <= 100 for brabec.
+    EXPECT_NEAR(mid.data[i], 0.5f * (z1.data[i] + z2.data[i]), 1e-5f);
     EXPECT_LE(z1.data[i], z2.data[i]);  // the peel keeps only what lies behind z1
     between += z1.data[i] < mid.data[i] && mid.data[i] < z2.data[i];
     peeled += z2.data[i] < 1.0f;

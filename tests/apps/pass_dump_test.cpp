@@ -1,0 +1,198 @@
+// `shadowlab render --dump-passes DIR` (core/pass_dump.h, issue 18 item 1): every technique in
+// the registry dumps its buffers in pipeline order with passes.json and index.html; a frame
+// with nothing to dump is an input error, never an empty folder.
+#include "core/pass_dump.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "apps/registry.h"
+#include "core/errors.h"
+#include "core/image.h"
+
+namespace sl {
+namespace {
+namespace fs = std::filesystem;
+
+fs::path freshDir() {
+  std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  for (char& c : name)
+    if (c == '/' || c == '.') c = '_';
+  const fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "pass_dump" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+PassImage buffer(const std::string& name, int channels = 1, float value = 0.5f) {
+  return {name, "caption of " + name, Image(4, 2, channels, value)};
+}
+
+std::vector<std::string> files(const std::vector<PassDumpImage>& images) {
+  std::vector<std::string> out;
+  for (const PassDumpImage& i : images) out.push_back(i.file);
+  return out;
+}
+
+// Zero-padded pass numbers, and letters in the order made for passes with several images:
+// "5-alpha-after-colour-matrix" no longer sorts before "5-mask-after-colour-table".
+TEST(PassDump, FileNamesSortInPipelineOrder) {
+  Frame f;
+  for (const char* name : {"1-light", "3a-projected", "2-camera", "3-difference",
+                           "5-mask-after-colour-table", "5-alpha-after-colour-matrix", "12-last"})
+    f.intermediates.push_back(buffer(name));
+  const std::vector<std::string> expected = {"01-light.png",
+                                             "02-camera.png",
+                                             "03a-projected.png",
+                                             "03b-difference.png",
+                                             "05a-mask-after-colour-table.png",
+                                             "05b-alpha-after-colour-matrix.png",
+                                             "12-last.png"};
+  const std::vector<std::string> got = files(planPassDump(f, "test"));
+  EXPECT_EQ(got, expected);
+  std::vector<std::string> sorted = got;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, got) << "ls lists them in pipeline order";
+}
+
+// A packed map (four depths in R, G, B, A) is written opaque, then one grey PNG per channel.
+TEST(PassDump, PackedMapsAreOpaqueWithOneGreyPanelPerChannel) {
+  Frame f;
+  f.intermediates.push_back(buffer("2-packed", 4, 0.25f));  // alpha 0.25: transparent as is
+  const std::vector<PassDumpImage> images = planPassDump(f, "test");
+  ASSERT_EQ(images.size(), 5u);
+  EXPECT_EQ(images[0].file, "02-packed.png");
+  for (size_t i = 3; i < images[0].image.data.size(); i += 4)
+    EXPECT_EQ(images[0].image.data[i], 1.0f) << "alpha forced to 1";
+  const std::vector<std::string> channels = {"R", "G", "B", "A"};
+  for (size_t c = 0; c < 4; ++c) {
+    const PassDumpImage& panel = images[c + 1];
+    EXPECT_EQ(panel.file, "02-packed-ch" + std::to_string(c + 1) + "-" + channels[c] + ".png");
+    EXPECT_EQ(panel.channel, channels[c]);
+    EXPECT_EQ(panel.of, "02-packed.png");
+    EXPECT_EQ(panel.image.channels, 1);
+    EXPECT_EQ(panel.image.data[0], 0.25f);
+    EXPECT_NE(panel.caption.find("channel " + channels[c]), std::string::npos) << panel.caption;
+  }
+}
+
+TEST(PassDump, NothingToDumpIsAnInputError) {
+  EXPECT_THROW(requireSomethingToDump(Frame{}, "legacy.none"), InputError);
+  EXPECT_THROW(planPassDump(Frame{}, "legacy.none"), InputError);
+}
+
+// passes.json pairs each pass's time with its images; index.html shows every image.
+TEST(PassDump, PassesJsonAndIndexDescribeEveryImage) {
+  Frame f;
+  f.passes = {
+      {"1 light pass", 2.0}, {"2 camera pass (phase 1)", 1.0}, {"2 camera pass (phase 2)", 3.0}};
+  f.intermediates = {buffer("2-shaded", 3), buffer("1-light-depth")};
+  const std::vector<PassDumpImage> images = planPassDump(f, "t");
+  const nlohmann::json j = passesJson(f, {"t", "paper", "scene", {{"size", "4x2"}}}, images);
+  ASSERT_EQ(j["passes"].size(), 2u);
+  EXPECT_EQ(j["passes"][0]["number"], 1);
+  EXPECT_EQ(j["passes"][0]["name"], "light pass");
+  EXPECT_EQ(j["passes"][0]["files"][0], "01-light-depth.png");
+  EXPECT_DOUBLE_EQ(j["passes"][1]["milliseconds"].get<double>(), 4.0) << "phases summed";
+  EXPECT_EQ(j["passes"][1]["timings"].size(), 2u);
+  ASSERT_EQ(j["images"].size(), 2u);
+  EXPECT_EQ(j["images"][1]["file"], "02-shaded.png");
+  EXPECT_EQ(j["images"][1]["pass_name"], "camera pass (phase 1)");
+  EXPECT_EQ(j["images"][1]["channels"], 3);
+  EXPECT_EQ(j["images"][1]["width"], 4);
+  EXPECT_EQ(j["images"][1]["caption"], "caption of 2-shaded");
+  const std::string html = indexHtml(j);
+  for (const char* s : {"01-light-depth.png", "02-shaded.png", "caption of 2-shaded",
+                        "Pass 2: camera pass (phase 1)"})
+    EXPECT_NE(html.find(s), std::string::npos) << s;
+  // Images sized by width only: the one height rule is "height: auto" (natural aspect ratio).
+  const size_t height = html.find("height:");
+  EXPECT_EQ(height, html.find("height: auto"));
+  EXPECT_EQ(html.find("height:", height + 1), std::string::npos);
+  EXPECT_EQ(html.find("http"), std::string::npos) << "no network";
+}
+
+int run(const std::string& args, const fs::path& log) {
+  const std::string cmd =
+      std::string(SHADOWLAB_BINARY) + " " + args + " >" + log.string() + " 2>&1";
+  const int raw = std::system(cmd.c_str());
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+// Every technique in `shadowlab list`, references included, at a small size (the whole set
+// runs in about 5 s).
+class EveryTechnique : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
+  const Technique& t = findTechnique(GetParam());
+  const fs::path d = freshDir();
+  const fs::path dump = d / "dump";
+  std::string args = "render --scene brabec --technique " + t.name + " --size 160x120 --out " +
+                     (d / "image.png").string() + " --dump-passes " + dump.string();
+  if (readsOption(t, CommonOption::kShadowMap)) args += " --shadow-map 128";
+  ASSERT_EQ(run(args, d / "log.txt"), 0) << slurp(d / "log.txt");
+
+  const nlohmann::json j = nlohmann::json::parse(slurp(dump / "passes.json"));
+  EXPECT_EQ(j["technique"], t.name);
+  EXPECT_EQ(j["scene"], "brabec");
+  const std::string html = slurp(dump / "index.html");
+  EXPECT_NE(html.find(t.name), std::string::npos);
+  std::set<std::string> listed;
+  int previousPass = -1;
+  std::string previousFile;
+  for (const nlohmann::json& i : j["images"]) {
+    const std::string file = i["file"];
+    listed.insert(file);
+    // Pipeline order: pass numbers never decrease, and the names sort the same way.
+    EXPECT_GE(i["pass"].get<int>(), previousPass) << file;
+    EXPECT_GE(i["pass"].get<int>(), 0) << file << ": its buffer name has no pass number";
+    previousPass = i["pass"].get<int>();
+    if (!i.contains("of")) EXPECT_LT(previousFile, file);
+    if (!i.contains("of")) previousFile = file;
+    EXPECT_FALSE(i["caption"].get<std::string>().empty()) << file;
+    EXPECT_NE(html.find(file), std::string::npos) << file;
+    const Image png = readPng((dump / file).string());
+    EXPECT_EQ(png.width, i["width"].get<int>()) << file;
+    EXPECT_EQ(png.height, i["height"].get<int>()) << file;
+    EXPECT_EQ(png.channels, i["channels"].get<int>()) << file;
+    if (png.channels == 2 || png.channels == 4)
+      for (size_t k = size_t(png.channels) - 1; k < png.data.size(); k += size_t(png.channels))
+        ASSERT_EQ(png.data[k], 1.0f) << file << " is not opaque";
+  }
+  EXPECT_GE(listed.size(), 1u);
+  std::set<std::string> onDisk;
+  for (const auto& e : fs::directory_iterator(dump)) onDisk.insert(e.path().filename().string());
+  listed.insert("passes.json");
+  listed.insert("index.html");
+  EXPECT_EQ(onDisk, listed);
+}
+
+std::vector<std::string> techniqueNames() {
+  std::vector<std::string> names;
+  for (const Technique& t : allTechniques()) names.push_back(t.name);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(All, EveryTechnique, ::testing::ValuesIn(techniqueNames()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace sl
