@@ -126,6 +126,21 @@ Scene cameraNearFar(float ratio) {
 }
 
 // A caster behind the light (negative projection: it must not shadow anything in front) and
+// A light far straight above a ground that casts too, the commonest setup there is: the depth
+// range fitted to the stage is narrow compared with its distance (near/far 0.96), where the
+// projective depth r/q loses about 2n/(f-n) = 50 times its float precision to cancellation.
+// With a constant polygon offset of 4 depth units hw, woo, GPU Gems PCF and the hybrid put the
+// whole ground in umbra (core/scene.h lightDepthRoundoffScale).
+Scene distantOverheadLight() {
+  Scene s = stage();
+  s.name = "distant_overhead_light";
+  s.objects[0].castsShadow = true;
+  s.light.position = {0, 20, 0};
+  s.light.up = {0, 0, -1};
+  s.light.coneDegrees = 20;  // frames the 4x4 ground: 20 tan 10 = 3.5 units half-width
+  return s;
+}
+
 // a torus around the light (the light inside its bounds; the ring itself is out of the cone).
 Scene behindAndAround() {
   Scene s = stage();
@@ -251,6 +266,9 @@ const std::vector<Case>& cases() {
       {"scaled_1e6", [] { return scaled(1e6f); }, noChange, always, kWellConditioned,
        "a uniform scale changes no angle and no depth ratio: same as the baseline (the legacy "
        "negative-projection step once overflowed llvmpipe's integer texel coordinate here)"},
+      {"distant_overhead_light", distantOverheadLight, noChange, always, kWellConditioned,
+       "a flat ground that casts, under a light 20 units up: offsets scaled by the depth's "
+       "round-off keep it lit (it was all umbra in hw, woo, GPU Gems PCF and the hybrid)"},
       {"behind_and_around_light", behindAndAround, noChange, always, kWellConditioned,
        "geometry behind the light must not shadow anything in front of it (negative projection)"},
       {"degenerate_triangles", degenerate, noChange, always, kWellConditioned,
