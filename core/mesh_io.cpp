@@ -11,6 +11,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string_view>
@@ -37,7 +38,7 @@ namespace fs = std::filesystem;
 
 // zlib inflates into chunks of this many bytes; the decompressed total is checked per chunk.
 constexpr std::size_t kInflateChunkBytes = std::size_t(1) << 16;
-// A PLY header is a few hundred bytes (the dragon's is 240); longer is not a mesh header.
+// A PLY header is a few hundred bytes (the dragon's is 196); longer is not a mesh header.
 constexpr std::size_t kMaxPlyHeaderBytes = std::size_t(64) << 10;
 // zlib's windowBits for a gzip wrapper: the largest window (15) plus 16 for the gzip header.
 constexpr int kGzipWindowBits = 15 + 16;
@@ -45,6 +46,13 @@ constexpr int kGzipWindowBits = 15 + 16;
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// A float as printf's %g writes it ("1e+18"), for messages.
+std::string shortNumber(float value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(value));
+  return text;
 }
 
 std::string lowerCase(std::string s) {
@@ -90,7 +98,7 @@ std::string readMeshFileBytes(const std::string& path) {
 std::string gunzipMeshBytes(const std::string& compressed, const std::string& path) {
   z_stream z{};
   if (inflateInit2(&z, kGzipWindowBits) != Z_OK)
-    throw InputError(path + ": cannot start gzip decompression");
+    throw InputError("mesh file " + path + ": cannot start gzip decompression");
   z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
   z.avail_in = uInt(compressed.size());  // at most kMaxMeshFileBytes, which fits a uInt
   std::string out;
@@ -171,13 +179,18 @@ int plyTypeBytes(const std::string& type, bool* isInteger, bool* isSigned) {
   return 0;
 }
 
+// Spaces and tabs separate the words of a PLY line; a '\r' before the '\n' ends it.
+bool isWordSeparator(char c) {
+  return c == ' ' || c == '\t' || c == '\r';
+}
+
 std::vector<std::string> splitWords(std::string_view line) {
   std::vector<std::string> words;
   std::size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    while (i < line.size() && isWordSeparator(line[i])) ++i;
     const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    while (i < line.size() && !isWordSeparator(line[i])) ++i;
     if (i > start) words.emplace_back(line.substr(start, i - start));
   }
   return words;
@@ -217,7 +230,8 @@ PlyHeader parsePlyHeader(const std::string& data, const std::string& path) {
     }
     for (const char c : line)
       if (static_cast<unsigned char>(c) < 0x20 && c != '\t')
-        throw bad("control character in header line " + std::to_string(lineNumber));
+        throw bad("control character in header line " + std::to_string(lineNumber) +
+                  " (header lines end in \\n)");
     const std::vector<std::string> w = splitWords(line);
     if (lineNumber == 1) {
       if (w.size() != 1 || lowerCase(w[0]) != "ply") throw bad("first line is not 'ply'");
@@ -481,7 +495,7 @@ Mesh collectTriangles(const aiScene& scene, const std::string& path) {
       if (!withinCoordinateCap(p))
         throw InputError("mesh file " + path +
                          " has a vertex coordinate that is not finite or exceeds " +
-                         std::to_string(kMaxMeshCoordinate) + " in magnitude");
+                         shortNumber(kMaxMeshCoordinate) + " in magnitude");
       mesh.positions.push_back({p.x, p.y, p.z});
       glm::vec3 n(0, 1, 0);
       if (m->mNormals != nullptr) {
@@ -543,15 +557,15 @@ Mesh loadMesh(const std::string& path) {
 
 void normalizeMesh(Mesh& mesh, float size, const std::string& name) {
   if (!std::isfinite(size) || size <= 0)
-    throw InputError(name + ": size " + std::to_string(size) + " must be positive and finite");
+    throw InputError(name + ": size " + shortNumber(size) + " must be positive and finite");
   Bounds b;
   for (const glm::vec3& p : mesh.positions) b.extend(p);
   const glm::vec3 extent = b.hi - b.lo;
   const float largest = std::max({extent.x, extent.y, extent.z});
   const float s = size / largest;
   if (b.empty() || !std::isfinite(largest) || largest <= 0 || !std::isfinite(s) || s <= 0)
-    throw InputError(name + " has a zero or non-finite extent (" + std::to_string(largest) +
-                     "); it cannot be scaled to size " + std::to_string(size));
+    throw InputError(name + " has a zero or non-finite extent (" + shortNumber(largest) +
+                     "); it cannot be scaled to size " + shortNumber(size));
   const glm::vec3 offset(b.center().x, b.lo.y, b.center().z);
   for (glm::vec3& p : mesh.positions) p = (p - offset) * s;
 }

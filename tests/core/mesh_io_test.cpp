@@ -55,6 +55,17 @@ TEST(MeshLoading, SeedsLoad) {
   }
 }
 
+// Text seeds (OBJ, ascii PLY) with "\r\n" line ends load as they are.
+TEST(MeshLoading, WindowsLineEndsLoad) {
+  for (const testing_meshes::SeedFile& seed : testing_meshes::seedFiles()) {
+    if (seed.bytes.find("binary") != std::string::npos) continue;
+    std::string crlf;
+    for (char c : seed.bytes) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    EXPECT_EQ(loadMesh(write("crlf_" + seed.name, crlf)).triangleCount(), seed.triangles)
+        << seed.name;
+  }
+}
+
 // The 2 KB .ply.gz with no newline: Assimp 5.2 looped past its line cache on such
 // headers (see core/mesh_io.cpp). Every variant: no line end at all, '\r' or '\0' line ends,
 // binary and ascii, with about 2 KB of compressed payload after the header.
@@ -185,6 +196,16 @@ TEST(MeshLoading, GzipBombStopsAtTheCap) {
   EXPECT_LT(gz.size(), kMaxDecompressedMeshBytes / 100);  // it is a bomb: over 100:1
   const std::string message = loadError(write("bomb.ply.gz", gz));
   EXPECT_TRUE(contains(message, "at most " + std::to_string(kMaxDecompressedMeshBytes))) << message;
+}
+
+// A file over kMaxMeshFileBytes is refused from its size, before it is read (a sparse file:
+// nothing is written to disk).
+TEST(MeshLoading, OversizedFileIsRefusedUnread) {
+  const std::string path = write("oversized.ply.gz", "");
+  fs::resize_file(path, kMaxMeshFileBytes + 1);
+  const std::string message = loadError(path);
+  EXPECT_TRUE(contains(message, "at most " + std::to_string(kMaxMeshFileBytes))) << message;
+  fs::remove(path);
 }
 
 TEST(MeshLoading, OnlyObjAndPlyAreRead) {
