@@ -196,6 +196,13 @@ std::vector<std::string> splitWords(std::string_view line) {
   return words;
 }
 
+std::size_t countWords(std::string_view line) {
+  std::size_t words = 0;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (!isWordSeparator(line[i]) && (i == 0 || isWordSeparator(line[i - 1]))) ++words;
+  return words;
+}
+
 bool parseCount(const std::string& word, std::uint64_t* value) {
   const char* end = word.data() + word.size();
   const auto [ptr, ec] = std::from_chars(word.data(), end, *value);
@@ -308,6 +315,29 @@ void checkPlyCounts(const PlyHeader& header, const std::string& path) {
   }
 }
 
+// Tallies the triangles a face (or triangle strip) list of `items` indices makes, refusing the
+// file as soon as the total passes kMaxMeshTriangles.
+class TriangleTally {
+ public:
+  TriangleTally(const std::string& path, const char* format) : path_(path), format_(format) {}
+  void addPolygon(std::uint64_t corners) {
+    if (corners > 2) triangles_ += corners - 2;
+    if (triangles_ > kMaxMeshTriangles)
+      throw InputError(std::string(format_) + " file " + path_ + " declares more than " +
+                       std::to_string(kMaxMeshTriangles) + " triangles; at most " +
+                       std::to_string(kMaxMeshTriangles));
+  }
+
+ private:
+  const std::string& path_;
+  const char* format_;
+  std::uint64_t triangles_ = 0;
+};
+
+bool isFaceElement(const PlyElement& e) {
+  return e.name == "face" || e.name == "tristrips";
+}
+
 std::string declaredInstance(const PlyElement& e, std::uint64_t i) {
   return e.name + " " + std::to_string(i) + " of " + std::to_string(e.count);
 }
@@ -315,6 +345,7 @@ std::string declaredInstance(const PlyElement& e, std::uint64_t i) {
 // An ascii body has one line per element instance, each with a word per scalar property and,
 // per list property, a count word followed by that many words (Assimp reads them so).
 void checkPlyAsciiBody(const std::string& data, const PlyHeader& header, const std::string& path) {
+  TriangleTally triangles(path, "PLY");
   std::size_t pos = header.bodyOffset;
   for (const PlyElement& e : header.elements) {
     // Each instance takes a line of at least two bytes: a digit and its line end.
@@ -338,6 +369,7 @@ void checkPlyAsciiBody(const std::string& data, const PlyHeader& header, const s
                              " lacks a list count");
           ++next;
         }
+        if (p.isList && isFaceElement(e)) triangles.addPolygon(items);
         const std::uint64_t needed = p.isList ? items : 1;
         if (needed > words.size() - next)
           throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
@@ -362,6 +394,7 @@ std::uint64_t readPlyCount(const char* bytes, const PlyProperty& p, bool bigEndi
 // A binary body holds exactly the bytes the header declares: walks every list's count.
 void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const std::string& path) {
   const bool bigEndian = header.encoding == PlyEncoding::kBinaryBigEndian;
+  TriangleTally triangles(path, "PLY");
   std::size_t pos = header.bodyOffset;
   auto truncated = [&](const PlyElement& e, std::uint64_t i) {
     return InputError("PLY file " + path + " is truncated: " + std::to_string(data.size()) +
@@ -394,6 +427,7 @@ void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const 
         const std::uint64_t items = readPlyCount(data.data() + pos, p, bigEndian);
         pos += std::size_t(p.countBytes);
         if (items > (data.size() - pos) / std::size_t(p.valueBytes)) throw truncated(e, i);
+        if (isFaceElement(e)) triangles.addPolygon(items);
         pos += std::size_t(items) * std::size_t(p.valueBytes);
       }
     }
@@ -412,9 +446,11 @@ void checkPlyData(const std::string& data, const std::string& path) {
 
 // ---- OBJ sanity check -------------------------------------------------------------------------
 
-// Counts `v` and `f` lines against the caps; Assimp's OBJ reader checks the rest.
+// Counts `v` lines and the triangles of `f` lines against the caps; Assimp's OBJ reader checks
+// the rest.
 void checkObjData(const std::string& data, const std::string& path) {
-  std::size_t vertices = 0, faces = 0;
+  std::size_t vertices = 0;
+  TriangleTally triangles(path, "OBJ");
   std::size_t pos = 0;
   while (pos < data.size()) {
     std::size_t end = data.find('\n', pos);
@@ -423,16 +459,14 @@ void checkObjData(const std::string& data, const std::string& path) {
     while (i < end && (data[i] == ' ' || data[i] == '\t')) ++i;
     if (i + 1 < end && (data[i + 1] == ' ' || data[i + 1] == '\t')) {
       if (data[i] == 'v') ++vertices;
-      if (data[i] == 'f') ++faces;
+      if (data[i] == 'f')
+        triangles.addPolygon(countWords(std::string_view(data).substr(i + 1, end - i - 1)));
     }
     pos = end + 1;
   }
   if (vertices > kMaxMeshVertices)
     throw InputError("OBJ file " + path + " declares " + std::to_string(vertices) +
                      " vertices; at most " + std::to_string(kMaxMeshVertices));
-  if (faces > kMaxMeshTriangles)
-    throw InputError("OBJ file " + path + " declares " + std::to_string(faces) +
-                     " faces; at most " + std::to_string(kMaxMeshTriangles));
 }
 
 // ---- Assimp -----------------------------------------------------------------------------------

@@ -123,7 +123,7 @@ TEST(MeshLoading, BillionVertexHeaderIsRefusedWithTheCap) {
   EXPECT_TRUE(contains(loadError(write("longface.ply", face)), "truncated"));
 }
 
-TEST(MeshLoading, ObjVertexAndFaceLinesAreCapped) {
+TEST(MeshLoading, ObjVerticesAndTrianglesAreCapped) {
   std::string obj;
   obj.reserve((kMaxMeshVertices + 1) * 8);
   for (std::size_t i = 0; i <= kMaxMeshVertices; ++i) obj += "v 0 0 0\n";
@@ -131,6 +131,12 @@ TEST(MeshLoading, ObjVertexAndFaceLinesAreCapped) {
   EXPECT_TRUE(contains(message, "declares " + std::to_string(kMaxMeshVertices + 1) +
                                     " vertices; at most " + std::to_string(kMaxMeshVertices)))
       << message;
+  // One polygon of kMaxMeshTriangles + 3 corners: one triangle too many after triangulation.
+  std::string polygon = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
+  for (std::size_t i = 0; i < kMaxMeshTriangles + 3; ++i) polygon += " 1";
+  const std::string tooMany = loadError(write("polygon.obj", polygon + "\n"));
+  EXPECT_TRUE(contains(tooMany, "more than " + std::to_string(kMaxMeshTriangles) + " triangles"))
+      << tooMany;
 }
 
 // The OBJ with coordinates of 3e38: its extent overflowed to inf and normalizeMesh
