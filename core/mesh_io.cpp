@@ -391,13 +391,16 @@ std::uint64_t readPlyCount(const char* bytes, const PlyProperty& p, bool bigEndi
   return v;
 }
 
-// A binary body holds exactly the bytes the header declares: walks every list's count.
-void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const std::string& path) {
+// A binary body holds exactly the bytes the header declares: walks every list's count. Only the
+// first `dataBytes` bytes of `data` count (not the newline loadMesh appends).
+void checkPlyBinaryBody(const std::string& data, std::size_t dataBytes, const PlyHeader& header,
+                        const std::string& path) {
   const bool bigEndian = header.encoding == PlyEncoding::kBinaryBigEndian;
   TriangleTally triangles(path, "PLY");
-  std::size_t pos = header.bodyOffset;
+  // A file that ends with `end_header` has its line end only from loadMesh: no body bytes.
+  std::size_t pos = std::min(header.bodyOffset, dataBytes);
   auto truncated = [&](const PlyElement& e, std::uint64_t i) {
-    return InputError("PLY file " + path + " is truncated: " + std::to_string(data.size()) +
+    return InputError("PLY file " + path + " is truncated: " + std::to_string(dataBytes) +
                       " bytes end in " + declaredInstance(e, i));
   };
   for (const PlyElement& e : header.elements) {
@@ -406,7 +409,7 @@ void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const 
     if (!hasList) {
       std::uint64_t recordBytes = 0;
       for (const PlyProperty& p : e.properties) recordBytes += std::uint64_t(p.valueBytes);
-      const std::uint64_t left = data.size() - pos;
+      const std::uint64_t left = dataBytes - pos;
       if (e.count > left / recordBytes)
         throw InputError("PLY file " + path + " declares " + std::to_string(e.count) + " " +
                          e.name + " records of " + std::to_string(recordBytes) +
@@ -415,18 +418,18 @@ void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const 
       continue;
     }
     // Every instance takes at least one byte, so this bounds the walk by the file size.
-    if (e.count > data.size() - pos) throw truncated(e, 0);
+    if (e.count > dataBytes - pos) throw truncated(e, 0);
     for (std::uint64_t i = 0; i < e.count; ++i) {
       for (const PlyProperty& p : e.properties) {
         if (!p.isList) {
-          if (std::size_t(p.valueBytes) > data.size() - pos) throw truncated(e, i);
+          if (std::size_t(p.valueBytes) > dataBytes - pos) throw truncated(e, i);
           pos += std::size_t(p.valueBytes);
           continue;
         }
-        if (std::size_t(p.countBytes) > data.size() - pos) throw truncated(e, i);
+        if (std::size_t(p.countBytes) > dataBytes - pos) throw truncated(e, i);
         const std::uint64_t items = readPlyCount(data.data() + pos, p, bigEndian);
         pos += std::size_t(p.countBytes);
-        if (items > (data.size() - pos) / std::size_t(p.valueBytes)) throw truncated(e, i);
+        if (items > (dataBytes - pos) / std::size_t(p.valueBytes)) throw truncated(e, i);
         if (isFaceElement(e)) triangles.addPolygon(items);
         pos += std::size_t(items) * std::size_t(p.valueBytes);
       }
@@ -434,13 +437,14 @@ void checkPlyBinaryBody(const std::string& data, const PlyHeader& header, const 
   }
 }
 
-void checkPlyData(const std::string& data, const std::string& path) {
+// `data` ends in a newline, which loadMesh appended when the file's `dataBytes` did not.
+void checkPlyData(const std::string& data, std::size_t dataBytes, const std::string& path) {
   const PlyHeader header = parsePlyHeader(data, path);
   checkPlyCounts(header, path);
   if (header.encoding == PlyEncoding::kAscii) {
     checkPlyAsciiBody(data, header, path);
   } else {
-    checkPlyBinaryBody(data, header, path);
+    checkPlyBinaryBody(data, dataBytes, header, path);
   }
 }
 
@@ -562,9 +566,10 @@ Mesh loadMesh(const std::string& path) {
   if (data.empty()) throw InputError("mesh file " + path + " is empty");
   // Assimp's line readers stop at a line end: give the last line one (std::string keeps a
   // NUL after it that Assimp is not told about).
+  const std::size_t dataBytes = data.size();
   if (data.back() != '\n') data.push_back('\n');
   if (kind.format == MeshFormat::kPly) {
-    checkPlyData(data, path);
+    checkPlyData(data, dataBytes, path);
   } else {
     checkObjData(data, path);
   }

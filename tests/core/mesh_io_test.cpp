@@ -123,6 +123,16 @@ TEST(MeshLoading, BillionVertexHeaderIsRefusedWithTheCap) {
   EXPECT_TRUE(contains(loadError(write("longface.ply", face)), "truncated"));
 }
 
+// A binary PLY one byte short: the newline loadMesh gives every buffer must not count as the
+// missing byte. A header that ends the file (no line end) declares what is not there.
+TEST(MeshLoading, BinaryPlyShortByOneByteIsRefused) {
+  const std::string ply = testing_meshes::seedFiles()[2].bytes;  // binary little endian
+  ASSERT_NE(ply.back(), '\n');
+  EXPECT_TRUE(contains(loadError(write("short1.ply", ply.substr(0, ply.size() - 1))), "truncated"));
+  const std::string header = ply.substr(0, ply.find("end_header") + 10);
+  EXPECT_TRUE(contains(loadError(write("headeronly.ply", header)), "bytes left"));
+}
+
 TEST(MeshLoading, ObjVerticesAndTrianglesAreCapped) {
   std::string obj;
   obj.reserve((kMaxMeshVertices + 1) * 8);
