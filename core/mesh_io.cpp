@@ -184,15 +184,21 @@ bool isWordSeparator(char c) {
   return c == ' ' || c == '\t' || c == '\r';
 }
 
+// The next word of `line` at or after `*at`, and `*at` moved past it; empty at the end.
+std::string_view nextWord(std::string_view line, std::size_t* at) {
+  std::size_t i = *at;
+  while (i < line.size() && isWordSeparator(line[i])) ++i;
+  const std::size_t start = i;
+  while (i < line.size() && !isWordSeparator(line[i])) ++i;
+  *at = i;
+  return line.substr(start, i - start);
+}
+
 std::vector<std::string> splitWords(std::string_view line) {
   std::vector<std::string> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && isWordSeparator(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !isWordSeparator(line[i])) ++i;
-    if (i > start) words.emplace_back(line.substr(start, i - start));
-  }
+  std::size_t at = 0;
+  for (std::string_view w = nextWord(line, &at); !w.empty(); w = nextWord(line, &at))
+    words.emplace_back(w);
   return words;
 }
 
@@ -203,7 +209,7 @@ std::size_t countWords(std::string_view line) {
   return words;
 }
 
-bool parseCount(const std::string& word, std::uint64_t* value) {
+bool parseCount(std::string_view word, std::uint64_t* value) {
   const char* end = word.data() + word.size();
   const auto [ptr, ec] = std::from_chars(word.data(), end, *value);
   return ec == std::errc() && ptr == end;
@@ -357,24 +363,21 @@ void checkPlyAsciiBody(const std::string& data, const PlyHeader& header, const s
       const std::size_t newline = data.find('\n', pos);
       if (newline == std::string::npos)
         throw InputError("PLY file " + path + " ends before " + declaredInstance(e, i));
-      const std::vector<std::string> words =
-          splitWords(std::string_view(data.data() + pos, newline - pos));
+      const std::string_view line(data.data() + pos, newline - pos);
       pos = newline + 1;
-      std::size_t next = 0;
+      std::size_t at = 0;  // where the next word of the line starts
       for (const PlyProperty& p : e.properties) {
-        std::uint64_t items = 0;
+        std::uint64_t items = 1;
         if (p.isList) {
-          if (next >= words.size() || !parseCount(words[next], &items))
+          if (!parseCount(nextWord(line, &at), &items))
             throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
                              " lacks a list count");
-          ++next;
+          if (isFaceElement(e)) triangles.addPolygon(items);
         }
-        if (p.isList && isFaceElement(e)) triangles.addPolygon(items);
-        const std::uint64_t needed = p.isList ? items : 1;
-        if (needed > words.size() - next)
-          throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
-                           " has too few values");
-        next += std::size_t(needed);
+        for (std::uint64_t k = 0; k < items; ++k)
+          if (nextWord(line, &at).empty())
+            throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
+                             " has too few values");
       }
     }
   }
@@ -583,8 +586,7 @@ Mesh loadMesh(const std::string& path) {
     throw InputError("malformed mesh file " + path + ": " + importer.GetErrorString());
   checkImportedMeshes(*scene, path);
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                       aiProcess_GenSmoothNormals | aiProcess_FindInvalidData |
-                                       aiProcess_ValidateDataStructure);
+                                       aiProcess_GenSmoothNormals | aiProcess_FindInvalidData);
   if (scene == nullptr)
     throw InputError("malformed mesh file " + path + ": " + importer.GetErrorString());
 
