@@ -237,7 +237,7 @@ Mesh meshFromJson(const json& j, const std::string& where, const std::string& ba
     fs::path p = stringValue(j["file"], what + ".file");
     if (p.is_relative()) p = fs::path(baseDir) / p;
     Mesh m = loadMesh(p.string());
-    if (j.contains("size")) normalizeMesh(m, number(j["size"], what + ".size"));
+    if (j.contains("size")) normalizeMesh(m, number(j["size"], what + ".size"), p.string());
     return m;
   }
   if (!j.contains("primitive"))
