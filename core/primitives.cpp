@@ -297,8 +297,8 @@ Mesh makeBranchedTree(float height, int levels, unsigned seed) {
   Mesh m;
   m.closed = true;
   unsigned state = seed * 2654435761u + 1u;
-  addBranch(m, {0, 0, 0}, {0, 1, 0}, kTrunkShare * height, kTrunkRadiusShare * height, 0,
-            levels, kLeafShare * height, state);
+  addBranch(m, {0, 0, 0}, {0, 1, 0}, kTrunkShare * height, kTrunkRadiusShare * height, 0, levels,
+            kLeafShare * height, state);
   return m;
 }
 

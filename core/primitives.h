@@ -9,17 +9,17 @@ namespace sl {
 // Tessellation caps (issue 17): every generator checks its parameters against these before it
 // allocates anything and throws InputError naming the parameter and the cap. At the largest
 // caps a primitive has a few million triangles, which every technique still renders here.
-constexpr int kMaxPlaneDivisions = 1024;     // 2 divisions^2 triangles: 2.1 M at the cap
-constexpr int kMinSphereSlices = 3;          // fewer is not a solid
-constexpr int kMaxSphereSlices = 2048;       // 2 slices (stacks - 1) triangles
-constexpr int kMinSphereStacks = 2;          // two pole caps, no middle band
-constexpr int kMaxSphereStacks = 1024;       //   -> 4.2 M triangles at both caps
+constexpr int kMaxPlaneDivisions = 1024;  // 2 divisions^2 triangles: 2.1 M at the cap
+constexpr int kMinSphereSlices = 3;       // fewer is not a solid
+constexpr int kMaxSphereSlices = 2048;    // 2 slices (stacks - 1) triangles
+constexpr int kMinSphereStacks = 2;       // two pole caps, no middle band
+constexpr int kMaxSphereStacks = 1024;    //   -> 4.2 M triangles at both caps
 constexpr int kMinCylinderSlices = 3;
-constexpr int kMaxCylinderSlices = 65536;    // 4 triangles a slice: 262 k at the cap
-constexpr int kMinTorusSegments = 3;         // rings and sides
-constexpr int kMaxTorusSegments = 1024;      // 2 rings sides triangles: 2.1 M at both caps
-constexpr int kMaxFencePickets = 10000;      // 12 triangles a picket: 120 k at the cap
-constexpr int kMaxTreeLevels = 7;            // 4 * 3^(levels - 1) tips: 2916 at the cap
+constexpr int kMaxCylinderSlices = 65536;  // 4 triangles a slice: 262 k at the cap
+constexpr int kMinTorusSegments = 3;       // rings and sides
+constexpr int kMaxTorusSegments = 1024;    // 2 rings sides triangles: 2.1 M at both caps
+constexpr int kMaxFencePickets = 10000;    // 12 triangles a picket: 120 k at the cap
+constexpr int kMaxTreeLevels = 7;          // 4 * 3^(levels - 1) tips: 2916 at the cap
 // Lengths (radius, width, height, extent) must be positive and at most this (scene units):
 // beyond it a float position has less than a millimetre-per-kilometre of precision left.
 constexpr float kMaxPrimitiveLength = 1e6f;

@@ -190,8 +190,8 @@ void validateScene(const Scene& scene) {
   if (!(l.ambient >= 0.0f && l.ambient <= 1.0f))
     throw InputError(where + "light ambient must be in [0, 1]");
   if (scene.objects.size() > size_t(kMaxSceneObjects))
-    throw InputError(where + "has " + std::to_string(scene.objects.size()) +
-                     " objects; at most " + std::to_string(kMaxSceneObjects));
+    throw InputError(where + "has " + std::to_string(scene.objects.size()) + " objects; at most " +
+                     std::to_string(kMaxSceneObjects));
   size_t triangles = 0;
   for (const Object& o : scene.objects) {
     const std::string what = where + "object '" + o.name + "'";

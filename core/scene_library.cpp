@@ -217,7 +217,7 @@ std::string stringValue(const json& j, const std::string& what) {
 // would otherwise be ignored silently ("positon", "stack"), so it is an error that lists the
 // keys that are known there.
 const json& strictObject(const json& j, const std::string& what,
-                   std::initializer_list<const char*> known) {
+                         std::initializer_list<const char*> known) {
   if (!j.is_object()) throw InputError(what + " must be a JSON object");
   for (const auto& [key, value] : j.items()) {
     if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
@@ -241,7 +241,8 @@ Mesh meshFromJson(const json& j, const std::string& where, const std::string& ba
     return m;
   }
   if (!j.contains("primitive"))
-    throw InputError(what + " needs \"file\" or a \"primitive\" (plane, box, sphere, "
+    throw InputError(what +
+                     " needs \"file\" or a \"primitive\" (plane, box, sphere, "
                      "cylinder, torus, quad, fence, tree)");
   const std::string kind = stringValue(j["primitive"], what + ".primitive");
   auto num = [&](const char* key, float fallback) {
@@ -291,8 +292,10 @@ Mesh meshFromJson(const json& j, const std::string& where, const std::string& ba
     if (message.rfind(what, 0) == 0) throw;
     throw InputError(what + ": " + message);
   }
-  throw InputError(what + ".primitive must be one of plane, box, sphere, cylinder, torus, quad, "
-                   "fence, tree; got '" + kind + "'");
+  throw InputError(what +
+                   ".primitive must be one of plane, box, sphere, cylinder, torus, quad, "
+                   "fence, tree; got '" +
+                   kind + "'");
 }
 
 }  // namespace
@@ -343,7 +346,7 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
     if (doc.contains("description")) s.description = stringValue(doc["description"], "description");
     if (doc.contains("camera")) {
       const json& c = strictObject(doc["camera"], "camera",
-                             {"position", "target", "up", "fovy", "near", "far"});
+                                   {"position", "target", "up", "fovy", "near", "far"});
       if (c.contains("position")) s.camera.position = vec3(c["position"], "camera.position");
       if (c.contains("target")) s.camera.target = vec3(c["target"], "camera.target");
       if (c.contains("up")) s.camera.up = vec3(c["up"], "camera.up");
@@ -352,9 +355,9 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
       if (c.contains("far")) s.camera.farPlane = number(c["far"], "camera.far");
     }
     if (doc.contains("light")) {
-      const json& l = strictObject(doc["light"], "light",
-                             {"position", "target", "up", "cone", "near", "far", "radius",
-                              "ambient", "color"});
+      const json& l = strictObject(
+          doc["light"], "light",
+          {"position", "target", "up", "cone", "near", "far", "radius", "ambient", "color"});
       if (l.contains("position")) s.light.position = vec3(l["position"], "light.position");
       if (l.contains("target")) s.light.target = vec3(l["target"], "light.target");
       if (l.contains("up")) s.light.up = vec3(l["up"], "light.up");
@@ -374,8 +377,8 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
     for (const json& o : doc["objects"]) {
       const std::string where = "objects[" + std::to_string(index++) + "]";
       strictObject(o, where,
-             {"name", "mesh", "translate", "rotate", "scale", "diffuse", "specular", "casts",
-              "receives"});
+                   {"name", "mesh", "translate", "rotate", "scale", "diffuse", "specular", "casts",
+                    "receives"});
       if (!o.contains("mesh")) throw InputError(where + " has no mesh");
       Object obj;
       obj.name = o.contains("name") ? stringValue(o["name"], where + ".name") : where;
