@@ -78,15 +78,32 @@ const std::vector<CommandSpec>& commandSpecs() {
              {"threshold", "X", "pixels differing by more than this count as mismatching [0]"}},
             renderOptions())},
       {"bench",
-       "error against run time for every technique and a sweep of its parameters",
+       "error against run time for every technique and a sweep of its parameters\n"
+       "Scenes: quick = brabec, fence; full = every built-in scene (analytic, brabec, fence,\n"
+       "trees, dueling); both add brabec-light-away (planner on/off) and trees-far\n"
+       "(minification claim), full also fill-bound (assets/scenes). Each variant is measured\n"
+       "against the ray-traced references (pixel=area): RMSE, band RMSE (2 px of an edge),\n"
+       "leak, temporal change (light moved by a fifth of a texel). Not swept: values a\n"
+       "technique rejects (fast PCF --filter 1 and 3, modern.vsm storage=8) and repeats of\n"
+       "its defaults.\n"
+       "Written: stdout, one JSON line per variant (sorted by scene, then frame time, with\n"
+       "pareto_rank), then one per paper claim; stderr, progress, the claims' verdicts and\n"
+       "the --budget-ms table; --csv FILE, one row per variant (same order and columns);\n"
+       "--out PATH, per scene bench-SCENE.png (error against time, Pareto front),\n"
+       "bench-SCENE.dat (its data) and bench-SCENE.gp (its gnuplot script).",
        {{"quick", nullptr, "the quick sweep (two scenes, 256x192; the main job's report uses it)"},
-        {"scene", "S", "only this scene [the benchmark scenes]"},
-        {"technique", "T", "only this technique (all its variants)"},
-        {"csv", "FILE", "also write every row as CSV"},
+        {"scene", "S", "only this scene [the benchmark scenes above]"},
+        {"technique", "T", "only this technique (all its variants) [every technique]"},
+        {"csv", "FILE", "also write every row as CSV [none]"},
         {"size", "WxH", "window WxH [quick 256x192, full 400x300]"},
         {"backend", "NAME", "osmesa, reference or egl [osmesa]"},
-        {"repeat", "N", "timed frames per variant (after the warm-up frames)"},
-        {"out", "PATH", "directory for plots and their data [out/bench]"}}},
+        {"repeat", "N",
+         "timed frames per variant, after the warm-up frames [quick 3 after 1, full 7 after 2]"},
+        {"out", "PATH", "directory for plots and their data [out/bench]"},
+        {"budget-ms", "X",
+         "after the sweep, per scene: the variants with a median frame time within X ms, "
+         "ranked by RMSE, with band RMSE, temporal change and Pareto rank (references are "
+         "not ranked); X > 0 [no ranking]"}}},
       {"plan", "the passes a frame of a technique needs, those left out, and why",
        join({{"technique", "T", "technique name, required"}}, renderOptions())},
       {"figures",

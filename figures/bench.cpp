@@ -29,8 +29,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "apps/registry.h"
+#include "core/decimal.h"
 #include "core/errors.h"
 #include "core/frame_timing.h"
 #include "core/output_files.h"
@@ -105,6 +107,68 @@ const std::vector<ParamAxis>& paramAxes() {
       {"plan", {"off"}, {"off"}},                  // the pass planner's omissions
   };
   return kAxes;
+}
+
+// Variants the sweep leaves out (issue 21 item 4), read from each technique's parameter
+// parsing. Footprints: Brabec & Seidel §4's fast PCF packs 2x2 neighbours (and 4x4 in four
+// phases) only; legacy/fast_pcf.cpp and modern/fast_percentage_closer_filtering.cpp reject 1
+// and 3 with an InputError.
+struct FootprintRule {
+  const char* technique;
+  std::vector<int> accepted;
+};
+const std::vector<FootprintRule>& footprintRules() {
+  static const std::vector<FootprintRule> kRules = {{"legacy.fast-pcf", {2, 4}},
+                                                    {"modern.fast-pcf", {2, 4}}};
+  return kRules;
+}
+bool acceptsFootprint(const Technique& t, int footprint) {
+  for (const FootprintRule& r : footprintRules())
+    if (t.name == r.technique)
+      return std::find(r.accepted.begin(), r.accepted.end(), footprint) != r.accepted.end();
+  return true;
+}
+// --param values a technique rejects (modern/variance_shadow_map.cpp: storage 16 or float).
+struct ParamValue {
+  const char* technique;
+  const char* key;
+  const char* value;
+};
+const std::vector<ParamValue>& rejectedParamValues() {
+  static const std::vector<ParamValue> kRejected = {{"modern.vsm", "storage", "8"}};
+  return kRejected;
+}
+// Each technique's own default for the swept --param keys (where the technique parses them):
+// a variant that sets one of these repeats the variant without it, so it is not swept again.
+const std::vector<ParamValue>& paramDefaults() {
+  static const std::vector<ParamValue> kDefaults = {
+      {"modern.csm", "order", "16"},
+      {"modern.csm", "blur", "3"},
+      {"modern.csm", "storage", "8"},
+      {"modern.csm", "alpha", "1"},
+      {"modern.csm", "filtering", "trilinear"},
+      {"modern.vsm", "blur", "3"},
+      {"modern.vsm", "storage", "float"},
+      {"modern.vsm", "bleed-reduction", "0"},
+      {"modern.vsm", "filtering", "trilinear"},
+      {"modern.gems16", "samples", "16"},
+      {"modern.gems4", "samples", "4"},
+      {"modern.smoothies", "width", "0.03"},
+  };
+  return kDefaults;
+}
+bool isRejectedValue(const Technique& t, const std::string& key, const std::string& value) {
+  for (const ParamValue& r : rejectedParamValues())
+    if (t.name == r.technique && key == r.key && value == r.value) return true;
+  return false;
+}
+// `p` without the --param entries that equal the technique's defaults (what the render sees).
+RenderParams withoutDefaults(const Technique& t, RenderParams p) {
+  for (const ParamValue& d : paramDefaults()) {
+    auto it = p.extra.find(d.key);
+    if (t.name == d.technique && it != p.extra.end() && it->second == d.value) p.extra.erase(it);
+  }
+  return p;
 }
 
 std::string describe(const RenderParams& p) {
@@ -182,6 +246,7 @@ References renderReferences(const Scene& scene, const RenderParams& base, bool w
 void measureAgainstReferences(BenchRow& row, const Image& mask, const References& refs) {
   row.hard = measureErrors(mask, refs.hard.visibility, refs.region, refs.hardBand);
   row.hardPoint = measureErrors(mask, refs.hardPoint.visibility, refs.region, refs.hardPointBand);
+  row.softMeasured = refs.withSoft;
   if (refs.withSoft) {
     row.soft = measureErrors(mask, refs.soft.visibility, refs.region, refs.softBand);
     row.softPoint = measureErrors(mask, refs.softPoint.visibility, refs.region, refs.softPointBand);
@@ -267,6 +332,8 @@ nlohmann::json rowJson(const BenchRow& r, bool withSoft) {
   nlohmann::json j = {
       {"scene", r.scene},   {"technique", r.technique},     {"variant", r.variant},
       {"status", r.status}, {"params", describe(r.params)}, {"reference", r.primaryReference}};
+  // null: a reference (the truth, not ranked) or a row that did not run.
+  j["pareto_rank"] = r.paretoRank > 0 ? nlohmann::json(r.paretoRank) : nlohmann::json(nullptr);
   if (r.status != "ok") return j;
   j["frame_ms"] = r.frameMs;
   j["wall_ms"] = r.wallMs;
@@ -293,9 +360,13 @@ std::vector<std::string> benchScenes(bool quick) {
 
 std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& base, bool quick) {
   std::vector<BenchVariant> out = {{"default", base}};
-  std::set<std::string> seen = {describe(base)};
+  // Identical variants: the same parameters once the technique's defaults are left out.
+  std::set<std::string> seen = {describe(withoutDefaults(t, base))};
   auto add = [&](const std::string& label, const RenderParams& p) {
-    if (seen.insert(describe(p)).second) out.push_back({label, p});
+    for (const auto& [k, v] : p.extra)
+      if (isRejectedValue(t, k, v)) return;
+    if (!acceptsFootprint(t, p.filter)) return;
+    if (seen.insert(describe(withoutDefaults(t, p))).second) out.push_back({label, p});
   };
   if (isReference(t)) return out;  // the references are the truth; their cost is measured once
   if (usesShadowMap(t)) {
@@ -568,11 +639,6 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
           result.texelsPerPixel[scene.name] =
               std::max(result.texelsPerPixel[scene.name], texelsPerPixel);
         }
-        // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
-        json
-            << rowJson(row, run.soft).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
-            << "\n"
-            << std::flush;
         if (options.progress)
           std::cerr << "bench: " << scene.name << " " << t->name << " " << v.label << ": "
                     << (row.status == "ok" ? std::to_string(row.frameMs) + " ms, rmse " +
@@ -583,7 +649,18 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
       }
     }
   }
+  // The outputs are sorted and ranked once every row is measured.
+  sortRowsBySceneThenTime(result.rows);
+  assignParetoRanks(result.rows);
+  for (const BenchRow& row : result.rows) json << benchRowJsonLine(row) << "\n";
+  json << std::flush;
   return result;
+}
+
+std::string benchRowJsonLine(const BenchRow& row) {
+  // Invalid UTF-8 (a scene file named in other bytes) becomes U+FFFD, never a throw.
+  return rowJson(row, row.softMeasured)
+      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::string& scene) {
@@ -608,10 +685,122 @@ std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::st
 }
 
 namespace {
+bool isRankedRow(const BenchRow& r) {  // a competitor: ran, and not a reference (the truth)
+  return r.status == "ok" && r.technique.rfind("reference.", 0) != 0;
+}
+// a no slower and no worse than b, and strictly better in one of the two.
+bool dominates(const BenchRow& a, const BenchRow& b) {
+  const double ea = a.primary().all.rmse, eb = b.primary().all.rmse;
+  return a.frameMs <= b.frameMs && ea <= eb && (a.frameMs < b.frameMs || ea < eb);
+}
+}  // namespace
+
+void assignParetoRanks(std::vector<BenchRow>& rows) {
+  std::map<std::string, std::vector<size_t>> unranked;  // scene -> its competitors
+  for (size_t i = 0; i < rows.size(); ++i) {
+    rows[i].paretoRank = 0;
+    if (isRankedRow(rows[i])) unranked[rows[i].scene].push_back(i);
+  }
+  for (auto& [scene, left] : unranked) {
+    // Peel the fronts: rank k = the rows no remaining row dominates.
+    for (int rank = 1; !left.empty(); ++rank) {
+      std::vector<size_t> front, rest;
+      for (size_t i : left) {
+        const bool dominated = std::any_of(left.begin(), left.end(),
+                                           [&](size_t j) { return dominates(rows[j], rows[i]); });
+        (dominated ? rest : front).push_back(i);
+      }
+      for (size_t i : front) rows[i].paretoRank = rank;
+      left = std::move(rest);
+    }
+  }
+}
+
+void sortRowsBySceneThenTime(std::vector<BenchRow>& rows) {
+  std::stable_sort(rows.begin(), rows.end(), [](const BenchRow& a, const BenchRow& b) {
+    const bool aRan = a.status == "ok", bRan = b.status == "ok";
+    return std::tie(a.scene, bRan, a.frameMs, a.technique, a.variant) <
+           std::tie(b.scene, aRan, b.frameMs, b.technique, b.variant);
+  });
+}
+
+double parseBudgetMs(const std::string& text) {
+  const std::optional<double> v = parseDecimal(text);  // strict: no hex, inf, nan or spaces
+  if (!v || !(*v > 0.0))
+    throw InputError("--budget-ms must be a positive number of milliseconds, got '" + text + "'");
+  return *v;
+}
+
+std::vector<BudgetRanking> rankWithinBudget(const std::vector<BenchRow>& rows, double budgetMs) {
+  std::vector<BudgetRanking> out;
+  auto sceneRanking = [&](const std::string& scene) -> BudgetRanking& {
+    for (BudgetRanking& r : out)
+      if (r.scene == scene) return r;
+    out.push_back({scene, {}, 0, 0});
+    return out.back();
+  };
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const BenchRow& r = rows[i];
+    if (r.technique.rfind("reference.", 0) == 0) continue;  // the truth, not a competitor
+    BudgetRanking& s = sceneRanking(r.scene);
+    if (r.status != "ok")
+      ++s.notRun;
+    else if (r.frameMs <= budgetMs)
+      s.within.push_back(i);
+    else
+      ++s.overBudget;
+  }
+  for (BudgetRanking& s : out)
+    std::stable_sort(s.within.begin(), s.within.end(), [&](size_t a, size_t b) {
+      const double ea = rows[a].primary().all.rmse, eb = rows[b].primary().all.rmse;
+      return ea != eb ? ea < eb : rows[a].frameMs < rows[b].frameMs;
+    });
+  return out;
+}
+
+void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, double budgetMs) {
+  auto fixed = [](double v, int digits) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+  };
+  auto variants = [](size_t n) { return std::to_string(n) + (n == 1 ? " variant" : " variants"); };
+  for (const BudgetRanking& s : rankWithinBudget(rows, budgetMs)) {
+    out << "budget " << fixed(budgetMs, 1) << " ms, scene " << s.scene << ": "
+        << variants(s.within.size())
+        << " within budget, ranked by RMSE against the pixel-integrated reference\n";
+    if (!s.within.empty())
+      out << "  " << std::left << std::setw(4) << "#" << std::setw(20) << "technique"
+          << std::setw(44) << "variant" << std::right << std::setw(9) << "ms" << std::setw(9)
+          << "RMSE" << std::setw(9) << "band" << std::setw(20) << "temporal (ref)" << std::setw(8)
+          << "pareto"
+          << "\n";
+    int place = 0;
+    for (size_t i : s.within) {
+      const BenchRow& r = rows[i];
+      const std::string temporal =
+          (r.temporalChange >= 0 ? fixed(r.temporalChange, 5) : std::string("-")) + " (" +
+          (r.referenceTemporalChange >= 0 ? fixed(r.referenceTemporalChange, 5)
+                                          : std::string("-")) +
+          ")";
+      out << "  " << std::left << std::setw(4) << std::to_string(++place) + "." << std::setw(20)
+          << r.technique << std::setw(44) << r.variant << std::right << std::setw(9)
+          << fixed(r.frameMs, 2) << std::setw(9) << fixed(r.primary().all.rmse, 4) << std::setw(9)
+          << fixed(r.primary().band.rmse, 4) << std::setw(20) << temporal << std::setw(8)
+          << r.paretoRank << "\n";
+    }
+    out << "  " << variants(size_t(s.overBudget)) << " over budget";
+    if (s.notRun > 0)
+      out << ", " << variants(size_t(s.notRun)) << " did not run (see their status)";
+    out << "\n";
+  }
+}
+
+namespace {
 // The CSV of writeCsv: one header line, one line per row.
 void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
   out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
-         "params,frame_ms,wall_ms";
+         "params,frame_ms,wall_ms,pareto_rank";
   // hard_*, soft_*: against the pixel-integrated references (pixel=area, the primary truth);
   // hard_point_*, soft_point_*: against the pixel-centre references.
   for (const char* ref : {"hard", "soft", "hard_point", "soft_point"})
@@ -631,7 +820,8 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
         << "," << r.primaryReference << "," << r.params.width << "," << r.params.height << ","
         << r.params.shadowMapTexels << "," << r.params.filter << ","
         << precisionName(r.params.precision) << "," << quoted(extra) << "," << r.frameMs << ","
-        << r.wallMs;
+        << r.wallMs << ",";
+    if (r.paretoRank > 0) out << r.paretoRank;  // empty: a reference, or a row that did not run
     for (const ErrorSet* e : {&r.hard, &r.soft, &r.hardPoint, &r.softPoint})
       out << "," << e->all.rmse << "," << e->all.maxAbs << "," << e->all.shareAboveHalf << ","
           << e->band.rmse << "," << e->band.maxAbs << "," << e->band.shareAboveHalf << ","
@@ -720,7 +910,8 @@ std::vector<std::string> writePlots(const std::string& outDir, const BenchResult
     const std::string png = base.string() + ".png";
     const std::string temporaryPng = temporaryName(png).string();
     const std::string command =
-        "gnuplot -e \"out='" + temporaryPng + "'\" '" + base.string() + ".gp' 2>&1";
+        // Its warnings go to stderr: stdout carries only JSON lines.
+        "gnuplot -e \"out='" + temporaryPng + "'\" '" + base.string() + ".gp' 1>&2";
     if (techniques.empty() || std::system(command.c_str()) != 0 ||
         std::rename(temporaryPng.c_str(), png.c_str()) != 0) {
       std::remove(temporaryPng.c_str());
@@ -743,6 +934,7 @@ int runBenchCommand(const cli::Args& args) {
   if (auto b = args.value("backend")) options.backend = parseBackend(*b);
   if (auto r = args.value("repeat"))
     options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
+  if (auto b = args.value("budget-ms")) options.budgetMs = parseBudgetMs(*b);
   // Bad names and unwritable destinations fail before any work (core/output_files.h): the
   // CSV is written to a temporary and renamed at the end; the plots' folder must be writable.
   for (const std::string& s : options.scenes) loadScene(s);
@@ -775,6 +967,9 @@ int runBenchCommand(const cli::Args& args) {
               << "\n    " << c.claim << "\n    setup: " << c.setup
               << "\n    measured: " << c.measured << "\n";
   }
+  // The answer to "which technique at this budget", last so that it ends the run's output
+  // (stderr, with the other human-readable lines; stdout stays JSON lines).
+  if (options.budgetMs) printBudgetRanking(std::cerr, result.rows, *options.budgetMs);
   return 0;
 }
 

@@ -27,6 +27,9 @@ struct BenchOptions {
   int warmupFrames = 0, timedFrames = 0;  // 0: the mode's default
   Backend backend = Backend::kOsmesa;
   bool progress = true;  // one line per variant on stderr
+  // --budget-ms: after the sweep, per scene, the variants whose median frame time is within
+  // this many milliseconds, ranked by error (printBudgetRanking). Unset: no ranking.
+  std::optional<double> budgetMs;
 };
 
 // The scenes the bench measures: quick = {brabec, fence}; full = every built-in scene.
@@ -39,7 +42,10 @@ struct BenchVariant {
 };
 // The sweep of `t` around `base`: the default, then one axis at a time (shadow map side,
 // filter footprint, precision, and the --param keys the technique declares), plus the CSM
-// Table 1 grid (side x order x blur) in the full mode.
+// Table 1 grid (side x order x blur) in the full mode. Not swept (issue 21 item 4): values the
+// technique rejects (fast PCF's footprints 1 and 3, modern.vsm storage=8) and variants that
+// repeat another one (a --param set to the technique's own default, e.g. modern.vsm
+// storage=float, or a Table 1 cell equal to a one-axis variant).
 std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& base, bool quick);
 
 // Errors of one mask against one reference, counted where the light can reach (surfaces
@@ -87,11 +93,16 @@ struct BenchRow {
   std::string primaryReference;   // kPrimaryHardReference or kPrimarySoftReference
   ErrorSet hard, soft;            // against the pixel-integrated (pixel=area) references
   ErrorSet hardPoint, softPoint;  // against the pixel-centre references (the point samples)
+  bool softMeasured = false;      // soft and softPoint were measured (reference.soft rendered)
   // Mean |change| of the mask over the direct-light region when the light moves by
   // lightShiftWorld (one extra frame); the primary reference's own change for the same motion
   // beside it (what the true shadow moves by). < 0: not measured.
   double temporalChange = -1.0;
   double referenceTemporalChange = -1.0;
+  // Pareto rank within its scene on (frame time, primary RMSE), assignParetoRanks: 1 = on the
+  // front, 2 = on the front once rank 1 is removed, ...; 0 = not ranked (a reference, which is
+  // the truth and not a competitor, or a row whose status is not ok).
+  int paretoRank = 0;
   double frameMs = 0.0;          // median over timed frames of the sum of the pass times
   double wallMs = 0.0;           // median wall time of render() (includes set-up)
   std::vector<PassTime> passes;  // median per pass
@@ -158,6 +169,32 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result);
 // for which no faster (or equally fast) row has a lower or equal primary RMSE. The references
 // are left out: their error is zero by construction.
 std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::string& scene);
+
+// Sets every row's paretoRank: per scene, repeated non-dominated fronts of the ok,
+// non-reference rows, where a row dominates another when it is no slower and no worse and
+// strictly better in one of the two (equal rows share a rank).
+void assignParetoRanks(std::vector<BenchRow>& rows);
+// The output order (CSV, JSON lines, the budget table): by scene name, then ok rows by median
+// frame time (ties: technique, variant), then the rows that did not run.
+void sortRowsBySceneThenTime(std::vector<BenchRow>& rows);
+// The rows' JSON line (one object; the bench's stdout and bench.jsonl).
+std::string benchRowJsonLine(const BenchRow& row);
+
+// --budget-ms (issue 21 item 4): one scene's answer to "which technique at this budget".
+struct BudgetRanking {
+  std::string scene;
+  std::vector<size_t> within;  // indices into rows: frameMs <= budget, by RMSE, then time
+  int overBudget = 0;          // ok non-reference rows slower than the budget
+  int notRun = 0;              // non-reference rows whose status is not ok
+};
+// Per scene (in the rows' order of first appearance); references are never ranked.
+std::vector<BudgetRanking> rankWithinBudget(const std::vector<BenchRow>& rows, double budgetMs);
+// The table: per scene a heading, one line per variant within the budget (rank, technique,
+// variant, ms, RMSE, band RMSE, temporal change with the reference's, Pareto rank), then the
+// number over budget.
+void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, double budgetMs);
+// --budget-ms's value: a positive decimal number of milliseconds, else InputError.
+double parseBudgetMs(const std::string& text);
 
 void writeCsv(const std::string& path, const std::vector<BenchRow>& rows);
 // error-against-time plots, one PNG per scene (gnuplot run as a subprocess); returns the

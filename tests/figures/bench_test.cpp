@@ -3,12 +3,17 @@
 #include "figures/bench.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "apps/registry.h"
+#include "core/errors.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "reference/reference.h"
@@ -99,6 +104,10 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   EXPECT_NE(header.find("hard_band_rmse"), std::string::npos);
   EXPECT_NE(header.find("hard_point_rmse"), std::string::npos) << "the pixel-centre column";
   EXPECT_NE(header.find("temporal_change"), std::string::npos);
+  EXPECT_NE(header.find("pareto_rank"), std::string::npos);
+  EXPECT_NE(json.str().find("\"pareto_rank\":1"), std::string::npos) << json.str();
+  for (size_t i = 1; i < r.rows.size(); ++i)
+    EXPECT_LE(r.rows[i - 1].scene, r.rows[i].scene) << "sorted by scene, then time";
   EXPECT_NE(json.str().find("\"temporal_change\""), std::string::npos);
   EXPECT_NE(json.str().find("\"vs_reference_hard_centre\""), std::string::npos);
   bool farRows = false;
@@ -340,6 +349,169 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
       EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
     }
   }
+}
+
+// ---- Issue 21 item 4: which technique at this budget ------------------------------------------
+
+BenchRow sceneRow(const std::string& scene, const std::string& technique,
+                  const std::string& variant, double ms, double rmse) {
+  BenchRow r = row(technique, ms, rmse);
+  r.scene = scene;
+  r.variant = variant;
+  return r;
+}
+
+int rankOf(const std::vector<BenchRow>& rows, const std::string& technique) {
+  for (const BenchRow& r : rows)
+    if (r.technique == technique) return r.paretoRank;
+  return -1;
+}
+
+TEST(BenchPareto, RanksArePeeledFronts) {
+  // (time, error) in scene s: a (1, 0.5), b (2, 0.2), d (4, 0.1) form the first front;
+  // c (3, 0.3) is dominated by b only: second front; e (5, 0.4) is dominated by c (and b, d):
+  // third front; f equal to b shares b's rank (neither dominates the other). The reference
+  // and a row that did not run are not ranked; scene t is ranked on its own.
+  std::vector<BenchRow> rows = {row("a", 1, 0.5),
+                                row("b", 2, 0.2),
+                                row("c", 3, 0.3),
+                                row("d", 4, 0.1),
+                                row("e", 5, 0.4),
+                                row("f", 2, 0.2),
+                                row("reference.hard", 0.5, 0.0),
+                                row("broken", 0.1, 0.0)};
+  rows.back().status = "invalid: no";
+  rows.push_back(sceneRow("t", "g", "default", 9, 0.9));
+  assignParetoRanks(rows);
+  EXPECT_EQ(rankOf(rows, "a"), 1);
+  EXPECT_EQ(rankOf(rows, "b"), 1);
+  EXPECT_EQ(rankOf(rows, "d"), 1);
+  EXPECT_EQ(rankOf(rows, "f"), 1) << "an equal row is not dominated";
+  EXPECT_EQ(rankOf(rows, "c"), 2);
+  EXPECT_EQ(rankOf(rows, "e"), 3);
+  EXPECT_EQ(rankOf(rows, "reference.hard"), 0) << "the truth is not a competitor";
+  EXPECT_EQ(rankOf(rows, "broken"), 0);
+  EXPECT_EQ(rankOf(rows, "g"), 1) << "alone on its scene";
+  // The first front is paretoFront's (which keeps one of two equal rows).
+  for (size_t i : paretoFront(rows, "s")) EXPECT_EQ(rows[i].paretoRank, 1) << rows[i].technique;
+}
+
+TEST(BenchOutput, SortedBySceneThenTimeWithFailedRowsLast) {
+  std::vector<BenchRow> rows = {
+      sceneRow("fence", "x", "default", 3, 0.1), sceneRow("brabec", "y", "default", 5, 0.1),
+      sceneRow("brabec", "z", "default", 0, 0.0), sceneRow("brabec", "w", "default", 1, 0.1),
+      sceneRow("fence", "v", "default", 2, 0.1)};
+  rows[2].status = "invalid: rejected";  // did not run: its time 0 means nothing
+  sortRowsBySceneThenTime(rows);
+  std::vector<std::string> order;
+  for (const BenchRow& r : rows) order.push_back(r.scene + " " + r.technique);
+  EXPECT_EQ(order,
+            (std::vector<std::string>{"brabec w", "brabec y", "brabec z", "fence v", "fence x"}));
+}
+
+TEST(BenchBudget, RanksVariantsWithinTheBudgetByError) {
+  std::vector<BenchRow> rows = {
+      sceneRow("s", "fast-bad", "default", 2, 0.30),          // within, worst error
+      sceneRow("s", "mid-good", "filter=4", 10, 0.05),        // within, best error
+      sceneRow("s", "edge", "default", 20, 0.10),             // exactly at the budget: within
+      sceneRow("s", "slow", "default", 30, 0.01),             // best error but over budget
+      sceneRow("s", "reference.hard", "pixel=area", 1, 0.0),  // never ranked
+      sceneRow("s", "broken", "filter=1", 0, 0.0),
+      sceneRow("t", "other", "default", 25, 0.2)};  // scene t: nothing within
+  rows[5].status = "invalid: rejected";
+  assignParetoRanks(rows);
+  const std::vector<BudgetRanking> ranking = rankWithinBudget(rows, 20.0);
+  ASSERT_EQ(ranking.size(), 2u);
+  EXPECT_EQ(ranking[0].scene, "s");
+  ASSERT_EQ(ranking[0].within.size(), 3u);
+  EXPECT_EQ(rows[ranking[0].within[0]].technique, "mid-good");
+  EXPECT_EQ(rows[ranking[0].within[1]].technique, "edge");
+  EXPECT_EQ(rows[ranking[0].within[2]].technique, "fast-bad");
+  EXPECT_EQ(ranking[0].overBudget, 1);
+  EXPECT_EQ(ranking[0].notRun, 1);
+  EXPECT_EQ(ranking[1].scene, "t");
+  EXPECT_TRUE(ranking[1].within.empty());
+  EXPECT_EQ(ranking[1].overBudget, 1);
+
+  std::ostringstream table;
+  printBudgetRanking(table, rows, 20.0);
+  const std::string text = table.str();
+  EXPECT_NE(text.find("scene s: 3 variants within budget"), std::string::npos) << text;
+  EXPECT_NE(text.find("1 variant over budget"), std::string::npos) << text;
+  EXPECT_EQ(text.find("reference.hard"), std::string::npos) << "references are not ranked";
+  EXPECT_LT(text.find("mid-good"), text.find("fast-bad")) << text;
+}
+
+TEST(BenchBudget, ParsesOnlyPositiveNumbers) {
+  EXPECT_DOUBLE_EQ(parseBudgetMs("20"), 20.0);
+  EXPECT_DOUBLE_EQ(parseBudgetMs("0.5"), 0.5);
+  for (const char* bad : {"abc", "0", "-1", "", "20ms", "0x10", "inf", "nan"})
+    EXPECT_THROW(parseBudgetMs(bad), InputError) << bad;
+}
+
+TEST(BenchSweep, VariantsATechniqueRejectsOrRepeatsAreNotSwept) {
+  for (bool quick : {true, false}) {
+    for (const char* name : {"legacy.fast-pcf", "modern.fast-pcf"}) {
+      const auto variants = sweepVariants(findTechnique(name), RenderParams{}, quick);
+      bool sawFilter4 = false;
+      for (const BenchVariant& v : variants) {
+        EXPECT_TRUE(v.params.filter == 2 || v.params.filter == 4)
+            << name << " " << v.label << ": fast PCF takes footprints 2 and 4 only";
+        sawFilter4 |= v.params.filter == 4;
+      }
+      EXPECT_TRUE(sawFilter4) << name;
+    }
+    bool pcfFilter1 = false;  // plain PCF still sweeps the unfiltered footprint
+    for (const BenchVariant& v : sweepVariants(findTechnique("legacy.pcf"), RenderParams{}, quick))
+      pcfFilter1 |= v.params.filter == 1;
+    EXPECT_TRUE(pcfFilter1);
+    // modern.vsm: storage=8 is rejected, storage=float and bleed-reduction=0 are its defaults.
+    for (const BenchVariant& v : sweepVariants(findTechnique("modern.vsm"), RenderParams{}, quick))
+      EXPECT_TRUE(v.label != "storage=8" && v.label != "storage=float" &&
+                  v.label != "bleed-reduction=0")
+          << v.label;
+  }
+  // The CSM Table 1 grid: its 512 / order 16 / blur 3 cell is the default variant, and its
+  // 256 / 16 / 3 cell is shadow-map=256.
+  for (const BenchVariant& v : sweepVariants(findTechnique("modern.csm"), RenderParams{}, false)) {
+    EXPECT_NE(v.label, "table1 shadow-map=512 order=16 blur=3");
+    EXPECT_NE(v.label, "table1 shadow-map=256 order=16 blur=3");
+    EXPECT_NE(v.label, "storage=8") << "modern.csm's default storage";
+  }
+}
+
+std::string runShadowlab(const std::string& args, int& status) {
+  std::string out;
+  FILE* pipe = popen((std::string(SHADOWLAB_BINARY) + " " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return "popen failed";
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), int(buffer.size()), pipe)) out += buffer.data();
+  status = pclose(pipe);
+  return out;
+}
+
+TEST(BenchCommand, BudgetMustBeAPositiveNumber) {
+  // Refused before any work: one line, exit 2.
+  for (const char* bad : {"abc", "0", "-1"}) {
+    int status = 0;
+    const std::string out = runShadowlab(std::string("bench --quick --budget-ms ") + bad, status);
+    ASSERT_TRUE(WIFEXITED(status)) << out;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << bad << ": " << out;
+    EXPECT_NE(out.find("--budget-ms"), std::string::npos) << out;
+    EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << "one line: " << out;
+  }
+}
+
+TEST(BenchCommand, HelpListsDefaultsScenesAndFiles) {
+  int status = 0;
+  const std::string help = runShadowlab("bench --help", status);
+  EXPECT_EQ(status, 0) << help;
+  for (const std::string& scene : benchScenes(false))
+    EXPECT_NE(help.find(scene), std::string::npos) << scene << " missing from: " << help;
+  for (const char* text : {"--budget-ms", "[out/bench]", "256x192", "400x300", "bench-SCENE.png",
+                           "bench-SCENE.dat", "bench-SCENE.gp", "--csv FILE", "JSON line",
+                           "fill-bound", "trees-far", "brabec-light-away"})
+    EXPECT_NE(help.find(text), std::string::npos) << text << " missing from: " << help;
 }
 
 }  // namespace
