@@ -230,6 +230,11 @@ std::vector<BadInput> badInputs() {
       {"unknown parameter", base + "--scene analytic --param wobble=3"},
       {"bad precision", base + "--scene analytic --precision 9"},
       {"bad backend", base + "--scene analytic --backend vulkan"},
+      // Debian's OSMesa has no native ARB_imaging: only the emulation exists there.
+      {"native imaging on osmesa", base + "--scene analytic --imaging native"},
+      {"bad imaging", base + "--scene analytic --imaging both"},
+      {"imaging on a modern technique",
+       "render --scene analytic --technique modern.hw --size 64x48 --out @OUT --imaging emulated"},
       {"unwritable output",
        "render --scene analytic --technique legacy.hw --size 64x48 --out "
        "/proc/nonexistent/x.png"},
