@@ -196,13 +196,11 @@ void parseSize(const std::string& text, int& width, int& height) {
   height = parsePositiveInt("--size height", text.substr(x + 1), kMaxWindowSide);
 }
 
-namespace {
 ImagingChoice parseImaging(const std::string& text) {
   if (text == "native") return ImagingChoice::kNative;
   if (text == "emulated") return ImagingChoice::kEmulated;
   throw InputError("--imaging must be native or emulated, got '" + text + "'");
 }
-}  // namespace
 
 RenderParams renderParams(const Args& args) {
   RenderParams p;

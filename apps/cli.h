@@ -47,6 +47,7 @@ Args parse(int argc, char** argv);
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
 double parseNumber(const std::string& what, const std::string& text);
 void parseSize(const std::string& text, int& width, int& height);  // "800x600"
+ImagingChoice parseImaging(const std::string& text);               // "native" or "emulated"
 // Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend,
 // --imaging.
 RenderParams renderParams(const Args& args);

@@ -358,6 +358,8 @@ std::vector<BadToolInput> badToolInputs() {
       {"legacy stray argument", LEGACY_BENCH_BINARY, "--quick extra"},
       {"legacy missing value", LEGACY_BENCH_BINARY, "--frames"},
       {"legacy bad backend", LEGACY_BENCH_BINARY, "--backend vulkan"},
+      {"legacy bad imaging", LEGACY_BENCH_BINARY, "--imaging both"},
+      {"legacy native imaging on osmesa", LEGACY_BENCH_BINARY, "--quick --imaging native"},
       {"legacy unknown technique", LEGACY_BENCH_BINARY, "--technique legacy.nothing"},
       {"volumes frames not a number", VOLUMES_BENCH_BINARY, "--frames many"},
       {"volumes shadow map zero", VOLUMES_BENCH_BINARY, "--shadow-map 0"},
