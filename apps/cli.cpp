@@ -49,6 +49,9 @@ std::vector<OptionSpec> renderOptions() {
       {"precision", "8|12|float", "colour precision of the legacy passes: 8, 12 or float [8]"},
       {"param", "KEY=VALUE", "key=value, repeatable (shadowlab list shows each technique's keys)"},
       {"backend", "NAME", "osmesa, reference (Mesa 7.8.2, native imaging) or egl [osmesa]"},
+      {"imaging", "native|emulated",
+       "imaging subset of the legacy techniques: native (the back end's own; reference only) or "
+       "emulated (imaging/, on any back end) [native where the back end has it, else emulated]"},
   };
 }
 
@@ -210,6 +213,12 @@ void parseSize(const std::string& text, int& width, int& height) {
   height = parsePositiveInt("--size height", text.substr(x + 1), kMaxWindowSide);
 }
 
+ImagingChoice parseImaging(const std::string& text) {
+  if (text == "native") return ImagingChoice::kNative;
+  if (text == "emulated") return ImagingChoice::kEmulated;
+  throw InputError("--imaging must be native or emulated, got '" + text + "'");
+}
+
 RenderParams renderParams(const Args& args) {
   RenderParams p;
   if (auto v = args.value("size")) parseSize(*v, p.width, p.height);
@@ -219,6 +228,7 @@ RenderParams renderParams(const Args& args) {
   if (auto v = args.value("filter")) p.filter = parsePositiveInt("--filter", *v, 16);
   if (auto v = args.value("precision")) p.precision = parsePrecision(*v);
   if (auto v = args.value("backend")) p.backend = parseBackend(*v);
+  if (auto v = args.value("imaging")) p.imaging = parseImaging(*v);
   if (auto it = args.options.find("param"); it != args.options.end())
     for (const std::string& kv : it->second) {
       const auto eq = kv.find('=');

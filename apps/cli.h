@@ -47,10 +47,12 @@ Args parse(int argc, char** argv);
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
 double parseNumber(const std::string& what, const std::string& text);
 void parseSize(const std::string& text, int& width, int& height);  // "800x600"
-// Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend.
+ImagingChoice parseImaging(const std::string& text);               // "native" or "emulated"
+// Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend,
+// --imaging.
 RenderParams renderParams(const Args& args);
-// The options among --shadow-map, --filter and --precision given explicitly (apps/registry.h
-// rejectIgnoredOptions refuses those the technique does not read).
+// The options among --shadow-map, --filter, --precision and --imaging given explicitly
+// (apps/registry.h rejectIgnoredOptions refuses those the technique does not read).
 std::vector<CommonOption> givenCommonOptions(const Args& args);
 
 }  // namespace sl::cli

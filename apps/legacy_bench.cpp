@@ -1,6 +1,7 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
 // paper's Octane VPro/8 frame rates. Prints a markdown table (docs/legacy.md).
-//   legacy_bench [--backend osmesa|reference] [--frames N] [--quick] [--technique T]
+//   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
+//                [--quick] [--technique T]
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
@@ -20,13 +21,17 @@ int main(int argc, char** argv) {
   sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
   try {
     sl::legacy::BenchmarkOptions options;
-    std::string backend, frames;
+    std::string backend, imaging, frames;
     std::string only;  // --technique: keep the variants of one technique
     bool quick = false;
     CLI::App app{"Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates (markdown)",
                  "legacy_bench"};
     app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
         ->type_name("NAME");
+    app.add_option("--imaging", imaging,
+                   "native (reference only) or emulated (imaging/) [native where the back end "
+                   "has it, else emulated]")
+        ->type_name("native|emulated");
     app.add_option("--frames", frames, "timed frames per variant, after the warm-up frames")
         ->type_name("N");
     app.add_flag("--quick", quick, "the quick frame counts (core/frame_timing.h kQuickFrames)");
@@ -34,6 +39,7 @@ int main(int argc, char** argv) {
         ->type_name("T");
     if (!sl::cli::parseTool(app, argc, argv)) return 0;
     if (!backend.empty()) options.backend = sl::parseBackend(backend);
+    if (!imaging.empty()) options.imaging = sl::cli::parseImaging(imaging);
     if (quick) options.frames = sl::kQuickFrames;
     if (!frames.empty())
       options.frames.timed = sl::cli::parsePositiveInt("--frames", frames, kMaxTimedFrames);

@@ -40,6 +40,8 @@ std::string doesNot(CommonOption o) {
       return "does not filter";
     case CommonOption::kPrecision:
       return "encodes no depth in colour";
+    case CommonOption::kImaging:
+      return "draws nothing through the OpenGL 1.2 imaging subset";
   }
   return "ignores " + std::string(optionFlag(o));
 }
@@ -79,12 +81,32 @@ std::vector<std::string> checkOptionsOfPair(const Technique& a, const Technique&
 }
 
 namespace {
+// Installs the imaging subset --imaging asks for on a legacy technique's context.
+void installImaging(GlContext& context, ImagingChoice choice) {
+  switch (choice) {
+    case ImagingChoice::kBackendDefault:
+      imaging::install(context);
+      return;
+    case ImagingChoice::kEmulated:
+      imaging::install(context, imaging::Mode::kEmulated);
+      return;
+    case ImagingChoice::kNative:
+      if (!context.caps().nativeImaging())
+        throw InputError(std::string("--imaging native: the ") +
+                         backendName(context.spec().backend) +
+                         " back end has no native ARB_imaging (only --backend reference has "
+                         "one); use --imaging emulated");
+      imaging::install(context, imaging::Mode::kNative);
+      return;
+  }
+}
+
 std::unique_ptr<GlContext> contextForRender(const Technique& technique,
                                             const RenderParams& params) {
   checkParams(technique, params, 0);
   auto context = GlContext::create(contextFor(technique, params));
   checkParams(technique, params, context->caps().maxTextureSize);
-  if (technique.needs.profile == Profile::kCompatibility) imaging::install(*context);
+  if (technique.needs.profile == Profile::kCompatibility) installImaging(*context, params.imaging);
   return context;
 }
 }  // namespace

@@ -78,6 +78,27 @@ std::string jsonLine(const nlohmann::json& out) {
 // What made an output (issue 21 item 2): the common options as they took effect on the
 // technique(s) rendered: an option none of them reads is null (apps/registry.h refuses it
 // when given).
+// The imaging subset a legacy technique's context got (--imaging; apps/registry.cpp).
+const char* imagingName(const RenderParams& p) {
+  switch (p.imaging) {
+    case ImagingChoice::kNative:
+      return "native";
+    case ImagingChoice::kEmulated:
+      return "emulated";
+    case ImagingChoice::kBackendDefault:
+      break;
+  }
+  switch (p.backend) {
+    case Backend::kReference:
+      return "native";
+    case Backend::kOsmesa:
+      return "emulated";
+    case Backend::kEgl:
+      break;
+  }
+  return "native where the driver has it, else emulated";
+}
+
 nlohmann::json optionsJson(const std::vector<const Technique*>& techniques, const RenderParams& p) {
   auto anyReads = [&](CommonOption o) {
     for (const Technique* t : techniques)
@@ -92,6 +113,8 @@ nlohmann::json optionsJson(const std::vector<const Technique*>& techniques, cons
   out["precision"] = anyReads(CommonOption::kPrecision) ? nlohmann::json(precisionName(p.precision))
                                                         : nlohmann::json();
   out["backend"] = backendName(p.backend);
+  out["imaging"] =
+      anyReads(CommonOption::kImaging) ? nlohmann::json(imagingName(p)) : nlohmann::json();
   return out;
 }
 

@@ -97,7 +97,7 @@ std::map<std::string, std::string> effectiveParams(const RenderParams& p) {
 
 const std::vector<CommonOption>& allCommonOptions() {
   static const std::vector<CommonOption> kAll = {CommonOption::kShadowMap, CommonOption::kFilter,
-                                                 CommonOption::kPrecision};
+                                                 CommonOption::kPrecision, CommonOption::kImaging};
   return kAll;
 }
 
@@ -106,6 +106,7 @@ const char* optionFlag(CommonOption o) {
     case CommonOption::kShadowMap: return "--shadow-map";
     case CommonOption::kFilter: return "--filter";
     case CommonOption::kPrecision: return "--precision";
+    case CommonOption::kImaging: return "--imaging";
   }
   return "?";
 }
@@ -115,6 +116,7 @@ bool readsOption(const Technique& t, CommonOption o) {
     case CommonOption::kShadowMap: return t.reads.shadowMap;
     case CommonOption::kFilter: return t.reads.filter;
     case CommonOption::kPrecision: return t.reads.precision;
+    case CommonOption::kImaging: return t.needs.profile == Profile::kCompatibility;
   }
   return false;
 }

@@ -32,6 +32,11 @@ struct ParamReadLog {
   std::map<std::string, std::string> values;
 };
 
+// --imaging: which implementation of the OpenGL 1.2 imaging subset (ARB_imaging) a legacy
+// technique's context uses. kBackendDefault: the back end's own where it has one (reference),
+// else the software emulation of imaging/ (osmesa).
+enum class ImagingChoice { kBackendDefault, kNative, kEmulated };
+
 struct RenderParams {
   int width = 800;             // window, pixels (Brabec–Seidel §5)
   int height = 600;
@@ -39,6 +44,7 @@ struct RenderParams {
   int filter = 2;              // PCF footprint side: 1 = unfiltered, 2, 3, 4
   Precision precision = Precision::k8;
   Backend backend = Backend::kOsmesa;
+  ImagingChoice imaging = ImagingChoice::kBackendDefault;  // --imaging (legacy techniques)
   bool capturePasses = false;  // fill Frame::intermediates (--dump-passes)
   std::map<std::string, std::string> extra;  // --param key=value, technique specific
   // When set, number/integer/text/flag note every key they are asked for with the value they
@@ -87,8 +93,9 @@ struct ContextNeeds {
 
 // The options of render, compare and plan that only some techniques read; --size and
 // --backend apply to every technique. An option given to a technique that does not read it is
-// an input error (apps/registry.h rejectIgnoredOptions).
-enum class CommonOption { kShadowMap, kFilter, kPrecision };
+// an input error (apps/registry.h rejectIgnoredOptions). --imaging is read by every technique
+// of the compatibility profile (those that get the imaging subset installed).
+enum class CommonOption { kShadowMap, kFilter, kPrecision, kImaging };
 const std::vector<CommonOption>& allCommonOptions();
 const char* optionFlag(CommonOption o);  // "--shadow-map"
 

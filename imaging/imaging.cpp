@@ -16,6 +16,7 @@
 
 #include <memory>
 
+#include "core/errors.h"
 #include "imaging/internal.h"
 
 namespace sl::imaging {
@@ -25,7 +26,20 @@ constexpr const char* kLayerKey = "imaging";
 }
 
 Mode install(GlContext& context) {
-  if (context.caps().nativeImaging()) return Mode::kNative;  // the driver's own entries stay
+  if (context.layerState(kLayerKey) != nullptr) return Mode::kEmulated;  // chosen earlier
+  return install(context, context.caps().nativeImaging() ? Mode::kNative : Mode::kEmulated);
+}
+
+Mode install(GlContext& context, Mode wanted) {
+  if (wanted == Mode::kNative) {
+    if (!context.caps().nativeImaging())
+      throw InputError(std::string("the ") + backendName(context.spec().backend) +
+                       " back end has no native imaging subset (GL_ARB_imaging); only the "
+                       "emulated one exists there");
+    if (context.layerState(kLayerKey) != nullptr)
+      throw GlError("the imaging emulation is already installed on this context");
+    return Mode::kNative;  // the driver's own entries stay
+  }
   if (context.layerState(kLayerKey) != nullptr) return Mode::kEmulated;  // already installed
   auto state = std::make_shared<detail::State>();
   detail::State& s = *state;

@@ -11,6 +11,10 @@ enum class Mode { kNative, kEmulated };
 // exposes GL_ARB_imaging, otherwise the software emulation replaces the imaging entry points
 // of the context's dispatch table. Returns which one is in use.
 Mode install(GlContext& context);
+// As install(), with the implementation chosen: kEmulated installs the software emulation even
+// where the context has native imaging (to compare the two on one rasteriser); kNative keeps
+// the driver's and throws InputError when the context has none.
+Mode install(GlContext& context, Mode wanted);
 // The mode installed on the current context (kNative when install() was never called).
 Mode currentMode();
 

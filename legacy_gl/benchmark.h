@@ -30,11 +30,13 @@ struct BenchmarkOptions {
   int shadowMapTexels = 512;
   FrameCounts frames = kSteadyFrames;
   Backend backend = Backend::kOsmesa;
+  ImagingChoice imaging = ImagingChoice::kBackendDefault;  // --imaging
 };
 
 struct BenchmarkResult {
   BenchmarkVariant variant;
   Backend backend = Backend::kOsmesa;
+  bool imagingReplaced = false;  // imaging/ installed over the back end's native imaging
   // frameMs: median of the pass-time sums (what stands beside the paper's rate); wallMs: the
   // whole render() call, which adds the read-back of the colour image and the mask; passes:
   // the median of each pass.

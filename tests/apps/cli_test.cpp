@@ -230,6 +230,11 @@ std::vector<BadInput> badInputs() {
       {"unknown parameter", base + "--scene analytic --param wobble=3"},
       {"bad precision", base + "--scene analytic --precision 9"},
       {"bad backend", base + "--scene analytic --backend vulkan"},
+      // Debian's OSMesa has no native ARB_imaging: only the emulation exists there.
+      {"native imaging on osmesa", base + "--scene analytic --imaging native"},
+      {"bad imaging", base + "--scene analytic --imaging both"},
+      {"imaging on a modern technique",
+       "render --scene analytic --technique modern.hw --size 64x48 --out @OUT --imaging emulated"},
       {"unwritable output",
        "render --scene analytic --technique legacy.hw --size 64x48 --out "
        "/proc/nonexistent/x.png"},
@@ -353,6 +358,8 @@ std::vector<BadToolInput> badToolInputs() {
       {"legacy stray argument", LEGACY_BENCH_BINARY, "--quick extra"},
       {"legacy missing value", LEGACY_BENCH_BINARY, "--frames"},
       {"legacy bad backend", LEGACY_BENCH_BINARY, "--backend vulkan"},
+      {"legacy bad imaging", LEGACY_BENCH_BINARY, "--imaging both"},
+      {"legacy native imaging on osmesa", LEGACY_BENCH_BINARY, "--quick --imaging native"},
       {"legacy unknown technique", LEGACY_BENCH_BINARY, "--technique legacy.nothing"},
       {"volumes frames not a number", VOLUMES_BENCH_BINARY, "--frames many"},
       {"volumes shadow map zero", VOLUMES_BENCH_BINARY, "--shadow-map 0"},

@@ -83,6 +83,7 @@ TEST(Provenance, RenderJsonLineAndPngsNameEveryParameterAndTheCommit) {
   EXPECT_EQ(line["filter"], 3);
   EXPECT_EQ(line["precision"], "12");
   EXPECT_EQ(line["backend"], "osmesa");
+  EXPECT_EQ(line["imaging"], "emulated");  // Debian's OSMesa has no native imaging subset
   EXPECT_EQ(line["params"]["depth-bias"], "3");
   EXPECT_EQ(line["commit"], buildCommit());
   const std::string command = line["command"];
@@ -97,8 +98,8 @@ TEST(Provenance, RenderJsonLineAndPngsNameEveryParameterAndTheCommit) {
     EXPECT_EQ(text.at("Software"), "shadowlab " + buildCommit());
     EXPECT_EQ(text.at("shadowlab:command"), command);
     const json made = json::parse(text.at("shadowlab:parameters"));
-    for (const char* key :
-         {"technique", "scene", "size", "shadow_map", "filter", "precision", "params", "backend"})
+    for (const char* key : {"technique", "scene", "size", "shadow_map", "filter", "precision",
+                            "params", "backend", "imaging"})
       EXPECT_EQ(made[key], line[key]) << key << " in " << file;
   }
 }
@@ -117,6 +118,7 @@ TEST(Provenance, RenderPrintsTheDefaultsTheTechniqueRead) {
   // Options modern.csm does not read are null, not a value that did nothing.
   EXPECT_TRUE(line["filter"].is_null()) << r.out;
   EXPECT_TRUE(line["precision"].is_null()) << r.out;
+  EXPECT_TRUE(line["imaging"].is_null()) << r.out;
 }
 
 TEST(Provenance, CompareJsonLineAndDiffPngNameBothTechniques) {
