@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/html.h"
 #include "core/image.h"
 #include "core/output_files.h"
 
@@ -72,29 +73,6 @@ Image opaque(const Image& image) {
   Image out = image;
   for (size_t i = size_t(image.channels) - 1; i < out.data.size(); i += size_t(image.channels))
     out.data[i] = 1.0f;
-  return out;
-}
-
-std::string htmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/html.h"
 #include "core/output_files.h"
 #include "figures/bench.h"
 
@@ -14,17 +15,6 @@ namespace sl::figures {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 std::string number(double v, int digits) {
   std::ostringstream s;
@@ -69,7 +59,7 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
        "true shadow moves). Every variant is in <a href=\"bench/bench.csv\">bench/bench.csv</a>; "
        "regenerate with <code>shadowlab bench --quick --csv bench.csv</code>.</p>\n";
   for (const std::string& plot : plots)
-    h << "<figure><img src=\"bench/" << escape(fs::path(plot).filename().string())
+    h << "<figure><img src=\"bench/" << htmlEscape(fs::path(plot).filename().string())
       << "\" alt=\"error against time\"><figcaption>RMSE against median frame time, log "
          "axes; the Pareto front is the black staircase.</figcaption></figure>\n";
   h << "<table><tr><th>scene</th><th>technique</th><th>frame ms</th><th>RMSE</th>"
@@ -79,10 +69,10 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
     if (r.variant != "default") continue;
     const ErrorSet& e = r.primary();
     const ErrorSet& point = r.primaryIsSoft() ? r.softPoint : r.hardPoint;
-    h << "<tr><td>" << escape(r.scene) << "</td><td><code>" << escape(r.technique)
+    h << "<tr><td>" << htmlEscape(r.scene) << "</td><td><code>" << htmlEscape(r.technique)
       << "</code></td>";
     if (r.status != "ok") {
-      h << "<td colspan=8 class=bad>" << escape(r.status) << "</td></tr>\n";
+      h << "<td colspan=8 class=bad>" << htmlEscape(r.status) << "</td></tr>\n";
       continue;
     }
     h << "<td>" << number(r.frameMs, 1) << "</td><td>" << number(e.all.rmse, 4) << "</td><td>"
@@ -97,9 +87,9 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
     << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
        "<th>setup</th><th>measured</th></tr>\n";
   for (const ClaimCheck& c : claims)
-    h << "<tr><td>" << escape(c.claim) << "</td><td>" << escape(c.source) << "</td><td>"
-      << escape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
-      << escape(c.verdict) << "</td><td>" << escape(c.setup) << "</td><td>" << escape(c.measured)
+    h << "<tr><td>" << htmlEscape(c.claim) << "</td><td>" << htmlEscape(c.source) << "</td><td>"
+      << htmlEscape(c.scene) << "</td><td class=" << (c.verdict == "agrees" ? "ok" : "bad") << ">"
+      << htmlEscape(c.verdict) << "</td><td>" << htmlEscape(c.setup) << "</td><td>" << htmlEscape(c.measured)
       << "</td></tr>\n";
   h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this "
        "table.</p>\n";

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/html.h"
 #include "core/output_files.h"
 #include "core/provenance.h"
 
@@ -18,29 +19,6 @@ namespace sl::figures {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string esc(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string fixed(double v, int digits) {
   std::ostringstream s;
@@ -114,26 +92,26 @@ nav li { margin: 2px 0; }
 
 void writePanelCell(std::ostream& h, const PanelResult& p) {
   if (!p.ok) {
-    h << "<div class=missing><b>missing: " << esc(p.spec.label) << "</b><br>" << esc(p.reason)
+    h << "<div class=missing><b>missing: " << htmlEscape(p.spec.label) << "</b><br>" << htmlEscape(p.reason)
       << "</div>\n";
     return;
   }
   if (p.spec.kind == PanelKind::kIntermediates) {
-    h << "<div><b>" << esc(p.spec.label) << "</b> (" << esc(p.spec.technique)
+    h << "<div><b>" << htmlEscape(p.spec.label) << "</b> (" << htmlEscape(p.spec.technique)
       << ")<div class=inter>";
     for (const ImageFile& im : p.images)
-      h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
-        << esc(im.caption) << "\"></a><figcaption>" << esc(im.caption) << "</figcaption></figure>";
+      h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file) << "\" alt=\""
+        << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(im.caption) << "</figcaption></figure>";
     h << "</div></div>\n";
     return;
   }
   for (const ImageFile& im : p.images) {
-    h << "<figure><a href=\"" << esc(im.file) << "\"><img src=\"" << esc(im.file) << "\" alt=\""
-      << esc(im.caption) << "\"></a><figcaption>" << esc(p.spec.label);
-    if (!p.spec.technique.empty()) h << " — <code>" << esc(p.spec.technique) << "</code>";
+    h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file) << "\" alt=\""
+      << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(p.spec.label);
+    if (!p.spec.technique.empty()) h << " — <code>" << htmlEscape(p.spec.technique) << "</code>";
     if (p.milliseconds > 0) h << "<br>" << frameTime(p.milliseconds, p.timedFrames);
     if (!p.spec.paperNumbers.empty())
-      h << "<br><span class=paper>paper: " << esc(p.spec.paperNumbers) << "</span>";
+      h << "<br><span class=paper>paper: " << htmlEscape(p.spec.paperNumbers) << "</span>";
     h << "</figcaption></figure>\n";
   }
 }
@@ -145,31 +123,31 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
   if (!any) return;
   h << "<table><tr><th>panel</th><th>technique</th><th>frame time (ours)</th><th>passes</th>"
        "<th>error vs "
-    << esc(f.spec.reference.empty() ? "reference" : f.spec.reference)
+    << htmlEscape(f.spec.reference.empty() ? "reference" : f.spec.reference)
     << "</th><th>counters</th><th>paper</th></tr>\n";
   for (const PanelResult& p : f.panels) {
     if (p.spec.kind != PanelKind::kRender && p.spec.kind != PanelKind::kIntermediates) continue;
-    h << "<tr><td>" << esc(p.spec.label) << "</td><td><code>" << esc(p.spec.technique)
+    h << "<tr><td>" << htmlEscape(p.spec.label) << "</td><td><code>" << htmlEscape(p.spec.technique)
       << "</code></td>";
     if (!p.ok) {
-      h << "<td colspan=4 class=bad>missing: " << esc(p.reason) << "</td>";
+      h << "<td colspan=4 class=bad>missing: " << htmlEscape(p.reason) << "</td>";
     } else {
       h << "<td>" << frameTime(p.milliseconds, p.timedFrames) << "</td><td>";
       for (const PassTime& pass : p.passes)
-        h << esc(pass.name) << ": " << fixed(pass.milliseconds, 1) << " ms<br>";
+        h << htmlEscape(pass.name) << ": " << fixed(pass.milliseconds, 1) << " ms<br>";
       h << "</td><td>";
       if (p.error)
         h << "RMSE " << fixed(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
           << fixed(100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
           << "% of pixels";
       else
-        h << esc(p.errorNote);
+        h << htmlEscape(p.errorNote);
       h << "</td><td>";
       for (const auto& [name, value] : p.counters)
-        h << esc(name) << ": " << fixed(value, 3) << "<br>";
+        h << htmlEscape(name) << ": " << fixed(value, 3) << "<br>";
       h << "</td>";
     }
-    h << "<td class=paper>" << esc(p.spec.paperNumbers) << "</td></tr>\n";
+    h << "<td class=paper>" << htmlEscape(p.spec.paperNumbers) << "</td></tr>\n";
   }
   h << "</table>\n";
 }
@@ -188,10 +166,10 @@ void writePivot(std::ostream& h, const FigureResult& f) {
   }
   h << "<table><tr><th></th>";
   for (const auto& c : cols)
-    h << "<th>" << esc(c) << "<br>ours / <span class=paper>paper</span></th>";
+    h << "<th>" << htmlEscape(c) << "<br>ours / <span class=paper>paper</span></th>";
   h << "</tr>\n";
   for (const auto& r : rows) {
-    h << "<tr><th>" << esc(r) << "</th>";
+    h << "<tr><th>" << htmlEscape(r) << "</th>";
     for (const auto& c : cols) {
       const PanelResult* p = cell[{r, c}];
       h << "<td>";
@@ -200,8 +178,8 @@ void writePivot(std::ostream& h, const FigureResult& f) {
           << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame")
           << "</small>";
       else if (p)
-        h << "<span class=bad>missing: " << esc(p->reason) << "</span>";
-      if (p) h << " / <span class=paper>" << esc(p->spec.paperNumbers) << "</span>";
+        h << "<span class=bad>missing: " << htmlEscape(p->reason) << "</span>";
+      if (p) h << " / <span class=paper>" << htmlEscape(p->spec.paperNumbers) << "</span>";
       h << "</td>";
     }
     h << "</tr>\n";
@@ -218,13 +196,13 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
   for (const PanelResult& p : f.panels) {
     if (!p.twin) continue;
     const TwinResult& t = *p.twin;
-    h << "<figure><img src=\"" << esc(p.images.front().file) << "\" alt=\"" << esc(p.spec.technique)
-      << "\"><figcaption><code>" << esc(p.spec.technique) << "</code> "
+    h << "<figure><img src=\"" << htmlEscape(p.images.front().file) << "\" alt=\"" << htmlEscape(p.spec.technique)
+      << "\"><figcaption><code>" << htmlEscape(p.spec.technique) << "</code> "
       << frameTime(p.milliseconds, p.timedFrames) << "</figcaption></figure>\n";
-    h << "<figure><img src=\"" << esc(t.file) << "\" alt=\"" << esc(t.technique)
-      << "\"><figcaption><code>" << esc(t.technique) << "</code> "
+    h << "<figure><img src=\"" << htmlEscape(t.file) << "\" alt=\"" << htmlEscape(t.technique)
+      << "\"><figcaption><code>" << htmlEscape(t.technique) << "</code> "
       << frameTime(t.milliseconds, t.timedFrames) << "</figcaption></figure>\n";
-    h << "<figure><img src=\"" << esc(t.diffFile)
+    h << "<figure><img src=\"" << htmlEscape(t.diffFile)
       << "\" alt=\"difference\"><figcaption>|visibility difference| (black = equal, white = 1): "
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
       << fixed(t.difference.maxAbs, 3) << ", RMSE " << fixed(t.difference.rmse, 4)
@@ -237,12 +215,12 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   const FigureSpec& s = f.spec;
   int missing = 0;
   for (const PanelResult& p : f.panels) missing += p.ok ? 0 : 1;
-  h << "<article id=\"" << esc(s.id) << "\"><h3>" << esc(s.paperFigure) << " — " << esc(s.title)
-    << " <small>(<code>" << esc(s.id) << "</code>)</small></h3>\n";
-  h << "<p class=caption>" << esc(s.caption) << "</p>\n";
-  h << "<p><small>scene <code>" << esc(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
+  h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — " << htmlEscape(s.title)
+    << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
+  h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
+  h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
     << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
-    << " s; regenerate: <code>shadowlab figures --only " << esc(s.id) << "</code></small></p>\n";
+    << " s; regenerate: <code>shadowlab figures --only " << htmlEscape(s.id) << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
       << " panels missing (reasons below, in red).</p>\n";
@@ -264,15 +242,15 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
           continue;
         }
         for (const ImageFile& im : p.closeups)
-          h << "<figure><img src=\"" << esc(im.file) << "\" alt=\"" << esc(im.caption)
-            << "\"><figcaption>" << esc(im.caption) << "</figcaption></figure>\n";
+          h << "<figure><img src=\"" << htmlEscape(im.file) << "\" alt=\"" << htmlEscape(im.caption)
+            << "\"><figcaption>" << htmlEscape(im.caption) << "</figcaption></figure>\n";
       }
       h << "</div>\n";
     }
   } else {
     for (const PanelResult& p : f.panels)
       if (!p.ok && p.spec.kind != PanelKind::kPlot) {
-        h << "<p class=bad>missing panels: " << esc(p.reason)
+        h << "<p class=bad>missing panels: " << htmlEscape(p.reason)
           << " (and possibly others, see the table)</p>\n";
         break;
       }
@@ -284,11 +262,11 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
       h << "</div>\n";
     }
   if (!f.composite.empty())
-    h << "<p><small>The whole figure as one image: <a href=\"" << esc(f.composite) << "\">"
-      << esc(f.composite) << "</a></small></p>\n";
+    h << "<p><small>The whole figure as one image: <a href=\"" << htmlEscape(f.composite) << "\">"
+      << htmlEscape(f.composite) << "</a></small></p>\n";
   writeTwins(h, f);
   if (!s.paperNumbers.empty())
-    h << "<p class=paper>The paper's numbers: " << esc(s.paperNumbers) << "</p>\n";
+    h << "<p class=paper>The paper's numbers: " << htmlEscape(s.paperNumbers) << "</p>\n";
   bool pivot = s.table && !f.panels.empty();
   for (const PanelResult& p : f.panels)
     pivot = pivot && p.spec.label.find(" S=") != std::string::npos;
@@ -308,7 +286,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "figures</title><style>"
     << kStyle << "</style></head><body>\n";
   h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
-  h << "<p>Rendered " << esc(info.date) << " with " << esc(info.renderer) << " in "
+  h << "<p>Rendered " << htmlEscape(info.date) << " with " << htmlEscape(info.renderer) << " in "
     << fixed(info.totalSeconds, 0)
     << " s. Times are ours on this machine. Where a time stands beside a paper's number "
        "(blue; 2001-2007 hardware) or on a chart of times, it is the steady-state median: one "
@@ -320,9 +298,9 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
        "red with the reason.</p>\n";
   // What made this report (issue 21 item 2): the source, the command, the machine and its load.
-  h << "<p class=provenance><small>Made by shadowlab <code>" << esc(buildCommit())
-    << "</code>, command <code>" << esc(commandLine().empty() ? "unknown" : commandLine())
-    << "</code>; CPU " << esc(cpuModel()) << "; GL " << esc(info.renderer)
+  h << "<p class=provenance><small>Made by shadowlab <code>" << htmlEscape(buildCommit())
+    << "</code>, command <code>" << htmlEscape(commandLine().empty() ? "unknown" : commandLine())
+    << "</code>; CPU " << htmlEscape(cpuModel()) << "; GL " << htmlEscape(info.renderer)
     << "; load average (1, 5, 15 min) when the report was written: " << loadAverages()
     << ".</small></p>\n";
   // Index with a status per figure.
@@ -331,9 +309,9 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
     int ok = 0;
     for (const PanelResult& p : f.panels) ok += p.ok ? 1 : 0;
     const bool complete = ok == int(f.panels.size());
-    h << "<tr><td>" << esc(f.spec.paper) << "</td><td><a href=\"#" << esc(f.spec.id) << "\">"
-      << esc(f.spec.paperFigure) << " — " << esc(f.spec.title) << "</a></td><td><code>"
-      << esc(f.spec.id) << "</code></td><td class=" << (complete ? "ok" : "bad") << ">" << ok
+    h << "<tr><td>" << htmlEscape(f.spec.paper) << "</td><td><a href=\"#" << htmlEscape(f.spec.id) << "\">"
+      << htmlEscape(f.spec.paperFigure) << " — " << htmlEscape(f.spec.title) << "</a></td><td><code>"
+      << htmlEscape(f.spec.id) << "</code></td><td class=" << (complete ? "ok" : "bad") << ">" << ok
       << " / " << f.panels.size() << (complete ? "" : " (missing in red)") << "</td></tr>\n";
   }
   h << "</table></nav>\n";
@@ -341,7 +319,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   for (const FigureResult& f : figures) {
     if (f.spec.paper != paper) {
       paper = f.spec.paper;
-      h << "<h2>" << esc(paper) << "</h2>\n";
+      h << "<h2>" << htmlEscape(paper) << "</h2>\n";
     }
     writeFigure(h, f);
   }
