@@ -13,27 +13,16 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "command_util.h"
 
 namespace sl {
 namespace {
 namespace fs = std::filesystem;
+using test::slurp;
+
+fs::path freshDir() { return test::testDir("output_files", true); }
 
 // A fresh directory per test (ctest runs the cases as parallel processes).
-fs::path freshDir() {
-  const fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "output_files" /
-                     ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 void put(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;
 }

@@ -15,27 +15,14 @@
 #include "apps/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
+#include "command_util.h"
 
 namespace sl {
 namespace {
 namespace fs = std::filesystem;
+using test::slurp;
 
-fs::path freshDir() {
-  std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  for (char& c : name)
-    if (c == '/' || c == '.') c = '_';
-  const fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "pass_dump" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+fs::path freshDir() { return test::testDir("pass_dump", true); }
 
 PassImage buffer(const std::string& name, int channels = 1, float value = 0.5f) {
   return {name, "caption of " + name, Image(4, 2, channels, value)};

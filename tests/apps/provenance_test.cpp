@@ -15,45 +15,19 @@
 #include "apps/registry.h"
 #include "core/image.h"
 #include "core/scene_library.h"
+#include "command_util.h"
 
 namespace sl {
 namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
+using test::CommandResult;
+using test::slurp;
 
-struct CommandResult {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-// One directory per test: ctest runs the cases as parallel processes.
-fs::path dir() {
-  std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  for (char& c : name)
-    if (c == '/') c = '_';
-  fs::path d = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "provenance" / name;
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+fs::path dir() { return test::testDir("provenance"); }
 
 CommandResult shadowlab(const std::string& args) {
-  const fs::path out = dir() / "stdout.txt", err = dir() / "stderr.txt";
-  const std::string cmd =
-      std::string(SHADOWLAB_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  CommandResult r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return test::runBinary(SHADOWLAB_BINARY, args, dir());
 }
 
 int lines(const std::string& text) {
