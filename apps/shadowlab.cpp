@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "apps/cli.h"
-#include "apps/registry.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
@@ -76,9 +76,9 @@ std::string jsonLine(const nlohmann::json& out) {
 }
 
 // What made an output (issue 21 item 2): the common options as they took effect on the
-// technique(s) rendered: an option none of them reads is null (apps/registry.h refuses it
+// technique(s) rendered: an option none of them reads is null (registry/registry.h refuses it
 // when given).
-// The imaging subset a legacy technique's context got (--imaging; apps/registry.cpp).
+// The imaging subset a legacy technique's context got (--imaging; registry/registry.cpp).
 const char* imagingName(const RenderParams& p) {
   switch (p.imaging) {
     case ImagingChoice::kNative:

@@ -1,5 +1,5 @@
 // core/decimal.h — strict decimal numbers, the one way the command line reads a number
-// (apps/cli.cpp: sizes, counts, --threshold; core/technique.cpp: --param values).
+// (registry/cli.cpp: sizes, counts, --threshold; core/technique.cpp: --param values).
 //
 // Accepted: an optional sign, decimal digits with an optional decimal point, and an optional
 // exponent ("42", "-0.5", ".5", "2.", "1e-3"). Refused: hexadecimal ("0x10", "0x0.8"), inf and

@@ -71,7 +71,7 @@ double median(std::vector<double> values);
 // std::invalid_argument for a negative warm-up or fewer than one timed frame.
 SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const FrameCounts& counts,
                              Frame* last = nullptr);
-// For a technique on its own context: apps/registry.h timeTechnique (it installs the imaging
+// For a technique on its own context: registry/registry.h timeTechnique (it installs the imaging
 // subset for the legacy techniques, which core/ cannot see).
 
 }  // namespace sl

@@ -93,7 +93,7 @@ struct ContextNeeds {
 
 // The options of render, compare and plan that only some techniques read; --size and
 // --backend apply to every technique. An option given to a technique that does not read it is
-// an input error (apps/registry.h rejectIgnoredOptions). --imaging is read by every technique
+// an input error (registry/registry.h rejectIgnoredOptions). --imaging is read by every technique
 // of the compatibility profile (those that get the imaging subset installed).
 enum class CommonOption { kShadowMap, kFilter, kPrecision, kImaging };
 const std::vector<CommonOption>& allCommonOptions();

@@ -31,7 +31,7 @@
 #include <sstream>
 #include <tuple>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/decimal.h"
 #include "core/errors.h"
 #include "core/frame_timing.h"

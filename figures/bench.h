@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli.h"
+#include "registry/cli.h"
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/technique.h"

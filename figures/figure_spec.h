@@ -2,7 +2,7 @@
 //
 // A figure is plain data: which paper and figure number it reproduces, the scene, and a list
 // of panels laid out in rows of `columns` as the paper lays them out. Each panel names a
-// technique (looked up in apps/registry at run time, so techniques that land later appear
+// technique (looked up in registry/registry at run time, so techniques that land later appear
 // without touching this file) or one of the figure module's own diagnostic views (the light's
 // view, the depth map, texel density, plots). figures.cpp renders the entries; report.cpp
 // writes report.html from the results.

@@ -24,7 +24,7 @@
 #include <memory>
 #include <sstream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "figures/bench.h"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli.h"
+#include "registry/cli.h"
 #include "core/image.h"
 #include "figures/report.h"
 

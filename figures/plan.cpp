@@ -2,7 +2,7 @@
 
 #include <iostream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 

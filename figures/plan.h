@@ -2,7 +2,7 @@
 // (core/plan.h): the passes, light-pass objects and resources kept and left out, and why.
 #pragma once
 
-#include "apps/cli.h"
+#include "registry/cli.h"
 
 namespace sl::figures {
 

@@ -31,7 +31,7 @@ std::string fixed(double v, int digits) {
   return buf;
 }
 
-// Installs the imaging subset options.imaging asks for (as apps/registry.cpp does for render).
+// Installs the imaging subset options.imaging asks for (as registry/registry.cpp does for render).
 imaging::Mode installImaging(GlContext& context, ImagingChoice choice) {
   switch (choice) {
     case ImagingChoice::kNative:

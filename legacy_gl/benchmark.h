@@ -2,7 +2,7 @@
 // configuration (800x600 window, the ~7000-triangle brabec scene, 512x512 map, one light),
 // timed at steady state (core/frame_timing.h: warm-up frames, then the median frame time and
 // the median per pass), beside the paper's SGI Octane VPro/8 frame rates. Called by the
-// `legacy_bench` executable (apps/legacy_bench.cpp).
+// `legacy_bench` executable (tools/legacy_bench.cpp).
 #pragma once
 
 #include <string>

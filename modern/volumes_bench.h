@@ -1,7 +1,7 @@
 // modern/volumes_bench.h — the speed side of Chan 2004 ch. 3 (Figure 3-11) and ch. 4 (Figure
 // 4-8): per-technique frame times of the shadow map, hybrid and shadow-volume algorithms (and
 // smoothies) in a fill-heavy scene, with the overdraw counters of Figure 3-10. Speed is measured
-// here, never asserted in tests. `apps/volumes_bench.cpp` is the command-line driver.
+// here, never asserted in tests. `tools/volumes_bench.cpp` is the command-line driver.
 #pragma once
 
 #include <map>

@@ -1,6 +1,6 @@
 // The shadowlab command as a user runs it: outputs on success, and for every kind of bad
 // input one line on stderr, exit status 2, and no output file (DESIGN.md "Contracts").
-#include "apps/cli.h"
+#include "registry/cli.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>

@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
 #include "command_util.h"

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/image.h"
 #include "core/scene_library.h"
 #include "command_util.h"

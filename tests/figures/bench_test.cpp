@@ -12,7 +12,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/plan.h"
 #include "core/scene_library.h"

@@ -14,7 +14,7 @@
 #include <set>
 #include <string>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/scene_library.h"
 #include "figures/figure_spec.h"
 #include "figures/figures.h"

@@ -11,7 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/scene_library.h"
 
 namespace sl {

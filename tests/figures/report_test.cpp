@@ -17,7 +17,7 @@
 #include <sstream>
 #include <string>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "figures/diagnostics.h"
 #include "figures/figure_spec.h"
 #include "figures/plots.h"

@@ -12,7 +12,7 @@
 #include <set>
 #include <string>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"

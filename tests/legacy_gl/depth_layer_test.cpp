@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 #include <string>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/scene_library.h"
 #include "legacy_gl/hardware_shadow_map.h"
 

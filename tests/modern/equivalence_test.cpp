@@ -1,6 +1,6 @@
 // Legacy/modern equivalence (issue 5 item 3): every legacy_gl technique and its modern/ twin
 // render the same scene with the same parameters; their visibility masks are compared pixel by
-// pixel against the bound the pair states in apps/twins.cpp (bit-exact for 'faithful'
+// pixel against the bound the pair states in registry/twins.cpp (bit-exact for 'faithful'
 // arithmetic; otherwise <= 1/255 on 99.9% of pixels and every larger difference on the
 // shadow-boundary band that core/metrics.h boundaryBand computes from the legacy mask).
 //
@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <tuple>
 
-#include "apps/registry.h"
-#include "apps/twins.h"
+#include "registry/registry.h"
+#include "registry/twins.h"
 #include "core/context.h"
 #include "core/errors.h"
 #include "core/scene_library.h"

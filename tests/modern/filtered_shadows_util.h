@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/scene_library.h"

@@ -1,8 +1,8 @@
-// The bounds of apps/twins.h judged on synthetic masks whose differences are known, so that the
+// The bounds of registry/twins.h judged on synthetic masks whose differences are known, so that the
 // equivalence tests cannot pass by a judge that accepts everything.
 #include <gtest/gtest.h>
 
-#include "apps/twins.h"
+#include "registry/twins.h"
 
 namespace sl {
 namespace {

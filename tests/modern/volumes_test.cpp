@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/primitives.h"

@@ -20,7 +20,7 @@
 #include <string>
 
 #include "../legacy_gl/legacy_test_support.h"
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
 #include "core/metrics.h"

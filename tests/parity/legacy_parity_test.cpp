@@ -19,7 +19,7 @@
 #include <string>
 
 #include "../legacy_gl/legacy_test_support.h"
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/image.h"
 #include "core/metrics.h"
 #include "core/scene_library.h"

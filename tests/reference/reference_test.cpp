@@ -12,7 +12,7 @@
 #include <iostream>
 #include <optional>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/primitives.h"
 #include "core/scene_library.h"

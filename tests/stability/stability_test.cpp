@@ -28,7 +28,7 @@
 #include <mutex>
 #include <tuple>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/primitives.h"

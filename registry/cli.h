@@ -1,4 +1,4 @@
-// apps/cli.h — argument parsing for the shadowlab command (strict: every malformed value is
+// registry/cli.h — argument parsing for the shadowlab command (strict: every malformed value is
 // an InputError with one clear line).
 #pragma once
 
@@ -31,7 +31,7 @@ struct HelpRequested {
 };
 
 // Parses `shadowlab COMMAND [options]` with CLI11: the options that take a value and the flags
-// that do not, per command, each with its help line (apps/cli.cpp commandSpecs). An unknown
+// that do not, per command, each with its help line (registry/cli.cpp commandSpecs). An unknown
 // command or option, a missing value or a stray argument is an InputError of one line.
 Args parse(int argc, char** argv);
 
@@ -52,7 +52,7 @@ ImagingChoice parseImaging(const std::string& text);               // "native" o
 // --imaging.
 RenderParams renderParams(const Args& args);
 // The options among --shadow-map, --filter, --precision and --imaging given explicitly
-// (apps/registry.h rejectIgnoredOptions refuses those the technique does not read).
+// (registry/registry.h rejectIgnoredOptions refuses those the technique does not read).
 std::vector<CommonOption> givenCommonOptions(const Args& args);
 
 }  // namespace sl::cli

@@ -1,4 +1,4 @@
-// apps/csm_bench.cpp — frame times of the filtered-shadow techniques and the grid of Annen et
+// tools/csm_bench.cpp — frame times of the filtered-shadow techniques and the grid of Annen et
 // al. 2007 Table 1 (shadow map 256..2048, M = 4 / 8 / 16, no blur / 3x3 / 7x7) printed beside
 // the paper's GeForce 8800 GTX frame rates. Built to build/bin/csm_bench.
 //
@@ -13,7 +13,7 @@
 // of interleaved runs is not a row of the CSV): either given with the wrong part is exit 2.
 // --csv is checked before anything runs, written to a temporary and renamed at the end.
 //
-// Each configuration is timed at steady state (core/frame_timing.h, apps/registry.h
+// Each configuration is timed at steady state (core/frame_timing.h, registry/registry.h
 // timeTechnique): in one context, --warmup frames first (shader compilation, first
 // allocation), then the median of --repeat frames of the sum of the pass times (default
 // kSteadyFrames: 2 + 5). --quick: 512x384 and kQuickFrames (1 warm-up, median of 3; one timed
@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli.h"
-#include "apps/registry.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/output_files.h"
 #include "core/provenance.h"

@@ -1,4 +1,4 @@
-// apps/twins.h — the legacy/modern twins (issue 5): which technique pairs exist, the bound
+// registry/twins.h — the legacy/modern twins (issue 5): which technique pairs exist, the bound
 // each pair must meet, how two visibility masks are judged against it, and the timing of a
 // pair. Shared by tests/modern/equivalence_test.cpp and the shadowlab-twins program.
 #pragma once
@@ -76,7 +76,7 @@ RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int hei
 std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
 
 // Frame time (sum of the technique's timed passes) over `frames` frames rendered in one context
-// after kWarmupFrames warm-up frames (core/frame_timing.h, apps/registry.h timeTechnique): the
+// after kWarmupFrames warm-up frames (core/frame_timing.h, registry/registry.h timeTechnique): the
 // median, and the minimum (the least disturbed by other processes on a shared machine).
 struct FrameTimes {
   double median = 0.0;

@@ -1,11 +1,11 @@
-// apps/twins_main.cpp — shadowlab-twins: the legacy/modern agreement table and the speed of
+// tools/twins_main.cpp — shadowlab-twins: the legacy/modern agreement table and the speed of
 // each pair, as markdown (docs/twins.md is this program's output).
 //
 //   shadowlab-twins [--size WxH] [--shadow-map N] [--backend osmesa|egl] [--scenes a,b,c]
 //                   [--bench-size WxH] [--bench-shadow-map N] [--bench-scene S] [--frames N]
 //                   [--no-agreement] [--no-bench]
 //
-// Agreement: every pair of apps/twins.h on every scene, at the equivalence tests' size by
+// Agreement: every pair of registry/twins.h on every scene, at the equivalence tests' size by
 // default (320x240, 256^2 map), judged against the pair's bound. Speed: each technique's median
 // frame time (sum of its timed passes after warm-up frames, core/frame_timing.h) at the paper's
 // configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
@@ -15,9 +15,9 @@
 #include <optional>
 #include <sstream>
 
-#include "apps/cli.h"
-#include "apps/registry.h"
-#include "apps/twins.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
+#include "registry/twins.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"

@@ -1,4 +1,4 @@
-// apps/volumes_bench.cpp — frame times of modern.hw, modern.hybrid, modern.volumes and
+// tools/volumes_bench.cpp — frame times of modern.hw, modern.hybrid, modern.volumes and
 // modern.smoothies (Chan 2004 Figures 3-10, 3-11, 4-8) with the overdraw counters; one JSON
 // object per technique per line. See docs/volumes.md.
 //
@@ -16,8 +16,8 @@
 #include <iostream>
 #include <map>
 
-#include "apps/cli.h"
-#include "apps/registry.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/image.h"
 #include "core/output_files.h"

@@ -1,4 +1,4 @@
-#include "apps/cli.h"
+#include "registry/cli.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "apps/registry.h"
+#include "registry/registry.h"
 
 #include "core/errors.h"
 #include "imaging/imaging.h"

@@ -297,7 +297,7 @@ constexpr int kBadInputStatus = 2;
 
 int run(int argc, char** argv) {
   bool quick = false;
-  // CLI11 directly: imaging/ does not depend on apps/ (apps/cli.h parseTool does the same).
+  // CLI11 directly: imaging/ does not depend on apps/ (registry/cli.h parseTool does the same).
   CLI::App app{"speed of the imaging emulation as ratios to memcpy (markdown)", "imaging_bench"};
   app.add_flag("--quick", quick, "best of 2 instead of 5");
   app.add_flag("--cpu", gCpuClock, "time with the process CPU clock instead of the wall clock");

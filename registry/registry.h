@@ -1,4 +1,4 @@
-// apps/registry.h — every technique of every module, and the one way to run one.
+// registry/registry.h — every technique of every module, and the one way to run one.
 #pragma once
 
 #include <string>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/cli.h"
+#include "registry/cli.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"

@@ -1,10 +1,10 @@
-#include "apps/twins.h"
+#include "registry/twins.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "apps/registry.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "imaging/imaging.h"
 
