@@ -406,7 +406,8 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
 }
 
 // The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels
-// (every buffer of a buffer panel and every chart counts as one), then the close-ups; a panel
+// (every buffer of a buffer panel and every chart counts as one), then the close-ups under their
+// panels; a panel
 // that could not be made is a dark red block of the panel's size.
 Image stackRows(const std::vector<Image>& rows, int gap) {
   int w = 0, h = 0;
@@ -571,21 +572,61 @@ std::string utcNow() {
 
 Image composeFigure(const FigureResult& fig, const std::string& outDir) {
   const FigureSpec& s = fig.spec;
-  std::vector<Image> panels, closeups;
+  const size_t columns = size_t(std::max(s.columns, 1));
+  // The panel tiles in order, and each close-up with the tile it magnifies: a panel's close-ups
+  // are those of its images in order, the same number per image (makePanel).
+  std::vector<Image> panels;
+  struct TileCloseup {
+    size_t tile;   // index into panels
+    size_t index;  // which close-up of that tile (0 .. per tile - 1)
+    Image image;
+  };
+  std::vector<TileCloseup> closeups;
   for (const PanelResult& p : fig.panels) {
+    const size_t first = panels.size();
     for (Image& tile : compositeTiles(outDir, s, p)) panels.push_back(std::move(tile));
-    for (const ImageFile& c : p.closeups)
-      closeups.push_back(readPng((fs::path(outDir) / c.file).string()));
+    const size_t tiles = panels.size() - first;
+    const size_t perTile = std::max<size_t>(1, p.closeups.size() / tiles);
+    for (size_t i = 0; i < p.closeups.size(); ++i)
+      closeups.push_back({first + std::min(i / perTile, tiles - 1), i % perTile,
+                          readPng((fs::path(outDir) / p.closeups[i].file).string())});
   }
   if (panels.empty()) return Image();
   std::vector<Image> rows;
-  const size_t columns = size_t(std::max(s.columns, 1));
-  for (const std::vector<Image>* tiles : {&panels, &closeups})
-    for (size_t i = 0; i < tiles->size(); i += columns)
-      rows.push_back(sideBySide(
-          std::vector<Image>(tiles->begin() + long(i),
-                             tiles->begin() + long(std::min(tiles->size(), i + columns))),
-          kCompositeGap));
+  std::vector<int> tileX(panels.size(), 0);  // each tile's left edge in its row
+  for (size_t i = 0; i < panels.size(); i += columns) {
+    const size_t end = std::min(panels.size(), i + columns);
+    int x = 0;
+    for (size_t t = i; t < end; ++t) {
+      tileX[t] = x;
+      x += panels[t].width + kCompositeGap;
+    }
+    rows.push_back(sideBySide(
+        std::vector<Image>(panels.begin() + long(i), panels.begin() + long(end)), kCompositeGap));
+  }
+  // The close-ups: one row per row of panels and close-up number, each close-up starting under
+  // the left edge of its own panel (or just right of the close-up before it, where that one is
+  // wider than its panel), so that a close-up sits below the panel it magnifies.
+  std::map<std::pair<size_t, size_t>, std::vector<const TileCloseup*>> closeupRows;
+  for (const TileCloseup& c : closeups) closeupRows[{c.tile / columns, c.index}].push_back(&c);
+  for (const auto& [key, row] : closeupRows) {
+    std::vector<std::pair<int, const Image*>> placed;
+    int end = 0, height = 0;
+    for (const TileCloseup* c : row) {
+      const int x = std::max(tileX[c->tile], placed.empty() ? 0 : end + kCompositeGap);
+      placed.push_back({x, &c->image});
+      end = x + c->image.width;
+      height = std::max(height, c->image.height);
+    }
+    Image out(std::max(end, 1), std::max(height, 1), 3, 1.0f);
+    for (const auto& [x0, image] : placed) {
+      const Image rgb = toRgb(*image);
+      for (int j = 0; j < rgb.height; ++j)
+        for (int i = 0; i < rgb.width; ++i)
+          for (int c = 0; c < 3; ++c) out.at(x0 + i, height - rgb.height + j, c) = rgb.at(i, j, c);
+    }
+    rows.push_back(std::move(out));
+  }
   return shrinkToWidth(stackRows(rows, kCompositeGap), kCompositeMaxWidth);
 }
 

@@ -23,7 +23,9 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
 int runBench(const cli::Args& args);
 
 // figure.png: the figure laid out as the paper lays it out, in rows of spec.columns tiles, then
-// the close-ups in rows of spec.columns. Every panel gives its tiles in order: each image it
+// the close-ups: one row per row of tiles and close-up number, each close-up under the left edge
+// of the tile it magnifies (pushed right only where the close-up before it is wider than its
+// tile). Every panel gives its tiles in order: each image it
 // made (a buffer panel every buffer it shows, a chart its chart), or one dark red block of the
 // panel's size when it could not be made. Tiles are top-aligned, 6 pixels apart; a composite
 // wider than 1600 pixels is shrunk by the smallest integer factor that fits (box filter).

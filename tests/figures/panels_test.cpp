@@ -207,6 +207,61 @@ TEST(FigureComposite, HoldsRendersBuffersChartsCloseupsAndRedBlocks) {
   EXPECT_EQ(mismatches(composite, closeup, 0, 0), 0) << "close-up";
 }
 
+// Close-ups sit under the panel they magnify (issue 21: Chan Fig. 3-1's close-ups of panels b-d
+// were packed from column 0, one column left of their panels). Four panels in a row, the first
+// without close-ups (the shadow-map view), the second a buffer panel of two images with one
+// close-up each, the last a render with two close-ups: each close-up's left edge is its
+// panel's, a second close-up of the same panel goes one row further down.
+TEST(FigureComposite, CloseupsSitUnderTheirPanels) {
+  const fs::path dir = outputDir("composite-closeups");
+  fs::create_directories(dir / "fig");
+  const Image view = solid(40, 30, 0.5f, 0.5f, 0.5f);
+  const Image bufferA = solid(30, 30, 0.8f, 0.8f, 0.8f);
+  const Image bufferB = solid(30, 30, 0.0f, 1.0f, 0.0f);
+  const Image render = solid(40, 30, 0.2f, 0.4f, 0.6f);
+  const Image closeA = solid(12, 12, 1.0f, 0.0f, 0.0f);
+  const Image closeB = solid(12, 12, 0.0f, 0.0f, 1.0f);
+  const Image closeR0 = solid(12, 12, 1.0f, 1.0f, 0.0f);
+  const Image closeR1 = solid(12, 12, 0.0f, 1.0f, 1.0f);
+  const std::map<std::string, const Image*> files = {
+      {"fig/view.png", &view},     {"fig/a.png", &bufferA},  {"fig/b.png", &bufferB},
+      {"fig/render.png", &render}, {"fig/ca.png", &closeA},  {"fig/cb.png", &closeB},
+      {"fig/cr0.png", &closeR0},   {"fig/cr1.png", &closeR1}};
+  for (const auto& [name, image] : files) writePng((dir / name).string(), *image);
+  FigureResult fig;
+  fig.spec.id = "fig";
+  fig.spec.columns = 4;
+  PanelResult p;
+  p.ok = true;
+  p.images = {{"fig/view.png", "view"}};
+  fig.panels.push_back(p);
+  p.spec.kind = PanelKind::kIntermediates;
+  p.images = {{"fig/a.png", "a"}, {"fig/b.png", "b"}};
+  p.closeups = {{"fig/ca.png", "a magnified"}, {"fig/cb.png", "b magnified"}};
+  fig.panels.push_back(p);
+  p.spec.kind = PanelKind::kRender;
+  p.images = {{"fig/render.png", "render"}};
+  p.closeups = {{"fig/cr0.png", "first"}, {"fig/cr1.png", "second"}};
+  fig.panels.push_back(p);
+
+  const Image composite = composeFigure(fig, dir.string());
+  const std::vector<Image> tiles = {view, bufferA, bufferB, render};
+  const Layout panels = layoutOf(tiles, 4);
+  const int row = 12 + kGap;  // one row of close-ups
+  ASSERT_EQ(composite.height, panels.height + 2 * row);
+  for (size_t k = 0; k < tiles.size(); ++k)
+    EXPECT_EQ(mismatches(composite, tiles[k], panels.corners[k].first, 2 * row), 0) << "tile " << k;
+  // First close-up row (bottom-left origin: one row above the bottom), under tiles 1, 2, 3.
+  EXPECT_EQ(mismatches(composite, closeA, panels.corners[1].first, row), 0) << "a's close-up";
+  EXPECT_EQ(mismatches(composite, closeB, panels.corners[2].first, row), 0) << "b's close-up";
+  EXPECT_EQ(mismatches(composite, closeR0, panels.corners[3].first, row), 0) << "render's first";
+  // The render's second close-up: the next row, under the render.
+  EXPECT_EQ(mismatches(composite, closeR1, panels.corners[3].first, 0), 0) << "render's second";
+  // Nothing under the view panel: the close-up rows are white there.
+  EXPECT_NEAR(composite.at(5, row + 5, 0), 1.0f, kPngStep);
+  EXPECT_NEAR(composite.at(5, row + 5, 2), 1.0f, kPngStep);
+}
+
 // A composite wider than 1600 pixels is shrunk by an integer factor; a uniform tile keeps its
 // colour (a box filter of equal values).
 TEST(FigureComposite, ShrinksWideFiguresByAnIntegerFactor) {
