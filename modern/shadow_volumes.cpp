@@ -21,6 +21,7 @@
 #include "modern/shadow_volumes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
@@ -34,6 +35,50 @@ namespace {
 // Everitt–Kilgard's "tweaked" infinite projection keeps w = 0 vertices at depth just under 1 so
 // that round-off cannot push them beyond the far clip plane (their §"Infinite far plane").
 constexpr float kInfinityEpsilon = 2.4e-7f * 4.0f;  // a few 24-bit depth steps
+// Chan Fig. 3-9a ("brighter = more layers") made readable: scaled linearly to its peak, a
+// typical count is a few percent of the peak and reads as black (dragon: mean 23 over the
+// covered pixels, peak 252). The grey level is log2(1 + n) / log2(1 + peak) instead, and a
+// legend strip shows one box per power of two up to the peak, named in its caption.
+struct OverdrawView {
+  Image image, legend;
+  std::string caption, legendCaption;
+};
+
+OverdrawView overdrawView(const Image& counts) {
+  constexpr int kLegendBox = 24;  // pixels per legend box (square)
+  float peak = 1.0f;
+  double sum = 0, covered = 0;
+  for (float v : counts.data) {
+    peak = std::max(peak, v);
+    if (v > 0.5f) {
+      sum += v;
+      covered += 1;
+    }
+  }
+  const float logPeak = std::log2(1.0f + peak);
+  const auto grey = [&](float n) { return std::log2(1.0f + std::max(n, 0.0f)) / logPeak; };
+  OverdrawView out;
+  out.image = counts;
+  for (float& v : out.image.data) v = grey(v);
+  std::vector<int> levels = {0};
+  for (int n = 1; n < int(peak); n *= 2) levels.push_back(n);
+  levels.push_back(int(std::lround(peak)));
+  out.legend = Image(kLegendBox * int(levels.size()), kLegendBox, 1);
+  std::string names;
+  for (size_t i = 0; i < levels.size(); ++i) {
+    for (int y = 0; y < kLegendBox; ++y)
+      for (int x = 0; x < kLegendBox; ++x)
+        out.legend.at(int(i) * kLegendBox + x, y, 0) = grey(float(levels[i]));
+    names += (i ? ", " : "") + std::to_string(levels[i]);
+  }
+  const int mean = covered > 0 ? int(std::lround(sum / covered)) : 0;
+  out.caption = "shadow-volume overdraw per pixel, grey = log2(1 + n) / log2(1 + " +
+                std::to_string(int(std::lround(peak))) + "): mean " + std::to_string(mean) +
+                " over the covered pixels (grey " + std::to_string(grey(float(mean))).substr(0, 4) +
+                "), peak " + std::to_string(int(std::lround(peak))) + " (white)";
+  out.legendCaption = "boxes left to right: " + names + " layers";
+  return out;
+}
 }  // namespace
 
 SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lightWorld) {
@@ -328,14 +373,11 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   reportVolumeCounters(casters, volumes, fill, params, frame);
   reportVolumePassInvocations(volumeInvocations, params, frame);
   if (params.capturePasses) {
-    Image overdraw = fill.overdraw;
-    float peak = 1.0f;
-    for (float v : overdraw.data) peak = std::max(peak, v);
-    for (float& v : overdraw.data) v /= peak;
-    frame.intermediates.push_back({"3-volume-overdraw",
-                                   "shadow-volume overdraw per pixel, scaled to the peak of " +
-                                       std::to_string(int(peak)) + " (Chan Fig. 3-9a)",
-                                   overdraw});
+    const OverdrawView view = overdrawView(fill.overdraw);
+    frame.intermediates.push_back(
+        {"3-volume-overdraw", view.caption + " (Chan Fig. 3-9a)", view.image});
+    frame.intermediates.push_back(
+        {"3-overdraw-legend", "legend of the overdraw image: " + view.legendCaption, view.legend});
     frame.intermediates.push_back(
         {"3-stencil-count",
          "stencil buffer after z-fail counting: black = non-zero count (in shadow)",
