@@ -333,12 +333,17 @@ std::vector<FigureSpec> csmFigures() {
       "slanted square's contact), because the reconstructed step is smooth. With the light "
       "straight above and the depth range fitted to the casters and receivers in the light "
       "frustum (the caption's 'tightly fitted light frustum') the low square is a third of "
-      "that range above the plane, and M = 4 already darkens its umbra; the slanted square "
-      "still brightens near its contact. Basis stored in 8 bits as in the paper.",
+      "that range above the plane. As the paper's caption says that ringing varies the "
+      "lightness inside the shadows, the series is not attenuated here (alpha = 0), and d is "
+      "offset so that the step goes through 1 at d = z (§3.2.2; offset=through-1) instead of "
+      "to the step's top (the technique's default): with M = 4 the slanted square's shadow is "
+      "then dark from about a seventh of the range above the plane on (the default: a third), "
+      "see docs/figures.md. Basis stored in 8 bits as in the paper.",
       "squares", 3,
-      {render("(a) M = 1", "modern.csm", {{"order", "1"}}),
-       render("(b) M = 2", "modern.csm", {{"order", "2"}}),
-       render("(c) M = 4", "modern.csm", {{"order", "4"}})}));
+      {render("(a) M = 1", "modern.csm", {{"order", "1"}, {"alpha", "0"}, {"offset", "through-1"}}),
+       render("(b) M = 2", "modern.csm", {{"order", "2"}, {"alpha", "0"}, {"offset", "through-1"}}),
+       render("(c) M = 4", "modern.csm",
+              {{"order", "4"}, {"alpha", "0"}, {"offset", "through-1"}})}));
 
   FigureSpec fig7 = csmFigure(
       "csm-fig7", "Figure 7 (a-f)", "Filter modes on a scene of high depth complexity",
@@ -507,12 +512,14 @@ std::vector<FigureSpec> chanFigures() {
 
   FigureSpec f35 = chanFigure(
       "chan-3-5", "Figure 3-5 (a-d)", "Mixing shadow maps and shadow volumes",
-      "A ball's shadow. (a) a 256² shadow map alone aliases; (b, c) the classification: "
-      "non-silhouette pixels red (shadow map says shadow) and blue (lit), silhouette pixels "
-      "black and green (shadow volumes decide); (d) the hybrid result.",
+      "A ball's shadow. (a) a 256² shadow map alone aliases; (b) the classification with the "
+      "256² map and (c) with a 512² map: non-silhouette pixels red (shadow map says shadow) and "
+      "blue (lit), silhouette pixels black and green (shadow volumes decide); the band of "
+      "silhouette pixels narrows as the map grows; (d) the hybrid result (256² map).",
       "ball", 4,
       {render("(a) shadow map 256²", "modern.hw", {{"compare", "nearest"}}),
-       buffers("(b, c) classification", "modern.hybrid", "classif"),
+       buffers("(b) classification, 256² map", "modern.hybrid", "classif"),
+       withMap(buffers("(c) classification, 512² map", "modern.hybrid", "classif"), 512),
        render("(d) hybrid", "modern.hybrid")});
   f35.shadowMapTexels = 256;
   out.push_back(f35);
@@ -548,14 +555,18 @@ std::vector<FigureSpec> chanFigures() {
 
   out.push_back(chanFigure(
       "chan-3-9", "Figure 3-9 (a-c)", "Fill rate: overdraw vs silhouette pixels",
-      "The dragon in its cage: (a) shadow-volume overdraw, brighter = more layers; (b) the "
-      "hybrid method's silhouette pixels (white here), the only pixels where it draws shadow "
-      "volumes; (c) the resulting stencil buffer, black where the count is non-zero (in "
-      "shadow), as Chan shows it. Bottom row: the dragon magnified 3x.",
+      "The dragon in its cage: (a) shadow-volume overdraw, brighter = more layers, on a "
+      "logarithmic grey scale (log2(1 + n) / log2(1 + peak)) so that the typical count is not "
+      "black beside the peak; the legend below (a) has one box per power of two up to the peak, "
+      "and the image's caption gives the mean and the peak of this run; (b) the hybrid method's "
+      "silhouette pixels (white here), the only pixels where it draws shadow volumes; (c) the "
+      "resulting stencil buffer, black where the count is non-zero (in shadow), as Chan shows "
+      "it. Bottom row: the dragon magnified 3x.",
       "dragon", 3,
-      {withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "overdraw")),
+      {withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "volume-overdraw")),
        withCloseups(buffers("(b) silhouette pixels", "modern.hybrid", "silhouette")),
-       withCloseups(buffers("(c) stencil", "modern.hybrid", "stencil"))}));
+       withCloseups(buffers("(c) stencil", "modern.hybrid", "stencil")),
+       buffers("legend of (a)", "modern.volumes", "overdraw-legend")}));
   out.back().closeups = {{0.469f, 0.313f, 0.156f, 0.208f, 3}};  // the dragon, as in Fig. 3-7
 
   std::vector<PanelSpec> p310;

@@ -63,11 +63,15 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   CsmSettings s;
   s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
   s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
-  // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset.
+  // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset; "through-1" =
+  // where the step first reaches 1 (csmOffsetThroughOne, §3.2.2's wording).
   const auto offset = params.extra.find("offset");
-  s.offset = offset == params.extra.end() || offset->second == "auto"
-                 ? csmDefaultOffset(s.order, s.alpha)
-                 : params.number("offset", 0.0, 0.0, kMaxOffset);
+  if (offset == params.extra.end() || offset->second == "auto")
+    s.offset = csmDefaultOffset(s.order, s.alpha);
+  else if (offset->second == "through-1")
+    s.offset = csmOffsetThroughOne(s.order, s.alpha);
+  else
+    s.offset = params.number("offset", 0.0, 0.0, kMaxOffset);
   // "auto" (or no value): 1 / f(offset) where the attenuated step tops out below 1 (small M
   // with alpha > 0: M = 1, alpha = 1 peaks at 0.73), so that lit surfaces are lit (§3.2.2:
   // "after offsetting, f goes through 1"); 1 otherwise. §3.2.2's own alternative is 2.
@@ -327,6 +331,18 @@ double csmDefaultOffset(int order, double alpha) {
     previous = value;
   }
   return kMaxOffset;
+}
+
+double csmOffsetThroughOne(int order, double alpha) {
+  if (order < 1) throw InputError("CSM truncation order must be at least 1");
+  const double top = csmDefaultOffset(order, alpha);
+  // Walk up the step from t = 0 to its top; the first t where it reaches 1.
+  for (int i = 0; i <= kOffsetSearchSteps; ++i) {
+    const double t = double(i) / kOffsetSearchSteps;
+    if (t >= top) break;
+    if (csmReconstructedStep(t, order, alpha) >= 1.0) return t;
+  }
+  return top;  // the step tops out at or below 1 before reaching it: its top, as "auto"
 }
 
 DepthRange csmDepthRange(const Scene& scene, float* nearestCaster) {

@@ -149,6 +149,95 @@ TEST(Csm, DefaultOffsetIsTheTopOfTheStep) {
   }
 }
 
+// offset=through-1 (§3.2.2: "after offsetting, f(d, z) goes through 1"): the first t where the
+// step reaches 1. With alpha = 0 the step overshoots (Gibbs), so it reaches 1 before its top;
+// with alpha = 1 and M = 4 it tops out at 0.98 and the offset falls back to the top.
+TEST(Csm, OffsetThroughOneIsWhereTheStepFirstReachesOne) {
+  constexpr double kSearchStep = 1.0 / 20000;  // the search's resolution on (0, 1]
+  for (int order : {2, 4, 8, 16}) {
+    const double o = modern::csmOffsetThroughOne(order, 0.0);
+    EXPECT_GE(eq11(o, order, 0.0), 1.0) << order;
+    EXPECT_LT(eq11(o - kSearchStep, order, 0.0), 1.0) << order;
+    EXPECT_LT(o, modern::csmDefaultOffset(order, 0.0)) << order;
+  }
+  EXPECT_EQ(modern::csmOffsetThroughOne(4, 1.0), modern::csmDefaultOffset(4, 1.0));
+}
+
+// Issue 21: csm-fig6 (c), M = 4 on the squares scene, showed the slanted square's shadow light
+// over half its length, where Annen et al. §5 say that "even the slanted plane in Figure 6(c)
+// which touches the receiver plane achieves good shadowing quality using only 4 terms". Along
+// the slanted square's centre line, the ground point behind each square point must match Eq. 11
+// at that point's height above the ground (t = -(1 - offset) h / span + offset), and with the
+// figure's settings (alpha = 0: the caption's ringing; offset=through-1) the shadow is dark
+// (< 0.1) over more than 60% of the square's length; with the defaults (alpha = 1, offset at
+// the step's top) Eq. 11 predicts less than 40%: what the figure showed.
+TEST(Csm, SlantedSquareShadowAtOrderFourIsDarkOverMostOfItsLength) {
+  const Scene scene = loadScene("squares");
+  const Object* slanted = nullptr;
+  for (const Object& o : scene.objects)
+    if (o.name == "slanted square") slanted = &o;
+  ASSERT_NE(slanted, nullptr);
+  constexpr int kOrder = 4;
+  constexpr double kDark = 0.1;
+  const DepthRange range = modern::csmDepthRange(scene);
+  const double span = double(range.farPlane) - range.nearPlane;
+  const glm::vec3 light = scene.light.position;
+  ASSERT_NEAR(scene.light.target.y, 0.0f, 1e-6f) << "the light must look straight down";
+  ASSERT_NEAR(scene.light.target.x, light.x, 1e-6f);
+  ASSERT_NEAR(scene.light.target.z, light.z, 1e-6f);
+  // Square points along the centre line of its top face (the mesh's local x range, y at its
+  // top), leaving out a sixteenth at each end (the shadow's outline, softened by the blur).
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& v : slanted->mesh->positions) {
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  }
+  std::vector<glm::vec3> points;
+  for (int i = 0; i <= 20; ++i) {
+    const float u = lo.x + (hi.x - lo.x) * (1.0f + 14.0f * float(i) / 20.0f) / 16.0f;
+    points.push_back(glm::vec3(slanted->model * glm::vec4(u, hi.y, 0.0f, 1.0f)));
+  }
+  const auto darkShare = [&](double alpha, double offset) {
+    const double scale = std::max(1.0, 1.0 / eq11(offset, kOrder, alpha));
+    int dark = 0;
+    for (const glm::vec3& s : points) {
+      const double t = -(1.0 - offset) * double(s.y) / span + offset;
+      dark += std::clamp(scale * eq11(t, kOrder, alpha), 0.0, 1.0) < kDark ? 1 : 0;
+    }
+    return double(dark) / double(points.size());
+  };
+  const double throughOne = modern::csmOffsetThroughOne(kOrder, 0.0);
+  EXPECT_GT(darkShare(0.0, throughOne), 0.6) << "derived: the figure's settings";
+  EXPECT_LT(darkShare(1.0, modern::csmDefaultOffset(kOrder, 1.0)), 0.4) << "derived: defaults";
+
+  // The figure's camera sees the shadow mostly through the square; this one looks from the far
+  // side, low, under the square's raised end, at the ground behind each square point (heights
+  // from 0.1 up, where the line of sight passes below the square's edge).
+  constexpr float kVisibleAbove = 0.1f;
+  Scene seen = scene;
+  seen.camera.position = {0.97f, 0.35f, -1.8f};
+  seen.camera.target = {0.97f, 0.0f, -0.45f};
+  const RenderParams p =
+      smallParams(320, 240, 512, {{"order", "4"}, {"alpha", "0"}, {"offset", "through-1"}});
+  const Frame frame = renderByName("modern.csm", seen, p);
+  // Eq. 11 at the point's height, plus the 8-bit bound and the 3x3 blur, which mixes in the
+  // basis of depths up to one map texel (0.009 units) along the square, 0.006 units of height
+  // (t changes by 0.006 / span; the M = 4 step's slope is below 8 per unit t): 0.05.
+  const double tolerance = eightBitBound(kOrder, 0.0) + 0.05;
+  int checked = 0;
+  for (const glm::vec3& s : points) {
+    if (s.y < kVisibleAbove) continue;
+    ++checked;
+    const glm::vec3 ground = light + (s - light) * (light.y / (light.y - s.y));
+    const glm::ivec2 px = pixelOf(seen, p, ground);
+    const double t = -(1.0 - throughOne) * double(s.y) / span + throughOne;
+    const double expected = std::clamp(eq11(t, kOrder, 0.0), 0.0, 1.0);
+    const double measured = frame.visibility.at(px.x, px.y);
+    EXPECT_NEAR(measured, expected, tolerance) << "height " << s.y;
+  }
+  EXPECT_GE(checked, 15);
+}
+
 TEST(Csm, LitGroundIsLitForEveryOrderWithDefaults) {
   // §3.2.2: with the default offset (and, for small M, the default scale) a lit surface,
   // z = d, reconstructs to 1. The analytic ground is made to cast so that the map holds its
