@@ -792,13 +792,19 @@ const std::vector<FigureSpec>& figureList() {
         "The real intermediate buffers of legacy.pcf (128² map, 320x240 window): each light "
         "pass writes ramp-encoded depth into one colour channel with a sub-texel jitter "
         "(stratified sampling, Fig. 3), then the comparison, the colour table and the colour "
-        "matrix of Fig. 4 turn four comparisons into five shadow levels."));
+        "matrix of Fig. 4 turn four comparisons into five shadow levels. The jitter is a "
+        "fraction of a texel, invisible in the channels themselves: the strip after the packed "
+        "map shows each channel minus the mean of the four, amplified 32x (grey = equal), "
+        "non-grey where a sample's offset carries it across a depth edge or a depth step."));
     v.push_back(brabecPacking(
         "brabec-fig5-packing", "Figure 5 (teaching figure)", "legacy.fast-pcf",
         "Fast PCF: neighbour packing by convolution",
         "The real intermediate buffers of legacy.fast-pcf (128² map, 320x240 window): one "
         "light pass writes the depth into all four channels, and the 3x3 convolution of Eq. (1) "
-        "packs each texel's three neighbours into its other channels (Fig. 5)."));
+        "packs each texel's three neighbours into its other channels (Fig. 5). The one-texel "
+        "shift shows in the strip after the packed map: lower right, upper left and upper right "
+        "minus the texel's own depth (G, B, A minus R), amplified 32x (grey = equal), non-grey "
+        "along the depth edges that run across the direction of each neighbour."));
     v.push_back(everittFig2());
     v.push_back(everittFig4());
     v.push_back(everittFig5());

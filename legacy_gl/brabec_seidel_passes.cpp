@@ -461,6 +461,28 @@ Image channelPanels(const Image& rgba) {
   return sideBySide(panels);
 }
 
+Image channelsMinusCentre(const Image& rgba, int centre, float gain) {
+  constexpr float kZero = 0.5f;  // grey: the channel equals the centre
+  std::vector<Image> panels;
+  for (int c = 0; c < rgba.channels; ++c) {
+    if (c == centre) continue;
+    Image panel(rgba.width, rgba.height, 1);
+    for (int y = 0; y < rgba.height; ++y)
+      for (int x = 0; x < rgba.width; ++x) {
+        float mid = 0.0f;
+        if (centre >= 0) {
+          mid = rgba.at(x, y, centre);
+        } else {
+          for (int k = 0; k < rgba.channels; ++k) mid += rgba.at(x, y, k);
+          mid /= float(rgba.channels);
+        }
+        panel.at(x, y, 0) = std::clamp(kZero + gain * (rgba.at(x, y, c) - mid), 0.0f, 1.0f);
+      }
+    panels.push_back(std::move(panel));
+  }
+  return sideBySide(panels);
+}
+
 Image amplified(const Image& image, float gain) {
   Image out = image;
   for (float& v : out.data) v = std::clamp(v * gain, 0.0f, 1.0f);

@@ -140,6 +140,11 @@ Image readWindowRgba(const RenderParams& params);
 Image readShadowMap(const ShadowMapTexture& map, int texels);
 Image channelPanels(const Image& rgba);           // R | G | B | A as grey panels side by side
 Image amplified(const Image& image, float gain);  // small differences made visible
+// The channels of a packed map minus a centre, as grey panels side by side: 0.5 + gain (c -
+// centre), clamped; 0.5 = equal. centre: a channel index (that channel is left out), or -1 for the
+// mean of the channels. Where the samples of one texel differ (the jitter of Fig. 3, the one-texel
+// shift of Fig. 5), the panel is not grey.
+Image channelsMinusCentre(const Image& rgba, int centre, float gain);
 Image alphaOf(const Image& rgba);
 
 // The footprint side of a technique from RenderParams::filter; throws InputError otherwise.

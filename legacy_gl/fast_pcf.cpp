@@ -150,6 +150,17 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   "Pass 2: the packed map, R | G | B | A = lower left, lower right, upper left, "
                   "upper right of each texel's 2x2 region (Fig. 5)",
                   bs::channelPanels(bs::readShadowMap(*s.maps[i], n)));
+  // Fig. 5's one-texel shift made visible: each neighbour channel minus the texel's own (R),
+  // non-grey along every depth edge, one texel to the side the neighbour lies on.
+  if (params.capturePasses)
+    for (size_t i = 0; i < phases.size(); ++i)
+      bs::capture(
+          frame, params, "2-packed-neighbours-minus-lower-left" + phaseFileTag(phases[i]),
+          "Pass 2's packed map, lower right | upper left | upper right minus lower left "
+          "(G | B | A minus R), amplified " +
+              std::to_string(int(kDifferenceDisplayGain)) +
+              "x, grey = equal: the one-texel shift of Fig. 5",
+          bs::channelsMinusCentre(bs::readShadowMap(*s.maps[i], n), 0, kDifferenceDisplayGain));
 
   for (size_t i = 0; i < phases.size(); ++i) {
     const Phase& p = phases[i];

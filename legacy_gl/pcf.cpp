@@ -149,6 +149,13 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
       bs::capture(frame, params, "1-packed-shadow-map" + tag + "-rgb",
                   "The packed map: four depth samples per texel (R, G, B shown as colour)",
                   toRgb(map));
+      // Fig. 3's jitter made visible: the four samples of a texel differ only where a sub-texel
+      // offset moves one across a depth edge or along a slope.
+      bs::capture(frame, params, "1-jittered-samples-minus-mean" + tag,
+                  "The four jittered samples minus their mean (R | G | B | A), amplified " +
+                      std::to_string(int(kDifferenceDisplayGain)) +
+                      "x, grey = equal: the sub-texel jitter of Fig. 3",
+                  bs::channelsMinusCentre(map, -1, kDifferenceDisplayGain));
     }
   }
   for (size_t g = 0; g < groups.size(); ++g) {
