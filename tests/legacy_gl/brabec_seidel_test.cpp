@@ -610,3 +610,47 @@ TEST(BrabecSeidel, DumpPassesNamesEveryIntermediate) {
 
 }  // namespace
 }  // namespace sl
+
+namespace sl {
+namespace {
+
+// Issue 21: the packing figure (brabec-fig5-packing) shows Fig. 5's one-texel shift as the
+// packed map's neighbour channels minus the texel's own. With one light pass in all four
+// channels, the lower-right channel of texel (x, y) is the depth of texel (x + 1, y), the
+// upper-left that of (x, y + 1), the upper-right that of (x + 1, y + 1); the view must be
+// 0.5 + 32 (neighbour - own), clamped, computed here from the R panel of the captured map.
+TEST(BrabecSeidel, ShiftViewIsTheOneTexelShiftOfFigureFive) {
+  RenderParams p = params(Backend::kOsmesa, 2);
+  p.capturePasses = true;
+  const Frame f = render("legacy.fast-pcf", "brabec", p);
+  const Image* packed = nullptr;
+  const Image* view = nullptr;
+  for (const PassImage& pass : f.intermediates) {
+    if (pass.name.rfind("2-packed-shadow-map", 0) == 0) packed = &pass.image;
+    if (pass.name.rfind("2-packed-neighbours-minus-lower-left", 0) == 0) view = &pass.image;
+  }
+  ASSERT_NE(packed, nullptr);
+  ASSERT_NE(view, nullptr);
+  constexpr int kPanelGap = 4;         // sideBySide's default gap (core/image.h)
+  constexpr float kGain = 32.0f;       // the view's amplification (legacy_gl/fast_pcf.cpp)
+  constexpr float kTolerance = 1e-5f;  // float arithmetic on the same stored values
+  const int n = kMapTexels;
+  ASSERT_EQ(view->width, 3 * n + 2 * kPanelGap);
+  const auto own = [&](int x, int y) { return packed->at(x, y, 0); };  // R panel of the strip
+  const glm::ivec2 neighbour[3] = {{1, 0}, {0, 1}, {1, 1}};            // G, B, A
+  long wrong = 0, notGrey = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int y = 0; y + 1 < n; ++y)
+      for (int x = 0; x + 1 < n; ++x) {
+        const float expected = std::clamp(
+            0.5f + kGain * (own(x + neighbour[k].x, y + neighbour[k].y) - own(x, y)), 0.0f, 1.0f);
+        const float shown = view->at(k * (n + kPanelGap) + x, y, 0);
+        wrong += std::fabs(shown - expected) > kTolerance;
+        notGrey += std::fabs(shown - 0.5f) > kTolerance;
+      }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(notGrey, 1000) << "the depth edges of the brabec scene must show";
+}
+
+}  // namespace
+}  // namespace sl
