@@ -79,7 +79,13 @@ FigureSpec brabecFig7() {
       "light, a scene of about 7000 triangles (ours is procedural: their model is not "
       "published). Top row (a-d) the full frames, bottom row (e-h) the red rectangle "
       "magnified 8x with nearest-neighbour sampling, so that the shadow-map texels and the "
-      "shadow levels of each filter can be counted.";
+      "shadow levels of each filter can be counted."
+      " Frame rates: the paper's unfiltered frame is faster than fast PCF 2x2; here the two "
+      "often tie or swap. Per pass (the table below) both frames are the same five "
+      "full-window passes at about the same cost, and the one pass fast PCF adds, the 3x3 "
+      "packing convolution of the map during its copy, is a small fraction of the frame on "
+      "llvmpipe; whatever made it cost the Octane about a third of its frame is not there, so "
+      "their order follows the machine's load (interleaved medians: docs/figures.md).";
   f.scene = "brabec";
   f.width = 800;
   f.height = 600;
@@ -110,7 +116,12 @@ FigureSpec brabecFig8() {
   f.caption =
       "Even a 1024x1024 shadow map leaves blocky shadow boundaries without filtering (a); fast "
       "PCF with a 2x2 footprint smooths them (b). The paper's second test scene is not "
-      "published: we use the Utah teapot on a plane.";
+      "published: we use the Utah teapot on a plane. The thin light line under the teapot's "
+      "base in (a) is the 8-bit method's depth bias (two 8-bit steps of the light's depth "
+      "range, needed against self-shadowing): next to the base the teapot's lowest body is "
+      "closer to the ground than that, so the ground counts as lit; with 12-bit depth and the "
+      "bias in 12-bit steps it nearly vanishes (test TeapotContactLeakIsTheEightBitDepthBias, "
+      "docs/figures.md). Brabec & Seidel §6 name the 8-bit depth resolution as the limit.";
   f.scene = "teapot";
   f.width = 800;
   f.height = 600;
@@ -711,7 +722,13 @@ std::vector<FigureSpec> chanFigures() {
       "per pixel; 16-sample PCF (modern.gems16, our stand-in for the paper's bicubic "
       "16-sample filter); smoothies of size 0.2 and 0.8 in the thesis's units, here widths "
       "0.025 and 0.1 of the light's image (the same 1:4 ratio). Times per frame beside the "
-      "paper's (GeForce FX 5950 class GPU).",
+      "paper's (GeForce FX 5950 class GPU)."
+      " The paper's 16-sample frame costs about 8 of its plain frames, ours far fewer (the "
+      "times beside each panel): per pass "
+      "(below) both frames are a light pass and a camera pass, and on llvmpipe the camera "
+      "pass's fixed work per pixel (rasterisation, interpolation, lighting) outweighs the "
+      "shadow-map lookups, so 15 more lookups add about one more camera pass, where on the "
+      "paper's GPU they were most of the frame (docs/figures.md).",
       "cylinder", 4, p48);
   f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};
   out.push_back(f48);
