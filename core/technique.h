@@ -106,6 +106,28 @@ struct CommonOptions {
   bool precision = false;  // RenderParams::precision
 };
 
+// What the pass planner (core/plan.h) needs to know of a technique, declared by the technique
+// where it is defined, so that the planner asks instead of matching names (issue 21 item 8).
+struct PlanTraits {
+  // The work of the light-side passes.
+  enum class ShadowWork { kShadowMap, kShadowVolumes, kSmoothies, kRays };
+  ShadowWork shadowWork = ShadowWork::kShadowMap;
+  // How a filter footprint's samples are grouped: one comparison per pixel; Brabec–Seidel §3
+  // (four samples per pass, one per RGBA channel, groups summed in the accumulation buffer);
+  // §4 fast PCF (2x2 packed by one convolution, larger footprints summed as 2x2 phases).
+  enum class SampleGrouping { kOnePerPixel, kFourPerPass, kPackedPhases };
+  SampleGrouping samples = SampleGrouping::kOnePerPixel;
+  // The imaging subset stages the legacy passes use (Brabec–Seidel §3 Fig. 4, §4 Eq. (1)).
+  bool colourTableCompare = false;
+  bool colourMatrixSum = false;
+  bool packingConvolution = false;
+  // Prefiltered maps (Annen et al. 2007 CSM; VSM): a separable blur and a mip chain.
+  enum class Prefilter { kNone, kConvolution, kVariance };
+  Prefilter prefilter = Prefilter::kNone;
+  int defaultBlurTaps = 0;          // the module's default for --param blur
+  std::string defaultStorage;       // the module's default for --param storage ("8", "float")
+};
+
 struct Technique {
   std::string name;      // "legacy.pcf"
   std::string paper;     // "Brabec & Seidel 2001, §3"
@@ -114,6 +136,7 @@ struct Technique {
   ContextNeeds needs;
   std::vector<std::string> paramKeys;  // --param keys it understands
   CommonOptions reads;                 // the common options its render reads
+  PlanTraits plan;                     // what the pass planner asks of it
   std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
 };
 

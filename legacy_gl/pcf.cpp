@@ -214,6 +214,9 @@ Technique pcfTechnique() {
   t.needs.colorFromPrecision = true;
   t.paramKeys = {"depth-bias"};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // §3: one sample per channel
+  t.plan.colourTableCompare = true;                             // §3 Fig. 4
+  t.plan.colourMatrixSum = true;
   t.render = render;
   return t;
 }

@@ -344,6 +344,9 @@ Technique convolutionShadowMapTechnique() {
   t.paramKeys = {"order", "alpha",     "offset",     "scale",  "storage",
                  "blur",  "filtering", "anisotropy", "mipmaps"};
   t.reads = {.shadowMap = true};
+  t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
+  t.plan.defaultBlurTaps = kDefaultBlurTaps;
+  t.plan.defaultStorage = "8";
   t.render = render;
   return t;
 }

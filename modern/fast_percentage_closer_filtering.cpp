@@ -114,6 +114,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)
   t.render = render;
   return t;
 }

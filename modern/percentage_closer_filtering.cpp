@@ -85,6 +85,7 @@ Technique percentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.paramKeys = bs::paramKeys();
+  t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // the twin of legacy.pcf (§3)
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;

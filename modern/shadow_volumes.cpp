@@ -355,6 +355,7 @@ Technique shadowVolumesTechnique() {
   t.needs.profile = Profile::kCore;
   t.paramKeys = {};
   t.reads = {};  // no shadow map, no filter, no colour-encoded depth
+  t.plan.shadowWork = PlanTraits::ShadowWork::kShadowVolumes;
   t.render = render;
   return t;
 }

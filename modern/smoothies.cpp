@@ -420,6 +420,7 @@ Technique smoothiesTechnique() {
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"width", "remap", "offset-factor", "offset-units"};
   t.reads = {.shadowMap = true};
+  t.plan.shadowWork = PlanTraits::ShadowWork::kSmoothies;
   t.render = render;
   return t;
 }

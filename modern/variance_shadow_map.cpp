@@ -141,6 +141,9 @@ Technique varianceShadowMapTechnique() {
   t.needs.profile = Profile::kCore;
   t.paramKeys = {"min-variance", "bleed-reduction", "storage", "blur", "filtering", "anisotropy"};
   t.reads = {.shadowMap = true};
+  t.plan.prefilter = PlanTraits::Prefilter::kVariance;
+  t.plan.defaultBlurTaps = kDefaultBlurTaps;
+  t.plan.defaultStorage = "float";
   t.render = render;
   return t;
 }

@@ -530,6 +530,7 @@ std::vector<Technique> techniques() {
   hard.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
   hard.status = "complete";
   hard.needs.profile = Profile::kCore;
+  hard.plan.shadowWork = PlanTraits::ShadowWork::kRays;
   hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, false);
   };
