@@ -278,16 +278,19 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
            "right column are zero in every channel, so the support is 2x2"});
   }
   if (t.plan.prefilter != PlanTraits::Prefilter::kNone) {
-    int taps = t.plan.defaultBlurTaps;  // the module's default, as it declares it
-    if (auto it = params.extra.find("blur"); it != params.extra.end()) {
-      try {
-        taps = std::stoi(it->second);
-      } catch (const std::exception&) {
-        taps = 0;
-      }
+    // The values the technique will use: those given, else its declared defaults.
+    const auto value = [&](const char* key) {
+      if (auto it = params.extra.find(key); it != params.extra.end()) return it->second;
+      const ParamSpec* spec = findParam(t, key);
+      return spec ? spec->defaultText() : std::string();
+    };
+    int taps = 0;
+    try {
+      taps = std::stoi(value("blur"));
+    } catch (const std::exception&) {
+      taps = 0;  // no blur declared, or a value the technique itself will refuse
     }
-    const std::string storage =
-        params.extra.count("storage") ? params.extra.at("storage") : t.plan.defaultStorage;
+    const std::string storage = value("storage");
     if (taps <= 1) {
       plan.resources.push_back({"separable blur pass", false, "blur=0: no kernel"});
     } else {
@@ -303,14 +306,13 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
                                     " of them below half an 8-bit step" +
                                     (zero ? " (skipped)" : " (none skipped)")});
     }
-    const std::string filtering =
-        params.extra.count("filtering") ? params.extra.at("filtering") : "trilinear";
+    const std::string filtering = value("filtering");
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
     const std::string rho = fixed(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
     // Tri-linear and anisotropic filtering read the mip chain (modern/prefiltered_maps.cpp);
     // mipmaps=always builds it whatever the view does.
     const bool readsMipChain = filtering == "trilinear" || filtering == "anisotropic";
-    const bool alwaysBuilt = params.extra.count("mipmaps") && params.extra.at("mipmaps") == "always";
+    const bool alwaysBuilt = value("mipmaps") == "always";
     if (!readsMipChain)
       plan.resources.push_back(
           {"mip chain", false, "filtering=" + filtering + " reads level 0 only"});

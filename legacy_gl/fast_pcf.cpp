@@ -213,7 +213,7 @@ Technique fastPcfTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
-  t.paramKeys = {"depth-bias"};
+  t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // §4: packed 2x2 phases
   t.plan.colourTableCompare = true;                              // §3 Fig. 4

@@ -212,7 +212,7 @@ Technique pcfTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
-  t.paramKeys = {"depth-bias"};
+  t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // §3: one sample per channel
   t.plan.colourTableCompare = true;                             // §3 Fig. 4
