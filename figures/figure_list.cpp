@@ -346,21 +346,23 @@ std::vector<FigureSpec> csmFigures() {
       "frustum (the caption's 'tightly fitted light frustum') the low square is a third of "
       "that range above the plane. As the paper's caption says that ringing varies the "
       "lightness inside the shadows, the series is not attenuated here (alpha = 0), and d is "
-      "offset so that the step goes through 1 at d = z (§3.2.2; offset=through-1) instead of "
+      "offset so that the step goes through 1 at d = z (§3.2.2; offset-rule=through-1) instead of "
       "to the step's top (the technique's default): with M = 4 the slanted square's shadow is "
       "then dark from about a seventh of the range above the plane on (the default: a third), "
       "see docs/figures.md. Basis stored in 8 bits as in the paper.",
       "squares", 3,
-      {render("(a) M = 1", "modern.csm", {{"order", "1"}, {"alpha", "0"}, {"offset", "through-1"}}),
-       render("(b) M = 2", "modern.csm", {{"order", "2"}, {"alpha", "0"}, {"offset", "through-1"}}),
+      {render("(a) M = 1", "modern.csm",
+              {{"order", "1"}, {"alpha", "0"}, {"offset-rule", "through-1"}}),
+       render("(b) M = 2", "modern.csm",
+              {{"order", "2"}, {"alpha", "0"}, {"offset-rule", "through-1"}}),
        render("(c) M = 4", "modern.csm",
-              {{"order", "4"}, {"alpha", "0"}, {"offset", "through-1"}})}));
+              {{"order", "4"}, {"alpha", "0"}, {"offset-rule", "through-1"}})}));
 
   // Fig. 7 with the reconstruction of Fig. 6 (alpha = 0, d offset so that the step goes through
   // 1 at d = z): with the technique's defaults the trunks' shadows are light for the first
   // 0.063 of the light's depth range behind the root (Eq. 11, M = 16), here 0.034
   // (docs/figures.md, csm-fig7).
-  const Params fig7Csm = {{"order", "16"}, {"alpha", "0"}, {"offset", "through-1"}};
+  const Params fig7Csm = {{"order", "16"}, {"alpha", "0"}, {"offset-rule", "through-1"}};
   const auto fig7Panel = [&](std::string label, Params extra) {
     Params p = fig7Csm;
     p.insert(extra.begin(), extra.end());
@@ -372,7 +374,7 @@ std::vector<FigureSpec> csmFigures() {
       "filtering (16x anisotropic) and then 3x3, 5x5, 7x7 blurs improve it step by step. "
       "2048x2048 map as in the paper; procedural trees with thin branches stand in for the "
       "paper's; M = 16. The reconstruction is Fig. 6's (no attenuation, alpha = 0, and d offset "
-      "so that the step goes through 1 at d = z, offset=through-1): with the technique's "
+      "so that the step goes through 1 at d = z, offset-rule=through-1): with the technique's "
       "defaults (alpha = 1, offset at the step's top) the trunks' shadows fade towards their "
       "roots, where the trunk is close to the ground (see docs/figures.md).",
       "trees", 3,

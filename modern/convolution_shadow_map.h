@@ -19,10 +19,10 @@ double csmReconstructedStep(double t, int order, double alpha);
 // reconstructed step, so that a lit surface (z = d) reconstructs to the top of the step.
 double csmDefaultOffset(int order, double alpha);
 
-// --param offset=through-1: the smallest t >= 0 where the reconstructed step reaches 1 (§3.2.2:
-// "after offsetting, f(d, z) goes through 1 for (d - z) = 0"). Below csmDefaultOffset where the
-// step overshoots 1 (little attenuation: alpha = 0, M = 4: 0.076 against 0.125), so that an
-// occluder close to its receiver darkens sooner; where the step tops out below 1, its top.
+// --param offset-rule=through-1: the smallest t >= 0 where the reconstructed step reaches 1
+// (§3.2.2: "after offsetting, f(d, z) goes through 1 for (d - z) = 0"). Below csmDefaultOffset
+// where the step overshoots 1 (little attenuation: alpha = 0, M = 4: 0.076 against 0.125), so that
+// an occluder close to its receiver darkens sooner; where the step tops out below 1, its top.
 double csmOffsetThroughOne(int order, double alpha);
 
 // The light depth range modern.csm normalises linear depth over (Fig. 6: "a tightly fitted

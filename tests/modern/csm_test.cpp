@@ -149,7 +149,7 @@ TEST(Csm, DefaultOffsetIsTheTopOfTheStep) {
   }
 }
 
-// offset=through-1 (§3.2.2: "after offsetting, f(d, z) goes through 1"): the first t where the
+// offset-rule=through-1 (§3.2.2: "after offsetting, f(d, z) goes through 1"): the first t where the
 // step reaches 1. With alpha = 0 the step overshoots (Gibbs), so it reaches 1 before its top;
 // with alpha = 1 and M = 4 it tops out at 0.98 and the offset falls back to the top.
 TEST(Csm, OffsetThroughOneIsWhereTheStepFirstReachesOne) {
@@ -168,7 +168,7 @@ TEST(Csm, OffsetThroughOneIsWhereTheStepFirstReachesOne) {
 // which touches the receiver plane achieves good shadowing quality using only 4 terms". Along
 // the slanted square's centre line, the ground point behind each square point must match Eq. 11
 // at that point's height above the ground (t = -(1 - offset) h / span + offset), and with the
-// figure's settings (alpha = 0: the caption's ringing; offset=through-1) the shadow is dark
+// figure's settings (alpha = 0: the caption's ringing; offset-rule=through-1) the shadow is dark
 // (< 0.1) over more than 60% of the square's length; with the defaults (alpha = 1, offset at
 // the step's top) Eq. 11 predicts less than 40%: what the figure showed.
 TEST(Csm, SlantedSquareShadowAtOrderFourIsDarkOverMostOfItsLength) {
@@ -218,7 +218,7 @@ TEST(Csm, SlantedSquareShadowAtOrderFourIsDarkOverMostOfItsLength) {
   seen.camera.position = {0.97f, 0.35f, -1.8f};
   seen.camera.target = {0.97f, 0.0f, -0.45f};
   const RenderParams p =
-      smallParams(320, 240, 512, {{"order", "4"}, {"alpha", "0"}, {"offset", "through-1"}});
+      smallParams(320, 240, 512, {{"order", "4"}, {"alpha", "0"}, {"offset-rule", "through-1"}});
   const Frame frame = renderByName("modern.csm", seen, p);
   // Eq. 11 at the point's height, plus the 8-bit bound and the 3x3 blur, which mixes in the
   // basis of depths up to one map texel (0.009 units) along the square, 0.006 units of height
