@@ -78,8 +78,10 @@ Technique packedPhases() {
 Technique convolutionPrefiltered() {
   Technique t = named("test.prefiltered");
   t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
-  t.plan.defaultBlurTaps = 3;
-  t.plan.defaultStorage = "8";
+  t.params = {integerParam("blur", 3, 0, 7, "taps"),
+              choiceParam("storage", "8", {"8", "16", "float"}, "format"),
+              choiceParam("filtering", "trilinear", {"trilinear", "anisotropic", "bilinear"}, "f"),
+              choiceParam("mipmaps", "auto", {"auto", "always"}, "m")};
   return t;
 }
 
