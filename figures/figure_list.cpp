@@ -117,8 +117,9 @@ FigureSpec brabecFig8() {
       "Even a 1024x1024 shadow map leaves blocky shadow boundaries without filtering (a); fast "
       "PCF with a 2x2 footprint smooths them (b). The paper's second test scene is not "
       "published: we use the Utah teapot on a plane. The thin light line under the teapot's "
-      "base in (a) is the 8-bit method's depth bias (two 8-bit steps of the light's depth "
-      "range, needed against self-shadowing): next to the base the teapot's lowest body is "
+      "base in (a) and (b) (second row of close-ups) is the 8-bit method's depth bias (two 8-bit "
+      "steps of the light's depth range, needed against self-shadowing): next to the base the "
+      "teapot's lowest body is "
       "closer to the ground than that, so the ground counts as lit; with 12-bit depth and the "
       "bias in 12-bit steps it nearly vanishes (test TeapotContactLeakIsTheEightBitDepthBias, "
       "docs/figures.md). Brabec & Seidel §6 name the 8-bit depth resolution as the limit.";
@@ -131,7 +132,8 @@ FigureSpec brabecFig8() {
       withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps"),
       withPaper(withFilter(render("(b) fast PCF 2x2", "legacy.fast-pcf"), 2), "about 10 fps"),
   };
-  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4}};
+  f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4},
+                {0.475f, 0.275f, 0.125f, 0.067f, 4}};  // under the base: the depth bias's leak
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }
