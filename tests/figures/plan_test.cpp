@@ -73,7 +73,7 @@ TEST(PlanConsulted, EachTechniqueDeclaresWhatThePlannerNeeds) {
   RenderParams p = small();
   p.filter = 4;
   for (const char* name : {"modern.vsm", "modern.csm"}) {
-    const FramePlan plan = planFrame(s, findTechnique(name), p);  // outlives `blur`
+    const FramePlan plan = planFrame(s, findTechnique(name), p);
     const PlanItem* blur = planned(plan, "separable blur pass");
     ASSERT_TRUE(blur) << name;
     EXPECT_TRUE(blur->kept) << name << ": " << blur->reason;
