@@ -902,13 +902,6 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
       for (const std::string& z : zero) list += (list.empty() ? "" : ", ") + z;
       out.notes[scene] = "RMSE 0, not on the log axis: " + list;
     }
-    double xLo = 1e300, xHi = 0, yLo = 1e300, yHi = 0;
-    for (const BenchRow* r : drawn) {
-      xLo = std::min(xLo, r->frameMs);
-      xHi = std::max(xHi, r->frameMs);
-      yLo = std::min(yLo, r->primary().all.rmse);
-      yHi = std::max(yHi, r->primary().all.rmse);
-    }
     std::vector<size_t> front;
     for (size_t i : paretoFront(result.rows, scene))
       if (result.rows[i].primary().all.rmse > 0) front.push_back(i);
@@ -926,6 +919,17 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
         if (plotFamily(r->technique) == family && !contains(techniques, r->technique))
           techniques.push_back(r->technique);
       if (techniques.empty()) continue;
+      // The axes fit this plot's points and the scene's front (the front is drawn on each).
+      double xLo = 1e300, xHi = 0, yLo = 1e300, yHi = 0;
+      auto fit = [&](const BenchRow& r) {
+        xLo = std::min(xLo, r.frameMs);
+        xHi = std::max(xHi, r.frameMs);
+        yLo = std::min(yLo, r.primary().all.rmse);
+        yHi = std::max(yHi, r.primary().all.rmse);
+      };
+      for (const BenchRow* r : drawn)
+        if (plotFamily(r->technique) == family) fit(*r);
+      for (size_t i : front) fit(result.rows[i]);
       std::string tag = family;
       std::replace(tag.begin(), tag.end(), ' ', '-');
       const fs::path base = fs::path(outDir) / ("bench-" + scene + "-" + tag);
@@ -962,7 +966,11 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
                << "plot '" << dat << "' index " << techniques.size()
                << " using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'Pareto front', '' index "
                << techniques.size()
-               << " using 1:2:3 with labels offset char 0,-1 font ',9' tc rgb '#666666' notitle";
+               << " every 2 using 1:2:3 with labels offset char 0,-1 font ',9' tc rgb '#666666' "
+                  "notitle, '' index "
+               << techniques.size()
+               << " every 2::1 using 1:2:3 with labels offset char 0,1 font ',9' tc rgb '#666666' "
+                  "notitle";
         for (size_t i = 0; i < techniques.size(); ++i)
           script << ", '' index " << i << " using 1:2 with points pt " << (i % 13) + 1
                  << " ps 1.6 lw 2 title '" << techniques[i] << "'";

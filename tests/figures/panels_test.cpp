@@ -1,6 +1,7 @@
 // tests/figures/panels_test.cpp — the figures' panels (issue 14 item 3): every panel of
 // figure_list.cpp names a technique, parameters and buffers that exist; figure.png holds every
-// panel, buffer panels, charts and the red blocks of panels that could not be made included;
+// panel, buffer panels, charts and the red blocks of panels that could not be made included,
+// each under its label drawn as text (issue 18 item 6);
 // the stencil buffer the Chan 3-1c / 3-9c panels show is the one the techniques shade from.
 #include <gtest/gtest.h>
 
@@ -30,6 +31,9 @@ namespace {
 constexpr float kPngStep = 1.0f / 255.0f;
 constexpr int kGap = 6;  // pixels between tiles and rows (figures.h: composeFigure)
 constexpr int kMaxCompositeWidth = 1600;
+// A label with a few characters of 13-pixel text has well over this many dark pixels; an
+// empty (white) strip has none.
+constexpr int kMinTextPixels = 20;
 
 fs::path outputDir(const std::string& name) {
   const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "figures" / name;
@@ -70,30 +74,36 @@ int mismatches(const Image& composite, const Image& tile, int x0, int y0) {
   return bad;
 }
 
-// Where each tile's bottom-left corner lies in a composite of rows of `columns` tiles,
-// top-aligned, kGap apart (the layout figures.h promises), and the composite's size.
-struct Layout {
-  std::vector<std::pair<int, int>> corners;
-  int width = 0, height = 0;
-};
-Layout layoutOf(const std::vector<Image>& tiles, int columns) {
-  std::vector<std::pair<int, int>> topLeft;  // x, distance of the tile's top from the top
-  Layout l;
-  int top = 0;
-  for (size_t i = 0; i < tiles.size(); i += size_t(columns)) {
-    int x = 0, rowHeight = 0;
-    for (size_t k = i; k < std::min(tiles.size(), i + size_t(columns)); ++k) {
-      topLeft.push_back({x, top});
-      x += tiles[k].width + kGap;
-      rowHeight = std::max(rowHeight, tiles[k].height);
-    }
-    l.width = std::max(l.width, x - kGap);
-    top += rowHeight + kGap;
+// A rectangle of composeFigure's layout (top-left origin) as core/image.h's bottom-left corner.
+int bottomOf(const Image& composite, const TileRect& r) {
+  return composite.height - r.y - r.height;
+}
+
+// Dark pixels (drawn text) inside a label strip of the composite.
+int darkPixels(const Image& composite, const TileRect& r) {
+  int dark = 0;
+  const int y0 = bottomOf(composite, r);
+  for (int y = y0; y < y0 + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) dark += composite.at(x, y, 0) < 0.5f;
+  return dark;
+}
+
+// Rows of `columns` tiles kGap apart, each row's tiles top-aligned under label strips of one
+// height, each strip right above its tile and holding text.
+void expectLabelledRows(const Image& composite, const CompositeLayout& l, size_t panels,
+                        size_t columns) {
+  for (size_t k = 0; k < l.tiles.size(); ++k) {
+    const bool closeup = k >= panels;
+    const size_t first = closeup ? panels + (k - panels) / columns * columns : k / columns * columns;
+    EXPECT_EQ(l.tiles[k].y, l.tiles[first].y) << "tile " << k << " not top-aligned in its row";
+    EXPECT_EQ(l.labels[k].x, l.tiles[k].x) << "label " << k;
+    EXPECT_LE(l.labels[k].y + l.labels[k].height, l.tiles[k].y) << "label " << k << " not above";
+    if (k > first)
+      EXPECT_GE(l.tiles[k].x, l.tiles[k - 1].x + l.tiles[k - 1].width + kGap) << "tile " << k;
+    else
+      EXPECT_EQ(l.tiles[k].x, 0) << "tile " << k << " does not start its row";
+    EXPECT_GT(darkPixels(composite, l.labels[k]), kMinTextPixels) << "label " << k << " is empty";
   }
-  l.height = top - kGap;
-  for (size_t k = 0; k < tiles.size(); ++k)
-    l.corners.push_back({topLeft[k].first, l.height - topLeft[k].second - tiles[k].height});
-  return l;
 }
 
 }  // namespace
@@ -192,19 +202,23 @@ TEST(FigureComposite, HoldsRendersBuffersChartsCloseupsAndRedBlocks) {
   p.reason = "no such buffer";
   fig.panels.push_back(p);
 
-  const Image composite = composeFigure(fig, dir.string());
+  CompositeLayout layout;
+  const Image composite = composeFigure(fig, dir.string(), &layout);
   const Image red = solid(40, 30, 0.55f, 0.0f, 0.0f);
-  const std::vector<Image> tiles = {render, bufferA, bufferB, chart, red};
-  const Layout panels = layoutOf(tiles, 3);
-  const int closeupRow = closeup.height + kGap;  // the close-ups form the last row
-  ASSERT_EQ(composite.width, std::max(panels.width, closeup.width));
-  ASSERT_EQ(composite.height, panels.height + closeupRow);
-  for (size_t k = 0; k < tiles.size(); ++k)
-    EXPECT_EQ(mismatches(composite, tiles[k], panels.corners[k].first,
-                         panels.corners[k].second + closeupRow),
+  const std::vector<Image> tiles = {render, bufferA, bufferB, chart, red, closeup};
+  ASSERT_EQ(layout.tiles.size(), tiles.size());
+  ASSERT_EQ(layout.shrink, 1);
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    EXPECT_EQ(layout.tiles[k].width, tiles[k].width) << "tile " << k;
+    EXPECT_EQ(layout.tiles[k].height, tiles[k].height) << "tile " << k;
+    EXPECT_EQ(mismatches(composite, tiles[k], layout.tiles[k].x,
+                         bottomOf(composite, layout.tiles[k])),
               0)
         << "tile " << k;
-  EXPECT_EQ(mismatches(composite, closeup, 0, 0), 0) << "close-up";
+  }
+  expectLabelledRows(composite, layout, 5, 3);
+  EXPECT_GT(layout.tiles[3].y, layout.tiles[0].y + 30) << "the chart starts the second row";
+  EXPECT_GT(layout.tiles[5].y, layout.tiles[3].y + 30) << "the close-ups come last";
 }
 
 // A composite wider than 1600 pixels is shrunk by an integer factor; a uniform tile keeps its
@@ -220,14 +234,22 @@ TEST(FigureComposite, ShrinksWideFiguresByAnIntegerFactor) {
   p.ok = true;
   p.images = {{"fig/wide.png", "wide"}};
   fig.panels = {p, p};
-  const Image composite = composeFigure(fig, dir.string());
+  CompositeLayout layout;
+  const Image composite = composeFigure(fig, dir.string(), &layout);
   const int full = 2 * wide.width + kGap;
   const int factor = (full + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
   ASSERT_EQ(factor, 2);
-  EXPECT_EQ(composite.width, full / factor);
-  EXPECT_EQ(composite.height, wide.height / factor);
-  EXPECT_NEAR(composite.at(10, 10, 1), 0.6f, kPngStep);
-  EXPECT_NEAR(composite.at(composite.width - 10, 10, 2), 1.0f, kPngStep);
+  EXPECT_EQ(layout.shrink, factor);
+  // The tiles shrink; the gap and the labels keep their size (the text stays readable).
+  EXPECT_EQ(composite.width, 2 * (wide.width / factor) + kGap);
+  ASSERT_EQ(layout.tiles.size(), 2u);
+  EXPECT_EQ(layout.tiles[1].x, wide.width / factor + kGap);
+  EXPECT_EQ(layout.tiles[0].height, wide.height / factor);
+  EXPECT_EQ(composite.height, layout.tiles[0].y + wide.height / factor);
+  const int y = bottomOf(composite, layout.tiles[0]) + 5;
+  EXPECT_NEAR(composite.at(10, y, 1), 0.6f, kPngStep);
+  EXPECT_NEAR(composite.at(composite.width - 10, y, 2), 1.0f, kPngStep);
+  expectLabelledRows(composite, layout, 2, 2);
 }
 
 // End to end: `shadowlab figures --only brabec-fig3-packing` (one buffer panel of ten buffers,
@@ -247,29 +269,47 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
         toRgb(readPng((fig / ("00-intermediate-buffers-" + std::to_string(k) + ".png")).string())));
   ASSERT_GT(tiles.size(), 4u) << "legacy.pcf captured too few buffers";
   const Image composite = readPng((fig / "figure.png").string());
-  const Layout l = layoutOf(tiles, 4);
-  Image full(l.width, l.height, 3, 1.0f);
-  for (size_t k = 0; k < tiles.size(); ++k)
-    for (int y = 0; y < tiles[k].height; ++y)
-      for (int x = 0; x < tiles[k].width; ++x)
-        for (int c = 0; c < 3; ++c)
-          full.at(l.corners[k].first + x, l.corners[k].second + y, c) = tiles[k].at(x, y, c);
-  const int factor = (l.width + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
-  ASSERT_EQ(composite.width, l.width / factor);
-  ASSERT_EQ(composite.height, l.height / factor);
-  int bad = 0;
-  for (int y = 0; y < composite.height; ++y)
-    for (int x = 0; x < composite.width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float sum = 0;
-        for (int j = 0; j < factor; ++j)
-          for (int i = 0; i < factor; ++i) sum += full.at(x * factor + i, y * factor + j, c);
-        if (std::abs(composite.at(x, y, c) - sum / float(factor * factor)) > kPngStep) {
-          ++bad;
-          break;
+  // Rows of four tiles shrunk by one integer factor, each under its label: a tile's x follows
+  // from the widths before it in its row; its y from the label heights above, so it is found by
+  // scanning its column.
+  constexpr size_t kColumns = 4;
+  int unlabelled = 0;
+  for (size_t i = 0; i < tiles.size(); i += kColumns) {
+    int w = 0;
+    for (size_t k = i; k < std::min(tiles.size(), i + kColumns); ++k)
+      w += tiles[k].width + (k > i ? kGap : 0);
+    unlabelled = std::max(unlabelled, w);
+  }
+  const int factor = (unlabelled + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
+  int x = 0, lastTop = -1;
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    if (k % kColumns == 0) x = 0;
+    Image shrunk(tiles[k].width / factor, tiles[k].height / factor, 3);
+    for (int y = 0; y < shrunk.height; ++y)
+      for (int i = 0; i < shrunk.width; ++i)
+        for (int c = 0; c < 3; ++c) {
+          float sum = 0;
+          for (int b = 0; b < factor; ++b)
+            for (int a = 0; a < factor; ++a)
+              sum += tiles[k].at(i * factor + a, y * factor + b, c);
+          shrunk.at(i, y, c) = sum / float(factor * factor);
         }
-      }
-  EXPECT_EQ(bad, 0) << "figure.png differs from its buffers laid out (factor " << factor << ")";
+    int found = -1;
+    for (int y0 = composite.height - shrunk.height; y0 >= 0 && found < 0; --y0)
+      if (mismatches(composite, shrunk, x, y0) == 0) found = y0;
+    ASSERT_GE(found, 0) << "buffer " << k << " is not in figure.png at x = " << x;
+    const int top = composite.height - found - shrunk.height;
+    if (k % kColumns != 0) EXPECT_EQ(top, lastTop) << "buffer " << k << " not top-aligned";
+    if (k % kColumns == 0 && k > 0) EXPECT_GT(top, lastTop) << "buffer " << k;
+    // Its label: text right above it.
+    int dark = 0;
+    for (int y = found + shrunk.height; y < std::min(composite.height, found + shrunk.height + 16);
+         ++y)
+      for (int i = x; i < x + shrunk.width; ++i) dark += composite.at(i, y, 0) < 0.5f;
+    EXPECT_GT(dark, kMinTextPixels) << "no label above buffer " << k;
+    lastTop = top;
+    x += std::max(shrunk.width, kMinLabelWidth) + kGap;
+  }
 }
 
 // The stencil panels (Chan Figs. 3-1c, 3-9c). modern.volumes shades from the stencil count, so
