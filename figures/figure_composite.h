@@ -13,7 +13,7 @@ namespace sl::figures {
 constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure, in pixels
 constexpr int kCompositeGap = 6;          // pixels between its tiles and rows
 constexpr int kLabelPointSize = 13;       // label text height, pixels (at the final size)
-constexpr int kMinLabelWidth = 96;        // a narrower tile gets a label this wide (pixels)
+constexpr int kMinLabelWidth = 128;       // a narrower tile gets a label this wide (pixels)
 
 struct LabelledTile {
   Image image;

@@ -417,9 +417,11 @@ std::vector<LabelledTile> compositeTiles(const std::string& outDir, const Figure
   std::vector<LabelledTile> tiles;
   if (p.ok) {
     const bool buffers = p.spec.kind == PanelKind::kIntermediates;
-    for (const ImageFile& image : p.images)
+    for (const ImageFile& image : p.images)  // a buffer strip names its panel once
       tiles.push_back({readPng((fs::path(outDir) / image.file).string()),
-                       buffers ? label + ": " + image.caption : label});
+                       !buffers        ? label
+                       : tiles.empty() ? label + ": " + image.caption
+                                       : image.caption});
     if (!tiles.empty()) return tiles;
   }
   Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);

@@ -41,14 +41,15 @@ class EdgeJudge {
     minEdge_ = b.empty() ? 0.0 : kMinEdgeFractionOfScene * glm::length(b.hi - b.lo);
   }
 
-  // Whether the edge (a, b) must be split; symmetric in a and b.
-  bool split(const glm::vec3& a, const glm::vec3& b) const {
+  // Whether the edge (a, b) of an object must be split; symmetric in a and b. `specular`: the
+  // object has a specular term (its highlight needs vertices inside the cone).
+  bool split(const glm::vec3& a, const glm::vec3& b, bool specular) const {
     const glm::vec3 center = (a + b) * 0.5f;
     const double radius = 0.5 * double(glm::length(a - b));
     if (2.0 * radius <= minEdge_) return false;
     for (const glm::vec4& p : planes_)
       if (double(glm::dot(glm::vec3(p), center) + p.w) < -radius) return false;  // off screen
-    const double limit = pixelLimit(center, radius);
+    const double limit = pixelLimit(center, radius, specular);
     if (limit <= 0.0) return false;
     return projectedPixels(a, b, radius) > limit;
   }
@@ -68,13 +69,14 @@ class EdgeJudge {
 
  private:
   // The most pixels the edge may cover: kSpotEdgePixels where the spotlight cone's edge
-  // (GL_SPOT_CUTOFF, glspec121 §2.13.1) may pass through the edge's bounding sphere, else 0
-  // (never split: inside the cone the scene's own tessellation carries the smooth diffuse and
-  // specular gradients within a few 8-bit steps, docs/legacy.md). The
+  // (GL_SPOT_CUTOFF, glspec121 §2.13.1) may pass through the edge's bounding sphere;
+  // kLitInteriorPixels inside the cone where the edge subtends more than
+  // kMaxDiffuseEdgeRadians (kMaxSpecularEdgeRadians on a specular object) at the light; else 0,
+  // never split. The
   // sphere test is conservative: it splits every edge near the cone's edge into four (well-
   // shaped children); a test on the end points alone leaves slivers whose long edges keep
   // crossing the cone and multiply.
-  double pixelLimit(const glm::vec3& center, double radius) const {
+  double pixelLimit(const glm::vec3& center, double radius, bool specular) const {
     const glm::dvec3 v = glm::dvec3(center) - glm::dvec3(apex_);
     const double distance = glm::length(v);
     if (distance <= radius) return kSpotEdgePixels;  // the apex is inside the sphere
@@ -86,7 +88,13 @@ class EdgeJudge {
     const double sinBeta = radius / distance;
     const double cosBeta = std::sqrt(1.0 - sinBeta * sinBeta);
     if (cosAlpha * cosHalfAngle_ + sinAlpha * sinHalfAngle_ >= cosBeta) return kSpotEdgePixels;
-    return 0.0;
+    if (cosAlpha <= cosHalfAngle_) return 0.0;  // outside the cone: ambient only, constant
+    // Inside: the angle the edge subtends at the light bounds how far the diffuse (and
+    // specular) term departs from its linear interpolation between the edge's ends.
+    const double subtended = 2.0 * radius / (distance - radius);
+    return subtended > (specular ? kMaxSpecularEdgeRadians : kMaxDiffuseEdgeRadians)
+               ? kLitInteriorPixels
+               : 0.0;
   }
 
   glm::mat4 view_{1.0f};
@@ -103,8 +111,8 @@ class EdgeJudge {
 // Splits one mesh; the vertex at an edge's midpoint is made once and shared.
 class MeshSplitter {
  public:
-  MeshSplitter(const Mesh& mesh, const glm::mat4& model, const EdgeJudge& judge)
-      : judge_(judge), model_(model) {
+  MeshSplitter(const Mesh& mesh, const glm::mat4& model, bool specular, const EdgeJudge& judge)
+      : judge_(judge), model_(model), specular_(specular) {
     out_.positions = mesh.positions;
     out_.normals = mesh.normals;
     out_.closed = mesh.closed;
@@ -132,7 +140,9 @@ class MeshSplitter {
  private:
   glm::vec3 toWorld(const glm::vec3& p) const { return glm::vec3(model_ * glm::vec4(p, 1.0f)); }
 
-  bool needsSplit(unsigned a, unsigned b) const { return judge_.split(world_[a], world_[b]); }
+  bool needsSplit(unsigned a, unsigned b) const {
+    return judge_.split(world_[a], world_[b], specular_);
+  }
 
   unsigned midpoint(unsigned a, unsigned b) {
     const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
@@ -192,6 +202,7 @@ class MeshSplitter {
 
   const EdgeJudge& judge_;
   glm::mat4 model_;
+  bool specular_;
   Mesh out_;
   std::vector<glm::vec3> world_;
   std::unordered_map<std::uint64_t, unsigned> midpoints_;
@@ -205,7 +216,7 @@ Scene tessellateForSpotlight(const Scene& scene, int width, int height, Tessella
   TessellationStats counted;
   for (Object& o : out.objects) {
     counted.trianglesIn += o.mesh->triangleCount();
-    MeshSplitter splitter(*o.mesh, o.model, judge);
+    MeshSplitter splitter(*o.mesh, o.model, o.specular > 0.0f, judge);
     if (splitter.run(*o.mesh)) o.mesh = std::make_shared<const Mesh>(splitter.take());
     counted.trianglesOut += o.mesh->triangleCount();
   }

@@ -13,11 +13,11 @@
 #include <set>
 #include <sstream>
 
-#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "reference/reference.h"
+#include "registry/registry.h"
 
 namespace sl::figures {
 namespace {
@@ -132,8 +132,8 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   for (const BenchRow& row : r.rows) plannerRows |= row.scene == "brabec-light-away";
   EXPECT_TRUE(plannerRows);
   // Per scene with a non-zero error (brabec and the minification scene trees-far) one plot per
-  // technique family present (plotFamily); the planner scene (no pixel lit, every RMSE 0) gets none and a
-  // note saying why, on the page and in sceneNotes.
+  // technique family present (plotFamily); the planner scene (no pixel lit, every RMSE 0) gets none
+  // and a note saying why, on the page and in sceneNotes.
   const BenchPlots plots = writePlots(dir.string(), r);
   std::set<std::string> files;
   for (const BenchPlot& plot : plots.plots) {
@@ -142,7 +142,7 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   }
   // modern.hw alone: the "modern twins" family only, no empty legacy or later-papers plot.
   EXPECT_EQ(files, (std::set<std::string>{"bench-brabec-modern-twins.png",
-                                           "bench-trees-far-modern-twins.png"}));
+                                          "bench-trees-far-modern-twins.png"}));
   for (const BenchPlot& plot : plots.plots) EXPECT_NE(plot.scene, "brabec-light-away");
   ASSERT_TRUE(plots.notes.count("brabec-light-away"));
   EXPECT_NE(plots.notes.at("brabec-light-away").find("RMSE is 0"), std::string::npos);

@@ -94,14 +94,16 @@ void expectLabelledRows(const Image& composite, const CompositeLayout& l, size_t
                         size_t columns) {
   for (size_t k = 0; k < l.tiles.size(); ++k) {
     const bool closeup = k >= panels;
-    const size_t first = closeup ? panels + (k - panels) / columns * columns : k / columns * columns;
+    const size_t first =
+        closeup ? panels + (k - panels) / columns * columns : k / columns * columns;
     EXPECT_EQ(l.tiles[k].y, l.tiles[first].y) << "tile " << k << " not top-aligned in its row";
     EXPECT_EQ(l.labels[k].x, l.tiles[k].x) << "label " << k;
     EXPECT_LE(l.labels[k].y + l.labels[k].height, l.tiles[k].y) << "label " << k << " not above";
-    if (k > first)
+    if (k > first) {
       EXPECT_GE(l.tiles[k].x, l.tiles[k - 1].x + l.tiles[k - 1].width + kGap) << "tile " << k;
-    else
+    } else {
       EXPECT_EQ(l.tiles[k].x, 0) << "tile " << k << " does not start its row";
+    }
     EXPECT_GT(darkPixels(composite, l.labels[k]), kMinTextPixels) << "label " << k << " is empty";
   }
 }
@@ -211,9 +213,8 @@ TEST(FigureComposite, HoldsRendersBuffersChartsCloseupsAndRedBlocks) {
   for (size_t k = 0; k < tiles.size(); ++k) {
     EXPECT_EQ(layout.tiles[k].width, tiles[k].width) << "tile " << k;
     EXPECT_EQ(layout.tiles[k].height, tiles[k].height) << "tile " << k;
-    EXPECT_EQ(mismatches(composite, tiles[k], layout.tiles[k].x,
-                         bottomOf(composite, layout.tiles[k])),
-              0)
+    EXPECT_EQ(
+        mismatches(composite, tiles[k], layout.tiles[k].x, bottomOf(composite, layout.tiles[k])), 0)
         << "tile " << k;
   }
   expectLabelledRows(composite, layout, 5, 3);
@@ -290,8 +291,7 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
         for (int c = 0; c < 3; ++c) {
           float sum = 0;
           for (int b = 0; b < factor; ++b)
-            for (int a = 0; a < factor; ++a)
-              sum += tiles[k].at(i * factor + a, y * factor + b, c);
+            for (int a = 0; a < factor; ++a) sum += tiles[k].at(i * factor + a, y * factor + b, c);
           shrunk.at(i, y, c) = sum / float(factor * factor);
         }
     int found = -1;
@@ -299,8 +299,11 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
       if (mismatches(composite, shrunk, x, y0) == 0) found = y0;
     ASSERT_GE(found, 0) << "buffer " << k << " is not in figure.png at x = " << x;
     const int top = composite.height - found - shrunk.height;
-    if (k % kColumns != 0) EXPECT_EQ(top, lastTop) << "buffer " << k << " not top-aligned";
-    if (k % kColumns == 0 && k > 0) EXPECT_GT(top, lastTop) << "buffer " << k;
+    if (k % kColumns != 0) {
+      EXPECT_EQ(top, lastTop) << "buffer " << k << " not top-aligned";
+    } else if (k > 0) {
+      EXPECT_GT(top, lastTop) << "buffer " << k;
+    }
     // Its label: text right above it.
     int dark = 0;
     for (int y = found + shrunk.height; y < std::min(composite.height, found + shrunk.height + 16);

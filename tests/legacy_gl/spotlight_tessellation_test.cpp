@@ -6,10 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/glm.hpp>
 #include <map>
 #include <utility>
-
-#include <glm/glm.hpp>
 
 #include "core/scene_library.h"
 
