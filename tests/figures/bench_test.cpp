@@ -156,9 +156,10 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
     std::stringstream datText, gpText;
     datText << dat.rdbuf();
     gpText << gp.rdbuf();
-    EXPECT_EQ(datText.str().find("reference."), std::string::npos) << plot.path;
+    const std::string data = datText.str();
+    EXPECT_EQ(data.find("reference."), std::string::npos) << plot.path;
     const std::string script = gpText.str();
-    const size_t series = size_t(std::count(datText.str().begin(), datText.str().end(), '#')) - 1;
+    const size_t series = size_t(std::count(data.begin(), data.end(), '#')) - 1;
     EXPECT_LE(series, 9u) << plot.path;
     double xLo = 0, xHi = 0, yLo = 0, yHi = 0;
     ASSERT_EQ(std::sscanf(script.substr(script.find("set xrange")).c_str(), "set xrange [%lf:%lf]",

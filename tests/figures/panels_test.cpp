@@ -282,7 +282,7 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
     unlabelled = std::max(unlabelled, w);
   }
   const int factor = (unlabelled + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
-  int x = 0, lastTop = -1;
+  int x = 0, lastTop = -1, rowFloor = 0, nextRowFloor = 0;
   for (size_t k = 0; k < tiles.size(); ++k) {
     if (k % kColumns == 0) x = 0;
     Image shrunk(tiles[k].width / factor, tiles[k].height / factor, 3);
@@ -304,11 +304,17 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
     } else if (k > 0) {
       EXPECT_GT(top, lastTop) << "buffer " << k;
     }
-    // Its label: text right above it.
+    // Its label: text above it, below the previous row's tiles (a row's label strips are
+    // padded to its tallest, so a short label may end well above its tile).
+    if (k % kColumns == 0) {
+      rowFloor = nextRowFloor;
+      nextRowFloor = 0;
+    }
+    nextRowFloor = std::max(nextRowFloor, top + shrunk.height);
     int dark = 0;
-    for (int y = found + shrunk.height; y < std::min(composite.height, found + shrunk.height + 16);
-         ++y)
-      for (int i = x; i < x + shrunk.width; ++i) dark += composite.at(i, y, 0) < 0.5f;
+    for (int t = rowFloor; t < top; ++t)
+      for (int i = x; i < x + shrunk.width; ++i)
+        dark += composite.at(i, composite.height - 1 - t, 0) < 0.5f;
     EXPECT_GT(dark, kMinTextPixels) << "no label above buffer " << k;
     lastTop = top;
     x += std::max(shrunk.width, kMinLabelWidth) + kGap;
