@@ -31,7 +31,6 @@
 #include <sstream>
 #include <tuple>
 
-#include "registry/registry.h"
 #include "core/decimal.h"
 #include "core/errors.h"
 #include "core/frame_timing.h"
@@ -40,6 +39,8 @@
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
 #include "reference/reference.h"
+#include "registry/registry.h"
+#include "registry/twins.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -548,6 +549,13 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
   if (options.scenes.empty() && !contains(sceneFileNames(), kFillBoundScene))
     result.sceneNotes[kFillBoundScene] =
         "scene not present (assets/scenes/" + std::string(kFillBoundScene) + ".json)";
+  for (const SceneRun& run : runs)
+    if (run.scene.name == std::string(kDefaultScene) + "-light-away")
+      result.sceneNotes[run.scene.name] =
+          "the light looks straight up: no caster reaches its frustum and no pixel is lit, so "
+          "every mask equals the reference (RMSE 0) and an error-against-time plot has nothing "
+          "to show; the scene measures what the planner's omissions save: compare the "
+          "plan=on/off variants' frame times in bench/bench.csv";
   const RenderParams benchBase = base;
   for (const SceneRun& run : runs) {
     const Scene& scene = run.scene;
@@ -830,76 +838,138 @@ bool gnuplotHasTerminal(const std::string& terminal) {
 }
 }  // namespace
 
-std::vector<std::string> writePlots(const std::string& outDir, const BenchResult& result) {
+std::string plotFamily(const std::string& technique) {
+  if (technique.rfind("reference.", 0) == 0) return "";
+  if (technique.rfind("legacy.", 0) == 0) return "legacy";
+  for (const twins::TwinPair& pair : twins::twinPairs())
+    if (pair.modern == technique) return "modern twins";
+  return "later papers";
+}
+
+BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
     throw InputError("gnuplot is not installed (apt-get install gnuplot-nox): no plots written");
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
   const std::string terminal =
-      gnuplotHasTerminal("pngcairo") ? "pngcairo size 1200,800 font ',10'" : "png size 1200,800";
+      gnuplotHasTerminal("pngcairo") ? "pngcairo size 1000,640 font ',10'" : "png size 1000,640";
+  // Margins around the data on the log axes: a factor of kPlotMargin each way.
+  constexpr double kPlotMargin = 1.25;
+  const std::vector<std::string> families = {"legacy", "modern twins", "later papers"};
   std::set<std::string> scenes;
   for (const BenchRow& r : result.rows) scenes.insert(r.scene);
-  std::vector<std::string> written;
+  BenchPlots out;
   for (const std::string& scene : scenes) {
-    const fs::path base = fs::path(outDir) / ("bench-" + scene);
-    std::vector<std::string> techniques;
-    for (const BenchRow& r : result.rows)
-      if (r.scene == scene && r.status == "ok" && r.primary().all.rmse > 0 &&
-          !contains(techniques, r.technique))
-        techniques.push_back(r.technique);
-    // One data block per technique (gnuplot index), then the Pareto front.
-    writeFileAtomically(base.string() + ".dat", [&](std::ostream& data) {
-      for (const std::string& t : techniques) {
-        data << "# " << t << "\n";
-        for (const BenchRow& r : result.rows)
-          if (r.scene == scene && r.technique == t && r.status == "ok" && r.primary().all.rmse > 0)
-            data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.variant << "\"\n";
-        data << "\n\n";
-      }
-      data << "# pareto front\n";
-      for (size_t i : paretoFront(result.rows, scene)) {
-        const BenchRow& r = result.rows[i];
-        if (r.primary().all.rmse <= 0) continue;
-        data << r.frameMs << " " << r.primary().all.rmse << " \"" << r.technique << " " << r.variant
-             << "\"\n";
-      }
-    });
-    // The script names its PNG unless told another name (`out`): the run below draws into a
-    // temporary and renames it, so that a failed gnuplot leaves no half-written PNG.
-    writeFileAtomically(base.string() + ".gp", [&](std::ostream& script) {
-      script << "set terminal " << terminal << "\n"
-             << "if (!exists('out')) out = '" << base.string() << ".png'\n"
-             << "set output out\n"
-             << "set title 'shadowlab bench, scene " << scene
-             << ": visibility error against frame time (Pareto front joined)'\n"
-             << "set logscale xy\nset grid\nset key outside right\n"
-             << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
-             << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
-             << "plot ";
-      for (size_t i = 0; i < techniques.size(); ++i)
-        script << "'" << base.string() << ".dat' index " << i << " using 1:2 with points pt "
-               << (i % 13) + 1 << " ps 1.5 title '" << techniques[i] << "', ";
-      script << "'" << base.string() << ".dat' index " << techniques.size()
-             << " using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', '' index "
-             << techniques.size() << " using 1:2 with points lc rgb 'black' pt 6 ps 2.5 notitle, "
-             << "'' index " << techniques.size()
-             << " using 1:2:3 with labels offset 1,0.8 left font ',7' notitle\n";
-    });
-    const std::string png = base.string() + ".png";
-    const std::string temporaryPng = temporaryName(png).string();
-    const std::string command =
-        // Its warnings go to stderr: stdout carries only JSON lines.
-        "gnuplot -e \"out='" + temporaryPng + "'\" '" + base.string() + ".gp' 1>&2";
-    if (techniques.empty() || std::system(command.c_str()) != 0 ||
-        std::rename(temporaryPng.c_str(), png.c_str()) != 0) {
-      std::remove(temporaryPng.c_str());
-      std::cerr << "bench: no plot for " << scene << " (no measured rows or gnuplot failed)\n";
+    std::vector<const BenchRow*> drawn;
+    std::vector<std::string> zero;
+    for (const BenchRow& r : result.rows) {
+      if (r.scene != scene || r.status != "ok" || plotFamily(r.technique).empty()) continue;
+      if (r.primary().all.rmse > 0 && r.frameMs > 0)
+        drawn.push_back(&r);
+      else
+        zero.push_back(r.technique + (r.variant == "default" ? "" : " " + r.variant));
+    }
+    if (drawn.empty()) {
+      out.notes[scene] = "no plot: every technique's RMSE is 0 here (" +
+                         std::to_string(zero.size()) +
+                         " variants), and a log axis cannot show 0; frame times are in the table";
       continue;
     }
-    written.push_back(png);
+    if (!zero.empty()) {
+      std::string list;
+      for (const std::string& z : zero) list += (list.empty() ? "" : ", ") + z;
+      out.notes[scene] = "RMSE 0, not on the log axis: " + list;
+    }
+    std::vector<size_t> front;
+    for (size_t i : paretoFront(result.rows, scene))
+      if (result.rows[i].primary().all.rmse > 0) front.push_back(i);
+    for (size_t k = 0; k < front.size(); ++k) {
+      const BenchRow& r = result.rows[front[k]];
+      std::ostringstream line;
+      line << k + 1 << ": " << r.technique << " " << r.variant << " (" << std::fixed
+           << std::setprecision(1) << r.frameMs << " ms, RMSE " << std::setprecision(4)
+           << r.primary().all.rmse << ")";
+      out.pareto[scene].push_back(line.str());
+    }
+    for (const std::string& family : families) {
+      std::vector<std::string> techniques;
+      for (const BenchRow* r : drawn)
+        if (plotFamily(r->technique) == family && !contains(techniques, r->technique))
+          techniques.push_back(r->technique);
+      if (techniques.empty()) continue;
+      // The axes fit this plot's points and the scene's front (the front is drawn on each).
+      double xLo = 1e300, xHi = 0, yLo = 1e300, yHi = 0;
+      auto fit = [&](const BenchRow& r) {
+        xLo = std::min(xLo, r.frameMs);
+        xHi = std::max(xHi, r.frameMs);
+        yLo = std::min(yLo, r.primary().all.rmse);
+        yHi = std::max(yHi, r.primary().all.rmse);
+      };
+      for (const BenchRow* r : drawn)
+        if (plotFamily(r->technique) == family) fit(*r);
+      for (size_t i : front) fit(result.rows[i]);
+      std::string tag = family;
+      std::replace(tag.begin(), tag.end(), ' ', '-');
+      const fs::path base = fs::path(outDir) / ("bench-" + scene + "-" + tag);
+      // One data block per technique (gnuplot index), then the Pareto front.
+      writeFileAtomically(base.string() + ".dat", [&](std::ostream& data) {
+        for (const std::string& t : techniques) {
+          data << "# " << t << "\n";
+          for (const BenchRow* r : drawn)
+            if (r->technique == t)
+              data << r->frameMs << " " << r->primary().all.rmse << " \"" << r->variant << "\"\n";
+          data << "\n\n";
+        }
+        data << "# pareto front of the scene (every family), numbered\n";
+        for (size_t k = 0; k < front.size(); ++k) {
+          const BenchRow& r = result.rows[front[k]];
+          data << r.frameMs << " " << r.primary().all.rmse << " \"" << k + 1 << "\"\n";
+        }
+      });
+      // The script names its PNG unless told another name (`out`): the run below draws into a
+      // temporary and renames it, so that a failed gnuplot leaves no half-written PNG.
+      const std::string dat = base.string() + ".dat";
+      writeFileAtomically(base.string() + ".gp", [&](std::ostream& script) {
+        script << "set terminal " << terminal << "\n"
+               << "if (!exists('out')) out = '" << base.string() << ".png'\n"
+               << "set output out\n"
+               << "set title 'scene " << scene << ", " << family
+               << ": visibility error against frame time (grey: Pareto front of the scene, "
+                  "numbered)'\n"
+               << "set logscale xy\nset grid\nset key outside right top\n"
+               << "set xrange [" << xLo / kPlotMargin << ":" << xHi * kPlotMargin << "]\n"
+               << "set yrange [" << yLo / kPlotMargin << ":" << yHi * kPlotMargin << "]\n"
+               << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
+               << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
+               << "plot '" << dat << "' index " << techniques.size()
+               << " using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'Pareto front', '' index "
+               << techniques.size()
+               << " every 2 using 1:2:3 with labels offset char 0,-1 font ',9' tc rgb '#666666' "
+                  "notitle, '' index "
+               << techniques.size()
+               << " every 2::1 using 1:2:3 with labels offset char 0,1 font ',9' tc rgb '#666666' "
+                  "notitle";
+        for (size_t i = 0; i < techniques.size(); ++i)
+          script << ", '' index " << i << " using 1:2 with points pt " << (i % 13) + 1
+                 << " ps 1.6 lw 2 title '" << techniques[i] << "'";
+        script << "\n";
+      });
+      const std::string png = base.string() + ".png";
+      const std::string temporaryPng = temporaryName(png).string();
+      const std::string command =
+          // Its warnings go to stderr: stdout carries only JSON lines.
+          "gnuplot -e \"out='" + temporaryPng + "'\" '" + base.string() + ".gp' 1>&2";
+      if (std::system(command.c_str()) != 0 ||
+          std::rename(temporaryPng.c_str(), png.c_str()) != 0) {
+        std::remove(temporaryPng.c_str());
+        std::cerr << "bench: no plot for " << scene << " " << family << " (gnuplot failed)\n";
+        continue;
+      }
+      out.plots.push_back({scene, family, png});
+    }
   }
-  return written;
+  return out;
 }
 
 int runBenchCommand(const cli::Args& args) {
@@ -930,8 +1000,10 @@ int runBenchCommand(const cli::Args& args) {
     std::cerr << "bench: wrote " << *options.csvPath << "\n";
   }
   try {
-    for (const std::string& p : writePlots(options.outDir, result))
-      std::cerr << "bench: wrote " << p << "\n";
+    const BenchPlots plots = writePlots(options.outDir, result);
+    for (const BenchPlot& p : plots.plots) std::cerr << "bench: wrote " << p.path << "\n";
+    for (const auto& [scene, note] : plots.notes)
+      std::cerr << "bench: " << scene << ": " << note << "\n";
   } catch (const InputError& e) {
     std::cerr << "bench: " << e.what() << "\n";
   }

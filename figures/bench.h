@@ -197,9 +197,25 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
 double parseBudgetMs(const std::string& text);
 
 void writeCsv(const std::string& path, const std::vector<BenchRow>& rows);
-// error-against-time plots, one PNG per scene (gnuplot run as a subprocess); returns the
-// written paths. Throws GlError-free InputError when gnuplot is missing.
-std::vector<std::string> writePlots(const std::string& outDir, const BenchResult& result);
+// Error-against-time plots (gnuplot run as a subprocess), per scene one PNG per technique
+// family, so that no plot carries more than a handful of series (issue 18 item 6). References
+// are the truth, never plotted as competitors. Each plot's x and y ranges are fitted to the
+// scene's competitors (the same on the scene's plots, so they compare); the scene's Pareto
+// front is drawn on each as a grey staircase with numbered points, the numbers listed in
+// `pareto`. A row with RMSE 0 cannot sit on the log axis: it is named in `notes`; a scene with no
+// positive RMSE gets no plot and a note saying why. Throws InputError when gnuplot is missing.
+struct BenchPlot {
+  std::string scene, family, path;
+};
+struct BenchPlots {
+  std::vector<BenchPlot> plots;
+  std::map<std::string, std::vector<std::string>> pareto;  // scene -> "1: technique variant ..."
+  std::map<std::string, std::string> notes;                // scene -> what is not drawn and why
+};
+// "legacy" (the 2001 fixed-function pipelines), "modern twins" (their GLSL twins,
+// registry/twins.h) or "later papers" (GPU Gems, CSM, VSM, Chan); "" for a reference.
+std::string plotFamily(const std::string& technique);
+BenchPlots writePlots(const std::string& outDir, const BenchResult& result);
 
 int runBenchCommand(const cli::Args& args);
 

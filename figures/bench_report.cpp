@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "core/errors.h"
@@ -36,10 +37,12 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   writeFileAtomically((fs::path(options.outDir) / "bench.jsonl").string(),
                       [&](std::ostream& out) { out << json.str(); });
   writeCsv(*options.csvPath, result.rows);
-  std::vector<std::string> plots;
+  BenchPlots plots;
+  std::string plotsMissing;
   try {
     plots = writePlots(options.outDir, result);
   } catch (const InputError& e) {
+    plotsMissing = e.what();
     if (progress) std::cerr << "bench: " << e.what() << "\n";
   }
   const std::vector<ClaimCheck> claims = checkClaims(result);
@@ -58,10 +61,30 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
        "sideways by a fifth of a 512-map texel, beside the reference's own change (what the "
        "true shadow moves). Every variant is in <a href=\"bench/bench.csv\">bench/bench.csv</a>; "
        "regenerate with <code>shadowlab bench --quick --csv bench.csv</code>.</p>\n";
-  for (const std::string& plot : plots)
-    h << "<figure><img src=\"bench/" << htmlEscape(fs::path(plot).filename().string())
-      << "\" alt=\"error against time\"><figcaption>RMSE against median frame time, log "
-         "axes; the Pareto front is the black staircase.</figcaption></figure>\n";
+  // Per scene: one plot per technique family, the numbered Pareto front, and what is not drawn.
+  if (!plotsMissing.empty()) h << "<p class=bad>No plots: " << htmlEscape(plotsMissing) << "</p>\n";
+  std::set<std::string> scenes;
+  for (const BenchRow& r : result.rows) scenes.insert(r.scene);
+  for (const std::string& scene : scenes) {
+    h << "<h3>Scene <code>" << htmlEscape(scene) << "</code></h3>\n<div class=plots>";
+    for (const BenchPlot& plot : plots.plots)
+      if (plot.scene == scene)
+        h << "<figure><img src=\"bench/" << htmlEscape(fs::path(plot.path).filename().string())
+          << "\" alt=\"error against time, " << htmlEscape(scene) << ", " << htmlEscape(plot.family)
+          << "\"><figcaption>" << htmlEscape(plot.family)
+          << ": RMSE against median frame time, log axes fitted to the scene's techniques "
+             "(references are the truth, not plotted)</figcaption></figure>";
+    h << "</div>\n";
+    if (const auto front = plots.pareto.find(scene); front != plots.pareto.end()) {
+      h << "<p><small>Pareto front (grey, numbered):";
+      for (const std::string& point : front->second) h << "<br>" << htmlEscape(point);
+      h << "</small></p>\n";
+    }
+    if (const auto why = result.sceneNotes.find(scene); why != result.sceneNotes.end())
+      h << "<p class=note><small>" << htmlEscape(why->second) << "</small></p>\n";
+    if (const auto note = plots.notes.find(scene); note != plots.notes.end())
+      h << "<p class=note><small>" << htmlEscape(note->second) << "</small></p>\n";
+  }
   h << "<table><tr><th>scene</th><th>technique</th><th>frame ms</th><th>RMSE</th>"
        "<th>RMSE (centre)</th><th>max</th><th>&gt; 0.5</th><th>band RMSE</th><th>leak</th>"
        "<th>temporal (reference)</th></tr>\n";

@@ -24,16 +24,17 @@
 #include <memory>
 #include <sstream>
 
-#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "figures/bench.h"
 #include "figures/bench_report.h"
-#include "figures/stability.h"
 #include "figures/diagnostics.h"
+#include "figures/figure_composite.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
+#include "figures/stability.h"
+#include "registry/registry.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -43,8 +44,6 @@ namespace {
 constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
-constexpr int kCompositeMaxWidth = 1600;  // the one-PNG version of a figure
-constexpr int kCompositeGap = 6;          // pixels between its tiles and rows
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 
 const Technique* lookup(const std::string& name) {
@@ -348,6 +347,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
             tr.diffFile = r.write(fig.id, base + "-twin-diff",
                                   differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale));
             tr.difference = compareMasks(f->visibility, tf->visibility, 0.0);
+            tr.image = twins::judgeImages(f->color, tf->color, f->visibility, tf->visibility);
+            tr.imageDiffFile = r.write(fig.id, base + "-twin-image-diff",
+                                       twins::colourDifferenceHeatMap(f->color, tf->color));
             out.twin = tr;
           }
         }
@@ -404,55 +406,26 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
   return out;
 }
 
-// The whole figure as one PNG, laid out as the paper lays it out: rows of `columns` panels
-// (every buffer of a buffer panel and every chart counts as one), then the close-ups under their
-// panels; a panel that could not be made is a dark red block of the panel's size.
-Image stackRows(const std::vector<Image>& rows, int gap) {
-  int w = 0, h = 0;
-  for (const Image& r : rows) {
-    w = std::max(w, r.width);
-    h += r.height + (h > 0 ? gap : 0);
-  }
-  Image out(std::max(w, 1), std::max(h, 1), 3, 1.0f);
-  int y0 = h;
-  for (const Image& r : rows) {
-    y0 -= r.height;
-    for (int j = 0; j < r.height; ++j)
-      for (int i = 0; i < r.width; ++i)
-        for (int c = 0; c < 3; ++c) out.at(i, y0 + j, c) = r.at(i, j, c);
-    y0 -= gap;
-  }
-  return out;
-}
-
-Image shrinkToWidth(const Image& image, int maxWidth) {
-  const int factor = (image.width + maxWidth - 1) / maxWidth;
-  if (factor <= 1) return image;
-  Image out(image.width / factor, image.height / factor, image.channels);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x)
-      for (int c = 0; c < image.channels; ++c) {
-        float sum = 0;
-        for (int j = 0; j < factor; ++j)
-          for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j, c);
-        out.at(x, y, c) = sum / float(factor * factor);
-      }
-  return out;
-}
-
 // What one panel contributes to figure.png: its images (a buffer panel gives every buffer it
-// shows, a chart its chart) or, when it could not be made, one dark red block of its size.
-std::vector<Image> compositeTiles(const std::string& outDir, const FigureSpec& s,
-                                  const PanelResult& p) {
-  std::vector<Image> tiles;
+// shows, a chart its chart) or, when it could not be made, one dark red block of its size; each
+// under its label (`letter` is "(a) " when the figure's own labels carry no letters).
+std::vector<LabelledTile> compositeTiles(const std::string& outDir, const FigureSpec& s,
+                                         const PanelResult& p, const std::string& letter) {
+  std::string label = letter + p.spec.label;
+  if (!p.spec.technique.empty()) label += " \u2014 " + p.spec.technique;
+  std::vector<LabelledTile> tiles;
   if (p.ok) {
-    for (const ImageFile& image : p.images)
-      tiles.push_back(readPng((fs::path(outDir) / image.file).string()));
+    const bool buffers = p.spec.kind == PanelKind::kIntermediates;
+    for (const ImageFile& image : p.images)  // a buffer strip names its panel once
+      tiles.push_back({readPng((fs::path(outDir) / image.file).string()),
+                       !buffers        ? label
+                       : tiles.empty() ? label + ": " + image.caption
+                                       : image.caption});
     if (!tiles.empty()) return tiles;
   }
   Image missing(p.spec.width ? p.spec.width : s.width, p.spec.height ? p.spec.height : s.height, 3);
   for (size_t i = 0; i < missing.data.size(); i += 3) missing.data[i] = kMissingRed;
-  tiles.push_back(std::move(missing));
+  tiles.push_back({std::move(missing), label + " \u2014 missing: " + p.reason});
   return tiles;
 }
 
@@ -568,64 +541,28 @@ std::string utcNow() {
 
 }  // namespace
 
-Image composeFigure(const FigureResult& fig, const std::string& outDir) {
+Image composeFigure(const FigureResult& fig, const std::string& outDir, CompositeLayout* layout) {
   const FigureSpec& s = fig.spec;
-  const size_t columns = size_t(std::max(s.columns, 1));
-  // The panel tiles in order, and each close-up with the tile it magnifies: a panel's close-ups
-  // are those of its images in order, the same number per image (makePanel).
-  std::vector<Image> panels;
-  struct TileCloseup {
-    size_t tile;   // index into panels
-    size_t index;  // which close-up of that tile (0 .. per tile - 1)
-    Image image;
-  };
-  std::vector<TileCloseup> closeups;
-  for (const PanelResult& p : fig.panels) {
+  bool lettered = false;
+  for (const PanelResult& p : fig.panels) lettered = lettered || p.spec.label.rfind("(", 0) == 0;
+  std::vector<LabelledTile> panels, closeups;
+  for (size_t i = 0; i < fig.panels.size(); ++i) {
+    const PanelResult& p = fig.panels[i];
+    const std::string letter = lettered || i >= 26 ? "" : std::string("(") + char('a' + i) + ") ";
     const size_t first = panels.size();
-    for (Image& tile : compositeTiles(outDir, s, p)) panels.push_back(std::move(tile));
+    for (LabelledTile& tile : compositeTiles(outDir, s, p, letter))
+      panels.push_back(std::move(tile));
+    // A buffer panel's close-ups are shared out over its buffers in order (one each, or
+    // several each); a render's all sit under its one image.
     const size_t tiles = panels.size() - first;
-    const size_t perTile = std::max<size_t>(1, p.closeups.size() / tiles);
-    for (size_t i = 0; i < p.closeups.size(); ++i)
-      closeups.push_back({first + std::min(i / perTile, tiles - 1), i % perTile,
-                          readPng((fs::path(outDir) / p.closeups[i].file).string())});
+    const size_t perTile = std::max<size_t>(1, p.closeups.size() / std::max<size_t>(tiles, 1));
+    for (size_t k = 0; k < p.closeups.size(); ++k)
+      closeups.push_back({readPng((fs::path(outDir) / p.closeups[k].file).string()),
+                          p.closeups[k].caption,
+                          int(first + std::min(k / perTile, std::max<size_t>(tiles, 1) - 1))});
   }
   if (panels.empty()) return Image();
-  std::vector<Image> rows;
-  std::vector<int> tileX(panels.size(), 0);  // each tile's left edge in its row
-  for (size_t i = 0; i < panels.size(); i += columns) {
-    const size_t end = std::min(panels.size(), i + columns);
-    int x = 0;
-    for (size_t t = i; t < end; ++t) {
-      tileX[t] = x;
-      x += panels[t].width + kCompositeGap;
-    }
-    rows.push_back(sideBySide(
-        std::vector<Image>(panels.begin() + long(i), panels.begin() + long(end)), kCompositeGap));
-  }
-  // The close-ups: one row per row of panels and close-up number, each close-up starting under
-  // the left edge of its own panel (or just right of the close-up before it, where that one is
-  // wider than its panel), so that a close-up sits below the panel it magnifies.
-  std::map<std::pair<size_t, size_t>, std::vector<const TileCloseup*>> closeupRows;
-  for (const TileCloseup& c : closeups) closeupRows[{c.tile / columns, c.index}].push_back(&c);
-  for (const auto& [key, row] : closeupRows) {
-    std::vector<std::pair<int, const Image*>> placed;
-    int end = 0, height = 0;
-    for (const TileCloseup* c : row) {
-      const int x = std::max(tileX[c->tile], placed.empty() ? 0 : end + kCompositeGap);
-      placed.push_back({x, &c->image});
-      end = x + c->image.width;
-      height = std::max(height, c->image.height);
-    }
-    Image out(std::max(end, 1), std::max(height, 1), 3, 1.0f);
-    for (const auto& [x0, image] : placed) {
-      const Image rgb = toRgb(*image);
-      for (int j = 0; j < rgb.height; ++j)
-        for (int i = 0; i < rgb.width; ++i)
-          for (int c = 0; c < 3; ++c) out.at(x0 + i, height - rgb.height + j, c) = rgb.at(i, j, c);
-    }
-    rows.push_back(std::move(out));
-  }
-  return shrinkToWidth(stackRows(rows, kCompositeGap), kCompositeMaxWidth);
+  return composeLabelled(panels, closeups, s.columns, layout);
 }
 
 std::vector<FigureInfo> listFigures() {

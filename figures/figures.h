@@ -6,9 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "registry/cli.h"
 #include "core/image.h"
+#include "figures/figure_composite.h"
 #include "figures/report.h"
+#include "registry/cli.h"
 
 namespace sl::figures {
 
@@ -27,10 +28,14 @@ int runBench(const cli::Args& args);
 // of the tile it magnifies (pushed right only where the close-up before it is wider than its
 // tile). Every panel gives its tiles in order: each image it
 // made (a buffer panel every buffer it shows, a chart its chart), or one dark red block of the
-// panel's size when it could not be made. Tiles are top-aligned, 6 pixels apart; a composite
-// wider than 1600 pixels is shrunk by the smallest integer factor that fits (box filter).
-// Images are read from outDir (the files PanelResult names). A figure without panels: empty.
-Image composeFigure(const FigureResult& fig, const std::string& outDir);
+// panel's size when it could not be made. Every tile sits under its label drawn as text: the
+// panel's letter and label (letters (a), (b), ... added when the figure's labels have none) and
+// technique, a buffer's caption (its channel names), a close-up's caption, a missing panel's
+// reason (figures/figure_composite.h: layout, shrinking, the font). Images are read from outDir
+// (the files PanelResult names). A figure without panels: empty. `layout` (optional) receives
+// where each tile and label went.
+Image composeFigure(const FigureResult& fig, const std::string& outDir,
+                    CompositeLayout* layout = nullptr);
 int runPlan(const cli::Args& args);
 
 }  // namespace sl::figures

@@ -84,9 +84,11 @@ td, th { border: 1px solid #bbb; padding: 2px 6px; text-align: left; vertical-al
 th { background: #eee; }
 .paper { color: #05a; }
 .ok { color: #070; } .bad { color: #c00; }
-.inter { display: flex; flex-wrap: wrap; gap: 6px; }
+.buffers { grid-column: 1 / -1; }
+.plots { display: grid; grid-template-columns: repeat(auto-fit, minmax(480px, 1fr)); gap: 6px; }
+.inter { display: flex; flex-wrap: wrap; gap: 6px; align-items: flex-start; }
 .inter figure { max-width: 100%; }
-.inter img { height: 180px; width: auto; }
+.inter img { width: auto; height: auto; max-width: 100%; max-height: 240px; }
 nav li { margin: 2px 0; }
 )";
 
@@ -97,8 +99,10 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
     return;
   }
   if (p.spec.kind == PanelKind::kIntermediates) {
-    h << "<div><b>" << htmlEscape(p.spec.label) << "</b> (" << htmlEscape(p.spec.technique)
-      << ")<div class=inter>";
+    // A buffer strip spans the whole row of its grid and wraps its buffers there, each at its
+    // own aspect ratio (issue 18 item 6).
+    h << "<div class=buffers><b>" << htmlEscape(p.spec.label) << "</b> ("
+      << htmlEscape(p.spec.technique) << ")<div class=inter>";
     for (const ImageFile& im : p.images)
       h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file) << "\" alt=\""
         << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(im.caption) << "</figcaption></figure>";
@@ -191,7 +195,7 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
   bool any = false;
   for (const PanelResult& p : f.panels) any = any || p.twin.has_value();
   if (!any) return;
-  h << "<h4>Legacy vs modern</h4><div class=grid style=\"grid-template-columns: repeat(3, "
+  h << "<h4>Legacy vs modern</h4><div class=grid style=\"grid-template-columns: repeat(4, "
        "1fr)\">\n";
   for (const PanelResult& p : f.panels) {
     if (!p.twin) continue;
@@ -207,6 +211,17 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
       << fixed(t.difference.maxAbs, 3) << ", RMSE " << fixed(t.difference.rmse, 4)
       << "</figcaption></figure>\n";
+    // The images, not only the masks (issue 18 item 5), against registry/twins.h's bound.
+    h << "<figure><img src=\"" << htmlEscape(t.imageDiffFile)
+      << "\" alt=\"image difference\"><figcaption>|image difference| (largest channel; black "
+         "= within "
+      << twins::kImageSteps << "/255, white = 16/255 or more): " << t.image.beyondSteps << " of "
+      << t.image.pixels << " pixels differ by more than " << twins::kImageSteps << "/255 ("
+      << t.image.beyondWhereMasksAgree << " where the masks agree; bound " << t.image.boundPixels
+      << ", the spotlight cone's edge band), max " << fixed(t.image.maxAbs, 3) << ", RMSE "
+      << fixed(t.image.rmse, 4)
+      << " <span class=" << (t.image.withinBound ? "ok>within" : "bad>beyond")
+      << " the bound</span></figcaption></figure>\n";
   }
   h << "</div>\n";
 }
@@ -327,14 +342,26 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   // Self-check for readers and for tests/figures/report_test.cpp: every image must have
   // loaded; a broken one is outlined in red, logged to the console and counted on <body>.
   h << "<script>\nwindow.addEventListener('load', function () {\n"
-       "  var ok = 0, broken = 0;\n"
+       "  var ok = 0, broken = 0, distorted = 0;\n"
        "  document.querySelectorAll('img').forEach(function (img) {\n"
-       "    if (img.complete && img.naturalWidth > 0) { ok++; return; }\n"
+       "    if (img.complete && img.naturalWidth > 0) {\n"
+       "      ok++;\n"
+       // Shown at its own aspect ratio: layout rounds a box to whole CSS pixels, so a 2%
+       // tolerance (a 50-pixel-high image off by one pixel) separates rounding from squashing.
+       "      var w = img.getBoundingClientRect().width, h = img.getBoundingClientRect().height;\n"
+       "      if (w > 0 && h > 0 && Math.abs((w / h) / (img.naturalWidth / img.naturalHeight) - 1)"
+       " > 0.02) {\n"
+       "        distorted++; img.style.outline = '3px solid orange';\n"
+       "        console.warn('distorted image: ' + img.getAttribute('src'));\n"
+       "      }\n"
+       "      return;\n"
+       "    }\n"
        "    broken++; img.style.outline = '3px solid red';\n"
        "    console.error('missing image: ' + img.getAttribute('src'));\n"
        "  });\n"
        "  document.body.setAttribute('data-images-ok', ok);\n"
        "  document.body.setAttribute('data-images-broken', broken);\n"
+       "  document.body.setAttribute('data-images-distorted', distorted);\n"
        "});\n</script>\n";
   h << "</body></html>\n";
   // Written to a temporary and renamed: a failed run keeps the previous report whole.

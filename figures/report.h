@@ -9,6 +9,7 @@
 #include "core/metrics.h"
 #include "core/technique.h"
 #include "figures/figure_spec.h"
+#include "registry/twins.h"
 
 namespace sl::figures {
 
@@ -24,6 +25,10 @@ struct TwinResult {
   double milliseconds = 0;
   int timedFrames = 0;  // as PanelResult::timedFrames
   MaskDifference difference;
+  // The images too (issue 18 item 5): a heat map of the largest channel difference, and the
+  // agreement against registry/twins.h's image bound.
+  std::string imageDiffFile;
+  twins::ImageAgreement image;
 };
 
 struct PanelResult {

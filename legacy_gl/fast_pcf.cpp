@@ -26,6 +26,7 @@
 #include "core/gl.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -122,6 +123,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                      std::to_string(side));
   const std::vector<Phase> phases = phasesFor(side);
   Frame frame;
+  // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
+  const Scene camera = cameraPassScene(scene, params, frame);
   FastPcfState s;
   s.enc = bs::depthEncoding(params.precision);
   bs::createRampTexture(s.ramp, s.enc);
@@ -165,12 +168,12 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   for (size_t i = 0; i < phases.size(); ++i) {
     const Phase& p = phases[i];
     const std::string tag = phaseTag(p), file = phaseFileTag(p);
-    renderReplicatedCameraDepth(scene, params, s, frame, tag);
+    renderReplicatedCameraDepth(camera, params, s, frame, tag);
     if (params.capturePasses)
       bs::capture(frame, params, "3-camera-pass-z-replicated" + file,
                   "Pass 3: light depth of each visible point in all four channels",
                   toRgb(bs::readWindowRgba(params)));
-    subtractPackedMap(scene, params, s, i, p, frame);
+    subtractPackedMap(camera, params, s, i, p, frame);
     if (params.capturePasses) {
       bs::capture(
           frame, params, "4-mask-before-colour-table" + file + "-rgba-x32",
@@ -201,7 +204,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   "Pass 6: the four phases summed in the accumulation buffer (4 x 5 levels)",
                   bs::alphaOf(bs::readWindowRgba(params)));
   }
-  shade(scene, params, frame);
+  shade(camera, params, frame);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = bs::readVisibilityFromAlpha(params);
   if (params.capturePasses)

@@ -16,16 +16,16 @@
 //   5. renderVisibilityMask      — the comparison result alone, for the --mask output
 #include "legacy_gl/hardware_shadow_map.h"
 
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 #include "core/errors.h"
+#include "core/gl.h"
 #include "core/pass_capture.h"
 #include "core/plan.h"
-#include "core/gl.h"
 #include "legacy_gl/fixed_function.h"
+#include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -247,8 +247,10 @@ void setDepthCompareParameters(bool linearCompare) {
   glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
 }
 
-void shadeWithShadowMap(const Scene& scene, const RenderParams& params, unsigned shadowMap,
+void shadeWithShadowMap(const Scene& lightScene, const RenderParams& params, unsigned shadowMap,
                         int firstPass, Frame& frame) {
+  // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
+  const Scene scene = cameraPassScene(lightScene, params, frame);
   TextureName behindLightStep;
   {
     PassTimer timer(frame, std::to_string(firstPass) + " eye-linear texgen planes");

@@ -25,6 +25,7 @@
 #include "core/gl.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -124,6 +125,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const auto groups = footprintGroups(side);
   const int footprintSamples = side * side;
   Frame frame;
+  // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
+  const Scene camera = cameraPassScene(scene, params, frame);
   PcfState s;
   s.enc = bs::depthEncoding(params.precision);
   bs::createRampTexture(s.ramp, s.enc);
@@ -162,12 +165,12 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     const std::string tag = groupTag(g, groups.size());
     const std::string file = groupFileTag(g, groups.size());
     const int samples = int(groups[g].size());
-    renderReplicatedCameraDepth(scene, params, s, frame, tag);
+    renderReplicatedCameraDepth(camera, params, s, frame, tag);
     if (params.capturePasses)
       bs::capture(frame, params, "2-camera-pass-z-replicated" + file,
                   "Pass 2: light depth of each visible point in all four channels",
                   toRgb(bs::readWindowRgba(params)));
-    subtractPackedMap(scene, params, s, g, frame, tag);
+    subtractPackedMap(camera, params, s, g, frame, tag);
     if (params.capturePasses) {
       const Image mask = bs::readWindowRgba(params);
       bs::capture(frame, params, "3-mask-before-colour-table" + file + "-rgba-x32",
@@ -196,7 +199,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   "Pass 5: the groups summed in the accumulation buffer (white = all shadowed)",
                   bs::alphaOf(bs::readWindowRgba(params)));
   }
-  shade(scene, params, frame);
+  shade(camera, params, frame);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = bs::readVisibilityFromAlpha(params);
   if (params.capturePasses)

@@ -17,6 +17,7 @@
 #include "core/gl.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -72,6 +73,8 @@ void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
   (void)context;
   Frame frame;
+  // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
+  const Scene camera = cameraPassScene(scene, params, frame);
   RampState s;
   s.enc = bs::depthEncoding(params.precision);
   bs::createRampTexture(s.ramp, s.enc);
@@ -83,17 +86,17 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                 "Pass 1: light-space depth through the 1D ramp, alpha channel of the shadow map "
                 "(black = near, white = far or empty)",
                 bs::alphaOf(bs::readShadowMap(s.map, params.shadowMapTexels)));
-    bs::renderProjectedMapOnly(scene, params, s.map, glm::vec2(0.0f));
+    bs::renderProjectedMapOnly(camera, params, s.map, glm::vec2(0.0f));
     bs::capture(frame, params, "3a-projected-shadow-map-alpha",
                 "The shadow map projected onto the scene from the light (what pass 3 subtracts)",
                 bs::alphaOf(bs::readWindowRgba(params)));
   }
-  renderDepthRampFromCamera(scene, params, s, frame);
+  renderDepthRampFromCamera(camera, params, s, frame);
   if (params.capturePasses)
     bs::capture(frame, params, "2-camera-pass-ramp-depth-alpha",
                 "Pass 2: each visible point's own depth from the light, same ramp (minus bias)",
                 bs::alphaOf(bs::readWindowRgba(params)));
-  subtractShadowMap(scene, params, s, frame);
+  subtractShadowMap(camera, params, s, frame);
   if (params.capturePasses) {
     const Image diff = bs::alphaOf(bs::readWindowRgba(params));
     bs::capture(frame, params, "3-difference-alpha",
@@ -107,7 +110,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     bs::capture(frame, params, "4-shadow-mask-alpha",
                 "Pass 4 (footnote 1): the mask after the extra copy, 1 = shadow",
                 bs::alphaOf(bs::readWindowRgba(params)));
-  shade(scene, params, frame);
+  shade(camera, params, frame);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = bs::readVisibilityFromAlpha(params);
   if (params.capturePasses)

@@ -210,6 +210,59 @@ Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& mode
   return a;
 }
 
+ImageAgreement judgeImages(const Image& legacyColor, const Image& modernColor,
+                           const Image& legacyMask, const Image& modernMask) {
+  if (legacyColor.width != modernColor.width || legacyColor.height != modernColor.height ||
+      legacyMask.width != legacyColor.width || legacyMask.height != legacyColor.height ||
+      modernMask.width != legacyColor.width || modernMask.height != legacyColor.height)
+    throw InputError("judgeImages: images and masks of different sizes");
+  const Image a = toRgb(legacyColor), b = toRgb(modernColor);
+  ImageAgreement r;
+  r.pixels = (long long)a.width * a.height;
+  r.boundPixels = kConeEdgeBandPixelsPerPerimeterPixel * 2LL * (a.width + a.height);
+  // Colour is read back from 8-bit buffers as float: allow float noise far below a step.
+  constexpr double kReadbackNoise = 1e-6;
+  double sum = 0.0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      double d = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        const double e = std::fabs(double(a.at(x, y, c)) - double(b.at(x, y, c)));
+        d = std::max(d, e);
+        sum += e * e;
+      }
+      r.maxAbs = std::max(r.maxAbs, d);
+      if (d <= kImageSteps * kOneStep + kReadbackNoise) continue;
+      ++r.beyondSteps;
+      const double m = std::fabs(double(legacyMask.at(x, y)) - double(modernMask.at(x, y)));
+      if (m <= kOneStep + kReadbackNoise) ++r.beyondWhereMasksAgree;
+    }
+  r.rmse = r.pixels > 0 ? std::sqrt(sum / (3.0 * double(r.pixels))) : 0.0;
+  r.withinBound = r.beyondWhereMasksAgree <= r.boundPixels;
+  std::ostringstream v;
+  v << "image bound: <= " << r.boundPixels << " pixels (the cone-edge band, "
+    << kConeEdgeBandPixelsPerPerimeterPixel << " x the window perimeter) beyond " << kImageSteps
+    << "/255 where the masks agree; measured " << r.beyondWhereMasksAgree << " (" << r.beyondSteps
+    << " beyond " << kImageSteps << "/255 in all), max " << r.maxAbs << ", RMSE " << r.rmse;
+  r.verdict = v.str();
+  return r;
+}
+
+Image colourDifferenceHeatMap(const Image& a, const Image& b) {
+  const Image ra = toRgb(a), rb = toRgb(b);
+  if (ra.width != rb.width || ra.height != rb.height)
+    throw InputError("cannot difference images of different sizes");
+  Image largest(ra.width, ra.height, 1), zero(ra.width, ra.height, 1);
+  for (int y = 0; y < ra.height; ++y)
+    for (int x = 0; x < ra.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        largest.at(x, y) = std::max(largest.at(x, y), std::fabs(ra.at(x, y, c) - rb.at(x, y, c)));
+  constexpr float kReadbackNoise = 1e-6f;
+  for (float& d : largest.data)
+    if (d <= float(kImageSteps * kOneStep) + kReadbackNoise) d = 0.0f;  // within the bound's steps
+  return differenceHeatMap(largest, zero, kImageDiffFullScale);
+}
+
 RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int height,
                        int shadowMapTexels, Backend backend) {
   RenderParams p;

@@ -66,6 +66,38 @@ struct Agreement {
 
 Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& modernMask);
 
+// The images agree too, not only the masks (issue 18 item 5). What may differ:
+//  - the spotlight cone's edge: legacy lights per vertex on triangles split to one pixel
+//    there (legacy_gl/spotlight_tessellation.h), modern per pixel, so the pixels within one
+//    pixel on either side of the cone's edge may be lit in one and not in the other: a band
+//    two pixels wide along a convex curve inside the window, shorter than the window's
+//    perimeter, so at most kConeEdgeBandPixelsPerPerimeterPixel * 2 (W + H) pixels;
+//  - inside the cone, Gouraud against per-pixel diffuse and specular, and legacy's sums in an
+//    8-bit framebuffer: a few 8-bit steps (kImageSteps);
+//  - where the masks differ (the mask bound above), the direct light they scale.
+// Bound: the pixels whose colour differs by more than kImageSteps 8-bit steps in any channel
+// while the masks agree within one step number at most the cone-edge band.
+constexpr int kImageSteps = 3;
+constexpr int kConeEdgeBandPixelsPerPerimeterPixel = 2;
+
+struct ImageAgreement {
+  long long pixels = 0;
+  long long beyondSteps = 0;            // max |RGB difference| > kImageSteps / 255
+  long long beyondWhereMasksAgree = 0;  // of those, where the masks agree within one step
+  long long boundPixels = 0;            // the cone-edge band's size for this window
+  double maxAbs = 0.0;                  // largest channel difference
+  double rmse = 0.0;                    // over every channel of every pixel
+  bool withinBound = false;
+  std::string verdict;  // one line: measured against the bound
+};
+ImageAgreement judgeImages(const Image& legacyColor, const Image& modernColor,
+                           const Image& legacyMask, const Image& modernMask);
+// The largest channel difference of two colour images as core/image.h's heat map, full scale
+// kImageDiffFullScale; differences within kImageSteps (rounding, Gouraud) are drawn black, so
+// the picture shows what judgeImages counts; a lit/unlit flip is white.
+constexpr float kImageDiffFullScale = 16.0f / 255.0f;
+Image colourDifferenceHeatMap(const Image& a, const Image& b);
+
 // RenderParams for one side of a pair.
 RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int height,
                        int shadowMapTexels, Backend backend);

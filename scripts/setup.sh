@@ -15,6 +15,7 @@ PACKAGES=(
   libembree-dev       # ray-traced reference visibility
   libgtest-dev googletest  # tests
   gnuplot-nox         # plots in the report
+  imagemagick fonts-dejavu-core  # figure.png's labels: text drawn by convert in DejaVu Sans
   chromium            # tests/figures: report.html checked in headless Chromium (skips without)
 )
 

@@ -98,8 +98,9 @@ void agreementTable(const Options& o) {
   std::cout << "### Agreement (" << backendName(o.backend) << ", " << o.width << "x" << o.height
             << ", " << o.shadowMap << "^2 map)\n\n"
             << "| pair | scene | bound | max difference | differing pixels | > 1/255 | "
-               "> 1/255 off band | within bound |\n"
-            << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
+               "> 1/255 off band | within bound | image: > 3/255 (where masks agree) | image: "
+               "bound (cone-edge band) | image: max, RMSE | image within bound |\n"
+            << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const twins::TwinPair& pair : twins::twinPairs())
     for (const std::string& name : o.scenes) {
       const Scene scene = loadScene(name);
@@ -117,9 +118,14 @@ void agreementTable(const Options& o) {
         const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
         std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1) << "/255) | "
                   << a.differing << " of " << a.all.pixels << " | " << a.beyondOneStep << " | "
-                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " |\n";
+                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " | ";
+        const twins::ImageAgreement im =
+            twins::judgeImages(legacy.color, modern.color, legacy.visibility, modern.visibility);
+        std::cout << im.beyondSteps << " (" << im.beyondWhereMasksAgree << ") | " << im.boundPixels
+                  << " | " << fixed(im.maxAbs, 3) << ", " << fixed(im.rmse, 4) << " | "
+                  << (im.withinBound ? "yes" : "**no**") << " |\n";
       } catch (const std::exception& e) {
-        std::cout << "not run: " << e.what() << " | | | | |\n";
+        std::cout << "not run: " << e.what() << " | | | | | | | | |\n";
       }
     }
   for (const std::string& m : twins::missingPairs()) std::cout << "\nnot in this build: " << m;

@@ -10,13 +10,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
-#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "reference/reference.h"
+#include "registry/registry.h"
 
 namespace sl::figures {
 namespace {
@@ -73,6 +74,19 @@ TEST(BenchErrors, LeakCountsLitUmbraOutsideTheBand) {
   EXPECT_EQ(e.band.pixels, 1);
 }
 
+// The plots' families (issue 18 item 6): the 2001 pipelines, their GLSL twins (as registry/twins.h
+// pairs them), the later papers; references are the truth and go on no plot.
+TEST(BenchPlots, FamiliesSplitLegacyTwinsAndLaterPapers) {
+  EXPECT_EQ(plotFamily("legacy.hw"), "legacy");
+  EXPECT_EQ(plotFamily("legacy.fast-pcf"), "legacy");
+  EXPECT_EQ(plotFamily("modern.hw"), "modern twins");
+  EXPECT_EQ(plotFamily("modern.fast-pcf"), "modern twins");
+  EXPECT_EQ(plotFamily("modern.csm"), "later papers");
+  EXPECT_EQ(plotFamily("modern.gems16"), "later papers");
+  EXPECT_EQ(plotFamily("reference.hard"), "");
+  EXPECT_EQ(plotFamily("reference.soft"), "");
+}
+
 TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "bench";
   fs::remove_all(dir);
@@ -117,13 +131,68 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   bool plannerRows = false;
   for (const BenchRow& row : r.rows) plannerRows |= row.scene == "brabec-light-away";
   EXPECT_TRUE(plannerRows);
-  // A plot per scene with a non-zero error: brabec and the minification scene trees-far (the
-  // planner scene has none: no pixel is lit).
-  const auto plots = writePlots(dir.string(), r);
-  ASSERT_EQ(plots.size(), 2u);
-  EXPECT_NE(plots[0].find("bench-brabec.png"), std::string::npos);
-  EXPECT_NE(plots[1].find("bench-trees-far.png"), std::string::npos);
-  for (const std::string& plot : plots) EXPECT_GT(fs::file_size(plot), 1000u);
+  // Per scene with a non-zero error (brabec and the minification scene trees-far) one plot per
+  // technique family present (plotFamily); the planner scene (no pixel lit, every RMSE 0) gets none
+  // and a note saying why, on the page and in sceneNotes.
+  const BenchPlots plots = writePlots(dir.string(), r);
+  std::set<std::string> files;
+  for (const BenchPlot& plot : plots.plots) {
+    files.insert(fs::path(plot.path).filename().string());
+    EXPECT_GT(fs::file_size(plot.path), 1000u);
+  }
+  // modern.hw alone: the "modern twins" family only, no empty legacy or later-papers plot.
+  EXPECT_EQ(files, (std::set<std::string>{"bench-brabec-modern-twins.png",
+                                          "bench-trees-far-modern-twins.png"}));
+  for (const BenchPlot& plot : plots.plots) EXPECT_NE(plot.scene, "brabec-light-away");
+  ASSERT_TRUE(plots.notes.count("brabec-light-away"));
+  EXPECT_NE(plots.notes.at("brabec-light-away").find("RMSE is 0"), std::string::npos);
+  EXPECT_TRUE(r.sceneNotes.count("brabec-light-away"));
+  // Readable plots (issue 18 item 6): no reference among the plotted points, at most a handful
+  // of series per plot, and x and y ranges fitted to the plot's family and the scene's Pareto
+  // front (every point inside, within a factor 1.5 of the extremes).
+  for (const BenchPlot& plot : plots.plots) {
+    const std::string base = plot.path.substr(0, plot.path.size() - 4);
+    std::ifstream dat(base + ".dat"), gp(base + ".gp");
+    std::stringstream datText, gpText;
+    datText << dat.rdbuf();
+    gpText << gp.rdbuf();
+    const std::string data = datText.str();
+    EXPECT_EQ(data.find("reference."), std::string::npos) << plot.path;
+    const std::string script = gpText.str();
+    const size_t series = size_t(std::count(data.begin(), data.end(), '#')) - 1;
+    EXPECT_LE(series, 9u) << plot.path;
+    double xLo = 0, xHi = 0, yLo = 0, yHi = 0;
+    ASSERT_EQ(std::sscanf(script.substr(script.find("set xrange")).c_str(), "set xrange [%lf:%lf]",
+                          &xLo, &xHi),
+              2)
+        << script;
+    ASSERT_EQ(std::sscanf(script.substr(script.find("set yrange")).c_str(), "set yrange [%lf:%lf]",
+                          &yLo, &yHi),
+              2)
+        << script;
+    double dataXLo = 1e300, dataXHi = 0, dataYLo = 1e300, dataYHi = 0;
+    const std::vector<size_t> front = paretoFront(r.rows, plot.scene);
+    for (size_t i = 0; i < r.rows.size(); ++i) {
+      const BenchRow& row = r.rows[i];
+      const bool onFront = std::find(front.begin(), front.end(), i) != front.end();
+      if (row.scene == plot.scene && row.status == "ok" &&
+          (plotFamily(row.technique) == plot.family || onFront) && row.primary().all.rmse > 0) {
+        dataXLo = std::min(dataXLo, row.frameMs);
+        dataXHi = std::max(dataXHi, row.frameMs);
+        dataYLo = std::min(dataYLo, row.primary().all.rmse);
+        dataYHi = std::max(dataYHi, row.primary().all.rmse);
+      }
+    }
+    EXPECT_LT(xLo, dataXLo) << plot.path;
+    EXPECT_GT(xHi, dataXHi) << plot.path;
+    EXPECT_GT(xLo, dataXLo / 1.5) << plot.path << ": x range not fitted to the data";
+    EXPECT_LT(xHi, dataXHi * 1.5) << plot.path << ": x range not fitted to the data";
+    EXPECT_LT(yLo, dataYLo) << plot.path;
+    EXPECT_GT(yHi, dataYHi) << plot.path;
+    EXPECT_GT(yLo, dataYLo / 1.5) << plot.path;
+    EXPECT_LT(yHi, dataYHi * 1.5) << plot.path;
+  }
+  EXPECT_FALSE(plots.pareto.at("brabec").empty());
 }
 
 // ---- Issue 14: temporal stability, the claim scenes, the fair claims -------------------------

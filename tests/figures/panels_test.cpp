@@ -1,6 +1,7 @@
 // tests/figures/panels_test.cpp — the figures' panels (issue 14 item 3): every panel of
 // figure_list.cpp names a technique, parameters and buffers that exist; figure.png holds every
-// panel, buffer panels, charts and the red blocks of panels that could not be made included;
+// panel, buffer panels, charts and the red blocks of panels that could not be made included,
+// each under its label drawn as text (issue 18 item 6);
 // the stencil buffer the Chan 3-1c / 3-9c panels show is the one the techniques shade from.
 #include <gtest/gtest.h>
 
@@ -30,6 +31,9 @@ namespace {
 constexpr float kPngStep = 1.0f / 255.0f;
 constexpr int kGap = 6;  // pixels between tiles and rows (figures.h: composeFigure)
 constexpr int kMaxCompositeWidth = 1600;
+// A label with a few characters of 13-pixel text has well over this many dark pixels; an
+// empty (white) strip has none.
+constexpr int kMinTextPixels = 20;
 
 fs::path outputDir(const std::string& name) {
   const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "figures" / name;
@@ -70,30 +74,38 @@ int mismatches(const Image& composite, const Image& tile, int x0, int y0) {
   return bad;
 }
 
-// Where each tile's bottom-left corner lies in a composite of rows of `columns` tiles,
-// top-aligned, kGap apart (the layout figures.h promises), and the composite's size.
-struct Layout {
-  std::vector<std::pair<int, int>> corners;
-  int width = 0, height = 0;
-};
-Layout layoutOf(const std::vector<Image>& tiles, int columns) {
-  std::vector<std::pair<int, int>> topLeft;  // x, distance of the tile's top from the top
-  Layout l;
-  int top = 0;
-  for (size_t i = 0; i < tiles.size(); i += size_t(columns)) {
-    int x = 0, rowHeight = 0;
-    for (size_t k = i; k < std::min(tiles.size(), i + size_t(columns)); ++k) {
-      topLeft.push_back({x, top});
-      x += tiles[k].width + kGap;
-      rowHeight = std::max(rowHeight, tiles[k].height);
+// A rectangle of composeFigure's layout (top-left origin) as core/image.h's bottom-left corner.
+int bottomOf(const Image& composite, const TileRect& r) {
+  return composite.height - r.y - r.height;
+}
+
+// Dark pixels (drawn text) inside a label strip of the composite.
+int darkPixels(const Image& composite, const TileRect& r) {
+  int dark = 0;
+  const int y0 = bottomOf(composite, r);
+  for (int y = y0; y < y0 + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) dark += composite.at(x, y, 0) < 0.5f;
+  return dark;
+}
+
+// Rows of `columns` tiles kGap apart, each row's tiles top-aligned under label strips of one
+// height, each strip right above its tile and holding text.
+void expectLabelledRows(const Image& composite, const CompositeLayout& l, size_t panels,
+                        size_t columns) {
+  for (size_t k = 0; k < l.tiles.size(); ++k) {
+    const bool closeup = k >= panels;
+    const size_t first =
+        closeup ? panels + (k - panels) / columns * columns : k / columns * columns;
+    EXPECT_EQ(l.tiles[k].y, l.tiles[first].y) << "tile " << k << " not top-aligned in its row";
+    EXPECT_EQ(l.labels[k].x, l.tiles[k].x) << "label " << k;
+    EXPECT_LE(l.labels[k].y + l.labels[k].height, l.tiles[k].y) << "label " << k << " not above";
+    if (k > first) {
+      EXPECT_GE(l.tiles[k].x, l.tiles[k - 1].x + l.tiles[k - 1].width + kGap) << "tile " << k;
+    } else {
+      EXPECT_EQ(l.tiles[k].x, 0) << "tile " << k << " does not start its row";
     }
-    l.width = std::max(l.width, x - kGap);
-    top += rowHeight + kGap;
+    EXPECT_GT(darkPixels(composite, l.labels[k]), kMinTextPixels) << "label " << k << " is empty";
   }
-  l.height = top - kGap;
-  for (size_t k = 0; k < tiles.size(); ++k)
-    l.corners.push_back({topLeft[k].first, l.height - topLeft[k].second - tiles[k].height});
-  return l;
 }
 
 }  // namespace
@@ -192,19 +204,22 @@ TEST(FigureComposite, HoldsRendersBuffersChartsCloseupsAndRedBlocks) {
   p.reason = "no such buffer";
   fig.panels.push_back(p);
 
-  const Image composite = composeFigure(fig, dir.string());
+  CompositeLayout layout;
+  const Image composite = composeFigure(fig, dir.string(), &layout);
   const Image red = solid(40, 30, 0.55f, 0.0f, 0.0f);
-  const std::vector<Image> tiles = {render, bufferA, bufferB, chart, red};
-  const Layout panels = layoutOf(tiles, 3);
-  const int closeupRow = closeup.height + kGap;  // the close-ups form the last row
-  ASSERT_EQ(composite.width, std::max(panels.width, closeup.width));
-  ASSERT_EQ(composite.height, panels.height + closeupRow);
-  for (size_t k = 0; k < tiles.size(); ++k)
-    EXPECT_EQ(mismatches(composite, tiles[k], panels.corners[k].first,
-                         panels.corners[k].second + closeupRow),
-              0)
+  const std::vector<Image> tiles = {render, bufferA, bufferB, chart, red, closeup};
+  ASSERT_EQ(layout.tiles.size(), tiles.size());
+  ASSERT_EQ(layout.shrink, 1);
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    EXPECT_EQ(layout.tiles[k].width, tiles[k].width) << "tile " << k;
+    EXPECT_EQ(layout.tiles[k].height, tiles[k].height) << "tile " << k;
+    EXPECT_EQ(
+        mismatches(composite, tiles[k], layout.tiles[k].x, bottomOf(composite, layout.tiles[k])), 0)
         << "tile " << k;
-  EXPECT_EQ(mismatches(composite, closeup, 0, 0), 0) << "close-up";
+  }
+  expectLabelledRows(composite, layout, 5, 3);
+  EXPECT_GT(layout.tiles[3].y, layout.tiles[0].y + 30) << "the chart starts the second row";
+  EXPECT_GT(layout.tiles[5].y, layout.tiles[3].y + 30) << "the close-ups come last";
 }
 
 // Close-ups sit under the panel they magnify (issue 21: Chan Fig. 3-1's close-ups of panels b-d
@@ -244,22 +259,30 @@ TEST(FigureComposite, CloseupsSitUnderTheirPanels) {
   p.closeups = {{"fig/cr0.png", "first"}, {"fig/cr1.png", "second"}};
   fig.panels.push_back(p);
 
-  const Image composite = composeFigure(fig, dir.string());
-  const std::vector<Image> tiles = {view, bufferA, bufferB, render};
-  const Layout panels = layoutOf(tiles, 4);
-  const int row = 12 + kGap;  // one row of close-ups
-  ASSERT_EQ(composite.height, panels.height + 2 * row);
+  CompositeLayout layout;
+  const Image composite = composeFigure(fig, dir.string(), &layout);
+  // layout.tiles: the four panel tiles (view, a, b, render), then the close-ups in order.
+  const std::vector<const Image*> tiles = {&view,   &bufferA, &bufferB, &render,
+                                           &closeA, &closeB,  &closeR0, &closeR1};
+  ASSERT_EQ(layout.tiles.size(), tiles.size());
   for (size_t k = 0; k < tiles.size(); ++k)
-    EXPECT_EQ(mismatches(composite, tiles[k], panels.corners[k].first, 2 * row), 0) << "tile " << k;
-  // First close-up row (bottom-left origin: one row above the bottom), under tiles 1, 2, 3.
-  EXPECT_EQ(mismatches(composite, closeA, panels.corners[1].first, row), 0) << "a's close-up";
-  EXPECT_EQ(mismatches(composite, closeB, panels.corners[2].first, row), 0) << "b's close-up";
-  EXPECT_EQ(mismatches(composite, closeR0, panels.corners[3].first, row), 0) << "render's first";
+    EXPECT_EQ(mismatches(composite, *tiles[k], layout.tiles[k].x,
+                         bottomOf(composite, layout.tiles[k])),
+              0)
+        << "tile " << k;
+  // The first close-up row: under tiles 1, 2 and 3, each at its panel's left edge.
+  EXPECT_EQ(layout.tiles[4].x, layout.tiles[1].x) << "a's close-up";
+  EXPECT_EQ(layout.tiles[5].x, layout.tiles[2].x) << "b's close-up";
+  EXPECT_EQ(layout.tiles[6].x, layout.tiles[3].x) << "render's first";
+  EXPECT_EQ(layout.tiles[4].y, layout.tiles[6].y) << "one row for the first close-ups";
+  EXPECT_GT(layout.tiles[4].y, layout.tiles[0].y + layout.tiles[0].height);
   // The render's second close-up: the next row, under the render.
-  EXPECT_EQ(mismatches(composite, closeR1, panels.corners[3].first, 0), 0) << "render's second";
+  EXPECT_EQ(layout.tiles[7].x, layout.tiles[3].x) << "render's second";
+  EXPECT_GT(layout.tiles[7].y, layout.tiles[6].y + layout.tiles[6].height);
   // Nothing under the view panel: the close-up rows are white there.
-  EXPECT_NEAR(composite.at(5, row + 5, 0), 1.0f, kPngStep);
-  EXPECT_NEAR(composite.at(5, row + 5, 2), 1.0f, kPngStep);
+  const int below = composite.height - 1 - (layout.tiles[4].y + 5);  // rows bottom-up
+  EXPECT_NEAR(composite.at(layout.tiles[0].x + 5, below, 0), 1.0f, kPngStep);
+  EXPECT_NEAR(composite.at(layout.tiles[0].x + 5, below, 2), 1.0f, kPngStep);
 }
 
 // A composite wider than 1600 pixels is shrunk by an integer factor; a uniform tile keeps its
@@ -275,14 +298,22 @@ TEST(FigureComposite, ShrinksWideFiguresByAnIntegerFactor) {
   p.ok = true;
   p.images = {{"fig/wide.png", "wide"}};
   fig.panels = {p, p};
-  const Image composite = composeFigure(fig, dir.string());
+  CompositeLayout layout;
+  const Image composite = composeFigure(fig, dir.string(), &layout);
   const int full = 2 * wide.width + kGap;
   const int factor = (full + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
   ASSERT_EQ(factor, 2);
-  EXPECT_EQ(composite.width, full / factor);
-  EXPECT_EQ(composite.height, wide.height / factor);
-  EXPECT_NEAR(composite.at(10, 10, 1), 0.6f, kPngStep);
-  EXPECT_NEAR(composite.at(composite.width - 10, 10, 2), 1.0f, kPngStep);
+  EXPECT_EQ(layout.shrink, factor);
+  // The tiles shrink; the gap and the labels keep their size (the text stays readable).
+  EXPECT_EQ(composite.width, 2 * (wide.width / factor) + kGap);
+  ASSERT_EQ(layout.tiles.size(), 2u);
+  EXPECT_EQ(layout.tiles[1].x, wide.width / factor + kGap);
+  EXPECT_EQ(layout.tiles[0].height, wide.height / factor);
+  EXPECT_EQ(composite.height, layout.tiles[0].y + wide.height / factor);
+  const int y = bottomOf(composite, layout.tiles[0]) + 5;
+  EXPECT_NEAR(composite.at(10, y, 1), 0.6f, kPngStep);
+  EXPECT_NEAR(composite.at(composite.width - 10, y, 2), 1.0f, kPngStep);
+  expectLabelledRows(composite, layout, 2, 2);
 }
 
 // End to end: `shadowlab figures --only brabec-fig3-packing` (one buffer panel of ten buffers,
@@ -302,29 +333,55 @@ TEST(FigureComposite, BufferPanelsAreInFigurePng) {
         toRgb(readPng((fig / ("00-intermediate-buffers-" + std::to_string(k) + ".png")).string())));
   ASSERT_GT(tiles.size(), 4u) << "legacy.pcf captured too few buffers";
   const Image composite = readPng((fig / "figure.png").string());
-  const Layout l = layoutOf(tiles, 4);
-  Image full(l.width, l.height, 3, 1.0f);
-  for (size_t k = 0; k < tiles.size(); ++k)
-    for (int y = 0; y < tiles[k].height; ++y)
-      for (int x = 0; x < tiles[k].width; ++x)
-        for (int c = 0; c < 3; ++c)
-          full.at(l.corners[k].first + x, l.corners[k].second + y, c) = tiles[k].at(x, y, c);
-  const int factor = (l.width + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
-  ASSERT_EQ(composite.width, l.width / factor);
-  ASSERT_EQ(composite.height, l.height / factor);
-  int bad = 0;
-  for (int y = 0; y < composite.height; ++y)
-    for (int x = 0; x < composite.width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        float sum = 0;
-        for (int j = 0; j < factor; ++j)
-          for (int i = 0; i < factor; ++i) sum += full.at(x * factor + i, y * factor + j, c);
-        if (std::abs(composite.at(x, y, c) - sum / float(factor * factor)) > kPngStep) {
-          ++bad;
-          break;
+  // Rows of four tiles shrunk by one integer factor, each under its label: a tile's x follows
+  // from the widths before it in its row; its y from the label heights above, so it is found by
+  // scanning its column.
+  constexpr size_t kColumns = 4;
+  int unlabelled = 0;
+  for (size_t i = 0; i < tiles.size(); i += kColumns) {
+    int w = 0;
+    for (size_t k = i; k < std::min(tiles.size(), i + kColumns); ++k)
+      w += tiles[k].width + (k > i ? kGap : 0);
+    unlabelled = std::max(unlabelled, w);
+  }
+  const int factor = (unlabelled + kMaxCompositeWidth - 1) / kMaxCompositeWidth;
+  int x = 0, lastTop = -1, rowFloor = 0, nextRowFloor = 0;
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    if (k % kColumns == 0) x = 0;
+    Image shrunk(tiles[k].width / factor, tiles[k].height / factor, 3);
+    for (int y = 0; y < shrunk.height; ++y)
+      for (int i = 0; i < shrunk.width; ++i)
+        for (int c = 0; c < 3; ++c) {
+          float sum = 0;
+          for (int b = 0; b < factor; ++b)
+            for (int a = 0; a < factor; ++a) sum += tiles[k].at(i * factor + a, y * factor + b, c);
+          shrunk.at(i, y, c) = sum / float(factor * factor);
         }
-      }
-  EXPECT_EQ(bad, 0) << "figure.png differs from its buffers laid out (factor " << factor << ")";
+    int found = -1;
+    for (int y0 = composite.height - shrunk.height; y0 >= 0 && found < 0; --y0)
+      if (mismatches(composite, shrunk, x, y0) == 0) found = y0;
+    ASSERT_GE(found, 0) << "buffer " << k << " is not in figure.png at x = " << x;
+    const int top = composite.height - found - shrunk.height;
+    if (k % kColumns != 0) {
+      EXPECT_EQ(top, lastTop) << "buffer " << k << " not top-aligned";
+    } else if (k > 0) {
+      EXPECT_GT(top, lastTop) << "buffer " << k;
+    }
+    // Its label: text above it, below the previous row's tiles (a row's label strips are
+    // padded to its tallest, so a short label may end well above its tile).
+    if (k % kColumns == 0) {
+      rowFloor = nextRowFloor;
+      nextRowFloor = 0;
+    }
+    nextRowFloor = std::max(nextRowFloor, top + shrunk.height);
+    int dark = 0;
+    for (int t = rowFloor; t < top; ++t)
+      for (int i = x; i < x + shrunk.width; ++i)
+        dark += composite.at(i, composite.height - 1 - t, 0) < 0.5f;
+    EXPECT_GT(dark, kMinTextPixels) << "no label above buffer " << k;
+    lastTop = top;
+    x += std::max(shrunk.width, kMinLabelWidth) + kGap;
+  }
 }
 
 // The stencil panels (Chan Figs. 3-1c, 3-9c). modern.volumes shades from the stencil count, so

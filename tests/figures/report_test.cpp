@@ -237,7 +237,8 @@ TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
   const fs::path dir = outputDir("browser");
   // Everitt Fig. 5 is cheap (two 512x384 frames with a 32x32 map) and has close-ups and a
   // legacy/modern pair; CSM Fig. 3 adds a gnuplot chart.
-  for (const char* id : {"everitt-fig5"}) {
+  // brabec-fig3-packing adds a buffer strip of ten buffers.
+  for (const char* id : {"everitt-fig5", "brabec-fig3-packing"}) {
     const Command r = renderFigure(id, dir);
     ASSERT_EQ(r.status, 0) << r.output;
   }
@@ -252,6 +253,8 @@ TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
   ASSERT_EQ(dom.status, 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-broken"), 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-ok"), int(images));
+  // Every image at its own aspect ratio (issue 18 item 6: buffer strips were squashed).
+  EXPECT_EQ(bodyCount(dom.output, "data-images-distorted"), 0) << dom.output;
   const auto errors = consoleErrors(dom.output);
   EXPECT_TRUE(errors.empty()) << "console: " << (errors.empty() ? "" : errors.front());
 
@@ -281,4 +284,23 @@ TEST(ReportInBrowser, CatchesAMissingImage) {
   const int references = int(std::count(sources.begin(), sources.end(), sources.front()));
   EXPECT_EQ(bodyCount(dom.output, "data-images-broken"), references) << dom.output;
   EXPECT_FALSE(consoleErrors(dom.output).empty()) << "the console error was not seen";
+}
+
+// The aspect-ratio check must catch a squashed image: the report's old rule for buffer strips
+// (a fixed height in a narrow cell) put back into the page distorts them, and the page says so.
+TEST(ReportInBrowser, CatchesASquashedBufferStrip) {
+  const std::string exe = chromium();
+  if (exe.empty()) GTEST_SKIP() << "chromium is not installed; the browser check is skipped";
+  const fs::path dir = outputDir("squashed");
+  const Command r = renderFigure("brabec-fig3-packing", dir);
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::string html = readFile(dir / "report.html");
+  const std::string squash = ".inter img { height: 180px; width: 40px; max-width: 40px; }\n";
+  const size_t style = html.find("</style>");
+  ASSERT_NE(style, std::string::npos);
+  html.insert(style, squash);
+  std::ofstream(dir / "squashed.html") << html;
+  const Command dom = run(chromiumCommand(exe, dir / "chromium-profile") + "--dump-dom file://" +
+                          fs::absolute(dir / "squashed.html").string());
+  EXPECT_GT(bodyCount(dom.output, "data-images-distorted"), 0) << dom.output;
 }

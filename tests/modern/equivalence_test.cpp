@@ -2,7 +2,9 @@
 // render the same scene with the same parameters; their visibility masks are compared pixel by
 // pixel against the bound the pair states in registry/twins.cpp (bit-exact for 'faithful'
 // arithmetic; otherwise <= 1/255 on 99.9% of pixels and every larger difference on the
-// shadow-boundary band that core/metrics.h boundaryBand computes from the legacy mask).
+// shadow-boundary band that core/metrics.h boundaryBand computes from the legacy mask), and
+// their images against the image bound of registry/twins.h (judgeImages: beyond three 8-bit
+// steps only on the spotlight cone's edge band or where the masks differ).
 //
 // Parameterised on pair x scene x back end (osmesa always; egl skips with the reason when no
 // EGL context can be made). On failure both masks and the difference heat map are written to
@@ -64,6 +66,8 @@ void writeFailureArtefacts(const std::string& name, const Frame& legacy, const F
   // Full scale 1/16: one 8-bit step is visible, a flipped pixel saturates.
   writePng((dir / (name + "-difference.png")).string(),
            differenceHeatMap(legacy.visibility, modern.visibility, 1.0f / 16.0f), 8);
+  writePng((dir / (name + "-legacy-image.png")).string(), legacy.color, 8);
+  writePng((dir / (name + "-modern-image.png")).string(), modern.color, 8);
 }
 
 class Equivalence : public ::testing::TestWithParam<Case> {};
@@ -96,6 +100,15 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
                           legacy, modern);
   EXPECT_TRUE(a.withinBound) << pair.legacy << " vs " << pair.modern << " on " << sceneName << ": "
                              << a.verdict << "\nwhy this bound: " << pair.why;
+
+  // The images agree too (issue 18 item 5): the bound registry/twins.h states for judgeImages.
+  const twins::ImageAgreement im =
+      twins::judgeImages(legacy.color, modern.color, legacy.visibility, modern.visibility);
+  if (!im.withinBound)
+    writeFailureArtefacts(identifier(pair.label + "_" + sceneName + "_" + backendName(backend)),
+                          legacy, modern);
+  EXPECT_TRUE(im.withinBound) << pair.legacy << " vs " << pair.modern << " on " << sceneName << ": "
+                              << im.verdict;
 }
 
 }  // namespace

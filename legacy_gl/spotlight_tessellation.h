@@ -1,0 +1,51 @@
+// legacy_gl/spotlight_tessellation.h — the meshes the legacy camera passes draw: OpenGL 1.x
+// lights per vertex (glspec121 §2.13), so a spotlight cone whose edge crosses a coarse
+// triangle shows as a staircase along the triangle edges. The camera-view passes draw the scene
+// with its triangles split where the cone's edge crosses them, down to a pixel on screen, and
+// inside the cone where a triangle is large as seen from the light (the diffuse and specular
+// terms bend across it); the passes' GL calls stay those of the papers (module-internal header).
+#pragma once
+
+#include <cstddef>
+
+#include "core/scene.h"
+#include "core/technique.h"
+
+namespace sl::legacy {
+
+// Triangles whose edges straddle the spotlight cone are split until each edge covers at most
+// this many pixels: the per-vertex cone test then steps within a pixel, as the per-pixel test of
+// modern/shaders/lighting.glsl does.
+constexpr double kSpotEdgePixels = 1.0;
+// Inside the cone an edge is split (down to kLitInteriorPixels on screen) while it subtends more
+// than these angles at the light. A cosine interpolated linearly over an angle t departs from
+// itself by at most t^2/8: 0.25 rad keeps the diffuse term within 0.008 (2 8-bit steps), which
+// a two-triangle quad close to the light (the analytic scene's occluder, 3 units below the
+// light) misses by 8 steps. The specular term (shininess 32) bends about 32 times faster;
+// 0.1 rad keeps it within about 10 steps at a highlight's peak without splitting every
+// specular mesh many times.
+constexpr double kMaxDiffuseEdgeRadians = 0.25;
+constexpr double kMaxSpecularEdgeRadians = 0.1;
+constexpr double kLitInteriorPixels = 4.0;
+// An object whose split mesh would exceed this many triangles keeps its own mesh (a guard for
+// pathological cameras, e.g. a near plane of 1e-5 on a large ground).
+constexpr std::size_t kMaxTessellatedTriangles = 1'000'000;
+
+struct TessellationStats {
+  std::size_t trianglesIn = 0;
+  std::size_t trianglesOut = 0;
+};
+
+// The scene with every object's mesh split for per-vertex spotlight lighting as seen by the
+// camera in a width x height window. Splits are decided per edge from its world position alone
+// (never from the triangle), so two triangles sharing an edge split it alike: no T-junctions,
+// no cracks. Geometry, normals and bounds are unchanged (new vertices lie on the old
+// triangles), so depth and texgen coordinates agree with the unsplit scene up to rounding.
+Scene tessellateForSpotlight(const Scene& scene, int width, int height,
+                             TessellationStats* stats = nullptr);
+
+// The same as a timed pass of `frame` ("mesh feeding: ..."), for the camera passes of a legacy
+// technique; the light passes keep drawing `scene` itself.
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame);
+
+}  // namespace sl::legacy

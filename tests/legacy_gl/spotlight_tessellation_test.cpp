@@ -1,0 +1,128 @@
+// legacy_gl/spotlight_tessellation.h (issue 18 item 5): the meshes the legacy camera passes draw
+// are split along the spotlight cone's edge down to a pixel, keep their geometry (area, closed
+// surfaces stay closed: no T-junction cracks), and are not split where the cone's edge is not.
+#include "legacy_gl/spotlight_tessellation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/glm.hpp>
+#include <map>
+#include <utility>
+
+#include "core/scene_library.h"
+
+namespace sl::legacy {
+namespace {
+
+constexpr int kWidth = 800, kHeight = 600;
+
+glm::vec3 world(const Object& o, unsigned i) {
+  return glm::vec3(o.model * glm::vec4(o.mesh->positions[i], 1.0f));
+}
+
+double area(const Object& o) {
+  double sum = 0.0;
+  const auto& idx = o.mesh->indices;
+  for (size_t t = 0; t + 2 < idx.size(); t += 3)
+    sum += 0.5 * double(glm::length(glm::cross(world(o, idx[t + 1]) - world(o, idx[t]),
+                                               world(o, idx[t + 2]) - world(o, idx[t]))));
+  return sum;
+}
+
+// How many triangles use each undirected edge, by vertex positions (so that an edge shared by
+// two triangles through duplicated vertices still counts as shared).
+std::map<std::pair<std::tuple<float, float, float>, std::tuple<float, float, float>>, int> edgeUses(
+    const Mesh& m) {
+  std::map<std::pair<std::tuple<float, float, float>, std::tuple<float, float, float>>, int> uses;
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+    for (int e = 0; e < 3; ++e) {
+      const glm::vec3 a = m.positions[m.indices[t + e]];
+      const glm::vec3 b = m.positions[m.indices[t + (e + 1) % 3]];
+      auto ka = std::make_tuple(a.x, a.y, a.z), kb = std::make_tuple(b.x, b.y, b.z);
+      if (kb < ka) std::swap(ka, kb);
+      ++uses[{ka, kb}];
+    }
+  return uses;
+}
+
+bool lit(const Scene& s, const glm::vec3& p) {
+  const glm::vec3 axis = glm::normalize(s.light.target - s.light.position);
+  const glm::vec3 v = p - s.light.position;
+  return glm::dot(v, axis) >= std::cos(glm::radians(0.5f * s.light.coneDegrees)) * glm::length(v);
+}
+
+// Pixel coordinates of a world point (in front of the camera).
+glm::vec2 pixel(const Scene& s, const glm::vec3& p) {
+  const glm::vec4 clip = cameraProjection(s.camera, float(kWidth) / float(kHeight)) *
+                         cameraView(s.camera) * glm::vec4(p, 1.0f);
+  return {(clip.x / clip.w * 0.5f + 0.5f) * kWidth, (clip.y / clip.w * 0.5f + 0.5f) * kHeight};
+}
+
+TEST(SpotlightTessellation, SplitsAlongTheConeEdgeDownToAPixel) {
+  const Scene scene = builtinScene("brabec");
+  TessellationStats stats;
+  const Scene split = tessellateForSpotlight(scene, kWidth, kHeight, &stats);
+  ASSERT_EQ(split.objects.size(), scene.objects.size());
+  EXPECT_GT(stats.trianglesOut, stats.trianglesIn) << "the cone's edge crosses brabec's ground";
+  // Every on-screen edge whose ends the per-vertex cone test lights differently spans at most
+  // kSpotEdgePixels (plus float rounding of the projection, 1e-3 pixel).
+  constexpr double kProjectionRounding = 1e-3;
+  int crossing = 0;
+  for (const Object& o : split.objects) {
+    const auto& idx = o.mesh->indices;
+    for (size_t t = 0; t + 2 < idx.size(); t += 3)
+      for (int e = 0; e < 3; ++e) {
+        const glm::vec3 a = world(o, idx[t + e]), b = world(o, idx[t + (e + 1) % 3]);
+        if (lit(scene, a) == lit(scene, b)) continue;
+        const glm::vec2 pa = pixel(scene, a), pb = pixel(scene, b);
+        const bool onScreen = pa.x >= 0 && pa.x <= kWidth && pa.y >= 0 && pa.y <= kHeight;
+        if (!onScreen) continue;
+        ++crossing;
+        EXPECT_LE(glm::length(pa - pb), kSpotEdgePixels + kProjectionRounding)
+            << o.name << " edge across the cone at pixel (" << pa.x << ", " << pa.y << ")";
+      }
+  }
+  EXPECT_GT(crossing, 100) << "the test saw no edge across the cone";
+}
+
+TEST(SpotlightTessellation, KeepsGeometryAndLeavesNoCracks) {
+  const Scene scene = builtinScene("brabec");
+  const Scene split = tessellateForSpotlight(scene, kWidth, kHeight);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const Object& before = scene.objects[i];
+    const Object& after = split.objects[i];
+    // Same surface: the split triangles cover the old ones exactly (float sums: 1e-4 relative).
+    EXPECT_NEAR(area(after), area(before), 1e-4 * area(before)) << before.name;
+    // No T-junction: an edge used once after splitting was used once before (a border edge) or
+    // lies on one; an edge inside the surface stays shared by two triangles. Counted as the
+    // total length of edges used once, which a crack would increase.
+    auto borderLength = [](const Mesh& m) {
+      double length = 0.0;
+      for (const auto& [edge, uses] : edgeUses(m))
+        if (uses == 1) {
+          const auto& [a, b] = edge;
+          length += glm::length(glm::vec3(std::get<0>(a), std::get<1>(a), std::get<2>(a)) -
+                                glm::vec3(std::get<0>(b), std::get<1>(b), std::get<2>(b)));
+        }
+      return length;
+    };
+    EXPECT_NEAR(borderLength(*after.mesh), borderLength(*before.mesh),
+                1e-4 * (1.0 + borderLength(*before.mesh)))
+        << before.name << ": a T-junction left an edge used by one triangle only";
+    EXPECT_EQ(after.mesh->positions.size(), after.mesh->normals.size());
+  }
+}
+
+// No cone edge on screen, nothing split: the light looks up, away from everything.
+TEST(SpotlightTessellation, SplitsNothingWhereTheConeEdgeIsNot) {
+  Scene scene = builtinScene("brabec");
+  scene.light.target = scene.light.position + glm::vec3(0, 5, 0);
+  scene.light.up = {0, 0, -1};
+  TessellationStats stats;
+  tessellateForSpotlight(scene, kWidth, kHeight, &stats);
+  EXPECT_EQ(stats.trianglesOut, stats.trianglesIn);
+}
+
+}  // namespace
+}  // namespace sl::legacy
