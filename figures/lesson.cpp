@@ -428,9 +428,14 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
       html << "</p>\n";
     }
     html << "<div class=\"pass-body\"><div class=\"images\">\n";
+    bool groupOpen = false;  // a picture and its per-channel panels form one row
     for (const json& f : pass.value("files", json::array())) {
       const json& image = *images.at(f.get<std::string>());
       const bool isChannel = image.contains("channel");
+      if (!isChannel) {
+        html << (groupOpen ? "</div>" : "") << "<div class=\"pic-group\">";
+        groupOpen = true;
+      }
       const int width = image["width"].get<int>();
       const int shown =
           isChannel ? kChannelShownWidth : std::clamp(width, kMinShownWidth, kMaxShownWidth);
@@ -447,7 +452,7 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
              << image["height"].get<int>() << ")</span>";
       html << "</figcaption></figure>\n";
     }
-    html << "</div><div class=\"notes\">\n";
+    html << (groupOpen ? "</div>" : "") << "</div><div class=\"notes\">\n";
     writeStateCard(html, pass);
     writeGlsl(html, pass);
     html << "</div></div>\n</section>\n";
