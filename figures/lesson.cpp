@@ -75,12 +75,19 @@ std::vector<LessonText> allLessonTexts() {
   return out;
 }
 
+// The one entry naming `technique`; none, or two, is an InputError.
 LessonText lessonTextFor(const std::string& technique) {
+  std::vector<LessonText> found;
   for (const LessonText& t : allLessonTexts())
     for (const json& name : t.entry.value("techniques", json::array()))
-      if (name == technique) return t;
-  throw InputError("no lesson text for " + technique + " in " + assetDirectory() +
-                   "/lessons/*.json");
+      if (name == technique) found.push_back(t);
+  if (found.empty())
+    throw InputError("no lesson text for " + technique + " in " + assetDirectory() +
+                     "/lessons/*.json");
+  if (found.size() > 1)
+    throw InputError("two lesson texts for " + technique + ": " + found[0].file + " and " +
+                     found[1].file);
+  return found[0];
 }
 
 // A string field of a lesson entry; InputError naming the file when it is not a string.

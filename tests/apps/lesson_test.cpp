@@ -45,9 +45,15 @@ size_t count(const std::string& html, const std::string& what) {
   return n;
 }
 
-TEST(Lesson, EveryTechniqueHasALessonText) {
-  EXPECT_TRUE(figures::techniquesWithoutLesson().empty())
-      << "no entry in assets/lessons/*.json for " << figures::techniquesWithoutLesson().front();
+// assets/lessons/*.json names every technique of the registry exactly once, with a title.
+TEST(Lesson, EveryTechniqueHasOneLessonText) {
+  const std::vector<std::string> missing = figures::techniquesWithoutLesson();
+  EXPECT_TRUE(missing.empty()) << "no entry in assets/lessons/*.json for " << missing.front();
+  for (const Technique& t : allTechniques()) {
+    std::string title;
+    EXPECT_NO_THROW(title = figures::lessonTitle(t.name)) << t.name;
+    EXPECT_FALSE(title.empty()) << t.name;
+  }
 }
 
 // The lesson a student following Brabec & Seidel §4 reads: the idea with Eq. (1) and Figs. 5-6,

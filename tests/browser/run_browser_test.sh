@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tests/browser/run_browser_test.sh SHADOWLAB OUT — the ctest `browser.pages` (issue 18 item 7):
 # makes the pages a reader opens, then loads every one in headless Chromium
-# (tests/browser/check_pages.js, puppeteer-core from npm, /usr/bin/chromium):
+# (tests/browser/check_pages.mjs, puppeteer-core from npm, /usr/bin/chromium):
 #   OUT/dumps/<technique>/index.html    render --dump-passes of every technique in `shadowlab list`
 #   OUT/lessons/<technique>/index.html  shadowlab lesson of every technique
 #   OUT/figures/report.html             figures --only two cheap figures, with the lessons the
@@ -47,4 +47,4 @@ wait "$dumps"
 mapfile -t pages < <(find "$out" -name index.html -o -name report.html | sort)
 echo "checking ${#pages[@]} pages"
 cd "$out"
-node "$here/check_pages.js" --require-state-cards --shots "$out/shots" "${pages[@]}"
+node "$here/check_pages.mjs" --require-state-cards --shots "$out/shots" "${pages[@]}"

@@ -1,4 +1,4 @@
-// tests/browser/check_pages.js — loads shadowlab's pages in headless Chromium (Debian's
+// tests/browser/check_pages.mjs — loads shadowlab's pages in headless Chromium (Debian's
 // /usr/bin/chromium, driven by puppeteer-core) and fails on what a reader would see broken
 // (issue 18 item 7):
 //   every page:  an image that did not load (naturalWidth 0), a console error, an uncaught
@@ -11,14 +11,12 @@
 //   report.html: it links at least one lesson.
 // A screenshot of every page goes to --shots DIR (the top of the page, 1300 px wide).
 //
-// usage: node check_pages.js [--require-state-cards] [--shots DIR] PAGE.html ...
+// usage: node check_pages.mjs [--require-state-cards] [--shots DIR] PAGE.html ...
 // Exit status 0 when every check passed, 1 otherwise (one line per failure on stderr).
-'use strict';
-
-const fs = require('fs');
-const path = require('path');
-const url = require('url');
-const puppeteer = require('puppeteer-core');
+import fs from 'node:fs';
+import path from 'node:path';
+import url from 'node:url';
+import puppeteer from 'puppeteer-core';
 
 const kChromium = process.env.SHADOWLAB_CHROMIUM || '/usr/bin/chromium';
 // The house flags (helper rules): headless, offline, no GPU, no sandbox (containers).
@@ -132,7 +130,7 @@ async function checkPage(browser, file, options, failures) {
 async function main() {
   const options = parseArgs(process.argv.slice(2));
   if (options.pages.length === 0) {
-    console.error('usage: node check_pages.js [--require-state-cards] [--shots DIR] PAGE.html ...');
+    console.error('usage: node check_pages.mjs [--require-state-cards] [--shots DIR] PAGE.html ...');
     process.exit(2);
   }
   if (options.shots) fs.mkdirSync(options.shots, {recursive: true});
@@ -155,6 +153,6 @@ async function main() {
 }
 
 main().catch((e) => {
-  console.error(`check_pages.js: ${e.stack || e}`);
+  console.error(`check_pages.mjs: ${e.stack || e}`);
   process.exit(1);
 });
