@@ -251,10 +251,10 @@ int run(int argc, char** argv) {
   if (args.command == "render") return render(args);
   if (args.command == "compare") return compare(args);
   if (args.command == "figures")
-    return figures::runFigures(args.value("out").value_or("out/figures"),
-                               args.options.count("only") ? args.options.at("only")
-                                                          : std::vector<std::string>{},
-                               !args.has("no-progress"));
+    return figures::runFigures(
+        args.value("out").value_or("out/figures"),
+        args.options.count("only") ? args.options.at("only") : std::vector<std::string>{},
+        !args.has("no-progress"));
   if (args.command == "lesson") return figures::runLessonCommand(args);
   if (args.command == "bench") return figures::runBench(args);
   if (args.command == "plan") {

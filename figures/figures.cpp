@@ -663,13 +663,11 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
       for (const PanelSpec& p : f->panels) shown = shown || p.technique == t.name;
     if (shown) lessonTechniques.push_back(t.name);
   }
-  const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight,
-                                      kLessonShadowMap};
+  const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap};
   ReportInfo info;
-  info.lessonsHtml = lessonIndexHtml(
-      writeLessons((fs::path(outDir) / "lessons").string(), lessonTechniques, lessonSettings,
-                   progress),
-      "lessons/");
+  info.lessonsHtml = lessonIndexHtml(writeLessons((fs::path(outDir) / "lessons").string(),
+                                                  lessonTechniques, lessonSettings, progress),
+                                     "lessons/");
   if (only.empty()) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);

@@ -167,15 +167,15 @@ struct Side {
   RenderParams params;
   std::shared_ptr<const Frame> frame;
   std::vector<PassDumpImage> images;
-  json passes;  // passes.json of the dump
+  json passes;         // passes.json of the dump
   std::string prefix;  // file prefix on the lesson page: "<technique>_"
   std::string renderCommand;
 };
 
 class FrameCache {
  public:
-  std::shared_ptr<const Frame> render(const Technique& t, const Scene& scene,
-                                      const RenderParams& p, const std::string& sceneName) {
+  std::shared_ptr<const Frame> render(const Technique& t, const Scene& scene, const RenderParams& p,
+                                      const std::string& sceneName) {
     const std::string key = t.name + "|" + sceneName + "|" + std::to_string(p.width) + "x" +
                             std::to_string(p.height) + "|" + std::to_string(p.shadowMapTexels) +
                             "|" + std::to_string(p.filter) + "|" + precisionName(p.precision) +
@@ -193,11 +193,10 @@ class FrameCache {
 };
 
 // `shadowlab render` re-making a side's pictures: the options its technique reads, its --params.
-std::string renderCommandFor(const Technique& t, const RenderParams& p,
-                             const LessonSettings& s) {
-  std::vector<std::string> a = {"shadowlab",   "render", "--scene", s.scene, "--technique",
-                                t.name,        "--size", std::to_string(p.width) + "x" +
-                                                             std::to_string(p.height)};
+std::string renderCommandFor(const Technique& t, const RenderParams& p, const LessonSettings& s) {
+  std::vector<std::string> a = {
+      "shadowlab",   "render", "--scene", s.scene,
+      "--technique", t.name,   "--size",  std::to_string(p.width) + "x" + std::to_string(p.height)};
   if (readsOption(t, CommonOption::kShadowMap))
     a.insert(a.end(), {"--shadow-map", std::to_string(p.shadowMapTexels)});
   if (readsOption(t, CommonOption::kFilter))
@@ -227,8 +226,8 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
   if (readsOption(t, CommonOption::kFilter)) parameters["filter"] = p.filter;
   if (readsOption(t, CommonOption::kPrecision))
     parameters["precision"] = precisionName(p.precision);
-  side.passes = passesJson(*side.frame, PassDumpHeader{t.name, t.paper, scene.name, parameters},
-                           side.images);
+  side.passes =
+      passesJson(*side.frame, PassDumpHeader{t.name, t.paper, scene.name, parameters}, side.images);
   side.prefix = t.name + "_";
   side.renderCommand = renderCommandFor(t, p, s);
   return side;
@@ -240,7 +239,7 @@ struct Comparison {
   twins::TwinPair pair;
   twins::Agreement mask;
   long long imagePixels = 0;
-  long long imageDiffering = 0;        // max over RGB of |legacy - modern| > one 8-bit step
+  long long imageDiffering = 0;          // max over RGB of |legacy - modern| > one 8-bit step
   long long imageDifferingMaskSame = 0;  // of those, where the masks are identical
   double imageMaxAbs = 0.0;
   Image maskHeat, imageHeat;
@@ -289,8 +288,7 @@ Comparison compareSides(const twins::TwinPair& pair, const Side& legacy, const S
 // is (the 8-bit faithful pair for the Brabec–Seidel techniques, linear compare for hw).
 std::optional<twins::TwinPair> pairOf(const std::string& technique) {
   for (const twins::TwinPair& p : twins::twinPairs())
-    if ((p.legacy == technique || p.modern == technique) && p.precision == Precision::k8)
-      return p;
+    if ((p.legacy == technique || p.modern == technique) && p.precision == Precision::k8) return p;
   return std::nullopt;
 }
 
@@ -346,7 +344,10 @@ void writeStateCard(std::ostream& html, const json& pass) {
     const std::string group = line.is_object() ? line.value("group", "") : "";
     const std::string text = line.is_object() ? line.value("text", "") : line.dump();
     const bool before = line.is_object() && line.value("before_pass", false);
-    html << "<tr" << (group == "part" ? " class=\"part\"" : before ? " class=\"before\"" : "")
+    html << "<tr"
+         << (group == "part" ? " class=\"part\""
+             : before        ? " class=\"before\""
+                             : "")
          << "><td class=\"group\">" << (group == lastGroup ? "" : htmlEscape(group)) << "</td><td>"
          << code(text) << "</td></tr>\n";
     lastGroup = group;
@@ -429,7 +430,8 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
       html << "<p class=\"replaces\">replaces ";
       bool first = true;
       for (const json& r : replaces) {
-        html << (first ? "" : ", ") << replacesLink(r.is_string() ? r.get<std::string>() : "", page.sides);
+        html << (first ? "" : ", ")
+             << replacesLink(r.is_string() ? r.get<std::string>() : "", page.sides);
         first = false;
       }
       html << "</p>\n";
@@ -447,8 +449,8 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
       const int shown =
           isChannel ? kChannelShownWidth : std::clamp(width, kMinShownWidth, kMaxShownWidth);
       const std::string file = side.prefix + f.get<std::string>();
-      html << "<figure class=\"" << (isChannel ? "channel" : "picture") << "\" style=\"width: "
-           << shown << "px\"><img src=\"" << htmlEscape(file) << "\" alt=\""
+      html << "<figure class=\"" << (isChannel ? "channel" : "picture")
+           << "\" style=\"width: " << shown << "px\"><img src=\"" << htmlEscape(file) << "\" alt=\""
            << htmlEscape(f.get<std::string>()) << "\" style=\"width: " << shown
            << "px\"><figcaption>";
       if (isChannel)
@@ -474,7 +476,8 @@ void writeComparison(std::ostream& html, const LessonPage& page) {
        << htmlEscape(c.pair.label) << "</b> of the twin table (registry/twins.cpp), on "
        << htmlEscape(page.settings.scene) << " at " << page.settings.width << "x"
        << page.settings.height << ". The masks against the pair's " << htmlEscape(c.mask.verdict)
-       << (c.mask.withinBound ? " — <b>within the bound</b>." : " — <b class=\"bad\">outside the bound</b>.")
+       << (c.mask.withinBound ? " — <b>within the bound</b>."
+                              : " — <b class=\"bad\">outside the bound</b>.")
        << " Why this bound: " << htmlEscape(c.pair.why) << ".</p>\n";
   html << "<table class=\"numbers\"><tr><th></th><th>pixels that differ</th><th>share</th>"
           "<th>largest difference</th></tr>\n";
@@ -498,8 +501,9 @@ void writeComparison(std::ostream& html, const LessonPage& page) {
             "fragment (modern/shaders/lighting.glsl). The two part most where the light changes "
             "fastest across a triangle: the spotlight's cone edge and highlights on coarse "
             "meshes. "
-         << shadow << " lie where the masks differ as well: the shadow term itself differs "
-                      "there, within the pair's bound above.";
+         << shadow
+         << " lie where the masks differ as well: the shadow term itself differs "
+            "there, within the pair's bound above.";
   }
   html << "</p>\n<div class=\"images\">\n";
   auto figure = [&](const std::string& file, const std::string& caption) {
@@ -509,8 +513,9 @@ void writeComparison(std::ostream& html, const LessonPage& page) {
   };
   figure(legacy.prefix + "image.png", "legacy: " + htmlEscape(legacy.technique->name));
   figure(modern.prefix + "image.png", "modern: " + htmlEscape(modern.technique->name));
-  figure("diff-mask.png", "|legacy mask - modern mask|: black = equal, dark blue = tiny, red, "
-                          "yellow, white = a whole visibility step");
+  figure("diff-mask.png",
+         "|legacy mask - modern mask|: black = equal, dark blue = tiny, red, "
+         "yellow, white = a whole visibility step");
   figure("diff-image.png",
          "max over R, G, B of |legacy image - modern image|: black = equal, white = " +
              fmt(kImageDiffFullScale, "%.2g") + " or more");
@@ -546,7 +551,8 @@ std::string pageHtml(const LessonPage& page) {
        << ".state-card .group { color: #0a5; white-space: nowrap; }\n"
        << ".state-card tr.before td { color: #777; }\n"
        << ".state-card tr.part td { font-weight: bold; padding-top: 0.4em; }\n"
-       << ".state-card { max-height: 30em; overflow: auto; }\n.hint { font-weight: normal; color: #666; }\n"
+       << ".state-card { max-height: 30em; overflow: auto; }\n.hint { font-weight: normal; color: "
+          "#666; }\n"
        << ".state-card.missing, .missing { color: #a00; }\n"
        << "pre { margin: 0; font-size: 0.95em; }\n.ln { color: #999; }\n"
        << "table.numbers { border-collapse: collapse; }\n"
@@ -557,8 +563,8 @@ std::string pageHtml(const LessonPage& page) {
        << "</b> — " << htmlEscape(text.paper) << ", " << htmlEscape(field(text, "sections"))
        << ".</p>\n<p>Contents: <a href=\"#idea\">the idea</a>";
   for (const Side& s : page.sides)
-    html << " · <a href=\"#" << htmlEscape(s.technique->name) << "\">" << htmlEscape(s.technique->name)
-         << " pass by pass</a>";
+    html << " · <a href=\"#" << htmlEscape(s.technique->name) << "\">"
+         << htmlEscape(s.technique->name) << " pass by pass</a>";
   if (page.comparison) html << " · <a href=\"#compare\">legacy against modern</a>";
   html << " · <a href=\"#departures\">known departures</a> · <a href=\"#made\">how this page was "
           "made</a></p>\n";
@@ -603,7 +609,9 @@ std::string pageHtml(const LessonPage& page) {
   html << ".</p>\n";
   if (page.departures.empty()) {
     html << "<p>None is recorded in these files"
-         << (fs::exists(sourceRoot() / "core") ? "" : " (the source tree was not found beside the assets)")
+         << (fs::exists(sourceRoot() / "core")
+                 ? ""
+                 : " (the source tree was not found beside the assets)")
          << ".</p>\n";
   } else {
     html << "<ul class=\"departures\">\n";
@@ -690,7 +698,8 @@ void writeLessonFiles(const LessonPage& page, const std::string& directory) {
   for (const Side& s : page.sides) {
     for (const PassDumpImage& i : s.images)
       writePng((dir / (s.prefix + i.file)).string(), i.image, 8, provenance);
-    if (page.comparison) writePng((dir / (s.prefix + "image.png")).string(), s.frame->color, 8, provenance);
+    if (page.comparison)
+      writePng((dir / (s.prefix + "image.png")).string(), s.frame->color, 8, provenance);
   }
   if (page.comparison) {
     writePng((dir / "diff-mask.png").string(), page.comparison->maskHeat, 8, provenance);

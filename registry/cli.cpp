@@ -120,8 +120,9 @@ const std::vector<CommandSpec>& commandSpecs() {
       {"lesson",
        "one self-contained HTML lesson on a technique: the paper's idea, every pass with its\n"
        "caption, GL state card and GLSL twin, legacy against modern, the known departures",
-       {{"out", "DIR", "output directory (made or replaced as a whole; an existing DIR must be "
-                       "empty or hold only a previous lesson or dump), required"},
+       {{"out", "DIR",
+         "output directory (made or replaced as a whole; an existing DIR must be "
+         "empty or hold only a previous lesson or dump), required"},
         {"scene", "S", "scene name (shadowlab list) or a scene .json file [brabec]"},
         {"size", "WxH", "window WxH [400x300]"},
         {"shadow-map", "N", "shadow map side in texels, where the technique reads one [512]"}},

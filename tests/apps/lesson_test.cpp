@@ -89,8 +89,7 @@ TEST(Lesson, FastPcfTeachesBrabecSeidelSection4) {
   EXPECT_TRUE(fs::exists(dir / "diff-image.png"));
   // Nothing but the page and its pictures: the folder is a lesson a second run may replace.
   for (const auto& e : fs::directory_iterator(dir))
-    EXPECT_TRUE(e.path().extension() == ".png" || e.path().filename() == "index.html")
-        << e.path();
+    EXPECT_TRUE(e.path().extension() == ".png" || e.path().filename() == "index.html") << e.path();
   const test::CommandResult again =
       test::runBinary(SHADOWLAB_BINARY, lessonArgs("legacy.fast-pcf", dir), dir.parent_path());
   EXPECT_EQ(again.status, 0) << again.err;
