@@ -665,9 +665,16 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
   }
   const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap};
   ReportInfo info;
+  const auto lessonsStart = std::chrono::steady_clock::now();
   info.lessonsHtml = lessonIndexHtml(writeLessons((fs::path(outDir) / "lessons").string(),
                                                   lessonTechniques, lessonSettings, progress),
                                      "lessons/");
+  if (progress)
+    std::cerr << "[lesson] " << lessonTechniques.size() << " lessons in "
+              << std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                           lessonsStart)
+                                 .count())
+              << " s" << std::endl;
   if (only.empty()) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);

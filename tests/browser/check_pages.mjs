@@ -29,7 +29,7 @@ const kViewport = {width: 1300, height: 1600};
 const kLoadTimeoutMs = 30000;
 // Screenshots: the top of the page, at most this tall (whole reports are tens of thousands of
 // pixels; the top shows the layout, and the test's failures name what is below).
-const kShotMaxHeight = 4000;
+const kShotMaxHeight = 2400;
 
 function parseArgs(argv) {
   const out = {requireStateCards: false, shots: null, pages: []};
