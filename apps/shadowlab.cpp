@@ -8,6 +8,7 @@
 
 #include "registry/cli.h"
 #include "registry/registry.h"
+#include "registry/twins.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
@@ -185,7 +186,8 @@ int render(const cli::Args& args) {
   for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
   const std::string line = jsonLine(out);
-  const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made};
+  const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made,
+                                  twins::legacyTwinOf(technique.name)};
   writeFrameOutputs(frame, dumpHeader, outputs, pngProvenance(made));
   outputs.set.commit();
   std::cout << line << "\n";
