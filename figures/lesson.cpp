@@ -227,7 +227,9 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
   if (readsOption(t, CommonOption::kPrecision))
     parameters["precision"] = precisionName(p.precision);
   side.passes =
-      passesJson(*side.frame, PassDumpHeader{t.name, t.paper, scene.name, parameters}, side.images);
+      passesJson(*side.frame,
+                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name)},
+                 side.images);
   side.prefix = t.name + "_";
   side.renderCommand = renderCommandFor(t, p, s);
   return side;
@@ -365,8 +367,10 @@ void writeGlsl(std::ostream& html, const json& pass) {
     const std::string file = r.value("file", "");
     const int first = r.value("first_line", 0), last = r.value("last_line", 0);
     const std::string name = fs::path(file).filename().string();
+    const std::string title = r.value("title", "");
     html << "<div class=\"glsl\"><div class=\"card-title\">" << htmlEscape(file) << " lines "
          << first << "-" << last << "</div>";
+    if (!title.empty()) html << "<div class=\"glsl-title\">" << htmlEscape(title) << "</div>";
     const auto& shaders = embeddedShaders();
     const auto it = shaders.find(name);
     std::vector<std::string> lines;
@@ -399,6 +403,32 @@ std::string replacesLink(const std::string& text, const std::vector<Side>& sides
         return "<a href=\"#" + passAnchor(m[1].str(), std::stoi(m[2].str())) + "\">" +
                htmlEscape(text) + "</a>";
   return htmlEscape(text);
+}
+
+// A per-channel panel's own words: the bracketed end of its caption ("channel R (red): lower
+// left alone"), the rest repeats the picture's caption.
+std::string panelCaption(const json& image) {
+  const std::string caption = image.value("caption", "");
+  const size_t at = caption.rfind(" [");
+  if (at == std::string::npos || caption.back() != ']') return caption;
+  return caption.substr(at + 2, caption.size() - at - 3);
+}
+
+// The value legend of a file (passes.json "legend": {"kind", "low", "high", "note"}).
+std::string legendHtml(const json& legend) {
+  if (!legend.is_object()) return "";
+  const bool diverging = legend.value("kind", "") == "diverging";
+  std::ostringstream html;
+  html << "<div class=\"legend\">" << fmt(legend.value("low", 0.0), "%.4g")
+       << " <span class=\"bar\" style=\"background: "
+       << (diverging ? "linear-gradient(to right, #00f, #fff, #f00)"
+                     : "linear-gradient(to right, #000, #fff)")
+       << "\"></span> " << fmt(legend.value("high", 1.0), "%.4g")
+       << (diverging ? " (0 = white)" : "");
+  const std::string note = legend.value("note", "");
+  if (!note.empty()) html << "<br>" << htmlEscape(note);
+  html << "</div>";
+  return html.str();
 }
 
 void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
@@ -454,12 +484,12 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
            << htmlEscape(f.get<std::string>()) << "\" style=\"width: " << shown
            << "px\"><figcaption>";
       if (isChannel)
-        html << "channel " << htmlEscape(image["channel"].get<std::string>());
+        html << htmlEscape(panelCaption(image));
       else
         html << htmlEscape(image["caption"].get<std::string>()) << " <span class=\"file\">("
              << htmlEscape(f.get<std::string>()) << ", " << width << "x"
              << image["height"].get<int>() << ")</span>";
-      html << "</figcaption></figure>\n";
+      html << legendHtml(image.value("legend", json())) << "</figcaption></figure>\n";
     }
     html << (groupOpen ? "</div>" : "") << "</div><div class=\"notes\">\n";
     writeStateCard(html, pass);
@@ -558,7 +588,11 @@ std::string pageHtml(const LessonPage& page) {
        << "table.numbers { border-collapse: collapse; }\n"
        << "table.numbers td, table.numbers th { border: 1px solid #ccc; padding: 0.2em 0.6em; }\n"
        << ".bad { color: #a00; }\ncode { font-size: 0.92em; }\n"
-       << "dt { font-weight: bold; }\n</style>\n</head>\n<body>\n";
+       << "dt { font-weight: bold; }\n"
+       << ".legend { font-size: 0.9em; color: #444; }\n"
+       << ".legend .bar { display: inline-block; width: 70px; height: 0.7em; "
+          "border: 1px solid #999; vertical-align: middle; }\n"
+       << ".glsl-title { color: #444; margin-bottom: 0.2em; }\n</style>\n</head>\n<body>\n";
   html << "<h1>" << htmlEscape(field(text, "title")) << "</h1>\n<p><b>" << htmlEscape(t.name)
        << "</b> — " << htmlEscape(text.paper) << ", " << htmlEscape(field(text, "sections"))
        << ".</p>\n<p>Contents: <a href=\"#idea\">the idea</a>";
