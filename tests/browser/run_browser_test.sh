@@ -11,7 +11,7 @@
 # missing (scripts/setup.sh runs `npm ci` there).
 set -euo pipefail
 bin=$1
-out=$2
+out=$(realpath -m "$2")
 here=$(cd "$(dirname "$0")" && pwd)
 chromium=${SHADOWLAB_CHROMIUM:-/usr/bin/chromium}
 if ! command -v node >/dev/null || [[ ! -x $chromium ]]; then
