@@ -1,4 +1,5 @@
-// apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures.
+// apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures,
+// lesson.
 // Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
@@ -7,6 +8,7 @@
 
 #include "registry/cli.h"
 #include "registry/registry.h"
+#include "registry/twins.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/output_files.h"
@@ -14,6 +16,7 @@
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
+#include "figures/lesson.h"
 
 namespace sl {
 namespace {
@@ -33,7 +36,8 @@ usage:
   shadowlab compare --scene S --a T1 --b T2 [render options] [--diff diff.png] [--threshold X]
   shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
-  shadowlab figures [--out DIR] [--only ID]        the main job: every figure + report.html
+  shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
+  shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
@@ -179,7 +183,8 @@ int render(const cli::Args& args) {
   for (const PassTime& p : frame.passes) out["passes"][p.name] = p.milliseconds;
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
   const std::string line = jsonLine(out);
-  const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made};
+  const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made,
+                                  twins::legacyTwinOf(technique.name)};
   writeFrameOutputs(frame, dumpHeader, outputs, pngProvenance(made));
   outputs.set.commit();
   std::cout << line << "\n";
@@ -245,8 +250,11 @@ int run(int argc, char** argv) {
   if (args.command == "render") return render(args);
   if (args.command == "compare") return compare(args);
   if (args.command == "figures")
-    return figures::runFigures(args.value("out").value_or("out/figures"), args.value("only"),
-                               !args.has("no-progress"));
+    return figures::runFigures(
+        args.value("out").value_or("out/figures"),
+        args.options.count("only") ? args.options.at("only") : std::vector<std::string>{},
+        !args.has("no-progress"));
+  if (args.command == "lesson") return figures::runLessonCommand(args);
   if (args.command == "bench") return figures::runBench(args);
   if (args.command == "plan") {
     rejectIgnoredOptions(findTechnique(args.required("technique")), cli::givenCommonOptions(args));

@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_trace.h"
 
 namespace sl {
 namespace {
@@ -58,6 +59,7 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 
 Image readDepthTexture(unsigned texture, int width, int height) {
   using namespace gl;
+  const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   GLint previous = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &previous);
   Image depth(width, height, 1);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -13,6 +14,7 @@
 #include "core/html.h"
 #include "core/image.h"
 #include "core/output_files.h"
+#include "core/shaders.h"
 
 namespace sl {
 namespace {
@@ -76,6 +78,55 @@ Image opaque(const Image& image) {
   return out;
 }
 
+// The range of a packed map's values below the far plane (1), over all channels.
+struct PackedRange {
+  float lo;
+  float hi;
+};
+constexpr float kFarDepth = 1.0f;
+PackedRange drawnRange(const Image& image) {
+  PackedRange r{kFarDepth, kFarDepth};
+  bool any = false;
+  for (float v : image.data) {
+    if (v >= kFarDepth) continue;
+    r.lo = any ? std::min(r.lo, v) : v;
+    r.hi = any ? std::max(r.hi, v) : v;
+    any = true;
+  }
+  return r;
+}
+
+// Channel c as grey over `range` (lo black, hi white, far white).
+Image stretched(const Image& image, int c, PackedRange range) {
+  Image out = channel(image, c);
+  const float span = range.hi - range.lo;
+  for (float& v : out.data)
+    v = v >= kFarDepth ? 1.0f : span > 0.0f ? std::clamp((v - range.lo) / span, 0.0f, 1.0f) : 0.5f;
+  return out;
+}
+
+// Channel c minus channel `centre` on a diverging scale (blue < 0 < red, 0 white), scaled to
+// the largest difference where both samples were drawn (`limit`); larger ones clamp.
+Image minusCentre(const Image& image, int c, int centre, float& limit) {
+  limit = 0.0f;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const float a = image.at(x, y, c), b = image.at(x, y, centre);
+      if (a < kFarDepth && b < kFarDepth) limit = std::max(limit, std::abs(a - b));
+    }
+  Image out(image.width, image.height, 3);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const float d = image.at(x, y, c) - image.at(x, y, centre);
+      const float t = limit > 0.0f ? std::clamp(d / limit, -1.0f, 1.0f) : 0.0f;
+      // white at 0, towards pure red (t = 1) or pure blue (t = -1)
+      out.at(x, y, 0) = t < 0.0f ? 1.0f + t : 1.0f;
+      out.at(x, y, 1) = 1.0f - std::abs(t);
+      out.at(x, y, 2) = t > 0.0f ? 1.0f - t : 1.0f;
+    }
+  return out;
+}
+
 std::string milliseconds(double ms) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f ms", ms);
@@ -86,6 +137,73 @@ std::string milliseconds(double ms) {
 std::string shownValue(const nlohmann::json& v) {
   return v.is_string() ? v.get<std::string>()
                        : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// The GLSL lines marked `// @pass id` (core/shaders.h) and the legacy passes they replace (those
+// of `twin` when given), added to a pass of passes.json once each.
+void addShaderPass(nlohmann::json& pass, const std::string& id, const std::string& twin) {
+  bool found = false;
+  for (const ShaderPassMarker& m : shaderPassMarkers()) {
+    if (m.id != id) continue;
+    found = true;
+    nlohmann::json where = {{"file", m.file},
+                            {"first_line", m.firstLine},
+                            {"last_line", m.lastLine},
+                            {"marker", m.id},
+                            {"title", m.title}};
+    if (std::find(pass["glsl"].begin(), pass["glsl"].end(), where) == pass["glsl"].end())
+      pass["glsl"].push_back(where);
+    for (const std::string& r : m.replaces) {
+      if (!twin.empty() && r.rfind(twin + " ", 0) != 0) continue;
+      if (std::find(pass["replaces"].begin(), pass["replaces"].end(), r) == pass["replaces"].end())
+        pass["replaces"].push_back(r);
+    }
+  }
+  if (!found) throw GlError("a pass names the shader marker @pass " + id + ", which no shader has");
+}
+
+// A value legend under an image: a gradient bar with its end values.
+std::string legendHtml(const nlohmann::json& legend) {
+  const bool diverging = legend["kind"] == "diverging";
+  char low[32], high[32];
+  std::snprintf(low, sizeof low, "%.4g", legend["low"].get<double>());
+  std::snprintf(high, sizeof high, "%.4g", legend["high"].get<double>());
+  std::ostringstream html;
+  html << "<div class=\"legend\"><span>" << low << "</span><span class=\"bar\" style=\"background: "
+       << (diverging ? "linear-gradient(to right, #00f, #fff, #f00)"
+                     : "linear-gradient(to right, #000, #fff)")
+       << "\"></span><span>" << high << "</span>";
+  if (diverging) html << " <span>(0 = white)</span>";
+  const std::string note = legend.value("note", "");
+  if (!note.empty()) html << "<br><span class=\"note\">" << htmlEscape(note) << "</span>";
+  html << "</div>";
+  return html.str();
+}
+
+// The pass's section, source and GL state (core/gl_trace.h) as a card.
+std::string stateCard(const nlohmann::json& pass) {
+  std::ostringstream html;
+  const nlohmann::json& source = pass["source"];
+  html << "<p class=\"where\">" << htmlEscape(pass["section"].get<std::string>());
+  if (!source["file"].get<std::string>().empty())
+    html << " &middot; <code>" << htmlEscape(source["file"].get<std::string>()) << "</code> <code>"
+         << htmlEscape(source["function"].get<std::string>()) << "()</code>";
+  html << "</p>\n<div class=\"state-card\"><b>GL state</b> ";
+  const nlohmann::json& state = pass["state"];
+  if (state.empty()) {
+    html << "<i>no GL call that changes state or draws was made in this pass</i></div>\n";
+    return html.str();
+  }
+  html << "(" << state.size()
+       << " lines, in call order; grey: set before the pass's timer started)<table>\n";
+  for (const nlohmann::json& l : state) {
+    const std::string group = l["group"].get<std::string>();
+    const char* cls = group == "part" ? " class=\"part\"" : l.value("before_pass", false) ? " class=\"before\"" : "";
+    html << "<tr" << cls << "><td class=\"group\">" << htmlEscape(group) << "</td><td>"
+         << htmlEscape(l["text"].get<std::string>()) << "</td></tr>\n";
+  }
+  html << "</table></div>\n";
+  return html.str();
 }
 
 }  // namespace
@@ -125,17 +243,52 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
     for (int k = 2; used.count(stem); ++k) stem += "-" + std::to_string(k);
     used.insert(stem);
     const bool alpha = p.image.channels == 2 || p.image.channels == 4;
-    PassDumpImage main{stem + ".png", pass, p.caption, alpha ? opaque(p.image) : p.image, "", ""};
+    PassDumpImage main{stem + ".png", pass, p.caption, alpha ? opaque(p.image) : p.image};
     if (alpha) main.caption += " [shown opaque: alpha ignored; each channel follows in grey]";
     out.push_back(main);
     if (!alpha) continue;
     const std::vector<std::string> names = channelNames(p.image.channels);
+    const bool packed = p.centreChannel >= 0 && p.centreChannel < p.image.channels;
+    // A packed map's channels share one depth scale: the drawn values, far (1) white.
+    const PackedRange range = packed ? drawnRange(p.image) : PackedRange{0.0f, 1.0f};
     for (int c = 0; c < p.image.channels; ++c) {
       const std::string& name = names[size_t(c)];
-      out.push_back({stem + "-ch" + std::to_string(c + 1) + "-" + name + ".png", pass,
-                     p.caption + " [channel " + name + " (" + channelWord(name) +
-                         ") alone: 0 black .. 1 white]",
-                     channel(p.image, c), name, main.file});
+      const std::string meaning =
+          size_t(c) < p.channelMeaning.size() ? ": " + p.channelMeaning[size_t(c)] : "";
+      PassDumpImage panel{stem + "-ch" + std::to_string(c + 1) + "-" + name + ".png", pass,
+                          p.caption + " [channel " + name + " (" + channelWord(name) + ")" +
+                              meaning + " alone]",
+                          packed ? stretched(p.image, c, range) : channel(p.image, c), name,
+                          main.file, "channel"};
+      panel.legend = packed ? ValueLegend{"grey", range.lo, range.hi, "1 (far: nothing drawn) = white"}
+                            : ValueLegend{"grey", 0.0, 1.0, ""};
+      out.push_back(panel);
+    }
+    if (!packed) continue;
+    const int centre = p.centreChannel;
+    for (int c = 0; c < p.image.channels; ++c) {
+      if (c == centre) continue;
+      const std::string& name = names[size_t(c)];
+      const std::string& centreName = names[size_t(centre)];
+      float limit = 0.0f;
+      Image diverging = minusCentre(p.image, c, centre, limit);
+      PassDumpImage view{stem + "-ch" + std::to_string(c + 1) + "-" + name + "-minus-" + centreName +
+                             ".png",
+                         pass,
+                         "channel " + name +
+                             (size_t(c) < p.channelMeaning.size() ? " (" + p.channelMeaning[size_t(c)] + ")" : "") +
+                             " minus channel " + centreName +
+                             (size_t(centre) < p.channelMeaning.size()
+                                  ? " (" + p.channelMeaning[size_t(centre)] + ")"
+                                  : "") +
+                             ": white where the neighbour lies at the texel's depth; red / blue "
+                             "along depth edges where the packed neighbour is one texel away "
+                             "(Fig. 5)",
+                         std::move(diverging), name, main.file, "minus centre"};
+      view.legend = ValueLegend{"diverging", -double(limit), double(limit),
+                                "depth difference; clamped beyond the ends (edges against the "
+                                "far plane)"};
+      out.push_back(view);
     }
   }
   return out;
@@ -155,9 +308,29 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   std::map<int, nlohmann::json> passes;
   for (const PassTime& t : frame.passes) {
     nlohmann::json& p = passes[passNumberOf(t.name)];
-    if (!p.contains("name")) p["name"] = afterPassNumber(t.name);
+    if (!p.contains("name")) {
+      p["name"] = afterPassNumber(t.name);
+      // Declared by the pass (core/technique.h PassTimer); the technique's citation otherwise.
+      p["section"] = t.section.empty() ? header.paper : t.section;
+      p["source"] = {{"file", t.sourceFile}, {"function", t.sourceFunction}};
+      p["state"] = nlohmann::json::array();
+    }
     p["milliseconds"] = p.value("milliseconds", 0.0) + t.milliseconds;
     p["timings"].push_back({{"name", t.name}, {"milliseconds", t.milliseconds}});
+    // A pass timed in several parts (the phases of a 4x4 footprint): each part's lines
+    // follow a "part" line naming it.
+    size_t parts = 0;
+    for (const PassTime& u : frame.passes) parts += passNumberOf(u.name) == passNumberOf(t.name);
+    if (parts > 1) p["state"].push_back({{"group", "part"}, {"text", t.name}});
+    for (const GlStateLine& l : t.gl.setup)
+      p["state"].push_back({{"group", l.group}, {"text", l.text}, {"before_pass", true}});
+    for (const GlStateLine& l : t.gl.state)
+      p["state"].push_back({{"group", l.group}, {"text", l.text}});
+    if (!p.contains("glsl")) {
+      p["glsl"] = nlohmann::json::array();
+      p["replaces"] = nlohmann::json::array();
+    }
+    for (const std::string& id : t.glsl) addShaderPass(p, id, header.twin);
   }
   out["images"] = nlohmann::json::array();
   for (const PassDumpImage& i : images) {
@@ -174,12 +347,23 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
       image["channel"] = i.channel;
       image["of"] = i.of;
     }
+    if (!i.view.empty()) image["view"] = i.view;
+    if (i.legend)
+      image["legend"] = {{"kind", i.legend->kind},
+                         {"low", i.legend->low},
+                         {"high", i.legend->high},
+                         {"note", i.legend->note}};
     out["images"].push_back(image);
   }
   out["passes"] = nlohmann::json::array();
   for (auto& [number, p] : passes) {
     p["number"] = number;
     if (!p.contains("name")) p["name"] = "";
+    if (!p.contains("section")) p["section"] = header.paper;
+    if (!p.contains("source")) p["source"] = {{"file", ""}, {"function", ""}};
+    if (!p.contains("state")) p["state"] = nlohmann::json::array();
+    if (!p.contains("glsl")) p["glsl"] = nlohmann::json::array();
+    if (!p.contains("replaces")) p["replaces"] = nlohmann::json::array();
     if (!p.contains("milliseconds")) p["milliseconds"] = nullptr;
     if (!p.contains("timings")) p["timings"] = nlohmann::json::array();
     if (!p.contains("files")) p["files"] = nlohmann::json::array();
@@ -203,7 +387,20 @@ std::string indexHtml(const nlohmann::json& passes) {
           "border: 1px solid #999; }\n"
        << "figcaption { font-size: 0.85em; margin-top: 0.3em; }\n"
        << "table { border-collapse: collapse; font-size: 0.9em; }\n"
-       << "td { padding: 0.1em 0.8em 0.1em 0; }\n</style>\n</head>\n<body>\n";
+       << "td { padding: 0.1em 0.8em 0.1em 0; }\n"
+       << ".where { color: #333; margin: 0.2em 0 0.6em 0; }\n"
+       << ".state-card { border: 1px solid #bbb; background: #f7f7f2; padding: 0.4em 0.7em; "
+          "margin: 0 0 1em 0; max-height: 28em; overflow: auto; }\n"
+       << ".state-card td { font-family: monospace; font-size: 0.85em; vertical-align: top; "
+          "word-break: break-word; }\n"
+       << ".state-card td.group { color: #0a5; white-space: nowrap; }\n"
+       << ".state-card tr.before td { color: #777; }\n"
+       << ".state-card tr.part td { font-weight: bold; padding-top: 0.5em; }\n"
+       << ".legend span { vertical-align: middle; margin-right: 0.3em; }\n"
+       << ".legend .bar { display: inline-block; width: 120px; height: 0.8em; "
+          "border: 1px solid #999; }\n"
+       << ".legend .note { color: #555; }\n"
+       << "</style>\n</head>\n<body>\n";
   html << "<h1>" << technique << "</h1>\n<p>" << htmlEscape(passes["paper"].get<std::string>())
        << "<br>scene " << htmlEscape(passes["scene"].get<std::string>()) << ", frame "
        << milliseconds(passes["frame_ms"].get<double>()) << "</p>\n<table>\n";
@@ -231,6 +428,27 @@ std::string indexHtml(const nlohmann::json& passes) {
                                        : std::string())
            << "</span>";
     html << "</h2>\n";
+    html << stateCard(p);
+    if (!p["glsl"].empty()) {
+      html << "<p class=\"glsl\">GLSL: ";
+      bool first = true;
+      for (const nlohmann::json& g : p["glsl"]) {
+        html << (first ? "" : "; ") << "<code>" << htmlEscape(g["file"].get<std::string>())
+             << "</code> lines " << g["first_line"].get<int>() << "&ndash;"
+             << g["last_line"].get<int>() << " (" << htmlEscape(g["title"].get<std::string>()) << ")";
+        first = false;
+      }
+      html << "</p>\n";
+    }
+    if (!p["replaces"].empty()) {
+      html << "<p class=\"replaces\">Replaces: ";
+      bool first = true;
+      for (const nlohmann::json& r : p["replaces"]) {
+        html << (first ? "" : "; ") << htmlEscape(r.get<std::string>());
+        first = false;
+      }
+      html << "</p>\n";
+    }
     for (const nlohmann::json& f : p["files"]) {
       const nlohmann::json& image = *images.at(f.get<std::string>());
       const int width = image["width"].get<int>();
@@ -239,7 +457,9 @@ std::string indexHtml(const nlohmann::json& passes) {
       html << "<figure style=\"width: " << shown << "px\"><img src=\"" << file << "\" alt=\""
            << file << "\" style=\"width: " << shown << "px\"><figcaption><b>" << file << "</b> ("
            << width << "x" << image["height"].get<int>() << ")<br>"
-           << htmlEscape(image["caption"].get<std::string>()) << "</figcaption></figure>\n";
+           << htmlEscape(image["caption"].get<std::string>());
+      if (image.contains("legend")) html << legendHtml(image["legend"]);
+      html << "</figcaption></figure>\n";
     }
   }
   html << "</body>\n</html>\n";

@@ -9,19 +9,30 @@
 // order they were made ("05a-mask-after-colour-table", "05b-alpha-after-colour-matrix"), so that
 // `ls` lists them in pipeline order. A buffer with alpha (packed maps: four depths in R, G, B,
 // A) is written opaque (alpha shown as 1), followed by one grey PNG per channel named
-// "<file>-ch1-R.png" ... "-ch4-A.png".
+// "<file>-ch1-R.png" ... "-ch4-A.png", each with a value legend. A packed map (PassImage::
+// centreChannel, Brabec–Seidel Fig. 5) shows its channels on one depth scale and adds, per other
+// channel, that channel minus the centre one on a diverging scale ("<file>-ch1-R-minus-A.png"):
+// the one-texel shift between the packed neighbours appears at every depth edge.
 //
 // passes.json: {"technique", "paper", "scene", "parameters", "frame_ms", "counters",
 //   "passes": [{"number", "name", "milliseconds", "timings": [{"name", "milliseconds"}],
-//               "files": [...]}],
+//               "section", "source": {"file", "function"},
+//               "state": [{"group", "text", "before_pass" (true when set before the timer)}],
+//               "glsl": [{"file", "first_line", "last_line", "marker", "title"}],
+//               "replaces": ["legacy.X pass N name"], "files": [...]}],
 //   "images": [{"file", "pass", "pass_name", "caption", "width", "height", "channels",
-//               "channel" and "of" for the grey panel of one channel}]}
+//               "channel" and "of" for the grey panel of one channel, "view",
+//               "legend": {"kind", "low", "high", "note"}}]}
+// "section" and "source" come from the pass's PassTimer (core/technique.h), "state" from the GL
+// trace (core/gl_trace.h), "glsl" and "replaces" from the `// @pass` markers of the shaders the
+// pass names (core/shaders.h), "replaces" limited to the legacy twin in the header.
 // A pass is every Frame::passes entry with one number (the phases of a 4x4 footprint are
 // several entries); its "milliseconds" is their sum, "timings" lists them.
 // The times are those of this one render (core/technique.h PassTimer), not a median.
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +47,15 @@ struct PassDumpHeader {
   std::string paper;
   std::string scene;
   nlohmann::json parameters;  // the options and --params as they took effect
+  std::string twin;           // a modern technique's legacy twin (registry/twins.h), or ""
+};
+
+// How a file's values map to grey or colour, for the legend beside it.
+struct ValueLegend {
+  std::string kind;  // "grey": low black .. high white; "diverging": low blue, 0 white, high red
+  double low = 0.0;
+  double high = 1.0;
+  std::string note;  // "1 (far, nothing drawn) = white", "clamped beyond the ends"
 };
 
 // One file of a dump.
@@ -46,6 +66,8 @@ struct PassDumpImage {
   Image image;          // as written (alpha forced to 1, or one channel)
   std::string channel;  // "R", "G", "B", "A", "L" for a channel of `of`; empty otherwise
   std::string of;       // the file this is a channel of
+  std::string view;     // "channel", "minus centre" (channel minus the centre channel), or ""
+  std::optional<ValueLegend> legend;
 };
 
 // The pass number a buffer or pass name starts with ("3a-projected..." -> 3, "1 depth" -> 1),

@@ -1,6 +1,9 @@
 #include "core/shaders.h"
 
+#include <sstream>
+
 #include "core/errors.h"
+#include "core/gl_trace.h"
 
 namespace sl {
 using namespace sl::gl;
@@ -60,6 +63,54 @@ GLuint compileStage(GLenum type, const std::string& file, const ShaderDefines& d
 }
 }  // namespace
 
+std::vector<ShaderPassMarker> shaderPassMarkers() {
+  static const std::string kPass = "// @pass ", kReplaces = "// @replaces ", kEnd = "// @end ";
+  auto trimmed = [](std::string line) {
+    const size_t first = line.find_first_not_of(" \t");
+    const size_t last = line.find_last_not_of(" \t\r");
+    return first == std::string::npos ? std::string() : line.substr(first, last - first + 1);
+  };
+  std::vector<ShaderPassMarker> out;
+  for (const auto& [file, source] : embeddedShaders()) {
+    std::vector<ShaderPassMarker> open;  // innermost last
+    std::istringstream lines(source);
+    std::string raw;
+    for (int number = 1; std::getline(lines, raw); ++number) {
+      const std::string line = trimmed(raw);
+      const std::string where = file + ":" + std::to_string(number);
+      if (line.rfind(kPass, 0) == 0) {
+        ShaderPassMarker m;
+        const std::string rest = line.substr(kPass.size());
+        const size_t colon = rest.find(':');
+        m.id = trimmed(rest.substr(0, colon));
+        m.title = colon == std::string::npos ? "" : trimmed(rest.substr(colon + 1));
+        m.file = file;
+        m.firstLine = number + 1;
+        if (m.id.empty()) throw GlError(where + ": @pass without a name");
+        open.push_back(m);
+      } else if (line.rfind(kReplaces, 0) == 0) {
+        if (open.empty() || open.back().firstLine != number)
+          throw GlError(where + ": @replaces must follow its @pass line");
+        open.back().replaces.push_back(trimmed(line.substr(kReplaces.size())));
+        open.back().firstLine = number + 1;
+      } else if (line.rfind(kEnd, 0) == 0) {
+        const std::string id = trimmed(line.substr(kEnd.size()));
+        if (open.empty() || open.back().id != id)
+          throw GlError(where + ": @end " + id + " without its @pass");
+        ShaderPassMarker m = open.back();
+        open.pop_back();
+        m.lastLine = number - 1;
+        if (m.lastLine < m.firstLine) throw GlError(where + ": @pass " + id + " marks no line");
+        out.push_back(m);
+      }
+    }
+    if (!open.empty())
+      throw GlError(file + ":" + std::to_string(open.back().firstLine) + ": @pass " +
+                    open.back().id + " has no @end");
+  }
+  return out;
+}
+
 GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fragmentFile,
                             const ShaderDefines& defines, const std::string& geometryFile) {
   std::vector<GLuint> stages;
@@ -87,6 +138,9 @@ GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fr
     glDeleteProgram(program);
     throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
   }
+  std::vector<std::string> files = {vertexFile, fragmentFile};
+  if (!geometryFile.empty()) files.push_back(geometryFile);
+  noteTracedProgram(program, files);
   return program;
 }
 

@@ -30,4 +30,23 @@ GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fr
                             const ShaderDefines& defines = {},
                             const std::string& geometryFile = "");
 
+// A pass of a modern technique marked in the shader source that does it (issue 18 item 3):
+//   // @pass ID: what the lines do (paper section)
+//   // @replaces legacy.fast-pcf pass 2 copy to texture through the packing convolution
+//   ... the GLSL of the pass ...
+//   // @end ID
+// One ID may be marked in several files (a vertex and a fragment stage) and several times in a
+// file; @replaces lines (any number, right after @pass) name the legacy passes the lines replace.
+struct ShaderPassMarker {
+  std::string id;
+  std::string file;    // "fast_pcf_pack.frag.glsl"
+  int firstLine = 0;   // the marked code, 1-based, without the marker lines
+  int lastLine = 0;
+  std::string title;   // the text after "@pass ID:"
+  std::vector<std::string> replaces;
+};
+// Every marker of every embedded shader, by file then line. Throws GlError naming the file and
+// line of a marker without its @end, an @end without its @pass, or an empty block.
+std::vector<ShaderPassMarker> shaderPassMarkers();
+
 }  // namespace sl

@@ -320,16 +320,38 @@ double nowMilliseconds() {
   return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
 }
 
-PassTimer::PassTimer(Frame& frame, std::string name) : frame_(frame), name_(std::move(name)) {
+std::string sourceRelativePath(const std::string& file) {
+  const std::string root = std::string(SHADOWLAB_SOURCE_DIR) + "/";
+  if (file.compare(0, root.size(), root) == 0) return file.substr(root.size());
+  // A build directory inside the tree compiles "../legacy_gl/x.cpp".
+  std::string relative = file;
+  while (relative.rfind("../", 0) == 0) relative = relative.substr(3);
+  return relative;
+}
+
+PassTimer::PassTimer(Frame& frame, std::string name, std::string section, const char* file,
+                     const char* function)
+    : frame_(frame) {
+  pass_.name = std::move(name);
+  pass_.section = std::move(section);
+  pass_.sourceFile = sourceRelativePath(file);
+  pass_.sourceFunction = function;
   glFinish();
+  beginTracedPass();
   start_ = nowMilliseconds();
 }
 
 PassTimer::~PassTimer() noexcept(false) {
-  if (std::uncaught_exceptions() > 0) return;
+  if (std::uncaught_exceptions() > 0) {
+    endTracedPass();
+    return;
+  }
   glFinish();
-  frame_.passes.push_back({name_, nowMilliseconds() - start_});
-  checkGl(name_.c_str());
+  pass_.milliseconds = nowMilliseconds() - start_;
+  pass_.gl = endTracedPass();
+  const std::string name = pass_.name;
+  frame_.passes.push_back(std::move(pass_));
+  checkGl(name.c_str());
 }
 
 Image readColorBuffer(int x, int y, int width, int height) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/context.h"
+#include "core/gl_trace.h"
 #include "core/image.h"
 #include "core/scene.h"
 
@@ -111,14 +112,35 @@ struct RenderParams {
 std::map<std::string, std::string> effectiveParams(const RenderParams& p);
 
 struct PassTime {
+  PassTime() = default;
+  PassTime(std::string n, double ms) : name(std::move(n)), milliseconds(ms) {}
   std::string name;
   double milliseconds = 0.0;
+  // Declared by the pass itself (PassTimer): the paper's section/equation/figure it follows,
+  // and where its function lives (file relative to the source tree, function name).
+  std::string section;
+  std::string sourceFile;
+  std::string sourceFunction;
+  // The shader passes it runs: IDs of `// @pass ID` markers in the GLSL (core/shaders.h
+  // shaderPassMarkers), which name the legacy passes they replace.
+  std::vector<std::string> glsl;
+  // While a GlTrace runs (--dump-passes): the GL state it set (core/gl_trace.h).
+  TracedPass gl;
 };
 
 struct PassImage {
+  PassImage() = default;
+  PassImage(std::string n, std::string c, Image i)
+      : name(std::move(n)), caption(std::move(c)), image(std::move(i)) {}
   std::string name;  // file-name friendly: "1-light-pass-ramp-depth"
   std::string caption;
   Image image;
+  // A packed map (several depth samples per texel, Brabec–Seidel §4 Fig. 5): the channel that
+  // holds the texel's own (centre) sample and what each channel holds ("lower left", ...). The
+  // dump (core/pass_dump.h) then shows every channel on one depth scale and each channel minus
+  // the centre one, so the one-texel shift between them is visible.
+  int centreChannel = -1;
+  std::vector<std::string> channelMeaning;
 };
 
 struct Frame {
@@ -197,18 +219,31 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize);
 
 // Times one pass: glFinish() before and after, so the time is the pass's own GPU+CPU work.
 // Also checks GL errors at the end of the pass (throws GlError naming the pass).
+//
+// The pass declares itself here: `section` is the paper's section, equation or figure it
+// follows ("Brabec & Seidel §4, Eq. (1), Fig. 5"); the file and function of the call are filled
+// in by the compiler (the function that opens the timer is the pass's function). While a
+// GlTrace runs, the GL calls made inside the timer become the pass's state lines.
 class PassTimer {
  public:
-  PassTimer(Frame& frame, std::string name);
+  PassTimer(Frame& frame, std::string name, std::string section = "",
+            const char* file = __builtin_FILE(), const char* function = __builtin_FUNCTION());
   ~PassTimer() noexcept(false);
   PassTimer(const PassTimer&) = delete;
   PassTimer& operator=(const PassTimer&) = delete;
 
+  // The `// @pass ID` markers of the shader code this pass runs (modern techniques).
+  void shaderPasses(std::vector<std::string> ids) { pass_.glsl = std::move(ids); }
+
  private:
   Frame& frame_;
-  std::string name_;
+  PassTime pass_;
   double start_;
 };
+
+// A source file path as the compiler spelled it, relative to the source tree
+// ("/work/x/legacy_gl/fast_pcf.cpp" -> "legacy_gl/fast_pcf.cpp").
+std::string sourceRelativePath(const std::string& file);
 
 double nowMilliseconds();
 

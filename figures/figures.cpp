@@ -30,6 +30,7 @@
 #include "figures/bench_report.h"
 #include "figures/diagnostics.h"
 #include "figures/figure_composite.h"
+#include "figures/lesson.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
@@ -45,6 +46,10 @@ constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
+// The lessons of the main job (figures/lesson.h): small, so that ~21 lessons add about a minute.
+constexpr int kLessonWidth = 320;
+constexpr int kLessonHeight = 240;
+constexpr int kLessonShadowMap = 256;
 
 const Technique* lookup(const std::string& name) {
   for (const Technique& t : allTechniques())
@@ -572,15 +577,19 @@ std::vector<FigureInfo> listFigures() {
   return out;
 }
 
-int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress) {
+int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress) {
   std::vector<const FigureSpec*> selected;
-  for (const FigureSpec& f : figureList())
-    if (!only || f.id == *only) selected.push_back(&f);
-  if (selected.empty()) {
-    std::string known;
-    for (const FigureSpec& f : figureList()) known += (known.empty() ? "" : ", ") + f.id;
-    throw InputError("unknown figure '" + *only + "' (known: " + known + ")");
+  for (const std::string& id : only) {
+    if (std::none_of(figureList().begin(), figureList().end(),
+                     [&](const FigureSpec& f) { return f.id == id; })) {
+      std::string known;
+      for (const FigureSpec& f : figureList()) known += (known.empty() ? "" : ", ") + f.id;
+      throw InputError("unknown figure '" + id + "' (known: " + known + ")");
+    }
   }
+  for (const FigureSpec& f : figureList())
+    if (only.empty() || std::find(only.begin(), only.end(), f.id) != only.end())
+      selected.push_back(&f);
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
@@ -621,8 +630,28 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
         std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
     results.push_back(std::move(fr));
   }
+  // A lesson per technique (figures/lesson.h), small so that all of them cost about a minute;
+  // with --only, the techniques the selected figures show.
+  std::vector<std::string> lessonTechniques;
+  for (const Technique& t : allTechniques()) {
+    bool shown = only.empty();
+    for (const FigureSpec* f : selected)
+      for (const PanelSpec& p : f->panels) shown = shown || p.technique == t.name;
+    if (shown) lessonTechniques.push_back(t.name);
+  }
+  const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap};
   ReportInfo info;
-  if (!only) {  // the whole set: the quick bench's table, plots and claims join the report
+  const auto lessonsStart = std::chrono::steady_clock::now();
+  info.lessonsHtml = lessonIndexHtml(writeLessons((fs::path(outDir) / "lessons").string(),
+                                                  lessonTechniques, lessonSettings, progress),
+                                     "lessons/");
+  if (progress)
+    std::cerr << "[lesson] " << lessonTechniques.size() << " lessons in "
+              << std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                           lessonsStart)
+                                 .count())
+              << " s" << std::endl;
+  if (only.empty()) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);
     if (progress) std::cerr << "[stability] every technique on every stability case" << std::endl;

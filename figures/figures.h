@@ -19,8 +19,10 @@ struct FigureInfo {
 };
 
 std::vector<FigureInfo> listFigures();
-// Renders every figure (or only `only`) into outDir and writes outDir/report.html.
-int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress);
+// Renders every figure (or only the ids in `only`) into outDir, a lesson per technique into
+// outDir/lessons/ (figures/lesson.h; with `only`, the techniques those figures show) and writes
+// outDir/report.html, which links them.
+int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress);
 int runBench(const cli::Args& args);
 
 // figure.png: the figure laid out as the paper lays it out, in rows of spec.columns tiles, then

@@ -330,6 +330,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
       << " / " << f.panels.size() << (complete ? "" : " (missing in red)") << "</td></tr>\n";
   }
   h << "</table></nav>\n";
+  h << info.lessonsHtml;
   std::string paper;
   for (const FigureResult& f : figures) {
     if (f.spec.paper != paper) {

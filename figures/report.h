@@ -61,6 +61,7 @@ struct ReportInfo {
   std::string date;
   double totalSeconds = 0;
   std::string benchHtml;  // the quick bench's section (figures/bench_report.cpp), if it ran
+  std::string lessonsHtml;  // links to the lessons (figures/lesson.h lessonIndexHtml)
 };
 
 // Writes outDir/report.html (a gallery per paper; missing panels in red with the reason).

@@ -391,6 +391,7 @@ void countShadowSamplesByCopy(const RenderParams& params, const DepthEncoding& e
 }
 
 Image readThroughColorTable(const RenderParams& params, const DepthEncoding& enc, int samples) {
+  const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   loadShadowCountTable(enc, samples);
   glEnable(GL_COLOR_TABLE);
   Image image = readColorBuffer(0, 0, params.width, params.height);
@@ -448,10 +449,12 @@ void capture(Frame& frame, const RenderParams& params, std::string name, std::st
 }
 
 Image readWindowRgba(const RenderParams& params) {
+  const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   return readColorBuffer(0, 0, params.width, params.height);
 }
 
 Image readShadowMap(const ShadowMapTexture& map, int texels) {
+  const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   Image image(texels, texels, 4);
   glBindTexture(GL_TEXTURE_2D, map.name.id());
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

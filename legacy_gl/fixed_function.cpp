@@ -4,6 +4,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_trace.h"
 #include "core/winding.h"
 
 namespace sl::legacy {
@@ -135,6 +136,7 @@ Image readRedChannel(int width, int height) {
 }
 
 Image readRgb(int width, int height) {
+  const GlTracePause readback;  // reading the result is not state of a pass (core/gl_trace.h)
   Image rgb(width, height, 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data.data());

@@ -37,6 +37,9 @@ struct CommandSpec {
   const char* name;
   const char* summary;
   std::vector<OptionSpec> options;
+  // A positional argument (`shadowlab lesson TECHNIQUE`): its name in Args::options, or nullptr.
+  const char* positional = nullptr;
+  const char* positionalHelp = nullptr;
 };
 
 // The rendering options shared by render, compare and plan (DESIGN.md "Contracts").
@@ -112,8 +115,19 @@ const std::vector<CommandSpec>& commandSpecs() {
       {"figures",
        "the main job: every reproduced paper figure and report.html",
        {{"out", "PATH", "output directory [out/figures]"},
-        {"only", "ID", "only this figure id (shadowlab list)"},
+        {"only", "ID", "only this figure id (shadowlab list); repeatable"},
         {"no-progress", nullptr, "no progress lines on stderr"}}},
+      {"lesson",
+       "one self-contained HTML lesson on a technique: the paper's idea, every pass with its\n"
+       "caption, GL state card and GLSL twin, legacy against modern, the known departures",
+       {{"out", "DIR",
+         "output directory (made or replaced as a whole; an existing DIR must be "
+         "empty or hold only a previous lesson or dump), required"},
+        {"scene", "S", "scene name (shadowlab list) or a scene .json file [brabec]"},
+        {"size", "WxH", "window WxH [400x300]"},
+        {"shadow-map", "N", "shadow map side in texels, where the technique reads one [512]"}},
+       "technique",
+       "technique name (shadowlab list), required"},
   };
   return kCommands;
 }
@@ -143,6 +157,9 @@ Args parse(int argc, char** argv) {
                                     : sub->add_flag(flag, o.help);
       options[c.name][o.name] = option;
     }
+    if (c.positional)
+      options[c.name][c.positional] =
+          sub->add_option(c.positional, c.positionalHelp)->type_size(1)->required();
   }
   try {
     app.parse(argc, argv);

@@ -156,6 +156,12 @@ std::vector<TwinPair> twinPairs() {
   return out;
 }
 
+std::string legacyTwinOf(const std::string& modern) {
+  for (const TwinPair& p : twinPairs())
+    if (p.modern == modern) return p.legacy;
+  return "";
+}
+
 std::vector<std::string> missingPairs() {
   std::vector<std::string> out;
   for (const TwinPair& p : allPairs())

@@ -30,6 +30,9 @@ struct TwinPair {
 // not there yet is left out and listed by missingPairs()).
 std::vector<TwinPair> twinPairs();
 std::vector<std::string> missingPairs();
+// The legacy technique a modern one is the twin of ("modern.fast-pcf" -> "legacy.fast-pcf"),
+// "" when it has none.
+std::string legacyTwinOf(const std::string& modern);
 
 // Scenes every pair is checked on: analytic (exact shadow known), brabec (Brabec–Seidel §5, the
 // torus shadows itself) and dueling (the same meshes, light facing the camera: self-shadowing
