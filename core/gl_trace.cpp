@@ -312,16 +312,16 @@ std::string finished(const Line& l) {
   if (l.calls > 1)
     out += " x " + std::to_string(l.calls) + (begin || l.objects ? " objects" : " calls");
   if (*l.unit) out += ", " + std::to_string(l.count) + " " + l.unit;
-  if (l.objects) out += " (each object with its own colour, material and model matrix)";
+  if (l.objects) out += " (a scene loop: each object with its own material and model matrix)";
   return out;
 }
 
-// Lines that only prepare the next object of a scene loop: its colour, material, model matrix
-// and vertex pointers. Between two draws of one kind they are folded into the draw line.
+// Lines that only prepare the next object of a scene loop: its colour, material, model matrix,
+// vertex pointers and uniforms. Between two draws of one kind they are folded into the draw line.
 bool perObject(const Line& l) {
   auto starts = [&](const char* p) { return l.text.rfind(p, 0) == 0; };
   return (l.group == "vertex" && starts("current colour")) ||
-         (l.group == "lighting" && starts("material ")) ||
+         (l.group == "lighting" && starts("material ")) || l.group == "uniforms" ||
          (l.group == "matrix" && (starts("modelview: push") || starts("modelview: pop") ||
                                   starts("modelview: multiply by"))) ||
          (l.group == "vertex arrays" &&
@@ -329,8 +329,15 @@ bool perObject(const Line& l) {
            starts("glTexCoordPointer") || starts("glBindVertexArray")));
 }
 
+// What a per-object line sets, without the value: "uModel", "modelview: multiply by".
+std::string settingOf(const Line& l) {
+  const size_t end = std::min({l.text.find(" = "), l.text.find('('), l.text.find(" [")});
+  return l.text.substr(0, end);
+}
+
 // Folds a scene loop (per object: colour, material, model matrix, draw) into one draw line per
-// kind: "glDrawElements(GL_TRIANGLES) x 6 objects, 23172 indices (each ...)".
+// kind: "glDrawElements(GL_TRIANGLES) x 6 objects, 23172 indices (each ...)". Before the first
+// draw, only lines setting what the loop sets again between draws are folded.
 std::vector<Line> foldedObjects(const std::vector<Line>& lines) {
   std::vector<Line> out;
   for (const Line& l : lines) {
@@ -338,24 +345,26 @@ std::vector<Line> foldedObjects(const std::vector<Line>& lines) {
       size_t k = out.size();
       while (k > 0 && perObject(out[k - 1])) --k;
       if (k > 0 && out[k - 1].drawKey == l.drawKey && k < out.size()) {
-        Line& previous = out[k - 1];
-        previous.calls += l.calls;
-        previous.count += l.count;
-        previous.objects = true;
-        out.resize(k);
-        // The first object's own preparation goes into the folded line too.
-        size_t first = k - 1;
-        while (first > 0 && perObject(out[first - 1])) --first;
-        if (first < k - 1) {
-          Line folded = out[k - 1];
-          out.erase(out.begin() + long(first), out.end());
-          out.push_back(folded);
-        }
+        std::vector<std::string> settings;
+        for (size_t i = k; i < out.size(); ++i) settings.push_back(settingOf(out[i]));
+        Line folded = out[k - 1];
+        folded.calls += l.calls;
+        folded.count += l.count;
+        folded.objects = true;
+        out.resize(k - 1);
+        size_t first = out.size();
+        while (first > 0 && perObject(out[first - 1]) &&
+               std::find(settings.begin(), settings.end(), settingOf(out[first - 1])) !=
+                   settings.end())
+          --first;
+        out.resize(first);
+        out.push_back(std::move(folded));
         continue;
       }
     } else if (!out.empty() && out.back().objects && perObject(l) &&
-               l.text.rfind("modelview: pop", 0) == 0) {
-      continue;  // the last object's matrix pop
+               (l.text.rfind("modelview: pop", 0) == 0 ||
+                l.text.rfind("glBindVertexArray(0)", 0) == 0)) {
+      continue;  // the loop's last matrix pop or vertex-array unbind
     }
     out.push_back(l);
   }
@@ -470,7 +479,8 @@ std::string argText(A a) {
   } else if constexpr (std::is_same_v<A, GLboolean>) {
     return a ? "GL_TRUE" : "GL_FALSE";
   } else if constexpr (std::is_same_v<A, GLenum>) {
-    return glEnumName(a);  // GLenum and GLuint are one type: names of objects stay numbers
+    // GLenum and GLuint are one type: small values (object names) stay numbers.
+    return a < kFirstUnambiguousEnum ? std::to_string(a) : glEnumName(a);
   } else {
     return std::to_string(a);
   }

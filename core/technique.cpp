@@ -329,6 +329,12 @@ std::string sourceRelativePath(const std::string& file) {
   return relative;
 }
 
+PassTime::PassTime(std::string n, double ms, const char* file, const char* function)
+    : name(std::move(n)),
+      milliseconds(ms),
+      sourceFile(sourceRelativePath(file)),
+      sourceFunction(function) {}
+
 PassTimer::PassTimer(Frame& frame, std::string name, std::string section, const char* file,
                      const char* function)
     : frame_(frame) {

@@ -113,7 +113,10 @@ std::map<std::string, std::string> effectiveParams(const RenderParams& p);
 
 struct PassTime {
   PassTime() = default;
-  PassTime(std::string n, double ms) : name(std::move(n)), milliseconds(ms) {}
+  // A pass timed by hand (CPU work such as ray tracing): the file and function that time it are
+  // its source, as PassTimer records them.
+  PassTime(std::string n, double ms, const char* file = __builtin_FILE(),
+           const char* function = __builtin_FUNCTION());
   std::string name;
   double milliseconds = 0.0;
   // Declared by the pass itself (PassTimer): the paper's section/equation/figure it follows,

@@ -24,6 +24,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_trace.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_gl/spotlight_tessellation.h"
@@ -36,6 +37,7 @@ namespace {
 constexpr int kPackedSamples = 4;                // one 2x2 region per packed texel
 constexpr float kDifferenceDisplayGain = 32.0f;  // a few depth steps made visible in dumps
 constexpr float kHalfTexel = 0.5f;
+constexpr int kTexelItselfChannel = 3;  // A: the upper right of the 2x2 region (Eq. (1) centre)
 
 // One shadow-mapping phase: which 2x2 region the kernel packs and the texture-coordinate
 // offset (in texels) that makes the lookup land on it.
@@ -74,7 +76,7 @@ std::string phaseFileTag(const Phase& p) {
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
 void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                 Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth ramp in RGBA");
+  PassTimer timer(frame, "1 light pass: depth ramp in RGBA", "Brabec & Seidel 2001 §4");
   bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
                        bs::kAllChannels, true);
 }
@@ -82,14 +84,15 @@ void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, 
 // Pass 2 (Eq. (1), Fig. 5): the copy to the texture with the packing convolution enabled.
 void packNeighboursByConvolution(const RenderParams& params, FastPcfState& s, size_t phase,
                                  const Phase& p, Frame& frame) {
-  PassTimer timer(frame, "2 copy to texture through the 3x3 packing convolution" + phaseTag(p));
+  PassTimer timer(frame, "2 copy to texture through the 3x3 packing convolution" + phaseTag(p),
+                  "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5");
   bs::copyLightPassToMapPacked(*s.maps[phase], params.shadowMapTexels, p.blockOffset);
 }
 
 // Pass 3 (§3/§4): the light depth of every visible point in all four channels.
 void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                  Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag);
+  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag, "Brabec & Seidel 2001 §3, §4");
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
                         bs::kAllChannels);
 }
@@ -97,21 +100,23 @@ void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params,
 // Pass 4 (Fig. 6): projective packed map, coordinates offset by (ds/2, dt/2), subtracted.
 void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfState& s,
                        size_t phase, const Phase& p, Frame& frame) {
-  PassTimer timer(
-      frame, "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p));
+  PassTimer timer(frame,
+                  "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p),
+                  "Brabec & Seidel 2001 §4, Fig. 6");
   bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
 }
 
 // Pass 5 (Fig. 4): colour table + colour matrix -> alpha.
 void countShadowedSamples(const RenderParams& params, FastPcfState& s, Frame& frame,
                           const std::string& tag) {
-  PassTimer timer(frame, "5 copy: colour table + colour matrix -> alpha" + tag);
+  PassTimer timer(frame, "5 copy: colour table + colour matrix -> alpha" + tag,
+                  "Brabec & Seidel 2001 §3, Fig. 4");
   bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples);
 }
 
 // Pass 7 (§5 "normal OpenGL lighting").
 void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "7 lighting x shadow term");
+  PassTimer timer(frame, "7 lighting x shadow term", "Brabec & Seidel 2001 §5");
   bs::shadeWithShadowTerm(scene, params);
 }
 
@@ -138,21 +143,28 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     LightTarget target(n, n <= params.width && n <= params.height, true, s.enc.mapFormat);
     target.bind();
     renderDepthIntoAllChannels(scene, params, s, frame);
-    if (params.capturePasses)
+    if (params.capturePasses) {
+      const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
       bs::capture(frame, params, "1-light-pass-depth-rgba",
                   "Pass 1: one light pass, encoded depth in all four channels (one shown)",
                   channel(readColorBuffer(0, 0, n, n), 0));
+    }
     // The light image stays in the framebuffer while every phase copies its packed map.
     for (size_t i = 0; i < phases.size(); ++i)
       packNeighboursByConvolution(params, s, i, phases[i], frame);
     target.unbind();
   }
   if (params.capturePasses)
-    for (size_t i = 0; i < phases.size(); ++i)
-      bs::capture(frame, params, "2-packed-shadow-map" + phaseFileTag(phases[i]) + "-rgba",
-                  "Pass 2: the packed map, R | G | B | A = lower left, lower right, upper left, "
-                  "upper right of each texel's 2x2 region (Fig. 5)",
-                  bs::channelPanels(bs::readShadowMap(*s.maps[i], n)));
+    for (size_t i = 0; i < phases.size(); ++i) {
+      PassImage packed("2-packed-shadow-map" + phaseFileTag(phases[i]) + "-rgba",
+                       "Pass 2: the packed map, R | G | B | A = lower left, lower right, upper "
+                       "left, upper right of each texel's 2x2 region (Fig. 5)",
+                       bs::readShadowMap(*s.maps[i], n));
+      packed.centreChannel = kTexelItselfChannel;
+      packed.channelMeaning = {"lower left", "lower right", "upper left",
+                               phases.size() == 1 ? "upper right = the texel itself" : "upper right"};
+      frame.intermediates.push_back(std::move(packed));
+    }
   // Fig. 5's one-texel shift made visible: each neighbour channel minus the texel's own (R),
   // non-grey along every depth edge, one texel to the side the neighbour lies on.
   if (params.capturePasses)
@@ -169,9 +181,14 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     const Phase& p = phases[i];
     const std::string tag = phaseTag(p), file = phaseFileTag(p);
     renderReplicatedCameraDepth(camera, params, s, frame, tag);
-    if (params.capturePasses)
-      bs::capture(frame, params, "3-camera-pass-z-replicated" + file,
-                  "Pass 3: light depth of each visible point in all four channels",
+    // The camera pass is the same in every phase (only passes 2, 4 and 5 depend on it): one file.
+    if (params.capturePasses && i == 0)
+      bs::capture(frame, params, "3-camera-pass-z-replicated",
+                  "Pass 3: light depth of each visible point in all four channels" +
+                      std::string(phases.size() > 1 ? " (drawn again, identical, in each of the " +
+                                                          std::to_string(phases.size()) +
+                                                          " phases)"
+                                                    : ""),
                   toRgb(bs::readWindowRgba(params)));
     subtractPackedMap(camera, params, s, i, p, frame);
     if (params.capturePasses) {
@@ -190,13 +207,13 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                   "Pass 5: alpha = share of the four neighbours that shadow the point",
                   bs::alphaOf(bs::readWindowRgba(params)));
     if (phases.size() > 1) {
-      PassTimer timer(frame, "6 accumulate" + tag);
+      PassTimer timer(frame, "6 accumulate" + tag, "Brabec & Seidel 2001 §4 (4x4 footprints)");
       bs::accumulateGroup(1.0 / double(phases.size()), i == 0);
     }
   }
   if (phases.size() > 1) {
     {
-      PassTimer timer(frame, "6 accumulation return");
+      PassTimer timer(frame, "6 accumulation return", "Brabec & Seidel 2001 §4 (4x4 footprints)");
       bs::returnAccumulation();
     }
     if (params.capturePasses)

@@ -16,6 +16,13 @@ Arithmetic arithmeticOf(const RenderParams& params) {
              : Arithmetic::kFaithful;
 }
 
+// DEVIATION (Brabec–Seidel §6; legacy_gl depthEncoding): with 'faithful' arithmetic and
+// --precision float the twins keep the 8-bit buffers and ramp (RGBA8, 256 ramp texels, codes of
+// 255), while legacy at float uses a float colour buffer, a 2-texel linear ramp (d itself) and
+// RGBA32F maps. So modern at --precision float repeats legacy's 8-bit pipeline, not its float
+// one: 92 (ramp), 723 (pcf), 1304 (fast-pcf) of 120000 mask pixels differ from legacy float on
+// the brabec scene at 400x300 (docs/twins.md "--precision float"). Matching it needs a float
+// path in code() of pcf_shadow.frag / ramp_shadow.frag and a linear float ramp here.
 int depthBits(const RenderParams& params) {
   if (arithmeticOf(params) == Arithmetic::kFloat) return 0;
   return params.precision == Precision::k12 ? 12 : 8;

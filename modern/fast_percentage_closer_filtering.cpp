@@ -40,11 +40,15 @@ const std::vector<Phase> kFootprint4 = {{{-1, -1}, {-0.5f, -0.5f}},  // lower le
                                         {{0, -1}, {0.5f, -0.5f}},    // lower right
                                         {{-1, 0}, {-0.5f, 0.5f}},    // upper left
                                         {{0, 0}, {0.5f, 0.5f}}};     // upper right
+constexpr const char* kPhaseNames[] = {"lower-left", "lower-right", "upper-left", "upper-right"};
+constexpr int kTexelItselfChannel = 3;  // A: the upper right of the 2x2 region (Eq. (1) centre)
 
 // Pass 1 (§4): the scene from the light once, encoded depth in R, G, B and A.
 RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParams& params,
                                           const Texture& ramp, Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth as colour in RGBA");
+  PassTimer timer(frame, "1 light pass: depth ramp in RGBA (bs_encode_depth.frag)",
+                  "Brabec & Seidel 2001 §4");
+  timer.shaderPasses({"encode-depth"});
   RenderTarget map = bs::makeEncodedDepthTarget(params);
   bs::renderEncodedDepth(gpu, params, ramp, map, glm::bvec4(true), glm::vec2(0.0f));
   return map;
@@ -53,7 +57,9 @@ RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParam
 // Pass 2 (§4, Eq. 1, Figure 5): neighbour packing, one packed map per phase.
 std::vector<RenderTarget> packNeighbours(const RenderParams& params, const RenderTarget& encoded,
                                          const std::vector<Phase>& phases, Frame& frame) {
-  PassTimer timer(frame, "2 convolution packing (Eq. 1)");
+  PassTimer timer(frame, "2 packing by the 3x3 kernel of Eq. (1) (fast_pcf_pack.frag)",
+                  "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5");
+  timer.shaderPasses({"pack"});
   std::vector<RenderTarget> packed;
   const Program& program = cachedProgram("fullscreen.vert.glsl", "fast_pcf_pack.frag.glsl");
   FullScreenTriangle triangle;
@@ -83,19 +89,37 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   GpuScene gpu(scene);
   const Texture ramp = bs::makeRampTexture(params);
   const RenderTarget encoded = renderDepthAsColourFromLight(gpu, params, ramp, frame);
+  if (params.capturePasses)
+    frame.intermediates.push_back(
+        {"1-light-pass-depth-rgba",
+         "pass 1: one light pass, encoded depth in all four channels (channel R shown; the same "
+         "in G, B, A)",
+         channel(readAttachment(encoded, 0), 0)});
   const std::vector<RenderTarget> packed = packNeighbours(params, encoded, phases, frame);
   std::vector<bs::SampleGroup> groups;
   for (size_t q = 0; q < packed.size(); ++q) {
     groups.push_back({packed[q].color[0].id(), 4, phases[q].offsetTexels});
-    if (params.capturePasses)
-      frame.intermediates.push_back({"2-packed-neighbours-" + std::to_string(q),
-                                     "pass 2 (Eq. 1, Figure 5): fast_pcf_pack.frag packs four "
-                                     "neighbours of a 2x2 region: R = lower left, G = lower "
-                                     "right, B = upper left, A = upper right",
-                                     readAttachment(packed[q], 0)});
+    if (params.capturePasses) {
+      // Named as legacy.fast-pcf names its packed maps (one per 4x4 phase).
+      PassImage map("2-packed-shadow-map" +
+                        (packed.size() > 1 ? "-" + std::string(kPhaseNames[q]) : std::string()) +
+                        "-rgba",
+                    "pass 2 (Eq. 1, Figure 5): fast_pcf_pack.frag packs four neighbours of a "
+                    "2x2 region: R = lower left, G = lower right, B = upper left, A = upper right",
+                    readAttachment(packed[q], 0));
+      map.centreChannel = kTexelItselfChannel;
+      map.channelMeaning = {"lower left", "lower right", "upper left",
+                            packed.size() == 1 ? "upper right = the texel itself" : "upper right"};
+      frame.intermediates.push_back(std::move(map));
+    }
   }
   {
-    PassTimer timer(frame, "3 camera pass: shadow test, colour table, colour matrix");
+    // Legacy passes 3-7 in one camera pass: numbered 3, after the first pass it replaces.
+    PassTimer timer(frame,
+                    "3 camera pass = legacy passes 3-7: depth, subtract, colour table, colour "
+                    "matrix, accumulate, shade (pcf_shadow.frag)",
+                    "Brabec & Seidel 2001 §3 Fig. 4, §4 Fig. 6, §5");
+    timer.shaderPasses({"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"});
     bs::shadowTestAndShade(gpu, params, ramp, groups, frame);
   }
   if (params.capturePasses)

@@ -37,7 +37,9 @@ glm::vec2 jitterTexels(int i, int j, int n) {
 // Pass 1 (§3, Figure 3): n^2 jittered light passes packed four to a map, one channel each.
 std::vector<RenderTarget> renderJitteredLightPasses(const GpuScene& gpu, const RenderParams& params,
                                                     const Texture& ramp, int n, Frame& frame) {
-  PassTimer timer(frame, "1 jittered light passes (" + std::to_string(n * n) + ")");
+  PassTimer timer(frame, "1 jittered light passes (" + std::to_string(n * n) + ")",
+                  "Brabec & Seidel 2001 §3, Fig. 3");
+  timer.shaderPasses({"encode-depth"});
   const int samples = n * n;
   std::vector<RenderTarget> maps;
   for (int k = 0; k < samples; ++k) {
@@ -67,7 +69,11 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
                                      readAttachment(maps[g], 0)});
   }
   {
-    PassTimer timer(frame, "2 camera pass: shadow test, colour table, colour matrix");
+    PassTimer timer(frame,
+                    "2 camera pass = legacy passes 2-6: depth, subtract, colour table, colour "
+                    "matrix, accumulate, shade (pcf_shadow.frag)",
+                    "Brabec & Seidel 2001 §3 Figs. 3-4, §5");
+    timer.shaderPasses({"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"});
     bs::shadowTestAndShade(gpu, params, ramp, groups, frame);
   }
   if (params.capturePasses)

@@ -1,5 +1,7 @@
 #include "registry/registry.h"
 
+#include <optional>
+
 #include "core/errors.h"
 #include "core/gl_trace.h"
 #include "imaging/imaging.h"
@@ -126,8 +128,11 @@ Frame renderTechnique(const Technique& technique, const Scene& scene, const Rend
 }
 
 SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
-                           const RenderParams& params, const FrameCounts& counts, Frame* last) {
+                           const RenderParams& params, const FrameCounts& counts, Frame* last,
+                           bool traceGl) {
   auto context = contextForRender(technique, params);
+  std::optional<GlTrace> trace;
+  if (traceGl) trace.emplace();
   return timeSteadyState([&] { return technique.render(*context, scene, params); }, counts, last);
 }
 

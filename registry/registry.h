@@ -32,9 +32,11 @@ Frame renderTechnique(const Technique& technique, const Scene& scene, const Rend
 void checkRenderable(const Technique& technique, const RenderParams& params);
 
 // The steady-state frame time (core/frame_timing.h) of a technique on one context made as
-// renderTechnique makes it; `last` receives the last timed frame.
+// renderTechnique makes it; `last` receives the last timed frame. `traceGl`: with the GL trace
+// of --dump-passes running (core/gl_trace.h), to measure what it costs (legacy_bench
+// --trace-overhead).
 SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
                            const RenderParams& params, const FrameCounts& counts,
-                           Frame* last = nullptr);
+                           Frame* last = nullptr, bool traceGl = false);
 
 }  // namespace sl

@@ -1,13 +1,18 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
 // paper's Octane VPro/8 frame rates. Prints a markdown table (docs/legacy.md).
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
-//                [--quick] [--technique T]
+//                [--quick] [--technique T] [--trace-overhead]
+// --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
+// (the context's own dispatch table, as every render runs) and on (core/gl_trace.h), as a ratio.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "registry/cli.h"
+#include "registry/registry.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"
@@ -15,6 +20,39 @@
 
 namespace {
 constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
+
+// The cost of the GL trace (core/gl_trace.h): off, every call goes through the context's own
+// table (the trace is not there at all); on, through the recording table.
+std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
+                                  const std::vector<sl::legacy::BenchmarkVariant>& variants) {
+  std::ostringstream out;
+  out << "GL trace of --dump-passes (core/gl_trace.h), brabec scene " << options.width << "x"
+      << options.height << ", shadow map " << options.shadowMapTexels << ", "
+      << sl::backendName(options.backend) << ", median of " << options.frames.timed
+      << " frames after " << options.frames.warmup << " warm-up frames\n\n"
+      << "| variant | trace off: frame ms | trace on: frame ms | on / off |\n|---|---|---|---|\n";
+  for (const auto& v : variants) {
+    sl::RenderParams p;
+    p.width = options.width;
+    p.height = options.height;
+    p.shadowMapTexels = options.shadowMapTexels;
+    p.filter = v.filter;
+    p.backend = options.backend;
+    p.imaging = options.imaging;
+    const sl::Technique& t = sl::findTechnique(v.technique);
+    const sl::Scene scene = sl::builtinScene("brabec");
+    const double off = sl::timeTechnique(t, scene, p, options.frames).frameMs;
+    const double on = sl::timeTechnique(t, scene, p, options.frames, nullptr, true).frameMs;
+    char row[160];
+    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f |\n", v.label.c_str(), off, on,
+                  off > 0.0 ? on / off : 0.0);
+    out << row;
+  }
+  out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
+         "and each call is the one indirect call it always is (tests/core/gl_trace_test.cpp "
+         "checks the table is untouched).\n";
+  return out.str();
+}
 }
 
 int main(int argc, char** argv) {
@@ -23,7 +61,7 @@ int main(int argc, char** argv) {
     sl::legacy::BenchmarkOptions options;
     std::string backend, imaging, frames;
     std::string only;  // --technique: keep the variants of one technique
-    bool quick = false;
+    bool quick = false, traceOverhead = false;
     CLI::App app{"Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates (markdown)",
                  "legacy_bench"};
     app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
@@ -37,6 +75,8 @@ int main(int argc, char** argv) {
     app.add_flag("--quick", quick, "the quick frame counts (core/frame_timing.h kQuickFrames)");
     app.add_option("--technique", only, "only legacy.ramp, legacy.pcf or legacy.fast-pcf")
         ->type_name("T");
+    app.add_flag("--trace-overhead", traceOverhead,
+                 "frame time with the --dump-passes GL trace off and on (core/gl_trace.h)");
     if (!sl::cli::parseTool(app, argc, argv)) return 0;
     if (!backend.empty()) options.backend = sl::parseBackend(backend);
     if (!imaging.empty()) options.imaging = sl::cli::parseImaging(imaging);
@@ -48,6 +88,10 @@ int main(int argc, char** argv) {
     for (const auto& v : sl::legacy::paperVariants())
       if (only.empty() || v.technique == only) variants.push_back(v);
     if (variants.empty()) throw sl::InputError("no benchmark variant of technique '" + only + "'");
+    if (traceOverhead) {
+      std::cout << traceOverheadMarkdown(options, variants);
+      return 0;
+    }
     const auto results =
         sl::legacy::benchmarkBrabecSeidel(sl::builtinScene("brabec"), options, variants);
     std::cout << sl::legacy::benchmarkMarkdown(results);

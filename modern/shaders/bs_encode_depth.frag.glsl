@@ -14,7 +14,11 @@ uniform sampler1D uRamp;     // the linear ramp, texel k = k / (N - 1), GL_NEARE
 uniform bool uFaithful;
 layout(location = 0) out vec4 oColor;
 void main() {
+  // @pass encode-depth: light depth through the ramp, as colour in every channel (§2 Fig. 1, §4)
+  // @replaces legacy.fast-pcf pass 1 light pass: depth ramp in RGBA
+  // @replaces legacy.pcf pass 1 light passes: jittered, one channel each + copy to texture
   float d = dot(uDepthPlane, vec4(vWorldPosition, 1.0));
   float encoded = uFaithful ? textureProj(uRamp, vRampCoord).r : d;
   oColor = vec4(encoded);
+  // @end encode-depth
 }

@@ -11,6 +11,8 @@ uniform sampler2D uEncodedDepth;   // the light pass, encoded depth in all four 
 uniform ivec2 uRegionOrigin;
 layout(location = 0) out vec4 oPacked;
 
+// @pass pack: Eq. (1)'s kernel as four texel fetches, R G B A = lower left, lower right, upper left, upper right (§4, Fig. 5)
+// @replaces legacy.fast-pcf pass 2 copy to texture through the 3x3 packing convolution
 float sampleAt(ivec2 p, int channel) {
   ivec2 size = textureSize(uEncodedDepth, 0);
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) return 1.0;
@@ -22,3 +24,4 @@ void main() {
   oPacked = vec4(sampleAt(o, 0), sampleAt(o + ivec2(1, 0), 1), sampleAt(o + ivec2(0, 1), 2),
                  sampleAt(o + ivec2(1, 1), 3));
 }
+// @end pack

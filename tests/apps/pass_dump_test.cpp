@@ -105,10 +105,11 @@ TEST(PassDump, PassesJsonAndIndexDescribeEveryImage) {
   for (const char* s : {"01-light-depth.png", "02-shaded.png", "caption of 2-shaded",
                         "Pass 2: camera pass (phase 1)"})
     EXPECT_NE(html.find(s), std::string::npos) << s;
-  // Images sized by width only: the one height rule is "height: auto" (natural aspect ratio).
-  const size_t height = html.find("height:");
-  EXPECT_EQ(height, html.find("height: auto"));
-  EXPECT_EQ(html.find("height:", height + 1), std::string::npos);
+  // Images sized by width only: their one height rule is "height: auto" (natural aspect ratio),
+  // and no <img> sets a height of its own.
+  EXPECT_NE(html.find("figure img { height: auto;"), std::string::npos);
+  for (size_t img = html.find("<img"); img != std::string::npos; img = html.find("<img", img + 1))
+    EXPECT_EQ(html.substr(img, html.find('>', img) - img).find("height"), std::string::npos);
   EXPECT_EQ(html.find("http"), std::string::npos) << "no network";
 }
 
@@ -160,6 +161,29 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
         ASSERT_EQ(png.data[k], 1.0f) << file << " is not opaque";
   }
   EXPECT_GE(listed.size(), 1u);
+  // Every pass has the fields `shadowlab lesson` reads, and a state card on the page; a pass the
+  // technique timed names its source function and made GL calls (the trace saw them).
+  size_t cards = 0;
+  for (size_t at = html.find("class=\"state-card\""); at != std::string::npos;
+       at = html.find("class=\"state-card\"", at + 1))
+    ++cards;
+  EXPECT_EQ(cards, j["passes"].size());
+  bool anyState = false;
+  for (const nlohmann::json& p : j["passes"]) {
+    for (const char* key : {"section", "source", "state", "glsl", "replaces"})
+      EXPECT_TRUE(p.contains(key)) << key << " in pass " << p["number"];
+    EXPECT_FALSE(p["section"].get<std::string>().empty()) << p["number"];
+    if (!p["timings"].empty()) {
+      EXPECT_FALSE(p["source"]["file"].get<std::string>().empty()) << p["number"];
+      EXPECT_FALSE(p["source"]["function"].get<std::string>().empty()) << p["number"];
+    }
+    for (const nlohmann::json& l : p["state"]) {
+      EXPECT_FALSE(l["group"].get<std::string>().empty());
+      EXPECT_FALSE(l["text"].get<std::string>().empty());
+    }
+    anyState = anyState || !p["state"].empty();
+  }
+  EXPECT_TRUE(anyState) << "no GL call was traced";
   std::set<std::string> onDisk;
   for (const auto& e : fs::directory_iterator(dump)) onDisk.insert(e.path().filename().string());
   listed.insert("passes.json");
