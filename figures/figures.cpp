@@ -31,6 +31,7 @@
 #include "figures/bench_report.h"
 #include "figures/stability.h"
 #include "figures/diagnostics.h"
+#include "figures/overrides.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
@@ -71,11 +72,27 @@ struct Setup {
   int width = 0, height = 0, texels = 0, filter = 2;
   std::map<std::string, std::string> params;
   std::optional<float> lightRadius;
+  std::optional<glm::vec3> lightPosition;
+  std::optional<Precision> precision;
   float cameraDistance = 1;
+  // The scene knobs (core/scene.h adjustScene) and their part of the keys.
+  SceneAdjustments adjustments() const {
+    SceneAdjustments a;
+    if (cameraDistance != 1.0f) a.cameraDistance = cameraDistance;
+    a.lightRadius = lightRadius;
+    a.lightPosition = lightPosition;
+    return a;
+  }
+  std::string sceneKey() const {
+    std::ostringstream s;
+    s << sceneName << "|" << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
+    if (lightPosition) s << "|" << lightPosition->x << "," << lightPosition->y << "," << lightPosition->z;
+    return s.str();
+  }
   std::string key() const {
     std::ostringstream s;
-    s << sceneName << "|" << width << "x" << height << "|" << texels << "|" << filter << "|"
-      << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
+    s << sceneKey() << "|" << width << "x" << height << "|" << texels << "|" << filter << "|"
+      << (precision ? precisionName(*precision) : "default");
     for (const auto& [k, v] : params) s << "|" << k << "=" << v;
     return s.str();
   }
@@ -90,6 +107,8 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
   s.filter = p.filter ? p.filter : RenderParams{}.filter;
   s.params = p.params;
   s.lightRadius = p.lightRadius;
+  s.lightPosition = p.lightPosition;
+  s.precision = p.precision;
   s.cameraDistance = p.cameraDistance;
   return s;
 }
@@ -122,17 +141,11 @@ class Renderer {
   explicit Renderer(std::string outDir) : outDir_(std::move(outDir)) {}
 
   const Scene& scene(const Setup& s) {
-    const std::string key = s.sceneName + "|" + std::to_string(s.lightRadius.value_or(-1)) + "|" +
-                            std::to_string(s.cameraDistance);
+    const std::string key = s.sceneKey();
     auto it = scenes_.find(key);
     if (it != scenes_.end()) return it->second;
     Scene scene = loadScene(s.sceneName);
-    if (s.lightRadius) scene.light.radius = *s.lightRadius;
-    if (s.cameraDistance != 1.0f) {  // move away along the view direction (minification)
-      scene.camera.position =
-          scene.camera.target + (scene.camera.position - scene.camera.target) * s.cameraDistance;
-      scene.camera.farPlane *= s.cameraDistance;
-    }
+    adjustScene(scene, s.adjustments());  // as `render --camera-distance/--light-*` does
     return scenes_.emplace(key, std::move(scene)).first->second;
   }
 
@@ -142,6 +155,7 @@ class Renderer {
     p.height = s.height;
     p.shadowMapTexels = s.texels;
     p.filter = s.filter;
+    if (s.precision) p.precision = *s.precision;
     p.extra = s.params;
     p.capturePasses = capture;
     return p;
@@ -264,7 +278,8 @@ std::string twinName(const std::string& name) {
 PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
   PanelResult out;
   out.spec = p;
-  const std::string base = (index < 10 ? "0" : "") + std::to_string(index) + "-" + slug(p.label);
+  const std::string base =
+      (index < 10 ? "0" : "") + std::to_string(index) + "-" + slug(p.label) + fig.fileSuffix;
   const Setup setup = setupFor(fig, p);
   if (std::string why = missingReason(p); !why.empty()) {
     out.reason = why;
@@ -460,7 +475,8 @@ std::vector<Image> compositeTiles(const std::string& outDir, const FigureSpec& s
 void writeComposite(Renderer& r, FigureResult& fig) {
   if (fig.spec.table) return;
   const Image composite = composeFigure(fig, r.outDir());
-  if (!composite.empty()) fig.composite = r.write(fig.spec.id, "figure", composite);
+  if (!composite.empty())
+    fig.composite = r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite);
 }
 
 // Step 5: charts.
@@ -470,7 +486,7 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
     plot.reason = why;
     return;
   }
-  const std::string rel = fig.spec.id + "/" + slug(plot.spec.plot) + ".png";
+  const std::string rel = fig.spec.id + "/" + slug(plot.spec.plot) + fig.spec.fileSuffix + ".png";
   const std::string png = (fs::path(r.outDir()) / rel).string();
   const std::string& chart = plot.spec.plot;
   std::vector<const PanelResult*> rendered;
@@ -596,10 +612,16 @@ std::vector<FigureInfo> listFigures() {
   return out;
 }
 
-int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress) {
+int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress,
+               const FigureOverrides& overrides) {
+  std::vector<FigureSpec> remade;  // the --set version of the one figure, when asked for
   std::vector<const FigureSpec*> selected;
   for (const FigureSpec& f : figureList())
     if (!only || f.id == *only) selected.push_back(&f);
+  if (!overrides.empty() && selected.size() == 1) {
+    remade.push_back(applyOverrides(*selected.front(), overrides));
+    selected = {&remade.front()};
+  }
   if (selected.empty()) {
     std::string known;
     for (const FigureSpec& f : figureList()) known += (known.empty() ? "" : ", ") + f.id;

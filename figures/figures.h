@@ -18,8 +18,13 @@ struct FigureInfo {
 };
 
 std::vector<FigureInfo> listFigures();
-// Renders every figure (or only `only`) into outDir and writes outDir/report.html.
-int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress);
+struct FigureOverrides;  // figures/overrides.h
+
+// Renders every figure (or only `only`) into outDir and writes outDir/report.html. With
+// overrides (figures --set, only with `only`): the figure re-made with them, into
+// outDir/ID--<overrides>/ (figures/overrides.h applyOverrides).
+int runFigures(const std::string& outDir, const std::optional<std::string>& only, bool progress,
+               const FigureOverrides& overrides);
 int runBench(const cli::Args& args);
 
 // figure.png: the figure laid out as the paper lays it out, in rows of spec.columns tiles, then
