@@ -22,6 +22,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "registry/registry.h"
@@ -31,6 +32,7 @@
 #include "figures/bench_report.h"
 #include "figures/stability.h"
 #include "figures/diagnostics.h"
+#include "figures/measured.h"
 #include "figures/overrides.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
@@ -113,11 +115,19 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
   return s;
 }
 
-// Timing. A panel whose time is set beside a paper's number is timed as the benches time a
-// technique (core/frame_timing.h: warm-up frames on one context, then the median of timed
-// frames), with the quick modes' counts so that the whole set stays within the main job's
-// budget.
-constexpr FrameCounts kFigureFrames = kQuickFrames;
+// Timing (issue 21 item 6). A panel whose time is set beside a paper's number is timed as the
+// benches time a technique (core/frame_timing.h: warm-up frames on one context, then the
+// median of timed frames), and all such panels of a figure (with their twins) are measured
+// interleaved: every context warmed up, then kFigureRounds rounds of one frame of each, so
+// that machine load during the figure hits every cell alike. No cell is a median of one frame.
+constexpr int kFigureWarmupFrames = kQuickWarmupFrames;
+constexpr int kFigureRounds = 3;
+constexpr FrameCounts kFigureFrames{kFigureWarmupFrames, kFigureRounds};
+// Contexts alive at once in one interleaved group (each holds its window's buffers: a 1024x768
+// context ~20 MB with Mesa's depth/stencil; a figure of more timed renders is measured in
+// groups of this many, grouped by shadow-map size so that the cells compared within a column
+// of CSM Table 1 share a group).
+constexpr size_t kInterleavedGroup = 10;
 // Charts whose axis is our frame time: every render panel of their figure is timed steadily.
 const std::vector<std::string> kTimeCharts = {"error-vs-time", "chan-3-11"};
 
@@ -185,6 +195,44 @@ class Renderer {
     Timed timed{checked(t, std::move(last)), timing};
     frames_[key] = timed.frame;
     return timed_[key] = timed;
+  }
+
+  // The timed renders of one figure (its render panels whose time stands beside a paper's
+  // number, and their twins), measured interleaved before the panels are made; steadyFrame
+  // then finds them. A group that fails (a technique refusing its parameters) is left to
+  // steadyFrame, which reports the failing panel alone.
+  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs) {
+    std::vector<size_t> todo;
+    std::set<std::string> keys;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      const std::string key = jobs[i].first->name + "|" + jobs[i].second.key();
+      if (!timed_.count(key) && keys.insert(key).second) todo.push_back(i);
+    }
+    std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) {
+      return jobs[a].second.texels < jobs[b].second.texels;
+    });
+    for (size_t start = 0; start < todo.size(); start += kInterleavedGroup) {
+      const std::vector<size_t> group(
+          todo.begin() + long(start),
+          todo.begin() + long(std::min(todo.size(), start + kInterleavedGroup)));
+      try {
+        std::vector<TimingJob> timing;
+        for (size_t i : group)
+          timing.push_back({jobs[i].first, &scene(jobs[i].second), params(jobs[i].second, false)});
+        std::vector<Frame> lasts;
+        const std::vector<SteadyTiming> timings =
+            timeTechniquesInterleaved(timing, kFigureWarmupFrames, kFigureRounds, &lasts);
+        for (size_t k = 0; k < group.size(); ++k) {
+          const Technique& t = *jobs[group[k]].first;
+          const std::string key = t.name + "|" + jobs[group[k]].second.key();
+          Timed timed{checked(t, std::move(lasts[k])), timings[k]};
+          frames_[key] = timed.frame;
+          timed_[key] = timed;
+        }
+      } catch (const std::exception&) {
+        // steadyFrame measures each of the group alone and reports the one that fails.
+      }
+    }
   }
 
   const DiagnosticViews& diagnostics(const Setup& s) {
@@ -274,6 +322,53 @@ std::string twinName(const std::string& name) {
   return "";
 }
 
+// The renders of a figure whose times are set beside a paper's number (timedSteadily), with the
+// legacy/modern twins makePanel times beside them.
+std::vector<std::pair<const Technique*, Setup>> timedRenders(const FigureSpec& fig) {
+  std::vector<std::pair<const Technique*, Setup>> jobs;
+  for (const PanelSpec& p : fig.panels) {
+    if (!timedSteadily(fig, p) || !missingReason(p).empty()) continue;
+    const Setup setup = setupFor(fig, p);
+    const Technique* t = lookup(p.technique);
+    jobs.push_back({t, setup});
+    const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t->name)) : nullptr;
+    PanelSpec tp = p;
+    if (twin != nullptr) tp.technique = twin->name;
+    if (twin != nullptr && missingReason(tp).empty()) jobs.push_back({twin, setup});
+  }
+  return jobs;
+}
+
+// Step 3's detail: the error near the reference's edges and the light leaking in its umbra, as
+// the bench measures them (figures/bench.h measureErrors; here over the whole image).
+ErrorDetail errorDetailOf(const Image& mask, const Image& reference) {
+  constexpr int kBandPixels = 2;  // as the bench's band
+  const Image band = boundaryBand(reference, kBandPixels);
+  const Image everywhere(reference.width, reference.height, 1, 1.0f);
+  const ErrorSet e = measureErrors(mask, reference, everywhere, band);
+  ErrorDetail d;
+  d.bandRmse = e.band.rmse;
+  d.bandPixels = e.band.pixels;
+  d.leakShare = e.leakShare;
+  const Image wide = boundaryBand(reference, kDeepUmbraPixels);
+  double deepSum = 0;
+  long long deepLit = 0;
+  for (int y = 0; y < reference.height; ++y)
+    for (int x = 0; x < reference.width; ++x) {
+      if (reference.at(x, y) != 0.0f) continue;
+      d.umbraPixels += band.at(x, y) <= 0.5f ? 1 : 0;
+      if (wide.at(x, y) > 0.5f) continue;
+      ++d.deepUmbraPixels;
+      deepSum += mask.at(x, y);
+      deepLit += mask.at(x, y) > kDeepLeakThreshold ? 1 : 0;
+    }
+  if (d.deepUmbraPixels > 0) {
+    d.deepUmbraMean = deepSum / double(d.deepUmbraPixels);
+    d.deepLeakShare = double(deepLit) / double(d.deepUmbraPixels);
+  }
+  return d;
+}
+
 // Steps 2-4 for one panel.
 PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
   PanelResult out;
@@ -311,6 +406,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           out.passes = timed.timing.passes;
           out.warmupFrames = timed.timing.warmupFrames;
           out.timedFrames = timed.timing.timedFrames;
+          out.frameSamples = timed.timing.frameSamples;
         } else {
           f = r.frame(t, setup, false);
           out.milliseconds = f->totalMilliseconds();
@@ -340,6 +436,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           }
           auto rf = r.frame(*ref, refSetup, false);
           out.error = compareMasks(f->visibility, rf->visibility, 0.5);
+          out.errorDetail = errorDetailOf(f->visibility, rf->visibility);
         }
         // Step 4: the legacy/modern twin.
         const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t.name)) : nullptr;
@@ -646,6 +743,7 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
     const auto figureStart = std::chrono::steady_clock::now();
     FigureResult fr;
     fr.spec = *f;
+    renderer.timeInterleaved(timedRenders(*f));
     for (size_t i = 0; i < f->panels.size(); ++i) {
       if (progress)
         std::cerr << "[" << ++done << "/" << total << "] " << f->id << " " << f->panels[i].label
@@ -656,6 +754,7 @@ int runFigures(const std::string& outDir, const std::optional<std::string>& only
     }
     for (PanelResult& p : fr.panels)
       if (p.spec.kind == PanelKind::kPlot) drawPlot(renderer, fr, p);
+    fr.measured = measuredHtml(fr);
     try {
       writeComposite(renderer, fr);
     } catch (const std::exception& e) {

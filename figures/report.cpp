@@ -226,6 +226,7 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — " << htmlEscape(s.title)
     << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
   h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
+  h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
   h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
     << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
     << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s)) << "</code></small></p>\n";
