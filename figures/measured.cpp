@@ -20,6 +20,12 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+// A frame rate with enough digits to tell cells apart on a slow back end (0.42, not 0.4).
+std::string fpsOf(double ms) {
+  const double fps = 1000.0 / ms;
+  return fixed(fps, fps < 1.0 ? 3 : fps < 10.0 ? 2 : 1);
+}
+
 std::string percent(double share) { return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%"; }
 
 bool timedRender(const PanelResult& p) {
@@ -160,9 +166,9 @@ std::string convolutionTrend(const FigureResult& fig) {
       samples += (samples.empty() ? "" : ", ") + fixed(none.frameSamples[r], 0) + "/" +
                  fixed(wide.frameSamples[r], 0);
     rows << "<tr><td>" << htmlEscape(key.first) << " S=" << htmlEscape(key.second) << "</td><td>"
-         << fixed(1000.0 / none.milliseconds, 1);
-    if (byBlur.count("3x3")) rows << " / " << fixed(1000.0 / byBlur["3x3"]->milliseconds, 1);
-    rows << " / " << fixed(1000.0 / wide.milliseconds, 1) << "</td><td>" << samples
+         << fpsOf(none.milliseconds);
+    if (byBlur.count("3x3")) rows << " / " << fpsOf(byBlur["3x3"]->milliseconds);
+    rows << " / " << fpsOf(wide.milliseconds) << "</td><td>" << samples
          << "</td><td>" << htmlEscape(passes) << "</td><td class=" << (d > 0 ? "ok" : "bad")
          << ">" << htmlEscape(verdict) << "</td></tr>\n";
   }

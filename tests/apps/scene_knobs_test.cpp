@@ -78,6 +78,31 @@ TEST(SceneKnobs, LightPositionMovesTheShadowAndIsRecorded) {
   EXPECT_NE(readPng(mask.string()).data, base.second.data) << "the shadow moved";
 }
 
+// csm-fig1's PCF panel, made by `figures`, is made again by `render` with its camera distance:
+// its close-up (bottom-left origin, figures/figure_spec.h Closeup) equals the same rectangle
+// cropped from render's image.
+TEST(SceneKnobs, RenderReproducesAFigurePanel) {
+  const fs::path figures = dir() / "figures";
+  fs::remove_all(figures);
+  const CommandResult made =
+      shadowlab("figures --no-progress --only csm-fig1 --out " + figures.string());
+  ASSERT_EQ(made.status, 0) << made.err;
+  const auto alone = render("csm-fig1-pcf",
+                            "--scene trees --technique modern.hw --size 512x384 --shadow-map 512 "
+                            "--camera-distance 2.5");
+  ASSERT_FALSE(alone.first.empty());
+  // csm-fig1's close-up {0.4, 0.35, 0.2, 0.2} magnified 3x, as figures.cpp closeupOf cuts it.
+  const Image& image = alone.first;
+  const int x = int(0.4f * float(image.width)), y = int(0.35f * float(image.height));
+  const int w = int(0.2f * float(image.width)), h = int(0.2f * float(image.height));
+  constexpr int kMagnify = 3;
+  const Image expected = magnifyNearest(toRgb(crop(image, x, y, w, h)), kMagnify);
+  const Image closeup = readPng((figures / "csm-fig1" / "00-pcf-closeup0.png").string());
+  ASSERT_EQ(closeup.width, expected.width);
+  ASSERT_EQ(closeup.height, expected.height);
+  EXPECT_EQ(closeup.data, expected.data) << "the same frame, the same rectangle";
+}
+
 TEST(SceneKnobs, BadValuesExitTwoWithOneLine) {
   const fs::path out = dir() / "bad.png";
   for (const std::string bad :
