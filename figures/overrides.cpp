@@ -21,6 +21,11 @@ const Technique* lookup(const std::string& name) {
   return nullptr;
 }
 
+bool hasParam(const Technique& t, const std::string& key) {
+  const std::vector<std::string> keys = sl::paramKeys(t);
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
 bool rendersTechnique(const PanelSpec& p) {
   return p.kind == PanelKind::kRender || p.kind == PanelKind::kIntermediates;
 }
@@ -145,7 +150,7 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
   for (const PanelSpec& p : f.panels)
     if (rendersTechnique(p))
       if (const Technique* t = lookup(p.technique))
-        paramKeys.insert(t->paramKeys.begin(), t->paramKeys.end());
+        for (const std::string& k : sl::paramKeys(*t)) paramKeys.insert(k);
 
   if (o.width) {
     listed["size"].insert(std::to_string(f.width) + "x" + std::to_string(f.height));
@@ -197,7 +202,7 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
       ++concerned["light-position"];
     }
     for (const auto& [key, value] : o.params) {
-      if (!t || std::find(t->paramKeys.begin(), t->paramKeys.end(), key) == t->paramKeys.end())
+      if (!t || !hasParam(*t, key))
         continue;
       const auto had = p.params.find(key);
       listed[key].insert(had == p.params.end() ? "default" : had->second);
@@ -241,8 +246,7 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
     if (!checked.insert(key.str()).second) continue;
     bool paramsKnown = true;  // a panel listed with a parameter its technique lacks is shown
     for (const auto& [k, v] : params.extra)  // as missing by figures.cpp, not refused here
-      paramsKnown = paramsKnown && std::find(t->paramKeys.begin(), t->paramKeys.end(), k) !=
-                                       t->paramKeys.end();
+      paramsKnown = paramsKnown && hasParam(*t, k);
     if (!paramsKnown) continue;
     try {
       checkRenderable(*t, params);
