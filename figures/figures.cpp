@@ -88,7 +88,8 @@ struct Setup {
   std::string sceneKey() const {
     std::ostringstream s;
     s << sceneName << "|" << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
-    if (lightPosition) s << "|" << lightPosition->x << "," << lightPosition->y << "," << lightPosition->z;
+    if (lightPosition)
+      s << "|" << lightPosition->x << "," << lightPosition->y << "," << lightPosition->z;
     return s.str();
   }
   std::string key() const {

@@ -26,7 +26,9 @@ std::string fpsOf(double ms) {
   return fixed(fps, fps < 1.0 ? 3 : fps < 10.0 ? 2 : 1);
 }
 
-std::string percent(double share) { return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%"; }
+std::string percent(double share) {
+  return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%";
+}
 
 bool timedRender(const PanelResult& p) {
   return p.ok && p.spec.kind == PanelKind::kRender && p.milliseconds > 0 && p.timedFrames > 0;
@@ -39,7 +41,9 @@ int direction(double ratio) {
   return 0;
 }
 
-const char* directionWord(int d) { return d > 0 ? "slower" : d < 0 ? "faster" : "the same"; }
+const char* directionWord(int d) {
+  return d > 0 ? "slower" : d < 0 ? "faster" : "the same";
+}
 
 // Rounds (interleaved, so round r of two cells ran under the same load) in which a/b goes way d.
 int roundsGoing(const PanelResult& a, const PanelResult& b, int d, int* rounds) {
@@ -88,11 +92,11 @@ std::string trendTable(const std::vector<TrendCell>& cells) {
   for (const TrendCell& c : cells)
     h << "<tr><td>" << htmlEscape(c.label) << "</td><td>" << htmlEscape(c.baseline) << "</td><td>"
       << fixed(c.ours, 1) << " / " << fixed(c.oursBaseline, 1) << " = "
-      << fixed(c.ours / c.oursBaseline, 2) << "</td><td class=paper>" << fixed(c.paper, 1)
-      << " / " << fixed(c.paperBaseline, 1) << " = " << fixed(c.paper / c.paperBaseline, 2)
-      << "</td><td>" << c.roundsAgreeing << " of " << c.rounds << "</td><td class="
-      << (c.verdict.rfind("holds", 0) == 0 ? "ok" : "bad") << ">" << htmlEscape(c.verdict)
-      << "</td></tr>\n";
+      << fixed(c.ours / c.oursBaseline, 2) << "</td><td class=paper>" << fixed(c.paper, 1) << " / "
+      << fixed(c.paperBaseline, 1) << " = " << fixed(c.paper / c.paperBaseline, 2) << "</td><td>"
+      << c.roundsAgreeing << " of " << c.rounds
+      << "</td><td class=" << (c.verdict.rfind("holds", 0) == 0 ? "ok" : "bad") << ">"
+      << htmlEscape(c.verdict) << "</td></tr>\n";
   h << "</table>\n";
   return h.str();
 }
@@ -156,8 +160,8 @@ std::string convolutionTrend(const FigureResult& fig) {
     for (const PassTime& p : wide.passes) {
       names.insert(p.name);
       const double delta = p.milliseconds - noneMs[p.name];
-      passes += (passes.empty() ? "" : ", ") + p.name + " " + (delta >= 0 ? "+" : "") +
-                fixed(delta, 1);
+      passes +=
+          (passes.empty() ? "" : ", ") + p.name + " " + (delta >= 0 ? "+" : "") + fixed(delta, 1);
     }
     for (const auto& [name, ms] : noneMs)
       if (!names.count(name)) passes += (passes.empty() ? "" : ", ") + name + " -" + fixed(ms, 1);
@@ -168,9 +172,9 @@ std::string convolutionTrend(const FigureResult& fig) {
     rows << "<tr><td>" << htmlEscape(key.first) << " S=" << htmlEscape(key.second) << "</td><td>"
          << fpsOf(none.milliseconds);
     if (byBlur.count("3x3")) rows << " / " << fpsOf(byBlur["3x3"]->milliseconds);
-    rows << " / " << fpsOf(wide.milliseconds) << "</td><td>" << samples
-         << "</td><td>" << htmlEscape(passes) << "</td><td class=" << (d > 0 ? "ok" : "bad")
-         << ">" << htmlEscape(verdict) << "</td></tr>\n";
+    rows << " / " << fpsOf(wide.milliseconds) << "</td><td>" << samples << "</td><td>"
+         << htmlEscape(passes) << "</td><td class=" << (d > 0 ? "ok" : "bad") << ">"
+         << htmlEscape(verdict) << "</td></tr>\n";
   }
   if (compared == 0) return "";
   std::ostringstream h;
@@ -283,8 +287,9 @@ std::string chan310(const FigureResult& fig) {
                    percent(r.second);
   if (overdraws.empty() && silhouettes.empty()) return "";
   h << "<p><b>Measured.</b> Shadow-volume overdraw (volume fragments per covered pixel): "
-    << htmlEscape(overdraws) << ". Silhouette pixels of the hybrid across the map sizes: "
-    << htmlEscape(silhouettes) << ".</p>\n"
+    << htmlEscape(overdraws)
+    << ". Silhouette pixels of the hybrid across the map sizes: " << htmlEscape(silhouettes)
+    << ".</p>\n"
     << fillCounters(fig, false);
   return h.str();
 }
@@ -300,10 +305,11 @@ std::string csmFig9(const FigureResult& fig) {
   if (!vsm || !csm) return "";
   auto line = [](const char* name, const PanelResult& p) {
     const ErrorDetail& d = *p.errorDetail;
-    return std::string(name) + ": RMSE " + fixed(p.error->rmse, 3) + ", within 2 px of the "
-           "reference's shadow edges " + fixed(d.bandRmse, 3) +
-           "; umbra pixels beyond that band shown more than 20% lit " + percent(d.leakShare) +
-           " of " + std::to_string(d.umbraPixels) + "; deep umbra (over " +
+    return std::string(name) + ": RMSE " + fixed(p.error->rmse, 3) +
+           ", within 2 px of the "
+           "reference's shadow edges " +
+           fixed(d.bandRmse, 3) + "; umbra pixels beyond that band shown more than 20% lit " +
+           percent(d.leakShare) + " of " + std::to_string(d.umbraPixels) + "; deep umbra (over " +
            std::to_string(kDeepUmbraPixels) + " px from any edge, " +
            std::to_string(d.deepUmbraPixels) + " pixels): mean visibility " +
            fixed(d.deepUmbraMean, 4) + ", " + percent(d.deepLeakShare) + " shown more than " +
@@ -312,8 +318,8 @@ std::string csmFig9(const FigureResult& fig) {
   // The share of the squared error inside the edge band: where RMSE ranks them.
   auto bandShare = [](const PanelResult& p) {
     const double all = p.error->rmse * p.error->rmse * double(p.error->pixels);
-    const double band = p.errorDetail->bandRmse * p.errorDetail->bandRmse *
-                        double(p.errorDetail->bandPixels);
+    const double band =
+        p.errorDetail->bandRmse * p.errorDetail->bandRmse * double(p.errorDetail->bandPixels);
     return all > 0 ? band / all : 0.0;
   };
   const ErrorDetail &v = *vsm->errorDetail, &c = *csm->errorDetail;
@@ -326,8 +332,9 @@ std::string csmFig9(const FigureResult& fig) {
     << ". Deep-umbra pixels shown more than " << fixed(100.0 * kDeepLeakThreshold, 0)
     << "% lit, out of reach of a blurred penumbra: VSM " << percent(v.deepLeakShare) << ", CSM "
     << percent(c.deepLeakShare) << ": "
-    << (vsmBleeds ? "VSM bleeds more, as the paper says" : "VSM does not bleed more, not as the "
-                                                           "paper says")
+    << (vsmBleeds ? "VSM bleeds more, as the paper says"
+                  : "VSM does not bleed more, not as the "
+                    "paper says")
     << ". RMSE counts every pixel: " << percent(bandShare(*csm))
     << " of CSM's squared error (VSM: " << percent(bandShare(*vsm))
     << ") lies within 2 pixels of the shadow edges, so RMSE ranks the two by their edges, not by "

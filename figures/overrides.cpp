@@ -31,7 +31,9 @@ bool rendersTechnique(const PanelSpec& p) {
 }
 
 // Panels a scene or window override concerns: everything that renders the scene.
-bool rendersScene(const PanelSpec& p) { return p.kind != PanelKind::kPlot; }
+bool rendersScene(const PanelSpec& p) {
+  return p.kind != PanelKind::kPlot;
+}
 
 std::string join(const std::set<std::string>& values) {
   std::string out;
@@ -60,8 +62,8 @@ std::string slugOf(const std::string& text) {
 }  // namespace
 
 const std::vector<std::string>& overrideKeys() {
-  static const std::vector<std::string> keys = {"size",           "shadow-map",    "filter",
-                                                "precision",      "camera-distance", "light-radius",
+  static const std::vector<std::string> keys = {"size",          "shadow-map",      "filter",
+                                                "precision",     "camera-distance", "light-radius",
                                                 "light-position"};
   return keys;
 }
@@ -202,8 +204,7 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
       ++concerned["light-position"];
     }
     for (const auto& [key, value] : o.params) {
-      if (!t || !hasParam(*t, key))
-        continue;
+      if (!t || !hasParam(*t, key)) continue;
       const auto had = p.params.find(key);
       listed[key].insert(had == p.params.end() ? "default" : had->second);
       p.params[key] = value;
@@ -214,8 +215,8 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
   // its technique ignores, issue 21 item 3).
   for (const auto& [key, value] : o.given) {
     if (concerned[key] > 0) continue;
-    const bool known = std::find(overrideKeys().begin(), overrideKeys().end(), key) !=
-                       overrideKeys().end();
+    const bool known =
+        std::find(overrideKeys().begin(), overrideKeys().end(), key) != overrideKeys().end();
     if (known)
       throw InputError("--set " + key + " has no effect on " + figure.id +
                        " (no panel of it reads " + key + ")");
@@ -239,9 +240,8 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
     if (p.precision) params.precision = *p.precision;
     params.extra = p.params;
     std::ostringstream key;
-    key << t->name << "|" << params.width << "x" << params.height << "|"
-        << params.shadowMapTexels << "|" << params.filter << "|"
-        << precisionName(params.precision);
+    key << t->name << "|" << params.width << "x" << params.height << "|" << params.shadowMapTexels
+        << "|" << params.filter << "|" << precisionName(params.precision);
     for (const auto& [k, v] : params.extra) key << "|" << k << "=" << v;
     if (!checked.insert(key.str()).second) continue;
     bool paramsKnown = true;  // a panel listed with a parameter its technique lacks is shown

@@ -28,14 +28,14 @@ struct TwinResult {
 
 // Where a panel's error against the reference lies (figures.cpp, as the bench measures it).
 struct ErrorDetail {
-  double bandRmse = 0;         // within 2 pixels of the reference's shadow edges
+  double bandRmse = 0;  // within 2 pixels of the reference's shadow edges
   long long bandPixels = 0;
-  double leakShare = 0;        // umbra pixels (reference 0, outside the band) shown > 20% lit
+  double leakShare = 0;  // umbra pixels (reference 0, outside the band) shown > 20% lit
   long long umbraPixels = 0;
   // The deep umbra: reference umbra farther than kDeepUmbraPixels from any reference edge, out
   // of reach of a blurred penumbra (CSM's and VSM's 5x5 kernels), where light is bleeding.
-  double deepUmbraMean = 0;    // mean visibility shown there (0: dark, as it should be)
-  double deepLeakShare = 0;    // share of it shown more than 5% lit
+  double deepUmbraMean = 0;  // mean visibility shown there (0: dark, as it should be)
+  double deepLeakShare = 0;  // share of it shown more than 5% lit
   long long deepUmbraPixels = 0;
 };
 constexpr int kDeepUmbraPixels = 8;

@@ -14,7 +14,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::CommandResult;
 
-fs::path dir() { return test::testDir("scene_knobs"); }
+fs::path dir() {
+  return test::testDir("scene_knobs");
+}
 
 CommandResult shadowlab(const std::string& args) {
   return test::runBinary(SHADOWLAB_BINARY, args, dir());
@@ -48,10 +50,10 @@ constexpr const char* kSmall = " --size 128x96";
 
 TEST(SceneKnobs, CameraDistanceMovesTheCameraAway) {
   const auto near = render("near", "--scene brabec --technique modern.hw" + std::string(kSmall));
-  const auto same = render("same", "--scene brabec --technique modern.hw --camera-distance 1" +
-                                       std::string(kSmall));
-  const auto far = render("far", "--scene brabec --technique modern.hw --camera-distance 3" +
-                                     std::string(kSmall));
+  const auto same = render(
+      "same", "--scene brabec --technique modern.hw --camera-distance 1" + std::string(kSmall));
+  const auto far = render(
+      "far", "--scene brabec --technique modern.hw --camera-distance 3" + std::string(kSmall));
   ASSERT_FALSE(near.first.empty() || same.first.empty() || far.first.empty());
   EXPECT_EQ(near.first.data, same.first.data) << "factor 1 is the scene's own camera";
   // Farther away the scene covers fewer pixels (the background is black).
@@ -106,8 +108,8 @@ TEST(SceneKnobs, RenderReproducesAFigurePanel) {
 TEST(SceneKnobs, BadValuesExitTwoWithOneLine) {
   const fs::path out = dir() / "bad.png";
   for (const std::string bad :
-       {"--camera-distance 0", "--camera-distance -2", "--camera-distance x",
-        "--light-radius -0.1", "--light-position 1,2", "--light-position 1,2,3,4",
+       {"--camera-distance 0", "--camera-distance -2", "--camera-distance x", "--light-radius -0.1",
+        "--light-position 1,2", "--light-position 1,2,3,4",
         "--light-position 0,0,0" /* the analytic light's target: no direction left */}) {
     const CommandResult r = shadowlab("render --scene analytic --technique modern.hw " + bad +
                                       " --out " + out.string());

@@ -1,6 +1,8 @@
 // Issue 21 items 5 and 6: captions state measured numbers, never typed ones. The sentences
 // under a caption (figures/measured.h) are computed from the run; the captions themselves
 // carry only configuration and the papers' quoted numbers.
+#include "figures/measured.h"
+
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -8,7 +10,6 @@
 #include <sstream>
 
 #include "figures/figure_spec.h"
-#include "figures/measured.h"
 
 using namespace sl;
 using namespace sl::figures;
@@ -16,8 +17,7 @@ using namespace sl::figures;
 namespace {
 
 PanelResult timed(const std::string& label, const std::string& technique,
-                  std::vector<double> samples, const std::string& paper = "",
-                  int texels = 0) {
+                  std::vector<double> samples, const std::string& paper = "", int texels = 0) {
   PanelResult p;
   p.ok = true;
   p.spec.label = label;
@@ -73,8 +73,9 @@ TEST(Measured, TimingTrendIsJudgedCellByCellWithItsRounds) {
   EXPECT_EQ(cells[0].baseline, "(a) unfiltered");
   EXPECT_EQ(cells[0].verdict, "holds (slower)");
   EXPECT_EQ(cells[0].roundsAgreeing, 3);
-  EXPECT_EQ(cells[1].verdict, "does not hold: paper slower, ours the same in the median only "
-                              "(noise)");
+  EXPECT_EQ(cells[1].verdict,
+            "does not hold: paper slower, ours the same in the median only "
+            "(noise)");
   EXPECT_EQ(cells[1].roundsAgreeing, 1);
   EXPECT_EQ(cells[2].verdict, "does not hold: paper slower, ours faster in every round");
   const std::string html = measuredHtml(fig);
@@ -98,8 +99,7 @@ TEST(Measured, ConvolutionTrendTellsNoiseFromCostStructure) {
   fig.panels.push_back(timed("C=none M=16 S=256", "modern.csm", {200, 200, 200}, "47 fps", 256));
   fig.panels.push_back(timed("C=7x7 M=16 S=256", "modern.csm", {260, 250, 255}, "41 fps", 256));
   const std::string html = measuredHtml(fig);
-  EXPECT_NE(html.find("not slower than the cell without convolution in 2 of 3"),
-            std::string::npos)
+  EXPECT_NE(html.find("not slower than the cell without convolution in 2 of 3"), std::string::npos)
       << html;
   EXPECT_NE(html.find("1 of those invert in every interleaved round (cost structure), the "
                       "other 1 only in the median (noise)"),
@@ -114,11 +114,11 @@ TEST(Measured, ConvolutionTrendTellsNoiseFromCostStructure) {
 // technique constants a caption explains are listed with where they come from.
 TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
   const std::set<std::string> constants = {
-      "0", "1", "2",  // structural words: "box 1", "between 0 and 1", "scaling by 2"
-      "64",           // modern.hybrid's tile side (64x64 tiles, chan-3-11)
-      "1.5",          // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
-      "0.5", "8",     // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
-      "4", "16",      // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
+      "0",   "1",  "2",  // structural words: "box 1", "between 0 and 1", "scaling by 2"
+      "64",              // modern.hybrid's tile side (64x64 tiles, chan-3-11)
+      "1.5",             // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
+      "0.5", "8",        // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
+      "4",   "16",       // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
   };
   static const std::regex source(
       R"(The paper:|paper's own|thesis's|chapter's|Chan's|Chan:|Annen|Brabec|Everitt|Kilgard|GeForce|SGI|Octane|their |Eq\. |Figs?\. |§)");

@@ -1,5 +1,7 @@
 // Issue 21 item 1: `shadowlab figures --only ID --set key=value` re-makes one figure with
 // parameters changed, into its own folder, with the overrides in the caption and file names.
+#include "figures/overrides.h"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -10,7 +12,6 @@
 
 #include "core/errors.h"
 #include "figures/figure_spec.h"
-#include "figures/overrides.h"
 
 namespace fs = std::filesystem;
 using namespace sl;
@@ -96,8 +97,7 @@ TEST(FigureOverrides, KeysTheFigureDoesNotReadAreInputErrors) {
       << "above GL_MAX_TEXTURE_SIZE";
   EXPECT_THROW(applyOverrides(fig, parseOverrideList({"light-position=0,0,0"})), InputError)
       << "the light would sit on its target";
-  EXPECT_THROW(applyOverrides(listed("csm-fig3"), parseOverrideList({"size=100x100"})),
-               InputError)
+  EXPECT_THROW(applyOverrides(listed("csm-fig3"), parseOverrideList({"size=100x100"})), InputError)
       << "a computed chart renders no scene";
   // The light radius does reach chan-4-9 (reference.soft, and the figure's reference).
   const FigureSpec f = applyOverrides(listed("chan-4-9"), parseOverrideList({"light-radius=0.3"}));
@@ -120,8 +120,7 @@ TEST(FigureOverrides, FiguresCommandRemakesIntoItsOwnFolder) {
   int pngs = 0;
   for (const auto& e : fs::directory_iterator(folder)) {
     ++pngs;
-    EXPECT_NE(e.path().filename().string().find("--shadow-map-64"), std::string::npos)
-        << e.path();
+    EXPECT_NE(e.path().filename().string().find("--shadow-map-64"), std::string::npos) << e.path();
   }
   EXPECT_GT(pngs, 2);
   std::ifstream in(dir / "report.html");
