@@ -155,11 +155,13 @@ TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
         clause += c;
         continue;
       }
-      if (!std::regex_search(clause, source))
-        for (const std::string& n : numbersIn(clause))
+      if (!std::regex_search(clause, source)) {
+        for (const std::string& n : numbersIn(clause)) {
           EXPECT_TRUE(config.count(n) || constants.count(n))
               << f.id << ": the caption's number " << n << " is neither configuration nor "
               << "quoted from a paper: \"" << clause << "\"";
+        }
+      }
       clause.clear();
     }
   }
