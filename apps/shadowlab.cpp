@@ -17,6 +17,7 @@
 #include "core/scene_library.h"
 #include "figures/figures.h"
 #include "figures/lesson.h"
+#include "figures/overrides.h"
 
 namespace sl {
 namespace {
@@ -32,11 +33,13 @@ usage:
   shadowlab list                                   techniques, scenes, figures
   shadowlab render --scene S --technique T [--size WxH] [--shadow-map N] [--filter K]
                    [--precision 8|12|float] [--param key=value ...] [--backend osmesa|egl|reference]
+                   [--camera-distance X] [--light-radius R] [--light-position X,Y,Z]
                    --out image.png [--mask visibility.png] [--dump-passes DIR]
   shadowlab compare --scene S --a T1 --b T2 [render options] [--diff diff.png] [--threshold X]
   shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
   shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
+  shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
 
 `shadowlab COMMAND --help` lists a command's options.
@@ -157,9 +160,25 @@ void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, Ren
   if (outputs.dump) writePassDump(*outputs.dump, frame, dumpHeader, provenance);
 }
 
+// The scene with --camera-distance, --light-radius and --light-position applied.
+Scene adjustedScene(const std::string& sceneName, const SceneAdjustments& adjustments) {
+  Scene scene = loadScene(sceneName);
+  adjustScene(scene, adjustments);
+  return scene;
+}
+
+// The scene knobs given, in the JSON line and the PNGs' provenance.
+void addAdjustments(nlohmann::json& made, const SceneAdjustments& a) {
+  if (a.cameraDistance) made["camera_distance"] = *a.cameraDistance;
+  if (a.lightRadius) made["light_radius"] = *a.lightRadius;
+  if (a.lightPosition)
+    made["light_position"] = {a.lightPosition->x, a.lightPosition->y, a.lightPosition->z};
+}
+
 int render(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
-  const Scene scene = loadScene(sceneName);
+  const SceneAdjustments adjustments = cli::sceneAdjustments(args);
+  const Scene scene = adjustedScene(sceneName, adjustments);
   const Technique& technique = findTechnique(args.required("technique"));
   RenderParams params = withReadLog(cli::renderParams(args));
   rejectIgnoredOptions(technique, cli::givenCommonOptions(args));
@@ -175,6 +194,7 @@ int render(const cli::Args& args) {
   nlohmann::json made = optionsJson({&technique}, params);
   made["technique"] = technique.name;
   made["scene"] = scene.name;
+  addAdjustments(made, adjustments);
   made["params"] = paramsJson(params);
   nlohmann::json out = made;
   out["command"] = commandLine();
@@ -193,7 +213,8 @@ int render(const cli::Args& args) {
 
 int compare(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
-  const Scene scene = loadScene(sceneName);
+  const SceneAdjustments adjustments = cli::sceneAdjustments(args);
+  const Scene scene = adjustedScene(sceneName, adjustments);
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
@@ -214,6 +235,7 @@ int compare(const cli::Args& args) {
   const MaskDifference d = compareMasks(fa.visibility, fb.visibility, threshold);
   nlohmann::json made = optionsJson({&a, &b}, params);
   made["scene"] = scene.name;
+  addAdjustments(made, adjustments);
   made["a"] = a.name;
   made["b"] = b.name;
   made["a_params"] = paramsJson(paramsA);
@@ -253,7 +275,7 @@ int run(int argc, char** argv) {
     return figures::runFigures(
         args.value("out").value_or("out/figures"),
         args.options.count("only") ? args.options.at("only") : std::vector<std::string>{},
-        !args.has("no-progress"));
+        !args.has("no-progress"), figures::parseOverrides(args));
   if (args.command == "lesson") return figures::runLessonCommand(args);
   if (args.command == "bench") return figures::runBench(args);
   if (args.command == "plan") {

@@ -41,12 +41,71 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
     }
   }
   out.timedFrames = frames;
+  out.frameSamples = sums;
   // Step 3: medians.
   out.frameMs = median(sums);
   out.minimumFrameMs = *std::min_element(sums.begin(), sums.end());
   out.wallMs = median(walls);
   for (const std::string& name : order) out.passes.push_back({name, median(perPass[name])});
   if (last != nullptr) *last = std::move(frame);
+  return out;
+}
+
+namespace {
+// Step 3 for one source of an interleaved run: medians of what its rounds measured.
+SteadyTiming mediansOf(int warmup, const std::vector<Frame>& frames,
+                       const std::vector<double>& walls) {
+  SteadyTiming out;
+  out.warmupFrames = warmup;
+  out.timedFrames = int(frames.size());
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> perPass;
+  for (const Frame& f : frames) {
+    out.frameSamples.push_back(f.totalMilliseconds());
+    for (const PassTime& p : f.passes) {
+      if (!perPass.count(p.name)) order.push_back(p.name);
+      perPass[p.name].push_back(p.milliseconds);
+    }
+  }
+  out.frameMs = median(out.frameSamples);
+  out.minimumFrameMs = *std::min_element(out.frameSamples.begin(), out.frameSamples.end());
+  out.wallMs = median(walls);
+  for (const std::string& name : order) out.passes.push_back({name, median(perPass[name])});
+  return out;
+}
+}  // namespace
+
+std::vector<SteadyTiming> timeInterleavedSteadyState(
+    const std::vector<std::function<Frame()>>& sources, int warmup, int rounds,
+    std::vector<Frame>* lasts) {
+  if (warmup < 0 || rounds < 1)
+    throw std::invalid_argument("interleaved timing needs warm-up >= 0 and at least one round");
+  // Step 1: every source's warm-up frames, discarded.
+  for (const auto& render : sources)
+    for (int i = 0; i < warmup; ++i) render();
+  // Step 2: rounds, one timed frame of every source each. Only the pass times of the frames are
+  // medians' inputs; the images of all but the last round are dropped as soon as timed.
+  std::vector<std::vector<Frame>> timed(sources.size());
+  std::vector<std::vector<double>> walls(sources.size());
+  for (int round = 0; round < rounds; ++round)
+    for (size_t i = 0; i < sources.size(); ++i) {
+      const double start = nowMilliseconds();
+      Frame frame = sources[i]();
+      walls[i].push_back(nowMilliseconds() - start);
+      if (round + 1 < rounds) {  // keep the times, not the images
+        frame.color = Image();
+        frame.visibility = Image();
+        frame.intermediates.clear();
+      }
+      timed[i].push_back(std::move(frame));
+    }
+  // Step 3: medians per source.
+  std::vector<SteadyTiming> out;
+  for (size_t i = 0; i < sources.size(); ++i) out.push_back(mediansOf(warmup, timed[i], walls[i]));
+  if (lasts != nullptr) {
+    lasts->clear();
+    for (auto& frames : timed) lasts->push_back(std::move(frames.back()));
+  }
   return out;
 }
 

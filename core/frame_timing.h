@@ -58,6 +58,9 @@ struct SteadyTiming {
   double minimumFrameMs = 0.0;            // least disturbed timed frame
   double wallMs = 0.0;                    // median wall time of one render() call
   std::vector<PassTime> passes;           // median per pass, in the order the passes ran
+  // The pass-time sums of the timed frames in the order rendered (interleaved: one per round),
+  // so that a reader can see the spread and compare two configurations round by round.
+  std::vector<double> frameSamples;
   double fps() const { return frameMs > 0.0 ? 1000.0 / frameMs : 0.0; }
 };
 
@@ -71,6 +74,18 @@ double median(std::vector<double> values);
 // std::invalid_argument for a negative warm-up or fewer than one timed frame.
 SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const FrameCounts& counts,
                              Frame* last = nullptr);
+
+// Interleaved timing (issue 21 item 6): several configurations measured round-robin, so that a
+// change of machine load during the measurement hits every configuration alike instead of the
+// ones that happened to run during it. Each source is warmed up (`warmup` frames each, in
+// turn), then `rounds` rounds render one timed frame of every source in turn; each source's
+// SteadyTiming is the median over its rounds (frameSamples in round order). `lasts`, when given,
+// receives every source's last frame. Throws std::invalid_argument for a negative warm-up or
+// fewer than one round.
+std::vector<SteadyTiming> timeInterleavedSteadyState(
+    const std::vector<std::function<Frame()>>& sources, int warmup, int rounds,
+    std::vector<Frame>* lasts = nullptr);
+
 // For a technique on its own context: registry/registry.h timeTechnique (it installs the imaging
 // subset for the legacy techniques, which core/ cannot see).
 

@@ -259,4 +259,26 @@ void validateScene(const Scene& scene) {
   // ------------------------------------------------------------------------------------------
 }
 
+void adjustScene(Scene& scene, const SceneAdjustments& a) {
+  if (a.cameraDistance) {
+    if (!(*a.cameraDistance > 0.0f && std::isfinite(*a.cameraDistance)))
+      throw InputError("camera distance must be a positive factor, got " +
+                       std::to_string(*a.cameraDistance));
+    Camera& c = scene.camera;
+    c.position = c.target + (c.position - c.target) * *a.cameraDistance;
+    c.farPlane *= std::max(1.0f, *a.cameraDistance);  // what was in view stays in view
+  }
+  if (a.lightRadius) {
+    if (!(*a.lightRadius >= 0.0f && std::isfinite(*a.lightRadius)))
+      throw InputError("light radius must be >= 0 (world units)");
+    scene.light.radius = *a.lightRadius;
+  }
+  if (a.lightPosition) scene.light.position = *a.lightPosition;
+  try {
+    validateScene(scene);
+  } catch (const InputError& e) {
+    throw InputError(std::string("the adjusted scene is unusable: ") + e.what());
+  }
+}
+
 }  // namespace sl

@@ -116,6 +116,20 @@ glm::mat4 lightProjection(const Scene& scene);
 // without the factor a flat ground under a light 20 units up was all umbra (issue 17).
 float lightDepthRoundoffScale(const Scene& scene);
 
+// The scene-level knobs a figure turns and `render`/`compare`/`plan` expose (--camera-distance,
+// --light-radius, --light-position) and `figures --set` overrides (issue 21 item 1).
+struct SceneAdjustments {
+  // Times the camera's distance from its target, moving it along its view direction (> 1:
+  // farther, minification as in Annen et al. Figs. 1 and 10); the far plane grows with it.
+  std::optional<float> cameraDistance;
+  std::optional<float> lightRadius;        // world units; read by reference.soft (Chan Fig. 4-9)
+  std::optional<glm::vec3> lightPosition;  // world; the light keeps aiming at its target
+  bool empty() const { return !cameraDistance && !lightRadius && !lightPosition; }
+};
+// Applies `a` to `scene` and validates the result (validateScene): an adjustment that leaves the
+// scene unusable (light on its target, a negative radius) is an InputError naming the knob.
+void adjustScene(Scene& scene, const SceneAdjustments& a);
+
 // Validates a scene (finite numbers, non-degenerate camera and light, at least one object);
 // throws InputError naming the problem.
 void validateScene(const Scene& scene);

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.h"
+#include "core/technique.h"
+
 namespace sl::figures {
 
 enum class PanelKind {
@@ -26,8 +29,14 @@ enum class PanelKind {
   kPlot,           // a gnuplot chart made from computed data or from other panels' numbers
 };
 
-// A close-up: a rectangle in fractions of the panel (bottom-left origin, as core/image.h),
-// magnified with nearest-neighbour sampling so the texels stay visible.
+// A close-up: a rectangle in fractions of the panel, magnified with nearest-neighbour sampling
+// so the texels stay visible. Origin bottom-left, y up (as core/image.h and GL window
+// coordinates): (x, y) is the rectangle's lower-left corner, x the fraction of the panel's width
+// from its left edge, y the fraction of its height from its BOTTOM edge; w and h its width and
+// height in the same fractions. {0.70, 0.47, 0.12, 0.12} in an 800x600 panel is the 96x72
+// window whose lower-left pixel is (560, 282) counted from the bottom-left, i.e. whose top row
+// is row 600 - 282 - 72 = 246 counted from the top as an image viewer counts.
+// (docs/figures.md "Close-ups" and README say the same.)
 struct Closeup {
   float x = 0, y = 0, w = 0, h = 0;
   int magnify = 4;
@@ -43,6 +52,8 @@ struct PanelSpec {
   int filter = 0;             // 0: RenderParams default
   std::map<std::string, std::string> params;  // --param key=value
   std::optional<float> lightRadius;           // overrides the scene's light radius (soft shadows)
+  std::optional<glm::vec3> lightPosition;     // overrides the scene's light position
+  std::optional<Precision> precision;         // RenderParams::precision; unset: its default
   float cameraDistance = 1.0f;                // > 1 moves the camera away (minification)
   bool mask = false;                          // show the visibility mask instead of colour
   std::string intermediate;  // kIntermediates: substring of the PassImage names to show
@@ -70,6 +81,11 @@ struct FigureSpec {
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted
+  // Re-made with `figures --set` (figures/overrides.h): the listed figure's id (id then names
+  // this version's folder), the overrides as typed, and their slug in every file name.
+  std::string sourceId;
+  std::vector<std::string> overrides;  // "shadow-map=1024"
+  std::string fileSuffix;              // "--shadow-map-1024"
 };
 
 // Every figure we reproduce, in paper order.

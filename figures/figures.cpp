@@ -22,6 +22,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include "core/errors.h"
@@ -31,6 +32,8 @@
 #include "figures/diagnostics.h"
 #include "figures/figure_composite.h"
 #include "figures/lesson.h"
+#include "figures/measured.h"
+#include "figures/overrides.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
@@ -75,11 +78,28 @@ struct Setup {
   int width = 0, height = 0, texels = 0, filter = 2;
   std::map<std::string, std::string> params;
   std::optional<float> lightRadius;
+  std::optional<glm::vec3> lightPosition;
+  std::optional<Precision> precision;
   float cameraDistance = 1;
+  // The scene knobs (core/scene.h adjustScene) and their part of the keys.
+  SceneAdjustments adjustments() const {
+    SceneAdjustments a;
+    if (cameraDistance != 1.0f) a.cameraDistance = cameraDistance;
+    a.lightRadius = lightRadius;
+    a.lightPosition = lightPosition;
+    return a;
+  }
+  std::string sceneKey() const {
+    std::ostringstream s;
+    s << sceneName << "|" << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
+    if (lightPosition)
+      s << "|" << lightPosition->x << "," << lightPosition->y << "," << lightPosition->z;
+    return s.str();
+  }
   std::string key() const {
     std::ostringstream s;
-    s << sceneName << "|" << width << "x" << height << "|" << texels << "|" << filter << "|"
-      << (lightRadius ? *lightRadius : -1.0f) << "|" << cameraDistance;
+    s << sceneKey() << "|" << width << "x" << height << "|" << texels << "|" << filter << "|"
+      << (precision ? precisionName(*precision) : "default");
     for (const auto& [k, v] : params) s << "|" << k << "=" << v;
     return s.str();
   }
@@ -94,15 +114,25 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
   s.filter = p.filter ? p.filter : RenderParams{}.filter;
   s.params = p.params;
   s.lightRadius = p.lightRadius;
+  s.lightPosition = p.lightPosition;
+  s.precision = p.precision;
   s.cameraDistance = p.cameraDistance;
   return s;
 }
 
-// Timing. A panel whose time is set beside a paper's number is timed as the benches time a
-// technique (core/frame_timing.h: warm-up frames on one context, then the median of timed
-// frames), with the quick modes' counts so that the whole set stays within the main job's
-// budget.
-constexpr FrameCounts kFigureFrames = kQuickFrames;
+// Timing (issue 21 item 6). A panel whose time is set beside a paper's number is timed as the
+// benches time a technique (core/frame_timing.h: warm-up frames on one context, then the
+// median of timed frames), and all such panels of a figure (with their twins) are measured
+// interleaved: every context warmed up, then kFigureRounds rounds of one frame of each, so
+// that machine load during the figure hits every cell alike. No cell is a median of one frame.
+constexpr int kFigureWarmupFrames = kQuickWarmupFrames;
+constexpr int kFigureRounds = 3;
+constexpr FrameCounts kFigureFrames{kFigureWarmupFrames, kFigureRounds};
+// Contexts alive at once in one interleaved group (each holds its window's buffers: a 1024x768
+// context ~20 MB with Mesa's depth/stencil; a figure of more timed renders is measured in
+// groups of this many, grouped by shadow-map size so that the cells compared within a column
+// of CSM Table 1 share a group).
+constexpr size_t kInterleavedGroup = 10;
 // Charts whose axis is our frame time: every render panel of their figure is timed steadily.
 const std::vector<std::string> kTimeCharts = {"error-vs-time", "chan-3-11"};
 
@@ -126,17 +156,11 @@ class Renderer {
   explicit Renderer(std::string outDir) : outDir_(std::move(outDir)) {}
 
   const Scene& scene(const Setup& s) {
-    const std::string key = s.sceneName + "|" + std::to_string(s.lightRadius.value_or(-1)) + "|" +
-                            std::to_string(s.cameraDistance);
+    const std::string key = s.sceneKey();
     auto it = scenes_.find(key);
     if (it != scenes_.end()) return it->second;
     Scene scene = loadScene(s.sceneName);
-    if (s.lightRadius) scene.light.radius = *s.lightRadius;
-    if (s.cameraDistance != 1.0f) {  // move away along the view direction (minification)
-      scene.camera.position =
-          scene.camera.target + (scene.camera.position - scene.camera.target) * s.cameraDistance;
-      scene.camera.farPlane *= s.cameraDistance;
-    }
+    adjustScene(scene, s.adjustments());  // as `render --camera-distance/--light-*` does
     return scenes_.emplace(key, std::move(scene)).first->second;
   }
 
@@ -146,6 +170,7 @@ class Renderer {
     p.height = s.height;
     p.shadowMapTexels = s.texels;
     p.filter = s.filter;
+    if (s.precision) p.precision = *s.precision;
     p.extra = s.params;
     p.capturePasses = capture;
     return p;
@@ -175,6 +200,44 @@ class Renderer {
     Timed timed{checked(t, std::move(last)), timing};
     frames_[key] = timed.frame;
     return timed_[key] = timed;
+  }
+
+  // The timed renders of one figure (its render panels whose time stands beside a paper's
+  // number, and their twins), measured interleaved before the panels are made; steadyFrame
+  // then finds them. A group that fails (a technique refusing its parameters) is left to
+  // steadyFrame, which reports the failing panel alone.
+  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs) {
+    std::vector<size_t> todo;
+    std::set<std::string> keys;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      const std::string key = jobs[i].first->name + "|" + jobs[i].second.key();
+      if (!timed_.count(key) && keys.insert(key).second) todo.push_back(i);
+    }
+    std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) {
+      return jobs[a].second.texels < jobs[b].second.texels;
+    });
+    for (size_t start = 0; start < todo.size(); start += kInterleavedGroup) {
+      const std::vector<size_t> group(
+          todo.begin() + long(start),
+          todo.begin() + long(std::min(todo.size(), start + kInterleavedGroup)));
+      try {
+        std::vector<TimingJob> timing;
+        for (size_t i : group)
+          timing.push_back({jobs[i].first, &scene(jobs[i].second), params(jobs[i].second, false)});
+        std::vector<Frame> lasts;
+        const std::vector<SteadyTiming> timings =
+            timeTechniquesInterleaved(timing, kFigureWarmupFrames, kFigureRounds, &lasts);
+        for (size_t k = 0; k < group.size(); ++k) {
+          const Technique& t = *jobs[group[k]].first;
+          const std::string key = t.name + "|" + jobs[group[k]].second.key();
+          Timed timed{checked(t, std::move(lasts[k])), timings[k]};
+          frames_[key] = timed.frame;
+          timed_[key] = timed;
+        }
+      } catch (const std::exception&) {
+        // steadyFrame measures each of the group alone and reports the one that fails.
+      }
+    }
   }
 
   const DiagnosticViews& diagnostics(const Setup& s) {
@@ -264,11 +327,59 @@ std::string twinName(const std::string& name) {
   return "";
 }
 
+// The renders of a figure whose times are set beside a paper's number (timedSteadily), with the
+// legacy/modern twins makePanel times beside them.
+std::vector<std::pair<const Technique*, Setup>> timedRenders(const FigureSpec& fig) {
+  std::vector<std::pair<const Technique*, Setup>> jobs;
+  for (const PanelSpec& p : fig.panels) {
+    if (!timedSteadily(fig, p) || !missingReason(p).empty()) continue;
+    const Setup setup = setupFor(fig, p);
+    const Technique* t = lookup(p.technique);
+    jobs.push_back({t, setup});
+    const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t->name)) : nullptr;
+    PanelSpec tp = p;
+    if (twin != nullptr) tp.technique = twin->name;
+    if (twin != nullptr && missingReason(tp).empty()) jobs.push_back({twin, setup});
+  }
+  return jobs;
+}
+
+// Step 3's detail: the error near the reference's edges and the light leaking in its umbra, as
+// the bench measures them (figures/bench.h measureErrors; here over the whole image).
+ErrorDetail errorDetailOf(const Image& mask, const Image& reference) {
+  constexpr int kBandPixels = 2;  // as the bench's band
+  const Image band = boundaryBand(reference, kBandPixels);
+  const Image everywhere(reference.width, reference.height, 1, 1.0f);
+  const ErrorSet e = measureErrors(mask, reference, everywhere, band);
+  ErrorDetail d;
+  d.bandRmse = e.band.rmse;
+  d.bandPixels = e.band.pixels;
+  d.leakShare = e.leakShare;
+  const Image wide = boundaryBand(reference, kDeepUmbraPixels);
+  double deepSum = 0;
+  long long deepLit = 0;
+  for (int y = 0; y < reference.height; ++y)
+    for (int x = 0; x < reference.width; ++x) {
+      if (reference.at(x, y) != 0.0f) continue;
+      d.umbraPixels += band.at(x, y) <= 0.5f ? 1 : 0;
+      if (wide.at(x, y) > 0.5f) continue;
+      ++d.deepUmbraPixels;
+      deepSum += mask.at(x, y);
+      deepLit += mask.at(x, y) > kDeepLeakThreshold ? 1 : 0;
+    }
+  if (d.deepUmbraPixels > 0) {
+    d.deepUmbraMean = deepSum / double(d.deepUmbraPixels);
+    d.deepLeakShare = double(deepLit) / double(d.deepUmbraPixels);
+  }
+  return d;
+}
+
 // Steps 2-4 for one panel.
 PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
   PanelResult out;
   out.spec = p;
-  const std::string base = (index < 10 ? "0" : "") + std::to_string(index) + "-" + slug(p.label);
+  const std::string base =
+      (index < 10 ? "0" : "") + std::to_string(index) + "-" + slug(p.label) + fig.fileSuffix;
   const Setup setup = setupFor(fig, p);
   if (std::string why = missingReason(p); !why.empty()) {
     out.reason = why;
@@ -300,6 +411,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           out.passes = timed.timing.passes;
           out.warmupFrames = timed.timing.warmupFrames;
           out.timedFrames = timed.timing.timedFrames;
+          out.frameSamples = timed.timing.frameSamples;
         } else {
           f = r.frame(t, setup, false);
           out.milliseconds = f->totalMilliseconds();
@@ -328,6 +440,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           }
           auto rf = r.frame(*ref, refSetup, false);
           out.error = compareMasks(f->visibility, rf->visibility, 0.5);
+          out.errorDetail = errorDetailOf(f->visibility, rf->visibility);
         }
         // Step 4: the legacy/modern twin.
         const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t.name)) : nullptr;
@@ -437,7 +550,8 @@ std::vector<LabelledTile> compositeTiles(const std::string& outDir, const Figure
 void writeComposite(Renderer& r, FigureResult& fig) {
   if (fig.spec.table) return;
   const Image composite = composeFigure(fig, r.outDir());
-  if (!composite.empty()) fig.composite = r.write(fig.spec.id, "figure", composite);
+  if (!composite.empty())
+    fig.composite = r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite);
 }
 
 // Step 5: charts.
@@ -447,7 +561,7 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
     plot.reason = why;
     return;
   }
-  const std::string rel = fig.spec.id + "/" + slug(plot.spec.plot) + ".png";
+  const std::string rel = fig.spec.id + "/" + slug(plot.spec.plot) + fig.spec.fileSuffix + ".png";
   const std::string png = (fs::path(r.outDir()) / rel).string();
   const std::string& chart = plot.spec.plot;
   std::vector<const PanelResult*> rendered;
@@ -577,8 +691,8 @@ std::vector<FigureInfo> listFigures() {
   return out;
 }
 
-int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress) {
-  std::vector<const FigureSpec*> selected;
+int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress,
+               const FigureOverrides& overrides) {
   for (const std::string& id : only) {
     if (std::none_of(figureList().begin(), figureList().end(),
                      [&](const FigureSpec& f) { return f.id == id; })) {
@@ -587,9 +701,15 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
       throw InputError("unknown figure '" + id + "' (known: " + known + ")");
     }
   }
+  std::vector<FigureSpec> remade;  // the --set version of the one figure, when asked for
+  std::vector<const FigureSpec*> selected;
   for (const FigureSpec& f : figureList())
     if (only.empty() || std::find(only.begin(), only.end(), f.id) != only.end())
       selected.push_back(&f);
+  if (!overrides.empty()) {
+    remade.push_back(applyOverrides(*selected.front(), overrides));  // one --only (overrides.h)
+    selected = {&remade.front()};
+  }
   std::error_code ec;
   fs::create_directories(outDir, ec);
   if (ec) throw InputError("cannot create " + outDir + ": " + ec.message());
@@ -609,6 +729,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     const auto figureStart = std::chrono::steady_clock::now();
     FigureResult fr;
     fr.spec = *f;
+    renderer.timeInterleaved(timedRenders(*f));
     for (size_t i = 0; i < f->panels.size(); ++i) {
       if (progress)
         std::cerr << "[" << ++done << "/" << total << "] " << f->id << " " << f->panels[i].label
@@ -619,6 +740,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     }
     for (PanelResult& p : fr.panels)
       if (p.spec.kind == PanelKind::kPlot) drawPlot(renderer, fr, p);
+    fr.measured = measuredHtml(fr);
     try {
       writeComposite(renderer, fr);
     } catch (const std::exception& e) {

@@ -19,10 +19,14 @@ struct FigureInfo {
 };
 
 std::vector<FigureInfo> listFigures();
+struct FigureOverrides;  // figures/overrides.h
+
 // Renders every figure (or only the ids in `only`) into outDir, a lesson per technique into
 // outDir/lessons/ (figures/lesson.h; with `only`, the techniques those figures show) and writes
-// outDir/report.html, which links them.
-int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress);
+// outDir/report.html, which links them. With overrides (figures --set, with exactly one --only):
+// the figure re-made with them, into outDir/ID--<overrides>/ (figures/overrides.h).
+int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress,
+               const FigureOverrides& overrides);
 int runBench(const cli::Args& args);
 
 // figure.png: the figure laid out as the paper lays it out, in rows of spec.columns tiles, then

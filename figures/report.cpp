@@ -226,6 +226,14 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
   h << "</div>\n";
 }
 
+// The command that makes this figure again (with its --set overrides, figures/overrides.h).
+std::string regenerateCommand(const FigureSpec& s) {
+  std::string command =
+      "shadowlab figures --only " + (s.sourceId.empty() ? s.id : s.sourceId);
+  for (const std::string& o : s.overrides) command += " --set " + o;
+  return command;
+}
+
 void writeFigure(std::ostream& h, const FigureResult& f) {
   const FigureSpec& s = f.spec;
   int missing = 0;
@@ -233,9 +241,10 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — " << htmlEscape(s.title)
     << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
   h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
+  h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
   h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
     << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
-    << " s; regenerate: <code>shadowlab figures --only " << htmlEscape(s.id) << "</code></small></p>\n";
+    << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s)) << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
       << " panels missing (reasons below, in red).</p>\n";

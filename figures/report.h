@@ -31,6 +31,21 @@ struct TwinResult {
   twins::ImageAgreement image;
 };
 
+// Where a panel's error against the reference lies (figures.cpp, as the bench measures it).
+struct ErrorDetail {
+  double bandRmse = 0;  // within 2 pixels of the reference's shadow edges
+  long long bandPixels = 0;
+  double leakShare = 0;  // umbra pixels (reference 0, outside the band) shown > 20% lit
+  long long umbraPixels = 0;
+  // The deep umbra: reference umbra farther than kDeepUmbraPixels from any reference edge, out
+  // of reach of a blurred penumbra (CSM's and VSM's 5x5 kernels), where light is bleeding.
+  double deepUmbraMean = 0;  // mean visibility shown there (0: dark, as it should be)
+  double deepLeakShare = 0;  // share of it shown more than 5% lit
+  long long deepUmbraPixels = 0;
+};
+constexpr int kDeepUmbraPixels = 8;
+constexpr float kDeepLeakThreshold = 0.05f;
+
 struct PanelResult {
   PanelSpec spec;
   bool ok = false;
@@ -42,9 +57,11 @@ struct PanelResult {
   // beside a paper's number; timedFrames 0: one first frame in a fresh context.
   double milliseconds = 0;
   int warmupFrames = 0, timedFrames = 0;
+  std::vector<double> frameSamples;  // the timed frames' times, one per interleaved round
   std::vector<PassTime> passes;
   std::map<std::string, double> counters;
   std::optional<MaskDifference> error;  // against the figure's reference
+  std::optional<ErrorDetail> errorDetail;
   std::string errorNote;                // why there is no error number
   std::optional<TwinResult> twin;
 };
@@ -54,6 +71,7 @@ struct FigureResult {
   std::vector<PanelResult> panels;
   double seconds = 0;     // wall time to make the figure
   std::string composite;  // the whole figure as one PNG (empty for tables)
+  std::string measured;   // figures/measured.h measuredHtml: what this run measured, in words
 };
 
 struct ReportInfo {

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "core/decimal.h"
@@ -55,6 +56,13 @@ std::vector<OptionSpec> renderOptions() {
       {"imaging", "native|emulated",
        "imaging subset of the legacy techniques: native (the back end's own; reference only) or "
        "emulated (imaging/, on any back end) [native where the back end has it, else emulated]"},
+      {"camera-distance", "X",
+       "times the camera's distance from its target, along its view direction (> 1: farther, "
+       "as in csm-fig1/csm-fig10) [1]"},
+      {"light-radius", "R",
+       "the light's radius in world units, read by reference.soft (chan-4-9) [the scene's]"},
+      {"light-position", "X,Y,Z",
+       "the light's position in world units; it keeps aiming at its target [the scene's]"},
   };
 }
 
@@ -116,6 +124,12 @@ const std::vector<CommandSpec>& commandSpecs() {
        "the main job: every reproduced paper figure and report.html",
        {{"out", "PATH", "output directory [out/figures]"},
         {"only", "ID", "only this figure id (shadowlab list); repeatable"},
+        {"set", "KEY=VALUE",
+         "with --only: re-make the figure with KEY changed in every panel, repeatable; keys: "
+         "size=WxH, shadow-map=N, filter=K, precision=8|12|float, camera-distance=X, "
+         "light-radius=R, light-position=X,Y,Z, or any --param key of the figure's techniques "
+         "(order=8); written to OUT/ID--KEY-VALUE/ with the overrides in the caption and the "
+         "file names"},
         {"no-progress", nullptr, "no progress lines on stderr"}}},
       {"lesson",
        "one self-contained HTML lesson on a technique: the paper's idea, every pass with its\n"
@@ -254,6 +268,42 @@ RenderParams renderParams(const Args& args) {
       p.extra[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
   return p;
+}
+
+glm::vec3 parsePosition(const std::string& what, const std::string& text) {
+  glm::vec3 v;
+  size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos))
+      throw InputError(what + " must look like X,Y,Z, got '" + text + "'");
+    const std::string part = text.substr(start, i < 2 ? comma - start : std::string::npos);
+    const double x = parseNumber(what, part);
+    if (!(std::fabs(x) <= kMaxSceneCoordinate))
+      throw InputError(what + " coordinates must lie within +-1e12, got " + part);
+    v[i] = float(x);
+    start = comma + 1;
+  }
+  return v;
+}
+
+SceneAdjustments sceneAdjustments(const Args& args) {
+  SceneAdjustments a;
+  constexpr double kLargestCameraFactor = 1e6;  // beyond it the far plane leaves float range
+  if (auto v = args.value("camera-distance")) {
+    const double d = parseNumber("--camera-distance", *v);
+    if (!(d > 0.0 && d <= kLargestCameraFactor))
+      throw InputError("--camera-distance must lie in (0, 1e6], got " + *v);
+    a.cameraDistance = float(d);
+  }
+  if (auto v = args.value("light-radius")) {
+    const double r = parseNumber("--light-radius", *v);
+    if (!(r >= 0.0 && r <= kMaxSceneCoordinate))
+      throw InputError("--light-radius must be >= 0 (world units), got " + *v);
+    a.lightRadius = float(r);
+  }
+  if (auto v = args.value("light-position")) a.lightPosition = parsePosition("--light-position", *v);
+  return a;
 }
 
 std::vector<CommonOption> givenCommonOptions(const Args& args) {

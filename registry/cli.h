@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.h"
 #include "core/technique.h"
 
 namespace CLI {
@@ -51,6 +52,9 @@ ImagingChoice parseImaging(const std::string& text);               // "native" o
 // Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend,
 // --imaging.
 RenderParams renderParams(const Args& args);
+// --camera-distance, --light-radius and --light-position (core/scene.h adjustScene).
+SceneAdjustments sceneAdjustments(const Args& args);
+glm::vec3 parsePosition(const std::string& what, const std::string& text);  // "X,Y,Z"
 // The options among --shadow-map, --filter, --precision and --imaging given explicitly
 // (registry/registry.h rejectIgnoredOptions refuses those the technique does not read).
 std::vector<CommonOption> givenCommonOptions(const Args& args);

@@ -136,4 +136,17 @@ SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
   return timeSteadyState([&] { return technique.render(*context, scene, params); }, counts, last);
 }
 
+std::vector<SteadyTiming> timeTechniquesInterleaved(const std::vector<TimingJob>& jobs, int warmup,
+                                                    int rounds, std::vector<Frame>* lasts) {
+  std::vector<std::unique_ptr<GlContext>> contexts;
+  std::vector<std::function<Frame()>> sources;
+  for (const TimingJob& job : jobs) contexts.push_back(contextForRender(*job.technique, job.params));
+  for (size_t i = 0; i < jobs.size(); ++i)
+    sources.push_back([&, i] {
+      contexts[i]->makeCurrent();
+      return jobs[i].technique->render(*contexts[i], *jobs[i].scene, jobs[i].params);
+    });
+  return timeInterleavedSteadyState(sources, warmup, rounds, lasts);
+}
+
 }  // namespace sl

@@ -39,4 +39,15 @@ SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
                            const RenderParams& params, const FrameCounts& counts,
                            Frame* last = nullptr, bool traceGl = false);
 
+// Several renders timed interleaved (core/frame_timing.h timeInterleavedSteadyState), each on
+// its own context made as renderTechnique makes it, all contexts alive at once (switched with
+// makeCurrent between frames). `lasts` receives every job's last frame.
+struct TimingJob {
+  const Technique* technique = nullptr;
+  const Scene* scene = nullptr;
+  RenderParams params;
+};
+std::vector<SteadyTiming> timeTechniquesInterleaved(const std::vector<TimingJob>& jobs, int warmup,
+                                                    int rounds, std::vector<Frame>* lasts = nullptr);
+
 }  // namespace sl

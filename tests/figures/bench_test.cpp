@@ -339,8 +339,14 @@ const ClaimCheck* claim(const std::vector<ClaimCheck>& claims, const std::string
 TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   BenchResult r;
   // gems16: better than samples=1 against the pixel area, worse against the pixel centre.
-  r.rows.push_back(claimRow("brabec", "modern.gems16", "default", 0.025, 0.038));
-  r.rows.push_back(claimRow("brabec", "modern.gems16", "samples=1", 0.028, 0.028));
+  // Issue 21 item 5: the verdict rests on the edge band; RMSE and the temporal change beside
+  // (the fence's quick-bench numbers: 16 samples lose on RMSE but flicker less).
+  r.rows.push_back(claimRow("brabec", "modern.gems16", "default", 0.080, 0.038));
+  r.rows.back().hard.band.rmse = 0.20;
+  r.rows.back().temporalChange = 0.0049;
+  r.rows.push_back(claimRow("brabec", "modern.gems16", "samples=1", 0.065, 0.028));
+  r.rows.back().hard.band.rmse = 0.26;
+  r.rows.back().temporalChange = 0.0073;
   // Smoothies: the best width of the sweep beats modern.hw, the width from the light does not.
   r.rows.push_back(claimRow("brabec", "modern.smoothies", "width=0.01", 0.001, 0.001));
   r.rows.push_back(
@@ -370,7 +376,9 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
 
   const ClaimCheck* gems = claim(claims, "gems16-vs-1", "brabec");
   ASSERT_NE(gems, nullptr);
-  EXPECT_EQ(gems->verdict, "agrees") << "measured against the pixel area, not the centre";
+  EXPECT_EQ(gems->verdict,
+            "agrees (band RMSE lower; RMSE not lower; temporal change lower: flickers less)")
+      << "the edge error decides; RMSE and flicker are reported beside it";
   EXPECT_NE(gems->setup.find("pixel=area"), std::string::npos) << gems->setup;
 
   const ClaimCheck* smoothies = claim(claims, "smoothies-soft", "brabec");
@@ -581,6 +589,27 @@ TEST(BenchCommand, HelpListsDefaultsScenesAndFiles) {
                            "bench-SCENE.dat", "bench-SCENE.gp", "--csv FILE", "JSON line",
                            "fill-bound", "trees-far", "brabec-light-away"})
     EXPECT_NE(help.find(text), std::string::npos) << text << " missing from: " << help;
+}
+
+// Issue 21 item 5: the light-bleeding scene makes the Fig. 9 claim testable. VSM must leak on
+// it (the scene is built for that), so the verdict is "agrees" or "disagrees", never "not
+// exercised"; the real bench renders it (two techniques and the reference, quick window).
+TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {
+  BenchOptions o;
+  o.quick = true;
+  o.progress = false;
+  o.scenes = {kBleedingScene};
+  o.outDir = (std::filesystem::path(SHADOWLAB_TEST_OUTPUT_DIR) / "bench-bleeding").string();
+  std::ostringstream json;
+  const BenchResult r = runBenchmark(o, json);
+  const std::vector<ClaimCheck> claims = checkClaims(r);
+  const ClaimCheck* leak = claim(claims, "csm-no-leak", kBleedingScene);
+  ASSERT_NE(leak, nullptr);
+  EXPECT_EQ(leak->verdict.find("not exercised"), std::string::npos) << leak->measured;
+  EXPECT_EQ(leak->verdict, "agrees") << leak->measured;
+  for (const BenchRow& row : r.rows)
+    if (row.technique == "modern.vsm")
+      EXPECT_GT(row.hard.leakShare, 0.01) << "VSM bleeds on the scene built for it";
 }
 
 }  // namespace

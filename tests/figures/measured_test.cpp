@@ -1,0 +1,168 @@
+// Issue 21 items 5 and 6: captions state measured numbers, never typed ones. The sentences
+// under a caption (figures/measured.h) are computed from the run; the captions themselves
+// carry only configuration and the papers' quoted numbers.
+#include "figures/measured.h"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "figures/figure_spec.h"
+
+using namespace sl;
+using namespace sl::figures;
+
+namespace {
+
+PanelResult timed(const std::string& label, const std::string& technique,
+                  std::vector<double> samples, const std::string& paper = "", int texels = 0) {
+  PanelResult p;
+  p.ok = true;
+  p.spec.label = label;
+  p.spec.technique = technique;
+  p.spec.paperNumbers = paper;
+  p.spec.shadowMapTexels = texels;
+  p.frameSamples = samples;
+  std::vector<double> sorted = samples;
+  std::sort(sorted.begin(), sorted.end());
+  p.milliseconds = sorted[sorted.size() / 2];
+  p.timedFrames = int(samples.size());
+  return p;
+}
+
+// The numbers of a text: "2x2" gives 2 and 2, "0.25" one number, "-1.5" gives 1.5.
+std::vector<std::string> numbersIn(const std::string& text) {
+  static const std::regex number(R"(\d+(?:\.\d+)?)");
+  std::vector<std::string> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number);
+       it != std::sregex_iterator(); ++it)
+    out.push_back(it->str());
+  return out;
+}
+
+std::string trimmed(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+TEST(Measured, PaperTimesParse) {
+  EXPECT_NEAR(*paperMilliseconds("25-30 fps on an SGI Octane VPro/8"), 1000.0 / 27.5, 1e-9);
+  EXPECT_NEAR(*paperMilliseconds("about 10 fps"), 100.0, 1e-9);
+  EXPECT_NEAR(*paperMilliseconds("39 fps, 10,000 triangles"), 1000.0 / 39, 1e-9);
+  EXPECT_NEAR(*paperMilliseconds("129 ms"), 129.0, 1e-9);
+  EXPECT_FALSE(paperMilliseconds(" fps").has_value());
+  EXPECT_FALSE(paperMilliseconds("").has_value());
+}
+
+TEST(Measured, TimingTrendIsJudgedCellByCellWithItsRounds) {
+  FigureResult fig;
+  fig.spec.id = "brabec-fig7";
+  fig.panels.push_back(timed("(a) unfiltered", "legacy.ramp", {100, 100, 100}, "25-30 fps"));
+  fig.panels.push_back(timed("(b) PCF", "legacy.pcf", {180, 190, 185}, "about 10 fps"));
+  // Slower in the paper; ours the same in the median, one round slower: noise.
+  fig.panels.push_back(timed("(c) fast PCF", "legacy.fast-pcf", {101, 120, 99}, "15-20 fps"));
+  // Slower in the paper, faster in ours in every round.
+  fig.panels.push_back(timed("(d) fast 4x4", "legacy.fast-pcf", {80, 85, 90}, "about 5 fps"));
+  const std::vector<TrendCell> cells = timingTrend(fig);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_EQ(cells[0].baseline, "(a) unfiltered");
+  EXPECT_EQ(cells[0].verdict, "holds (slower)");
+  EXPECT_EQ(cells[0].roundsAgreeing, 3);
+  EXPECT_EQ(cells[1].verdict,
+            "does not hold: paper slower, ours the same in the median only "
+            "(noise)");
+  EXPECT_EQ(cells[1].roundsAgreeing, 1);
+  EXPECT_EQ(cells[2].verdict, "does not hold: paper slower, ours faster in every round");
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("holds in 1 of 3 cells"), std::string::npos) << html;
+  EXPECT_NE(html.find("185.0 / 100.0 = 1.85"), std::string::npos) << "ours, from the medians";
+}
+
+TEST(Measured, ConvolutionTrendTellsNoiseFromCostStructure) {
+  FigureResult fig;
+  fig.spec.id = "csm-table1";
+  fig.spec.shadowMapTexels = 512;
+  fig.panels.push_back(timed("C=none PCF S=256", "modern.hw", {10, 10, 10}, "76 fps", 256));
+  // M=4: 7x7 faster than none in every round (cost structure).
+  fig.panels.push_back(timed("C=none M=4 S=256", "modern.csm", {140, 139, 141}, "64 fps", 256));
+  fig.panels.push_back(timed("C=7x7 M=4 S=256", "modern.csm", {116, 118, 117}, "62 fps", 256));
+  fig.panels.back().passes = {{"3 vertical Gaussian 7x7", 9.0}};
+  // M=8: faster in the median, slower in one round (noise).
+  fig.panels.push_back(timed("C=none M=8 S=256", "modern.csm", {150, 150, 150}, "55 fps", 256));
+  fig.panels.push_back(timed("C=7x7 M=8 S=256", "modern.csm", {140, 170, 130}, "52 fps", 256));
+  // M=16: slower, as the paper.
+  fig.panels.push_back(timed("C=none M=16 S=256", "modern.csm", {200, 200, 200}, "47 fps", 256));
+  fig.panels.push_back(timed("C=7x7 M=16 S=256", "modern.csm", {260, 250, 255}, "41 fps", 256));
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("not slower than the cell without convolution in 2 of 3"), std::string::npos)
+      << html;
+  EXPECT_NE(html.find("1 of those invert in every interleaved round (cost structure), the "
+                      "other 1 only in the median (noise)"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("3 vertical Gaussian 7x7 +9.0"), std::string::npos) << "per-pass delta";
+}
+
+// Every number in a caption is configuration (the figure's sizes, maps, panel parameters and
+// labels, close-up magnifications) or the paper's, in a clause that names its source; a
+// measured number (an overdraw, a ratio, a share) typed into a caption fails here. The
+// technique constants a caption explains are listed with where they come from.
+TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
+  const std::set<std::string> constants = {
+      "0",   "1",  "2",  // structural words: "box 1", "between 0 and 1", "scaling by 2"
+      "64",              // modern.hybrid's tile side (64x64 tiles, chan-3-11)
+      "1.5",             // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
+      "0.5", "8",        // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
+      "4",   "16",       // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
+  };
+  static const std::regex source(
+      R"(The paper:|paper's own|thesis's|chapter's|Chan's|Chan:|Annen|Brabec|Everitt|Kilgard|GeForce|SGI|Octane|their |Eq\. |Figs?\. |§)");
+  for (const FigureSpec& f : figureList()) {
+    std::set<std::string> config = {std::to_string(f.width), std::to_string(f.height),
+                                    std::to_string(f.shadowMapTexels)};
+    auto addAll = [&](const std::string& text) {
+      for (const std::string& n : numbersIn(text)) config.insert(n);
+    };
+    addAll(f.title);
+    addAll(f.paperFigure);
+    addAll(f.paperNumbers);
+    for (const Closeup& c : f.closeups) config.insert(std::to_string(c.magnify));
+    for (const PanelSpec& p : f.panels) {
+      addAll(p.label);
+      for (const auto& [k, v] : p.params) addAll(v);
+      config.insert(std::to_string(p.shadowMapTexels));
+      config.insert(std::to_string(p.filter));
+      config.insert(trimmed(p.cameraDistance));
+      if (p.lightRadius) config.insert(trimmed(*p.lightRadius));
+      for (const Closeup& c : p.ownCloseups) config.insert(std::to_string(c.magnify));
+    }
+    // Clauses: split at sentence ends (a full stop before a capital), semicolons and
+    // parentheses; "Eq. 10-14" stays one clause.
+    std::string clause;
+    const std::string text = f.caption + ".";
+    for (size_t i = 0; i < text.size(); ++i) {
+      const char c = text[i];
+      const bool end = c == ';' || c == '(' || c == ')' ||
+                       (c == '.' && (i + 1 == text.size() ||
+                                     (text[i + 1] == ' ' && i + 2 < text.size() &&
+                                      std::isupper(static_cast<unsigned char>(text[i + 2])))));
+      if (!end) {
+        clause += c;
+        continue;
+      }
+      if (!std::regex_search(clause, source)) {
+        for (const std::string& n : numbersIn(clause)) {
+          EXPECT_TRUE(config.count(n) || constants.count(n))
+              << f.id << ": the caption's number " << n << " is neither configuration nor "
+              << "quoted from a paper: \"" << clause << "\"";
+        }
+      }
+      clause.clear();
+    }
+  }
+}
