@@ -1,4 +1,4 @@
-// apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures.
+// apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures, serve.
 // Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
@@ -14,6 +14,7 @@
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
+#include "lab/lab_server.h"
 
 namespace sl {
 namespace {
@@ -34,6 +35,7 @@ usage:
   shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
   shadowlab figures [--out DIR] [--only ID]        the main job: every figure + report.html
+  shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
@@ -158,7 +160,8 @@ void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, Ren
 
 int render(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
-  const Scene scene = loadScene(sceneName);
+  Scene scene = loadScene(sceneName);
+  cli::applyView(args, scene);
   const Technique& technique = findTechnique(args.required("technique"));
   RenderParams params = withReadLog(cli::renderParams(args));
   rejectIgnoredOptions(technique, cli::givenCommonOptions(args));
@@ -191,7 +194,8 @@ int render(const cli::Args& args) {
 
 int compare(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
-  const Scene scene = loadScene(sceneName);
+  Scene scene = loadScene(sceneName);
+  cli::applyView(args, scene);
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
@@ -251,6 +255,7 @@ int run(int argc, char** argv) {
     return figures::runFigures(args.value("out").value_or("out/figures"), args.value("only"),
                                !args.has("no-progress"));
   if (args.command == "bench") return figures::runBench(args);
+  if (args.command == "serve") return lab::runServe(args);
   if (args.command == "plan") {
     rejectIgnoredOptions(findTechnique(args.required("technique")), cli::givenCommonOptions(args));
     return figures::runPlan(args);

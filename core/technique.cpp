@@ -35,15 +35,18 @@ double parseNumber(const std::string& key, const std::string& value) {
 }
 
 // Notes a value a technique read (RenderParams::readLog): the given text, else the default.
-void noteRead(const RenderParams& p, const std::string& key, const std::string& defaultText) {
+void noteRead(const RenderParams& p, const std::string& key, const std::string& defaultText,
+              ParamDeclaration declaration) {
   auto it = p.extra.find(key);
+  declaration.fallback = defaultText;
   std::lock_guard<std::mutex> lock(p.readLog->mutex);
   p.readLog->values[key] = it != p.extra.end() ? it->second : defaultText;
+  p.readLog->declared[key] = std::move(declaration);
 }
 }  // namespace
 
 double RenderParams::number(const std::string& key, double fallback, double lo, double hi) const {
-  if (readLog) noteRead(*this, key, formatNumber(fallback));
+  if (readLog) noteRead(*this, key, formatNumber(fallback), {"number", {}, lo, hi, {}});
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -54,7 +57,7 @@ double RenderParams::number(const std::string& key, double fallback, double lo, 
 }
 
 int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) const {
-  if (readLog) noteRead(*this, key, std::to_string(fallback));
+  if (readLog) noteRead(*this, key, std::to_string(fallback), {"integer", {}, double(lo), double(hi), {}});
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -66,7 +69,7 @@ int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) 
 
 std::string RenderParams::text(const std::string& key, const std::string& fallback,
                                const std::vector<std::string>& allowed) const {
-  if (readLog) noteRead(*this, key, fallback);
+  if (readLog) noteRead(*this, key, fallback, {"text", {}, 0.0, 0.0, allowed});
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
@@ -78,7 +81,7 @@ std::string RenderParams::text(const std::string& key, const std::string& fallba
 }
 
 bool RenderParams::flag(const std::string& key, bool fallback) const {
-  if (readLog) noteRead(*this, key, fallback ? "on" : "off");
+  if (readLog) noteRead(*this, key, fallback ? "on" : "off", {"flag", {}, 0.0, 1.0, {"on", "off"}});
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (it->second == "1" || it->second == "true" || it->second == "on") return true;

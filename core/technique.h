@@ -25,11 +25,24 @@ enum class Precision { k8, k12, kFloat };
 const char* precisionName(Precision p);
 Precision parsePrecision(const std::string& s);  // "8", "12", "float"; throws InputError
 
+// How a technique reads one --param (RenderParams::number/integer/text/flag): its kind
+// ("number", "integer", "text", "flag"), its default as --param spells it, and its range (lo..hi
+// for numbers and integers) or its allowed values (text). The live lab builds its controls from
+// these (lab/), so no parameter is listed by hand a second time.
+struct ParamDeclaration {
+  std::string kind;
+  std::string fallback;
+  double lo = 0.0;
+  double hi = 0.0;
+  std::vector<std::string> allowed;
+};
+
 // The --param values a render read (RenderParams::readLog): key -> value as --param spells it.
 // Guarded, as a technique may read parameters from worker threads.
 struct ParamReadLog {
   std::mutex mutex;
   std::map<std::string, std::string> values;
+  std::map<std::string, ParamDeclaration> declared;  // key -> how it was read (last read wins)
 };
 
 // --imaging: which implementation of the OpenGL 1.2 imaging subset (ARB_imaging) a legacy

@@ -9,7 +9,8 @@
 namespace sl::figures {
 
 int runPlanCommand(const cli::Args& args) {
-  const Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
+  cli::applyView(args, scene);
   const Technique& technique = findTechnique(args.required("technique"));
   const RenderParams params = cli::renderParams(args);
   checkRenderable(technique, params);  // render's checks, the GL's limits included

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene.h"
 #include "core/technique.h"
 
 namespace CLI {
@@ -54,5 +55,19 @@ RenderParams renderParams(const Args& args);
 // The options among --shadow-map, --filter, --precision and --imaging given explicitly
 // (registry/registry.h rejectIgnoredOptions refuses those the technique does not read).
 std::vector<CommonOption> givenCommonOptions(const Args& args);
+
+// --light X,Y,Z and --orbit AZ,EL,DIST (render, compare, plan and the lab's API): the light's
+// position, and the camera on a sphere around its target (azimuth about the camera's up axis,
+// 0 towards world +z; elevation above the plane normal to that axis; distance in world units).
+struct ViewPose {
+  double azimuthDegrees = 0.0;
+  double elevationDegrees = 0.0;
+  double distance = 1.0;
+  glm::vec3 light{0.0f};
+};
+ViewPose viewPose(const Scene& scene);  // the scene's own camera and light, in those terms
+// Applies --light and --orbit to `scene` and validates it; InputError for a malformed or
+// impossible value (a light on its target, an orbit that puts the camera on it).
+void applyView(const Args& args, Scene& scene);
 
 }  // namespace sl::cli

@@ -16,21 +16,33 @@ PACKAGES=(
   libgtest-dev googletest  # tests
   gnuplot-nox         # plots in the report
   chromium            # tests/figures: report.html checked in headless Chromium (skips without)
+  libcpp-httplib-dev  # `shadowlab serve`: the live lab's HTTP server (lab/)
+  nodejs              # tests/browser: the lab's page driven by puppeteer-core (npm ci below)
 )
 
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if [[ ${#missing[@]} -eq 0 ]]; then
-  exit 0
+# npm: Debian's package, unless the installed nodejs brings its own.
+command -v npm >/dev/null 2>&1 || missing+=(npm)
+if [[ ${#missing[@]} -gt 0 ]]; then
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "shadowlab needs these Debian packages; run as root:" >&2
+    echo "  apt-get update && apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
-if [[ $(id -u) -ne 0 ]]; then
-  echo "shadowlab needs these Debian packages; run as root:" >&2
-  echo "  apt-get update && apt-get install -y ${missing[*]}" >&2
-  exit 1
+
+# tests/browser: puppeteer-core from npm at the versions of package-lock.json (it drives
+# /usr/bin/chromium and downloads no browser). Installed here, never when a test or the tool
+# runs; skipped when it is there already for this lock file.
+browser_dir="$(cd "$(dirname "$0")/.." && pwd)/tests/browser"
+if [[ ! -f "$browser_dir/node_modules/.package-lock.json" ||
+      "$browser_dir/package-lock.json" -nt "$browser_dir/node_modules/.package-lock.json" ]]; then
+  (cd "$browser_dir" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 fi
-echo "installing: ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq
-apt-get install -y -qq "${missing[@]}" >/dev/null
