@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <deque>
 #include <iostream>
 #include <list>
@@ -70,14 +71,38 @@ struct LabRequest {
   json parameters;      // the query as it took effect, for the PNG's provenance
 };
 
+// The query's key=value pairs in the order given, each decoded by httplib. (httplib's own
+// Request::params sorts the keys, which would change which error the CLI's parser meets
+// first, keeps only the text after the last '=' of a value, "param=pixel=area" -> "area",
+// and drops repeated pairs.)
+std::vector<std::pair<std::string, std::string>> queryPairs(const httplib::Request& req) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  const size_t question = req.target.find('?');
+  if (question == std::string::npos) return pairs;
+  const std::string query = req.target.substr(question + 1);
+  httplib::detail::split(query.data(), query.data() + query.size(), '&',
+                         [&](const char* b, const char* e) {
+                           const std::string item(b, e);
+                           if (item.empty()) return;  // "a=1&&b=2"
+                           const size_t eq = item.find('=');
+                           pairs.emplace_back(
+                               httplib::detail::decode_url(item.substr(0, eq), true),
+                               eq == std::string::npos
+                                   ? std::string()
+                                   : httplib::detail::decode_url(item.substr(eq + 1), true));
+                         });
+  return pairs;
+}
+
 LabRequest parseRequest(const httplib::Request& req, const std::vector<std::string>& views) {
   LabRequest r;
   r.view = views.front();
-  if (req.params.size() > size_t(kMaxQueryKeys))
+  const auto pairs = queryPairs(req);
+  if (pairs.size() > size_t(kMaxQueryKeys))
     throw InputError("too many query keys (at most " + std::to_string(kMaxQueryKeys) + ")");
   std::vector<std::string> argv = {"shadowlab", "render"};
   std::vector<std::string> commandLine = {"shadowlab", "render"};
-  for (const auto& [key, value] : req.params) {
+  for (const auto& [key, value] : pairs) {
     if (value.size() > size_t(kMaxQueryValueBytes))
       throw InputError("the value of " + key.substr(0, 32) + " is longer than " +
                        std::to_string(kMaxQueryValueBytes) + " bytes");
@@ -682,6 +707,10 @@ int runServe(const cli::Args& args) {
               << ", not loopback: anyone who reaches this address can use the lab and its CPU\n";
   // Ctrl-C and SIGTERM are received by sigwait below, never by the server's threads: block
   // them before any thread starts (threads inherit the mask).
+  // A shell's background job starts with SIGINT ignored, and an ignored signal is discarded,
+  // never pending: restore the default action first (it never runs while the signal is blocked).
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   sigset_t stopSignals;
   sigemptyset(&stopSignals);
   sigaddset(&stopSignals, SIGINT);

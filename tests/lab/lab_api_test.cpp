@@ -359,7 +359,7 @@ TEST(LabServe, ServeRefusesABadPortAndWarnsOffLoopback) {
   EXPECT_EQ(bad.err, "shadowlab: --port must be a whole number in 0..65535, got '70000'\n");
   // Off loopback: a warning, then the URL; SIGTERM stops it cleanly (timeout sends it).
   const CommandResult open =
-      runBinary("timeout -s TERM 3", std::string(SHADOWLAB_BINARY) + " serve --host 0.0.0.0 --port 0",
+      runBinary("timeout --preserve-status -s TERM 3", std::string(SHADOWLAB_BINARY) + " serve --host 0.0.0.0 --port 0",
                 dir);
   EXPECT_EQ(open.status, 0) << open.err;
   EXPECT_NE(open.err.find("warning: serving on 0.0.0.0, not loopback"), std::string::npos)
