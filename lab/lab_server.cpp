@@ -171,18 +171,16 @@ LabRequest parseRequest(const httplib::Request& req, const std::vector<std::stri
   if (r.params.filter > kMaxServedFilter)
     throw InputError("the lab serves --filter up to " + std::to_string(kMaxServedFilter) +
                      " (shadowlab render filters wider)");
-  if (r.view == "mask" || r.view == "image") {
-    commandLine.push_back("--out");
-    commandLine.push_back("image.png");
-    if (r.view == "mask") {
-      commandLine.push_back("--mask");
-      commandLine.push_back("mask.png");
-    }
-  } else {
-    commandLine.push_back("--out");
-    commandLine.push_back("image.png");
+  // The outputs of the reproducing command: the image, and the mask or the pass dump that
+  // the view shows (the error views compare the mask).
+  commandLine.push_back("--out");
+  commandLine.push_back("image.png");
+  if (r.view == "passes") {
     commandLine.push_back("--dump-passes");
     commandLine.push_back("passes");
+  } else if (r.view != "image") {
+    commandLine.push_back("--mask");
+    commandLine.push_back("mask.png");
   }
   r.command = shellJoin(commandLine);
   r.parameters = json::object();

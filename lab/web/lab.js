@@ -375,7 +375,7 @@ function drawPlot() {
   const svg = $('plot');
   const ns = 'http://www.w3.org/2000/svg';
   svg.replaceChildren();
-  const W = 360, H = 220, L = 48, B = 30, T = 8, R = 8;
+  const W = 360, H = 220, L = 48, B = 30, T = 8, R = 16;
   const pts = state.plot;
   const maxMs = Math.max(1, ...pts.map((p) => p.ms)) * 1.1;
   const maxE = Math.max(0.01, ...pts.map((p) => p.rmse)) * 1.1;
@@ -395,7 +395,8 @@ function drawPlot() {
   el('text', { x: 12, y: (H - B) / 2, 'font-size': 11, transform: `rotate(-90 12 ${(H - B) / 2})`,
                'text-anchor': 'middle' }, 'RMSE');
   for (const f of [0, 0.5, 1]) {
-    el('text', { x: X(f * maxMs), y: H - B + 12, 'font-size': 9, 'text-anchor': 'middle' },
+    el('text', { x: X(f * maxMs), y: H - B + 12, 'font-size': 9,
+                 'text-anchor': f === 1 ? 'end' : 'middle' },
        (f * maxMs).toFixed(0));
     el('text', { x: L - 4, y: Y(f * maxE) + 3, 'font-size': 9, 'text-anchor': 'end' },
        (f * maxE).toFixed(3));
