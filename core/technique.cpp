@@ -28,6 +28,8 @@ Precision parsePrecision(const std::string& s) {
 }
 
 namespace {
+constexpr const char* kAutoValue = "auto";  // an acceptsAuto ParamSpec's default
+
 double parseNumber(const std::string& key, const std::string& value) {
   const std::optional<double> v = parseDecimal(value);  // strict: no hex, inf, nan or spaces
   if (!v) throw InputError("--param " + key + "=" + value + ": not a finite decimal number");
@@ -35,18 +37,15 @@ double parseNumber(const std::string& key, const std::string& value) {
 }
 
 // Notes a value a technique read (RenderParams::readLog): the given text, else the default.
-void noteRead(const RenderParams& p, const std::string& key, const std::string& defaultText,
-              ParamDeclaration declaration) {
+void noteRead(const RenderParams& p, const std::string& key, const std::string& defaultText) {
   auto it = p.extra.find(key);
-  declaration.fallback = defaultText;
   std::lock_guard<std::mutex> lock(p.readLog->mutex);
   p.readLog->values[key] = it != p.extra.end() ? it->second : defaultText;
-  p.readLog->declared[key] = std::move(declaration);
 }
 }  // namespace
 
 double RenderParams::number(const std::string& key, double fallback, double lo, double hi) const {
-  if (readLog) noteRead(*this, key, formatNumber(fallback), {"number", {}, lo, hi, {}});
+  if (readLog) noteRead(*this, key, formatNumber(fallback));
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -57,7 +56,7 @@ double RenderParams::number(const std::string& key, double fallback, double lo, 
 }
 
 int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) const {
-  if (readLog) noteRead(*this, key, std::to_string(fallback), {"integer", {}, double(lo), double(hi), {}});
+  if (readLog) noteRead(*this, key, std::to_string(fallback));
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
@@ -69,7 +68,7 @@ int RenderParams::integer(const std::string& key, int fallback, int lo, int hi) 
 
 std::string RenderParams::text(const std::string& key, const std::string& fallback,
                                const std::vector<std::string>& allowed) const {
-  if (readLog) noteRead(*this, key, fallback, {"text", {}, 0.0, 0.0, allowed});
+  if (readLog) noteRead(*this, key, fallback);
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
@@ -81,12 +80,161 @@ std::string RenderParams::text(const std::string& key, const std::string& fallba
 }
 
 bool RenderParams::flag(const std::string& key, bool fallback) const {
-  if (readLog) noteRead(*this, key, fallback ? "on" : "off", {"flag", {}, 0.0, 1.0, {"on", "off"}});
+  if (readLog) noteRead(*this, key, fallback ? "on" : "off");
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
   if (it->second == "1" || it->second == "true" || it->second == "on") return true;
   if (it->second == "0" || it->second == "false" || it->second == "off") return false;
   throw InputError("--param " + key + "=" + it->second + ": expected on/off");
+}
+
+std::string ParamSpec::defaultText() const {
+  switch (kind) {
+    case Kind::kNumber: return acceptsAuto ? std::string(kAutoValue) : formatNumber(fallback);
+    case Kind::kInteger: return std::to_string(int(fallback));
+    case Kind::kChoice: return choiceFallback;
+    case Kind::kFlag: return flagFallback ? "on" : "off";
+  }
+  return "";
+}
+
+bool ParamSpec::isDefault(const std::string& value) const {
+  if (value == defaultText()) return true;
+  if (kind == Kind::kFlag) return (value == "1" || value == "true" || value == "on") == flagFallback;
+  if ((kind == Kind::kNumber && !acceptsAuto) || kind == Kind::kInteger) {
+    const std::optional<double> v = parseDecimal(value);
+    return v && *v == fallback;
+  }
+  return false;
+}
+
+ParamSpec numberParam(std::string key, double fallback, double lo, double hi,
+                      std::string meaning) {
+  ParamSpec s;
+  s.key = std::move(key);
+  s.kind = ParamSpec::Kind::kNumber;
+  s.fallback = fallback;
+  s.lo = lo;
+  s.hi = hi;
+  s.meaning = std::move(meaning);
+  return s;
+}
+
+ParamSpec autoNumberParam(std::string key, double lo, double hi, std::string meaning) {
+  ParamSpec s = numberParam(std::move(key), lo, lo, hi, std::move(meaning));
+  s.acceptsAuto = true;
+  return s;
+}
+
+ParamSpec integerParam(std::string key, int fallback, int lo, int hi, std::string meaning) {
+  ParamSpec s = numberParam(std::move(key), fallback, lo, hi, std::move(meaning));
+  s.kind = ParamSpec::Kind::kInteger;
+  return s;
+}
+
+ParamSpec choiceParam(std::string key, std::string fallback, std::vector<std::string> choices,
+                      std::string meaning) {
+  ParamSpec s;
+  s.key = std::move(key);
+  s.kind = ParamSpec::Kind::kChoice;
+  s.choiceFallback = std::move(fallback);
+  s.choices = std::move(choices);
+  s.meaning = std::move(meaning);
+  return s;
+}
+
+ParamSpec flagParam(std::string key, bool fallback, std::string meaning) {
+  ParamSpec s;
+  s.key = std::move(key);
+  s.kind = ParamSpec::Kind::kFlag;
+  s.flagFallback = fallback;
+  s.meaning = std::move(meaning);
+  return s;
+}
+
+const char* paramKindName(ParamSpec::Kind kind) {
+  switch (kind) {
+    case ParamSpec::Kind::kNumber: return "number";
+    case ParamSpec::Kind::kInteger: return "integer";
+    case ParamSpec::Kind::kChoice: return "choice";
+    case ParamSpec::Kind::kFlag: return "flag";
+  }
+  return "?";
+}
+
+ParamSpec compareParam() {
+  return choiceParam("compare", "linear", {"nearest", "linear"},
+                     "depth comparison filter: linear = the driver's 2x2 PCF, nearest = one texel");
+}
+
+ParamSpec planParam() {
+  return flagParam("plan", true, "let the pass planner leave out passes a scene does not need");
+}
+
+ParamSpec offsetFactorParam(double fallback) {
+  constexpr double kLargestFactor = 100.0;  // slope factor; far beyond any useful bias
+  return numberParam("offset-factor", fallback, -kLargestFactor, kLargestFactor,
+                     "glPolygonOffset factor of the light pass (depth slope scale)");
+}
+
+ParamSpec offsetUnitsParam(double fallback, double largest) {
+  return numberParam("offset-units", fallback, -largest, largest,
+                     "glPolygonOffset units of the light pass (smallest depth steps)");
+}
+
+std::string describeParam(const ParamSpec& p) {
+  std::string accepted;
+  switch (p.kind) {
+    case ParamSpec::Kind::kNumber:
+    case ParamSpec::Kind::kInteger:
+      accepted = std::string(paramKindName(p.kind)) + " in [" + formatNumber(p.lo) + ", " +
+                 formatNumber(p.hi) + "]" + (p.acceptsAuto ? " or auto" : "");
+      break;
+    case ParamSpec::Kind::kChoice:
+      for (const std::string& c : p.choices) accepted += (accepted.empty() ? "" : "|") + c;
+      break;
+    case ParamSpec::Kind::kFlag: accepted = "on|off"; break;
+  }
+  return p.key + "=" + p.defaultText() + " (" + accepted + "): " + p.meaning;
+}
+
+double RenderParams::number(const ParamSpec& spec) const {
+  return number(spec.key, spec.fallback, spec.lo, spec.hi);
+}
+
+int RenderParams::integer(const ParamSpec& spec) const {
+  return integer(spec.key, int(spec.fallback), int(spec.lo), int(spec.hi));
+}
+
+std::string RenderParams::text(const ParamSpec& spec) const {
+  return text(spec.key, spec.choiceFallback, spec.choices);
+}
+
+bool RenderParams::flag(const ParamSpec& spec) const {
+  return flag(spec.key, spec.flagFallback);
+}
+
+std::optional<double> RenderParams::numberOrAuto(const ParamSpec& spec) const {
+  if (readLog) noteRead(*this, spec.key, kAutoValue);
+  auto it = extra.find(spec.key);
+  if (it == extra.end() || it->second == kAutoValue) return std::nullopt;
+  const double v = parseNumber(spec.key, it->second);
+  if (v < spec.lo || v > spec.hi)
+    throw InputError("--param " + spec.key + "=" + it->second + ": must be auto or lie in [" +
+                     formatNumber(spec.lo) + ", " + formatNumber(spec.hi) + "]");
+  return v;
+}
+
+std::vector<std::string> paramKeys(const Technique& t) {
+  std::vector<std::string> keys;
+  for (const ParamSpec& p : t.params) keys.push_back(p.key);
+  return keys;
+}
+
+const ParamSpec* findParam(const Technique& t, const std::string& key) {
+  for (const ParamSpec& p : t.params)
+    if (p.key == key) return &p;
+  return nullptr;
 }
 
 std::map<std::string, std::string> effectiveParams(const RenderParams& p) {
@@ -158,9 +306,9 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
     throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
   for (const auto& [key, value] : p.extra) {
     (void)value;
-    if (std::find(t.paramKeys.begin(), t.paramKeys.end(), key) == t.paramKeys.end()) {
+    if (!findParam(t, key)) {
       std::string list;
-      for (const auto& k : t.paramKeys) list += (list.empty() ? "" : ", ") + k;
+      for (const auto& k : paramKeys(t)) list += (list.empty() ? "" : ", ") + k;
       throw InputError("technique " + t.name + " has no parameter '" + key + "'" +
                        (list.empty() ? std::string(" (it takes none)") : " (it takes " + list + ")"));
     }

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,25 +26,49 @@ enum class Precision { k8, k12, kFloat };
 const char* precisionName(Precision p);
 Precision parsePrecision(const std::string& s);  // "8", "12", "float"; throws InputError
 
-// How a technique reads one --param (RenderParams::number/integer/text/flag): its kind
-// ("number", "integer", "text", "flag"), its default as --param spells it, and its range (lo..hi
-// for numbers and integers) or its allowed values (text). The live lab builds its controls from
-// these (lab/), so no parameter is listed by hand a second time.
-struct ParamDeclaration {
-  std::string kind;
-  std::string fallback;
-  double lo = 0.0;
-  double hi = 0.0;
-  std::vector<std::string> allowed;
-};
-
 // The --param values a render read (RenderParams::readLog): key -> value as --param spells it.
 // Guarded, as a technique may read parameters from worker threads.
 struct ParamReadLog {
   std::mutex mutex;
   std::map<std::string, std::string> values;
-  std::map<std::string, ParamDeclaration> declared;  // key -> how it was read (last read wins)
 };
+
+// One --param key a technique understands, declared once where the technique is defined (its
+// kind, default, range or choices, and what it means). The technique reads the value through
+// RenderParams with the same declaration; `list`, checkParams, the bench's sweeps and the live
+// lab read the declarations (DESIGN.md: declared once, never listed by hand again).
+struct ParamSpec {
+  enum class Kind { kNumber, kInteger, kChoice, kFlag };
+  std::string key;
+  Kind kind = Kind::kNumber;
+  double fallback = 0.0;  // kNumber, kInteger: the default
+  double lo = 0.0;        // kNumber, kInteger: the accepted range [lo, hi]
+  double hi = 0.0;
+  bool acceptsAuto = false;          // kNumber: "auto" (the default) lets the technique derive it
+  std::string choiceFallback;        // kChoice: the default
+  std::vector<std::string> choices;  // kChoice: the accepted values
+  bool flagFallback = false;         // kFlag: the default
+  std::string meaning;               // one line, with the paper's section where there is one
+  std::string defaultText() const;   // the default as --param spells it ("16", "linear", "auto")
+  // True when `value` (as --param spells it) is the default: "1" and "1.0" are the same number.
+  bool isDefault(const std::string& value) const;
+};
+ParamSpec numberParam(std::string key, double fallback, double lo, double hi, std::string meaning);
+ParamSpec autoNumberParam(std::string key, double lo, double hi, std::string meaning);
+ParamSpec integerParam(std::string key, int fallback, int lo, int hi, std::string meaning);
+ParamSpec choiceParam(std::string key, std::string fallback, std::vector<std::string> choices,
+                      std::string meaning);
+ParamSpec flagParam(std::string key, bool fallback, std::string meaning);
+const char* paramKindName(ParamSpec::Kind kind);  // "number", "integer", "choice", "flag"
+// "order=16 (integer in [1, 64]): M, the number of Fourier terms ..." (the default, the accepted
+// values, the meaning), as `shadowlab list` prints it.
+std::string describeParam(const ParamSpec& p);
+
+// Declarations several techniques share (each technique still lists them in its own params).
+ParamSpec compareParam();  // compare=linear|nearest: GL_LINEAR (2x2 PCF) or GL_NEAREST lookups
+ParamSpec planParam();     // plan=on|off: the pass planner may leave out passes (core/plan.h)
+ParamSpec offsetFactorParam(double fallback);  // glPolygonOffset factor of the light pass
+ParamSpec offsetUnitsParam(double fallback, double largest);  // its units, in [-largest, largest]
 
 // --imaging: which implementation of the OpenGL 1.2 imaging subset (ARB_imaging) a legacy
 // technique's context uses. kBackendDefault: the back end's own where it has one (reference),
@@ -71,6 +96,13 @@ struct RenderParams {
   std::string text(const std::string& key, const std::string& fallback,
                    const std::vector<std::string>& allowed) const;
   bool flag(const std::string& key, bool fallback) const;
+  // The same through a technique's declaration (ParamSpec): its default, range and choices.
+  double number(const ParamSpec& spec) const;
+  int integer(const ParamSpec& spec) const;
+  std::string text(const ParamSpec& spec) const;
+  bool flag(const ParamSpec& spec) const;
+  // An acceptsAuto number: empty when absent or "auto" (the technique derives the value).
+  std::optional<double> numberOrAuto(const ParamSpec& spec) const;
 };
 
 // The --params of a render: every key given, and every key the technique read through
@@ -119,18 +151,42 @@ struct CommonOptions {
   bool precision = false;  // RenderParams::precision
 };
 
+// What the pass planner (core/plan.h) needs to know of a technique, declared by the technique
+// where it is defined, so that the planner asks instead of matching names (issue 21 item 8).
+struct PlanTraits {
+  // The work of the light-side passes.
+  enum class ShadowWork { kShadowMap, kShadowVolumes, kSmoothies, kRays };
+  ShadowWork shadowWork = ShadowWork::kShadowMap;
+  // How a filter footprint's samples are grouped: one comparison per pixel; Brabec–Seidel §3
+  // (four samples per pass, one per RGBA channel, groups summed in the accumulation buffer);
+  // §4 fast PCF (2x2 packed by one convolution, larger footprints summed as 2x2 phases).
+  enum class SampleGrouping { kOnePerPixel, kFourPerPass, kPackedPhases };
+  SampleGrouping samples = SampleGrouping::kOnePerPixel;
+  // The imaging subset stages the legacy passes use (Brabec–Seidel §3 Fig. 4, §4 Eq. (1)).
+  bool colourTableCompare = false;
+  bool colourMatrixSum = false;
+  bool packingConvolution = false;
+  // Prefiltered maps (Annen et al. 2007 CSM; VSM): a separable blur and a mip chain.
+  enum class Prefilter { kNone, kConvolution, kVariance };
+  Prefilter prefilter = Prefilter::kNone;  // its blur/storage/filtering defaults: its ParamSpecs
+};
+
 struct Technique {
   std::string name;      // "legacy.pcf"
   std::string paper;     // "Brabec & Seidel 2001, §3"
   std::string summary;   // one line
   std::string status;    // "complete", or what is missing
   ContextNeeds needs;
-  std::vector<std::string> paramKeys;  // --param keys it understands
+  std::vector<ParamSpec> params;        // the --param keys it understands, declared once
   CommonOptions reads;                 // the common options its render reads
+  PlanTraits plan;                     // what the pass planner asks of it
   std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
 };
 
 bool readsOption(const Technique& t, CommonOption o);
+std::vector<std::string> paramKeys(const Technique& t);  // its --param keys, in declared order
+// Its declaration of `key`, or nullptr when it has no such --param.
+const ParamSpec* findParam(const Technique& t, const std::string& key);
 
 // The context a technique needs for the given parameters.
 ContextSpec contextFor(const Technique& t, const RenderParams& p);
