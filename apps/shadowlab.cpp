@@ -48,11 +48,8 @@ int list() {
   for (const Technique& t : allTechniques()) {
     std::cout << "  " << t.name << std::string(t.name.size() < 22 ? 22 - t.name.size() : 1, ' ')
               << t.paper << " — " << t.summary << " [" << t.status << "]\n";
-    if (!t.paramKeys.empty()) {
-      std::cout << std::string(24, ' ') << "--param keys:";
-      for (const std::string& k : t.paramKeys) std::cout << " " << k;
-      std::cout << "\n";
-    }
+    for (const ParamSpec& p : t.params)
+      std::cout << std::string(24, ' ') << "--param " << describeParam(p) << "\n";
   }
   std::cout << "scenes:\n";
   for (const std::string& s : builtinSceneNames()) std::cout << "  " << s << " (built in)\n";

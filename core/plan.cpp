@@ -30,8 +30,15 @@ constexpr double kMinificationPercentile = 0.95;  // of the camera-facing receiv
 constexpr float kHalf8BitStep = 1.0f / 510.0f;    // a weight below this rounds to 0 in 8 bits
 constexpr int kChannelsPerPass = 4;               // R, G, B, A: four samples per pass (§3)
 
-bool hasWord(const std::string& s, const char* w) {
-  return s.find(w) != std::string::npos;
+// The light-side work a technique declares (core/technique.h PlanTraits), as the plan names it.
+const char* shadowWorkName(PlanTraits::ShadowWork work) {
+  switch (work) {
+    case PlanTraits::ShadowWork::kRays: return "shadow rays (Embree)";
+    case PlanTraits::ShadowWork::kShadowVolumes: return "shadow volume passes";
+    case PlanTraits::ShadowWork::kSmoothies: return "light passes (depth + smoothies)";
+    case PlanTraits::ShadowWork::kShadowMap: break;
+  }
+  return "light passes (shadow map)";
 }
 
 // Clip-space position of a model-space vertex.
@@ -178,7 +185,7 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
   plan.technique = t.name;
   plan.scene = scene.name;
   plan.sceneConeDegrees = scene.light.coneDegrees;
-  const bool reference = t.name.rfind("reference.", 0) == 0;
+  const bool reference = t.plan.shadowWork == PlanTraits::ShadowWork::kRays;
   const glm::mat4 lightClip = lateralLightMatrix(scene);
   const glm::mat4 view = lightView(scene.light);
   float casterNear = 1e30f, farthest = -1e30f, casterTangent = 0.0f;
@@ -217,10 +224,7 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
   }
 
   // Passes.
-  const std::string shadowWork = reference                      ? "shadow rays (Embree)"
-                                 : hasWord(t.name, "volumes")   ? "shadow volume passes"
-                                 : hasWord(t.name, "smoothies") ? "light passes (depth + smoothies)"
-                                                                : "light passes (shadow map)";
+  const std::string shadowWork = shadowWorkName(t.plan.shadowWork);
   if (plan.shadowPassesNeeded) {
     plan.passes.push_back({shadowWork, true,
                            std::to_string(plan.castersInFrustum) + " caster(s) and " +
@@ -235,9 +239,8 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
   plan.passes.push_back({"camera pass", true, "always: it produces the image"});
 
   // Resources.
-  const bool legacyPcf = t.name == "legacy.pcf" || t.name == "modern.pcf";
-  const bool fastPcf = hasWord(t.name, "fast-pcf");
-  if (t.needs.accumulation || legacyPcf || fastPcf) {
+  const bool fastPcf = t.plan.samples == PlanTraits::SampleGrouping::kPackedPhases;
+  if (t.needs.accumulation || t.plan.samples != PlanTraits::SampleGrouping::kOnePerPixel) {
     const int largestWithoutAccumulation = fastPcf ? 3 : 2;
     const int f = params.filter;
     if (f > largestWithoutAccumulation)
@@ -253,9 +256,10 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
                                     (fastPcf ? " is packed by one convolution pass (§4)"
                                              : " fits the four channels of one pass (§3)")});
   }
-  if (t.name == "legacy.pcf" || t.name == "legacy.fast-pcf") {
+  if (t.plan.colourTableCompare)
     plan.resources.push_back({"imaging: colour table (the comparison step)", true,
                               "maps each channel's difference to shadowed / lit (§3, Fig. 4)"});
+  if (t.plan.colourMatrixSum) {
     if (params.filter == 1)
       plan.resources.push_back({"imaging: colour matrix", false,
                                 "one sample in one channel: the channel sum is the identity"});
@@ -263,7 +267,7 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
       plan.resources.push_back(
           {"imaging: colour matrix", true, "sums the four channels' results into alpha (Fig. 4)"});
   }
-  if (t.name == "legacy.fast-pcf") {
+  if (t.plan.packingConvolution) {
     if (params.filter == 1)
       plan.resources.push_back(
           {"imaging: convolution", false, "footprint 1x1: the packing kernel is the identity"});
@@ -273,18 +277,20 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
            "4 non-zero taps of 36 (one per channel): 32 zero taps skipped, and its top row and "
            "right column are zero in every channel, so the support is 2x2"});
   }
-  if (hasWord(t.name, "csm") || hasWord(t.name, "vsm")) {
-    const bool csm = hasWord(t.name, "csm");
-    int taps = csm ? 3 : 0;  // the modules' defaults (modern/prefiltered_maps.cpp)
-    if (auto it = params.extra.find("blur"); it != params.extra.end()) {
-      try {
-        taps = std::stoi(it->second);
-      } catch (const std::exception&) {
-        taps = 0;
-      }
+  if (t.plan.prefilter != PlanTraits::Prefilter::kNone) {
+    // The values the technique will use: those given, else its declared defaults.
+    const auto value = [&](const char* key) {
+      if (auto it = params.extra.find(key); it != params.extra.end()) return it->second;
+      const ParamSpec* spec = findParam(t, key);
+      return spec ? spec->defaultText() : std::string();
+    };
+    int taps = 0;
+    try {
+      taps = std::stoi(value("blur"));
+    } catch (const std::exception&) {
+      taps = 0;  // no blur declared, or a value the technique itself will refuse
     }
-    const std::string storage =
-        params.extra.count("storage") ? params.extra.at("storage") : (csm ? "8" : "float");
+    const std::string storage = value("storage");
     if (taps <= 1) {
       plan.resources.push_back({"separable blur pass", false, "blur=0: no kernel"});
     } else {
@@ -300,14 +306,13 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
                                     " of them below half an 8-bit step" +
                                     (zero ? " (skipped)" : " (none skipped)")});
     }
-    const std::string filtering =
-        params.extra.count("filtering") ? params.extra.at("filtering") : "trilinear";
+    const std::string filtering = value("filtering");
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
     const std::string rho = fixed(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
     // Tri-linear and anisotropic filtering read the mip chain (modern/prefiltered_maps.cpp);
     // mipmaps=always builds it whatever the view does.
     const bool readsMipChain = filtering == "trilinear" || filtering == "anisotropic";
-    const bool alwaysBuilt = params.extra.count("mipmaps") && params.extra.at("mipmaps") == "always";
+    const bool alwaysBuilt = value("mipmaps") == "always";
     if (!readsMipChain)
       plan.resources.push_back(
           {"mip chain", false, "filtering=" + filtering + " reads level 0 only"});

@@ -128,45 +128,24 @@ bool acceptsFootprint(const Technique& t, int footprint) {
       return std::find(r.accepted.begin(), r.accepted.end(), footprint) != r.accepted.end();
   return true;
 }
-// --param values a technique rejects (modern/variance_shadow_map.cpp: storage 16 or float).
-struct ParamValue {
-  const char* technique;
-  const char* key;
-  const char* value;
-};
-const std::vector<ParamValue>& rejectedParamValues() {
-  static const std::vector<ParamValue> kRejected = {{"modern.vsm", "storage", "8"}};
-  return kRejected;
-}
-// Each technique's own default for the swept --param keys (where the technique parses them):
-// a variant that sets one of these repeats the variant without it, so it is not swept again.
-const std::vector<ParamValue>& paramDefaults() {
-  static const std::vector<ParamValue> kDefaults = {
-      {"modern.csm", "order", "16"},
-      {"modern.csm", "blur", "3"},
-      {"modern.csm", "storage", "8"},
-      {"modern.csm", "alpha", "1"},
-      {"modern.csm", "filtering", "trilinear"},
-      {"modern.vsm", "blur", "3"},
-      {"modern.vsm", "storage", "float"},
-      {"modern.vsm", "bleed-reduction", "0"},
-      {"modern.vsm", "filtering", "trilinear"},
-      {"modern.gems16", "samples", "16"},
-      {"modern.gems4", "samples", "4"},
-      {"modern.smoothies", "width", "0.03"},
-  };
-  return kDefaults;
-}
+// A swept --param value the technique's declaration refuses (modern.vsm's storage has no "8"):
+// such a variant is not swept.
 bool isRejectedValue(const Technique& t, const std::string& key, const std::string& value) {
-  for (const ParamValue& r : rejectedParamValues())
-    if (t.name == r.technique && key == r.key && value == r.value) return true;
+  const ParamSpec* spec = findParam(t, key);
+  if (!spec) return true;
+  if (spec->kind == ParamSpec::Kind::kChoice)
+    return std::find(spec->choices.begin(), spec->choices.end(), value) == spec->choices.end();
   return false;
 }
-// `p` without the --param entries that equal the technique's defaults (what the render sees).
+// `p` without the --param entries that equal the technique's declared defaults (what the
+// render sees): a variant that only restates a default repeats the default variant.
 RenderParams withoutDefaults(const Technique& t, RenderParams p) {
-  for (const ParamValue& d : paramDefaults()) {
-    auto it = p.extra.find(d.key);
-    if (t.name == d.technique && it != p.extra.end() && it->second == d.value) p.extra.erase(it);
+  for (auto it = p.extra.begin(); it != p.extra.end();) {
+    const ParamSpec* spec = findParam(t, it->first);
+    if (spec && spec->isDefault(it->second))
+      it = p.extra.erase(it);
+    else
+      ++it;
   }
   return p;
 }
@@ -395,7 +374,7 @@ std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& 
     }
   }
   for (const ParamAxis& axis : paramAxes()) {
-    if (!contains(t.paramKeys, axis.key)) continue;
+    if (!findParam(t, axis.key)) continue;
     for (const std::string& value : quick ? axis.quick : axis.full) {
       RenderParams p = base;
       p.extra[axis.key] = value;
@@ -403,7 +382,7 @@ std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& 
     }
   }
   // Annen et al. Table 1: shadow map side x order M x blur (full mode only).
-  if (!quick && contains(t.paramKeys, "order") && contains(t.paramKeys, "blur")) {
+  if (!quick && findParam(t, "order") && findParam(t, "blur")) {
     for (int n : {256, 512, 1024, 2048})
       for (const char* m : {"4", "8", "16"})
         for (const char* blur : {"0", "3", "7"}) {
@@ -580,7 +559,7 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
     std::vector<const Technique*> here;
     for (const Technique* t : techniques)
       if ((run.techniques.empty() || contains(run.techniques, t->name)) &&
-          (!run.planner || contains(t->paramKeys, "plan")))
+          (!run.planner || findParam(*t, "plan")))
         here.push_back(t);
     if (here.empty()) continue;
     if (options.progress) std::cerr << "bench: " << scene.name << ": references\n";
@@ -613,7 +592,7 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
           variants.push_back({std::string(reference::kPixelParam) + "=" + reference::kPixelArea,
                               areaParams(base)});
         }
-        if (t->name == "modern.smoothies" && contains(t->paramKeys, "width")) {
+        if (t->name == "modern.smoothies" && findParam(*t, "width")) {
           // Chan §4.2's width t derived from the light's radius (smoothieWidthFromLight).
           std::ostringstream width;
           width << std::setprecision(4) << smoothieWidthFromLight(scene);

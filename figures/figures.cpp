@@ -217,7 +217,7 @@ std::string missingReason(const PanelSpec& p) {
   const Technique* t = lookup(p.technique);
   if (t == nullptr) return "technique " + p.technique + " is not available yet";
   for (const auto& [key, value] : p.params)
-    if (std::find(t->paramKeys.begin(), t->paramKeys.end(), key) == t->paramKeys.end())
+    if (!findParam(*t, key))
       return p.technique + " has no parameter '" + key + "' (needed: " + key + "=" + value + ")";
   return "";
 }
@@ -317,8 +317,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           refSetup.params.clear();
           refSetup.texels = fig.shadowMapTexels;
           refSetup.filter = RenderParams{}.filter;
-          if (std::find(ref->paramKeys.begin(), ref->paramKeys.end(), reference::kPixelParam) !=
-              ref->paramKeys.end()) {
+          if (findParam(*ref, reference::kPixelParam)) {
             refSetup.params[reference::kPixelParam] = reference::kPixelArea;
             refSetup.params[reference::kPixelSamplesParam] =
                 std::to_string(kFigureReferencePixelSamplesPerSide);

@@ -211,7 +211,7 @@ Scene mirroringStage(bool mirrored) {
 }
 
 bool declares(const Technique& t, const std::string& key) {
-  return std::find(t.paramKeys.begin(), t.paramKeys.end(), key) != t.paramKeys.end();
+  return findParam(t, key) != nullptr;
 }
 std::string always(const Technique&) {
   return "";

@@ -31,9 +31,6 @@ namespace sl::lab {
 namespace {
 using json = nlohmann::json;
 
-constexpr int kProbeWidth = 64;  // pixels: the parameter probe renders each technique once
-constexpr int kProbeHeight = 48;
-constexpr int kProbeShadowMap = 64;        // texels
 constexpr int kCachedContexts = 4;         // GL contexts the worker keeps (one per technique/size)
 constexpr int kCachedReferences = 8;       // reference frames (scene/size/light/camera)
 constexpr int kMaxQueryValueBytes = 1024;  // one query value
@@ -362,46 +359,31 @@ struct LabServer::Impl {
     return true;
   }
 
-  // /api/techniques: every technique, with its parameters as a probe render reads them.
-  std::string buildTechniques() {
+  // /api/techniques: every technique with its --params as it declares them (core/technique.h
+  // ParamSpec), so the page builds its controls from the declarations.
+  static std::string buildTechniques() {
     json out = json::array();
     for (const Technique& t : allTechniques()) {
-      RenderParams p;
-      p.width = kProbeWidth;
-      p.height = kProbeHeight;
-      p.shadowMapTexels = kProbeShadowMap;
-      p.readLog = std::make_shared<ParamReadLog>();
-      std::string probeError;
-      const JobResult probe = worker.runNow([&] {
-        return guarded([&] {
-          renderTechnique(t, engine.scene(kDefaultScene), p);
-          return JobResult{};
-        });
-      });
-      if (probe.httpStatus != 200) probeError = probe.body;
       json params = json::array();
-      for (const std::string& key : t.paramKeys) {
-        json entry = {{"key", key}, {"kind", "text"}};
-        auto d = p.readLog->declared.find(key);
-        if (d != p.readLog->declared.end()) {
-          entry["kind"] = d->second.kind;
-          entry["default"] = d->second.fallback;
-          if (d->second.kind == "number" || d->second.kind == "integer") {
-            entry["min"] = d->second.lo;
-            entry["max"] = d->second.hi;
-          }
-          if (!d->second.allowed.empty()) entry["values"] = d->second.allowed;
+      for (const ParamSpec& p : t.params) {
+        json entry = {{"key", p.key},
+                      {"kind", paramKindName(p.kind)},
+                      {"default", p.defaultText()},
+                      {"meaning", p.meaning}};
+        if (p.kind == ParamSpec::Kind::kNumber || p.kind == ParamSpec::Kind::kInteger) {
+          entry["min"] = p.lo;
+          entry["max"] = p.hi;
         }
+        if (p.kind == ParamSpec::Kind::kChoice) entry["values"] = p.choices;
+        if (p.acceptsAuto) entry["auto"] = true;
         params.push_back(entry);
       }
       json reads = {{"shadow-map", t.reads.shadowMap},
                     {"filter", t.reads.filter},
                     {"precision", t.reads.precision},
                     {"imaging", readsOption(t, CommonOption::kImaging)}};
-      json entry = {{"name", t.name},     {"paper", t.paper},   {"summary", t.summary},
-                    {"status", t.status}, {"reads", reads},     {"params", params}};
-      if (!probeError.empty()) entry["probe_error"] = probeError;
-      out.push_back(entry);
+      out.push_back({{"name", t.name},     {"paper", t.paper},   {"summary", t.summary},
+                     {"status", t.status}, {"reads", reads},     {"params", params}});
     }
     json doc = {{"techniques", out},
                 {"defaults", {{"size", "800x600"}, {"shadow-map", 512}, {"filter", 2},

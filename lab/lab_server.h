@@ -52,8 +52,7 @@ class LabServer {
   LabServer(const LabServer&) = delete;
   LabServer& operator=(const LabServer&) = delete;
 
-  // Probes every technique's parameters on the worker, binds and starts listening on a
-  // thread of its own. Returns the port. Throws InputError when the address cannot be bound.
+  // Binds and starts listening on a thread of its own. Returns the port. Throws InputError when the address cannot be bound.
   int start();
   void stop();  // stops listening and joins; safe to call twice
   std::string url() const;

@@ -41,8 +41,8 @@ class Worker {
   // future is ready when the job ran, was dropped, refused or the worker stopped.
   std::future<JobResult> submit(const std::string& lane, Job job);
 
-  // Runs `job` on the worker thread ahead of any lane (start-up work such as the parameter
-  // probe) and waits for it.
+  // Runs `job` on the worker thread ahead of any lane (loading the scenes for /api/scenes)
+  // and waits for it.
   JobResult runNow(Job job);
 
  private:

@@ -125,10 +125,15 @@ DepthEncoding depthEncoding(Precision precision) {
   return e;
 }
 
+ParamSpec depthBiasParam() {
+  constexpr double kMaxBiasSteps = 255.0;  // the whole depth range
+  return numberParam("depth-bias", kDefaultDepthBiasSteps, 0.0, kMaxBiasSteps,
+                     "depth bias in 8-bit depth steps, added before the comparison (§2)");
+}
+
 double depthBias(const RenderParams& params, const DepthEncoding& enc) {
   (void)enc;
-  constexpr double kMaxBiasSteps = 255.0;  // the whole depth range
-  const double steps = params.number("depth-bias", kDefaultDepthBiasSteps, 0.0, kMaxBiasSteps);
+  const double steps = params.number(depthBiasParam());
   return steps * kBiasStep;
 }
 

@@ -41,6 +41,8 @@ DepthEncoding depthEncoding(Precision precision);
 // Curved surfaces near their terminator still self-shadow: the pipeline has no slope-scaled
 // bias (the paper's 8-bit limitation, §6).
 constexpr double kDefaultDepthBiasSteps = 2.0;
+// --param depth-bias, declared once for legacy.ramp, legacy.pcf and legacy.fast-pcf.
+ParamSpec depthBiasParam();
 double depthBias(const RenderParams& params, const DepthEncoding& enc);
 
 // The 1D ramp texture of Fig. 1 (texel i = i / (N - 1)), bound to GL_TEXTURE_1D.

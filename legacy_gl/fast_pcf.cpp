@@ -213,8 +213,12 @@ Technique fastPcfTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
-  t.paramKeys = {"depth-bias"};
+  t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // §4: packed 2x2 phases
+  t.plan.colourTableCompare = true;                              // §3 Fig. 4
+  t.plan.colourMatrixSum = true;
+  t.plan.packingConvolution = true;  // §4 Eq. (1)
   t.render = render;
   return t;
 }

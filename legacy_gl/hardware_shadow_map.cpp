@@ -34,6 +34,7 @@ namespace {
 
 constexpr float kDefaultOffsetFactor = 2.0f;  // glPolygonOffset slope factor (Everitt Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
+constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
 // Texgen scale of the negative-projection test, per light far distance: s = 0.5 + q / far
 // (q: light eye-space depth). Any q > 0 lands past the half-texel threshold of the 2-texel step
 // texture, and in-frustum fragments get s in (0.5, 1.5] at every scene scale.
@@ -190,12 +191,12 @@ void captureLightDepth(GLuint shadowMap, int texels, Frame& frame) {
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
   (void)context;
-  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
+  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const bool linear = params.text(compareParam()) == "linear";
   Frame frame;
   HwState state;
-  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
+  const bool casterInFrustum = !params.flag(planParam()) || casterReachesLightFrustum(scene);
   renderDepthFromLight(scene, params, state, factor, units, linear, casterInFrustum, frame);
   if (params.capturePasses)
     captureLightDepth(state.shadowMap.id(), casterInFrustum ? params.shadowMapTexels : 1, frame);
@@ -281,7 +282,9 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "depth texture with hardware comparison, EYE_LINEAR texgen, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
-  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
+  t.params = {offsetFactorParam(kDefaultOffsetFactor),
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), compareParam(),
+              planParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

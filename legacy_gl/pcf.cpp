@@ -212,8 +212,11 @@ Technique pcfTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
-  t.paramKeys = {"depth-bias"};
+  t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // §3: one sample per channel
+  t.plan.colourTableCompare = true;                             // §3 Fig. 4
+  t.plan.colourMatrixSum = true;
   t.render = render;
   return t;
 }

@@ -127,7 +127,7 @@ Technique rampShadowMapTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
   t.needs.colorFromPrecision = true;
-  t.paramKeys = {"depth-bias"};
+  t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .precision = true};
   t.render = render;
   return t;

@@ -82,7 +82,7 @@ void captureBackFaceDepth(GLuint shadowMap, int texels, Frame& frame) {
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool linear = params.text(compareParam()) == "linear";
   Frame frame;
   TextureName shadowMap;
   renderBackFacesFromLight(scene, params, shadowMap.id(), linear, frame);
@@ -101,7 +101,7 @@ Technique secondDepthShadowMapTechnique() {
   t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
-  t.paramKeys = {"compare"};
+  t.params = {compareParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

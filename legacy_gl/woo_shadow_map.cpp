@@ -151,7 +151,7 @@ void captureDepthLayers(int n, const std::vector<float>& z1, const std::vector<f
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool linear = params.text(compareParam()) == "linear";
   const int n = params.shadowMapTexels;
   Frame frame;
   TextureName firstLayer;
@@ -179,7 +179,7 @@ Technique wooShadowMapTechnique() {
   t.summary = "depth peeling of two layers from the light, map = their midpoint, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCompatibility;
-  t.paramKeys = {"compare"};
+  t.params = {compareParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

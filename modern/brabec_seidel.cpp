@@ -11,7 +11,7 @@ namespace sl::modern::bs {
 using namespace sl::gl;
 
 Arithmetic arithmeticOf(const RenderParams& params) {
-  return params.text("arithmetic", "faithful", {"faithful", "float"}) == "float"
+  return params.text(arithmeticParam()) == "float"
              ? Arithmetic::kFloat
              : Arithmetic::kFaithful;
 }
@@ -89,8 +89,7 @@ glm::vec4 depthPlane(const Scene& scene) {
 namespace {
 // The bias in units of d, in double as legacy_gl computes it before building its matrix.
 double depthBiasD(const RenderParams& params) {
-  constexpr double kMaxBiasSteps = 255.0;  // the whole depth range
-  return params.number("depth-bias", kDefaultDepthBiasSteps, 0.0, kMaxBiasSteps) * kStep8;
+  return params.number(depthBiasParam()) * kStep8;
 }
 }  // namespace
 
@@ -255,8 +254,20 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-std::vector<std::string> paramKeys() {
-  return {"arithmetic", "depth-bias"};
+ParamSpec arithmeticParam() {
+  return choiceParam("arithmetic", "faithful", {"faithful", "float"},
+                     "faithful = the legacy twin's quantised steps bit for bit; float = plain "
+                     "float arithmetic");
+}
+
+ParamSpec depthBiasParam() {
+  constexpr double kMaxBiasSteps = 255.0;  // the whole depth range
+  return numberParam("depth-bias", kDefaultDepthBiasSteps, 0.0, kMaxBiasSteps,
+                     "depth bias in 8-bit depth steps, added before the comparison (§2)");
+}
+
+std::vector<ParamSpec> params() {
+  return {arithmeticParam(), depthBiasParam()};
 }
 
 }  // namespace sl::modern::bs

@@ -81,7 +81,10 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
                         const std::vector<SampleGroup>& groups, Frame& frame);
 
 // The --param keys every Brabec–Seidel twin understands.
-std::vector<std::string> paramKeys();
+// The --params every Brabec–Seidel twin declares (modern.ramp, modern.pcf, modern.fast-pcf).
+ParamSpec arithmeticParam();
+ParamSpec depthBiasParam();  // as legacy_gl's bs::depthBiasParam
+std::vector<ParamSpec> params();
 
 // §3 Figure 4 / footnote 2: the colour-table output of each channel for a group of `samples`
 // samples, as a share of the channel maximum M: ceil(M / samples) each, the last channel the

@@ -58,33 +58,49 @@ struct CsmSettings {
   float depthScale() const { return float(1.0 - offset); }
 };
 
+// The --params of modern.csm, declared once (Technique::params).
+ParamSpec orderParam() {
+  return integerParam("order", kDefaultOrder, 1, kMaxOrder,
+                      "M, the number of Fourier terms of the expansion (Eq. 10; Table 1: 4, 8, 16)");
+}
+ParamSpec alphaParam() {
+  return numberParam("alpha", kDefaultAlpha, 0.0, kMaxAlpha,
+                     "attenuation of the high frequencies, against ringing (§3.2.1)");
+}
+ParamSpec offsetParam() {
+  return autoNumberParam("offset", 0.0, kMaxOffset,
+                         "depth offset subtracted from d (§3.2.2); auto = the top of the "
+                         "reconstructed step");
+}
+ParamSpec scaleParam() {
+  return autoNumberParam("scale", 1.0, kMaxScale,
+                         "scale of the reconstruction (§3.2.2); auto = lit surfaces reach 1");
+}
+ParamSpec storageParam() {
+  return choiceParam("storage", "8", {"8", "16", "float"},
+                     "basis texture format: 8-bit (the paper's), 16 or 32-bit float");
+}
+ParamSpec mipmapsParam() {
+  return choiceParam("mipmaps", "auto", {"auto", "always"},
+                     "build the mip chain only where the view minifies the map (auto) or always");
+}
+
 CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
                           const RenderParams& params) {
   CsmSettings s;
-  s.order = params.integer("order", kDefaultOrder, 1, kMaxOrder);
-  s.alpha = params.number("alpha", kDefaultAlpha, 0.0, kMaxAlpha);
+  s.order = params.integer(orderParam());
+  s.alpha = params.number(alphaParam());
   // "auto" (or no value) = the top of the reconstructed step, csmDefaultOffset.
-  const auto offset = params.extra.find("offset");
-  s.offset = offset == params.extra.end() || offset->second == "auto"
-                 ? csmDefaultOffset(s.order, s.alpha)
-                 : params.number("offset", 0.0, 0.0, kMaxOffset);
+  s.offset = params.numberOrAuto(offsetParam()).value_or(csmDefaultOffset(s.order, s.alpha));
   // "auto" (or no value): 1 / f(offset) where the attenuated step tops out below 1 (small M
   // with alpha > 0: M = 1, alpha = 1 peaks at 0.73), so that lit surfaces are lit (§3.2.2:
   // "after offsetting, f goes through 1"); 1 otherwise. §3.2.2's own alternative is 2.
-  const auto scale = params.extra.find("scale");
-  if (scale == params.extra.end() || scale->second == "auto") {
-    s.scale = std::max(1.0, 1.0 / csmReconstructedStep(s.offset, s.order, s.alpha));
-  } else {
-    s.scale = params.number("scale", 1.0, 1.0, kMaxScale);
-  }
-  const std::string storage = params.text("storage", "8", {"8", "16", "float"});
+  s.scale = params.numberOrAuto(scaleParam())
+                .value_or(std::max(1.0, 1.0 / csmReconstructedStep(s.offset, s.order, s.alpha)));
+  const std::string storage = params.text(storageParam());
   s.format = storage == "8" ? GL_RGBA8 : storage == "16" ? GL_RGBA16F : GL_RGBA32F;
   s.encodeUnsigned = storage == "8";
-  if (params.extra.count("blur") == 0) {
-    s.blurTaps = kDefaultBlurTaps;
-  } else {
-    s.blurTaps = parseBlurTaps(params);
-  }
+  s.blurTaps = parseBlurTaps(params, blurParam(kDefaultBlurTaps));
   s.filtering = parseFiltering(context, params);
   // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
   // mipmaps=auto (the default) the chain is built only when the planner finds that the view
@@ -93,7 +109,7 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   // magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving
   // it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a
   // large share of the frame). mipmaps=always builds it regardless.
-  const std::string mipmaps = params.text("mipmaps", "auto", {"auto", "always"});
+  const std::string mipmaps = params.text(mipmapsParam());
   if (s.filtering.mipmaps && mipmaps == "auto" && texelsPerPixel <= 1.0) {
     s.filtering.mipmaps = false;
     s.filtering.anisotropy = 1.0f;  // anisotropic filtering refines the mip footprint only
@@ -341,9 +357,11 @@ Technique convolutionShadowMapTechnique() {
       "Fourier basis of the shadow test (Eq. 10-14) in MRT textures, blurred and mip-mapped";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"order", "alpha",     "offset",     "scale",  "storage",
-                 "blur",  "filtering", "anisotropy", "mipmaps"};
+  t.params = {orderParam(),   alphaParam(),           offsetParam(),
+              scaleParam(),   storageParam(),         blurParam(kDefaultBlurTaps),
+              filteringParam(), anisotropyParam(),    mipmapsParam()};
   t.reads = {.shadowMap = true};
+  t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
   t.render = render;
   return t;
 }

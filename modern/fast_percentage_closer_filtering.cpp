@@ -112,8 +112,9 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.summary = "neighbour packing of Eq. 1 in a shader, (ds/2, dt/2) offset; 2x2 and 4x4";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = bs::paramKeys();
+  t.params = bs::params();
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)
   t.render = render;
   return t;
 }

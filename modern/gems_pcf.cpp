@@ -55,6 +55,7 @@ namespace {
 // All three are --params.
 constexpr float kDefaultOffsetFactor = 4.0f;
 constexpr float kDefaultOffsetUnits = 4.0f;  // modern.hw's constant, 24-bit depth steps
+constexpr double kLargestOffsetUnits = 1e7;  // depth steps; far beyond any useful offset
 constexpr float kDefaultBiasTexels = 2.0f;   // texel footprints along the light ray
 constexpr float kMaxBiasTexels = 16.0f;
 // A map of a few texels has footprints as wide as the light's distance (1x1 at a 70 degree
@@ -130,13 +131,25 @@ void captureMapAndCameraPass(const RenderTarget& map, int samples, Frame& frame)
                         (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3"));
 }
 
+// --param samples: lookups per pixel (GPU Gems §11.3: 16; §11.4: 4 dithered; 1: one lookup).
+ParamSpec samplesParam(int defaultSamples) {
+  return choiceParam("samples", std::to_string(defaultSamples), {"1", "4", "16"},
+                     "hardware 2x2 PCF lookups per pixel: 16 (§11.3), 4 dithered (§11.4), 1");
+}
+
+// --param bias-texels: the receiver-plane bias, in shadow-map texel footprints.
+ParamSpec biasTexelsParam() {
+  return numberParam("bias-texels", kDefaultBiasTexels, 0, kMaxBiasTexels,
+                     "depth bias along the light ray, in shadow-map texel footprints");
+}
+
 Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defaultSamples) {
   const std::string samples =
-      params.text("samples", std::to_string(defaultSamples), {"1", "4", "16"});
-  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e7, 1e7));
+      params.text(samplesParam(defaultSamples));
+  const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
+  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const float biasTexels =
-      float(params.number("bias-texels", kDefaultBiasTexels, 0, kMaxBiasTexels));
+      float(params.number(biasTexelsParam()));
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, frame);
@@ -155,7 +168,8 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.summary = summary;
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"samples", "offset-factor", "offset-units", "bias-texels"};
+  t.params = {samplesParam(samples), offsetFactorParam(kDefaultOffsetFactor),
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
   t.reads = {.shadowMap = true};
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);

@@ -20,6 +20,7 @@ using namespace sl::gl;
 namespace {
 constexpr float kDefaultOffsetFactor = 2.0f;  // same as legacy.hw (Everitt Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
+constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
 
 // Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
@@ -101,10 +102,10 @@ void captureDepthAndCameraPass(const RenderTarget& map, Frame& frame) {
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
-  const bool casterInFrustum = !params.flag("plan", true) || casterReachesLightFrustum(scene);
+  const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
+  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const bool linear = params.text(compareParam()) == "linear";
+  const bool casterInFrustum = !params.flag(planParam()) || casterReachesLightFrustum(scene);
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, casterInFrustum, frame);
@@ -121,7 +122,9 @@ Technique hardwareShadowMapTechnique() {
   t.summary = "sampler2DShadow with compare mode, hardware 2x2 filtering, polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "compare", "plan"};
+  t.params = {offsetFactorParam(kDefaultOffsetFactor),
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), compareParam(),
+              planParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

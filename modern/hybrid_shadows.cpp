@@ -38,6 +38,7 @@ using namespace sl::gl;
 namespace {
 constexpr float kDefaultOffsetFactor = 2.0f;  // as modern.hw (Everitt et al. Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
+constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
 // §3.2: "set the depth bounds to [eps, 1] for some small constant eps ~ 0.001".
 constexpr double kDepthBoundsMin = 0.001;
 constexpr double kDepthBoundsMax = 1.0;
@@ -295,11 +296,25 @@ Image classificationImage(const Image& silhouette, const Image& visibility) {
   return out;
 }
 
+// --param mask: how the volume pass is restricted to the silhouette pixels (Chan §3.3).
+ParamSpec maskParam() {
+  return choiceParam("mask", "auto", {"auto", "depth-bounds", "stencil", "tiles"},
+                     "computation mask of the volume pass (Chan §3.3): auto = depth-bounds where "
+                     "the driver has it, else stencil + scissor tiles");
+}
+
+// --param mask-pass: which pass writes the mask's stencil bit.
+ParamSpec maskPassParam() {
+  return choiceParam("mask-pass", "quad", {"classify", "quad"},
+                     "who sets the stencil mask: Chan's full-screen quad, or the classification "
+                     "pass (GL_ARB_shader_stencil_export)");
+}
+
 Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
-  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
+  const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
+  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const std::string maskName =
-      params.text("mask", "auto", {"auto", "depth-bounds", "stencil", "tiles"});
+      params.text(maskParam());
   const bool haveBounds = ctx.caps().depthBoundsTest();
   if (maskName == "depth-bounds" && !haveBounds)
     throw InputError(
@@ -328,7 +343,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   // classification pass writes it (where GL_ARB_shader_stencil_export exists). Measured on
   // llvmpipe: no gain — the pass saved moves into the classification, whose depth test runs
   // after a shader that writes the stencil reference (docs/volumes.md).
-  const std::string maskPass = params.text("mask-pass", "quad", {"classify", "quad"});
+  const std::string maskPass = params.text(maskPassParam());
   const bool maskInClassify = kind != MaskKind::kDepthBounds && maskPass == "classify" &&
                               ctx.caps().hasExtension("GL_ARB_shader_stencil_export");
   Program classifyProgram(
@@ -413,7 +428,9 @@ Technique hybridShadowsTechnique() {
   t.status =
       "complete (depth-bounds mask where the driver has it, else stencil bit + scissor tiles)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"offset-factor", "offset-units", "mask", "mask-pass"};
+  t.params = {offsetFactorParam(kDefaultOffsetFactor),
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), maskParam(),
+              maskPassParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

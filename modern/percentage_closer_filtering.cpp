@@ -84,7 +84,8 @@ Technique percentageCloserFilteringTechnique() {
   t.summary = "jittered 4-channel packing, colour table + colour matrix in a shader; 2x2..4x4";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = bs::paramKeys();
+  t.params = bs::params();
+  t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // the twin of legacy.pcf (§3)
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.render = render;
   return t;

@@ -98,8 +98,25 @@ DepthRange fitShadowingDepthRange(const Scene& scene, float* nearestCaster) {
   return r;
 }
 
-int parseBlurTaps(const RenderParams& params) {
-  const int taps = params.integer("blur", 0, 0, kMaxBlurTaps);
+ParamSpec blurParam(int defaultTaps) {
+  return integerParam("blur", defaultTaps, 0, kMaxBlurTaps,
+                      "separable binomial blur of the map, taps per axis: 0 or 1 (none), 3, 5, 7 "
+                      "(Annen §4.1, Table 1)");
+}
+
+ParamSpec filteringParam() {
+  return choiceParam("filtering", "trilinear", {"anisotropic", "trilinear", "bilinear", "nearest"},
+                     "how the camera pass samples the map (Annen Table 1: 16x anisotropic "
+                     "tri-linear; Figs. 1, 10: tri-linear)");
+}
+
+ParamSpec anisotropyParam() {
+  return autoNumberParam("anisotropy", 1, kMaxAnisotropy,
+                         "GL_TEXTURE_MAX_ANISOTROPY; auto = 16 with filtering=anisotropic, else 1");
+}
+
+int parseBlurTaps(const RenderParams& params, const ParamSpec& blur) {
+  const int taps = params.integer(blur);
   if (taps != 0 && taps != 1 && taps != 3 && taps != 5 && taps != 7)
     throw InputError("--param blur=" + std::to_string(taps) +
                      ": the Gaussian kernel must be 0 or 1 (none), 3, 5 or 7 texels wide");
@@ -124,13 +141,13 @@ MapFiltering parseFiltering(const GlContext& context, const RenderParams& params
   // 240-830 ms against 40-110 ms tri-linear on the bench scenes (brabec and fence, 256x192
   // and 400x300, map 512, M = 16), where the paper's GPU pays 1.6-3x PCF for all of CSM.
   const std::string mode =
-      params.text("filtering", "trilinear", {"anisotropic", "trilinear", "bilinear", "nearest"});
+      params.text(filteringParam());
   f.mipmaps = mode == "anisotropic" || mode == "trilinear";
   f.linear = mode != "nearest";
   // "anisotropic" is Table 1's "16x anisotropic tri-linear"; an explicit --param anisotropy
   // applies to "trilinear" too.
   const float fallback = mode == "anisotropic" ? kMaxAnisotropy : 1.0f;
-  const float asked = float(params.number("anisotropy", fallback, 1, kMaxAnisotropy));
+  const float asked = float(params.numberOrAuto(anisotropyParam()).value_or(fallback));
   if (!context.caps().hasExtension(kAnisotropicExtension)) {
     f.anisotropy = 1.0f;
   } else {

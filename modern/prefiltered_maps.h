@@ -36,7 +36,9 @@ DepthRange fitShadowingDepthRange(const Scene& scene, float* nearestCaster = nul
 // The separable blur of Annen §4.1: n x n binomial weights (the discrete Gaussian), n in
 // {3, 5, 7}; blur = 0 or 1 (a 1x1 kernel) means none, returned as 0. Parsed from
 // --param blur=0|1|3|5|7 (InputError otherwise).
-int parseBlurTaps(const RenderParams& params);
+// --param blur with the technique's default (csm and vsm: 3).
+ParamSpec blurParam(int defaultTaps);
+int parseBlurTaps(const RenderParams& params, const ParamSpec& blur);
 std::vector<float> binomialWeights(int taps);  // sums to 1
 
 // How the map is sampled in the camera pass.
@@ -49,6 +51,9 @@ struct MapFiltering {
 // --param anisotropy, default 16, Table 1; trilinear = anisotropy 1 unless given), clamped
 // to what the context offers; 1 when GL_EXT_texture_filter_anisotropic is absent.
 MapFiltering parseFiltering(const GlContext& context, const RenderParams& params);
+// --param filtering and --param anisotropy, as parseFiltering reads them.
+ParamSpec filteringParam();
+ParamSpec anisotropyParam();
 
 // A square 2D array texture with `layers` layers of `format`, and a full mip chain when
 // `mipmapped`.

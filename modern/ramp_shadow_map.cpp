@@ -94,7 +94,7 @@ Technique rampShadowMapTechnique() {
       "depth encoded through a 1D ramp, shadow test by subtraction; faithful|float arithmetic";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = bs::paramKeys();
+  t.params = bs::params();
   t.reads = {.shadowMap = true, .precision = true};
   t.render = render;
   return t;

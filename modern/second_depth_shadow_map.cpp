@@ -62,7 +62,7 @@ void captureMapAndCameraPass(const RenderTarget& map, Frame& frame) {
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool linear = params.text(compareParam()) == "linear";
   Frame frame;
   GpuScene gpu(scene);
   RenderTarget map = renderBackFacesFromLight(gpu, params.shadowMapTexels, linear, frame);
@@ -80,7 +80,7 @@ Technique secondDepthShadowMapTechnique() {
   t.summary = "only back faces of closed casters in the shadow map, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"compare"};
+  t.params = {compareParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

@@ -353,8 +353,8 @@ Technique shadowVolumesTechnique() {
   t.summary = "z-fail stencil shadow volumes, CPU silhouettes, caps, infinite far plane";
   t.status = "complete (open casters get two-sided volumes)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {};
   t.reads = {};  // no shadow map, no filter, no colour-encoded depth
+  t.plan.shadowWork = PlanTraits::ShadowWork::kShadowVolumes;
   t.render = render;
   return t;
 }

@@ -54,9 +54,12 @@ float smoothieFalloff(float v) {
 }
 
 namespace {
+constexpr double kMinWidth = 1e-4;  // light screen space: narrower than any map texel
+constexpr double kMaxWidth = 1.0;   // the whole map side
 constexpr double kDefaultWidth = 0.03;        // t, light screen space (map side = 1)
 constexpr float kDefaultOffsetFactor = 2.0f;  // as modern.hw (Everitt et al. Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
+constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
 constexpr int kFalloffTexels = 256;                  // 1D falloff texture (§4.2.1)
 constexpr float kNoSurfaceDepth = 1.0e30f;           // linear depth where nothing is seen: b/r ~ 0
 constexpr float kMinClipW = 1.0e-6f;                 // vertices at or behind the light: no smoothie
@@ -358,11 +361,22 @@ void shadeWithSmoothies(const GpuScene& gpu, const RenderParams& params, const P
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
+// --param width: the smoothie's width t (Chan ch. 4 §4.2), light screen space (map side = 1).
+ParamSpec widthParam() {
+  return numberParam("width", kDefaultWidth, kMinWidth, kMaxWidth,
+                     "smoothie width t in light screen space, map side = 1 (Chan §4.2)");
+}
+
+// --param remap: Chan's remapped alpha (on) or the linear alpha of Fig. 4-4 (b) (off).
+ParamSpec remapParam() {
+  return flagParam("remap", true, "remap the smoothie alpha by the depth ratio (Chan §4.3)");
+}
+
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const double width = params.number("width", kDefaultWidth, 1e-4, 1.0);
-  const bool remap = params.flag("remap", true);
-  const float factor = float(params.number("offset-factor", kDefaultOffsetFactor, -100, 100));
-  const float units = float(params.number("offset-units", kDefaultOffsetUnits, -1e6, 1e6));
+  const double width = params.number(widthParam());
+  const bool remap = params.flag(remapParam());
+  const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
+  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const int texels = params.shadowMapTexels;
   Frame frame;
   GpuScene gpu(scene);
@@ -418,8 +432,10 @@ Technique smoothiesTechnique() {
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
   t.status = "complete (square corners at vertices with >2 silhouette edges)";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"width", "remap", "offset-factor", "offset-units"};
+  t.params = {widthParam(), remapParam(), offsetFactorParam(kDefaultOffsetFactor),
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)};
   t.reads = {.shadowMap = true};
+  t.plan.shadowWork = PlanTraits::ShadowWork::kSmoothies;
   t.render = render;
   return t;
 }

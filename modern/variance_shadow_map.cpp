@@ -35,14 +35,26 @@ struct VsmSettings {
   MapFiltering filtering;
 };
 
+// The --params of modern.vsm, declared once (Technique::params).
+ParamSpec minVarianceParam() {
+  return numberParam("min-variance", kDefaultMinVariance, 0.0, kMaxMinVariance,
+                     "lower bound of the variance, (linear depth)^2 (Donnelly & Lauritzen §3)");
+}
+ParamSpec bleedReductionParam() {
+  return numberParam("bleed-reduction", kDefaultBleedReduction, 0.0, kMaxBleedReduction,
+                     "Chebyshev bound below this counts as shadow (light-bleeding reduction)");
+}
+ParamSpec storageParam() {
+  // 8-bit moments cannot hold d^2 - d^2 differences: VSM needs float storage.
+  return choiceParam("storage", "float", {"16", "float"}, "moment texture format: 16 or 32-bit float");
+}
+
 VsmSettings parseSettings(const GlContext& context, const RenderParams& params) {
   VsmSettings s;
-  s.minVariance = params.number("min-variance", kDefaultMinVariance, 0.0, kMaxMinVariance);
-  s.bleedReduction =
-      params.number("bleed-reduction", kDefaultBleedReduction, 0.0, kMaxBleedReduction);
-  // 8-bit moments cannot hold d^2 - d^2 differences: VSM needs float storage.
-  s.format = params.text("storage", "float", {"16", "float"}) == "16" ? GL_RGBA16F : GL_RGBA32F;
-  s.blurTaps = params.extra.count("blur") ? parseBlurTaps(params) : kDefaultBlurTaps;
+  s.minVariance = params.number(minVarianceParam());
+  s.bleedReduction = params.number(bleedReductionParam());
+  s.format = params.text(storageParam()) == "16" ? GL_RGBA16F : GL_RGBA32F;
+  s.blurTaps = parseBlurTaps(params, blurParam(kDefaultBlurTaps));
   s.filtering = parseFiltering(context, params);
   return s;
 }
@@ -139,8 +151,10 @@ Technique varianceShadowMapTechnique() {
   t.summary = "moments (d, d^2) blurred and mip-mapped, Chebyshev upper bound; leaks light";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"min-variance", "bleed-reduction", "storage", "blur", "filtering", "anisotropy"};
+  t.params = {minVarianceParam(), bleedReductionParam(), storageParam(),
+              blurParam(kDefaultBlurTaps), filteringParam(), anisotropyParam()};
   t.reads = {.shadowMap = true};
+  t.plan.prefilter = PlanTraits::Prefilter::kVariance;
   t.render = render;
   return t;
 }

@@ -114,7 +114,7 @@ void captureLayersAndCameraPass(const RenderTarget& first, const RenderTarget& s
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
-  const bool linear = params.text("compare", "linear", {"nearest", "linear"}) == "linear";
+  const bool linear = params.text(compareParam()) == "linear";
   const int n = params.shadowMapTexels;
   Frame frame;
   GpuScene gpu(scene);
@@ -135,7 +135,7 @@ Technique wooShadowMapTechnique() {
   t.summary = "depth peeling in a shader, midpoint written as gl_FragDepth, no polygon offset";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.paramKeys = {"compare"};
+  t.params = {compareParam()};
   t.reads = {.shadowMap = true};
   t.render = render;
   return t;

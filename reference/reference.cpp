@@ -452,13 +452,25 @@ void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye) {
   }
 }
 
+// The --params of the references, declared once (Technique::params).
+ParamSpec raysParam() {
+  return integerParam("rays", kDefaultSoftRays, kMinSoftRays, kMaxSoftRays,
+                      "stratified rays per pixel towards the spherical light");
+}
+ParamSpec pixelParam() {
+  return choiceParam(kPixelParam, kPixelCentre, {kPixelCentre, kPixelArea},
+                     "visibility at the pixel centre, or integrated over the pixel's area");
+}
+ParamSpec pixelSamplesParam(bool soft) {
+  return integerParam(kPixelSamplesParam,
+                      soft ? kDefaultSoftPixelSamplesPerSide : kDefaultHardPixelSamplesPerSide, 1,
+                      kMaxPixelSamplesPerSide, "sub-pixel samples per side with pixel=area");
+}
+
 Frame renderReference(const Scene& scene, const RenderParams& params, bool soft) {
-  const int softRays = params.integer("rays", kDefaultSoftRays, kMinSoftRays, kMaxSoftRays);
-  const bool area =
-      params.text(kPixelParam, kPixelCentre, {kPixelCentre, kPixelArea}) == kPixelArea;
-  const int perSide = params.integer(
-      kPixelSamplesParam, soft ? kDefaultSoftPixelSamplesPerSide : kDefaultHardPixelSamplesPerSide,
-      1, kMaxPixelSamplesPerSide);
+  const int softRays = soft ? params.integer(raysParam()) : kDefaultSoftRays;
+  const bool area = params.text(pixelParam()) == kPixelArea;
+  const int perSide = params.integer(pixelSamplesParam(soft));
   Frame frame;
   std::vector<SurfacePoint> points;
   {
@@ -526,10 +538,11 @@ std::vector<Technique> techniques() {
   hard.summary = "exact point-light visibility: one shadow ray per camera pixel (pixel=area: " +
                  std::to_string(kDefaultHardPixelSamplesPerSide * kDefaultHardPixelSamplesPerSide) +
                  " stratified sub-pixel rays, averaged)";
-  hard.paramKeys = {kPixelParam, kPixelSamplesParam};
+  hard.params = {pixelParam(), pixelSamplesParam(false)};
   hard.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
   hard.status = "complete";
   hard.needs.profile = Profile::kCore;
+  hard.plan.shadowWork = PlanTraits::ShadowWork::kRays;
   hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, false);
   };
@@ -537,7 +550,7 @@ std::vector<Technique> techniques() {
   soft.name = "reference.soft";
   soft.summary = "Monte Carlo visibility of a spherical light of SpotLight::radius, " +
                  std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
-  soft.paramKeys = {"rays", kPixelParam, kPixelSamplesParam};
+  soft.params = {raysParam(), pixelParam(), pixelSamplesParam(true)};
   soft.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
   soft.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, true);

@@ -1,6 +1,14 @@
 #!/usr/bin/env bash
-# scripts/build.sh — configures (Release) and builds into build/.
+# scripts/build.sh [TARGET...] — configures (Release) and builds into build/: every target
+# (the program, the developer tools and the test suites), or only the TARGETs named
+# (scripts/main.sh builds only `shadowlab`, the one program the main job runs).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake --preset release >/dev/null
-cmake --build build -j"$(nproc)"
+if [[ $# -gt 0 ]]; then
+  targets=()
+  for t in "$@"; do targets+=(--target "$t"); done
+  cmake --build build -j"$(nproc)" "${targets[@]}"
+else
+  cmake --build build -j"$(nproc)"
+fi

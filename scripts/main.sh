@@ -3,5 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-scripts/build.sh
+scripts/build.sh shadowlab   # only the program this job runs (the tests build in scripts/test.sh)
 build/bin/shadowlab figures --out out/figures "$@"

@@ -63,7 +63,7 @@ function optionControl(lane, spec) {
     input.checked = current === 'on';
   } else if (spec.kind === 'number' || spec.kind === 'integer' || spec.kind === 'pow2') {
     const span = spec.max - spec.min;
-    const slider = isFinite(span) && span > 0 && span <= 1e4;
+    const slider = !spec.auto && isFinite(span) && span > 0 && span <= 1e4;
     input = document.createElement('input');
     input.type = slider ? 'range' : 'number';
     if (spec.kind === 'pow2') {
@@ -85,9 +85,11 @@ function optionControl(lane, spec) {
   } else {
     input = document.createElement('input');
     input.type = 'text';
-    input.value = current === undefined ? '' : current;
+    input.value = current === undefined || current === 'auto' ? '' : current;
   }
   input.dataset.option = spec.id;
+  if (spec.meaning) label.title = spec.meaning;
+  if (spec.auto && input.type === 'number') input.placeholder = 'auto';
   if (!label.contains(input)) label.appendChild(input);
   const changed = () => {
     const v = valueOf(spec, input);
@@ -130,7 +132,7 @@ function buildOptions(lane) {
   }
   for (const p of t.params) {
     box.appendChild(optionControl(lane, { id: 'param:' + p.key, label: p.key, kind: p.kind,
-      min: p.min, max: p.max, values: p.values, default: p.default }));
+      min: p.min, max: p.max, values: p.values, default: p.default, auto: p.auto, meaning: p.meaning }));
   }
 }
 

@@ -11,7 +11,7 @@ import puppeteer from 'puppeteer-core';
 
 const kChromium = '/usr/bin/chromium';
 const kStartTimeoutMs = 60000;   // the server prints its URL
-const kFrameTimeoutMs = Number(process.env.SHADOWLAB_FRAME_TIMEOUT_MS || 180000);  // first frames: the page's /api/techniques probes every technique
+const kFrameTimeoutMs = Number(process.env.SHADOWLAB_FRAME_TIMEOUT_MS || 180000);  // first frames: /api/scenes loads every scene
 const binary = process.env.SHADOWLAB_BINARY;
 const shots = process.env.SHADOWLAB_SCREENSHOT_DIR || 'out/browser';
 mkdirSync(shots, { recursive: true });

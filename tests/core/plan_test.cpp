@@ -47,10 +47,41 @@ Scene column() {
   return s;
 }
 
-Technique named(const std::string& name, bool accumulation = false) {
+// Techniques described only by what they declare to the planner (core/technique.h PlanTraits).
+// Their names are deliberately not those of real techniques: the planner must ask, not match.
+Technique named(const std::string& name) {
   Technique t;
   t.name = name;
-  t.needs.accumulation = accumulation;
+  return t;
+}
+
+// Brabec–Seidel §3 (as legacy.pcf declares itself).
+Technique fourSamplesPerPass() {
+  Technique t = named("test.four-per-pass");
+  t.needs.accumulation = true;
+  t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;
+  t.plan.colourTableCompare = true;
+  t.plan.colourMatrixSum = true;
+  return t;
+}
+
+// Brabec–Seidel §4 (as legacy.fast-pcf declares itself).
+Technique packedPhases() {
+  Technique t = fourSamplesPerPass();
+  t.name = "test.packed-phases";
+  t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;
+  t.plan.packingConvolution = true;
+  return t;
+}
+
+// Annen et al. 2007 (as modern.csm declares itself).
+Technique convolutionPrefiltered() {
+  Technique t = named("test.prefiltered");
+  t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
+  t.params = {integerParam("blur", 3, 0, 7, "taps"),
+              choiceParam("storage", "8", {"8", "16", "float"}, "format"),
+              choiceParam("filtering", "trilinear", {"trilinear", "anisotropic", "bilinear"}, "f"),
+              choiceParam("mipmaps", "auto", {"auto", "always"}, "m")};
   return t;
 }
 
@@ -61,7 +92,7 @@ const PlanItem* item(const std::vector<PlanItem>& items, const std::string& pref
 }
 
 TEST(Plan, CasterInFrustumKeepsShadowPasses) {
-  const FramePlan p = planFrame(column(), named("modern.hw"), RenderParams{});
+  const FramePlan p = planFrame(column(), named("test.plain-map"), RenderParams{});
   EXPECT_TRUE(p.shadowPassesNeeded);
   EXPECT_TRUE(casterReachesLightFrustum(column()));
   ASSERT_TRUE(item(p.passes, "light passes"));
@@ -74,7 +105,7 @@ TEST(Plan, NoCasterInFrustumLeavesShadowPassesOut) {
   // ground and less above it, so the box (x in [5.5, 6.5]) is outside every lateral plane.
   s.objects[1].model = at(6.0f, kCasterTop - 0.5f, 0);
   EXPECT_FALSE(casterReachesLightFrustum(s));
-  const FramePlan p = planFrame(s, named("modern.hw"), RenderParams{});
+  const FramePlan p = planFrame(s, named("test.plain-map"), RenderParams{});
   EXPECT_FALSE(p.shadowPassesNeeded);
   ASSERT_TRUE(item(p.passes, "light passes"));
   EXPECT_FALSE(item(p.passes, "light passes")->kept);
@@ -91,7 +122,7 @@ TEST(Plan, CasterBehindTheLightDoesNotCount) {
 }
 
 TEST(Plan, NonCastersLeftOutOfLightPasses) {
-  const FramePlan p = planFrame(column(), named("modern.hw"), RenderParams{});
+  const FramePlan p = planFrame(column(), named("test.plain-map"), RenderParams{});
   ASSERT_TRUE(item(p.lightObjects, "ground"));
   EXPECT_FALSE(item(p.lightObjects, "ground")->kept);
   EXPECT_NE(item(p.lightObjects, "ground")->reason.find("casts no shadow"), std::string::npos);
@@ -104,7 +135,7 @@ TEST(Plan, DepthRangeFittedToCastersAndReceivers) {
   // planner's fit ignores it (it cannot shadow anything in the frustum).
   s.objects.push_back(
       object("stray", makeBox({1, 1, 1}), at(20, kLightHeight - 1.0f, 0), true, true));
-  const FramePlan p = planFrame(s, named("modern.hw"), RenderParams{});
+  const FramePlan p = planFrame(s, named("test.plain-map"), RenderParams{});
   // Expected: near = distance to the box top (10 - 5 = 5) less the 2% margin of the span
   // [5, 10] (0.1); far = distance to the ground (10) plus the margin.
   const float casterDistance = kLightHeight - kCasterTop;
@@ -121,7 +152,7 @@ TEST(Plan, AccumulationOnlyBeyondTwoByTwo) {
   RenderParams p;
   for (int f : {1, 2, 3, 4}) {
     p.filter = f;
-    const FramePlan plan = planFrame(column(), named("legacy.pcf", true), p);
+    const FramePlan plan = planFrame(column(), fourSamplesPerPass(), p);
     const PlanItem* acc = item(plan.resources, "accumulation buffer");
     ASSERT_TRUE(acc);
     // Brabec–Seidel §3: four samples per pass (RGBA); more need summing across passes.
@@ -132,11 +163,11 @@ TEST(Plan, AccumulationOnlyBeyondTwoByTwo) {
 TEST(Plan, ImagingStagesThatAreIdentityLeftOut) {
   RenderParams p;
   p.filter = 1;
-  FramePlan plan = planFrame(column(), named("legacy.fast-pcf", true), p);
+  FramePlan plan = planFrame(column(), packedPhases(), p);
   EXPECT_FALSE(item(plan.resources, "imaging: colour matrix")->kept);
   EXPECT_FALSE(item(plan.resources, "imaging: convolution")->kept);
   p.filter = 2;
-  plan = planFrame(column(), named("legacy.fast-pcf", true), p);
+  plan = planFrame(column(), packedPhases(), p);
   EXPECT_TRUE(item(plan.resources, "imaging: colour matrix")->kept);
   const PlanItem* conv = item(plan.resources, "imaging: convolution");
   ASSERT_TRUE(conv && conv->kept);
@@ -146,11 +177,15 @@ TEST(Plan, ImagingStagesThatAreIdentityLeftOut) {
 
 TEST(Plan, BlurPassLeftOutWithoutKernel) {
   RenderParams p;
+  // Without --param blur the technique's declared default (3 taps) is planned.
+  EXPECT_TRUE(item(planFrame(column(), convolutionPrefiltered(), p).resources,
+                   "separable blur pass")
+                  ->kept);
   p.extra["blur"] = "0";
-  FramePlan plan = planFrame(column(), named("modern.csm"), p);
+  FramePlan plan = planFrame(column(), convolutionPrefiltered(), p);
   EXPECT_FALSE(item(plan.resources, "separable blur pass")->kept);
   p.extra["blur"] = "7";
-  plan = planFrame(column(), named("modern.csm"), p);
+  plan = planFrame(column(), convolutionPrefiltered(), p);
   EXPECT_TRUE(item(plan.resources, "separable blur pass")->kept);
 }
 
@@ -176,7 +211,7 @@ TEST(Plan, MipChainOnlyWhenTheViewMinifies) {
   p.width = p.height = 256;
   for (int n : {64, 2048}) {
     p.shadowMapTexels = n;
-    const FramePlan plan = planFrame(s, named("modern.csm"), p);
+    const FramePlan plan = planFrame(s, convolutionPrefiltered(), p);
     const double expected = expectedTexelsPerPixel(s, p);
     // Perspective foreshortening is absent (both views look straight down) except for the
     // spotlight's own perspective across the plane: 2% covers the rounding of the sampling.
@@ -186,22 +221,22 @@ TEST(Plan, MipChainOnlyWhenTheViewMinifies) {
     // mipmaps=always keeps it whatever the view.
     RenderParams aniso = p;
     aniso.extra["filtering"] = "anisotropic";
-    EXPECT_EQ(item(planFrame(s, named("modern.csm"), aniso).resources, "mip chain")->kept,
+    EXPECT_EQ(item(planFrame(s, convolutionPrefiltered(), aniso).resources, "mip chain")->kept,
               expected > 1.0)
         << "map " << n;
     RenderParams bilinear = p;
     bilinear.extra["filtering"] = "bilinear";
-    EXPECT_FALSE(item(planFrame(s, named("modern.csm"), bilinear).resources, "mip chain")->kept);
+    EXPECT_FALSE(item(planFrame(s, convolutionPrefiltered(), bilinear).resources, "mip chain")->kept);
     RenderParams always = p;
     always.extra["mipmaps"] = "always";
-    EXPECT_TRUE(item(planFrame(s, named("modern.csm"), always).resources, "mip chain")->kept);
+    EXPECT_TRUE(item(planFrame(s, convolutionPrefiltered(), always).resources, "mip chain")->kept);
   }
 }
 
 TEST(Plan, FormatNamesKeptAndLeftOut) {
   Scene s = column();
   s.objects[1].model = at(6.0f, kCasterTop - 0.5f, 0);
-  const std::string text = formatPlan(planFrame(s, named("modern.hw"), RenderParams{}));
+  const std::string text = formatPlan(planFrame(s, named("test.plain-map"), RenderParams{}));
   EXPECT_NE(text.find("leave light passes"), std::string::npos) << text;
   EXPECT_NE(text.find("keep  camera pass"), std::string::npos) << text;
 }

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 TEST(BenchSweep, OnlyDeclaredParamsAreSwept) {
   Technique t;
   t.name = "modern.test";
-  t.paramKeys = {"order"};
+  t.params = {integerParam("order", 16, 1, 64, "M")};
   const auto variants = sweepVariants(t, RenderParams{}, true);
   ASSERT_FALSE(variants.empty());
   EXPECT_EQ(variants[0].label, "default");

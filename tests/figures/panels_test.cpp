@@ -119,7 +119,7 @@ TEST(FigurePanels, EveryPanelNamesAnAvailableTechniqueParameterAndBuffer) {
       const Technique* t = lookup(p.technique);
       ASSERT_NE(t, nullptr) << f.id << " " << p.label << ": no technique " << p.technique;
       for (const auto& [key, value] : p.params)
-        EXPECT_NE(std::find(t->paramKeys.begin(), t->paramKeys.end(), key), t->paramKeys.end())
+        EXPECT_NE(findParam(*t, key), nullptr)
             << f.id << " " << p.label << ": " << p.technique << " has no parameter " << key;
       if (p.kind != PanelKind::kIntermediates) continue;
       std::string key = p.technique + "|" + (p.scene.empty() ? f.scene : p.scene);

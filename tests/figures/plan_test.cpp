@@ -60,6 +60,48 @@ TEST(PlanConsulted, NormalScenesKeepTheLightPass) {
   EXPECT_FALSE(hasPassContaining(f, "left out"));
 }
 
+// The planner asks what each registered technique declares (issue 21 item 8). The name-matching
+// planner it replaced planned no blur for modern.vsm, whose module blurs with 3 taps by default.
+const PlanItem* planned(const FramePlan& plan, const std::string& prefix) {
+  for (const PlanItem& i : plan.resources)
+    if (i.name.rfind(prefix, 0) == 0) return &i;
+  return nullptr;
+}
+
+TEST(PlanConsulted, EachTechniqueDeclaresWhatThePlannerNeeds) {
+  const Scene s = builtinScene("brabec");
+  RenderParams p = small();
+  p.filter = 4;
+  for (const char* name : {"modern.vsm", "modern.csm"}) {
+    const PlanItem* blur = planned(planFrame(s, findTechnique(name), p), "separable blur pass");
+    ASSERT_TRUE(blur) << name;
+    EXPECT_TRUE(blur->kept) << name << ": " << blur->reason;
+    EXPECT_NE(blur->reason.find("3 taps"), std::string::npos) << name << ": " << blur->reason;
+  }
+  for (const char* name : {"legacy.fast-pcf", "legacy.pcf"}) {
+    const FramePlan plan = planFrame(s, findTechnique(name), p);
+    ASSERT_TRUE(planned(plan, "imaging: colour table")) << name;
+    ASSERT_TRUE(planned(plan, "accumulation buffer")) << name;
+    EXPECT_TRUE(planned(plan, "accumulation buffer")->kept) << name << ": 4x4 needs summing";
+    EXPECT_EQ(planned(plan, "imaging: convolution") != nullptr,
+              std::string(name) == "legacy.fast-pcf")
+        << name << ": only §4 packs by convolution";
+  }
+  // The twins plan the same sample grouping as their legacy technique, without its imaging.
+  const FramePlan modernFast = planFrame(s, findTechnique("modern.fast-pcf"), p);
+  EXPECT_TRUE(planned(modernFast, "accumulation buffer"));
+  EXPECT_FALSE(planned(modernFast, "imaging: colour table"));
+  // A renamed copy plans exactly as the original: nothing depends on the name (the first line
+  // of the formatted plan names the technique, the rest must match).
+  const auto body = [&](const Technique& t) {
+    const std::string text = formatPlan(planFrame(s, t, p));
+    return text.substr(text.find('\n'));
+  };
+  Technique renamed = findTechnique("legacy.fast-pcf");
+  renamed.name = "renamed.technique";
+  EXPECT_EQ(body(renamed), body(findTechnique("legacy.fast-pcf")));
+}
+
 std::string run(const std::string& args, int& status) {
   std::string out;
   FILE* pipe = popen((std::string(SHADOWLAB_BINARY) + " " + args + " 2>&1").c_str(), "r");
