@@ -78,7 +78,8 @@ std::vector<unsigned char> pngRows(const Image& image, int bitDepth) {
 }
 
 void appendToString(png_structp png, png_bytep data, png_size_t length) {
-  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
+  static_cast<std::string*>(png_get_io_ptr(png))
+      ->append(reinterpret_cast<const char*>(data), length);
 }
 
 }  // namespace

@@ -77,17 +77,16 @@ std::vector<std::pair<std::string, std::string>> queryPairs(const httplib::Reque
   const size_t question = req.target.find('?');
   if (question == std::string::npos) return pairs;
   const std::string query = req.target.substr(question + 1);
-  httplib::detail::split(query.data(), query.data() + query.size(), '&',
-                         [&](const char* b, const char* e) {
-                           const std::string item(b, e);
-                           if (item.empty()) return;  // "a=1&&b=2"
-                           const size_t eq = item.find('=');
-                           pairs.emplace_back(
-                               httplib::detail::decode_url(item.substr(0, eq), true),
-                               eq == std::string::npos
-                                   ? std::string()
-                                   : httplib::detail::decode_url(item.substr(eq + 1), true));
-                         });
+  httplib::detail::split(
+      query.data(), query.data() + query.size(), '&', [&](const char* b, const char* e) {
+        const std::string item(b, e);
+        if (item.empty()) return;  // "a=1&&b=2"
+        const size_t eq = item.find('=');
+        pairs.emplace_back(httplib::detail::decode_url(item.substr(0, eq), true),
+                           eq == std::string::npos
+                               ? std::string()
+                               : httplib::detail::decode_url(item.substr(eq + 1), true));
+      });
   return pairs;
 }
 
@@ -229,6 +228,12 @@ class Engine {
     }
   }
 
+  void clear() {
+    contexts_.clear();
+    references_.clear();
+    scenes_.clear();
+  }
+
   struct Reference {
     Image visibility;
     Image region;  // pixels that see lit geometry (reference/reference.h kDirectLightRegionPass)
@@ -301,8 +306,9 @@ JobResult guarded(Body body) {
 JobResult pngResult(const Image& image, int bitDepth, const LabRequest& req) {
   JobResult r;
   r.contentType = "image/png";
-  r.body = encodePng(image, bitDepth, {req.command, req.parameters.dump(-1, ' ', true,
-                                                                     json::error_handler_t::replace)});
+  r.body =
+      encodePng(image, bitDepth,
+                {req.command, req.parameters.dump(-1, ' ', true, json::error_handler_t::replace)});
   return r;
 }
 
@@ -330,8 +336,8 @@ bool isLoopback(const std::string& host) {
 
 struct LabServer::Impl {
   LabOptions options;
-  Worker worker{kMaxLanes};
-  Engine engine;  // the worker thread's alone
+  Engine engine;             // the worker thread's alone
+  Worker worker{kMaxLanes};  // after `engine`: its thread stops before the engine goes
   httplib::Server server;
   std::thread listener;
   int port = 0;
@@ -347,12 +353,20 @@ struct LabServer::Impl {
   std::deque<std::pair<unsigned long long, std::vector<PassDumpImage>>> keptPasses;
   unsigned long long nextPassesId = 1;
 
+  // The GL contexts are released on the thread that made them current.
+  ~Impl() {
+    worker.runNow([this] {
+      engine.clear();
+      return JobResult{};
+    });
+  }
+
   bool allowRequest() {
     std::lock_guard<std::mutex> lock(rateMutex);
     const auto now = std::chrono::steady_clock::now();
-    tokens = std::min(double(options.burst),
-                      tokens + options.requestsPerSecond *
-                                   std::chrono::duration<double>(now - refilled).count());
+    tokens = std::min(
+        double(options.burst),
+        tokens + options.requestsPerSecond * std::chrono::duration<double>(now - refilled).count());
     refilled = now;
     if (tokens < 1.0) return false;
     tokens -= 1.0;
@@ -382,15 +396,22 @@ struct LabServer::Impl {
                     {"filter", t.reads.filter},
                     {"precision", t.reads.precision},
                     {"imaging", readsOption(t, CommonOption::kImaging)}};
-      out.push_back({{"name", t.name},     {"paper", t.paper},   {"summary", t.summary},
-                     {"status", t.status}, {"reads", reads},     {"params", params}});
+      out.push_back({{"name", t.name},
+                     {"paper", t.paper},
+                     {"summary", t.summary},
+                     {"status", t.status},
+                     {"reads", reads},
+                     {"params", params}});
     }
-    json doc = {{"techniques", out},
-                {"defaults", {{"size", "800x600"}, {"shadow-map", 512}, {"filter", 2},
-                              {"precision", "8"}}},
-                {"caps", {{"width", kMaxServedWidth}, {"height", kMaxServedHeight},
-                          {"shadow-map", kMaxServedShadowMap}, {"filter", kMaxServedFilter}}},
-                {"commit", buildCommit()}};
+    json doc = {
+        {"techniques", out},
+        {"defaults", {{"size", "800x600"}, {"shadow-map", 512}, {"filter", 2}, {"precision", "8"}}},
+        {"caps",
+         {{"width", kMaxServedWidth},
+          {"height", kMaxServedHeight},
+          {"shadow-map", kMaxServedShadowMap},
+          {"filter", kMaxServedFilter}}},
+        {"commit", buildCommit()}};
     return doc.dump(-1, ' ', false, json::error_handler_t::replace);
   }
 
@@ -398,9 +419,9 @@ struct LabServer::Impl {
     json out = json::array();
     const std::vector<std::string> builtins = builtinSceneNames();
     for (const std::string& name : servedSceneNames()) {
-      json entry = {{"name", name},
-                    {"builtin", std::find(builtins.begin(), builtins.end(), name) !=
-                                    builtins.end()}};
+      json entry = {
+          {"name", name},
+          {"builtin", std::find(builtins.begin(), builtins.end(), name) != builtins.end()}};
       const JobResult loaded = worker.runNow([&] {
         return guarded([&] {
           const Scene& s = engine.scene(name);
@@ -417,8 +438,8 @@ struct LabServer::Impl {
       if (loaded.httpStatus != 200) entry["error"] = loaded.body;
       out.push_back(entry);
     }
-    return json{{"scenes", out}, {"default", kDefaultScene}}.dump(
-        -1, ' ', false, json::error_handler_t::replace);
+    return json{{"scenes", out}, {"default", kDefaultScene}}.dump(-1, ' ', false,
+                                                                  json::error_handler_t::replace);
   }
 
   static void answer(httplib::Response& res, const JobResult& r) {
@@ -445,8 +466,8 @@ struct LabServer::Impl {
         cli::applyView(r.args, scene);
         if (r.view != "passes") {
           const Frame f = engine.render(*r.technique, scene, r.params);
-          JobResult out = r.view == "mask" ? pngResult(f.visibility, 16, r)
-                                           : pngResult(f.color, 8, r);
+          JobResult out =
+              r.view == "mask" ? pngResult(f.visibility, 16, r) : pngResult(f.color, 8, r);
           out.headers = {{"X-Shadowlab-Command", r.command},
                          {"X-Shadowlab-Frame-Ms", formatNumber(f.totalMilliseconds())}};
           return out;
@@ -479,7 +500,8 @@ struct LabServer::Impl {
       for (const Frame& f : timed)
         if (i < f.passes.size() && f.passes[i].name == timed.front().passes[i].name)
           times.push_back(f.passes[i].milliseconds);
-      medians.push_back({{"name", timed.front().passes[i].name}, {"median_ms", median(times)},
+      medians.push_back({{"name", timed.front().passes[i].name},
+                         {"median_ms", median(times)},
                          {"frames", times.size()}});
     }
     doc["median_timings"] = medians;
@@ -489,8 +511,8 @@ struct LabServer::Impl {
     std::lock_guard<std::mutex> lock(passesMutex);
     const unsigned long long id = nextPassesId++;
     for (size_t i = 0; i < images.size() && i < doc["images"].size(); ++i)
-      doc["images"][i]["url"] = "/api/pass/" + std::to_string(id) + "/" + std::to_string(i) +
-                                ".png";
+      doc["images"][i]["url"] =
+          "/api/pass/" + std::to_string(id) + "/" + std::to_string(i) + ".png";
     keptPasses.emplace_back(id, std::move(images));
     while (keptPasses.size() > size_t(kKeptPassFrames)) keptPasses.pop_front();
     return jsonResult(doc);
@@ -572,7 +594,8 @@ struct LabServer::Impl {
     server.Get("/api/techniques", [this](const httplib::Request&, httplib::Response& res) {
       std::lock_guard<std::mutex> lock(initMutex);
       if (!techniquesJson) techniquesJson = buildTechniques();
-      answer(res, JobResult{JobResult::Status::kDone, 200, "application/json", *techniquesJson, {}});
+      answer(res,
+             JobResult{JobResult::Status::kDone, 200, "application/json", *techniquesJson, {}});
     });
     server.Get("/api/scenes", [this](const httplib::Request&, httplib::Response& res) {
       std::lock_guard<std::mutex> lock(initMutex);
@@ -585,21 +608,22 @@ struct LabServer::Impl {
     server.Get("/api/error", [this](const httplib::Request& req, httplib::Response& res) {
       handleError(req, res);
     });
-    server.Get(R"(/api/pass/([0-9]{1,12})/([0-9]{1,6})\.png)",
-               [this](const httplib::Request& req, httplib::Response& res) { handlePass(req, res); });
-    server.Get(R"(/|/[a-z_-]+\.(html|js|css))", [](const httplib::Request& req,
-                                                   httplib::Response& res) {
-      const std::string path = req.path == "/" ? "/index.html" : req.path;
-      auto it = webFiles().find(path);
-      if (it == webFiles().end()) {
-        res.status = 404;
-        res.set_content("not found: " + oneLine(req.path), "text/plain");
-        return;
-      }
-      res.set_header("Content-Security-Policy",
-                     "default-src 'self'; img-src 'self' blob: data:; style-src 'self'");
-      res.set_content(it->second.text, it->second.contentType.c_str());
-    });
+    server.Get(
+        R"(/api/pass/([0-9]{1,12})/([0-9]{1,6})\.png)",
+        [this](const httplib::Request& req, httplib::Response& res) { handlePass(req, res); });
+    server.Get(R"(/|/[a-z_-]+\.(html|js|css))",
+               [](const httplib::Request& req, httplib::Response& res) {
+                 const std::string path = req.path == "/" ? "/index.html" : req.path;
+                 auto it = webFiles().find(path);
+                 if (it == webFiles().end()) {
+                   res.status = 404;
+                   res.set_content("not found: " + oneLine(req.path), "text/plain");
+                   return;
+                 }
+                 res.set_header("Content-Security-Policy",
+                                "default-src 'self'; img-src 'self' blob: data:; style-src 'self'");
+                 res.set_content(it->second.text, it->second.contentType.c_str());
+               });
     const auto notGet = [](const httplib::Request&, httplib::Response& res) {
       res.status = 405;
       res.set_header("Allow", "GET");
@@ -612,12 +636,12 @@ struct LabServer::Impl {
     server.Options(".*", notGet);
     server.set_error_handler(httplib::Server::HandlerWithResponse(
         [](const httplib::Request& req, httplib::Response& res) {
-      if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-      res.set_content(res.status == 404 ? "not found: " + oneLine(req.path)
-                                        : "HTTP " + std::to_string(res.status),
-                      "text/plain");
-      return httplib::Server::HandlerResponse::Handled;
-    }));
+          if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          res.set_content(res.status == 404 ? "not found: " + oneLine(req.path)
+                                            : "HTTP " + std::to_string(res.status),
+                          "text/plain");
+          return httplib::Server::HandlerResponse::Handled;
+        }));
     server.set_exception_handler(
         [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
           std::string what = "internal error";
@@ -639,7 +663,9 @@ LabServer::LabServer(LabOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->routes();
 }
 
-LabServer::~LabServer() { stop(); }
+LabServer::~LabServer() {
+  stop();
+}
 
 int LabServer::start() {
   Impl& i = *impl_;
@@ -648,8 +674,8 @@ int LabServer::start() {
     if (i.port <= 0) throw InputError("cannot listen on " + i.options.host + " (any port)");
   } else {
     if (!i.server.bind_to_port(i.options.host.c_str(), i.options.port))
-      throw InputError("cannot listen on " + i.options.host + ":" +
-                       std::to_string(i.options.port) + " (in use, or not an address of this "
+      throw InputError("cannot listen on " + i.options.host + ":" + std::to_string(i.options.port) +
+                       " (in use, or not an address of this "
                        "machine)");
     i.port = i.options.port;
   }

@@ -28,15 +28,15 @@
 namespace sl::lab {
 
 // Caps of the served API (issue 19 item 5); the CLI's own limits are wider.
-constexpr int kMaxServedWidth = 1600;       // pixels
-constexpr int kMaxServedHeight = 1200;      // pixels
-constexpr int kMaxServedShadowMap = 4096;   // texels per side
-constexpr int kMaxServedFilter = 8;         // PCF footprint side
+constexpr int kMaxServedWidth = 1600;               // pixels
+constexpr int kMaxServedHeight = 1200;              // pixels
+constexpr int kMaxServedShadowMap = 4096;           // texels per side
+constexpr int kMaxServedFilter = 8;                 // PCF footprint side
 constexpr double kDefaultRequestsPerSecond = 60.0;  // API requests, all clients together
-constexpr int kDefaultBurst = 120;                 // requests above the rate absorbed at once
-constexpr int kMaxLanes = 8;                       // lanes with a waiting render
-constexpr int kPassTimingFrames = 3;               // frames whose per-pass median view=passes gives
-constexpr int kKeptPassFrames = 4;                 // passes answers whose images stay fetchable
+constexpr int kDefaultBurst = 120;                  // requests above the rate absorbed at once
+constexpr int kMaxLanes = 8;                        // lanes with a waiting render
+constexpr int kPassTimingFrames = 3;  // frames whose per-pass median view=passes gives
+constexpr int kKeptPassFrames = 4;    // passes answers whose images stay fetchable
 
 struct LabOptions {
   std::string host = "127.0.0.1";
@@ -52,7 +52,8 @@ class LabServer {
   LabServer(const LabServer&) = delete;
   LabServer& operator=(const LabServer&) = delete;
 
-  // Binds and starts listening on a thread of its own. Returns the port. Throws InputError when the address cannot be bound.
+  // Binds and starts listening on a thread of its own. Returns the port. Throws InputError when the
+  // address cannot be bound.
   int start();
   void stop();  // stops listening and joins; safe to call twice
   std::string url() const;

@@ -48,9 +48,9 @@ std::future<JobResult> Worker::submit(const std::string& lane, Job job) {
     it->second.sequence = ++sequence_;
   } else {
     if (lane != kPriorityLane && int(lanes_.size()) >= maxLanes_) {
-      promise.set_value(statusOnly(JobResult::Status::kBusy, 503,
-                                   "the lab is busy: " + std::to_string(maxLanes_) +
-                                       " lanes are waiting already"));
+      promise.set_value(statusOnly(
+          JobResult::Status::kBusy, 503,
+          "the lab is busy: " + std::to_string(maxLanes_) + " lanes are waiting already"));
       return future;
     }
     Pending& p = lanes_[lane];
@@ -62,7 +62,9 @@ std::future<JobResult> Worker::submit(const std::string& lane, Job job) {
   return future;
 }
 
-JobResult Worker::runNow(Job job) { return submit(kPriorityLane, std::move(job)).get(); }
+JobResult Worker::runNow(Job job) {
+  return submit(kPriorityLane, std::move(job)).get();
+}
 
 void Worker::loop() {
   for (;;) {

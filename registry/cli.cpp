@@ -50,7 +50,8 @@ std::vector<OptionSpec> renderOptions() {
       {"filter", "K", "PCF footprint K (K x K samples) [2]"},
       {"precision", "8|12|float", "colour precision of the legacy passes: 8, 12 or float [8]"},
       {"param", "KEY=VALUE", "key=value, repeatable (shadowlab list shows each technique's keys)"},
-      {"light", "X,Y,Z", "light position in world units; it keeps aiming at its target [the scene's]"},
+      {"light", "X,Y,Z",
+       "light position in world units; it keeps aiming at its target [the scene's]"},
       {"orbit", "AZ,EL,DIST",
        "camera orbit around its target: azimuth and elevation in degrees, distance in world "
        "units [the scene's camera]"},
@@ -122,8 +123,9 @@ const std::vector<CommandSpec>& commandSpecs() {
         {"no-progress", nullptr, "no progress lines on stderr"}}},
       {"serve",
        "the live lab: a page and its API (/api/techniques, /api/scenes, /api/render, /api/error)",
-       {{"host", "ADDRESS", "address to listen on; anything but loopback is warned about "
-                            "[127.0.0.1]"},
+       {{"host", "ADDRESS",
+         "address to listen on; anything but loopback is warned about "
+         "[127.0.0.1]"},
         {"port", "N", "TCP port; 0 picks a free one [8080]"}}},
   };
   return kCommands;

@@ -51,8 +51,9 @@ int run(int argc, char** argv) {
                "lab_bench"};
   std::string size = "512x384", scene = "brabec";
   int requests = 20, warmup = 2, burst = 16;
-  std::vector<std::string> techniques = {"legacy.hw", "modern.hw", "legacy.pcf", "modern.pcf",
-                                         "modern.gems4", "modern.gems16", "modern.vsm"};
+  std::vector<std::string> techniques = {"legacy.hw",  "modern.hw",    "legacy.pcf",
+                                         "modern.pcf", "modern.gems4", "modern.gems16",
+                                         "modern.vsm"};
   app.add_option("--size", size, "frame WxH [512x384]");
   app.add_option("--scene", scene, "scene [brabec]");
   app.add_option("--requests", requests, "timed requests per technique [20]")
@@ -74,19 +75,20 @@ int run(int argc, char** argv) {
   httplib::Client client("127.0.0.1", port);
   client.set_read_timeout(300, 0);
   const std::string load0 = loadAverage();
-  std::printf("lab_bench %s, %s, scene %s, %d timed requests after %d warm-up; load average "
-              "before: %s\n\n",
-              softwareName().c_str(), size.c_str(), scene.c_str(), requests, warmup,
-              load0.c_str());
-  std::printf("| technique | p50 ms | p95 ms | max ms | frame p50 ms (GL passes) | drag: rendered / "
-              "dropped as stale |\n|---|---|---|---|---|---|\n");
+  std::printf(
+      "lab_bench %s, %s, scene %s, %d timed requests after %d warm-up; load average "
+      "before: %s\n\n",
+      softwareName().c_str(), size.c_str(), scene.c_str(), requests, warmup, load0.c_str());
+  std::printf(
+      "| technique | p50 ms | p95 ms | max ms | frame p50 ms (GL passes) | drag: rendered / "
+      "dropped as stale |\n|---|---|---|---|---|---|\n");
   for (const std::string& t : techniques) {
     std::vector<double> latency, frame;
     std::string failure;
     for (int i = 0; i < warmup + requests && failure.empty(); ++i) {
       const std::string light = "-3," + std::to_string(7.0 + kLightStep * i) + ",3";
-      const std::string path = "/api/render?scene=" + scene + "&technique=" + t + "&size=" +
-                               size + "&light=" + light + "&lane=bench";
+      const std::string path = "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size +
+                               "&light=" + light + "&lane=bench";
       const auto t0 = Clock::now();
       auto r = client.Get(path.c_str());
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -109,9 +111,9 @@ int run(int argc, char** argv) {
       httplib::Client c("127.0.0.1", port);
       c.set_read_timeout(300, 0);
       for (int i = 0; i < burst; ++i) {
-        const std::string path = "/api/render?scene=" + scene + "&technique=" + t + "&size=" +
-                                 size + "&light=-3," + std::to_string(7.0 + kLightStep * (2 * i + offset)) +
-                                 ",3&lane=drag";
+        const std::string path =
+            "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size + "&light=-3," +
+            std::to_string(7.0 + kLightStep * (2 * i + offset)) + ",3&lane=drag";
         auto r = c.Get(path.c_str());
         if (r && r->status == 200) ++rendered;
         if (r && r->status == 409) ++dropped;
@@ -120,9 +122,9 @@ int run(int argc, char** argv) {
     std::thread a(drag, 0), b(drag, 1);
     a.join();
     b.join();
-    std::printf("| %s | %.0f | %.0f | %.0f | %.0f | %d / %d |\n", t.c_str(), percentile(latency, 0.5),
-                percentile(latency, 0.95), percentile(latency, 1.0), percentile(frame, 0.5),
-                rendered.load(), dropped.load());
+    std::printf("| %s | %.0f | %.0f | %.0f | %.0f | %d / %d |\n", t.c_str(),
+                percentile(latency, 0.5), percentile(latency, 0.95), percentile(latency, 1.0),
+                percentile(frame, 0.5), rendered.load(), dropped.load());
     std::fflush(stdout);
   }
   std::printf("\nload average after: %s (1, 5, 15 min; %u hardware threads)\n",

@@ -93,12 +93,12 @@ TEST_F(LabApi, MaskMatchesTheCommandLinePixelForPixel) {
               std::string::npos)
         << command;
     const Image served = decodePng(r->body, dir, "served.png");
-    const CommandResult cli = runBinary(SHADOWLAB_BINARY,
-                                        "render --scene brabec --technique modern.hw --size 160x120 "
-                                        "--light -2.5,7,3 --orbit 20,30,7 --out " +
-                                            (dir / "cli.png").string() + " --mask " +
-                                            (dir / "cli-mask.png").string(),
-                                        dir);
+    const CommandResult cli =
+        runBinary(SHADOWLAB_BINARY,
+                  "render --scene brabec --technique modern.hw --size 160x120 "
+                  "--light -2.5,7,3 --orbit 20,30,7 --out " +
+                      (dir / "cli.png").string() + " --mask " + (dir / "cli-mask.png").string(),
+                  dir);
     ASSERT_EQ(cli.status, 0) << cli.err;
     const Image expected = readPng((dir / "cli-mask.png").string());
     ASSERT_EQ(served.width, 160);
@@ -165,19 +165,19 @@ TEST_F(LabApi, BadInputGetsTheCommandLinesOneLineMessage) {
       {"scene=nowhere&technique=legacy.hw", "--scene nowhere --technique legacy.hw"},
   };
   for (const Case& c : cases) {
-    const std::string query = (c.query.rfind("scene=", 0) == 0 ? "size=96x72&" + c.query
-                                                                : "scene=brabec&size=96x72&" + c.query);
+    const std::string query =
+        (c.query.rfind("scene=", 0) == 0 ? "size=96x72&" + c.query
+                                         : "scene=brabec&size=96x72&" + c.query);
     auto r = get("/api/render?" + query);
     ASSERT_TRUE(r) << c.query;
     EXPECT_EQ(r->status, 400) << c.query << ": " << r->body;
     EXPECT_EQ(r->get_header_value("Content-Type"), "text/plain") << c.query;
     EXPECT_EQ(r->body.find('\n'), std::string::npos) << c.query;
     const std::string sceneArgs = c.args.rfind("--scene", 0) == 0 ? "" : "--scene brabec ";
-    const CommandResult cli =
-        runBinary(SHADOWLAB_BINARY,
-                  "render " + sceneArgs + "--size 96x72 " + c.args + " --out " +
-                      (dir / "never.png").string(),
-                  dir);
+    const CommandResult cli = runBinary(
+        SHADOWLAB_BINARY,
+        "render " + sceneArgs + "--size 96x72 " + c.args + " --out " + (dir / "never.png").string(),
+        dir);
     EXPECT_EQ(cli.status, 2) << c.args;
     EXPECT_EQ(cli.err, "shadowlab: " + r->body + "\n") << c.query;
   }
@@ -209,8 +209,8 @@ TEST_F(LabApi, CapsPathsAndFilesAreRefused) {
     EXPECT_EQ(r->body.rfind("unknown scene", 0), 0u) << r->body;
   }
   // Only the page's own files are served.
-  for (const char* path : {"/../CMakeLists.txt", "/etc/passwd", "/index.htm", "/api/nothing",
-                           "/lab.js/../../x"}) {
+  for (const char* path :
+       {"/../CMakeLists.txt", "/etc/passwd", "/index.htm", "/api/nothing", "/lab.js/../../x"}) {
     auto r = get(path);
     ASSERT_TRUE(r) << path;
     EXPECT_EQ(r->status, 404) << path;
@@ -303,7 +303,8 @@ TEST(LabWorker, ANewerJobInALaneDropsTheWaitingOne) {
     return [&, id] {
       released.wait();
       ran += id;
-      return lab::JobResult{lab::JobResult::Status::kDone, 200, "text/plain", std::to_string(id), {}};
+      return lab::JobResult{
+          lab::JobResult::Status::kDone, 200, "text/plain", std::to_string(id), {}};
     };
   };
   std::atomic<bool> started{false};
@@ -359,8 +360,8 @@ TEST(LabServe, ServeRefusesABadPortAndWarnsOffLoopback) {
   EXPECT_EQ(bad.err, "shadowlab: --port must be a whole number in 0..65535, got '70000'\n");
   // Off loopback: a warning, then the URL; SIGTERM stops it cleanly (timeout sends it).
   const CommandResult open =
-      runBinary("timeout --preserve-status -s TERM 3", std::string(SHADOWLAB_BINARY) + " serve --host 0.0.0.0 --port 0",
-                dir);
+      runBinary("timeout --preserve-status -s TERM 3",
+                std::string(SHADOWLAB_BINARY) + " serve --host 0.0.0.0 --port 0", dir);
   EXPECT_EQ(open.status, 0) << open.err;
   EXPECT_NE(open.err.find("warning: serving on 0.0.0.0, not loopback"), std::string::npos)
       << open.err;

@@ -19,7 +19,7 @@
 namespace sl::test {
 namespace {
 
-constexpr int kMinimumCases = 200;        // issue 19 item 5
+constexpr int kMinimumCases = 200;         // issue 19 item 5
 constexpr int kSocketTimeoutSeconds = 30;  // a reply slower than this is a hang
 
 // Sends `bytes` on a fresh connection, closes the sending side when `halfClose`, and returns
@@ -81,34 +81,51 @@ std::vector<Case> malformedRequests() {
   const std::string base = "/api/render?scene=brabec&technique=modern.hw&size=64x48";
   // Bad numbers for every numeric option.
   const std::vector<std::string> badNumbers = {
-      "nan", "NaN", "inf", "-inf", "1e999", "-1", "0", "99999999999999999999", "0x10", "1.5",
-      "%20", "1%2C2", "", "-0", "+5", "1e3x", "%00", "%ff", "9999999", "--5"};
+      "nan",  "NaN", "inf",     "-inf",  "1e999", "-1", "0",  "99999999999999999999",
+      "0x10", "1.5", "%20",     "1%2C2", "",      "-0", "+5", "1e3x",
+      "%00",  "%ff", "9999999", "--5"};
   for (const char* key : {"shadow-map", "filter"})
-    for (const std::string& v : badNumbers) cases.push_back({get(base + "&" + std::string(key) + "=" + v)});
+    for (const std::string& v : badNumbers)
+      cases.push_back({get(base + "&" + std::string(key) + "=" + v)});
   for (const std::string& v : badNumbers) cases.push_back({get(base + "&size=" + v + "x48")});
   for (const std::string& v : badNumbers) cases.push_back({get(base + "&light=" + v + ",1,1")});
   for (const std::string& v : badNumbers) cases.push_back({get(base + "&orbit=10," + v + ",5")});
   for (const std::string& v : badNumbers)
     cases.push_back({get(base + "&param=offset-factor=" + v)});
   // Huge sizes, caps.
-  for (const char* s : {"100000x100000", "16384x16384", "1601x10", "10x1201", "0x0", "x",
-                               "1x", "x1", "3x4x5", "-3x4"})
+  for (const char* s : {"100000x100000", "16384x16384", "1601x10", "10x1201", "0x0", "x", "1x",
+                        "x1", "3x4x5", "-3x4"})
     cases.push_back({get(std::string("/api/render?technique=modern.hw&size=") + s)});
   for (const char* m : {"4097", "65536", "1048576"})
     cases.push_back({get(std::string("/api/render?technique=modern.hw&shadow-map=") + m)});
   // Unknown keys and values, repeated keys, names that are not names.
-  for (const std::string& q : std::vector<std::string>{"technique=legacy.hw&foo=1", "technique=legacy.hw&%00=1", "technique=a&technique=b",
-        "technique=legacy.hw&view=image&view=zzz", "technique=legacy.hw&lane=A",
-        "technique=legacy.hw&lane=12345678901234567", "technique=legacy.hw&scene=..%2F..",
-        "technique=legacy.hw&scene=%2Fetc%2Fpasswd", "technique=", "technique=legacy.hw&param==1",
-        "technique=legacy.hw&param=a=b=c", "technique=legacy.hw&out=x.png",
-        "technique=legacy.hw&mask=m.png", "technique=legacy.hw&backend=egl",
-        "technique=legacy.hw&dump-passes=d", "technique=legacy.hw&scene=--out",
-        "technique=legacy.hw&scene=--backend=reference", "technique=legacy.hw&help=1",
-        "technique=legacy.hw&h=1", "technique=legacy.hw&size=%0a", "technique=legacy.ramp&filter=2",
-        "technique=legacy.ramp&precision=12&precision=13", "technique=%E2%80%AE",
-        "technique=legacy.hw&imaging=native", "technique=modern.hw&imaging=emulated",
-        "technique=legacy.hw&param=" + std::string(1100, 'k') + "=1"})
+  for (const std::string& q :
+       std::vector<std::string>{"technique=legacy.hw&foo=1",
+                                "technique=legacy.hw&%00=1",
+                                "technique=a&technique=b",
+                                "technique=legacy.hw&view=image&view=zzz",
+                                "technique=legacy.hw&lane=A",
+                                "technique=legacy.hw&lane=12345678901234567",
+                                "technique=legacy.hw&scene=..%2F..",
+                                "technique=legacy.hw&scene=%2Fetc%2Fpasswd",
+                                "technique=",
+                                "technique=legacy.hw&param==1",
+                                "technique=legacy.hw&param=a=b=c",
+                                "technique=legacy.hw&out=x.png",
+                                "technique=legacy.hw&mask=m.png",
+                                "technique=legacy.hw&backend=egl",
+                                "technique=legacy.hw&dump-passes=d",
+                                "technique=legacy.hw&scene=--out",
+                                "technique=legacy.hw&scene=--backend=reference",
+                                "technique=legacy.hw&help=1",
+                                "technique=legacy.hw&h=1",
+                                "technique=legacy.hw&size=%0a",
+                                "technique=legacy.ramp&filter=2",
+                                "technique=legacy.ramp&precision=12&precision=13",
+                                "technique=%E2%80%AE",
+                                "technique=legacy.hw&imaging=native",
+                                "technique=modern.hw&imaging=emulated",
+                                "technique=legacy.hw&param=" + std::string(1100, 'k') + "=1"})
     cases.push_back({get("/api/render?" + q)});
   for (int n = 0; n < 10; ++n) {  // many repeats of one key
     std::string q = "/api/error?technique=legacy.hw&view=nope";
@@ -120,13 +137,13 @@ std::vector<Case> malformedRequests() {
     cases.push_back({get("/api/render?technique=" + std::string(len, 'a'))});
   cases.push_back({get("/" + std::string(10000, 'x'))});
   // Unknown paths.
-  for (const char* p : {"/api", "/api/", "/api/render/", "/API/render", "/api/pass/1/x.png",
-                               "/api/pass/99/0.png", "/%2e%2e/%2e%2e/etc/passwd", "/index.html/",
-                               "/.git/config", "/lab.css?x=1/../.."})
+  for (const char* p :
+       {"/api", "/api/", "/api/render/", "/API/render", "/api/pass/1/x.png", "/api/pass/99/0.png",
+        "/%2e%2e/%2e%2e/etc/passwd", "/index.html/", "/.git/config", "/lab.css?x=1/../.."})
     cases.push_back({get(std::string(p))});
   // Wrong methods.
-  for (const std::string m : {"POST", "PUT", "DELETE", "PATCH", "OPTIONS", "BREW", "TRACE",
-                               "CONNECT", "get", "G E T"})
+  for (const std::string m :
+       {"POST", "PUT", "DELETE", "PATCH", "OPTIONS", "BREW", "TRACE", "CONNECT", "get", "G E T"})
     cases.push_back({m + " /api/render?technique=legacy.hw HTTP/1.1\r\nHost: x\r\n"
                          "Content-Length: 0\r\nConnection: close\r\n\r\n"});
   // Not HTTP at all, and broken request lines and headers.
@@ -168,7 +185,8 @@ TEST(LabFuzz, MalformedRequestsGet4xxAndTheServerKeepsAnswering) {
   // coordinate or a parameter) render, about 30 of the cases; none of the others may.
   EXPECT_GE(refused, int(cases.size()) - 40);
   // Still serving, correctly.
-  const std::string frame = exchange(port, get("/api/render?scene=brabec&technique=modern.hw&size=64x48"), false);
+  const std::string frame =
+      exchange(port, get("/api/render?scene=brabec&technique=modern.hw&size=64x48"), false);
   EXPECT_EQ(statusOf(frame), 200) << frame.substr(0, 300);
   EXPECT_NE(frame.find("Content-Type: image/png"), std::string::npos);
   EXPECT_NE(frame.find("\x89PNG"), std::string::npos);
