@@ -73,7 +73,8 @@ TEST(PlanConsulted, EachTechniqueDeclaresWhatThePlannerNeeds) {
   RenderParams p = small();
   p.filter = 4;
   for (const char* name : {"modern.vsm", "modern.csm"}) {
-    const PlanItem* blur = planned(planFrame(s, findTechnique(name), p), "separable blur pass");
+    const FramePlan plan = planFrame(s, findTechnique(name), p);
+    const PlanItem* blur = planned(plan, "separable blur pass");
     ASSERT_TRUE(blur) << name;
     EXPECT_TRUE(blur->kept) << name << ": " << blur->reason;
     EXPECT_NE(blur->reason.find("3 taps"), std::string::npos) << name << ": " << blur->reason;
