@@ -1,5 +1,5 @@
 // apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures,
-// lesson.
+// lesson, serve.
 // Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
@@ -18,6 +18,7 @@
 #include "figures/figures.h"
 #include "figures/lesson.h"
 #include "figures/overrides.h"
+#include "lab/lab_server.h"
 
 namespace sl {
 namespace {
@@ -41,6 +42,7 @@ usage:
   shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
+  shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
@@ -178,7 +180,8 @@ void addAdjustments(nlohmann::json& made, const SceneAdjustments& a) {
 int render(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const SceneAdjustments adjustments = cli::sceneAdjustments(args);
-  const Scene scene = adjustedScene(sceneName, adjustments);
+  Scene scene = adjustedScene(sceneName, adjustments);
+  cli::applyView(args, scene);
   const Technique& technique = findTechnique(args.required("technique"));
   RenderParams params = withReadLog(cli::renderParams(args));
   rejectIgnoredOptions(technique, cli::givenCommonOptions(args));
@@ -214,7 +217,8 @@ int render(const cli::Args& args) {
 int compare(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const SceneAdjustments adjustments = cli::sceneAdjustments(args);
-  const Scene scene = adjustedScene(sceneName, adjustments);
+  Scene scene = adjustedScene(sceneName, adjustments);
+  cli::applyView(args, scene);
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
@@ -278,6 +282,7 @@ int run(int argc, char** argv) {
         !args.has("no-progress"), figures::parseOverrides(args));
   if (args.command == "lesson") return figures::runLessonCommand(args);
   if (args.command == "bench") return figures::runBench(args);
+  if (args.command == "serve") return lab::runServe(args);
   if (args.command == "plan") {
     rejectIgnoredOptions(findTechnique(args.required("technique")), cli::givenCommonOptions(args));
     return figures::runPlan(args);

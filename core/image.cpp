@@ -52,27 +52,8 @@ void setProvenanceText(png_structp png, png_infop info, const Provenance& proven
   png_set_text(png, info, text.data(), int(text.size()));  // libpng copies the strings
 }
 
-}  // namespace
-
-void writePng(const std::string& path, const Image& image, int bitDepth,
-              const Provenance& provenance) {
-  if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
-  const int colorType = pngColorType(image.channels);
-  if (colorType < 0 || image.width <= 0 || image.height <= 0)
-    throw InputError("cannot write an empty or " + std::to_string(image.channels) +
-                     "-channel image to " + path);
-  // A temporary name of this process alone: parallel writers of one path (ctest runs tests as
-  // parallel processes) each rename a complete file into place, never a half-written one.
-  const std::string temp = path + ".part-" + std::to_string(::getpid());
-  File file(std::fopen(temp.c_str(), "wb"));
-  if (!file) throw InputError("cannot write " + path + ": " + std::strerror(errno));
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (png == nullptr || info == nullptr) {
-    png_destroy_write_struct(&png, &info);
-    std::remove(temp.c_str());
-    throw InputError("libpng could not start writing " + path);
-  }
+// The rows of a PNG, top-down, quantised to `bitDepth` (8 or 16, big-endian).
+std::vector<unsigned char> pngRows(const Image& image, int bitDepth) {
   const int bytes = bitDepth / 8;
   const size_t rowBytes = size_t(image.width) * image.channels * bytes;
   std::vector<unsigned char> pixels(rowBytes * image.height);
@@ -93,6 +74,72 @@ void writePng(const std::string& path, const Image& image, int bitDepth,
       }
     }
   }
+  return pixels;
+}
+
+void appendToString(png_structp png, png_bytep data, png_size_t length) {
+  static_cast<std::string*>(png_get_io_ptr(png))
+      ->append(reinterpret_cast<const char*>(data), length);
+}
+
+}  // namespace
+
+std::string encodePng(const Image& image, int bitDepth, const Provenance& provenance) {
+  constexpr int kInMemoryPngCompression = 1;  // zlib level 1 (Z_BEST_SPEED)
+  if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
+  const int colorType = pngColorType(image.channels);
+  if (colorType < 0 || image.width <= 0 || image.height <= 0)
+    throw InputError("cannot encode an empty or " + std::to_string(image.channels) +
+                     "-channel image as PNG");
+  const std::vector<unsigned char> pixels = pngRows(image, bitDepth);
+  const size_t rowBytes = size_t(image.width) * image.channels * (bitDepth / 8);
+  std::string out;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr) {
+    png_destroy_write_struct(&png, &info);
+    throw InputError("libpng could not start encoding a PNG");
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    throw InputError("libpng failed while encoding a PNG");
+  }
+  png_set_write_fn(png, &out, appendToString, nullptr);
+  // zlib's fastest level: the live lab answers with these while a slider moves, on loopback,
+  // where a few more bytes cost less than the time of a denser deflate.
+  png_set_compression_level(png, kInMemoryPngCompression);
+  png_set_IHDR(png, info, image.width, image.height, bitDepth, colorType, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  setProvenanceText(png, info, provenance);
+  png_write_info(png, info);
+  for (int y = 0; y < image.height; ++y)
+    png_write_row(png, const_cast<unsigned char*>(pixels.data()) + rowBytes * y);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return out;
+}
+
+void writePng(const std::string& path, const Image& image, int bitDepth,
+              const Provenance& provenance) {
+  if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
+  const int colorType = pngColorType(image.channels);
+  if (colorType < 0 || image.width <= 0 || image.height <= 0)
+    throw InputError("cannot write an empty or " + std::to_string(image.channels) +
+                     "-channel image to " + path);
+  // A temporary name of this process alone: parallel writers of one path (ctest runs tests as
+  // parallel processes) each rename a complete file into place, never a half-written one.
+  const std::string temp = path + ".part-" + std::to_string(::getpid());
+  File file(std::fopen(temp.c_str(), "wb"));
+  if (!file) throw InputError("cannot write " + path + ": " + std::strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (png == nullptr || info == nullptr) {
+    png_destroy_write_struct(&png, &info);
+    std::remove(temp.c_str());
+    throw InputError("libpng could not start writing " + path);
+  }
+  const size_t rowBytes = size_t(image.width) * image.channels * (bitDepth / 8);
+  const std::vector<unsigned char> pixels = pngRows(image, bitDepth);
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     file.reset();
@@ -104,7 +151,8 @@ void writePng(const std::string& path, const Image& image, int bitDepth,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   setProvenanceText(png, info, provenance);
   png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y) png_write_row(png, pixels.data() + rowBytes * y);
+  for (int y = 0; y < image.height; ++y)
+    png_write_row(png, const_cast<unsigned char*>(pixels.data()) + rowBytes * y);
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   const bool flushed = std::fflush(file.get()) == 0;

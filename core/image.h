@@ -35,6 +35,8 @@ struct Image {
 // commit), "shadowlab:command" (the command line) and, when given, "shadowlab:parameters".
 void writePng(const std::string& path, const Image& image, int bitDepth = 8,
               const Provenance& provenance = {});
+// The same PNG in memory (the live lab's responses, lab/), deflated at zlib's fastest level.
+std::string encodePng(const Image& image, int bitDepth = 8, const Provenance& provenance = {});
 // Reads any PNG (palette, gray, RGB, with or without alpha, 8 or 16 bit) as float channels.
 Image readPng(const std::string& path);
 // The text chunks (tEXt, zTXt, iTXt) of a PNG, keyword -> text. Throws InputError.

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 
@@ -52,6 +53,9 @@ std::vector<OptionSpec> renderOptions() {
       {"filter", "K", "PCF footprint K (K x K samples) [2]"},
       {"precision", "8|12|float", "colour precision of the legacy passes: 8, 12 or float [8]"},
       {"param", "KEY=VALUE", "key=value, repeatable (shadowlab list shows each technique's keys)"},
+      {"orbit", "AZ,EL,DIST",
+       "camera orbit around its target: azimuth and elevation in degrees, distance in world "
+       "units [the scene's camera]"},
       {"backend", "NAME", "osmesa, reference (Mesa 7.8.2, native imaging) or egl [osmesa]"},
       {"imaging", "native|emulated",
        "imaging subset of the legacy techniques: native (the back end's own; reference only) or "
@@ -142,6 +146,12 @@ const std::vector<CommandSpec>& commandSpecs() {
         {"shadow-map", "N", "shadow map side in texels, where the technique reads one [512]"}},
        "technique",
        "technique name (shadowlab list), required"},
+      {"serve",
+       "the live lab: a page and its API (/api/techniques, /api/scenes, /api/render, /api/error)",
+       {{"host", "ADDRESS",
+         "address to listen on; anything but loopback is warned about "
+         "[127.0.0.1]"},
+        {"port", "N", "TCP port; 0 picks a free one [8080]"}}},
   };
   return kCommands;
 }
@@ -304,6 +314,81 @@ SceneAdjustments sceneAdjustments(const Args& args) {
   }
   if (auto v = args.value("light-position")) a.lightPosition = parsePosition("--light-position", *v);
   return a;
+}
+
+namespace {
+// "1.5,2,-3" -> three strict decimals; InputError naming the option otherwise.
+std::array<double, 3> parseTriple(const std::string& what, const std::string& text,
+                                  const char* form) {
+  std::array<double, 3> v{};
+  size_t start = 0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const size_t comma = text.find(',', start);
+    const bool last = i + 1 == v.size();
+    if (last != (comma == std::string::npos))
+      throw InputError(what + " must look like " + form + ", got '" + text + "'");
+    const std::string part = text.substr(start, last ? std::string::npos : comma - start);
+    v[i] = parseNumber(what, part);
+    start = comma + 1;
+  }
+  return v;
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The orbit frame of a camera: `axis` its up, azimuth 0 along world +z made normal to the axis
+// (+x when the axis is z), azimuth 90 along axis x front.
+struct OrbitFrame {
+  glm::vec3 axis, front, side;
+};
+OrbitFrame orbitFrame(const Camera& camera) {
+  OrbitFrame f;
+  f.axis = glm::normalize(camera.up);
+  constexpr float kParallel = 1e-3f;  // |z off the axis| below this: the axis is z
+  f.front = glm::vec3(0, 0, 1) - glm::dot(glm::vec3(0, 0, 1), f.axis) * f.axis;
+  if (glm::length(f.front) < kParallel)
+    f.front = glm::vec3(1, 0, 0) - glm::dot(glm::vec3(1, 0, 0), f.axis) * f.axis;
+  f.front = glm::normalize(f.front);
+  f.side = glm::cross(f.axis, f.front);
+  return f;
+}
+}  // namespace
+
+ViewPose viewPose(const Scene& scene) {
+  const auto [axis, front, side] = orbitFrame(scene.camera);
+  const glm::vec3 offset = scene.camera.position - scene.camera.target;
+  const double distance = glm::length(offset);
+  const glm::vec3 d = offset / float(distance);
+  constexpr double kDegreesPerRadian = 180.0 / kPi;
+  ViewPose pose;
+  pose.azimuthDegrees = std::atan2(glm::dot(d, side), glm::dot(d, front)) * kDegreesPerRadian;
+  pose.elevationDegrees =
+      std::asin(std::clamp(double(glm::dot(d, axis)), -1.0, 1.0)) * kDegreesPerRadian;
+  pose.distance = distance;
+  pose.light = scene.light.position;
+  return pose;
+}
+
+void applyView(const Args& args, Scene& scene) {
+  if (auto v = args.value("orbit")) {
+    const auto o = parseTriple("--orbit", *v, "AZ,EL,DIST");
+    constexpr double kMaxAzimuthDegrees = 360.0;
+    constexpr double kMaxElevationDegrees = 89.0;  // the camera's up stays off its view direction
+    constexpr double kMinOrbitDistance = 1e-3;     // world units; the near plane is 0.1 or less
+    if (std::abs(o[0]) > kMaxAzimuthDegrees)
+      throw InputError("--orbit azimuth must lie in [-360, 360] degrees, got '" + *v + "'");
+    if (std::abs(o[1]) > kMaxElevationDegrees)
+      throw InputError("--orbit elevation must lie in [-89, 89] degrees, got '" + *v + "'");
+    if (!(o[2] >= kMinOrbitDistance && o[2] <= kMaxSceneCoordinate))
+      throw InputError("--orbit distance must lie in [0.001, 1e12], got '" + *v + "'");
+    const auto [axis, front, side] = orbitFrame(scene.camera);
+    constexpr double kRadiansPerDegree = kPi / 180.0;
+    const double az = o[0] * kRadiansPerDegree, el = o[1] * kRadiansPerDegree;
+    const glm::vec3 d = float(std::cos(el) * std::cos(az)) * front +
+                        float(std::cos(el) * std::sin(az)) * side + float(std::sin(el)) * axis;
+    scene.camera.position = scene.camera.target + float(o[2]) * d;
+  }
+  validateScene(scene);
 }
 
 std::vector<CommonOption> givenCommonOptions(const Args& args) {

@@ -59,4 +59,18 @@ glm::vec3 parsePosition(const std::string& what, const std::string& text);  // "
 // (registry/registry.h rejectIgnoredOptions refuses those the technique does not read).
 std::vector<CommonOption> givenCommonOptions(const Args& args);
 
+// --orbit AZ,EL,DIST (render, compare, plan and the lab's API; the light is moved by
+// --light-position, sceneAdjustments): the camera on a sphere around its target (azimuth about the camera's up axis,
+// 0 towards world +z; elevation above the plane normal to that axis; distance in world units).
+struct ViewPose {
+  double azimuthDegrees = 0.0;
+  double elevationDegrees = 0.0;
+  double distance = 1.0;
+  glm::vec3 light{0.0f};
+};
+ViewPose viewPose(const Scene& scene);  // the scene's own camera and light, in those terms
+// Applies --orbit to `scene` and validates it; InputError for a malformed or
+// impossible value (a light on its target, an orbit that puts the camera on it).
+void applyView(const Args& args, Scene& scene);
+
 }  // namespace sl::cli

@@ -114,6 +114,11 @@ std::unique_ptr<GlContext> contextForRender(const Technique& technique,
 }
 }  // namespace
 
+std::unique_ptr<GlContext> makeRenderContext(const Technique& technique,
+                                             const RenderParams& params) {
+  return contextForRender(technique, params);
+}
+
 void checkRenderable(const Technique& technique, const RenderParams& params) {
   contextForRender(technique, params);
 }

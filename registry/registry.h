@@ -26,6 +26,11 @@ std::vector<std::string> checkOptionsOfPair(const Technique& a, const Technique&
 // native, for legacy techniques), validates the parameters against it and renders.
 Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params);
 
+// The context renderTechnique makes for a technique (parameters checked against its limits,
+// imaging subset installed), for callers that render many frames on one context (lab/).
+std::unique_ptr<GlContext> makeRenderContext(const Technique& technique,
+                                             const RenderParams& params);
+
 // The checks renderTechnique makes before it renders, against a context made as it makes one
 // (the GL's limits, e.g. GL_MAX_TEXTURE_SIZE for --shadow-map): `shadowlab plan` refuses what
 // `shadowlab render` refuses. Throws InputError.

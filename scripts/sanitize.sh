@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # scripts/sanitize.sh — the input-hardening suites (scene validation, mesh loading and its
-# fuzz test, the command line's bad inputs and output guarantees, the stability cases) built
+# fuzz test, the command line's bad inputs and output guarantees, the stability cases, the live
+# lab's API and its fuzz test of malformed requests) built
 # with AddressSanitizer + UndefinedBehaviorSanitizer (CMake preset asan, build-asan/) and run
 # with ctest. Sized for CI: two cores, well under half an hour with the release build done.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset asan >/dev/null
-cmake --build build-asan -j"$(nproc)" --target shadowlab test_core test_apps test_stability
+cmake --build build-asan -j"$(nproc)" --target shadowlab test_core test_apps test_stability test_lab
 # Only the suites above are built: the others' ctest entries would be "not found" here.
 # reference.soft's stability cases are left out: 288 Embree rays a pixel take ~20 s each under
 # ASan and exercise no input handling that reference.hard's cases do not.
-ctest --preset asan -j"$(nproc)" -L 'core|apps|stability' -E 'reference_soft' "$@"
+ctest --preset asan -j"$(nproc)" -L 'core|apps|stability|lab' -E 'reference_soft' "$@"

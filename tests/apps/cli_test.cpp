@@ -81,11 +81,13 @@ TEST(Cli, ListAndHelp) {
 TEST(Cli, EveryCommandHasHelp) {
   const std::map<std::string, std::vector<std::string>> expected = {
       {"list", {}},
-      {"render", {"--technique", "--out", "--mask", "--dump-passes", "--param", "--backend"}},
+      {"render", {"--technique", "--out", "--mask", "--dump-passes", "--param", "--backend",
+                  "--light-position", "--orbit"}},
       {"compare", {"--a", "--b", "--diff", "--threshold", "--size"}},
       {"bench", {"--quick", "--scene", "--technique", "--csv", "--repeat", "--out"}},
       {"plan", {"--technique", "--shadow-map", "--param"}},
       {"figures", {"--out", "--only", "--no-progress"}},
+      {"serve", {"--host", "--port"}},
   };
   for (const auto& [command, options] : expected) {
     for (const char* flag : {" --help", " -h"}) {

@@ -2,7 +2,7 @@
 #
 # The layers, lowest first (DESIGN.md "Layout"; README "How it is built"):
 #   0 core/      1 imaging/      2 legacy_gl/ modern/ reference/ (never each other)
-#   3 registry/  4 figures/      5 apps/ tools/ (the executables' mains)
+#   3 registry/  4 figures/ lab/ (never each other)  5 apps/ tools/ (the executables' mains)
 # A source file may include headers of its own folder and of lower layers only.
 # Run: cmake -DSOURCE_DIR=<repo> -P include_layers.cmake   (a CTest test, label "core").
 if(NOT SOURCE_DIR)
@@ -16,9 +16,10 @@ set(kLayer_modern 2)
 set(kLayer_reference 2)
 set(kLayer_registry 3)
 set(kLayer_figures 4)
+set(kLayer_lab 4)
 set(kLayer_apps 5)
 set(kLayer_tools 5)
-set(kModules core imaging legacy_gl modern reference registry figures apps tools)
+set(kModules core imaging legacy_gl modern reference registry figures lab apps tools)
 
 set(violations "")
 set(checked 0)

@@ -1,0 +1,738 @@
+#include "lab/lab_server.h"
+
+#include <httplib.h>
+#include <pthread.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <deque>
+#include <iostream>
+#include <list>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "core/decimal.h"
+#include "core/errors.h"
+#include "core/metrics.h"
+#include "core/pass_dump.h"
+#include "core/provenance.h"
+#include "core/scene_library.h"
+#include "lab/web_files.h"
+#include "lab/worker.h"
+#include "registry/registry.h"
+#ifdef SHADOWLAB_HAVE_REFERENCE
+#include "reference/reference.h"
+#endif
+
+namespace sl::lab {
+namespace {
+using json = nlohmann::json;
+
+constexpr int kCachedContexts = 4;         // GL contexts the worker keeps (one per technique/size)
+constexpr int kCachedReferences = 8;       // reference frames (scene/size/light/camera)
+constexpr int kMaxQueryValueBytes = 1024;  // one query value
+constexpr int kMaxQueryKeys = 64;          // keys of one query
+constexpr time_t kSocketTimeoutSeconds = 5;  // read/write timeout of a connection
+constexpr size_t kMaxPayloadBytes = 1024;    // request bodies (the API is GET only)
+constexpr const char* kDefaultLane = "main";
+constexpr size_t kMaxLaneName = 16;
+
+// ------------------------------------------------------------------ requests
+
+// One line: the CLI prints its InputError on one line; a value with a line break would not be.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+std::vector<std::string> servedSceneNames() {
+  std::vector<std::string> names = builtinSceneNames();
+  for (const std::string& s : sceneFileNames()) names.push_back(s);
+  return names;
+}
+
+// A parsed /api/render or /api/error query: the CLI's Args of `shadowlab render` with the two
+// keys of the API alone (view, lane).
+struct LabRequest {
+  cli::Args args;
+  std::string view;
+  std::string lane = kDefaultLane;
+  std::string sceneName;
+  const Technique* technique = nullptr;
+  RenderParams params;
+  std::string command;  // the `shadowlab render ...` line that reproduces the frame
+  json parameters;      // the query as it took effect, for the PNG's provenance
+};
+
+// The query's key=value pairs in the order given, each decoded by httplib. (httplib's own
+// Request::params sorts the keys, which would change which error the CLI's parser meets
+// first, keeps only the text after the last '=' of a value, "param=pixel=area" -> "area",
+// and drops repeated pairs.)
+std::vector<std::pair<std::string, std::string>> queryPairs(const httplib::Request& req) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  const size_t question = req.target.find('?');
+  if (question == std::string::npos) return pairs;
+  const std::string query = req.target.substr(question + 1);
+  httplib::detail::split(
+      query.data(), query.data() + query.size(), '&', [&](const char* b, const char* e) {
+        const std::string item(b, e);
+        if (item.empty()) return;  // "a=1&&b=2"
+        const size_t eq = item.find('=');
+        pairs.emplace_back(httplib::detail::decode_url(item.substr(0, eq), true),
+                           eq == std::string::npos
+                               ? std::string()
+                               : httplib::detail::decode_url(item.substr(eq + 1), true));
+      });
+  return pairs;
+}
+
+LabRequest parseRequest(const httplib::Request& req, const std::vector<std::string>& views) {
+  LabRequest r;
+  r.view = views.front();
+  const auto pairs = queryPairs(req);
+  if (pairs.size() > size_t(kMaxQueryKeys))
+    throw InputError("too many query keys (at most " + std::to_string(kMaxQueryKeys) + ")");
+  std::vector<std::string> argv = {"shadowlab", "render"};
+  std::vector<std::string> commandLine = {"shadowlab", "render"};
+  for (const auto& [key, value] : pairs) {
+    if (value.size() > size_t(kMaxQueryValueBytes))
+      throw InputError("the value of " + key.substr(0, 32) + " is longer than " +
+                       std::to_string(kMaxQueryValueBytes) + " bytes");
+    for (char c : key + value)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+        throw InputError("query keys and values must be printable text");
+    if (key == "view") {
+      if (std::find(views.begin(), views.end(), value) == views.end()) {
+        std::string list;
+        for (const auto& v : views) list += (list.empty() ? "" : ", ") + v;
+        throw InputError("view must be one of " + list + ", got '" + value + "'");
+      }
+      r.view = value;
+      continue;
+    }
+    if (key == "lane") {
+      const bool ok = !value.empty() && value.size() <= kMaxLaneName &&
+                      std::all_of(value.begin(), value.end(), [](char c) {
+                        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-';
+                      });
+      if (!ok) throw InputError("lane must be 1-16 of a-z, 0-9 and -, got '" + value + "'");
+      r.lane = value;
+      continue;
+    }
+    if (key == "out" || key == "mask" || key == "dump-passes")
+      throw InputError("the lab writes no files: --" + key + " is not served");
+    if (key == "backend")
+      throw InputError("the lab renders on its own back end (osmesa): --backend is not served");
+    // As the command line spells it: the option and its value as two arguments.
+    argv.push_back("--" + key);
+    argv.push_back(value);
+    commandLine.push_back("--" + key);
+    commandLine.push_back(value);
+  }
+  std::vector<char*> pointers;
+  for (std::string& a : argv) pointers.push_back(a.data());
+  try {
+    r.args = cli::parse(int(pointers.size()), pointers.data());
+  } catch (const cli::HelpRequested&) {
+    throw InputError("--help is not served (GET /api/techniques lists the options)");
+  }
+  // A value spelled as an option ("scene=--out=x") is parsed as one, as on the command line:
+  // the options that name files or back ends are refused whichever way they came in.
+  for (const char* key : {"out", "mask", "dump-passes"})
+    if (r.args.has(key))
+      throw InputError(std::string("the lab writes no files: --") + key + " is not served");
+  if (r.args.has("backend"))
+    throw InputError("the lab renders on its own back end (osmesa): --backend is not served");
+  r.sceneName = r.args.value("scene").value_or(kDefaultScene);
+  const std::vector<std::string> scenes = servedSceneNames();
+  if (std::find(scenes.begin(), scenes.end(), r.sceneName) == scenes.end()) {
+    std::string known;
+    for (const auto& n : scenes) known += (known.empty() ? "" : ", ") + n;
+    throw InputError("unknown scene '" + r.sceneName + "' (known: " + known + ")");
+  }
+  r.technique = &findTechnique(r.args.required("technique"));
+  r.params = cli::renderParams(r.args);
+  r.params.readLog = std::make_shared<ParamReadLog>();
+  rejectIgnoredOptions(*r.technique, cli::givenCommonOptions(r.args));
+  if (r.params.width > kMaxServedWidth || r.params.height > kMaxServedHeight)
+    throw InputError("the lab serves --size up to " + std::to_string(kMaxServedWidth) + "x" +
+                     std::to_string(kMaxServedHeight) + " (shadowlab render makes larger frames)");
+  if (r.params.shadowMapTexels > kMaxServedShadowMap)
+    throw InputError("the lab serves --shadow-map up to " + std::to_string(kMaxServedShadowMap) +
+                     " (shadowlab render makes larger maps)");
+  if (r.params.filter > kMaxServedFilter)
+    throw InputError("the lab serves --filter up to " + std::to_string(kMaxServedFilter) +
+                     " (shadowlab render filters wider)");
+  // The outputs of the reproducing command: the image, and the mask or the pass dump that
+  // the view shows (the error views compare the mask).
+  commandLine.push_back("--out");
+  commandLine.push_back("image.png");
+  if (r.view == "passes") {
+    commandLine.push_back("--dump-passes");
+    commandLine.push_back("passes");
+  } else if (r.view != "image") {
+    commandLine.push_back("--mask");
+    commandLine.push_back("mask.png");
+  }
+  r.command = shellJoin(commandLine);
+  r.parameters = json::object();
+  for (const auto& [key, values] : r.args.options) r.parameters[key] = values;
+  return r;
+}
+
+// ------------------------------------------------------------------ the worker's state
+
+std::string contextKey(const Technique& t, const RenderParams& p) {
+  const ContextSpec spec = contextFor(t, p);
+  return t.name + "|" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "|" +
+         colorFormatName(spec.color) + "|" + std::to_string(int(p.imaging));
+}
+
+// What only the worker thread touches: loaded scenes, GL contexts and reference frames.
+class Engine {
+ public:
+  const Scene& scene(const std::string& name) {
+    auto it = scenes_.find(name);
+    if (it == scenes_.end()) it = scenes_.emplace(name, loadScene(name)).first;
+    return it->second;
+  }
+
+  // Renders on the technique's cached context (made as `shadowlab render` makes one).
+  Frame render(const Technique& t, const Scene& scene, const RenderParams& p) {
+    const std::string key = contextKey(t, p);
+    auto it = std::find_if(contexts_.begin(), contexts_.end(),
+                           [&](const auto& c) { return c.first == key; });
+    if (it == contexts_.end()) {
+      checkParams(t, p, 0);
+      contexts_.emplace_front(key, makeRenderContext(t, p));
+      while (int(contexts_.size()) > kCachedContexts) contexts_.pop_back();
+    } else {
+      contexts_.splice(contexts_.begin(), contexts_, it);
+    }
+    GlContext& context = *contexts_.front().second;
+    try {
+      checkParams(t, p, context.caps().maxTextureSize);
+      context.makeCurrent();
+      Frame frame = t.render(context, scene, p);
+      if (!frame.color.empty() && !allFinite(frame.color))
+        throw GlError("the image has NaN or Inf");
+      if (!allFinite(frame.visibility)) throw GlError("the visibility mask has NaN or Inf");
+      return frame;
+    } catch (...) {
+      contexts_.pop_front();  // a failed frame may leave GL state behind: a fresh context next
+      throw;
+    }
+  }
+
+  void clear() {
+    contexts_.clear();
+    references_.clear();
+    scenes_.clear();
+  }
+
+  struct Reference {
+    Image visibility;
+    Image region;  // pixels that see lit geometry (reference/reference.h kDirectLightRegionPass)
+    double milliseconds = 0.0;
+  };
+  // reference.hard pixel=area (the pixel-integrated truth) for this scene, size and view.
+  const Reference& reference(const Scene& scene, const RenderParams& p, bool& cached) {
+    const auto& c = scene.camera;
+    const auto& l = scene.light.position;
+    const std::string key = scene.name + "|" + std::to_string(p.width) + "x" +
+                            std::to_string(p.height) + "|" + formatVec(l) + "|" +
+                            formatVec(c.position);
+    auto it = std::find_if(references_.begin(), references_.end(),
+                           [&](const auto& r) { return r.first == key; });
+    cached = it != references_.end();
+    if (cached) {
+      references_.splice(references_.begin(), references_, it);
+      return references_.front().second;
+    }
+#ifdef SHADOWLAB_HAVE_REFERENCE
+    RenderParams rp;
+    rp.width = p.width;
+    rp.height = p.height;
+    rp.capturePasses = true;  // for the direct-light region
+    rp.extra[reference::kPixelParam] = reference::kPixelArea;
+    const Frame f = renderTechnique(findTechnique("reference.hard"), scene, rp);
+    Reference r;
+    r.visibility = f.visibility;
+    r.milliseconds = f.totalMilliseconds();
+    for (const PassImage& i : f.intermediates)
+      if (i.name == reference::kDirectLightRegionPass) r.region = i.image;
+    if (r.region.empty()) r.region = Image(p.width, p.height, 1, 1.0f);
+    references_.emplace_front(key, std::move(r));
+    while (int(references_.size()) > kCachedReferences) references_.pop_back();
+    return references_.front().second;
+#else
+    throw GlError("this build has no ray-traced reference (Embree)");
+#endif
+  }
+
+ private:
+  static std::string formatVec(const glm::vec3& v) {
+    return formatNumber(v.x) + "," + formatNumber(v.y) + "," + formatNumber(v.z);
+  }
+  std::map<std::string, Scene> scenes_;
+  std::list<std::pair<std::string, std::unique_ptr<GlContext>>> contexts_;
+  std::list<std::pair<std::string, Reference>> references_;
+};
+
+// Runs `body` and turns its exceptions into answers: InputError 400, GlError and the rest 500.
+template <typename Body>
+JobResult guarded(Body body) {
+  JobResult r;
+  try {
+    return body();
+  } catch (const InputError& e) {
+    r.httpStatus = 400;
+    r.body = oneLine(e.what());
+  } catch (const GlError& e) {
+    r.httpStatus = 500;
+    r.body = oneLine(std::string("GL: ") + e.what());
+  } catch (const std::exception& e) {
+    r.httpStatus = 500;
+    r.body = oneLine(e.what());
+  }
+  r.contentType = "text/plain";
+  return r;
+}
+
+JobResult pngResult(const Image& image, int bitDepth, const LabRequest& req) {
+  JobResult r;
+  r.contentType = "image/png";
+  r.body =
+      encodePng(image, bitDepth,
+                {req.command, req.parameters.dump(-1, ' ', true, json::error_handler_t::replace)});
+  return r;
+}
+
+JobResult jsonResult(const json& j) {
+  JobResult r;
+  r.contentType = "application/json";
+  r.body = j.dump(-1, ' ', false, json::error_handler_t::replace);
+  return r;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+bool isLoopback(const std::string& host) {
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+// ------------------------------------------------------------------ the server
+
+struct LabServer::Impl {
+  LabOptions options;
+  Engine engine;             // the worker thread's alone
+  Worker worker{kMaxLanes};  // after `engine`: its thread stops before the engine goes
+  httplib::Server server;
+  std::thread listener;
+  int port = 0;
+
+  std::mutex initMutex;  // lazily built answers of /api/techniques and /api/scenes
+  std::optional<std::string> techniquesJson, scenesJson;
+
+  std::mutex rateMutex;  // token bucket over every /api request
+  double tokens = 0.0;
+  std::chrono::steady_clock::time_point refilled = std::chrono::steady_clock::now();
+
+  std::mutex passesMutex;  // images of the last kKeptPassFrames passes answers
+  std::deque<std::pair<unsigned long long, std::vector<PassDumpImage>>> keptPasses;
+  unsigned long long nextPassesId = 1;
+
+  // The GL contexts are released on the thread that made them current.
+  ~Impl() {
+    worker.runNow([this] {
+      engine.clear();
+      return JobResult{};
+    });
+  }
+
+  bool allowRequest() {
+    std::lock_guard<std::mutex> lock(rateMutex);
+    const auto now = std::chrono::steady_clock::now();
+    tokens = std::min(
+        double(options.burst),
+        tokens + options.requestsPerSecond * std::chrono::duration<double>(now - refilled).count());
+    refilled = now;
+    if (tokens < 1.0) return false;
+    tokens -= 1.0;
+    return true;
+  }
+
+  // /api/techniques: every technique with its --params as it declares them (core/technique.h
+  // ParamSpec), so the page builds its controls from the declarations.
+  static std::string buildTechniques() {
+    json out = json::array();
+    for (const Technique& t : allTechniques()) {
+      json params = json::array();
+      for (const ParamSpec& p : t.params) {
+        json entry = {{"key", p.key},
+                      {"kind", paramKindName(p.kind)},
+                      {"default", p.defaultText()},
+                      {"meaning", p.meaning}};
+        if (p.kind == ParamSpec::Kind::kNumber || p.kind == ParamSpec::Kind::kInteger) {
+          entry["min"] = p.lo;
+          entry["max"] = p.hi;
+        }
+        if (p.kind == ParamSpec::Kind::kChoice) entry["values"] = p.choices;
+        if (p.acceptsAuto) entry["auto"] = true;
+        params.push_back(entry);
+      }
+      json reads = {{"shadow-map", t.reads.shadowMap},
+                    {"filter", t.reads.filter},
+                    {"precision", t.reads.precision},
+                    {"imaging", readsOption(t, CommonOption::kImaging)}};
+      out.push_back({{"name", t.name},
+                     {"paper", t.paper},
+                     {"summary", t.summary},
+                     {"status", t.status},
+                     {"reads", reads},
+                     {"params", params}});
+    }
+    json doc = {
+        {"techniques", out},
+        {"defaults", {{"size", "800x600"}, {"shadow-map", 512}, {"filter", 2}, {"precision", "8"}}},
+        {"caps",
+         {{"width", kMaxServedWidth},
+          {"height", kMaxServedHeight},
+          {"shadow-map", kMaxServedShadowMap},
+          {"filter", kMaxServedFilter}}},
+        {"commit", buildCommit()}};
+    return doc.dump(-1, ' ', false, json::error_handler_t::replace);
+  }
+
+  std::string buildScenes() {
+    json out = json::array();
+    const std::vector<std::string> builtins = builtinSceneNames();
+    for (const std::string& name : servedSceneNames()) {
+      json entry = {
+          {"name", name},
+          {"builtin", std::find(builtins.begin(), builtins.end(), name) != builtins.end()}};
+      const JobResult loaded = worker.runNow([&] {
+        return guarded([&] {
+          const Scene& s = engine.scene(name);
+          const cli::ViewPose pose = cli::viewPose(s);
+          const Bounds b = sceneBounds(s);
+          entry["description"] = s.description;
+          entry["orbit"] = {pose.azimuthDegrees, pose.elevationDegrees, pose.distance};
+          entry["light"] = {pose.light.x, pose.light.y, pose.light.z};
+          entry["light_target"] = {s.light.target.x, s.light.target.y, s.light.target.z};
+          entry["bounds"] = {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}};
+          return JobResult{};
+        });
+      });
+      if (loaded.httpStatus != 200) entry["error"] = loaded.body;
+      out.push_back(entry);
+    }
+    return json{{"scenes", out}, {"default", kDefaultScene}}.dump(-1, ' ', false,
+                                                                  json::error_handler_t::replace);
+  }
+
+  static void answer(httplib::Response& res, const JobResult& r) {
+    res.status = r.httpStatus;
+    res.set_header("Cache-Control", "no-store");
+    for (const auto& [name, value] : r.headers) res.set_header(name.c_str(), value);
+    res.set_content(r.body, r.contentType.empty() ? "text/plain" : r.contentType.c_str());
+  }
+
+  static void badRequest(httplib::Response& res, const std::string& message) {
+    answer(res, JobResult{JobResult::Status::kDone, 400, "text/plain", oneLine(message), {}});
+  }
+
+  void handleRender(const httplib::Request& req, httplib::Response& res) {
+    LabRequest r;
+    try {
+      r = parseRequest(req, {"image", "mask", "passes"});
+    } catch (const InputError& e) {
+      return badRequest(res, e.what());
+    }
+    auto future = worker.submit(r.lane, [this, r]() {
+      return guarded([&] {
+        Scene scene = engine.scene(r.sceneName);
+        adjustScene(scene, cli::sceneAdjustments(r.args));
+        cli::applyView(r.args, scene);
+        if (r.view != "passes") {
+          const Frame f = engine.render(*r.technique, scene, r.params);
+          JobResult out =
+              r.view == "mask" ? pngResult(f.visibility, 16, r) : pngResult(f.color, 8, r);
+          out.headers = {{"X-Shadowlab-Command", r.command},
+                         {"X-Shadowlab-Frame-Ms", formatNumber(f.totalMilliseconds())}};
+          return out;
+        }
+        return passes(r, scene);
+      });
+    });
+    answer(res, future.get());
+  }
+
+  JobResult passes(const LabRequest& r, const Scene& scene) {
+    // The per-pass medians over kPassTimingFrames plain frames, then one frame with capture.
+    std::vector<Frame> timed;
+    for (int i = 0; i < kPassTimingFrames; ++i)
+      timed.push_back(engine.render(*r.technique, scene, r.params));
+    RenderParams captured = r.params;
+    captured.capturePasses = true;
+    const Frame frame = engine.render(*r.technique, scene, captured);
+    std::vector<PassDumpImage> images;
+    if (!frame.intermediates.empty()) images = planPassDump(frame, r.technique->name);
+    json parameters = r.parameters;
+    parameters["params"] = effectiveParams(r.params);
+    const PassDumpHeader header{r.technique->name, r.technique->paper, scene.name, parameters};
+    json doc = passesJson(frame, header, images);
+    json medians = json::array();
+    std::vector<double> frameTimes;
+    for (const Frame& f : timed) frameTimes.push_back(f.totalMilliseconds());
+    for (size_t i = 0; i < timed.front().passes.size(); ++i) {
+      std::vector<double> times;
+      for (const Frame& f : timed)
+        if (i < f.passes.size() && f.passes[i].name == timed.front().passes[i].name)
+          times.push_back(f.passes[i].milliseconds);
+      medians.push_back({{"name", timed.front().passes[i].name},
+                         {"median_ms", median(times)},
+                         {"frames", times.size()}});
+    }
+    doc["median_timings"] = medians;
+    doc["median_frame_ms"] = median(frameTimes);
+    doc["timing_frames"] = kPassTimingFrames;
+    doc["command"] = r.command;
+    std::lock_guard<std::mutex> lock(passesMutex);
+    const unsigned long long id = nextPassesId++;
+    for (size_t i = 0; i < images.size() && i < doc["images"].size(); ++i)
+      doc["images"][i]["url"] =
+          "/api/pass/" + std::to_string(id) + "/" + std::to_string(i) + ".png";
+    keptPasses.emplace_back(id, std::move(images));
+    while (keptPasses.size() > size_t(kKeptPassFrames)) keptPasses.pop_front();
+    return jsonResult(doc);
+  }
+
+  void handleError(const httplib::Request& req, httplib::Response& res) {
+    LabRequest r;
+    try {
+      r = parseRequest(req, {"json", "image"});
+    } catch (const InputError& e) {
+      return badRequest(res, e.what());
+    }
+    auto future = worker.submit(r.lane, [this, r]() {
+      return guarded([&] {
+        Scene scene = engine.scene(r.sceneName);
+        adjustScene(scene, cli::sceneAdjustments(r.args));
+        cli::applyView(r.args, scene);
+        const Frame f = engine.render(*r.technique, scene, r.params);
+        bool cached = false;
+        const Engine::Reference& ref = engine.reference(scene, r.params, cached);
+        if (r.view == "image") {
+          JobResult out = pngResult(differenceHeatMap(f.visibility, ref.visibility), 8, r);
+          out.headers = {{"X-Shadowlab-Command", r.command}};
+          return out;
+        }
+        const MaskDifference all = compareMasks(f.visibility, ref.visibility);
+        const MaskDifference lit = compareMasksWithin(f.visibility, ref.visibility, ref.region);
+        json doc = {{"technique", r.technique->name},
+                    {"scene", scene.name},
+                    {"reference", "reference.hard pixel=area"},
+                    {"reference_cached", cached},
+                    {"reference_ms", ref.milliseconds},
+                    {"frame_ms", f.totalMilliseconds()},
+                    {"all_pixels", toJson(all)},
+                    {"rmse", lit.rmse},
+                    {"max_abs", lit.maxAbs},
+                    {"share_above_half", lit.shareAboveHalf},
+                    {"region_pixels", lit.pixels},
+                    {"params", effectiveParams(r.params)},
+                    {"command", r.command},
+                    {"commit", buildCommit()}};
+        return jsonResult(doc);
+      });
+    });
+    answer(res, future.get());
+  }
+
+  void handlePass(const httplib::Request& req, httplib::Response& res) {
+    const std::optional<long long> id = parseWholeNumber(req.matches[1].str());
+    const std::optional<long long> index = parseWholeNumber(req.matches[2].str());
+    std::lock_guard<std::mutex> lock(passesMutex);
+    for (const auto& [keptId, images] : keptPasses)
+      if (id && index && (long long)keptId == *id && *index >= 0 &&
+          *index < (long long)images.size()) {
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(encodePng(images[size_t(*index)].image, 8), "image/png");
+        return;
+      }
+    res.status = 404;
+    res.set_content("no such pass image (only the last " + std::to_string(kKeptPassFrames) +
+                        " passes answers are kept)",
+                    "text/plain");
+  }
+
+  void routes() {
+    server.set_read_timeout(kSocketTimeoutSeconds, 0);
+    server.set_write_timeout(kSocketTimeoutSeconds, 0);
+    server.set_keep_alive_timeout(kSocketTimeoutSeconds);
+    server.set_payload_max_length(kMaxPayloadBytes);
+    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      if (req.path.rfind("/api/", 0) == 0 && !allowRequest()) {
+        res.status = 429;
+        res.set_content("too many requests: the lab answers at most " +
+                            formatNumber(options.requestsPerSecond) + " API requests a second",
+                        "text/plain");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      return httplib::Server::HandlerResponse::Unhandled;
+    });
+    server.Get("/api/techniques", [this](const httplib::Request&, httplib::Response& res) {
+      std::lock_guard<std::mutex> lock(initMutex);
+      if (!techniquesJson) techniquesJson = buildTechniques();
+      answer(res,
+             JobResult{JobResult::Status::kDone, 200, "application/json", *techniquesJson, {}});
+    });
+    server.Get("/api/scenes", [this](const httplib::Request&, httplib::Response& res) {
+      std::lock_guard<std::mutex> lock(initMutex);
+      if (!scenesJson) scenesJson = buildScenes();
+      answer(res, JobResult{JobResult::Status::kDone, 200, "application/json", *scenesJson, {}});
+    });
+    server.Get("/api/render", [this](const httplib::Request& req, httplib::Response& res) {
+      handleRender(req, res);
+    });
+    server.Get("/api/error", [this](const httplib::Request& req, httplib::Response& res) {
+      handleError(req, res);
+    });
+    server.Get(
+        R"(/api/pass/([0-9]{1,12})/([0-9]{1,6})\.png)",
+        [this](const httplib::Request& req, httplib::Response& res) { handlePass(req, res); });
+    server.Get(R"(/|/[a-z_-]+\.(html|js|css))",
+               [](const httplib::Request& req, httplib::Response& res) {
+                 const std::string path = req.path == "/" ? "/index.html" : req.path;
+                 auto it = webFiles().find(path);
+                 if (it == webFiles().end()) {
+                   res.status = 404;
+                   res.set_content("not found: " + oneLine(req.path), "text/plain");
+                   return;
+                 }
+                 res.set_header("Content-Security-Policy",
+                                "default-src 'self'; img-src 'self' blob: data:; style-src 'self'");
+                 res.set_content(it->second.text, it->second.contentType.c_str());
+               });
+    const auto notGet = [](const httplib::Request&, httplib::Response& res) {
+      res.status = 405;
+      res.set_header("Allow", "GET");
+      res.set_content("the lab answers GET only", "text/plain");
+    };
+    server.Post(".*", notGet);
+    server.Put(".*", notGet);
+    server.Delete(".*", notGet);
+    server.Patch(".*", notGet);
+    server.Options(".*", notGet);
+    server.set_error_handler(httplib::Server::HandlerWithResponse(
+        [](const httplib::Request& req, httplib::Response& res) {
+          if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          res.set_content(res.status == 404 ? "not found: " + oneLine(req.path)
+                                            : "HTTP " + std::to_string(res.status),
+                          "text/plain");
+          return httplib::Server::HandlerResponse::Handled;
+        }));
+    server.set_exception_handler(
+        [](const httplib::Request&, httplib::Response& res, std::exception_ptr ep) {
+          std::string what = "internal error";
+          try {
+            std::rethrow_exception(ep);
+          } catch (const std::exception& e) {
+            what = e.what();
+          } catch (...) {
+          }
+          res.status = 500;
+          res.set_content(oneLine(what), "text/plain");
+        });
+  }
+};
+
+LabServer::LabServer(LabOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = std::move(options);
+  impl_->tokens = impl_->options.burst;
+  impl_->routes();
+}
+
+LabServer::~LabServer() {
+  stop();
+}
+
+int LabServer::start() {
+  Impl& i = *impl_;
+  if (i.options.port == 0) {
+    i.port = i.server.bind_to_any_port(i.options.host.c_str());
+    if (i.port <= 0) throw InputError("cannot listen on " + i.options.host + " (any port)");
+  } else {
+    if (!i.server.bind_to_port(i.options.host.c_str(), i.options.port))
+      throw InputError("cannot listen on " + i.options.host + ":" + std::to_string(i.options.port) +
+                       " (in use, or not an address of this "
+                       "machine)");
+    i.port = i.options.port;
+  }
+  i.listener = std::thread([&i] { i.server.listen_after_bind(); });
+  return i.port;
+}
+
+void LabServer::stop() {
+  if (!impl_) return;
+  impl_->server.stop();
+  if (impl_->listener.joinable()) impl_->listener.join();
+}
+
+std::string LabServer::url() const {
+  const std::string& host = impl_->options.host;
+  const bool v6 = host.find(':') != std::string::npos;
+  return "http://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+}
+
+int runServe(const cli::Args& args) {
+  LabOptions options;
+  if (auto h = args.value("host")) {
+    if (h->empty()) throw InputError("--host must name an address, got ''");
+    options.host = *h;
+  }
+  if (auto p = args.value("port")) {
+    constexpr long long kMaxPort = 65535;
+    const std::optional<long long> port = parseWholeNumber(*p);
+    if (!port || *port < 0 || *port > kMaxPort)
+      throw InputError("--port must be a whole number in 0..65535, got '" + *p + "'");
+    options.port = int(*port);
+  }
+  if (!isLoopback(options.host))
+    std::cerr << "shadowlab: warning: serving on " << options.host
+              << ", not loopback: anyone who reaches this address can use the lab and its CPU\n";
+  // Ctrl-C and SIGTERM are received by sigwait below, never by the server's threads: block
+  // them before any thread starts (threads inherit the mask).
+  // A shell's background job starts with SIGINT ignored, and an ignored signal is discarded,
+  // never pending: restore the default action first (it never runs while the signal is blocked).
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  sigset_t stopSignals;
+  sigemptyset(&stopSignals);
+  sigaddset(&stopSignals, SIGINT);
+  sigaddset(&stopSignals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+  LabServer server(options);
+  server.start();
+  std::cout << "shadowlab: the lab is at " << server.url() << " (Ctrl-C stops it)" << std::endl;
+  int signal = 0;
+  sigwait(&stopSignals, &signal);
+  server.stop();
+  std::cout << "shadowlab: stopped (" << (signal == SIGINT ? "SIGINT" : "SIGTERM") << ")"
+            << std::endl;
+  return 0;
+}
+
+}  // namespace sl::lab
