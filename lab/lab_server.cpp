@@ -167,6 +167,17 @@ LabRequest parseRequest(const httplib::Request& req, const std::vector<std::stri
   if (r.params.filter > kMaxServedFilter)
     throw InputError("the lab serves --filter up to " + std::to_string(kMaxServedFilter) +
                      " (shadowlab render filters wider)");
+  // The ray-traced references' work per pixel: at most their declared defaults (288 shadow rays,
+  // 8x8 sub-pixel samples), so that one request cannot hold the single worker for minutes.
+  for (const char* key : {"rays", "pixel-samples"}) {
+    const ParamSpec* spec = findParam(*r.technique, key);
+    const auto given = r.params.extra.find(key);
+    if (!spec || given == r.params.extra.end()) continue;
+    const std::optional<double> v = parseDecimal(given->second);
+    if (v && *v > spec->fallback)
+      throw InputError("the lab serves --param " + std::string(key) + " up to " +
+                       spec->defaultText() + " (shadowlab render traces more)");
+  }
   // The outputs of the reproducing command: the image, and the mask or the pass dump that
   // the view shows (the error views compare the mask).
   commandLine.push_back("--out");

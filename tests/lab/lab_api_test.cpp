@@ -200,6 +200,15 @@ TEST_F(LabApi, CapsPathsAndFilesAreRefused) {
     EXPECT_EQ(r->status, 400) << extra;
     EXPECT_NE(r->body.find(message), std::string::npos) << extra << ": " << r->body;
   }
+  // The references' Monte Carlo work is capped at their defaults (one request must not hold the
+  // single worker for minutes); the default itself is served.
+  for (const char* extra : {"technique=reference.soft&param=rays=100000",
+                            "technique=reference.hard&param=pixel=area&param=pixel-samples=16"}) {
+    auto r = get(std::string("/api/render?scene=brabec&size=64x48&") + extra);
+    ASSERT_TRUE(r) << extra;
+    EXPECT_EQ(r->status, 400) << extra;
+    EXPECT_EQ(r->body.rfind("the lab serves --param", 0), 0u) << extra << ": " << r->body;
+  }
   // A scene file path is not a served scene, however it is spelled.
   for (const char* scene : {"../../etc/passwd", "/etc/passwd.json", "assets/scenes/ball.json"}) {
     auto r = get(std::string("/api/render?technique=legacy.hw&scene=") +
