@@ -735,7 +735,7 @@ std::vector<FigureSpec> chanFigures() {
       "times beside each panel): per pass "
       "(below) both frames are a light pass and a camera pass, and on llvmpipe the camera "
       "pass's fixed work per pixel (rasterisation, interpolation, lighting) outweighs the "
-      "shadow-map lookups, so 15 more lookups add about one more camera pass, where on the "
+      "shadow-map lookups, so going from 1 to 16 lookups adds about one more camera pass, where on the "
       "paper's GPU they were most of the frame (docs/figures.md).",
       "cylinder", 4, p48);
   f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};

@@ -119,6 +119,8 @@ TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
       "1.5",             // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
       "0.5", "8",        // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
       "4",   "16",       // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
+      "32",              // legacy_gl's kDifferenceDisplayGain: differences shown amplified 32x
+      "12",              // --precision 12, Brabec–Seidel §6's 12-bit buffers (brabec-fig8)
   };
   static const std::regex source(
       R"(The paper:|paper's own|thesis's|chapter's|Chan's|Chan:|Annen|Brabec|Everitt|Kilgard|GeForce|SGI|Octane|their |Eq\. |Figs?\. |§)");
