@@ -140,7 +140,7 @@ std::string shownValue(const nlohmann::json& v) {
 }
 
 // The GLSL lines marked `// @pass id` (core/shaders.h) and the legacy passes they replace (those
-// of `twin` when given), added to a pass of passes.json once each.
+// of `twin`; none without a twin), added to a pass of passes.json once each.
 void addShaderPass(nlohmann::json& pass, const std::string& id, const std::string& twin) {
   bool found = false;
   for (const ShaderPassMarker& m : shaderPassMarkers()) {
@@ -154,7 +154,7 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const std::strin
     if (std::find(pass["glsl"].begin(), pass["glsl"].end(), where) == pass["glsl"].end())
       pass["glsl"].push_back(where);
     for (const std::string& r : m.replaces) {
-      if (!twin.empty() && r.rfind(twin + " ", 0) != 0) continue;
+      if (twin.empty() || r.rfind(twin + " ", 0) != 0) continue;  // a twin's passes only
       if (std::find(pass["replaces"].begin(), pass["replaces"].end(), r) == pass["replaces"].end())
         pass["replaces"].push_back(r);
     }
@@ -310,8 +310,8 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     nlohmann::json& p = passes[passNumberOf(t.name)];
     if (!p.contains("name")) {
       p["name"] = afterPassNumber(t.name);
-      // Declared by the pass (core/technique.h PassTimer); the technique's citation otherwise.
-      p["section"] = t.section.empty() ? header.paper : t.section;
+      // Declared by the pass (core/technique.h PassTimer): the paper section, or "ours ...".
+      p["section"] = t.section;  // a timed pass declares its own (an empty one is a bug)
       p["source"] = {{"file", t.sourceFile}, {"function", t.sourceFunction}};
       p["state"] = nlohmann::json::array();
     }

@@ -76,7 +76,9 @@ std::string phaseFileTag(const Phase& p) {
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
 void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                 Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth ramp in RGBA", "Brabec & Seidel 2001 §4");
+  PassTimer timer(frame, "1 light pass: depth ramp in RGBA",
+                  "Brabec & Seidel 2001 §4: the map rendered as in §2 (Fig. 1), the encoded depth "
+                  "in all four channels");
   bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
                        bs::kAllChannels, true);
 }
@@ -116,7 +118,9 @@ void countShadowedSamples(const RenderParams& params, FastPcfState& s, Frame& fr
 
 // Pass 7 (§5 "normal OpenGL lighting").
 void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "7 lighting x shadow term", "Brabec & Seidel 2001 §5");
+  PassTimer timer(frame, "7 lighting x shadow term",
+                  "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
+                  "(1 - shadow), ambient kept");
   bs::shadeWithShadowTerm(scene, params);
 }
 

@@ -155,7 +155,10 @@ std::vector<float> termWeights(const CsmSettings& s) {
 const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
                                                const CsmSettings& s, const DepthRange& range,
                                                PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, "1 linear depth from light");
+  PassTimer timer(frame, "1 linear depth from light",
+                  "Annen et al. 2007 §4.1: \"rendering the depth values from the light's point "
+                  "of view\", linear depth [BAS03]");
+  timer.shaderPasses({"linear-depth"});
   const int n = params.shadowMapTexels;
   if (work.depth.width != n || work.depth.color.empty())
     work.depth = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
@@ -187,8 +190,12 @@ const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const Render
 // longer rounded to 8 bits before the horizontal weights (one rounding fewer, closer to Eq. 8).
 const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
                                        PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)"
-                                        : "2 basis textures (MRT)");
+  PassTimer timer(
+      frame,
+      s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)" : "2 basis textures (MRT)",
+      "Annen et al. 2007 §4.1: the basis B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 "
+      "(Eq. 7) into textures (Fig. 5); the Gaussian's first direction (DEVIATION)");
+  timer.shaderPasses({"basis"});
   const LayeredMap& basis =
       reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
   // Blurred: the horizontal pass's output goes to the scratch map, the vertical one to `basis`.
@@ -233,15 +240,20 @@ const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSetti
 void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, PrefilterWorkspace& work,
                        Frame& frame) {
   if (s.blurTaps == 0) return;
-  PassTimer timer(frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" +
-                             std::to_string(s.blurTaps));
+  PassTimer timer(
+      frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" + std::to_string(s.blurTaps),
+      "Annen et al. 2007 §4.1: the separable Gaussian's second direction");
+  timer.shaderPasses({"gaussian"});
   blurLayersOneDirection(work.scratch, basis, s.blurTaps, BlurDirection::kVertical, work.fbo);
 }
 
 // Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and
 // anisotropic) filtering: "no shader magic is needed".
 void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)");
+  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)",
+                  "Annen et al. 2007 §4.1: \"build a mip-map\" of the basis, trilinear or "
+                  "anisotropic filtering (Figs. 7, 10)");
+  timer.shaderPasses({"downsample"});
   buildMipmapsAndSetFiltering(basis, s.filtering);
 }
 
@@ -249,7 +261,10 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
                              const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
                              float nearestCaster, Frame& frame) {
-  PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction");
+  PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction",
+                  "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and "
+                  "scale of §3.2.2 (Fig. 3), clamped (§4.1)");
+  timer.shaderPasses({"reconstruct", "csm-test"});
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);

@@ -6,30 +6,36 @@
 // (the context's own dispatch table, as every render runs) and on (core/gl_trace.h), as a ratio.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "registry/cli.h"
-#include "registry/registry.h"
 #include "core/errors.h"
+#include "core/frame_timing.h"
+#include "core/gl_trace.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "legacy_gl/benchmark.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
 
 namespace {
 constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
 
 // The cost of the GL trace (core/gl_trace.h): off, every call goes through the context's own
-// table (the trace is not there at all); on, through the recording table.
+// table (the trace is not there at all); on, through the recording table. The two are timed
+// interleaved (core/frame_timing.h timeInterleavedSteadyState), each on its own context, so that
+// a change of the machine's load hits both alike; the ratio is of the two medians.
 std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
                                   const std::vector<sl::legacy::BenchmarkVariant>& variants) {
   std::ostringstream out;
   out << "GL trace of --dump-passes (core/gl_trace.h), brabec scene " << options.width << "x"
       << options.height << ", shadow map " << options.shadowMapTexels << ", "
-      << sl::backendName(options.backend) << ", median of " << options.frames.timed
-      << " frames after " << options.frames.warmup << " warm-up frames\n\n"
+      << sl::backendName(options.backend) << ", off and on interleaved: median of "
+      << options.frames.timed << " rounds after " << options.frames.warmup
+      << " warm-up frames each\n\n"
       << "| variant | trace off: frame ms | trace on: frame ms | on / off |\n|---|---|---|---|\n";
   for (const auto& v : variants) {
     sl::RenderParams p;
@@ -41,8 +47,21 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
     p.imaging = options.imaging;
     const sl::Technique& t = sl::findTechnique(v.technique);
     const sl::Scene scene = sl::builtinScene("brabec");
-    const double off = sl::timeTechnique(t, scene, p, options.frames).frameMs;
-    const double on = sl::timeTechnique(t, scene, p, options.frames, nullptr, true).frameMs;
+    const auto offContext = sl::makeRenderContext(t, p);
+    const auto onContext = sl::makeRenderContext(t, p);
+    const std::vector<std::function<sl::Frame()>> sources = {
+        [&] {
+          offContext->makeCurrent();
+          return t.render(*offContext, scene, p);
+        },
+        [&] {
+          onContext->makeCurrent();
+          const sl::GlTrace trace;  // as render --dump-passes runs it
+          return t.render(*onContext, scene, p);
+        }};
+    const auto timings =
+        sl::timeInterleavedSteadyState(sources, options.frames.warmup, options.frames.timed);
+    const double off = timings[0].frameMs, on = timings[1].frameMs;
     char row[160];
     std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f |\n", v.label.c_str(), off, on,
                   off > 0.0 ? on / off : 0.0);

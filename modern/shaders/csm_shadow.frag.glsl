@@ -35,6 +35,7 @@ const float PI = 3.14159265358979;
 // Eq. 13 with the filtered basis images; d is this point's (offset) linear depth. Called in
 // uniform control flow (every pixel, before any branch), so that texture()'s implicit
 // derivatives, which choose the mip level and the anisotropic footprint, are defined.
+// @pass reconstruct: f(d, z) ~ 1/2 + sum a_i(d) B_i(z) from the filtered basis (Eq. 13, coefficients Eq. 14)
 float reconstructShadowTest(vec2 p, float d) {
   float sum = 0.5;  // "we add the constant term 1/2 separately" (§3.1)
   // cos(c_k d), sin(c_k d) for c_k = pi (2k - 1): start at c_1 d = pi d and rotate by 2 pi d
@@ -62,8 +63,10 @@ float reconstructShadowTest(vec2 p, float d) {
     sum += dot(weights, cosD * sines - sinD * cosines);
   }
   return sum;
+// @end reconstruct
 }
 
+// @pass csm-test: d from the receiver, offset and scale of §3.2.2 (Fig. 3 c-d), clamp to [0, 1] (§4.1)
 float shadowTest(vec3 world) {
   vec4 coord = uWorldToShadowMap * vec4(world, 1.0);
   vec2 p = coord.xy / coord.w;
@@ -83,6 +86,7 @@ float shadowTest(vec3 world) {
   // square wave (Eq. 10), which reconstructs 1/2 or less.
   if (distanceAlongAxis < uNearestCaster) return 1.0;
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
+// @end csm-test
 }
 
 void main() {
