@@ -537,15 +537,19 @@ void record(T& t, e::LightModeli, GLenum pname, GLint v) {
 }
 
 // ---- texgen ----
+// Texgen state and the texture enables belong to the active texture unit: the lines say which.
+std::string unitTag(const T& t) { return "unit " + std::to_string(t.activeUnit - GL_TEXTURE0); }
 void record(T& t, e::TexGeni, GLenum coord, GLenum pname, GLint param) {
-  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + enumOrNumber(param));
+  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + enumOrNumber(param) +
+                      " (" + unitTag(t) + ")");
 }
 void record(T& t, e::TexGenfv, GLenum coord, GLenum pname, const GLfloat* p) {
   const bool plane = pname == GL_EYE_PLANE || pname == GL_OBJECT_PLANE;
   t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + tuple(p, plane ? 4 : 1) +
-                      (pname == GL_EYE_PLANE ? " (given in object space; GL stores it times "
+                      " (" + unitTag(t) +
+                      (pname == GL_EYE_PLANE ? "; given in object space, GL stores it times "
                                                "the inverse modelview of this moment)"
-                                             : ""));
+                                             : ")"));
 }
 
 // ---- matrices ----
@@ -591,8 +595,21 @@ void record(T& t, e::Frustum, GLdouble l, GLdouble r, GLdouble b, GLdouble tp, G
 }
 
 // ---- enables ----
-void record(T& t, e::Enable, GLenum cap) { t.add(capGroup(cap), "enable " + glEnumName(cap)); }
-void record(T& t, e::Disable, GLenum cap) { t.add(capGroup(cap), "disable " + glEnumName(cap)); }
+// The caps of a texture unit (texgen, texture targets) name the unit.
+bool perUnitCap(GLenum cap) {
+  switch (cap) {
+    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
+    case GL_TEXTURE_1D: case GL_TEXTURE_2D: case GL_TEXTURE_3D:
+      return true;
+    default:
+      return false;
+  }
+}
+void enableLine(T& t, const char* verb, GLenum cap) {
+  t.add(capGroup(cap), verb + glEnumName(cap) + (perUnitCap(cap) ? " (" + unitTag(t) + ")" : ""));
+}
+void record(T& t, e::Enable, GLenum cap) { enableLine(t, "enable ", cap); }
+void record(T& t, e::Disable, GLenum cap) { enableLine(t, "disable ", cap); }
 
 // ---- imaging subset ----
 void colorTable(T& t, const char* call, GLenum target, GLsizei first, GLsizei count,

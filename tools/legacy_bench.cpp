@@ -36,7 +36,8 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
       << sl::backendName(options.backend) << ", off and on interleaved: median of "
       << options.frames.timed << " rounds after " << options.frames.warmup
       << " warm-up frames each\n\n"
-      << "| variant | trace off: frame ms | trace on: frame ms | on / off |\n|---|---|---|---|\n";
+      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' on "
+         "/ off |\n|---|---|---|---|---|\n";
   for (const auto& v : variants) {
     sl::RenderParams p;
     p.width = options.width;
@@ -62,9 +63,15 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
     const auto timings =
         sl::timeInterleavedSteadyState(sources, options.frames.warmup, options.frames.timed);
     const double off = timings[0].frameMs, on = timings[1].frameMs;
-    char row[160];
-    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f |\n", v.label.c_str(), off, on,
-                  off > 0.0 ? on / off : 0.0);
+    // Round by round (the two frames of a round ran back to back, under nearly the same load).
+    std::vector<double> roundRatios;
+    for (size_t r = 0; r < timings[0].frameSamples.size(); ++r)
+      if (timings[0].frameSamples[r] > 0.0)
+        roundRatios.push_back(timings[1].frameSamples[r] / timings[0].frameSamples[r]);
+    char row[200];
+    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f | %.3f |\n", v.label.c_str(), off, on,
+                  off > 0.0 ? on / off : 0.0,
+                  roundRatios.empty() ? 0.0 : sl::median(roundRatios));
     out << row;
   }
   out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
