@@ -165,6 +165,17 @@ std::vector<std::vector<double>> components(const void* data, int count, GLenum 
   return out;
 }
 
+// A value with its 8-bit code when it is one exactly ("0.251 (64/255)"): the colour table of
+// Brabec & Seidel §3 Fig. 4 holds 0 or 64 in 8-bit terms, which a reader looks for.
+constexpr double kEightBitMax = 255.0;
+constexpr double kCodeTolerance = 1e-4;  // in codes: float rounding of k / 255, nothing else
+std::string numWithCode(double v) {
+  const double code = v * kEightBitMax;
+  const double nearest = std::round(code);
+  if (v <= 0.0 || v >= 1.0 || std::abs(code - nearest) > kCodeTolerance) return num(v);
+  return num(v) + " (" + num(nearest) + "/255)";
+}
+
 // "0..63 -> 0, 64..255 -> 1", or the ends of a longer sequence.
 std::string runs(const std::vector<double>& v) {
   std::vector<std::pair<size_t, size_t>> r;  // [first, last] of equal values
@@ -183,7 +194,7 @@ std::string runs(const std::vector<double>& v) {
     out += (out.empty() ? "" : ", ") +
            (first == last ? std::to_string(first)
                           : std::to_string(first) + ".." + std::to_string(last)) +
-           " -> " + num(v[first]);
+           " -> " + numWithCode(v[first]);
   return out;
 }
 

@@ -162,6 +162,13 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const std::strin
   if (!found) throw GlError("a pass names the shader marker @pass " + id + ", which no shader has");
 }
 
+// The pass number in "legacy.X pass N name" (a "replaces" entry), or -1.
+int replacedPassNumber(const nlohmann::json& entry) {
+  const std::string text = entry.is_string() ? entry.get<std::string>() : "";
+  const size_t at = text.find(" pass ");
+  return at == std::string::npos ? -1 : passNumberOf(text.substr(at + 6));
+}
+
 // A value legend under an image: a gradient bar with its end values.
 std::string legendHtml(const nlohmann::json& legend) {
   const bool diverging = legend["kind"] == "diverging";
@@ -357,6 +364,13 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   }
   out["passes"] = nlohmann::json::array();
   for (auto& [number, p] : passes) {
+    // The legacy passes a twin's pass replaces, in their pipeline order (the markers list them
+    // in the shader's order).
+    if (p.contains("replaces"))
+      std::stable_sort(p["replaces"].begin(), p["replaces"].end(),
+                       [](const nlohmann::json& a, const nlohmann::json& b) {
+                         return replacedPassNumber(a) < replacedPassNumber(b);
+                       });
     p["number"] = number;
     if (!p.contains("name")) p["name"] = "";
     if (!p.contains("section")) p["section"] = header.paper;

@@ -226,9 +226,9 @@ Scene tessellateForSpotlight(const Scene& scene, int width, int height, Tessella
 
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
   PassTimer timer(frame, "mesh feeding: triangles split for per-vertex spotlight lighting",
-                  "ours, not a paper's pass: fixed-function lighting is evaluated per vertex, so "
-                  "the receivers are split until it matches the modern twins' per-pixel lighting "
-                  "(issue 18 item 5)");
+                  "ours, not a paper's pass (run before the camera passes, listed first): "
+                  "fixed-function lighting is evaluated per vertex, so the receivers are split "
+                  "until it matches the modern twins' per-pixel lighting (issue 18 item 5)");
   TessellationStats stats;
   Scene split = tessellateForSpotlight(scene, params.width, params.height, &stats);
   frame.counters["camera-pass triangles"] = double(stats.trianglesOut);

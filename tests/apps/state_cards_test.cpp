@@ -93,7 +93,7 @@ TEST(StateCards, FastPcfShowsKernelColourTableAndColourMatrix) {
   EXPECT_TRUE(hasLine(subtract, "blend", {"GL_FUNC_REVERSE_SUBTRACT"})) << lines(subtract);
   const nlohmann::json& count = pass(d, 5);
   // 8 bits: index 0 (no depth difference) -> 0, every other index -> 64/255 (63 in alpha).
-  EXPECT_TRUE(hasLine(count, "colour table", {"256 entries", "0 -> 0, 1..255 -> 0.251"}))
+  EXPECT_TRUE(hasLine(count, "colour table", {"256 entries", "0 -> 0, 1..255 -> 0.251 (64/255)"}))
       << lines(count);
   EXPECT_TRUE(hasLine(count, "colour matrix", {"load [0 0 0 0; 0 0 0 0; 0 0 0 0; 1 1 1 1]"}))
       << lines(count);
