@@ -94,7 +94,9 @@ void packNeighboursByConvolution(const RenderParams& params, FastPcfState& s, si
 // Pass 3 (§3/§4): the light depth of every visible point in all four channels.
 void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                  Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag, "Brabec & Seidel 2001 §3, §4");
+  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag,
+                  "Brabec & Seidel 2001 §4 (\"very similar to ... Section 3\"): §3's camera pass, "
+                  "the light depth replicated over the four channels");
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
                         bs::kAllChannels);
 }
@@ -104,7 +106,8 @@ void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfSt
                        size_t phase, const Phase& p, Frame& frame) {
   PassTimer timer(frame,
                   "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p),
-                  "Brabec & Seidel 2001 §4, Fig. 6");
+                  "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "
+                  "coordinates offset by (ds/2, dt/2), subtracted as in §3");
   bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
 }
 
@@ -112,7 +115,8 @@ void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfSt
 void countShadowedSamples(const RenderParams& params, FastPcfState& s, Frame& frame,
                           const std::string& tag) {
   PassTimer timer(frame, "5 copy: colour table + colour matrix -> alpha" + tag,
-                  "Brabec & Seidel 2001 §3, Fig. 4");
+                  "Brabec & Seidel 2001 §3, Fig. 4 (as §4 says): colour table 0 / 64 (63 in "
+                  "alpha), the colour matrix sums the channels into alpha");
   bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples);
 }
 
