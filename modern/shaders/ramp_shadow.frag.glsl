@@ -29,7 +29,7 @@ layout(location = 1) out vec4 oVisibility;
 float code(float v) { return roundEven(v * uBufferMax); }
 
 float shadowTerm() {
-  // @pass ramp-subtract: the map as a projective texture, subtracted from the fragment's code, clamped at 0 as reverse-subtract blending leaves it (§2, third pass)
+  // @pass ramp-subtract: the map as a projective texture (§2, third pass)
   // @replaces legacy.ramp pass 3 projective pass: subtract shadow map
   float map = textureProj(uShadowMap, vShadowCoord[0]).r;
   // @end ramp-subtract
@@ -40,7 +40,7 @@ float shadowTerm() {
   // @replaces legacy.ramp pass 2 camera pass: light depth ramp into alpha
   float fragment = textureProj(uRamp, vRampCoord).r;
   // @end ramp-camera-depth
-  // @pass ramp-subtract: (continued)
+  // @pass ramp-subtract: (continued) the fragment's code minus the map's, clamped at 0 as reverse-subtract blending leaves it
   float difference = max(code(fragment) - code(map), 0.0);  // reverse-subtract blending
   // @end ramp-subtract
   // @pass ramp-saturate: the extra copy of footnote 1: one depth step or more becomes 1 (§2)
