@@ -1,5 +1,12 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
-// paper's Octane VPro/8 frame rates. Prints a markdown table (docs/legacy.md).
+// paper's Octane VPro/8 frame rates and beside each pass's llvmpipe floor. Prints markdown
+// tables (docs/legacy.md).
+// Roofline (always printed): in the same context as the frames, and interleaved with them
+// round by round so that load hits both alike, each pass's floor is measured: the least GL work
+// of its kind at its size (legacy_gl/roofline.h: a clear, one full-window quad with the pass's
+// class of fragment work, the same glCopyTexSubImage2D / glCopyPixels / glReadPixels /
+// glDrawPixels size). Each pass prints its median time, its floor and time / floor; the first
+// table the frame's sum of floors and time / floor.
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
 //                [--quick] [--technique T] [--trace-overhead]
 // --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
@@ -88,8 +95,11 @@ int main(int argc, char** argv) {
     std::string backend, imaging, frames;
     std::string only;  // --technique: keep the variants of one technique
     bool quick = false, traceOverhead = false;
-    CLI::App app{"Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates (markdown)",
-                 "legacy_bench"};
+    CLI::App app{
+        "Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates and each "
+        "pass's llvmpipe floor (time / floor; floors measured interleaved in the same "
+        "context, legacy_gl/roofline.h) (markdown)",
+        "legacy_bench"};
     app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
         ->type_name("NAME");
     app.add_option("--imaging", imaging,
