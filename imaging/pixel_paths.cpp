@@ -148,6 +148,7 @@ void drawImage(State& s, const Image4& image) {
   if (image.width == 0 || image.height == 0) return;
   const GLenum type = framebufferType(s);
   const std::vector<unsigned char> data = finalConversion(image, type);
+  if (type == GL_UNSIGNED_BYTE) return drawBytes(s, image.width, image.height, data.data());
   TightPixelStore tight(s.driver);
   s.driver.DrawPixels(image.width, image.height, GL_RGBA, type, data.data());
 }
@@ -243,8 +244,7 @@ void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* 
     const auto* p = static_cast<const uint8_t*>(data);
     std::vector<uint8_t> bytes(p, p + size_t(w) * h * 4);
     transformBytes(s->transfer, bytes, w, h);
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    drawBytes(*s, w, h, bytes.data());
     return;
   }
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
@@ -284,8 +284,7 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
     std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    drawBytes(*s, w, h, bytes.data());
     return;
   }
   if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {  // strips, bytes to bytes
@@ -293,9 +292,7 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
     std::vector<uint8_t>& out = s->scratchOut;
     int ow = 0, oh = 0;
     if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh)) return;
-    if (ow == 0 || oh == 0) return;
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(ow, oh, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
+    drawBytes(*s, ow, oh, out.data());
     return;
   }
   Image4 image = readFramebuffer(*s, x, y, w, h);
