@@ -659,7 +659,7 @@ bool planSeparable(const Convolution& cv, DyadicPlan& plan) {
       for (int n = 0; n < cv.wf && m0 < 0; ++n)
         if (grid[m][n][c] != 0) m0 = m, n0 = n;
     if (m0 < 0) continue;  // no tap: row and column stay 0
-    int g = 0;  // gcd of row m0, so that the column gets the integral factors
+    int g = 0;             // gcd of row m0, so that the column gets the integral factors
     for (int n = 0; n < cv.wf; ++n) g = std::gcd(g, grid[m0][n][c]);
     for (int n = 0; n < cv.wf; ++n) plan.row[n][c] = uint16_t(grid[m0][n][c] / g);
     for (int m = 0; m < cv.hf; ++m) {
@@ -783,36 +783,40 @@ __attribute__((target("avx2"))) size_t dyadicRowAvx2(const Convolution& cv, cons
 #if defined(SL_CONVOLUTION_X86)
 // The separable form of dyadicRowAvx2: column sums of the Hf padded rows into `column`
 // (16-bit, pw * 4 components), then row sums of those; the same integer I, rounding and ties.
+// kHf, kWf: the filter size when known at compile time (the 3x3 blurs: unrolled loops), 0
+// when not.
+template <int kHf, int kWf>
 __attribute__((target("avx2"))) size_t separableRowAvx2(const Convolution& cv,
                                                         const DyadicPlan& plan,
                                                         const uint8_t* const* rows,
                                                         const uint8_t* const* sources,
                                                         uint16_t* column, uint8_t* out, size_t n) {
+  const int hf = kHf > 0 ? kHf : cv.hf, wf = kWf > 0 ? kWf : cv.wf;
   const size_t padded = size_t(cv.pw) * kGroup;
   // Weights per component, repeated over the 16 lanes (4 groups).
   __m256i cw[kMaxConvolutionHeight], rw[kMaxConvolutionWidth];
   uint16_t pattern[16];
-  for (int m = 0; m < cv.hf; ++m) {
+  for (int m = 0; m < hf; ++m) {
     for (int l = 0; l < 16; ++l) pattern[l] = plan.column[m][l % kGroup];
     cw[m] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pattern));
   }
-  for (int k = 0; k < cv.wf; ++k) {
+  for (int k = 0; k < wf; ++k) {
     for (int l = 0; l < 16; ++l) pattern[l] = plan.row[k][l % kGroup];
     rw[k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pattern));
   }
   size_t i = 0;
   for (; i + 16 <= padded; i += 16) {
     __m256i sum = _mm256_setzero_si256();
-    for (int m = 0; m < cv.hf; ++m) {
-      const __m256i v = _mm256_cvtepu8_epi16(
-          _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows[m] + i)));
+    for (int m = 0; m < hf; ++m) {
+      const __m256i v =
+          _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(rows[m] + i)));
       sum = _mm256_add_epi16(sum, _mm256_mullo_epi16(v, cw[m]));
     }
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(column + i), sum);
   }
   for (; i < padded; ++i) {
     unsigned sum = 0;
-    for (int m = 0; m < cv.hf; ++m) sum += unsigned(plan.column[m][i % kGroup]) * rows[m][i];
+    for (int m = 0; m < hf; ++m) sum += unsigned(plan.column[m][i % kGroup]) * rows[m][i];
     column[i] = uint16_t(sum);
   }
   const __m256i half = _mm256_set1_epi16(int16_t(1 << (plan.shift - 1 < 0 ? 0 : plan.shift - 1)));
@@ -822,16 +826,15 @@ __attribute__((target("avx2"))) size_t separableRowAvx2(const Convolution& cv,
   size_t j = 0;
   // The last load reads column[j + 31 + (Wf - 1) * 4] < padded: j + 32 <= n = ow * 4.
   for (; j + 32 <= n; j += 32) {
-    __m256i low = _mm256_setzero_si256(), high = _mm256_setzero_si256();
-    for (int k = 0; k < cv.wf; ++k) {
-      const uint16_t* at = column + j + size_t(k) * kGroup;
-      low = _mm256_add_epi16(
-          low, _mm256_mullo_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(at)), rw[k]));
-      high = _mm256_add_epi16(high, _mm256_mullo_epi16(_mm256_loadu_si256(
-                                                           reinterpret_cast<const __m256i*>(at + 16)),
-                                                       rw[k]));
-    }
     uint32_t ties = 0;
+    __m256i low = _mm256_setzero_si256(), high = _mm256_setzero_si256();
+    for (int k = 0; k < wf; ++k) {
+      const uint16_t* at = column + j + size_t(k) * kGroup;
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at + 16));
+      low = _mm256_add_epi16(low, _mm256_mullo_epi16(a, rw[k]));
+      high = _mm256_add_epi16(high, _mm256_mullo_epi16(b, rw[k]));
+    }
     if (!unit) {
       const __m256i tieLow = _mm256_cmpeq_epi16(_mm256_and_si256(low, fraction), half);
       const __m256i tieHigh = _mm256_cmpeq_epi16(_mm256_and_si256(high, fraction), half);
@@ -881,8 +884,13 @@ void dyadicRows(const Convolution& cv, const DyadicPlan& plan, const uint8_t* sr
     uint8_t* const o = out + size_t(j) * n;
     size_t done = 0;
 #if defined(SL_CONVOLUTION_X86)
-    done = plan.separable ? separableRowAvx2(cv, plan, rows, sources, column.data(), o, n)
-                          : dyadicRowAvx2(cv, plan, sources, o, n);
+    if (plan.separable && hf == 3 && cv.wf == 3) {
+      done = separableRowAvx2<3, 3>(cv, plan, rows, sources, column.data(), o, n);
+    } else if (plan.separable) {
+      done = separableRowAvx2<0, 0>(cv, plan, rows, sources, column.data(), o, n);
+    } else {
+      done = dyadicRowAvx2(cv, plan, sources, o, n);
+    }
 #endif
     for (size_t i = done; i < n; ++i) o[i] = exactByte(cv, sources, i);
   }

@@ -140,6 +140,7 @@ struct Operation {
   std::function<void(int, int)> run;
   bool noStage = false;  // no imaging/ transform of its own (accumulation buffer, floor rows)
   bool osmesaOnly = false;  // a write-back candidate of Debian's OSMesa: no reference call
+  bool writesBack = true;   // ends in imaging/'s write-back (the glDrawPixels column applies)
 };
 
 // ---- write-back candidates: one w x h RGBA8 image into the window at (0, 0) ----
@@ -187,8 +188,7 @@ void writeBlitUnmirrored(int w, int h) {
   const UploadTarget& t = uploadTarget(w, h);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage2D(t.texture, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, writeImage(w, h).data());
-  glBlitNamedFramebuffer(t.framebuffer, 0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
-                         GL_NEAREST);
+  glBlitNamedFramebuffer(t.framebuffer, 0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glFinish();
 }
 // Upload and one screen-aligned textured quad (identity matrices, GL_REPLACE).
@@ -219,8 +219,8 @@ void writeOsmesaBuffer(int w, int h) {
   if (library == nullptr) return;
   static const auto getCurrent = reinterpret_cast<decltype(&::OSMesaGetCurrentContext)>(
       dlsym(library, "OSMesaGetCurrentContext"));
-  static const auto getBuffer = reinterpret_cast<decltype(&::OSMesaGetColorBuffer)>(
-      dlsym(library, "OSMesaGetColorBuffer"));
+  static const auto getBuffer =
+      reinterpret_cast<decltype(&::OSMesaGetColorBuffer)>(dlsym(library, "OSMesaGetColorBuffer"));
   GLint bw = 0, bh = 0, format = 0;
   void* buffer = nullptr;
   if (getBuffer == nullptr || !getBuffer(getCurrent(), &bw, &bh, &format, &buffer)) return;
@@ -263,17 +263,19 @@ std::vector<Operation> operations() {
 
 std::vector<Operation> allOperations() {
   return {
-      {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true},
-      {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true},
-      {"write-back: glDrawPixels RGBA8 (driver; the old write-back)", [] {}, writeDrawPixels, true},
+      {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true, false, false},
+      {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true,
+       false, false},
+      {"write-back: glDrawPixels RGBA8 (driver; the old write-back)", [] {}, writeDrawPixels, true,
+       false, false},
       {"write-back: imaging/ (flipped upload + mirrored glBlitNamedFramebuffer)", [] {},
        writeImaging, true, true},
-      {"write-back: upload + glBlitNamedFramebuffer without the mirror", [] {},
-       writeBlitUnmirrored, true, true},
-      {"write-back: upload + one textured quad", [] {}, writeQuad, true, true},
-      {"write-back: memcpy into the OSMesa buffer (NOT seen by the GL)", [] {},
-       writeOsmesaBuffer, true, true},
-      {"plain copy (glCopyPixels)", [] {}, copyPixels},
+      {"write-back: upload + glBlitNamedFramebuffer without the mirror", [] {}, writeBlitUnmirrored,
+       true, true, false},
+      {"write-back: upload + one textured quad", [] {}, writeQuad, true, true, false},
+      {"write-back: memcpy into the OSMesa buffer (NOT seen by the GL)", [] {}, writeOsmesaBuffer,
+       true, true, false},
+      {"plain copy (glCopyPixels)", [] {}, copyPixels, false, false, false},
       {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
       {"+ RGBA color table (gamma 1/2.2, 256 distinct entries)", gammaTable, copyPixels},
       {"+ color table + sum-into-alpha color matrix (Fig. 4)",
@@ -288,13 +290,14 @@ std::vector<Operation> allOperations() {
        [](int w, int h) {
          glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, w, h);
          glFinish();
-       }},
+       },
+       false, false, false},
       {"glAccum(GL_ACCUM, 0.25)", [] {},
        [](int, int) {
          glAccum(GL_ACCUM, 0.25f);
          glFinish();
        },
-       true},
+       true, false, false},
       {"glAccum(GL_RETURN, 1)", [] {},
        [](int, int) {
          glAccum(GL_RETURN, 1.0f);
@@ -330,7 +333,8 @@ std::vector<double> measure(Backend backend, int w, int h, int reps, double& mem
   const double base = memcpyMs(size_t(w) * h * 4, reps);
   memcpyRatioBase = base;
   for (const Operation& op : operations()) {
-    if (op.osmesaOnly && backend != Backend::kOsmesa) {
+    if ((op.osmesaOnly && backend != Backend::kOsmesa) ||
+        (path == detail::WriteBackPath::kDrawPixels && !op.writesBack)) {
       ratios.push_back(-1.0);
       continue;
     }
@@ -454,14 +458,14 @@ int run(int argc, char** argv) {
     double base = 0, refBase = 0;
     double drawBase = 0;
     const auto emulated = measure(Backend::kOsmesa, sz[0], sz[1], reps, base);
-    const auto drawn = measure(Backend::kOsmesa, sz[0], sz[1], reps, drawBase,
-                               detail::WriteBackPath::kDrawPixels);
+    const auto drawn =
+        measure(Backend::kOsmesa, sz[0], sz[1], reps, drawBase, detail::WriteBackPath::kDrawPixels);
     const auto stages = measureStages(sz[0], sz[1], reps, base);
     std::vector<double> reference(ops.size(), -1.0);
     if (haveReference) reference = measure(Backend::kReference, sz[0], sz[1], reps, refBase);
     for (size_t i = 0; i < ops.size(); ++i) {
       char stage[32] = "-", ref[32] = "-", speed[32] = "-", old[32] = "-";
-      if (drawn[i] >= 0) std::snprintf(old, sizeof old, "%.1fx", drawn[i]);
+      if (drawn[i] >= 0 && ops[i].writesBack) std::snprintf(old, sizeof old, "%.1fx", drawn[i]);
       if (stages[i] >= 0) std::snprintf(stage, sizeof stage, "%.1fx", stages[i]);
       if (reference[i] >= 0 && emulated[i] >= 0) {
         std::snprintf(ref, sizeof ref, "%.0fx", reference[i]);
@@ -471,8 +475,8 @@ int run(int argc, char** argv) {
                       (emulated[i] * base) / (reference[i] * refBase),
                       (reference[i] * refBase) / (emulated[i] * base));
       }
-      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s |\n", ops[i].name, sz[0], sz[1],
-                  stage, emulated[i], old, ref, speed);
+      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s |\n", ops[i].name, sz[0], sz[1], stage,
+                  emulated[i], old, ref, speed);
     }
   }
   return 0;

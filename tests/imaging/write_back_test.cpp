@@ -101,7 +101,8 @@ void expectBlitEqualsDrawPixels(const std::function<void()>& state,
   EXPECT_FALSE(reference.blit);
   EXPECT_EQ(differingBytes(fast.pixels, reference.pixels), 0u);
   // The operation changed the window (a write that did nothing would also "match").
-  const Outcome untouched = run(WriteBackPath::kFastest, [] {}, [] {});
+  const Outcome untouched = run(
+      WriteBackPath::kFastest, [] {}, [] {});
   EXPECT_GT(differingBytes(fast.pixels, untouched.pixels), size_t(kCopyWidth));
 }
 
@@ -196,8 +197,10 @@ TEST(WriteBack, AccumReturnBlitsUnlessTheColourMaskActs) {
     glAccum(GL_RETURN, 1.25f);
   };
   constexpr bool kEmulatedAccum = false;
-  const Outcome fast = run(WriteBackPath::kFastest, [] {}, accumulate, kEmulatedAccum);
-  const Outcome reference = run(WriteBackPath::kDrawPixels, [] {}, accumulate, kEmulatedAccum);
+  const Outcome fast = run(
+      WriteBackPath::kFastest, [] {}, accumulate, kEmulatedAccum);
+  const Outcome reference = run(
+      WriteBackPath::kDrawPixels, [] {}, accumulate, kEmulatedAccum);
   EXPECT_TRUE(fast.blit);
   EXPECT_EQ(differingBytes(fast.pixels, reference.pixels), 0u);
   const auto masked = [] { glColorMask(GL_FALSE, GL_TRUE, GL_TRUE, GL_TRUE); };
@@ -228,8 +231,8 @@ TEST(WriteBack, DirectWritesIntoTheOsmesaBufferAreInvisibleToTheGl) {
   auto ctx = emulatedContext(kWindowWidth, kWindowHeight);
   void* library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_NOLOAD);
   ASSERT_NE(library, nullptr);
-  const auto getCurrent =
-      reinterpret_cast<decltype(&::OSMesaGetCurrentContext)>(dlsym(library, "OSMesaGetCurrentContext"));
+  const auto getCurrent = reinterpret_cast<decltype(&::OSMesaGetCurrentContext)>(
+      dlsym(library, "OSMesaGetCurrentContext"));
   const auto getBuffer =
       reinterpret_cast<decltype(&::OSMesaGetColorBuffer)>(dlsym(library, "OSMesaGetColorBuffer"));
   ASSERT_TRUE(getCurrent != nullptr && getBuffer != nullptr);
