@@ -18,7 +18,8 @@ uniform float uBias;              // subtracted from d (§2 depth bias, texture 
 uniform sampler1D uRamp;
 uniform sampler2D uShadowMap;     // encoded depth, GL_NEAREST, far-plane border
 uniform bool uFaithful;
-uniform float uBufferMax;         // M: 255 (8-bit) or 65535 (12-bit values in 16 bits)
+uniform bool uFloatBuffer;        // --precision float: legacy's float colour buffer
+uniform float uBufferMax;         // M: 255 (8-bit) or 65535 (12-bit values in 16 bits); 1 float
 uniform float uReadScale;         // 1 / M as the driver converts codes to float
 uniform float uSaturateScale;     // footnote 1 copy: GL_ALPHA_SCALE = 1 / depth step
 uniform bool uReceivesShadow;
@@ -26,7 +27,8 @@ layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 #include "lighting.glsl"
 
-float code(float v) { return roundEven(v * uBufferMax); }
+// The integer code a fixed-point colour buffer stores; a float buffer stores v itself.
+float code(float v) { return uFloatBuffer ? v : roundEven(v * uBufferMax); }
 
 float shadowTerm() {
   float map = textureProj(uShadowMap, vShadowCoord[0]).r;
