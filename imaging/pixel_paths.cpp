@@ -276,8 +276,26 @@ void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum 
   packImage(image, data, format, type, store, true);
 }
 
+namespace {
+
+// An identity-pipeline colour copy of an 8-bit window where the write-back's blit equals
+// DrawPixels: 4.3.3 defines CopyPixels as a ReadPixels then a DrawPixels of its groups, so
+// the read and the blit of write_back.cpp give its pixels (llvmpipe's own CopyPixels is a
+// textured draw, tens of memcpys). True when done.
+bool copyByBlit(State& s, GLint x, GLint y, GLsizei w, GLsizei h) {
+  if (!eightBitFramebuffer(s) || w <= 0 || h <= 0) return false;
+  int rx = 0, ry = 0;
+  if (!blitEqualsDrawPixels(s, rx, ry)) return false;
+  const std::vector<uint8_t>& bytes = readBytes(s, x, y, w, h);
+  drawBytes(s, w, h, bytes.data());
+  return true;
+}
+
+}  // namespace
+
 void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
   State* s = currentState();
+  if (s != nullptr && passThrough(s) && type == GL_COLOR && copyByBlit(*s, x, y, w, h)) return;
   if (passThrough(s) || type != GL_COLOR || w < 0 || h < 0 || !rasterPositionValid(*s))
     return s->driver.CopyPixels(x, y, w, h, type);
   refreshColorMaps(*s);

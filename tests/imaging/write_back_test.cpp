@@ -106,6 +106,14 @@ void expectBlitEqualsDrawPixels(const std::function<void()>& state,
   EXPECT_GT(differingBytes(fast.pixels, untouched.pixels), size_t(kCopyWidth));
 }
 
+TEST(WriteBack, PlainCopyPixelsBlitsAndMatchesTheDriversCopyPixels) {
+  // No imaging state: the forced run is the driver's own glCopyPixels (the emulation forwards
+  // it); the fast run reads and blits (4.3.3). Source and destination overlap, and the second
+  // copy is clipped by the window.
+  expectBlitEqualsDrawPixels([] {}, copyToOrigin);
+  expectBlitEqualsDrawPixels([] {}, copyClipped);
+}
+
 TEST(WriteBack, CopyPixelsWithColorTableBlitsAndMatchesDrawPixels) {
   expectBlitEqualsDrawPixels(enableGammaTable, copyToOrigin);
   expectBlitEqualsDrawPixels(enableGammaTable, copyClipped);
