@@ -8,7 +8,8 @@
 // clamped ("Final Conversion") and written through the driver with its own pixel transfer
 // left at identity (the emulation owns the RGBA pixel-transfer state), in the destination's
 // precision: unsigned bytes for an 8-bit colour buffer or texture, unsigned shorts for a
-// 16-bit buffer, floats otherwise.
+// 16-bit buffer, floats otherwise. 8-bit framebuffer writes go through write_back.cpp (a
+// texture upload and a blit where that equals glDrawPixels, else glDrawPixels).
 #include <cmath>
 #include <cstring>
 
