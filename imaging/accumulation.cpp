@@ -155,6 +155,7 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
     const uint8_t* const table = lut.data();
     rows([dst, table](size_t i, int16_t a) { dst[i] = table[size_t(a + 32768)]; });
     data = bytes.data();
+    if (returnBytes(s, b.x0, b.y0, w, h, bytes.data())) return;  // write_back.cpp
   } else if (type == GL_UNSIGNED_SHORT) {
     shorts.resize(size_t(w) * h * 4);
     rows([&](size_t i, int16_t a) {

@@ -35,6 +35,7 @@
 // differently), so form 2 runs that same product kernel.
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -636,7 +637,41 @@ struct DyadicPlan {
   int shift = 0;                             // D
   uint8_t numerator[kMaxTaps][kGroup] = {};  // N of tap t, component c
   int pairs = 0;                             // taps 2k and 2k + 1 (the last may be alone)
+  // Separable numerators (the binomial blurs): N(n, m) = row[n] * column[m] per component,
+  // so I = sum over n of row[n] * (sum over m of column[m] * v) — the same exact integer in
+  // 2 (Wf + Hf) operations a component instead of Wf * Hf.
+  bool separable = false;
+  uint16_t row[kMaxConvolutionWidth][kGroup] = {};
+  uint16_t column[kMaxConvolutionHeight][kGroup] = {};
 };
+
+// Factors the numerators of each component as an outer product of integer vectors.
+bool planSeparable(const Convolution& cv, DyadicPlan& plan) {
+  int grid[kMaxConvolutionHeight][kMaxConvolutionWidth][kGroup] = {};
+  for (size_t t = 0; t < cv.taps.size(); ++t) {
+    const Tap& tap = cv.taps[t];
+    if (tap.n < 0 || tap.n >= cv.wf || tap.m < 0 || tap.m >= cv.hf) return false;
+    for (int c = 0; c < kGroup; ++c) grid[tap.m][tap.n][c] += plan.numerator[t][c];
+  }
+  for (int c = 0; c < kGroup; ++c) {
+    int m0 = -1, n0 = -1;  // the first non-zero numerator
+    for (int m = 0; m < cv.hf && m0 < 0; ++m)
+      for (int n = 0; n < cv.wf && m0 < 0; ++n)
+        if (grid[m][n][c] != 0) m0 = m, n0 = n;
+    if (m0 < 0) continue;  // no tap: row and column stay 0
+    int g = 0;             // gcd of row m0, so that the column gets the integral factors
+    for (int n = 0; n < cv.wf; ++n) g = std::gcd(g, grid[m0][n][c]);
+    for (int n = 0; n < cv.wf; ++n) plan.row[n][c] = uint16_t(grid[m0][n][c] / g);
+    for (int m = 0; m < cv.hf; ++m) {
+      if (grid[m][n0][c] % plan.row[n0][c] != 0) return false;
+      plan.column[m][c] = uint16_t(grid[m][n0][c] / plan.row[n0][c]);
+    }
+    for (int m = 0; m < cv.hf; ++m)
+      for (int n = 0; n < cv.wf; ++n)
+        if (grid[m][n][c] != int(plan.row[n][c]) * int(plan.column[m][c])) return false;
+  }
+  return true;
+}
 
 bool planDyadic(const Convolution& cv, DyadicPlan& plan) {
   if (!cv.suffixIdentity || cv.postScaleBias || !(cv.reduce || cv.replicate)) return false;
@@ -671,6 +706,7 @@ bool planDyadic(const Convolution& cv, DyadicPlan& plan) {
       if (plan.numerator[t][c] + plan.numerator[t + 1][c] > kMaxPairNumerator) return false;
   }
   plan.pairs = (taps + 1) / 2;
+  plan.separable = planSeparable(cv, plan);
   return true;
 }
 
@@ -744,6 +780,81 @@ __attribute__((target("avx2"))) size_t dyadicRowAvx2(const Convolution& cv, cons
 }
 #endif
 
+#if defined(SL_CONVOLUTION_X86)
+// The separable form of dyadicRowAvx2: column sums of the Hf padded rows into `column`
+// (16-bit, pw * 4 components), then row sums of those; the same integer I, rounding and ties.
+// kHf, kWf: the filter size when known at compile time (the 3x3 blurs: unrolled loops), 0
+// when not.
+template <int kHf, int kWf>
+__attribute__((target("avx2"))) size_t separableRowAvx2(const Convolution& cv,
+                                                        const DyadicPlan& plan,
+                                                        const uint8_t* const* rows,
+                                                        const uint8_t* const* sources,
+                                                        uint16_t* column, uint8_t* out, size_t n) {
+  const int hf = kHf > 0 ? kHf : cv.hf, wf = kWf > 0 ? kWf : cv.wf;
+  const size_t padded = size_t(cv.pw) * kGroup;
+  // Weights per component, repeated over the 16 lanes (4 groups).
+  __m256i cw[kMaxConvolutionHeight], rw[kMaxConvolutionWidth];
+  uint16_t pattern[16];
+  for (int m = 0; m < hf; ++m) {
+    for (int l = 0; l < 16; ++l) pattern[l] = plan.column[m][l % kGroup];
+    cw[m] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pattern));
+  }
+  for (int k = 0; k < wf; ++k) {
+    for (int l = 0; l < 16; ++l) pattern[l] = plan.row[k][l % kGroup];
+    rw[k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pattern));
+  }
+  size_t i = 0;
+  for (; i + 16 <= padded; i += 16) {
+    __m256i sum = _mm256_setzero_si256();
+    for (int m = 0; m < hf; ++m) {
+      const __m256i v =
+          _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(rows[m] + i)));
+      sum = _mm256_add_epi16(sum, _mm256_mullo_epi16(v, cw[m]));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(column + i), sum);
+  }
+  for (; i < padded; ++i) {
+    unsigned sum = 0;
+    for (int m = 0; m < hf; ++m) sum += unsigned(plan.column[m][i % kGroup]) * rows[m][i];
+    column[i] = uint16_t(sum);
+  }
+  const __m256i half = _mm256_set1_epi16(int16_t(1 << (plan.shift - 1 < 0 ? 0 : plan.shift - 1)));
+  const __m256i fraction = _mm256_set1_epi16(int16_t((1 << plan.shift) - 1));
+  const __m128i shift = _mm_cvtsi32_si128(plan.shift);
+  const bool unit = plan.shift == 0;
+  size_t j = 0;
+  // The last load reads column[j + 31 + (Wf - 1) * 4] < padded: j + 32 <= n = ow * 4.
+  for (; j + 32 <= n; j += 32) {
+    uint32_t ties = 0;
+    __m256i low = _mm256_setzero_si256(), high = _mm256_setzero_si256();
+    for (int k = 0; k < wf; ++k) {
+      const uint16_t* at = column + j + size_t(k) * kGroup;
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at + 16));
+      low = _mm256_add_epi16(low, _mm256_mullo_epi16(a, rw[k]));
+      high = _mm256_add_epi16(high, _mm256_mullo_epi16(b, rw[k]));
+    }
+    if (!unit) {
+      const __m256i tieLow = _mm256_cmpeq_epi16(_mm256_and_si256(low, fraction), half);
+      const __m256i tieHigh = _mm256_cmpeq_epi16(_mm256_and_si256(high, fraction), half);
+      ties = uint32_t(_mm256_movemask_epi8(
+          _mm256_permute4x64_epi64(_mm256_packs_epi16(tieLow, tieHigh), 0xD8)));
+      low = _mm256_srl_epi16(_mm256_add_epi16(low, half), shift);
+      high = _mm256_srl_epi16(_mm256_add_epi16(high, half), shift);
+    }
+    // packus works per 128-bit lane: the permute puts the quarters back in order.
+    const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(low, high), 0xD8);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + j), bytes);
+    for (; ties != 0; ties &= ties - 1) {
+      const size_t k = j + size_t(__builtin_ctz(ties));
+      out[k] = exactByte(cv, sources, k);
+    }
+  }
+  return j;
+}
+#endif
+
 // Rows [y0, y1) by integer sums: a ring of Hf padded byte rows (the edge replicated under
 // REPLICATE; none under REDUCE).
 void dyadicRows(const Convolution& cv, const DyadicPlan& plan, const uint8_t* src, uint8_t* out,
@@ -761,16 +872,25 @@ void dyadicRows(const Convolution& cv, const DyadicPlan& plan, const uint8_t* sr
       std::memcpy(dst + size_t(x) * kGroup, row + size_t(cv.ws - 1) * kGroup, kGroup);
   };
   const uint8_t* sources[kMaxTaps];
+  const uint8_t* rows[kMaxConvolutionHeight];
   const size_t n = size_t(cv.ow) * kGroup;
+  std::vector<uint16_t> column(plan.separable ? rowBytes : 0);  // separable: column sums
   for (int py = y0; py < y0 + hf - 1; ++py) pad(py);
   for (int j = y0; j < y1; ++j) {
     pad(j + hf - 1);
     for (size_t t = 0; t < cv.taps.size(); ++t)
       sources[t] = slot(j + cv.taps[t].m) + size_t(cv.taps[t].n) * kGroup;
+    for (int m = 0; m < hf; ++m) rows[m] = slot(j + m);
     uint8_t* const o = out + size_t(j) * n;
     size_t done = 0;
 #if defined(SL_CONVOLUTION_X86)
-    done = dyadicRowAvx2(cv, plan, sources, o, n);
+    if (plan.separable && hf == 3 && cv.wf == 3) {
+      done = separableRowAvx2<3, 3>(cv, plan, rows, sources, column.data(), o, n);
+    } else if (plan.separable) {
+      done = separableRowAvx2<0, 0>(cv, plan, rows, sources, column.data(), o, n);
+    } else {
+      done = dyadicRowAvx2(cv, plan, sources, o, n);
+    }
 #endif
     for (size_t i = done; i < n; ++i) o[i] = exactByte(cv, sources, i);
   }

@@ -11,6 +11,7 @@
 //   pixel_memory.cpp    unpacking from and packing to client memory
 //   pixel_paths.cpp     DrawPixels, ReadPixels, CopyPixels, TexImage2D, CopyTex(Sub)Image2D
 //   accumulation.cpp    the accumulation buffer where the visual has none
+//   write_back.cpp      8-bit results into the window: a blit where it equals DrawPixels
 //   state.cpp           enables, queries, pixel-transfer parameters, errors
 #include "imaging/imaging.h"
 

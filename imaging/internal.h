@@ -137,6 +137,20 @@ struct AttribSnapshot {
   bool colorMatrixMode = false;  // GL_TRANSFORM_BIT saves MATRIX_MODE (table 6.7): GL_COLOR too
 };
 
+// How 8-bit results are written into the framebuffer (write_back.cpp).
+enum class WriteBackPath {
+  kFastest,     // a texture upload and a blit where the state allows, else glDrawPixels
+  kDrawPixels,  // always the driver's glDrawPixels (tests and imaging_bench compare the two)
+};
+struct WriteBack {
+  WriteBackPath forced = WriteBackPath::kFastest;
+  bool lastWasBlit = false;  // the path the last write took (tests read it)
+  // The upload texture and its framebuffer, at the window's size; owned by the GL context.
+  GLuint texture = 0, framebuffer = 0;
+  int width = 0, height = 0;
+  std::vector<uint8_t> flipped;  // the image, top row first, reused across calls
+};
+
 // Per-context emulation state (stored with GlContext::setLayerState("imaging", ...)).
 struct State {
   GlDispatch driver;  // the entry points as the driver resolved them, before install()
@@ -159,6 +173,7 @@ struct State {
   bool returnTableValid = false;
   float returnTableValue = 0.0f;
   std::vector<uint8_t> returnTable;
+  WriteBack writeBack;
 };
 
 // The state of the current context (nullptr when the emulation is not installed on it).
@@ -388,6 +403,18 @@ Image4 readFramebuffer(State& s, int x, int y, int w, int h);
 // The client type that carries the colour buffer's precision without loss: unsigned bytes for
 // 8-bit, unsigned shorts for 16-bit, floats otherwise (pixel_paths.cpp).
 GLenum framebufferType(const State& s);
+// write_back.cpp: the end of every 8-bit emulated DrawPixels / CopyPixels / Accum(RETURN).
+// glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes) at the current raster position (tight
+// rows, bottom row first), by a texture upload and a blit where blitEqualsDrawPixels holds,
+// else by the driver's glDrawPixels.
+void drawBytes(State& s, int w, int h, const uint8_t* bytes);
+// True when the state makes a copy of the bytes into the window at (x, y) = the raster
+// position the same as glDrawPixels (the conditions, with their sections, are in the file).
+bool blitEqualsDrawPixels(State& s, int& x, int& y);
+// Accum(RETURN)'s write of w x h groups at window (x, y) where only the colour mask needs a
+// condition (4.2.4); false (nothing written) when the caller must draw them itself.
+bool blitEqualsReturn(State& s);
+bool returnBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes);
 // accumulation.cpp
 void emAccum(GLenum, GLfloat);
 void emClearAccum(GLfloat, GLfloat, GLfloat, GLfloat);

@@ -8,7 +8,8 @@
 // clamped ("Final Conversion") and written through the driver with its own pixel transfer
 // left at identity (the emulation owns the RGBA pixel-transfer state), in the destination's
 // precision: unsigned bytes for an 8-bit colour buffer or texture, unsigned shorts for a
-// 16-bit buffer, floats otherwise.
+// 16-bit buffer, floats otherwise. 8-bit framebuffer writes go through write_back.cpp (a
+// texture upload and a blit where that equals glDrawPixels, else glDrawPixels).
 #include <cmath>
 #include <cstring>
 
@@ -148,6 +149,7 @@ void drawImage(State& s, const Image4& image) {
   if (image.width == 0 || image.height == 0) return;
   const GLenum type = framebufferType(s);
   const std::vector<unsigned char> data = finalConversion(image, type);
+  if (type == GL_UNSIGNED_BYTE) return drawBytes(s, image.width, image.height, data.data());
   TightPixelStore tight(s.driver);
   s.driver.DrawPixels(image.width, image.height, GL_RGBA, type, data.data());
 }
@@ -243,8 +245,7 @@ void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* 
     const auto* p = static_cast<const uint8_t*>(data);
     std::vector<uint8_t> bytes(p, p + size_t(w) * h * 4);
     transformBytes(s->transfer, bytes, w, h);
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    drawBytes(*s, w, h, bytes.data());
     return;
   }
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
@@ -276,16 +277,33 @@ void emReadPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum 
   packImage(image, data, format, type, store, true);
 }
 
+namespace {
+
+// An identity-pipeline colour copy of an 8-bit window where the write-back's blit equals
+// DrawPixels: 4.3.3 defines CopyPixels as a ReadPixels then a DrawPixels of its groups, so
+// the read and the blit of write_back.cpp give its pixels (llvmpipe's own CopyPixels is a
+// textured draw, tens of memcpys). True when done.
+bool copyByBlit(State& s, GLint x, GLint y, GLsizei w, GLsizei h) {
+  if (!eightBitFramebuffer(s) || w <= 0 || h <= 0) return false;
+  int rx = 0, ry = 0;
+  if (!blitEqualsDrawPixels(s, rx, ry)) return false;
+  const std::vector<uint8_t>& bytes = readBytes(s, x, y, w, h);
+  drawBytes(s, w, h, bytes.data());
+  return true;
+}
+
+}  // namespace
+
 void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
   State* s = currentState();
+  if (s != nullptr && passThrough(s) && type == GL_COLOR && copyByBlit(*s, x, y, w, h)) return;
   if (passThrough(s) || type != GL_COLOR || w < 0 || h < 0 || !rasterPositionValid(*s))
     return s->driver.CopyPixels(x, y, w, h, type);
   refreshColorMaps(*s);
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer)) {
     std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    drawBytes(*s, w, h, bytes.data());
     return;
   }
   if (eightBitFramebuffer(*s) && convolveBytesApplies(s->transfer)) {  // strips, bytes to bytes
@@ -293,9 +311,7 @@ void emCopyPixels(GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
     std::vector<uint8_t>& out = s->scratchOut;
     int ow = 0, oh = 0;
     if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh)) return;
-    if (ow == 0 || oh == 0) return;
-    TightPixelStore tight(s->driver);
-    s->driver.DrawPixels(ow, oh, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
+    drawBytes(*s, ow, oh, out.data());
     return;
   }
   Image4 image = readFramebuffer(*s, x, y, w, h);

@@ -6,8 +6,13 @@
 //   * reference: the same call natively on Mesa 7.8.2 (../shared/reference-gl), when present;
 //   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
 //     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
-//     driver's read-back and DrawPixels.
+//     driver's read-back and the write-back.
+//   * emulated, glDrawPixels write-back: the same call with imaging/'s write-back forced to
+//     the driver's glDrawPixels (what every emulated call used before write_back.cpp).
+// The "write-back:" rows time the candidate ways of putting a w x h RGBA8 image into the
+// window (imaging/write_back.cpp explains the choice).
 // Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu] [--only TEXT]
+#include <dlfcn.h>
 #include <time.h>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +28,9 @@
 #include "core/context.h"
 #include "imaging/imaging.h"
 #include "imaging/internal.h"
+
+// After core/gl.h, which includes GL/gl.h with the extension prototypes it needs.
+#include <GL/osmesa.h>
 
 namespace sl::imaging::bench {
 namespace {
@@ -131,7 +139,94 @@ struct Operation {
   std::function<void()> setup;
   std::function<void(int, int)> run;
   bool noStage = false;  // no imaging/ transform of its own (accumulation buffer, floor rows)
+  bool osmesaOnly = false;  // a write-back candidate of Debian's OSMesa: no reference call
+  bool writesBack = true;   // ends in imaging/'s write-back (the glDrawPixels column applies)
 };
+
+// ---- write-back candidates: one w x h RGBA8 image into the window at (0, 0) ----
+const std::vector<uint8_t>& writeImage(int w, int h) {
+  static std::vector<uint8_t> img;
+  if (img.size() != size_t(w) * h * 4) {
+    img.resize(size_t(w) * h * 4);
+    for (size_t i = 0; i < img.size(); ++i) img[i] = uint8_t((i * 40503u) >> 8);
+  }
+  return img;
+}
+void writeDrawPixels(int w, int h) {
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glWindowPos2i(0, 0);
+  glDrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, writeImage(w, h).data());
+  glFinish();
+}
+// imaging/'s own write-back (write_back.cpp): flipped upload and mirrored blit.
+void writeImaging(int w, int h) {
+  glWindowPos2i(0, 0);
+  detail::drawBytes(*detail::currentState(), w, h, writeImage(w, h).data());
+  glFinish();
+}
+// The texture and framebuffer the two candidates below upload into (made once per size).
+struct UploadTarget {
+  GLuint texture = 0, framebuffer = 0;
+  int w = 0, h = 0;
+};
+UploadTarget gUploadTarget;  // reset by measure(): its names die with each context
+UploadTarget& uploadTarget(int w, int h) {
+  UploadTarget& t = gUploadTarget;
+  if (t.w != w || t.h != h) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.texture);
+    glTextureStorage2D(t.texture, 1, GL_RGBA8, w, h);
+    glCreateFramebuffers(1, &t.framebuffer);
+    glNamedFramebufferTexture(t.framebuffer, GL_COLOR_ATTACHMENT0, t.texture, 0);
+    t.w = w;
+    t.h = h;
+  }
+  return t;
+}
+// Upload as is and blit without a mirror (Mesa's window is stored top row first, so the
+// blit flips rows and llvmpipe draws it).
+void writeBlitUnmirrored(int w, int h) {
+  const UploadTarget& t = uploadTarget(w, h);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.texture, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, writeImage(w, h).data());
+  glBlitNamedFramebuffer(t.framebuffer, 0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glFinish();
+}
+// Upload and one screen-aligned textured quad (identity matrices, GL_REPLACE).
+void writeQuad(int w, int h) {
+  const UploadTarget& t = uploadTarget(w, h);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(t.texture, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, writeImage(w, h).data());
+  glBindTexture(GL_TEXTURE_2D, t.texture);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glEnable(GL_TEXTURE_2D);
+  glBegin(GL_QUADS);
+  glTexCoord2f(0, 0);
+  glVertex2f(-1, -1);
+  glTexCoord2f(1, 0);
+  glVertex2f(1, -1);
+  glTexCoord2f(1, 1);
+  glVertex2f(1, 1);
+  glTexCoord2f(0, 1);
+  glVertex2f(-1, 1);
+  glEnd();
+  glDisable(GL_TEXTURE_2D);
+  glFinish();
+}
+// A memcpy into the buffer given to OSMesaMakeCurrent: fast but NOT a write-back on Mesa 22's
+// gallium OSMesa, which never reads that buffer (tests/imaging/write_back_test.cpp).
+void writeOsmesaBuffer(int w, int h) {
+  static void* library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_NOLOAD);
+  if (library == nullptr) return;
+  static const auto getCurrent = reinterpret_cast<decltype(&::OSMesaGetCurrentContext)>(
+      dlsym(library, "OSMesaGetCurrentContext"));
+  static const auto getBuffer =
+      reinterpret_cast<decltype(&::OSMesaGetColorBuffer)>(dlsym(library, "OSMesaGetColorBuffer"));
+  GLint bw = 0, bh = 0, format = 0;
+  void* buffer = nullptr;
+  if (getBuffer == nullptr || !getBuffer(getCurrent(), &bw, &bh, &format, &buffer)) return;
+  if (bw != w || bh != h) return;
+  std::memcpy(buffer, writeImage(w, h).data(), size_t(w) * h * 4);
+}
 
 void copyPixels(int w, int h) {
   glWindowPos2i(0, 0);
@@ -168,9 +263,19 @@ std::vector<Operation> operations() {
 
 std::vector<Operation> allOperations() {
   return {
-      {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true},
-      {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true},
-      {"plain copy (glCopyPixels)", [] {}, copyPixels},
+      {"floor: glReadPixels RGBA8 (driver only)", [] {}, readBack, true, false, false},
+      {"floor: glReadPixels + glDrawPixels RGBA8 (driver only)", [] {}, readBackAndDraw, true,
+       false, false},
+      {"write-back: glDrawPixels RGBA8 (driver; the old write-back)", [] {}, writeDrawPixels, true,
+       false, false},
+      {"write-back: imaging/ (flipped upload + mirrored glBlitNamedFramebuffer)", [] {},
+       writeImaging, true, true},
+      {"write-back: upload + glBlitNamedFramebuffer without the mirror", [] {}, writeBlitUnmirrored,
+       true, true, false},
+      {"write-back: upload + one textured quad", [] {}, writeQuad, true, true, false},
+      {"write-back: memcpy into the OSMesa buffer (NOT seen by the GL)", [] {}, writeOsmesaBuffer,
+       true, true, false},
+      {"plain copy (glCopyPixels)", [] {}, copyPixels, false, false, false},
       {"+ RGBA color table (Brabec-Seidel 0/64)", brabecSeidelTable, copyPixels},
       {"+ RGBA color table (gamma 1/2.2, 256 distinct entries)", gammaTable, copyPixels},
       {"+ color table + sum-into-alpha color matrix (Fig. 4)",
@@ -185,13 +290,14 @@ std::vector<Operation> allOperations() {
        [](int w, int h) {
          glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, w, h);
          glFinish();
-       }},
+       },
+       false, false, false},
       {"glAccum(GL_ACCUM, 0.25)", [] {},
        [](int, int) {
          glAccum(GL_ACCUM, 0.25f);
          glFinish();
        },
-       true},
+       true, false, false},
       {"glAccum(GL_RETURN, 1)", [] {},
        [](int, int) {
          glAccum(GL_RETURN, 1.0f);
@@ -202,7 +308,8 @@ std::vector<Operation> allOperations() {
 }
 
 // Ratios of every operation on one back end; the context is made once per size.
-std::vector<double> measure(Backend backend, int w, int h, int reps, double& memcpyRatioBase) {
+std::vector<double> measure(Backend backend, int w, int h, int reps, double& memcpyRatioBase,
+                            detail::WriteBackPath path = detail::WriteBackPath::kFastest) {
   std::vector<double> ratios;
   ContextSpec spec;
   spec.backend = backend;
@@ -211,6 +318,8 @@ std::vector<double> measure(Backend backend, int w, int h, int reps, double& mem
   spec.accumulation = backend == Backend::kReference;  // Debian: the emulated buffer
   auto ctx = GlContext::create(spec);
   imaging::install(*ctx);
+  if (detail::currentState() != nullptr) detail::currentState()->writeBack.forced = path;
+  gUploadTarget = UploadTarget{};
   std::vector<uint8_t> img(size_t(w) * h * 4);
   for (size_t i = 0; i < img.size(); ++i) img[i] = uint8_t((i * 2654435761u) >> 24);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -224,6 +333,11 @@ std::vector<double> measure(Backend backend, int w, int h, int reps, double& mem
   const double base = memcpyMs(size_t(w) * h * 4, reps);
   memcpyRatioBase = base;
   for (const Operation& op : operations()) {
+    if ((op.osmesaOnly && backend != Backend::kOsmesa) ||
+        (path == detail::WriteBackPath::kDrawPixels && !op.writesBack)) {
+      ratios.push_back(-1.0);
+      continue;
+    }
     op.setup();
     const double ms = bestMs([&] { op.run(w, h); }, reps);
     resetAll();
@@ -336,19 +450,24 @@ int run(int argc, char** argv) {
       "(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s)\n\n",
       haveReference ? "" : ": NOT FOUND, column empty");
   std::printf(
-      "| operation | size | stage (imaging/ transform) | emulated call | reference call | "
-      "emulated / reference |\n| --- | --- | --- | --- | --- | --- |\n");
+      "| operation | size | stage (imaging/ transform) | emulated call | emulated call, "
+      "glDrawPixels write-back | reference call | emulated / reference |\n"
+      "| --- | --- | --- | --- | --- | --- | --- |\n");
   const auto ops = operations();
   for (const auto& sz : sizes) {
     double base = 0, refBase = 0;
+    double drawBase = 0;
     const auto emulated = measure(Backend::kOsmesa, sz[0], sz[1], reps, base);
+    const auto drawn =
+        measure(Backend::kOsmesa, sz[0], sz[1], reps, drawBase, detail::WriteBackPath::kDrawPixels);
     const auto stages = measureStages(sz[0], sz[1], reps, base);
     std::vector<double> reference(ops.size(), -1.0);
     if (haveReference) reference = measure(Backend::kReference, sz[0], sz[1], reps, refBase);
     for (size_t i = 0; i < ops.size(); ++i) {
-      char stage[32] = "-", ref[32] = "-", speed[32] = "-";
+      char stage[32] = "-", ref[32] = "-", speed[32] = "-", old[32] = "-";
+      if (drawn[i] >= 0 && ops[i].writesBack) std::snprintf(old, sizeof old, "%.1fx", drawn[i]);
       if (stages[i] >= 0) std::snprintf(stage, sizeof stage, "%.1fx", stages[i]);
-      if (reference[i] >= 0) {
+      if (reference[i] >= 0 && emulated[i] >= 0) {
         std::snprintf(ref, sizeof ref, "%.0fx", reference[i]);
         // Both ratios are to a memcpy measured in the same process run: the quotient is the
         // reference's time over the emulation's (> 1: the emulation is faster).
@@ -356,8 +475,8 @@ int run(int argc, char** argv) {
                       (emulated[i] * base) / (reference[i] * refBase),
                       (reference[i] * refBase) / (emulated[i] * base));
       }
-      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s |\n", ops[i].name, sz[0], sz[1], stage,
-                  emulated[i], ref, speed);
+      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s |\n", ops[i].name, sz[0], sz[1], stage,
+                  emulated[i], old, ref, speed);
     }
   }
   return 0;

@@ -218,6 +218,22 @@ TEST(ConvolutionBytes, DyadicWeightsDifferentPerComponentAndSumsBelowOne) {
     expectSameBytes(with2D(filter2D(3, 3, k, border)), borderName(border));
 }
 
+TEST(ConvolutionBytes, DyadicSeparableKernelsDifferentPerComponent) {
+  // Every component an outer product of integer vectors (the separable integer form: column
+  // sums, then row sums), each a different one: R the 3x3 binomial on a 5x3 grid, G a row
+  // with a zero in the middle, B a single centre tap, A no tap at all (sums to 0).
+  const int r[15] = {0, 1, 2, 1, 0, 0, 2, 4, 2, 0, 0, 1, 2, 1, 0};
+  const int g[15] = {1, 0, 0, 0, 1, 2, 0, 0, 0, 2, 1, 0, 0, 0, 1};
+  std::vector<float> k(15 * 4, 0.0f);
+  for (int t = 0; t < 15; ++t) {
+    k[t * 4 + 0] = float(r[t]) / 16.0f;
+    k[t * 4 + 1] = float(g[t]) / 8.0f;
+    k[t * 4 + 2] = t == 7 ? 1.0f : 0.0f;
+  }
+  for (GLenum border : {GLenum(GL_REDUCE), GLenum(GL_REPLICATE_BORDER)})
+    expectSameBytes(with2D(filter2D(5, 3, k, border)), borderName(border));
+}
+
 TEST(ConvolutionBytes, DyadicKernelsOutsideTheIntegerLimits) {
   // A pair of numerators above 128 (pmaddubsw could saturate) and a sum above 1: both must
   // take the float sums, with the same bytes.
