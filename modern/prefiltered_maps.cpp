@@ -203,6 +203,7 @@ PrefilterWorkspace::~PrefilterWorkspace() {
   map.texture.release();
   scratch.texture.release();
   fbo.release();
+  depthBounds.release();
 }
 
 PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key) {
