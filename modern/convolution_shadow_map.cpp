@@ -49,15 +49,16 @@ constexpr double kDefaultSkipError = 0.025;
 constexpr double kMaxSkipError = 0.5;
 constexpr int kSkipIntervalSteps = 40000;  // grid points of csmSkipIntervals on [-1, 1]
 // The filter footprint's radius in depth texels, for the depth bounds of the classification:
-// kFootprintScale times the pixel's texels per pixel (llvmpipe's anisotropic probes spread over
-// half the major axis each side, and each reads a bilinear 2x2 at a level whose texel is at most
-// twice the footprint's minor axis: <= 2.5 x, with room for its per-quad level choice), plus
+// kFootprintScale times the pixel's texels per pixel (tri-linear reads +-1 texel of a level whose
+// texel is at most twice that: +-2 x; llvmpipe's anisotropic probes spread over half the major
+// axis each side, each a tri-linear lookup of a finer level: <= 2.5 x; 3 leaves room for its
+// per-quad level choice), plus
 // the bilinear reach and the blur's radius, plus one texel for rounding.
-constexpr float kFootprintScale = 4.0f;
+constexpr float kFootprintScale = 3.0f;
 constexpr float kFootprintRoundingTexels = 1.0f;
-// The pyramid level whose texels (2^4 = 16 depth texels wide) bound a pixel's footprint: one
-// level for all pixels (csm_shadow.frag, depthBoundsAround); footprints wider than one texel of
-// it (16 texels: about 3 texels per pixel) are not decided by the bounds.
+// The coarsest level of the depth-bounds pyramid (2^4 = 16 depth texels a texel): footprints
+// wider than it allows (csm_shadow.frag, depthBoundsAround: about 3 texels per pixel) are not
+// decided by the bounds.
 constexpr int kDepthBoundsLevel = 4;
 // glPolygonOffset factor and units (depth-slope and resolvable-depth steps) that the
 // reconstruction pass 5c moves its fragments forward by, so that it meets the classification's
@@ -278,8 +279,9 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
   buildMipmapsAndSetFiltering(basis, s.filtering);
 }
 
-// Pass 5a: the min/max pyramid of the linear depth z(p) (csm_depth_bounds.frag), read by the
-// classification (5b) to bound the depths under each pixel's filter footprint.
+// Pass 5a: the min/max pyramid of the linear depth z(p) up to kDepthBoundsLevel, and its dilated
+// copy (each texel the bounds of its 3x3 neighbourhood in its level) (csm_depth_bounds.frag),
+// read by the classification (5b) to bound the depths under each pixel's filter footprint.
 // DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where the
 // bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
 const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace& work,
@@ -289,11 +291,13 @@ const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace&
   if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
     int levels = 1;
     while (levels <= kDepthBoundsLevel && (n >> levels) >= 1) ++levels;
-    work.depthBounds = makeTexture();
-    glBindTexture(GL_TEXTURE_2D, work.depthBounds.id());
-    glTexStorage2D(GL_TEXTURE_2D, levels, GL_RG32F, n, n);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    for (Texture* t : {&work.depthBounds, &work.depthBoundsDilated}) {
+      *t = makeTexture();
+      glBindTexture(GL_TEXTURE_2D, t->id());
+      glTexStorage2D(GL_TEXTURE_2D, levels, GL_RG32F, n, n);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
     work.depthBoundsSize = n;
     work.depthBoundsLevels = levels;
   }
@@ -305,34 +309,39 @@ const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace&
   glDrawBuffers(1, &buffer);
   const FullScreenTriangle triangle;
   glActiveTexture(GL_TEXTURE0);
-  for (int level = 0; level < work.depthBoundsLevels; ++level) {
-    const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_depth_bounds.frag.glsl",
-                                           {{"FROM_DEPTH", level == 0 ? "1" : "0"}});
+  // Reads `source` at `level` only (BASE_LEVEL = MAX_LEVEL = level: no feedback loop, glspec
+  // §4.4.3; texelFetch's level 0 is then that level) while `target` level `targetLevel` is drawn.
+  auto draw = [&](const char* mode, GLuint source, int level, GLuint target, int targetLevel) {
+    const Program& program =
+        cachedProgram("fullscreen.vert.glsl", "csm_depth_bounds.frag.glsl", {{mode, "1"}});
     program.use();
     program.set("uSource", 0);
-    if (level == 0) {
-      glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
-    } else {
-      // Read level - 1 only while level is drawn: no feedback loop (glspec §4.4.3).
-      glBindTexture(GL_TEXTURE_2D, work.depthBounds.id());
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level - 1);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, level - 1);
-    }
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                           work.depthBounds.id(), level);
-    const int size = std::max(n >> level, 1);
+    glBindTexture(GL_TEXTURE_2D, source);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, level);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target,
+                           targetLevel);
+    const int size = std::max(n >> targetLevel, 1);
     glViewport(0, 0, size, size);
     triangle.draw();
-  }
+  };
+  const GLuint pyramid = work.depthBounds.id(), dilated = work.depthBoundsDilated.id();
+  draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 0);
+  for (int level = 1; level < work.depthBoundsLevels; ++level)
+    draw("REDUCE", pyramid, level - 1, pyramid, level);
+  for (int level = 0; level < work.depthBoundsLevels; ++level)
+    draw("DILATE", pyramid, level, dilated, level);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  // The classification reads the top level only (csm_shadow.frag, depthBoundsAround).
-  glBindTexture(GL_TEXTURE_2D, work.depthBounds.id());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, work.depthBoundsLevels - 1);
+  glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);  // GL's initial value
+  glBindTexture(GL_TEXTURE_2D, dilated);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, work.depthBoundsLevels - 1);
   glBindTexture(GL_TEXTURE_2D, 0);
   checkGl("modern.csm depth bounds");
-  return work.depthBounds;
+  return work.depthBoundsDilated;
 }
 
 // The uniforms the classification (CLASSIFY 1) and the reconstruction (CLASSIFY 0) share: the
@@ -370,15 +379,17 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   glStencilMask(0xFF);
   glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  const Program& program = cachedProgram(
-      "scene.vert.glsl", "csm_shadow.frag.glsl",
-      {{"ORDER", std::to_string(s.order)}, {"ENCODE_UNSIGNED", "0"}, {"CLASSIFY", "1"}});
+  const Program& program =
+      cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
+                    {{"ORDER", std::to_string(s.order)},
+                     {"ENCODE_UNSIGNED", "0"},
+                     {"CLASSIFY", "1"},
+                     {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)}});
   setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
   program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
   program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));
   program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
   program.set("uFootprintMargin", 1.0f + float(s.blurTaps / 2) + kFootprintRoundingTexels);
-  program.set("uDepthBoundsLevel", depthBoundsLevels - 1);
   program.set("uDepthMapTexels", params.shadowMapTexels);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, depthBounds.id());

@@ -204,6 +204,7 @@ PrefilterWorkspace::~PrefilterWorkspace() {
   scratch.texture.release();
   fbo.release();
   depthBounds.release();
+  depthBoundsDilated.release();
 }
 
 PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key) {

@@ -84,6 +84,7 @@ struct PrefilterWorkspace {
   // modern.csm's min/max pyramid of the light depth (RG32F, full chain) for the classification
   // that skips Eq. 13 where the series is decided (convolution_shadow_map.cpp).
   Texture depthBounds;
+  Texture depthBoundsDilated;  // each level's 3x3 neighbourhood bounds
   int depthBoundsSize = 0;
   int depthBoundsLevels = 0;
   // modern.csm's skip intervals (csmSkipIntervals: lit lo, hi, umbra lo, hi) and the settings

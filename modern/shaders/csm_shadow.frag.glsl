@@ -31,6 +31,9 @@
 #if CLASSIFY
 #extension GL_ARB_shader_stencil_export : require
 #endif
+#ifndef DEPTH_BOUNDS_LEVELS
+#define DEPTH_BOUNDS_LEVELS 5
+#endif
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 uniform sampler2DArray uBasis;   // layers 0..S-1: sin(c_k z), S..2S-1: cos(c_k z)
@@ -48,8 +51,7 @@ uniform float uOffset;           // subtracted from d (§3.2.2, Fig. 3c)
 uniform float uScale;            // multiplies f (§3.2.2, Fig. 3d)
 uniform bool uReceivesShadow;
 #if CLASSIFY
-uniform sampler2D uDepthBounds;  // level uDepthBoundsLevel of the min/max pyramid of z, RG32F
-uniform int uDepthBoundsLevel;   // (csm_depth_bounds.frag), with BASE_LEVEL = that level
+uniform sampler2D uDepthBounds;  // the dilated min/max pyramid of z (csm_depth_bounds.frag)
 uniform int uDepthMapTexels;     // the depth map's side (level 0)
 uniform vec2 uLitInterval;       // t = z - d: the clamped series is >= 1 - skip error on it
 uniform vec2 uUmbraInterval;     // ... and <= skip error on this one (empty: lo > hi)
@@ -94,28 +96,28 @@ float reconstructShadowTest(vec2 p, float d) {
 
 #if CLASSIFY
 // The least and greatest z of every depth texel that the filtered lookups at p can reach:
-// the pixel's footprint (rho texels per pixel, from the derivatives) times uFootprintScale,
-// plus the bilinear reach and the blur's radius, read as the 2x2 texels of pyramid level
-// uDepthBoundsLevel that contain that box (a box wider than one of them: no bounds).
+// the box of the pixel's footprint (rho texels per pixel, from the derivatives) times
+// uFootprintScale plus uFootprintMargin texels, bounded by one texel of the dilated pyramid
+// (csm_depth_bounds.frag, DILATE): the finest level L <= DEPTH_BOUNDS_LEVELS - 1 whose block
+// around the box's centre, with its neighbours, covers the box. Every level is read by every
+// pixel, one texelFetch each at a level that is the same for all pixels: Mesa 22.3 llvmpipe's
+// texelFetch with a level that differs between the lanes of a quad returned wrong texels
+// (isolated pixels on lit ground classified as umbra, brabec 1024x768). A box wider than the
+// coarsest level allows: no bounds (vec2(-2, 2), never decided).
 vec2 depthBoundsAround(vec2 p, float rho) {
   ivec2 size = ivec2(uDepthMapTexels);
   float radius = uFootprintScale * rho + uFootprintMargin;
   vec2 u = p * vec2(size) - 0.5;  // texel-centre coordinates
   ivec2 lo = clamp(ivec2(floor(u - radius)), ivec2(0), size - 1);
   ivec2 hi = clamp(ivec2(floor(u + radius)) + 1, ivec2(0), size - 1);
-  int span = max(hi.x - lo.x, hi.y - lo.y) + 1;
-  // One level for every pixel (uDepthBoundsLevel): Mesa 22.3 llvmpipe's texelFetch with a level
-  // that differs between the lanes of a quad returned wrong texels (isolated pixels on lit
-  // ground classified as umbra, brabec 1024x768). A box wider than two texels of it: undecided.
-  const int level = 0;
-  if (span > (1 << uDepthBoundsLevel)) return vec2(-2.0, 2.0);
-  ivec2 top = textureSize(uDepthBounds, level) - 1;
-  ivec2 a = min(lo >> uDepthBoundsLevel, top), b = min(hi >> uDepthBoundsLevel, top);
-  vec2 b00 = texelFetch(uDepthBounds, a, level).rg;
-  vec2 b10 = texelFetch(uDepthBounds, ivec2(b.x, a.y), level).rg;
-  vec2 b01 = texelFetch(uDepthBounds, ivec2(a.x, b.y), level).rg;
-  vec2 b11 = texelFetch(uDepthBounds, b, level).rg;
-  return vec2(min(min(b00.x, b10.x), min(b01.x, b11.x)), max(max(b00.y, b10.y), max(b01.y, b11.y)));
+  vec2 bounds = vec2(-2.0, 2.0);
+  for (int level = DEPTH_BOUNDS_LEVELS - 1; level >= 0; --level) {
+    ivec2 a = lo >> level, b = hi >> level;
+    ivec2 centre = min(a + (b - a) / 2, textureSize(uDepthBounds, level) - 1);
+    vec2 levelBounds = texelFetch(uDepthBounds, centre, level).rg;
+    if (all(lessThanEqual(b - a, ivec2(2)))) bounds = levelBounds;  // finer levels win
+  }
+  return bounds;
 }
 const float kNeedsReconstruction = -1.0;
 #endif
