@@ -24,9 +24,6 @@ namespace sl {
 namespace {
 namespace fs = std::filesystem;
 
-constexpr int kExitInputError = 2;
-constexpr int kExitGlError = 3;
-
 const char* kUsage =
     R"(shadowlab — classic shadow-map antialiasing, legacy OpenGL 1.x beside modern GLSL
 
@@ -162,10 +159,10 @@ void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, Ren
   if (outputs.dump) writePassDump(*outputs.dump, frame, dumpHeader, provenance);
 }
 
-// The scene with --camera-distance, --light-radius and --light-position applied.
-Scene adjustedScene(const std::string& sceneName, const SceneAdjustments& adjustments) {
+// The named scene with --camera-distance, --light-radius, --light-position and --orbit applied.
+Scene viewedScene(const cli::Args& args, const std::string& sceneName) {
   Scene scene = loadScene(sceneName);
-  adjustScene(scene, adjustments);
+  cli::viewScene(args, scene);
   return scene;
 }
 
@@ -180,8 +177,7 @@ void addAdjustments(nlohmann::json& made, const SceneAdjustments& a) {
 int render(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const SceneAdjustments adjustments = cli::sceneAdjustments(args);
-  Scene scene = adjustedScene(sceneName, adjustments);
-  cli::applyView(args, scene);
+  Scene scene = viewedScene(args, sceneName);
   const Technique& technique = findTechnique(args.required("technique"));
   RenderParams params = withReadLog(cli::renderParams(args));
   rejectIgnoredOptions(technique, cli::givenCommonOptions(args));
@@ -217,8 +213,7 @@ int render(const cli::Args& args) {
 int compare(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const SceneAdjustments adjustments = cli::sceneAdjustments(args);
-  Scene scene = adjustedScene(sceneName, adjustments);
-  cli::applyView(args, scene);
+  Scene scene = viewedScene(args, sceneName);
   const Technique& a = findTechnique(args.required("a"));
   const Technique& b = findTechnique(args.required("b"));
   const RenderParams params = cli::renderParams(args);
@@ -294,17 +289,5 @@ int run(int argc, char** argv) {
 }  // namespace sl
 
 int main(int argc, char** argv) {
-  sl::recordCommandLine(argc, argv);
-  try {
-    return sl::run(argc, argv);
-  } catch (const sl::InputError& e) {
-    std::cerr << "shadowlab: " << e.what() << "\n";
-    return sl::kExitInputError;
-  } catch (const sl::GlError& e) {
-    std::cerr << "shadowlab: GL: " << e.what() << "\n";
-    return sl::kExitGlError;
-  } catch (const std::exception& e) {
-    std::cerr << "shadowlab: " << e.what() << "\n";
-    return 1;
-  }
+  return sl::runProgram("shadowlab", argc, argv, sl::run);
 }

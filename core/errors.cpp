@@ -1,9 +1,11 @@
 #include "core/errors.h"
 
+#include <iostream>
 #include <sstream>
 #include <string>
 
 #include "core/gl.h"
+#include "core/provenance.h"
 
 namespace sl {
 using namespace sl::gl;
@@ -40,6 +42,22 @@ void checkGl(const char* pass) {
     message += glErrorName(e);
   }
   if (!message.empty()) throw GlError(std::string(pass) + ": " + message);
+}
+
+int runProgram(const char* program, int argc, char** argv, int (*body)(int, char**)) {
+  recordCommandLine(argc, argv);  // PNG text chunks and JSON name the command
+  try {
+    return body(argc, argv);
+  } catch (const InputError& e) {
+    std::cerr << program << ": " << e.what() << "\n";
+    return kExitInputError;
+  } catch (const GlError& e) {
+    std::cerr << program << ": GL: " << e.what() << "\n";
+    return kExitGlError;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": " << e.what() << "\n";
+    return kExitOther;
+  }
 }
 
 }  // namespace sl

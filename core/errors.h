@@ -27,4 +27,13 @@ std::string formatNumber(double value);
 // Name of a GL error enum, e.g. "GL_INVALID_ENUM".
 const char* glErrorName(unsigned error);
 
+// Exit statuses of every shadowlab program (DESIGN.md's CLI contract).
+constexpr int kExitOther = 1;
+constexpr int kExitInputError = 2;
+constexpr int kExitGlError = 3;
+
+// A program's main(): records the command line for provenance, runs `body`, and turns an
+// escaping error into one line on stderr ("<program>: message") and its exit status.
+int runProgram(const char* program, int argc, char** argv, int (*body)(int, char**));
+
 }  // namespace sl

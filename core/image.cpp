@@ -84,13 +84,21 @@ void appendToString(png_structp png, png_bytep data, png_size_t length) {
 
 }  // namespace
 
-std::string encodePng(const Image& image, int bitDepth, const Provenance& provenance) {
-  constexpr int kInMemoryPngCompression = 1;  // zlib level 1 (Z_BEST_SPEED)
+namespace {
+// zlib's default level for files; its fastest for in-memory PNGs: the live lab answers with
+// those while a slider moves, on loopback, where a few more bytes cost less than the time of
+// a denser deflate.
+constexpr int kFilePngCompression = -1;        // Z_DEFAULT_COMPRESSION
+constexpr int kInMemoryPngCompression = 1;     // Z_BEST_SPEED
+
+// The PNG bytes of `image` with its provenance in tEXt chunks; `what` names it in errors.
+std::string pngBytes(const Image& image, int bitDepth, const Provenance& provenance,
+                     int compressionLevel, const std::string& what) {
   if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
   const int colorType = pngColorType(image.channels);
   if (colorType < 0 || image.width <= 0 || image.height <= 0)
     throw InputError("cannot encode an empty or " + std::to_string(image.channels) +
-                     "-channel image as PNG");
+                     "-channel image as " + what);
   const std::vector<unsigned char> pixels = pngRows(image, bitDepth);
   const size_t rowBytes = size_t(image.width) * image.channels * (bitDepth / 8);
   std::string out;
@@ -98,16 +106,14 @@ std::string encodePng(const Image& image, int bitDepth, const Provenance& proven
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (png == nullptr || info == nullptr) {
     png_destroy_write_struct(&png, &info);
-    throw InputError("libpng could not start encoding a PNG");
+    throw InputError("libpng could not start encoding " + what);
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw InputError("libpng failed while encoding a PNG");
+    throw InputError("libpng failed while encoding " + what);
   }
   png_set_write_fn(png, &out, appendToString, nullptr);
-  // zlib's fastest level: the live lab answers with these while a slider moves, on loopback,
-  // where a few more bytes cost less than the time of a denser deflate.
-  png_set_compression_level(png, kInMemoryPngCompression);
+  png_set_compression_level(png, compressionLevel);
   png_set_IHDR(png, info, image.width, image.height, bitDepth, colorType, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   setProvenanceText(png, info, provenance);
@@ -118,46 +124,24 @@ std::string encodePng(const Image& image, int bitDepth, const Provenance& proven
   png_destroy_write_struct(&png, &info);
   return out;
 }
+}  // namespace
+
+std::string encodePng(const Image& image, int bitDepth, const Provenance& provenance) {
+  return pngBytes(image, bitDepth, provenance, kInMemoryPngCompression, "a PNG");
+}
 
 void writePng(const std::string& path, const Image& image, int bitDepth,
               const Provenance& provenance) {
-  if (bitDepth != 8 && bitDepth != 16) throw InputError("PNG bit depth must be 8 or 16");
-  const int colorType = pngColorType(image.channels);
-  if (colorType < 0 || image.width <= 0 || image.height <= 0)
-    throw InputError("cannot write an empty or " + std::to_string(image.channels) +
-                     "-channel image to " + path);
+  const std::string bytes = pngBytes(image, bitDepth, provenance, kFilePngCompression, path);
   // A temporary name of this process alone: parallel writers of one path (ctest runs tests as
   // parallel processes) each rename a complete file into place, never a half-written one.
   const std::string temp = path + ".part-" + std::to_string(::getpid());
   File file(std::fopen(temp.c_str(), "wb"));
   if (!file) throw InputError("cannot write " + path + ": " + std::strerror(errno));
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (png == nullptr || info == nullptr) {
-    png_destroy_write_struct(&png, &info);
-    std::remove(temp.c_str());
-    throw InputError("libpng could not start writing " + path);
-  }
-  const size_t rowBytes = size_t(image.width) * image.channels * (bitDepth / 8);
-  const std::vector<unsigned char> pixels = pngRows(image, bitDepth);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    file.reset();
-    std::remove(temp.c_str());
-    throw InputError("libpng failed while writing " + path);
-  }
-  png_init_io(png, file.get());
-  png_set_IHDR(png, info, image.width, image.height, bitDepth, colorType, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  setProvenanceText(png, info, provenance);
-  png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y)
-    png_write_row(png, const_cast<unsigned char*>(pixels.data()) + rowBytes * y);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  const bool flushed = std::fflush(file.get()) == 0;
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file.get()) == bytes.size() &&
+                       std::fflush(file.get()) == 0;
   file.reset();
-  if (!flushed || std::rename(temp.c_str(), path.c_str()) != 0) {
+  if (!written || std::rename(temp.c_str(), path.c_str()) != 0) {
     std::remove(temp.c_str());
     throw InputError("cannot write " + path + ": " + std::strerror(errno));
   }

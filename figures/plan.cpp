@@ -10,8 +10,7 @@ namespace sl::figures {
 
 int runPlanCommand(const cli::Args& args) {
   Scene scene = loadScene(args.value("scene").value_or(kDefaultScene));
-  adjustScene(scene, cli::sceneAdjustments(args));
-  cli::applyView(args, scene);
+  cli::viewScene(args, scene);
   const Technique& technique = findTechnique(args.required("technique"));
   const RenderParams params = cli::renderParams(args);
   checkRenderable(technique, params);  // render's checks, the GL's limits included

@@ -474,8 +474,7 @@ struct LabServer::Impl {
     auto future = worker.submit(r.lane, [this, r]() {
       return guarded([&] {
         Scene scene = engine.scene(r.sceneName);
-        adjustScene(scene, cli::sceneAdjustments(r.args));
-        cli::applyView(r.args, scene);
+        cli::viewScene(r.args, scene);
         if (r.view != "passes") {
           const Frame f = engine.render(*r.technique, scene, r.params);
           JobResult out =
@@ -540,8 +539,7 @@ struct LabServer::Impl {
     auto future = worker.submit(r.lane, [this, r]() {
       return guarded([&] {
         Scene scene = engine.scene(r.sceneName);
-        adjustScene(scene, cli::sceneAdjustments(r.args));
-        cli::applyView(r.args, scene);
+        cli::viewScene(r.args, scene);
         const Frame f = engine.render(*r.technique, scene, r.params);
         bool cached = false;
         const Engine::Reference& ref = engine.reference(scene, r.params, cached);

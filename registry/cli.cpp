@@ -391,6 +391,11 @@ void applyView(const Args& args, Scene& scene) {
   validateScene(scene);
 }
 
+void viewScene(const Args& args, Scene& scene) {
+  adjustScene(scene, sceneAdjustments(args));
+  applyView(args, scene);
+}
+
 std::vector<CommonOption> givenCommonOptions(const Args& args) {
   std::vector<CommonOption> given;
   for (CommonOption o : allCommonOptions())

@@ -72,5 +72,8 @@ ViewPose viewPose(const Scene& scene);  // the scene's own camera and light, in 
 // Applies --orbit to `scene` and validates it; InputError for a malformed or
 // impossible value (a light on its target, an orbit that puts the camera on it).
 void applyView(const Args& args, Scene& scene);
+// The scene as every command sees it: sceneAdjustments, then applyView (the one place that
+// order lives; render, compare, plan and the lab's API all call this).
+void viewScene(const Args& args, Scene& scene);
 
 }  // namespace sl::cli

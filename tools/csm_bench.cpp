@@ -338,14 +338,5 @@ int run(int argc, char** argv) {
 }  // namespace sl
 
 int main(int argc, char** argv) {
-  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
-  try {
-    return sl::run(argc, argv);
-  } catch (const sl::InputError& e) {
-    std::cerr << "csm_bench: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "csm_bench: " << e.what() << "\n";
-    return 1;
-  }
+  return sl::runProgram("csm_bench", argc, argv, sl::run);
 }

@@ -137,14 +137,5 @@ int run(int argc, char** argv) {
 }  // namespace sl::lab::bench
 
 int main(int argc, char** argv) {
-  sl::recordCommandLine(argc, argv);
-  try {
-    return sl::lab::bench::run(argc, argv);
-  } catch (const sl::InputError& e) {
-    std::cerr << "lab_bench: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "lab_bench: " << e.what() << "\n";
-    return 1;
-  }
+  return sl::runProgram("lab_bench", argc, argv, sl::lab::bench::run);
 }
