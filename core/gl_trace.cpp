@@ -165,6 +165,17 @@ std::vector<std::vector<double>> components(const void* data, int count, GLenum 
   return out;
 }
 
+// A value with its 8-bit code when it is one exactly ("0.251 (64/255)"): the colour table of
+// Brabec & Seidel §3 Fig. 4 holds 0 or 64 in 8-bit terms, which a reader looks for.
+constexpr double kEightBitMax = 255.0;
+constexpr double kCodeTolerance = 1e-4;  // in codes: float rounding of k / 255, nothing else
+std::string numWithCode(double v) {
+  const double code = v * kEightBitMax;
+  const double nearest = std::round(code);
+  if (v <= 0.0 || v >= 1.0 || std::abs(code - nearest) > kCodeTolerance) return num(v);
+  return num(v) + " (" + num(nearest) + "/255)";
+}
+
 // "0..63 -> 0, 64..255 -> 1", or the ends of a longer sequence.
 std::string runs(const std::vector<double>& v) {
   std::vector<std::pair<size_t, size_t>> r;  // [first, last] of equal values
@@ -183,7 +194,7 @@ std::string runs(const std::vector<double>& v) {
     out += (out.empty() ? "" : ", ") +
            (first == last ? std::to_string(first)
                           : std::to_string(first) + ".." + std::to_string(last)) +
-           " -> " + num(v[first]);
+           " -> " + numWithCode(v[first]);
   return out;
 }
 
@@ -537,15 +548,19 @@ void record(T& t, e::LightModeli, GLenum pname, GLint v) {
 }
 
 // ---- texgen ----
+// Texgen state and the texture enables belong to the active texture unit: the lines say which.
+std::string unitTag(const T& t) { return "unit " + std::to_string(t.activeUnit - GL_TEXTURE0); }
 void record(T& t, e::TexGeni, GLenum coord, GLenum pname, GLint param) {
-  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + enumOrNumber(param));
+  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + enumOrNumber(param) +
+                      " (" + unitTag(t) + ")");
 }
 void record(T& t, e::TexGenfv, GLenum coord, GLenum pname, const GLfloat* p) {
   const bool plane = pname == GL_EYE_PLANE || pname == GL_OBJECT_PLANE;
   t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + tuple(p, plane ? 4 : 1) +
-                      (pname == GL_EYE_PLANE ? " (given in object space; GL stores it times "
+                      " (" + unitTag(t) +
+                      (pname == GL_EYE_PLANE ? "; given in object space, GL stores it times "
                                                "the inverse modelview of this moment)"
-                                             : ""));
+                                             : ")"));
 }
 
 // ---- matrices ----
@@ -591,8 +606,21 @@ void record(T& t, e::Frustum, GLdouble l, GLdouble r, GLdouble b, GLdouble tp, G
 }
 
 // ---- enables ----
-void record(T& t, e::Enable, GLenum cap) { t.add(capGroup(cap), "enable " + glEnumName(cap)); }
-void record(T& t, e::Disable, GLenum cap) { t.add(capGroup(cap), "disable " + glEnumName(cap)); }
+// The caps of a texture unit (texgen, texture targets) name the unit.
+bool perUnitCap(GLenum cap) {
+  switch (cap) {
+    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
+    case GL_TEXTURE_1D: case GL_TEXTURE_2D: case GL_TEXTURE_3D:
+      return true;
+    default:
+      return false;
+  }
+}
+void enableLine(T& t, const char* verb, GLenum cap) {
+  t.add(capGroup(cap), verb + glEnumName(cap) + (perUnitCap(cap) ? " (" + unitTag(t) + ")" : ""));
+}
+void record(T& t, e::Enable, GLenum cap) { enableLine(t, "enable ", cap); }
+void record(T& t, e::Disable, GLenum cap) { enableLine(t, "disable ", cap); }
 
 // ---- imaging subset ----
 void colorTable(T& t, const char* call, GLenum target, GLsizei first, GLsizei count,

@@ -140,7 +140,7 @@ std::string shownValue(const nlohmann::json& v) {
 }
 
 // The GLSL lines marked `// @pass id` (core/shaders.h) and the legacy passes they replace (those
-// of `twin` when given), added to a pass of passes.json once each.
+// of `twin`; none without a twin), added to a pass of passes.json once each.
 void addShaderPass(nlohmann::json& pass, const std::string& id, const std::string& twin) {
   bool found = false;
   for (const ShaderPassMarker& m : shaderPassMarkers()) {
@@ -154,12 +154,19 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const std::strin
     if (std::find(pass["glsl"].begin(), pass["glsl"].end(), where) == pass["glsl"].end())
       pass["glsl"].push_back(where);
     for (const std::string& r : m.replaces) {
-      if (!twin.empty() && r.rfind(twin + " ", 0) != 0) continue;
+      if (twin.empty() || r.rfind(twin + " ", 0) != 0) continue;  // a twin's passes only
       if (std::find(pass["replaces"].begin(), pass["replaces"].end(), r) == pass["replaces"].end())
         pass["replaces"].push_back(r);
     }
   }
   if (!found) throw GlError("a pass names the shader marker @pass " + id + ", which no shader has");
+}
+
+// The pass number in "legacy.X pass N name" (a "replaces" entry), or -1.
+int replacedPassNumber(const nlohmann::json& entry) {
+  const std::string text = entry.is_string() ? entry.get<std::string>() : "";
+  const size_t at = text.find(" pass ");
+  return at == std::string::npos ? -1 : passNumberOf(text.substr(at + 6));
 }
 
 // A value legend under an image: a gradient bar with its end values.
@@ -310,8 +317,8 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     nlohmann::json& p = passes[passNumberOf(t.name)];
     if (!p.contains("name")) {
       p["name"] = afterPassNumber(t.name);
-      // Declared by the pass (core/technique.h PassTimer); the technique's citation otherwise.
-      p["section"] = t.section.empty() ? header.paper : t.section;
+      // Declared by the pass (core/technique.h PassTimer): the paper section, or "ours ...".
+      p["section"] = t.section;  // a timed pass declares its own (an empty one is a bug)
       p["source"] = {{"file", t.sourceFile}, {"function", t.sourceFunction}};
       p["state"] = nlohmann::json::array();
     }
@@ -357,6 +364,13 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   }
   out["passes"] = nlohmann::json::array();
   for (auto& [number, p] : passes) {
+    // The legacy passes a twin's pass replaces, in their pipeline order (the markers list them
+    // in the shader's order).
+    if (p.contains("replaces"))
+      std::stable_sort(p["replaces"].begin(), p["replaces"].end(),
+                       [](const nlohmann::json& a, const nlohmann::json& b) {
+                         return replacedPassNumber(a) < replacedPassNumber(b);
+                       });
     p["number"] = number;
     if (!p.contains("name")) p["name"] = "";
     if (!p.contains("section")) p["section"] = header.paper;

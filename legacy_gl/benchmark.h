@@ -1,10 +1,12 @@
 // legacy_gl/benchmark.h — Brabec & Seidel 2001 §5 timings: every variant in the paper's
 // configuration (800x600 window, the ~7000-triangle brabec scene, 512x512 map, one light),
 // timed at steady state (core/frame_timing.h: warm-up frames, then the median frame time and
-// the median per pass), beside the paper's SGI Octane VPro/8 frame rates. Called by the
-// `legacy_bench` executable (tools/legacy_bench.cpp).
+// the median per pass), beside the paper's SGI Octane VPro/8 frame rates, and beside each
+// pass's llvmpipe floor (legacy_gl/roofline.h), measured in the same context with the frames
+// and the floors interleaved. Called by the `legacy_bench` executable (tools/legacy_bench.cpp).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,15 +43,23 @@ struct BenchmarkResult {
   // whole render() call, which adds the read-back of the colour image and the mask; passes:
   // the median of each pass.
   SteadyTiming timing;
+  // Per pass of timing.passes, in order: its floor (legacy_gl/roofline.h passFloor, each term
+  // the median of its own timings), 0 for a pass without GL work, nullopt where no rule knows
+  // the pass. floors: the median of each floor term measured.
+  std::vector<std::optional<double>> passFloorMs;
+  double frameFloorMs = 0.0;  // the sum of the passes' floors
+  std::vector<PassTime> floors;
 };
 
-// Times each variant with timeSteadyState on one context per variant.
+// Times each variant on one context per variant: its frames interleaved with frames of its
+// passes' floors (core/frame_timing.h timeInterleavedSteadyState), options.frames rounds.
 std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
                                                    const BenchmarkOptions& options,
                                                    const std::vector<BenchmarkVariant>& variants);
 
-// The README table: variant | GL | paper fps | ours fps | ours ms/frame | render() wall ms;
-// then one per-pass table per variant.
+// The README table: variant | GL | paper fps | ours fps | ours ms/frame | render() wall ms |
+// floor ms/frame | time / floor; then per variant its per-pass table (ms, floor ms, time /
+// floor) and the floors measured.
 std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results);
 
 }  // namespace sl::legacy

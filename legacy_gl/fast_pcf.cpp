@@ -76,7 +76,9 @@ std::string phaseFileTag(const Phase& p) {
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
 void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                 Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth ramp in RGBA", "Brabec & Seidel 2001 §4");
+  PassTimer timer(frame, "1 light pass: depth ramp in RGBA",
+                  "Brabec & Seidel 2001 §4: the map rendered as in §2 (Fig. 1), the encoded depth "
+                  "in all four channels");
   bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
                        bs::kAllChannels, true);
 }
@@ -92,7 +94,9 @@ void packNeighboursByConvolution(const RenderParams& params, FastPcfState& s, si
 // Pass 3 (§3/§4): the light depth of every visible point in all four channels.
 void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, FastPcfState& s,
                                  Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag, "Brabec & Seidel 2001 §3, §4");
+  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag,
+                  "Brabec & Seidel 2001 §4 (\"very similar to ... Section 3\"): §3's camera pass, "
+                  "the light depth replicated over the four channels");
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
                         bs::kAllChannels);
 }
@@ -102,7 +106,8 @@ void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfSt
                        size_t phase, const Phase& p, Frame& frame) {
   PassTimer timer(frame,
                   "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p),
-                  "Brabec & Seidel 2001 §4, Fig. 6");
+                  "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "
+                  "coordinates offset by (ds/2, dt/2), subtracted as in §3");
   bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
 }
 
@@ -110,13 +115,16 @@ void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfSt
 void countShadowedSamples(const RenderParams& params, FastPcfState& s, Frame& frame,
                           const std::string& tag) {
   PassTimer timer(frame, "5 copy: colour table + colour matrix -> alpha" + tag,
-                  "Brabec & Seidel 2001 §3, Fig. 4");
+                  "Brabec & Seidel 2001 §3, Fig. 4 (as §4 says): colour table 0 / 64 (63 in "
+                  "alpha), the colour matrix sums the channels into alpha");
   bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples);
 }
 
 // Pass 7 (§5 "normal OpenGL lighting").
 void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "7 lighting x shadow term", "Brabec & Seidel 2001 §5");
+  PassTimer timer(frame, "7 lighting x shadow term",
+                  "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
+                  "(1 - shadow), ambient kept");
   bs::shadeWithShadowTerm(scene, params);
 }
 

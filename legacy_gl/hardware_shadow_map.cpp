@@ -53,8 +53,11 @@ struct HwState {
 void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwState& s,
                           float factor, float units, bool linearCompare, bool casterInFrustum,
                           Frame& frame) {
-  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
-                                         : "1 depth from light left out (planner: no caster in frustum)");
+  PassTimer timer(frame,
+                  casterInFrustum ? "1 depth from light"
+                                  : "1 depth from light left out (planner: no caster in frustum)",
+                  "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
+                  "polygon offset: Why Is Polygon Offset Needed?, Fig. 3");
   // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
   // depth (every comparison passes) replaces the pass.
   const int n = casterInFrustum ? params.shadowMapTexels : 1;
@@ -132,7 +135,9 @@ void enableShadowTexturing(bool on) {
 
 // Pass 3 (Kilgard's note in Everitt): the ambient term, everywhere, unshadowed.
 void renderAmbientPass(const Scene& scene, const RenderParams& params, int pass, Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " ambient");
+  PassTimer timer(frame, std::to_string(pass) + " ambient",
+                  "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "
+                  "keep some light in the shadow); the ambient term unshadowed");
   setCameraMatrices(scene, params.width, params.height);
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -146,7 +151,10 @@ void renderAmbientPass(const Scene& scene, const RenderParams& params, int pass,
 // light times the comparison result, added on the ambient pass (depth func EQUAL).
 void addShadowedDirectLight(const Scene& scene, const RenderParams& params, int pass,
                             Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " direct light x shadow test");
+  PassTimer timer(frame, std::to_string(pass) + " direct light x shadow test",
+                  "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
+                  "Figs. 4-5; behind the light: Advantages and Limitations (negative "
+                  "projection)");
   setCameraMatrices(scene, params.width, params.height);
   enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
   glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
@@ -166,7 +174,9 @@ void addShadowedDirectLight(const Scene& scene, const RenderParams& params, int 
 // Pass 5: the comparison result alone (white surfaces, lighting off) read back as the mask.
 Image renderVisibilityMask(const Scene& scene, const RenderParams& params, int pass,
                            Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " visibility mask");
+  PassTimer timer(frame, std::to_string(pass) + " visibility mask",
+                  "ours, not a paper's pass: the comparison alone on white surfaces, for --mask "
+                  "and the twin comparison");
   setCameraMatrices(scene, params.width, params.height);
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -253,7 +263,9 @@ void shadeWithShadowMap(const Scene& lightScene, const RenderParams& params, uns
   const Scene scene = cameraPassScene(lightScene, params, frame);
   TextureName behindLightStep;
   {
-    PassTimer timer(frame, std::to_string(firstPass) + " eye-linear texgen planes");
+    PassTimer timer(frame, std::to_string(firstPass) + " eye-linear texgen planes",
+                    "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
+                    "Second Pass (Depth Map Comparison); Appendix A");
     loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep);
   }
   renderAmbientPass(scene, params, firstPass + 1, frame);

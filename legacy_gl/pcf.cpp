@@ -73,8 +73,11 @@ std::string groupFileTag(size_t g, size_t groups) {
 // seen at (x + 0.5 + offset, y + 0.5 + offset) in texels.
 void renderJitteredLightPasses(const Scene& scene, const RenderParams& params, PcfState& s,
                                size_t g, const std::vector<Sample>& group, Frame& frame) {
-  PassTimer timer(frame, "1 light passes: jittered, one channel each + copy to texture" +
-                             groupTag(g, s.maps.size()));
+  PassTimer timer(
+      frame,
+      "1 light passes: jittered, one channel each + copy to texture" + groupTag(g, s.maps.size()),
+      "Brabec & Seidel 2001 §3, Fig. 3: stratified sampling and pixel packing, one "
+      "jittered light pass per colour channel");
   const int n = params.shadowMapTexels;
   LightTarget target(n, n <= params.width && n <= params.height, true, s.enc.mapFormat);
   target.bind();
@@ -88,7 +91,9 @@ void renderJitteredLightPasses(const Scene& scene, const RenderParams& params, P
 // Pass 2 (§3): "we replicate the z values over all four color channels".
 void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, PcfState& s,
                                  Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "2 camera pass: light depth in RGBA" + tag);
+  PassTimer timer(frame, "2 camera pass: light depth in RGBA" + tag,
+                  "Brabec & Seidel 2001 §3: \"we replicate the z values over all four color "
+                  "channels\" (the ramp of §2)");
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
                         bs::kAllChannels);
 }
@@ -96,26 +101,34 @@ void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params,
 // Pass 3 (§3, Reeves' comparison step): four-component shadow mask.
 void subtractPackedMap(const Scene& scene, const RenderParams& params, PcfState& s, size_t g,
                        Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "3 projective pass: subtract packed map" + tag);
+  PassTimer timer(frame, "3 projective pass: subtract packed map" + tag,
+                  "Brabec & Seidel 2001 §3 (Reeves' comparison step, Fig. 2): the subtraction "
+                  "of §2 on four channels at once");
   bs::subtractProjectedMap(scene, params, *s.maps[g], glm::vec2(0.0f), bs::kAllChannels);
 }
 
 // Pass 4 (Fig. 4): colour table + colour matrix on a framebuffer-to-framebuffer copy.
 void countShadowedSamples(const RenderParams& params, PcfState& s, int samples, Frame& frame,
                           const std::string& tag) {
-  PassTimer timer(frame, "4 copy: colour table + colour matrix -> alpha" + tag);
+  PassTimer timer(frame, "4 copy: colour table + colour matrix -> alpha" + tag,
+                  "Brabec & Seidel 2001 §3, Fig. 4: colour table 0 / 64 (63 in alpha), colour "
+                  "matrix sums the channels into alpha");
   bs::countShadowSamplesByCopy(params, s.enc, samples);
 }
 
 // Pass 5 (§3 "summed up using the accumulation buffer [3]").
 void accumulateGroup(double weight, bool first, Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "5 accumulate" + tag);
+  PassTimer timer(frame, "5 accumulate" + tag,
+                  "Brabec & Seidel 2001 §3: larger footprints in parts of four, \"summed up "
+                  "using the accumulation buffer [3]\"");
   bs::accumulateGroup(weight, first);
 }
 
 // Pass 6 (§5 "normal OpenGL lighting").
 void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "6 lighting x shadow term");
+  PassTimer timer(frame, "6 lighting x shadow term",
+                  "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
+                  "(1 - shadow), ambient kept");
   bs::shadeWithShadowTerm(scene, params);
 }
 
@@ -191,7 +204,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   if (groups.size() > 1) {
     {
-      PassTimer timer(frame, "5 accumulation return");
+      PassTimer timer(frame, "5 accumulation return",
+                      "Brabec & Seidel 2001 §3: the accumulation buffer's sum returned to the "
+                      "colour buffer");
       bs::returnAccumulation();
     }
     if (params.capturePasses)

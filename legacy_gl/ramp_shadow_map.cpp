@@ -35,7 +35,9 @@ struct RampState {
 // Pass 1 (§2, Fig. 1): light eye z -> ramp -> alpha; framebuffer copy into the shadow map.
 void renderDepthRampFromLight(const Scene& scene, const RenderParams& params, RampState& s,
                               Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth ramp into alpha + copy to texture");
+  PassTimer timer(frame, "1 light pass: depth ramp into alpha + copy to texture",
+                  "Brabec & Seidel 2001 §2, Fig. 1 (after Heidrich [4]): texgen r through a 1D "
+                  "ramp into alpha, copied into a 2D texture");
   const int n = params.shadowMapTexels;
   LightTarget target(n, n <= params.width && n <= params.height, true, s.enc.mapFormat);
   target.bind();
@@ -48,25 +50,33 @@ void renderDepthRampFromLight(const Scene& scene, const RenderParams& params, Ra
 // matrix from camera to light space.
 void renderDepthRampFromCamera(const Scene& scene, const RenderParams& params, RampState& s,
                                Frame& frame) {
-  PassTimer timer(frame, "2 camera pass: light depth ramp into alpha");
+  PassTimer timer(frame, "2 camera pass: light depth ramp into alpha",
+                  "Brabec & Seidel 2001 §2: the same ramp from the camera, a 4x4 texture "
+                  "matrix from camera to light space");
   bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc), bs::kAlphaOnly);
 }
 
 // Pass 3 (§2): projective shadow map subtracted from pass 2 (EXT_blend_subtract).
 void subtractShadowMap(const Scene& scene, const RenderParams& params, RampState& s, Frame& frame) {
-  PassTimer timer(frame, "3 projective pass: subtract shadow map");
+  PassTimer timer(frame, "3 projective pass: subtract shadow map",
+                  "Brabec & Seidel 2001 §2: the map as a projective texture, subtracted by the "
+                  "blending unit; > 0 = shadowed");
   bs::subtractProjectedMap(scene, params, s.map, glm::vec2(0.0f), bs::kAlphaOnly);
 }
 
 // Pass 4 (§2 footnote 1): "an additional frame buffer copy ... to bring values > 0 to 1".
 void saturateShadowMask(const RenderParams& params, RampState& s, Frame& frame) {
-  PassTimer timer(frame, "4 copy: shadow mask to 0 / 1");
+  PassTimer timer(frame, "4 copy: shadow mask to 0 / 1",
+                  "Brabec & Seidel 2001 §2, footnote 1: an additional frame buffer copy brings "
+                  "values > 0 to 1");
   bs::saturateAlphaByCopy(params, s.enc);
 }
 
 // Pass 5 (§5 "normal OpenGL lighting"): direct light darkened by the mask, ambient kept.
 void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "5 lighting x shadow mask");
+  PassTimer timer(frame, "5 lighting x shadow mask",
+                  "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
+                  "(1 - mask), ambient kept");
   bs::shadeWithShadowTerm(scene, params);
 }
 

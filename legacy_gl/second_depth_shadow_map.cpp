@@ -42,7 +42,10 @@ Scene castersOf(const Scene& scene, bool closed) {
 // the light's view keeps the faces that point away from the light.
 void renderBackFacesFromLight(const Scene& scene, const RenderParams& params, GLuint shadowMap,
                               bool linearCompare, Frame& frame) {
-  PassTimer timer(frame, "1 back faces from light");
+  PassTimer timer(frame, "1 back faces from light",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Wang & Molnar "
+                  "[7]): back faces only, no polygon offset; open casters with offset are ours "
+                  "(DEVIATION)");
   const int n = params.shadowMapTexels;
   LightTarget target(n, n <= params.width && n <= params.height, false);
   target.bind();

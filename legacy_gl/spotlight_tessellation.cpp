@@ -4,10 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <glm/glm.hpp>
 #include <memory>
 #include <unordered_map>
 #include <vector>
+
+#include "core/context.h"
 
 namespace sl::legacy {
 namespace {
@@ -224,10 +227,103 @@ Scene tessellateForSpotlight(const Scene& scene, int width, int height, Tessella
   return out;
 }
 
-Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "mesh feeding: triangles split for per-vertex spotlight lighting");
+namespace {
+
+// Everything tessellateForSpotlight reads. Holding the input meshes' shared_ptrs keeps them
+// alive, so an equal pointer is the same immutable mesh (its address cannot be reused).
+struct TessellationKey {
+  struct ObjectKey {
+    std::shared_ptr<const Mesh> mesh;
+    glm::mat4 model{1.0f};
+    bool specular = false;
+    bool operator==(const ObjectKey& o) const {
+      return mesh == o.mesh && model == o.model && specular == o.specular;
+    }
+  };
+  int width = 0, height = 0;
+  Camera camera;
+  glm::vec3 lightPosition{0.0f}, lightTarget{0.0f};
+  float lightConeDegrees = 0.0f;
+  std::vector<ObjectKey> objects;
+
+  TessellationKey(const Scene& scene, int w, int h)
+      : width(w),
+        height(h),
+        camera(scene.camera),
+        lightPosition(scene.light.position),
+        lightTarget(scene.light.target),
+        lightConeDegrees(scene.light.coneDegrees) {
+    for (const Object& o : scene.objects) objects.push_back({o.mesh, o.model, o.specular > 0.0f});
+  }
+  bool operator==(const TessellationKey& k) const {
+    const Camera& a = camera;
+    const Camera& b = k.camera;
+    return width == k.width && height == k.height && a.position == b.position &&
+           a.target == b.target && a.up == b.up && a.fovyDegrees == b.fovyDegrees &&
+           a.nearPlane == b.nearPlane && a.farPlane == b.farPlane &&
+           lightPosition == k.lightPosition && lightTarget == k.lightTarget &&
+           lightConeDegrees == k.lightConeDegrees && objects == k.objects;
+  }
+};
+
+struct CachedTessellation {
+  TessellationKey key;
+  std::vector<std::shared_ptr<const Mesh>> meshes;  // per object, in scene order
   TessellationStats stats;
-  Scene split = tessellateForSpotlight(scene, params.width, params.height, &stats);
+};
+
+// Per context (GlContext::setLayerState), newest first.
+struct TessellationCache {
+  std::deque<CachedTessellation> entries;
+};
+constexpr const char* kTessellationCacheKey = "legacy.spotlight-tessellation";
+
+TessellationCache* contextCache() {
+  GlContext* context = GlContext::current();
+  if (context == nullptr) return nullptr;
+  auto* cache = static_cast<TessellationCache*>(context->layerState(kTessellationCacheKey));
+  if (cache == nullptr) {
+    auto fresh = std::make_shared<TessellationCache>();
+    cache = fresh.get();
+    context->setLayerState(kTessellationCacheKey, fresh);
+  }
+  return cache;
+}
+
+// The split scene: `scene` with its meshes replaced by the cached split meshes.
+Scene withMeshes(const Scene& scene, const std::vector<std::shared_ptr<const Mesh>>& meshes) {
+  Scene out = scene;
+  for (size_t i = 0; i < out.objects.size(); ++i) out.objects[i].mesh = meshes[i];
+  return out;
+}
+
+}  // namespace
+
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
+  PassTimer timer(frame, "mesh feeding: triangles split for per-vertex spotlight lighting",
+                  "ours, not a paper's pass (run before the camera passes, listed first): "
+                  "fixed-function lighting is evaluated per vertex, so the receivers are split "
+                  "until it matches the modern twins' per-pixel lighting (issue 18 item 5)");
+  TessellationCache* cache = contextCache();
+  TessellationKey key(scene, params.width, params.height);
+  const CachedTessellation* hit = nullptr;
+  if (cache != nullptr)
+    for (const CachedTessellation& entry : cache->entries)
+      if (entry.key == key) hit = &entry;
+  Scene split;
+  TessellationStats stats;
+  if (hit != nullptr) {
+    split = withMeshes(scene, hit->meshes);
+    stats = hit->stats;
+  } else {
+    split = tessellateForSpotlight(scene, params.width, params.height, &stats);
+    if (cache != nullptr) {
+      std::vector<std::shared_ptr<const Mesh>> meshes;
+      for (const Object& o : split.objects) meshes.push_back(o.mesh);
+      cache->entries.push_front({std::move(key), std::move(meshes), stats});
+      if (cache->entries.size() > kCachedTessellations) cache->entries.pop_back();
+    }
+  }
   frame.counters["camera-pass triangles"] = double(stats.trianglesOut);
   frame.counters["scene triangles"] = double(stats.trianglesIn);
   return split;

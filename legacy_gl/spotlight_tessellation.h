@@ -44,8 +44,14 @@ struct TessellationStats {
 Scene tessellateForSpotlight(const Scene& scene, int width, int height,
                              TessellationStats* stats = nullptr);
 
-// The same as a timed pass of `frame` ("mesh feeding: ..."), for the camera passes of a legacy
-// technique; the light passes keep drawing `scene` itself.
+// tessellateForSpotlight as a timed pass of `frame` ("mesh feeding: ..."), for the camera passes
+// of a legacy technique; the light passes keep drawing `scene` itself. The split meshes are
+// static data: the current GL context keeps the last kCachedTessellations results
+// (GlContext::setLayerState), keyed by everything the split reads (each object's mesh, by the
+// shared immutable Mesh it points to, its model matrix and whether it is specular; the camera;
+// the light's position, target and cone; the window size), and a later frame with the same key
+// draws the same meshes again instead of splitting anew. Without a current context it splits.
+constexpr std::size_t kCachedTessellations = 4;
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame);
 
 }  // namespace sl::legacy

@@ -41,7 +41,9 @@ constexpr float kAlphaTestThreshold = 0.5f;  // ARB_shadow gives 0 or 1 with GL_
 // Pass 1 (Everitt, Woo paragraph): nearest depth layer from the light, without polygon offset.
 std::vector<float> renderFirstDepthLayer(const Scene& scene, int n, LightTarget& target,
                                          GLuint firstLayer, Frame& frame) {
-  PassTimer timer(frame, "1 first depth layer");
+  PassTimer timer(frame, "1 first depth layer",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the "
+                  "nearest layer from the light, no polygon offset");
   target.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -66,7 +68,9 @@ std::vector<float> renderFirstDepthLayer(const Scene& scene, int n, LightTarget&
 // fragments that are not behind z1; the depth test then keeps the nearest of the rest = z2.
 std::vector<float> peelSecondDepthLayer(const Scene& scene, int n, LightTarget& target,
                                         GLuint firstLayer, Frame& frame) {
-  PassTimer timer(frame, "2 peel to second depth layer");
+  PassTimer timer(frame, "2 peel to second depth layer",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]), by "
+                  "depth peeling [2]: the second-nearest layer");
   target.bind();
   glClear(GL_DEPTH_BUFFER_BIT);
   loadMatrix(GL_PROJECTION, lightProjection(scene));
@@ -120,7 +124,9 @@ std::vector<float> peelSecondDepthLayer(const Scene& scene, int n, LightTarget& 
 // the map is the same.
 void storeMidpointDepth(int n, const std::vector<float>& z1, const std::vector<float>& z2,
                         GLuint midpointMap, bool linearCompare, Frame& frame) {
-  PassTimer timer(frame, "3 midpoint of the layers");
+  PassTimer timer(frame, "3 midpoint of the layers",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
+                  "is the average of the two layers (averaged on the host: DEVIATION)");
   std::vector<float> mid(z1.size());
   for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
   glBindTexture(GL_TEXTURE_2D, midpointMap);

@@ -16,16 +16,14 @@ Arithmetic arithmeticOf(const RenderParams& params) {
              : Arithmetic::kFaithful;
 }
 
-// DEVIATION (Brabec–Seidel §6; legacy_gl depthEncoding): with 'faithful' arithmetic and
-// --precision float the twins keep the 8-bit buffers and ramp (RGBA8, 256 ramp texels, codes of
-// 255), while legacy at float uses a float colour buffer, a 2-texel linear ramp (d itself) and
-// RGBA32F maps. So modern at --precision float repeats legacy's 8-bit pipeline, not its float
-// one: 92 (ramp), 723 (pcf), 1304 (fast-pcf) of 120000 mask pixels differ from legacy float on
-// the brabec scene at 400x300 (docs/twins.md "--precision float"). Matching it needs a float
-// path in code() of pcf_shadow.frag / ramp_shadow.frag and a linear float ramp here.
 int depthBits(const RenderParams& params) {
-  if (arithmeticOf(params) == Arithmetic::kFloat) return 0;
+  if (arithmeticOf(params) == Arithmetic::kFloat || params.precision == Precision::kFloat)
+    return 0;
   return params.precision == Precision::k12 ? 12 : 8;
+}
+
+bool legacyFloatBuffer(const RenderParams& params) {
+  return arithmeticOf(params) == Arithmetic::kFaithful && params.precision == Precision::kFloat;
 }
 
 GLenum encodedDepthFormat(const RenderParams& params) {
@@ -51,6 +49,7 @@ constexpr float kColorTableLastIndex = 255.0f;  // 256-entry colour table
 constexpr float kAccumSteps = 32767.0f;         // 16-bit signed accumulation buffer
 constexpr int kRampTexels8 = 256;
 constexpr int kRampTexels12 = 4096;
+constexpr int kRampTexelsFloat = 2;  // legacy's float ramp: texels 0 and 1, LINEAR: d itself
 
 double depthStep(const RenderParams& p) {
   return p.precision == Precision::k8    ? kStep8
@@ -65,6 +64,7 @@ double channelMax(const RenderParams& p) {
 }  // namespace
 
 int rampTexels(const RenderParams& params) {
+  if (legacyFloatBuffer(params)) return kRampTexelsFloat;
   return depthBits(params) == 12 ? kRampTexels12 : kRampTexels8;
 }
 
@@ -72,12 +72,17 @@ Texture makeRampTexture(const RenderParams& params) {
   const int texels = rampTexels(params);
   std::vector<float> ramp(texels);
   for (int k = 0; k < texels; ++k) ramp[k] = float(k) / float(texels - 1);
+  const GLenum format = texels == kRampTexelsFloat ? GL_R32F
+                        : texels == kRampTexels8   ? GL_R8
+                                                   : GL_R16;
+  // The float ramp interpolates (legacy's GL_INTENSITY32F ramp, LINEAR); the others are
+  // looked up texel by texel (GL_NEAREST, §2).
+  const GLint filter = texels == kRampTexelsFloat ? GL_LINEAR : GL_NEAREST;
   Texture t = makeTexture();
   glBindTexture(GL_TEXTURE_1D, t.id());
-  glTexImage1D(GL_TEXTURE_1D, 0, texels == kRampTexels8 ? GL_R8 : GL_R16, texels, 0, GL_RED,
-               GL_FLOAT, ramp.data());
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexImage1D(GL_TEXTURE_1D, 0, format, texels, 0, GL_RED, GL_FLOAT, ramp.data());
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, filter);
   glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_1D, 0);
   return t;
@@ -106,7 +111,10 @@ float depthBias(const RenderParams& params) {
 
 void setLegacyArithmeticUniforms(const Program& program, const RenderParams& params) {
   const bool twelve = depthBits(params) == 12;
-  const float bufferMax = twelve ? 65535.0f : 255.0f;
+  const bool floatBuffer = legacyFloatBuffer(params);
+  // A float colour buffer stores values as they are: no code, read back unscaled.
+  const float bufferMax = floatBuffer ? 1.0f : twelve ? 65535.0f : 255.0f;
+  program.set("uFloatBuffer", floatBuffer ? 1 : 0);
   program.set("uBufferMax", bufferMax);
   program.set("uReadScale", 1.0f / bufferMax);
   program.set("uSaturateScale", float(1.0 / depthStep(params)));

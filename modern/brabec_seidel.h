@@ -19,14 +19,18 @@ enum class Arithmetic { kFaithful, kFloat };
 Arithmetic arithmeticOf(const RenderParams& params);
 
 // Bits per channel of the encoded depth: 8 or 12 (RenderParams::precision) in 'faithful'
-// arithmetic; 0 for float (the ramp is not used then).
+// arithmetic; 0 for float channels ('float' arithmetic, or --precision float).
 int depthBits(const RenderParams& params);
+// 'faithful' arithmetic at --precision float: legacy's float pipeline (float colour buffer,
+// 2-texel LINEAR ramp giving d itself, RGBA32F maps, colour table and accumulation as at 8 bits).
+bool legacyFloatBuffer(const RenderParams& params);
 // Colour format of the maps that hold encoded depth: RGBA8, RGBA16 (holding 12-bit values) or
 // RGBA32F.
 GLenum encodedDepthFormat(const RenderParams& params);
 
-// The 1D linear ramp of §2: N = 2^bits texels (256 or 4096; 256 for float, where it is not
-// read), texel k = k / (N - 1), GL_NEAREST, clamped, 8- or 16-bit like legacy_gl's ramp.
+// The 1D linear ramp of §2: N = 2^bits texels (256 or 4096; 256 for 'float' arithmetic, where
+// it is not read), texel k = k / (N - 1), GL_NEAREST, clamped, 8- or 16-bit like legacy_gl's
+// ramp; at --precision float with 'faithful' arithmetic legacy's 2 texels, R32F, GL_LINEAR.
 int rampTexels(const RenderParams& params);
 Texture makeRampTexture(const RenderParams& params);
 

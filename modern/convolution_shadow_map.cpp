@@ -189,7 +189,10 @@ std::vector<float> termWeights(const CsmSettings& s) {
 const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
                                                const CsmSettings& s, const DepthRange& range,
                                                PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, "1 linear depth from light");
+  PassTimer timer(frame, "1 linear depth from light",
+                  "Annen et al. 2007 §4.1: \"rendering the depth values from the light's point "
+                  "of view\", linear depth [BAS03]");
+  timer.shaderPasses({"linear-depth"});
   const int n = params.shadowMapTexels;
   if (work.depth.width != n || work.depth.color.empty())
     work.depth = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
@@ -221,8 +224,12 @@ const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const Render
 // longer rounded to 8 bits before the horizontal weights (one rounding fewer, closer to Eq. 8).
 const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
                                        PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)"
-                                        : "2 basis textures (MRT)");
+  PassTimer timer(
+      frame,
+      s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)" : "2 basis textures (MRT)",
+      "Annen et al. 2007 §4.1: the basis B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 "
+      "(Eq. 7) into textures (Fig. 5); the Gaussian's first direction (DEVIATION)");
+  timer.shaderPasses({"basis"});
   const LayeredMap& basis =
       reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
   // Blurred: the horizontal pass's output goes to the scratch map, the vertical one to `basis`.
@@ -267,15 +274,20 @@ const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSetti
 void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, PrefilterWorkspace& work,
                        Frame& frame) {
   if (s.blurTaps == 0) return;
-  PassTimer timer(frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" +
-                             std::to_string(s.blurTaps));
+  PassTimer timer(
+      frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" + std::to_string(s.blurTaps),
+      "Annen et al. 2007 §4.1: the separable Gaussian's second direction");
+  timer.shaderPasses({"gaussian"});
   blurLayersOneDirection(work.scratch, basis, s.blurTaps, BlurDirection::kVertical, work.fbo);
 }
 
 // Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and
 // anisotropic) filtering: "no shader magic is needed".
 void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)");
+  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)",
+                  "Annen et al. 2007 §4.1: \"build a mip-map\" of the basis, trilinear or "
+                  "anisotropic filtering (Figs. 7, 10)");
+  timer.shaderPasses({"downsample"});
   buildMipmapsAndSetFiltering(basis, s.filtering);
 }
 
@@ -286,7 +298,10 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
 // bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
 const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace& work,
                                   Frame& frame) {
-  PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)");
+  PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)",
+                  "not in Annen et al. 2007: bounds of z under each footprint, so that the "
+                  "classification can skip Eq. 13 where they decide the series (issue 20)");
+  timer.shaderPasses({"depth-bounds"});
   const int n = depth.width;
   if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
     int levels = 1;
@@ -371,7 +386,10 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
                           const Texture& depthBounds, int depthBoundsLevels,
                           const CsmSkipIntervals& skip, const CsmSettings& s,
                           const DepthRange& range, float nearestCaster, Frame& frame) {
-  PassTimer timer(frame, "5b camera pass: classification (depth bounds)");
+  PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
+                  "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
+                  "the series within skip-error of 1 or 0, the pixel is decided without Eq. 13");
+  timer.shaderPasses({"classify", "csm-test"});
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -417,8 +435,12 @@ void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
   } else {
     clearCameraTarget(target);
   }
-  PassTimer timer(frame, classified ? "5c camera pass, Eq. 13 where undecided"
-                                    : "5 camera pass, Eq. 13 reconstruction");
+  PassTimer timer(frame,
+                  classified ? "5c camera pass, Eq. 13 where undecided"
+                             : "5 camera pass, Eq. 13 reconstruction",
+                  "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and "
+                  "scale of §3.2.2 (Fig. 3), clamped (§4.1)");
+  timer.shaderPasses({"reconstruct", "csm-test"});
   glEnable(GL_DEPTH_TEST);
   if (classified) {
     // The same vertex shader and uniforms, but llvmpipe interpolates depth inside each fragment

@@ -47,7 +47,8 @@ constexpr int kTexelItselfChannel = 3;  // A: the upper right of the 2x2 region 
 RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParams& params,
                                           const Texture& ramp, Frame& frame) {
   PassTimer timer(frame, "1 light pass: depth ramp in RGBA (bs_encode_depth.frag)",
-                  "Brabec & Seidel 2001 §4");
+                  "Brabec & Seidel 2001 §4: the map rendered as in §2 (Fig. 1), the encoded depth "
+                  "in all four channels; render-to-texture replaces the copy");
   timer.shaderPasses({"encode-depth"});
   RenderTarget map = bs::makeEncodedDepthTarget(params);
   bs::renderEncodedDepth(gpu, params, ramp, map, glm::bvec4(true), glm::vec2(0.0f));

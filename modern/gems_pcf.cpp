@@ -74,7 +74,10 @@ float relativeBias(const Scene& scene, int shadowMapTexels, float biasTexels) {
 // with compare mode and linear filtering, so that one lookup is a bilinear 2x2 PCF.
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
                                   float units, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light");
+  PassTimer timer(frame, "1 depth from light",
+                  "Bunnell & Pellacini 2004, GPU Gems §11.3 (a depth texture with compare mode "
+                  "and GL_LINEAR: the hardware's 2x2 PCF, Fig. 11-3); polygon offset as Everitt");
+  timer.shaderPasses({"depth-only"});
   const int n = params.shadowMapTexels;
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
@@ -97,7 +100,14 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
 // Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view.
 void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
                         int samples, float relativeBias, Frame& frame) {
-  PassTimer timer(frame, "2 camera pass, " + std::to_string(samples) + "-sample PCF");
+  PassTimer timer(frame, "2 camera pass, " + std::to_string(samples) + "-sample PCF",
+                  samples == 16  ? "Bunnell & Pellacini 2004, GPU Gems §11.3: 16 offset_lookup "
+                                   "calls over the 4x4-texel region (Figs. 11-2, 11-3)"
+                  : samples == 4 ? "Bunnell & Pellacini 2004, GPU Gems §11.4, Fig. 11-4: four "
+                                   "of the sixteen lookups, dithered by pixel position"
+                                 : "Bunnell & Pellacini 2004, GPU Gems §11.3: one hardware 2x2 "
+                                   "lookup (Fig. 11-6)");
+  timer.shaderPasses({"offset-lookup", "dither", "gems-region"});
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);

@@ -25,8 +25,12 @@ constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any usef
 // Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
                                   float units, bool linear, bool casterInFrustum, Frame& frame) {
-  PassTimer timer(frame, casterInFrustum ? "1 depth from light"
-                                         : "1 depth from light left out (planner: no caster in frustum)");
+  PassTimer timer(frame,
+                  casterInFrustum ? "1 depth from light"
+                                  : "1 depth from light left out (planner: no caster in frustum)",
+                  "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
+                  "polygon offset: Why Is Polygon Offset Needed?, Fig. 3");
+  timer.shaderPasses({"depth-only"});
   // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
   // depth (every comparison passes) replaces the pass.
   const int n = casterInFrustum ? params.shadowMapTexels : 1;
@@ -71,7 +75,11 @@ glm::mat4 worldToShadowMap(const Scene& scene) {
 // Everitt Eq. 5: shading with the comparison result modulating direct light.
 void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint shadowMap,
                         const std::string& passName, Frame& frame) {
-  PassTimer timer(frame, passName);
+  PassTimer timer(frame, passName,
+                  "Everitt, Rege & Cebenoyan 2001, Second Pass (Depth Map Comparison): the "
+                  "planes of Eq. 5 as one matrix, the comparison of How It Works (Fig. 5) by "
+                  "sampler2DShadow, direct light x result + ambient");
+  timer.shaderPasses({"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"});
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, false);
   clearCameraTarget(target);

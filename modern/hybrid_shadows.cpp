@@ -117,7 +117,10 @@ void forEachScissorBox(const std::vector<TileRect>* rects, const Draws& draws) {
 // Pass 1 (§3.1 step 1): an ordinary shadow map, read with the hardware 2x2 compare.
 RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
                              const Program& program, float factor, float units, Frame& frame) {
-  PassTimer timer(frame, "1 shadow map");
+  PassTimer timer(frame, "1 shadow map",
+                  "Chan 2004 §3.1 step 1 (\"Create a shadow map\"), read with the hardware 2x2 "
+                  "compare");
+  timer.shaderPasses({"depth-only"});
   const int n = params.shadowMapTexels;
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
@@ -142,7 +145,9 @@ RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
 // Pass 2 (§3.1 step 3 needs them; Everitt–Kilgard): silhouette edges on the CPU, volumes.
 SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCasters& casters,
                                             Frame& frame) {
-  PassTimer timer(frame, "2 silhouettes and volumes (CPU)");
+  PassTimer timer(frame, "2 silhouettes and volumes (CPU)",
+                  "Chan 2004 §3.1 step 3 needs them: silhouette edges and z-fail volumes "
+                  "(§2.1.2, [EK02]) on the CPU");
   return buildSceneVolumes(casters, scene.light.position);
 }
 
@@ -151,7 +156,10 @@ SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCaste
 void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
                               const RenderTarget& map, const Program& program,
                               const glm::mat4& viewProjection, bool writeMask, Frame& frame) {
-  PassTimer timer(frame, "3 classify silhouette pixels");
+  PassTimer timer(frame, "3 classify silhouette pixels",
+                  "Chan 2004 §3.1 step 2 (\"Identify shadow silhouette pixels\"), Fig. 3-3; "
+                  "the other pixels shaded from the shadow map");
+  timer.shaderPasses({"volume-vertex", "classify"});
   const Scene& scene = gpu.scene();
   target.bind();
   glEnable(GL_DEPTH_TEST);
@@ -231,7 +239,10 @@ void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind k
 // every silhouette pixel lies in one and nothing outside them is drawn again.
 bool buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
                           bool maskWritten, std::vector<TileRect>& tiles, Frame& frame) {
-  PassTimer timer(frame, "4 computation mask");
+  PassTimer timer(frame, "4 computation mask",
+                  "Chan 2004 §3.4.2 (computation masks): later passes run only at silhouette "
+                  "pixels; here as depth and scissor boxes (DEVIATION)");
+  timer.shaderPasses({"computation-mask"});
   target.bind();
   bool scissored = false;
   if (kind == MaskKind::kStencilTiles) {
@@ -261,7 +272,10 @@ GLuint maskBitFor(MaskKind kind) {
 // Pass 5 (§3.1 step 3): z-fail stencil updates only at silhouette pixels.
 void drawVolumesThroughMask(const SceneVolumes& volumes, const Program& volumeProgram,
                             MaskKind kind, const std::vector<TileRect>* tiles, Frame& frame) {
-  PassTimer timer(frame, "5 shadow volumes at silhouette pixels");
+  PassTimer timer(frame, "5 shadow volumes at silhouette pixels",
+                  "Chan 2004 §3.1 step 3 (\"Draw shadow volumes\"): z-fail stencil counts at "
+                  "silhouette pixels only");
+  timer.shaderPasses({"volume-vertex", "depth-only"});
   if (kind == MaskKind::kDepthBounds) {
     glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
     glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
@@ -275,7 +289,10 @@ void drawVolumesThroughMask(const SceneVolumes& volumes, const Program& volumePr
 // are drawn here, once.
 void shadeLitSilhouettePixels(const GpuScene& gpu, const Program& shadeProgram, MaskKind kind,
                               const std::vector<TileRect>* tiles, Frame& frame) {
-  PassTimer timer(frame, "6 shade silhouette pixels");
+  PassTimer timer(frame, "6 shade silhouette pixels",
+                  "Chan 2004 §3.1 step 4 (\"Compute shadows\"): shade the silhouette pixels "
+                  "whose stencil count is zero");
+  timer.shaderPasses({"volume-vertex", "stencil-shade"});
   if (kind == MaskKind::kDepthBounds) glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
   forEachScissorBox(tiles, [&] { shadeLitFromStencil(gpu, shadeProgram, maskBitFor(kind)); });
   if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);

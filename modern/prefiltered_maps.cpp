@@ -309,7 +309,10 @@ void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, 
 
 void blurLayers(const LayeredMap& map, LayeredMap& scratchSlot, int taps, const std::string& name,
                 Frame& frame) {
-  PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps));
+  PassTimer timer(frame, name + " " + std::to_string(taps) + "x" + std::to_string(taps),
+                  "Annen et al. 2007 §4.1: \"a separable Gaussian filter kernel\" (binomial "
+                  "weights), horizontal then vertical");
+  timer.shaderPasses({"gaussian"});
   const LayeredMap& scratch = reuseLayeredMap(scratchSlot, map.size, map.layers, map.format, false);
   const Framebuffer fbo = makeFramebuffer();
   // Horizontal: map -> scratch; vertical: scratch -> map (the separable kernel, §4.1).

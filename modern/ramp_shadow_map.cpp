@@ -23,7 +23,10 @@ namespace {
 // Pass 1 (§2, Figure 1): depth -> ramp -> colour, from the light.
 RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParams& params,
                                           const Texture& ramp, Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth as colour");
+  PassTimer timer(frame, "1 light pass: depth as colour",
+                  "Brabec & Seidel 2001 §2, Fig. 1 (after Heidrich [4]): light depth through the "
+                  "ramp as colour; render-to-texture replaces the copy");
+  timer.shaderPasses({"encode-depth"});
   RenderTarget map = bs::makeEncodedDepthTarget(params);
   bs::renderEncodedDepth(gpu, params, ramp, map, glm::bvec4(true), glm::vec2(0.0f));
   return map;
@@ -32,7 +35,11 @@ RenderTarget renderDepthAsColourFromLight(const GpuScene& gpu, const RenderParam
 // Pass 2 (§2, second and third passes): encoded fragment depth minus projected map.
 void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const Texture& ramp,
                         const RenderTarget& map, Frame& frame) {
-  PassTimer timer(frame, "2 camera pass: ramp depth minus projected map");
+  PassTimer timer(frame, "2 camera pass: ramp depth minus projected map",
+                  "Brabec & Seidel 2001 §2 (second and third passes, footnote 1) and §5: ramp "
+                  "depth minus projected map, > 0 = shadowed, OpenGL lighting");
+  timer.shaderPasses(
+      {"ramp-camera-depth", "ramp-subtract", "ramp-saturate", "ramp-float", "ramp-shade"});
   const Scene& scene = gpu.scene();
   const bool faithful = bs::arithmeticOf(params) == bs::Arithmetic::kFaithful;
   RenderTarget target = makeCameraTarget(params, true);  // visibility exactly as computed

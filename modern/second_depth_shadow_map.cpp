@@ -26,7 +26,11 @@ constexpr float kOpenCasterOffsetUnits = 4.0f;   // glPolygonOffset constant, in
 // Pass 1 (Wang & Molnar via Everitt): counter-clockwise meshes, GL_FRONT culled in the light's
 // view, so the depth buffer keeps the faces that point away from the light.
 RenderTarget renderBackFacesFromLight(const GpuScene& gpu, int n, bool linear, Frame& frame) {
-  PassTimer timer(frame, "1 back faces from light");
+  PassTimer timer(frame, "1 back faces from light",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Wang & Molnar "
+                  "[7]): back faces only, no polygon offset; open casters with offset are ours "
+                  "(DEVIATION)");
+  timer.shaderPasses({"depth-only"});
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
   glClear(GL_DEPTH_BUFFER_BIT);

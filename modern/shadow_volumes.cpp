@@ -318,13 +318,18 @@ namespace {
 // Pass 1 (Everitt–Kilgard; Chan §4.2 step 2): silhouette edges from edge adjacency, volumes.
 SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCasters& casters,
                                             Frame& frame) {
-  PassTimer timer(frame, "1 silhouettes and volumes (CPU)");
+  PassTimer timer(frame, "1 silhouettes and volumes (CPU)",
+                  "Chan 2004 §2.1.2 (Fig. 2-6; Everitt & Kilgard [EK02]): silhouette edges "
+                  "extruded from the light, capped, to an infinite far plane");
   return buildSceneVolumes(casters, scene.light.position);
 }
 
 // Pass 2 (Everitt–Kilgard, step 1 of the z-fail algorithm): depth of the visible surfaces.
 void fillDepthFromCamera(const GpuScene& gpu, const Program& depthProgram, Frame& frame) {
-  PassTimer timer(frame, "2 depth from camera");
+  PassTimer timer(frame, "2 depth from camera",
+                  "Chan 2004 §2.1.2: the scene's depth from the camera, which the volumes are "
+                  "tested against");
+  timer.shaderPasses({"volume-vertex", "depth-only"});
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -337,13 +342,18 @@ void fillDepthFromCamera(const GpuScene& gpu, const Program& depthProgram, Frame
 
 // Pass 3 (Everitt–Kilgard, z-fail): count the volume faces behind each visible surface.
 void countVolumeCrossings(const SceneVolumes& volumes, const Program& volumeProgram, Frame& frame) {
-  PassTimer timer(frame, "3 stencil volumes (z-fail)");
+  PassTimer timer(frame, "3 stencil volumes (z-fail)",
+                  "Chan 2004 §2.1.2 (Fig. 2-7) and §3.1 step 3: the robust z-fail stencil count "
+                  "[EK02], front faces down, back faces up where the depth test fails");
+  timer.shaderPasses({"volume-vertex", "depth-only"});
   countVolumesZFail(volumes, volumeProgram, 0);
 }
 
 // Pass 4 (Everitt–Kilgard, final pass): shade, lit only where the stencil count is zero.
 void shadeWithStencil(const GpuScene& gpu, const Program& shadeProgram, Frame& frame) {
-  PassTimer timer(frame, "4 shade from stencil");
+  PassTimer timer(frame, "4 shade from stencil",
+                  "Chan 2004 §2.1.2: lit where the stencil count is zero, shadowed elsewhere");
+  timer.shaderPasses({"volume-vertex", "stencil-shade"});
   shadeFromStencil(gpu, shadeProgram, 0);
 }
 

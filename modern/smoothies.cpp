@@ -105,7 +105,9 @@ struct SmoothieGeometry {
 // (both arriving or both leaving).
 SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const SceneCasters& casters,
                                                   double width, int texels, Frame& frame) {
-  PassTimer timer(frame, "0 silhouettes and smoothies (CPU)");
+  PassTimer timer(frame, "0 silhouettes and smoothies (CPU)",
+                  "Chan 2004 §4.2 steps 2-3 (Fig. 4-2): silhouette edges, a smoothie edge per "
+                  "edge and a corner per vertex (square corners: DEVIATION)");
   SmoothieGeometry g;
   const glm::mat4 lightClip = lightProjection(scene) * lightView(scene.light);
   const float t = float(2.0 * width);  // NDC spans 2 per map side
@@ -191,7 +193,10 @@ SmoothieGeometry findSilhouettesAndBuildSmoothies(const Scene& scene, const Scen
 // the light source to the receiver using the shadow map").
 RenderTarget renderShadowMapWithLinearDepth(const GpuScene& gpu, const Program& program, int texels,
                                             float factor, float units, Frame& frame) {
-  PassTimer timer(frame, "1 shadow map + linear depth");
+  PassTimer timer(frame, "1 shadow map + linear depth",
+                  "Chan 2004 §4.2 step 1 (\"Create a shadow map\"), §4.3; the receivers' linear "
+                  "depth r of Eq. 4.1");
+  timer.shaderPasses({"blocker-linear-depth"});
   const Scene& scene = gpu.scene();
   RenderTarget map = makeRenderTarget(texels, texels, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
   map.bind();
@@ -256,7 +261,10 @@ void drawSmoothies(const GpuSmoothies& s) {
 // Pass 2 (§4.3): the smoothies' depth into a standard depth buffer (nearest smoothie).
 RenderTarget renderSmoothieDepth(const GpuSmoothies& smoothies, const Program& program, int texels,
                                  Frame& frame) {
-  PassTimer timer(frame, "2 smoothie depth");
+  PassTimer timer(frame, "2 smoothie depth",
+                  "Chan 2004 §4.2 step 4 (\"Render smoothies\"), §4.3: the nearest smoothie's "
+                  "depth");
+  timer.shaderPasses({"smoothie-vertex", "depth-only"});
   // DEVIATION (Chan §4.3 pass 3): the alpha buffer is R32F, not fixed point, so the profile
   // tests see the remapped alpha without 8-bit steps.
   RenderTarget buffer = makeRenderTarget(texels, texels, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
@@ -275,7 +283,9 @@ RenderTarget renderSmoothieDepth(const GpuSmoothies& smoothies, const Program& p
 void renderSmoothieAlpha(const GpuSmoothies& smoothies, const RenderTarget& buffer,
                          const RenderTarget& map, const Program& program, double width, bool remap,
                          Frame& frame) {
-  PassTimer timer(frame, "3 smoothie alpha (min blending)");
+  PassTimer timer(frame, "3 smoothie alpha (min blending)",
+                  "Chan 2004 §4.2.1, Eq. 4.1, Fig. 4-4; §4.3: smoothie alpha, minimum blending");
+  timer.shaderPasses({"smoothie-vertex", "smoothie-alpha"});
   buffer.bind();
   const float one[4] = {1, 1, 1, 1};
   glClearBufferfv(GL_COLOR, 0, one);
@@ -330,7 +340,10 @@ Texture makeFalloffTexture() {
 void shadeWithSmoothies(const GpuScene& gpu, const RenderParams& params, const Program& program,
                         const RenderTarget& map, const RenderTarget& smoothie,
                         const Texture& falloff, Frame& frame) {
-  PassTimer timer(frame, "4 camera pass with smoothies");
+  PassTimer timer(frame, "4 camera pass with smoothies",
+                  "Chan 2004 §4.2 step 5 (\"Compute shadows with depth comparisons\"), Fig. 4-3, "
+                  "§4.3 (bilinear filtering, falloff)");
+  timer.shaderPasses({"smoothie-test"});
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);

@@ -62,7 +62,10 @@ VsmSettings parseSettings(const GlContext& context, const RenderParams& params) 
 // Pass 1: the first two moments of the linear light depth.
 LayeredMap renderMomentsFromLight(const GpuScene& gpu, const RenderParams& params,
                                   const VsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, "1 moments from light");
+  PassTimer timer(frame, "1 moments from light",
+                  "Donnelly & Lauritzen 2006 (not in shared/papers), as Annen et al. 2007 §2 "
+                  "describe it: the moments (d, d^2) of the linear light depth");
+  timer.shaderPasses({"moments"});
   const int n = params.shadowMapTexels;
   LayeredMap moments = makeLayeredMap(n, 1, s.format, s.filtering.mipmaps);
   const Framebuffer fbo = makeFramebuffer();
@@ -96,14 +99,20 @@ void blurMoments(const LayeredMap& moments, const VsmSettings& s, Frame& frame) 
 
 // Pass 3: mip-maps and filtering state.
 void buildMomentMipmaps(const LayeredMap& moments, const VsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, "3 mip-maps");
+  PassTimer timer(frame, "3 mip-maps",
+                  "Annen et al. 2007 §4.1 (\"build a mip-map\"), applied to the moments as for "
+                  "the CSM basis (the comparison of Fig. 9)");
+  timer.shaderPasses({"downsample"});
   buildMipmapsAndSetFiltering(moments, s.filtering);
 }
 
 // Pass 4: Chebyshev's one-tailed inequality in the camera view.
 void chebyshevInCameraPass(const GpuScene& gpu, const RenderParams& params,
                            const LayeredMap& moments, const VsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, "4 camera pass, Chebyshev bound");
+  PassTimer timer(frame, "4 camera pass, Chebyshev bound",
+                  "Donnelly & Lauritzen 2006: Chebyshev's one-tailed bound from the filtered "
+                  "moments; its light leaking: Annen et al. 2007 §2, Fig. 9(a)");
+  timer.shaderPasses({"chebyshev"});
   const Scene& scene = gpu.scene();
   RenderTarget target = makeCameraTarget(params, true);
   clearCameraTarget(target);

@@ -32,7 +32,10 @@ RenderTarget makeDepthMap(int n) {
 
 // Pass 1 (Everitt, Woo paragraph): nearest depth layer from the light, without polygon offset.
 RenderTarget renderFirstDepthLayer(const GpuScene& gpu, int n, Frame& frame) {
-  PassTimer timer(frame, "1 first depth layer");
+  PassTimer timer(frame, "1 first depth layer",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the "
+                  "nearest layer from the light, no polygon offset");
+  timer.shaderPasses({"depth-only"});
   RenderTarget map = makeDepthMap(n);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -47,7 +50,10 @@ RenderTarget renderFirstDepthLayer(const GpuScene& gpu, int n, Frame& frame) {
 // Pass 2 (Everitt, depth peeling [2]): keep only fragments behind the first layer.
 RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget& first,
                                   Frame& frame) {
-  PassTimer timer(frame, "2 peel to second depth layer");
+  PassTimer timer(frame, "2 peel to second depth layer",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]), by "
+                  "depth peeling [2]: the second-nearest layer");
+  timer.shaderPasses({"peel"});
   glBindTexture(GL_TEXTURE_2D, first.depth.id());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
@@ -70,7 +76,10 @@ RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget
 // Pass 3 (Woo's midpoint): (z1 + z2) / 2 as the depth of a full-screen triangle.
 RenderTarget storeMidpointDepth(int n, const RenderTarget& first, const RenderTarget& second,
                                 bool linear, Frame& frame) {
-  PassTimer timer(frame, "3 midpoint of the layers");
+  PassTimer timer(frame, "3 midpoint of the layers",
+                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
+                  "is the average of the two layers, written as gl_FragDepth");
+  timer.shaderPasses({"midpoint"});
   for (GLuint t : {first.depth.id(), second.depth.id()}) {
     glBindTexture(GL_TEXTURE_2D, t);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);

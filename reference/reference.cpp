@@ -43,6 +43,10 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kSpecularExponent = 32.0f;  // as in hw_shadow.frag.glsl
+// The paper section of the ray passes (core/technique.h PassTime::section): none, they are ours.
+constexpr const char* kRaySection =
+    "ours (the ground truth): Embree shadow rays from each surface point to the light (point "
+    "light), or stratified over the light's sphere (reference.soft)";
 constexpr int kMinSoftRays = 4;
 constexpr int kMaxSoftRays = 16384;
 constexpr unsigned kSoftSeed = 20011u;  // fixed: the reference is deterministic
@@ -378,9 +382,13 @@ Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RT
     }
   const std::string grid = std::to_string(perSide) + "x" + std::to_string(perSide);
   frame.passes.push_back({"3a sub-pixel surface points (GL, " + grid + ")", rasterMs});
+  frame.passes.back().section =
+      "ours (the ground truth): the surface points of each sub-pixel position (pixel = area)";
+  frame.passes.back().glsl = {"surface-points"};
   frame.passes.push_back({std::string(soft ? "3b soft shadow rays" : "3b shadow rays") + " from " +
                               grid + " sub-pixel points (Embree)",
                           rayMs});
+  frame.passes.back().section = kRaySection;
   Visibility v;
   v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
   if (!soft) {
@@ -474,13 +482,17 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
   Frame frame;
   std::vector<SurfacePoint> points;
   {
-    PassTimer timer(frame, "1 surface points (GL)");
+    PassTimer timer(frame, "1 surface points (GL)",
+                    "ours (the ground truth, no paper's pass): the camera view rasterised to "
+                    "world positions and normals, the rays' start points");
+    timer.shaderPasses({"surface-points"});
     points = rasteriseSurfacePoints(scene, params);
     repairNormals(points, scene.camera.position);
   }
   const double buildStart = nowMilliseconds();
   Occluders occluders = buildOcclusionScene(scene);
   frame.passes.push_back({"2 build occluder BVH (Embree)", nowMilliseconds() - buildStart});
+  frame.passes.back().section = "ours (the ground truth): Embree's BVH over every caster";
   Visibility v;
   if (area) {
     v = integratePixelArea(scene, params, occluders.scene.get(), soft, perSide, softRays, frame);
@@ -490,11 +502,15 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
              : castHardShadowRays(scene, points, params, occluders.scene.get());
     frame.passes.push_back({soft ? "3 soft shadow rays (Embree)" : "3 shadow rays (Embree)",
                             nowMilliseconds() - castStart});
+    frame.passes.back().section = kRaySection;
   }
   const double shadeStart = nowMilliseconds();
   frame.color = shadeFromVisibility(scene, points, v.mask);
   frame.visibility = std::move(v.mask);
   frame.passes.push_back({"4 shade", nowMilliseconds() - shadeStart});
+  frame.passes.back().section =
+      "ours (the ground truth): the modern techniques' lighting (modern/shaders/lighting.glsl) x "
+      "the rays' visibility";
   frame.counters["rays"] = double(v.rays);
   frame.counters["ray_offset_world"] = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
   if (area) frame.counters["pixel_samples"] = double(perSide * perSide);

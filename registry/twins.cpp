@@ -72,6 +72,11 @@ std::vector<TwinPair> allPairs() {
       "channel, colour table, colour matrix, accumulation) and texgen.vert forms the texture "
       "coordinates as the fixed-function vertex stage does, so the masks are identical but where "
       "a coordinate ties with a texel or ramp-step boundary to float rounding";
+  const char* kFaithfulFloat =
+      "at --precision float 'faithful' arithmetic follows legacy's float pipeline (float colour "
+      "buffer, 2-texel LINEAR ramp, RGBA32F maps; the colour table, colour matrix and 16-bit "
+      "accumulation as at 8 bits), so the masks are identical but where a coordinate ties with a "
+      "texel boundary to float rounding";
   const char* kFloat =
       "'float' arithmetic drops the 2001 quantisation on the modern side and the legacy side "
       "runs with float colour buffers: what remains is texgen rounding (see hw)";
@@ -93,6 +98,15 @@ std::vector<TwinPair> allPairs() {
        {{"arithmetic", "faithful"}},
        true,
        kFaithful});
+  add({"ramp faithful float",
+       "legacy.ramp",
+       "modern.ramp",
+       1,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithfulFloat});
   add({"ramp float",
        "legacy.ramp",
        "modern.ramp",
@@ -114,6 +128,15 @@ std::vector<TwinPair> allPairs() {
          true,
          kFaithful});
   }
+  add({"pcf 2x2 faithful float",
+       "legacy.pcf",
+       "modern.pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithfulFloat});
   add({"pcf 2x2 float",
        "legacy.pcf",
        "modern.pcf",
@@ -135,6 +158,15 @@ std::vector<TwinPair> allPairs() {
          true,
          kFaithful});
   }
+  add({"fast-pcf 2x2 faithful float",
+       "legacy.fast-pcf",
+       "modern.fast-pcf",
+       2,
+       Precision::kFloat,
+       {},
+       {{"arithmetic", "faithful"}},
+       true,
+       kFaithfulFloat});
   add({"fast-pcf 2x2 float",
        "legacy.fast-pcf",
        "modern.fast-pcf",

@@ -1,36 +1,50 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
-// paper's Octane VPro/8 frame rates. Prints a markdown table (docs/legacy.md).
+// paper's Octane VPro/8 frame rates and beside each pass's llvmpipe floor. Prints markdown
+// tables (docs/legacy.md).
+// Roofline (always printed): in the same context as the frames, and interleaved with them
+// round by round so that load hits both alike, each pass's floor is measured: the least GL work
+// of its kind at its size (legacy_gl/roofline.h: a clear, one full-window quad with the pass's
+// class of fragment work, the same glCopyTexSubImage2D / glCopyPixels / glReadPixels /
+// glDrawPixels size). Each pass prints its median time, its floor and time / floor; the first
+// table the frame's sum of floors and time / floor.
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
 //                [--quick] [--technique T] [--trace-overhead]
 // --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
 // (the context's own dispatch table, as every render runs) and on (core/gl_trace.h), as a ratio.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "registry/cli.h"
-#include "registry/registry.h"
 #include "core/errors.h"
+#include "core/frame_timing.h"
+#include "core/gl_trace.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "legacy_gl/benchmark.h"
+#include "registry/cli.h"
+#include "registry/registry.h"
 
 namespace {
 constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
 
 // The cost of the GL trace (core/gl_trace.h): off, every call goes through the context's own
-// table (the trace is not there at all); on, through the recording table.
+// table (the trace is not there at all); on, through the recording table. The two are timed
+// interleaved (core/frame_timing.h timeInterleavedSteadyState), each on its own context, so that
+// a change of the machine's load hits both alike; the ratio is of the two medians.
 std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
                                   const std::vector<sl::legacy::BenchmarkVariant>& variants) {
   std::ostringstream out;
   out << "GL trace of --dump-passes (core/gl_trace.h), brabec scene " << options.width << "x"
       << options.height << ", shadow map " << options.shadowMapTexels << ", "
-      << sl::backendName(options.backend) << ", median of " << options.frames.timed
-      << " frames after " << options.frames.warmup << " warm-up frames\n\n"
-      << "| variant | trace off: frame ms | trace on: frame ms | on / off |\n|---|---|---|---|\n";
+      << sl::backendName(options.backend) << ", off and on interleaved: median of "
+      << options.frames.timed << " rounds after " << options.frames.warmup
+      << " warm-up frames each\n\n"
+      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' on "
+         "/ off |\n|---|---|---|---|---|\n";
   for (const auto& v : variants) {
     sl::RenderParams p;
     p.width = options.width;
@@ -41,11 +55,30 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
     p.imaging = options.imaging;
     const sl::Technique& t = sl::findTechnique(v.technique);
     const sl::Scene scene = sl::builtinScene("brabec");
-    const double off = sl::timeTechnique(t, scene, p, options.frames).frameMs;
-    const double on = sl::timeTechnique(t, scene, p, options.frames, nullptr, true).frameMs;
-    char row[160];
-    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f |\n", v.label.c_str(), off, on,
-                  off > 0.0 ? on / off : 0.0);
+    const auto offContext = sl::makeRenderContext(t, p);
+    const auto onContext = sl::makeRenderContext(t, p);
+    const std::vector<std::function<sl::Frame()>> sources = {
+        [&] {
+          offContext->makeCurrent();
+          return t.render(*offContext, scene, p);
+        },
+        [&] {
+          onContext->makeCurrent();
+          const sl::GlTrace trace;  // as render --dump-passes runs it
+          return t.render(*onContext, scene, p);
+        }};
+    const auto timings =
+        sl::timeInterleavedSteadyState(sources, options.frames.warmup, options.frames.timed);
+    const double off = timings[0].frameMs, on = timings[1].frameMs;
+    // Round by round (the two frames of a round ran back to back, under nearly the same load).
+    std::vector<double> roundRatios;
+    for (size_t r = 0; r < timings[0].frameSamples.size(); ++r)
+      if (timings[0].frameSamples[r] > 0.0)
+        roundRatios.push_back(timings[1].frameSamples[r] / timings[0].frameSamples[r]);
+    char row[200];
+    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f | %.3f |\n", v.label.c_str(), off, on,
+                  off > 0.0 ? on / off : 0.0,
+                  roundRatios.empty() ? 0.0 : sl::median(roundRatios));
     out << row;
   }
   out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
@@ -62,8 +95,11 @@ int main(int argc, char** argv) {
     std::string backend, imaging, frames;
     std::string only;  // --technique: keep the variants of one technique
     bool quick = false, traceOverhead = false;
-    CLI::App app{"Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates (markdown)",
-                 "legacy_bench"};
+    CLI::App app{
+        "Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates and each "
+        "pass's llvmpipe floor (time / floor; floors measured interleaved in the same "
+        "context, legacy_gl/roofline.h) (markdown)",
+        "legacy_bench"};
     app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
         ->type_name("NAME");
     app.add_option("--imaging", imaging,

@@ -9,6 +9,7 @@
 uniform sampler2D uSilhouette;
 uniform int uMode;
 void main() {
+  // @pass computation-mask: depth 0 at non-silhouette pixels so later passes are rejected early (Chan 2004 §3.2, §3.4.2 computation masks)
   bool silhouette = texelFetch(uSilhouette, ivec2(gl_FragCoord.xy), 0).r > 0.5;
   if (uMode == 0) {
     if (silhouette) discard;
@@ -16,5 +17,6 @@ void main() {
   } else {
     if (!silhouette) discard;
     gl_FragDepth = gl_FragCoord.z;
+  // @end computation-mask
   }
 }

@@ -36,6 +36,7 @@ layout(location = 0) out vec4 oLayers[LAYERS];
 const float PI = 3.14159265358979;
 
 void main() {
+  // @pass basis: B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 into MRT layers, with the horizontal Gaussian when blurring (§3.1, §4.1, Fig. 5)
   ivec2 size = textureSize(uLinearDepth, 0);
   ivec2 center = ivec2(gl_FragCoord.xy);
   const int radius = TAPS / 2;
@@ -84,4 +85,5 @@ void main() {
 #endif
   }
   for (int i = 0; i < LAYERS; ++i) oLayers[i] = uEncodeUnsigned ? 0.5 + 0.5 * sum[i] : sum[i];
+  // @end basis
 }

@@ -67,6 +67,7 @@ const float PI = 3.14159265358979;
 // Eq. 13 with the filtered basis images; d is this point's (offset) linear depth. Called in
 // uniform control flow (every pixel, before any branch), so that texture()'s implicit
 // derivatives, which choose the mip level and the anisotropic footprint, are defined.
+// @pass reconstruct: f(d, z) ~ 1/2 + sum a_i(d) B_i(z) from the filtered basis (Eq. 13, coefficients Eq. 14)
 float reconstructShadowTest(vec2 p, float d) {
   float sum = 0.5;  // "we add the constant term 1/2 separately" (§3.1)
   // cos(c_k d), sin(c_k d) for c_k = pi (2k - 1): start at c_1 d = pi d and rotate by 2 pi d
@@ -92,6 +93,7 @@ float reconstructShadowTest(vec2 p, float d) {
     sum += dot(uWeights[layer], cosD * sines - sinD * cosines);
   }
   return sum;
+// @end reconstruct
 }
 
 #if CLASSIFY
@@ -104,6 +106,7 @@ float reconstructShadowTest(vec2 p, float d) {
 // texelFetch with a level that differs between the lanes of a quad returned wrong texels
 // (isolated pixels on lit ground classified as umbra, brabec 1024x768). A box wider than the
 // coarsest level allows: no bounds (vec2(-2, 2), never decided).
+// @pass classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION, issue 20)
 vec2 depthBoundsAround(vec2 p, float rho) {
   ivec2 size = ivec2(uDepthMapTexels);
   float radius = uFootprintScale * rho + uFootprintMargin;
@@ -118,10 +121,12 @@ vec2 depthBoundsAround(vec2 p, float rho) {
     if (all(lessThanEqual(b - a, ivec2(2)))) bounds = levelBounds;  // finer levels win
   }
   return bounds;
+// @end classify
 }
 const float kNeedsReconstruction = -1.0;
 #endif
 
+// @pass csm-test: d from the receiver, offset and scale of §3.2.2 (Fig. 3 c-d), clamp to [0, 1] (§4.1)
 float shadowTest(vec3 world) {
   vec4 coord = uWorldToShadowMap * vec4(world, 1.0);
   vec2 p = coord.xy / coord.w;
@@ -163,6 +168,7 @@ float shadowTest(vec3 world) {
 #else
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
 #endif
+// @end csm-test
 }
 
 void main() {

@@ -18,20 +18,25 @@ layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 
 // §11.3 offset_lookup: a projected, hardware-filtered compare, offset in texel units.
+// @pass offset-lookup: a projected lookup through the hardware 2x2 compare, offset in texels (§11.3, Fig. 11-3)
 float offsetLookup(vec4 loc, vec2 offset) {
   return textureProj(uShadowMap, vec4(loc.xy + offset * uTexmapScale * loc.w, loc.z, loc.w));
 }
+// @end offset-lookup
 
 // §11.4: which four of the sixteen samples this pixel takes (Fig. 11-4). The chapter computes
 // offset = frac(position.xy * 0.5) > 0.25, i.e. the parity of the pixel's column and row;
 // then y ^= x, done in floating point as offset.y += offset.x; if (offset.y > 1.1) offset.y = 0.
+// @pass dither: which four of the sixteen offsets this pixel takes, by its column and row parity (§11.4, Fig. 11-4)
 vec2 ditherOffset(vec2 windowPosition) {
   vec2 offset = vec2(greaterThan(fract(floor(windowPosition) * 0.5), vec2(0.25)));
   offset.y += offset.x;
   if (offset.y > 1.1) offset.y = 0.0;
   return offset;
 }
+// @end dither
 
+// @pass gems-region: the 4x4-texel region: 16 lookups (§11.3), 4 dithered (§11.4) or 1 (Fig. 11-6); the bias is ours (DEVIATION)
 float shadowTest(vec3 world) {
   // DEVIATION (the chapter has no bias): the receiver moves towards the light along the light
   // ray by uRelativeBias of its distance (gems_pcf.cpp says why); uLightPosition: lighting.glsl.
@@ -53,6 +58,7 @@ float shadowTest(vec3 world) {
   return offsetLookup(coord, vec2(0.0));
 #endif
 }
+// @end gems-region
 
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;

@@ -21,6 +21,7 @@ layout(location = 2) out vec4 oSilhouette;  // 1 = silhouette pixel (Figure 3-1b
 #include "lighting.glsl"
 
 void main() {
+  // @pass classify: silhouette pixel = the hardware 2x2 compare is neither 0 nor 1 (Chan 2004 §3.1 step 2, Fig. 3-3)
   vec3 n = normalize(vWorldNormal);
   vec3 toLight = normalize(uLightPosition - vWorldPosition);
   if (!gl_FrontFacing) n = -n;
@@ -40,4 +41,5 @@ void main() {
 #ifdef MASK_BIT
   gl_FragStencilRefARB = silhouette ? MASK_BIT : 0;
 #endif
+  // @end classify
 }

@@ -14,6 +14,7 @@ uniform int uFirstLayer;  // first layer of this pass
 layout(location = 0) out vec4 oLayers[LAYERS];
 
 void main() {
+  // @pass downsample: one mip level: the mean of 2x2 texels of the level above (Annen et al. 2007 §4.1 "build a mip-map"; drawn, not auto-generated: DEVIATION)
   ivec2 size = textureSize(uSource, 0).xy;
   ivec2 low = min(2 * ivec2(gl_FragCoord.xy), size - 1);
   ivec2 high = min(low + 1, size - 1);
@@ -23,5 +24,6 @@ void main() {
                          texelFetch(uSource, ivec3(high.x, low.y, layer), 0) +
                          texelFetch(uSource, ivec3(low.x, high.y, layer), 0) +
                          texelFetch(uSource, ivec3(high.x, high.y, layer), 0));
+  // @end downsample
   }
 }

@@ -11,7 +11,9 @@ uniform float uDepthScale;
 layout(location = 0) out vec4 oDepth;
 
 void main() {
+  // @pass linear-depth: linear light depth d in [0, 1], scaled (Annen et al. 2007 §4.1 "we use linear depth values")
   float distanceAlongAxis = -(uLightView * vec4(vWorldPosition, 1.0)).z;
   float d = clamp((distanceAlongAxis - uLightNear) / (uLightFar - uLightNear), 0.0, 1.0);
   oDepth = vec4(d * uDepthScale, 0.0, 0.0, 1.0);
+  // @end linear-depth
 }

@@ -32,7 +32,8 @@ uniform vec4 uGroupShares[4];      // colour-table output per channel, share / M
 uniform float uGroupWeight[4];     // accumulation value of the group
 uniform float uGroupAccumScale[4]; // Mesa: value * 32767
 uniform bool uFaithful;
-uniform float uBufferMax;          // M of the colour buffer: 255 or 65535
+uniform bool uFloatBuffer;         // --precision float: legacy's float colour buffer
+uniform float uBufferMax;          // M of the colour buffer: 255 or 65535 (1 for float)
 uniform float uReadScale;          // 1 / M as the driver converts codes to float
 uniform float uTableScale;         // GL_*_SCALE before the colour table: 1 / (step * 255)
 uniform float uTableLastIndex;     // colour-table width - 1
@@ -45,8 +46,10 @@ layout(location = 1) out vec4 oVisibility;
 
 const float kAccumSteps = 32767.0;  // 16-bit signed accumulation buffer
 
-float code(float v) { return roundEven(clamp(v, 0.0, 1.0) * uBufferMax); }
-vec4 code(vec4 v) { return roundEven(clamp(v, 0.0, 1.0) * uBufferMax); }
+// The value a fixed-point colour buffer stores: an integer code of M. A float buffer stores
+// the value itself, unclamped (ARB_color_buffer_float; legacy clamps where 2001 would, below).
+float code(float v) { return uFloatBuffer ? v : roundEven(clamp(v, 0.0, 1.0) * uBufferMax); }
+vec4 code(vec4 v) { return uFloatBuffer ? v : roundEven(clamp(v, 0.0, 1.0) * uBufferMax); }
 
 // GLSL 3.30 indexes sampler arrays with constants only.
 vec4 lookupMap(int g, vec4 c) {
@@ -105,6 +108,7 @@ float faithfulShadow() {
     accumulator = clamp(roundEven((accumulator + uGroupWeight[g] * c) * kAccumSteps) /
                             kAccumSteps, -1.0, 1.0);
   }
+  if (uFloatBuffer) return clamp(accumulator, 0.0, 1.0);
   return floor(clamp(accumulator, 0.0, 1.0) * uBufferMax + 0.5) * uReadScale;
   // @end accumulate
 }

@@ -21,6 +21,7 @@ uniform ivec2 uStep;           // (1, 0) horizontal, (0, 1) vertical
 layout(location = 0) out vec4 oLayers[LAYERS];
 
 void main() {
+  // @pass gaussian: one direction of the separable Gaussian (binomial weights) over several layers at once (Annen et al. 2007 §4.1)
   ivec2 size = textureSize(uSource, 0).xy;
   ivec2 center = ivec2(gl_FragCoord.xy);
   const int radius = TAPS / 2;
@@ -31,5 +32,6 @@ void main() {
     for (int t = 0; t < TAPS; ++t)
       sum += uWeights[t] * texelFetch(uSource, ivec3(taps[t], uFirstLayer + i), 0);
     oLayers[i] = sum;
+  // @end gaussian
   }
 }

@@ -15,8 +15,10 @@ out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 invariant gl_Position;
 void main() {
+  // @pass volume-vertex: volume and cap vertices to an infinite far plane (w = 0 extrudes to infinity; Chan 2004 §2.1.2)
   vec4 world = uModel * aPosition;
   vWorldPosition = world.xyz;
   vWorldNormal = mat3(transpose(inverse(uModel))) * aNormal;
   gl_Position = uViewProjection * world;
+  // @end volume-vertex
 }

@@ -12,9 +12,11 @@ flat out vec2 vNormal;
 flat out int vKind;
 out float vLinearDepth;                  // b: distance of the smoothie along the light axis
 void main() {
+  // @pass smoothie-vertex: smoothie edges and corners from the light, with their root and outward normal (Chan 2004 §4.2 step 3, Fig. 4-2)
   vRoot = aRoot;
   vNormal = aNormal;
   vKind = int(aKind + 0.5);
   vLinearDepth = aClip.w;  // perspective projection: clip w = -z_eye
   gl_Position = aClip;
+  // @end smoothie-vertex
 }

@@ -17,6 +17,7 @@ layout(location = 0) out vec4 oAlpha;
 // Chan: "If b/r > 1, smoothie pixel is occluded") or a >= 1 - b/r, the result is 1; otherwise
 // a < 1 - b/r, so the divisor is positive and the quotient lies in [0, 1): no division by zero,
 // no NaN or Inf as b/r -> 1.
+// @pass smoothie-alpha: alpha rising across the smoothie, remapped by b / r (Chan 2004 §4.2.1, Eq. 4.1, Fig. 4-4); min blending keeps the smallest
 float remapAlpha(float a, float bOverR) {
   float room = 1.0 - bOverR;
   return a >= room ? 1.0 : a / room;
@@ -34,4 +35,5 @@ void main() {
   // receiver is still discarded (Figure 4-7: "If b/r > 1, smoothie pixel is occluded").
   float linearAlpha = bOverR >= 1.0 ? 1.0 : a;
   oAlpha = vec4(uRemap ? remapAlpha(a, bOverR) : linearAlpha, 0.0, 0.0, 1.0);
+// @end smoothie-alpha
 }

@@ -6,6 +6,8 @@ in vec3 vWorldPosition;
 uniform mat4 uLightView;
 layout(location = 0) out vec4 oLinearDepth;
 void main() {
+  // @pass blocker-linear-depth: the blockers' linear light depth, for the ratio b / r of the smoothie alpha (Chan 2004 §4.2 step 1, §4.2.1)
   float z = -(uLightView * vec4(vWorldPosition, 1.0)).z;
   oLinearDepth = vec4(z, 0.0, 0.0, 1.0);
+  // @end blocker-linear-depth
 }

@@ -19,6 +19,7 @@ layout(location = 1) out vec4 oVisibility;
 #include "lighting.glsl"
 
 // §4.2 step 5, cases 1-3, at one texel. Outside the map: lit (as the border of modern.hw).
+// @pass smoothie-test: behind the blocker = 0, behind a smoothie = its alpha, else 1, bilinear over 4 texels, then the falloff (Chan 2004 §4.2 step 5, Fig. 4-3)
 float texelVisibility(ivec2 t, float depth) {
   if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, ivec2(uMapTexels)))) return 1.0;
   if (depth > texelFetch(uBlockerDepth, t, 0).r) return 0.0;                 // behind a blocker
@@ -40,6 +41,7 @@ float smoothieVisibility(vec3 world) {
   float v = mix(mix(v00, v10, w.x), mix(v01, v11, w.x), w.y);
   // The falloff texture: texel centres sample s(0) and s(1) exactly at the ends.
   return texture(uFalloff, (v * (uFalloffTexels - 1.0) + 0.5) / uFalloffTexels).r;
+// @end smoothie-test
 }
 
 void main() {

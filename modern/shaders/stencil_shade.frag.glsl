@@ -12,7 +12,9 @@ layout(location = 1) out vec4 oVisibility;
 
 // Shading: lighting.glsl (fixed-function spotlight, glspec121 §2.13.1).
 void main() {
+  // @pass stencil-shade: lit where the stencil count is 0, shadowed elsewhere: one draw each (Chan 2004 §2.1.2)
   float visibility = uReceivesShadow ? uVisibility : 1.0;
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
+  // @end stencil-shade
 }

@@ -10,7 +10,9 @@ uniform float uLightFar;
 layout(location = 0) out vec4 oMoments;
 
 void main() {
+  // @pass moments: the first two moments (d, d^2) of the linear light depth (Donnelly & Lauritzen 2006, as Annen et al. 2007 §2 describe VSM)
   float distanceAlongAxis = -(uLightView * vec4(vWorldPosition, 1.0)).z;
   float d = clamp((distanceAlongAxis - uLightNear) / (uLightFar - uLightNear), 0.0, 1.0);
   oMoments = vec4(d, d * d, 0.0, 1.0);
+  // @end moments
 }

@@ -20,6 +20,7 @@ uniform bool uReceivesShadow;
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
 
+// @pass chebyshev: the one-tailed Chebyshev bound on the lit fraction from the filtered moments (Donnelly & Lauritzen 2006; light leaking: Annen et al. 2007 Fig. 9)
 float chebyshevUpperBound(vec2 moments, float d) {
   if (d <= moments.x) return 1.0;
   float variance = max(moments.y - moments.x * moments.x, uMinVariance);
@@ -41,6 +42,7 @@ float shadowTest(vec3 world) {
   float distanceAlongAxis = -(uLightView * vec4(world, 1.0)).z;
   float d = clamp((distanceAlongAxis - uLightNear) / (uLightFar - uLightNear), 0.0, 1.0);
   return clamp(chebyshevUpperBound(moments, d), 0.0, 1.0);
+// @end chebyshev
 }
 
 void main() {

@@ -8,6 +8,7 @@ layout(location = 0) out vec4 oPosition;
 layout(location = 1) out vec4 oShadingNormal;
 layout(location = 2) out vec4 oGeometricNormal;
 void main() {
+  // @pass surface-points: each pixel's world position, shading and geometric normals for the rays (ours: the reference's GL rasterisation)
   vec3 n = normalize(vWorldNormal);
   if (!gl_FrontFacing) n = -n;
   vec3 g = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
@@ -17,4 +18,5 @@ void main() {
   oPosition = vec4(vWorldPosition, uObjectId);
   oShadingNormal = vec4(n, 1.0);
   oGeometricNormal = vec4(g, 1.0);
+  // @end surface-points
 }

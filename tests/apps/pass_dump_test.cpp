@@ -113,6 +113,17 @@ TEST(PassDump, PassesJsonAndIndexDescribeEveryImage) {
   EXPECT_EQ(html.find("http"), std::string::npos) << "no network";
 }
 
+// A pass's section names the paper it follows by its authors (the papers of /work/shared/papers
+// and the ones they cite for a technique: Wang & Molnar, Woo, Donnelly & Lauritzen, Everitt &
+// Kilgard), or starts with "ours" (our own pass, no paper's).
+bool citesAPaperOrSaysOurs(const std::string& section) {
+  if (section.rfind("ours", 0) == 0) return true;
+  for (const char* author : {"Everitt", "Brabec & Seidel", "Bunnell & Pellacini", "Annen",
+                             "Chan 2004", "Donnelly & Lauritzen"})
+    if (section.find(author) != std::string::npos) return true;
+  return false;
+}
+
 int run(const std::string& args, const fs::path& log) {
   const std::string cmd =
       std::string(SHADOWLAB_BINARY) + " " + args + " >" + log.string() + " 2>&1";
@@ -173,6 +184,28 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
     for (const char* key : {"section", "source", "state", "glsl", "replaces"})
       EXPECT_TRUE(p.contains(key)) << key << " in pass " << p["number"];
     EXPECT_FALSE(p["section"].get<std::string>().empty()) << p["number"];
+    // A timed pass declares its own section (core/technique.h PassTimer; no technique-wide
+    // fallback): a paper of /work/shared/papers by its authors, or "ours" where no paper has it.
+    if (!p["timings"].empty())
+      EXPECT_TRUE(citesAPaperOrSaysOurs(p["section"].get<std::string>()))
+          << t.name << " pass " << p["number"] << ": " << p["section"];
+    // A pass that runs a program names the `// @pass` markers of its GLSL (core/shaders.h), and
+    // the marked files are files of a program the pass uses.
+    // (A program made ready before the pass's timer, "before_pass", counts for the files but
+    // does not make a CPU pass a GLSL one.)
+    std::string programs;
+    bool usesProgram = false;
+    for (const nlohmann::json& l : p["state"])
+      if (l["group"] == "program" && l["text"] != "program 0 (fixed function)") {
+        programs += l["text"].get<std::string>() + "\n";
+        usesProgram = usesProgram || !l.value("before_pass", false);
+      }
+    if (usesProgram) EXPECT_FALSE(p["glsl"].empty()) << t.name << " pass " << p["number"];
+    for (const nlohmann::json& g : p["glsl"])
+      EXPECT_NE(programs.find(g["file"].get<std::string>()), std::string::npos)
+          << t.name << " pass " << p["number"] << " names " << g["file"] << " (marker "
+          << g["marker"] << ") but uses only:\n"
+          << programs;
     if (!p["timings"].empty()) {
       EXPECT_FALSE(p["source"]["file"].get<std::string>().empty()) << p["number"];
       EXPECT_FALSE(p["source"]["function"].get<std::string>().empty()) << p["number"];

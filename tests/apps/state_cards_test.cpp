@@ -4,9 +4,13 @@
 // links its packing pass to the GLSL lines that do it.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "command_util.h"
@@ -16,9 +20,11 @@ namespace {
 namespace fs = std::filesystem;
 using test::slurp;
 
-// Renders `technique` on the brabec scene with a dump; returns passes.json.
-nlohmann::json dumpOf(const std::string& technique, const std::string& extra = "") {
-  const fs::path d = test::testDir("state_cards_" + technique, true);
+// Renders `technique` on the brabec scene with a dump; returns passes.json. `tag` keeps the
+// folders of tests that may run at once (ctest -j) apart.
+nlohmann::json dumpOf(const std::string& technique, const std::string& extra = "",
+                      const std::string& tag = "") {
+  const fs::path d = test::testDir("state_cards_" + tag + technique, true);
   const test::CommandResult r = test::runBinary(
       SHADOWLAB_BINARY,
       "render --scene brabec --technique " + technique + " --size 160x120 --shadow-map 128 " +
@@ -87,7 +93,7 @@ TEST(StateCards, FastPcfShowsKernelColourTableAndColourMatrix) {
   EXPECT_TRUE(hasLine(subtract, "blend", {"GL_FUNC_REVERSE_SUBTRACT"})) << lines(subtract);
   const nlohmann::json& count = pass(d, 5);
   // 8 bits: index 0 (no depth difference) -> 0, every other index -> 64/255 (63 in alpha).
-  EXPECT_TRUE(hasLine(count, "colour table", {"256 entries", "0 -> 0, 1..255 -> 0.251"}))
+  EXPECT_TRUE(hasLine(count, "colour table", {"256 entries", "0 -> 0, 1..255 -> 0.251 (64/255)"}))
       << lines(count);
   EXPECT_TRUE(hasLine(count, "colour matrix", {"load [0 0 0 0; 0 0 0 0; 0 0 0 0; 1 1 1 1]"}))
       << lines(count);
@@ -161,6 +167,53 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
         << named << " in " << camera["replaces"].dump();
   }
 }
+
+// Every modern twin (registry/twins.h) is linked pass by pass, from the `// @replaces` lines of
+// its shaders: each of its passes names at least one legacy pass and its GLSL lines, each named
+// legacy pass exists under that number and name in the legacy dump (markers are not hand-typed
+// line numbers, and they cannot name a pass that is not there), and every numbered legacy pass
+// is replaced by some modern pass. Pass numbers the default run does not make (the accumulation
+// of footprints above 2x2) are only checked where they exist.
+class TwinLinks : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
+  const std::string modernName = GetParam();
+  const std::string legacyName = "legacy." + modernName.substr(modernName.find('.') + 1);
+  const nlohmann::json modern = dumpOf(modernName, "", "twin_links_");
+  const nlohmann::json legacy = dumpOf(legacyName, "", "twin_links_of_" + modernName + "_");
+  std::map<int, std::string> legacyPasses;  // number -> name, the numbered ones
+  for (const nlohmann::json& p : legacy["passes"])
+    if (p["number"].get<int>() >= 1) legacyPasses[p["number"].get<int>()] = p["name"];
+  std::set<int> replaced;
+  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass (\d+) (.*))re");
+  for (const nlohmann::json& p : modern["passes"]) {
+    EXPECT_FALSE(p["replaces"].empty()) << modernName << " pass " << p["number"];
+    EXPECT_FALSE(p["glsl"].empty()) << modernName << " pass " << p["number"];
+    for (const nlohmann::json& r : p["replaces"]) {
+      std::smatch m;
+      const std::string text = r;
+      ASSERT_TRUE(std::regex_match(text, m, kNamed)) << text;
+      EXPECT_EQ(m[1].str(), legacyName) << text;
+      const int number = std::stoi(m[2].str());
+      if (!legacyPasses.count(number)) continue;
+      EXPECT_EQ(m[3].str(), legacyPasses[number]) << "the legacy dump names pass " << number;
+      replaced.insert(number);
+    }
+  }
+  for (const auto& [number, name] : legacyPasses)
+    EXPECT_TRUE(replaced.count(number)) << legacyName << " pass " << number << " " << name
+                                        << " is replaced by no pass of " << modernName;
+}
+
+INSTANTIATE_TEST_SUITE_P(Twins, TwinLinks,
+                         ::testing::Values("modern.hw", "modern.woo", "modern.second-depth",
+                                           "modern.ramp", "modern.pcf", "modern.fast-pcf"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace sl

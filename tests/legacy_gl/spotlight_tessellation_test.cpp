@@ -10,7 +10,9 @@
 #include <map>
 #include <utility>
 
+#include "core/context.h"
 #include "core/scene_library.h"
+#include "registry/registry.h"
 
 namespace sl::legacy {
 namespace {
@@ -122,6 +124,70 @@ TEST(SpotlightTessellation, SplitsNothingWhereTheConeEdgeIsNot) {
   TessellationStats stats;
   tessellateForSpotlight(scene, kWidth, kHeight, &stats);
   EXPECT_EQ(stats.trianglesOut, stats.trianglesIn);
+}
+
+void expectSameMeshes(const Scene& a, const Scene& b) {
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (size_t i = 0; i < a.objects.size(); ++i) {
+    const Mesh& ma = *a.objects[i].mesh;
+    const Mesh& mb = *b.objects[i].mesh;
+    EXPECT_EQ(ma.positions, mb.positions) << a.objects[i].name;
+    EXPECT_EQ(ma.normals, mb.normals) << a.objects[i].name;
+    EXPECT_EQ(ma.indices, mb.indices) << a.objects[i].name;
+  }
+}
+
+// Issue 20 item 2: cameraPassScene keeps the split meshes in the current context. A second call
+// with the same scene, camera, light and window draws the very meshes of the first, which are
+// those a fresh split makes; a moved camera is split anew.
+TEST(SpotlightTessellation, CachedSplitEqualsAFreshOneAndFollowsTheCamera) {
+  ContextSpec spec;
+  spec.width = 8;
+  spec.height = 8;
+  auto context = GlContext::create(spec);
+  const Scene scene = builtinScene("brabec");
+  RenderParams params;
+  params.width = kWidth;
+  params.height = kHeight;
+  Frame first, second;
+  const Scene a = cameraPassScene(scene, params, first);
+  const Scene b = cameraPassScene(scene, params, second);
+  for (size_t i = 0; i < a.objects.size(); ++i)
+    EXPECT_EQ(a.objects[i].mesh, b.objects[i].mesh) << "the second frame split again";
+  expectSameMeshes(b, tessellateForSpotlight(scene, kWidth, kHeight));
+  EXPECT_EQ(second.counters.at("camera-pass triangles"),
+            first.counters.at("camera-pass triangles"));
+
+  Scene moved = scene;
+  moved.camera.position += glm::vec3(0.5f, 0.0f, 0.0f);
+  Frame third;
+  const Scene c = cameraPassScene(moved, params, third);
+  expectSameMeshes(c, tessellateForSpotlight(moved, kWidth, kHeight));
+  EXPECT_NE(c.objects.front().mesh, a.objects.front().mesh);
+  // The first key is still cached (kCachedTessellations > 1).
+  Frame fourth;
+  EXPECT_EQ(cameraPassScene(scene, params, fourth).objects.front().mesh, a.objects.front().mesh);
+}
+
+// Frames rendered one after another in one context (the second one drawing the cached split)
+// give the image and the mask of a frame in a fresh context, bit for bit.
+TEST(SpotlightTessellation, SecondFrameInAContextEqualsAFreshFrame) {
+  constexpr int kSmallWidth = 160, kSmallHeight = 120, kSmallMap = 128;
+  const Scene scene = builtinScene("brabec");
+  for (const char* name : {"legacy.ramp", "legacy.fast-pcf", "legacy.hw"}) {
+    const Technique& t = findTechnique(name);
+    RenderParams p;
+    p.width = kSmallWidth;
+    p.height = kSmallHeight;
+    p.shadowMapTexels = kSmallMap;
+    if (t.reads.filter) p.filter = 2;
+    const Frame fresh = renderTechnique(t, scene, p);
+    auto context = makeRenderContext(t, p);
+    t.render(*context, scene, p);
+    const Frame again = t.render(*context, scene, p);
+    EXPECT_EQ(again.visibility.data, fresh.visibility.data) << name;
+    EXPECT_EQ(again.color.data, fresh.color.data) << name;
+  }
 }
 
 }  // namespace

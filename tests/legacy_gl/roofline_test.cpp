@@ -1,0 +1,82 @@
+// legacy_gl/roofline.h (issue 20 item 2): every pass of every Brabec & Seidel variant of
+// legacy_bench has a floor rule, the floors measure real GL work, and running them between two
+// frames in one context leaves the frames unchanged (the floors restore the state they touch).
+#include "legacy_gl/roofline.h"
+
+#include <gtest/gtest.h>
+
+#include "core/scene_library.h"
+#include "legacy_gl/benchmark.h"
+#include "registry/registry.h"
+
+namespace sl::legacy {
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120, kMap = 64;  // small: the rules, not the speed
+
+RenderParams smallParams(const BenchmarkVariant& v) {
+  RenderParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  p.shadowMapTexels = kMap;
+  p.filter = v.filter;
+  return p;
+}
+
+TEST(Roofline, EveryPassOfEveryPaperVariantHasAFloor) {
+  const Scene scene = builtinScene("brabec");
+  for (const BenchmarkVariant& v : paperVariants()) {
+    const RenderParams p = smallParams(v);
+    const Frame frame = renderTechnique(findTechnique(v.technique), scene, p);
+    ASSERT_FALSE(frame.passes.empty()) << v.label;
+    for (const PassTime& pass : frame.passes) {
+      const auto terms = passFloor(pass.name, p);
+      ASSERT_TRUE(terms.has_value()) << v.label << ": no floor rule for '" << pass.name << "'";
+      const bool cpuOnly = pass.name.find("mesh feeding") != std::string::npos;
+      EXPECT_EQ(terms->empty(), cpuOnly) << v.label << ": " << pass.name;
+      for (const FloorTerm& t : *terms) {
+        EXPECT_GT(t.count, 0) << pass.name;
+        EXPECT_TRUE((t.width == kWidth && t.height == kHeight) ||
+                    (t.width == kMap && t.height == kMap))
+            << pass.name << ": a floor of the window's or the map's size";
+      }
+    }
+  }
+  EXPECT_FALSE(passFloor("an unknown pass", smallParams(paperVariants().front())).has_value());
+}
+
+// §3: four jittered samples per map; a 4x4 footprint has four groups of four, 3x3 ends with one.
+TEST(Roofline, JitteredLightPassFloorCountsTheGroupsSamples) {
+  RenderParams p;
+  p.filter = 3;
+  auto samples = [&](const std::string& name) { return passFloor(name, p)->front().count; };
+  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture (group 1)"), 4);
+  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture (group 3)"), 1);
+  p.filter = 2;
+  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture"), 4);
+}
+
+TEST(Roofline, FloorsBetweenFramesLeaveTheFramesUnchanged) {
+  const Scene scene = builtinScene("brabec");
+  const BenchmarkVariant v = paperVariants()[2];  // fast PCF 2x2: table, matrix, convolution
+  const Technique& t = findTechnique(v.technique);
+  const RenderParams p = smallParams(v);
+  auto context = makeRenderContext(t, p);
+  const Frame before = t.render(*context, scene, p);
+  std::vector<FloorTerm> terms;
+  for (const PassTime& pass : before.passes) {
+    const auto passTerms = passFloor(pass.name, p);
+    ASSERT_TRUE(passTerms.has_value()) << pass.name;
+    terms.insert(terms.end(), passTerms->begin(), passTerms->end());
+  }
+  auto resources = makeFloorResources(p.shadowMapTexels, p.width, p.height);
+  const Frame floors = renderFloors(*resources, terms);
+  ASSERT_EQ(floors.passes.size(), terms.size());
+  for (size_t i = 0; i < terms.size(); ++i) EXPECT_EQ(floors.passes[i].name, floorName(terms[i]));
+  const Frame after = t.render(*context, scene, p);
+  EXPECT_EQ(after.visibility.data, before.visibility.data);
+  EXPECT_EQ(after.color.data, before.color.data);
+}
+
+}  // namespace
+}  // namespace sl::legacy
