@@ -301,7 +301,7 @@ const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace&
   PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)",
                   "not in Annen et al. 2007: bounds of z under each footprint, so that the "
                   "classification can skip Eq. 13 where they decide the series (issue 20)");
-  timer.shaderPasses({"depth-bounds"});
+  timer.shaderPasses({"csm-depth-bounds"});
   const int n = depth.width;
   if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
     int levels = 1;
@@ -389,7 +389,7 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
                   "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
                   "the series within skip-error of 1 or 0, the pixel is decided without Eq. 13");
-  timer.shaderPasses({"classify", "csm-test"});
+  timer.shaderPasses({"csm-classify", "csm-test"});
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);

@@ -106,7 +106,7 @@ float reconstructShadowTest(vec2 p, float d) {
 // texelFetch with a level that differs between the lanes of a quad returned wrong texels
 // (isolated pixels on lit ground classified as umbra, brabec 1024x768). A box wider than the
 // coarsest level allows: no bounds (vec2(-2, 2), never decided).
-// @pass classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION, issue 20)
+// @pass csm-classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION, issue 20)
 vec2 depthBoundsAround(vec2 p, float rho) {
   ivec2 size = ivec2(uDepthMapTexels);
   float radius = uFootprintScale * rho + uFootprintMargin;
@@ -121,7 +121,7 @@ vec2 depthBoundsAround(vec2 p, float rho) {
     if (all(lessThanEqual(b - a, ivec2(2)))) bounds = levelBounds;  // finer levels win
   }
   return bounds;
-// @end classify
+// @end csm-classify
 }
 const float kNeedsReconstruction = -1.0;
 #endif
