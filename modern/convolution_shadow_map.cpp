@@ -24,6 +24,7 @@
 #include "core/plan.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
+#include "modern/shadow_volumes.h"
 
 namespace sl::modern {
 using namespace sl::gl;
@@ -39,6 +40,30 @@ constexpr int kDefaultBlurTaps = 3;                        // 3x3 (Table 1's mid
 constexpr int kChannelsPerLayer = 4;                       // RGBA
 constexpr double kMaxMapBytes = 2.0 * 1024 * 1024 * 1024;  // refuse maps above 2 GiB
 constexpr int kOffsetSearchSteps = 20000;  // resolution of the default-offset search on (0, 1]
+// --param skip-error: the most a skipped pixel's visibility may differ from the clamped series
+// (a visibility difference, 0..1). 0.025 covers the attenuated series' ringing on most of the
+// lit and umbra ranges of t for M >= 4 at alpha = 1 (largest dip below 1 on [offset, 0.8]:
+// M = 4: 0.020, 8: 0.023, 16: 0.019; largest bump above 0 on [-0.8, -2 offset]: M = 4: 0.036,
+// 8: 0.014, 16: 0.011), so that most receivers decide without the M terms.
+constexpr double kDefaultSkipError = 0.025;
+constexpr double kMaxSkipError = 0.5;
+constexpr int kSkipIntervalSteps = 40000;  // grid points of csmSkipIntervals on [-1, 1]
+// The filter footprint's radius in depth texels, for the depth bounds of the classification:
+// kFootprintScale times the pixel's texels per pixel (tri-linear reads +-1 texel of a level whose
+// texel is at most twice that: +-2 x; llvmpipe's anisotropic probes spread over half the major
+// axis each side, each a tri-linear lookup of a finer level: <= 2.5 x; 3 leaves room for its
+// per-quad level choice), plus
+// the bilinear reach and the blur's radius, plus one texel for rounding.
+constexpr float kFootprintScale = 3.0f;
+constexpr float kFootprintRoundingTexels = 1.0f;
+// The coarsest level of the depth-bounds pyramid (2^4 = 16 depth texels a texel): footprints
+// wider than it allows (csm_shadow.frag, depthBoundsAround: about 3 texels per pixel) are not
+// decided by the bounds.
+constexpr int kDepthBoundsLevel = 4;
+// glPolygonOffset factor and units (depth-slope and resolvable-depth steps) that the
+// reconstruction pass 5c moves its fragments forward by, so that it meets the classification's
+// depth although its program interpolates depth in different generated code.
+constexpr float kReconstructionDepthOffset = 2.0f;
 const char* const kWorkspaceKey = "modern.csm.workspace";  // GL objects kept between frames
 
 struct CsmSettings {
@@ -51,6 +76,7 @@ struct CsmSettings {
   int blurTaps = kDefaultBlurTaps;
   MapFiltering filtering;
   bool mipmapsSkipped = false;  // mipmaps=auto and the view does not minify the map
+  double skipError = kDefaultSkipError;  // 0: Eq. 13 at every pixel
   int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
   int layers() const { return 2 * sinLayers(); }
   // Linear depth is stored scaled by 1 - offset, so that t = z - d + offset stays inside one
@@ -88,6 +114,11 @@ ParamSpec storageParam() {
   return choiceParam("storage", "8", {"8", "16", "float"},
                      "basis texture format: 8-bit (the paper's), 16 or 32-bit float");
 }
+ParamSpec skipErrorParam() {
+  return numberParam("skip-error", kDefaultSkipError, 0.0, kMaxSkipError,
+                     "pixels whose filter footprint the depth bounds decide (the clamped series "
+                     "within this of 1 or 0) skip Eq. 13; 0 = reconstruct every pixel");
+}
 ParamSpec mipmapsParam() {
   return choiceParam("mipmaps", "auto", {"auto", "always"},
                      "build the mip chain only where the view minifies the map (auto) or always");
@@ -114,6 +145,9 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   s.encodeUnsigned = storage == "8";
   s.blurTaps = parseBlurTaps(params, blurParam(kDefaultBlurTaps));
   s.filtering = parseFiltering(context, params);
+  s.skipError = params.number(skipErrorParam());
+  // The classification writes the stencil reference from the shader.
+  if (!context.caps().hasExtension("GL_ARB_shader_stencil_export")) s.skipError = 0.0;
   // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
   // mipmaps=auto (the default) the chain is built only when the planner finds that the view
   // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
@@ -257,39 +291,190 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
   buildMipmapsAndSetFiltering(basis, s.filtering);
 }
 
-// Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test.
-void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                             const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
-                             float nearestCaster, Frame& frame) {
-  PassTimer timer(frame, "5 camera pass, Eq. 13 reconstruction",
-                  "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and "
-                  "scale of §3.2.2 (Fig. 3), clamped (§4.1)");
-  timer.shaderPasses({"reconstruct", "csm-test"});
-  const Scene& scene = gpu.scene();
-  RenderTarget target = makeCameraTarget(params, true);
-  clearCameraTarget(target);
-  glEnable(GL_DEPTH_TEST);
-  const Program& program = cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl");
+// Pass 5a: the min/max pyramid of the linear depth z(p) up to kDepthBoundsLevel, and its dilated
+// copy (each texel the bounds of its 3x3 neighbourhood in its level) (csm_depth_bounds.frag),
+// read by the classification (5b) to bound the depths under each pixel's filter footprint.
+// DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where the
+// bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
+const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace& work,
+                                  Frame& frame) {
+  PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)",
+                  "not in Annen et al. 2007: bounds of z under each footprint, so that the "
+                  "classification can skip Eq. 13 where they decide the series (issue 20)");
+  timer.shaderPasses({"csm-depth-bounds"});
+  const int n = depth.width;
+  if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
+    int levels = 1;
+    while (levels <= kDepthBoundsLevel && (n >> levels) >= 1) ++levels;
+    for (Texture* t : {&work.depthBounds, &work.depthBoundsDilated}) {
+      *t = makeTexture();
+      glBindTexture(GL_TEXTURE_2D, t->id());
+      glTexStorage2D(GL_TEXTURE_2D, levels, GL_RG32F, n, n);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    work.depthBoundsSize = n;
+    work.depthBoundsLevels = levels;
+  }
+  if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, work.fbo.id());
+  const GLenum buffer = GL_COLOR_ATTACHMENT0;
+  glDrawBuffers(1, &buffer);
+  const FullScreenTriangle triangle;
+  glActiveTexture(GL_TEXTURE0);
+  // Reads `source` at `level` only (BASE_LEVEL = MAX_LEVEL = level: no feedback loop, glspec
+  // §4.4.3; texelFetch's level 0 is then that level) while `target` level `targetLevel` is drawn.
+  auto draw = [&](const char* mode, GLuint source, int level, GLuint target, int targetLevel) {
+    const Program& program =
+        cachedProgram("fullscreen.vert.glsl", "csm_depth_bounds.frag.glsl", {{mode, "1"}});
+    program.use();
+    program.set("uSource", 0);
+    glBindTexture(GL_TEXTURE_2D, source);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, level);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target,
+                           targetLevel);
+    const int size = std::max(n >> targetLevel, 1);
+    glViewport(0, 0, size, size);
+    triangle.draw();
+  };
+  const GLuint pyramid = work.depthBounds.id(), dilated = work.depthBoundsDilated.id();
+  draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 0);
+  for (int level = 1; level < work.depthBoundsLevels; ++level)
+    draw("REDUCE", pyramid, level - 1, pyramid, level);
+  for (int level = 0; level < work.depthBoundsLevels; ++level)
+    draw("DILATE", pyramid, level, dilated, level);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);  // GL's initial value
+  glBindTexture(GL_TEXTURE_2D, dilated);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, work.depthBoundsLevels - 1);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  checkGl("modern.csm depth bounds");
+  return work.depthBoundsDilated;
+}
+
+// The uniforms the classification (CLASSIFY 1) and the reconstruction (CLASSIFY 0) share: the
+// same spotlight, light-space transform, depth normalisation and early-outs (csm_shadow.frag).
+void setCameraPassUniforms(const Program& program, const Scene& scene, const RenderParams& params,
+                           const CsmSettings& s, const DepthRange& range, float nearestCaster) {
   program.use();
   program.set("uViewProjection", cameraViewProjection(scene, params));
   program.set("uWorldToShadowMap", worldToShadowMap(scene));
   setLinearDepthUniforms(program, scene, range);
   program.set("uNearestCaster", nearestCaster);
   program.set("uDepthScale", s.depthScale());
-  program.set("uOrder", s.order);
-  program.set("uSinLayers", s.sinLayers());
-  const std::vector<float> weights = termWeights(s);
-  glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
   program.set("uOffset", float(s.offset));
   program.set("uScale", float(s.scale));
-  program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
   setLightingUniforms(program, scene);
+}
+
+// Pass 5b: the camera view, classified (csm_shadow.frag with CLASSIFY 1): pixels that the
+// early-outs of pass 5c or the depth bounds decide are shaded here; the others get stencil 1.
+// DEVIATION (Annen et al. 2007, Eq. 13 at every pixel): Eq. 13 of a filtered footprint is the
+// same convex combination of the series at the footprint's depths (Eq. 8), so where every
+// depth lies in an interval on which the clamped series is within skip-error of 1 or 0
+// (csmSkipIntervals), the pixel is 1 or 0 without the M terms. On llvmpipe the stencil test of
+// pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
+// would not (llvmpipe evaluates both sides of a non-uniform branch).
+void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
+                          const Texture& depthBounds, int depthBoundsLevels,
+                          const CsmSkipIntervals& skip, const CsmSettings& s,
+                          const DepthRange& range, float nearestCaster, Frame& frame) {
+  PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
+                  "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
+                  "the series within skip-error of 1 or 0, the pixel is decided without Eq. 13");
+  timer.shaderPasses({"csm-classify", "csm-test"});
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0xFF);
+  glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  const Program& program =
+      cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
+                    {{"ORDER", std::to_string(s.order)},
+                     {"ENCODE_UNSIGNED", "0"},
+                     {"CLASSIFY", "1"},
+                     {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)}});
+  setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
+  program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
+  program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));
+  program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
+  program.set("uFootprintMargin", 1.0f + float(s.blurTaps / 2) + kFootprintRoundingTexels);
+  program.set("uDepthMapTexels", params.shadowMapTexels);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, depthBounds.id());
+  program.set("uDepthBounds", 1);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(program, o); });
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+// Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test; with
+// the classification (skip-error > 0), at the pixels it left undecided only (pass 5c: stencil 1,
+// depth equal to the classification's).
+void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
+                             const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
+                             float nearestCaster, const Texture* depthBounds, int depthBoundsLevels,
+                             const CsmSkipIntervals& skip, Frame& frame) {
+  const Scene& scene = gpu.scene();
+  const bool classified = depthBounds != nullptr;
+  RenderTarget target =
+      classified ? makeStencilCameraTarget(params, {}) : makeCameraTarget(params, true);
+  if (classified) {
+    classifyInCameraPass(gpu, params, *depthBounds, depthBoundsLevels, skip, s, range,
+                         nearestCaster, frame);
+  } else {
+    clearCameraTarget(target);
+  }
+  PassTimer timer(frame,
+                  classified ? "5c camera pass, Eq. 13 where undecided"
+                             : "5 camera pass, Eq. 13 reconstruction",
+                  "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and "
+                  "scale of §3.2.2 (Fig. 3), clamped (§4.1)");
+  timer.shaderPasses({"reconstruct", "csm-test"});
+  glEnable(GL_DEPTH_TEST);
+  if (classified) {
+    // The same vertex shader and uniforms, but llvmpipe interpolates depth inside each fragment
+    // shader's generated code, so the two programs' depths can differ in the last bits (dots of
+    // undecided pixels on grazing ground with GL_EQUAL): less-or-equal, pulled forward by
+    // kReconstructionDepthOffset units and slope.
+    glDepthFunc(GL_LEQUAL);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-kReconstructionDepthOffset, -kReconstructionDepthOffset);
+    glDepthMask(GL_FALSE);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  // One program per (M, storage): constant loop bounds and indices (the shader's header).
+  const Program& program = cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
+                                         {{"ORDER", std::to_string(s.order)},
+                                          {"ENCODE_UNSIGNED", s.encodeUnsigned ? "1" : "0"},
+                                          {"CLASSIFY", "0"}});
+  setCameraPassUniforms(program, scene, params, s, range, nearestCaster);
+  const std::vector<float> weights = termWeights(s);
+  glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, basis.texture.id());
   program.set("uBasis", 0);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
   readCameraTarget(target, frame);
+  if (classified) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(0.0f, 0.0f);
+    glDisable(GL_STENCIL_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
 }
@@ -335,7 +520,18 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   blurBasisTextures(basis, s, work, frame);
   if (params.capturePasses) capturePasses(depth, basis, s, frame);
   buildBasisMipmaps(basis, s, frame);
-  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, frame);
+  const Texture* bounds = s.skipError > 0.0 ? &computeDepthBounds(depth, work, frame) : nullptr;
+  // The skip intervals depend on the settings only: computed once for them, kept.
+  if (std::vector<double> key = {double(s.order), s.alpha, s.offset, s.scale, s.skipError};
+      key != work.skipKey) {
+    const CsmSkipIntervals k = csmSkipIntervals(s.order, s.alpha, s.offset, s.scale, s.skipError);
+    work.skipIntervals = {k.litLo, k.litHi, k.umbraLo, k.umbraHi};
+    work.skipKey = std::move(key);
+  }
+  const CsmSkipIntervals skip{work.skipIntervals[0], work.skipIntervals[1], work.skipIntervals[2],
+                              work.skipIntervals[3]};
+  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, bounds,
+                          work.depthBoundsLevels, skip, frame);
   if (params.capturePasses) captureCameraPass(frame, 5, "csm_shadow.frag: Eq. 13 reconstruction");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;
@@ -345,6 +541,11 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   frame.counters["basis layers"] = s.layers();
   frame.counters["anisotropy"] = s.filtering.anisotropy;
   frame.counters["mip-maps"] = s.filtering.mipmaps ? 1 : 0;
+  frame.counters["skip error"] = s.skipError;
+  frame.counters["skip lit t from"] = skip.litLo;
+  frame.counters["skip lit t to"] = skip.litHi;
+  frame.counters["skip umbra t from"] = skip.umbraLo;
+  frame.counters["skip umbra t to"] = skip.umbraHi;
   return frame;
 }
 }  // namespace
@@ -384,6 +585,35 @@ double csmOffsetThroughOne(int order, double alpha) {
   return top;  // the step tops out at or below 1 before reaching it: its top, as "auto"
 }
 
+CsmSkipIntervals csmSkipIntervals(int order, double alpha, double offset, double scale,
+                                  double maxError) {
+  CsmSkipIntervals out;
+  if (maxError <= 0.0) return out;
+  const int n = kSkipIntervalSteps;
+  const double h = 2.0 / n;
+  // Between two grid points the clamped series moves by at most (h / 2) * max |d/dt|, and
+  // |d/dt scale f| <= scale * sum_k w_k 2 <= 2 M scale (Eq. 14: d/dt (2/c_k) sin(c_k t) =
+  // 2 cos(c_k t), w_k <= 1).
+  const double margin = 0.5 * h * 2.0 * order * scale;
+  std::vector<double> g(size_t(n) + 1);
+  for (int i = 0; i <= n; ++i)
+    g[size_t(i)] = std::clamp(scale * csmReconstructedStep(-1.0 + i * h, order, alpha), 0.0, 1.0);
+  auto run = [&](double seed, auto&& inside, double& lo, double& hi) {
+    const int start = std::clamp(int(std::lround((seed + 1.0) / h)), 0, n);
+    if (!inside(g[size_t(start)])) return;
+    int a = start, b = start;
+    while (a > 0 && inside(g[size_t(a - 1)])) --a;
+    while (b < n && inside(g[size_t(b + 1)])) ++b;
+    lo = -1.0 + a * h;
+    hi = -1.0 + b * h;
+  };
+  run(
+      offset, [&](double v) { return v >= 1.0 - maxError + margin; }, out.litLo, out.litHi);
+  run(
+      -0.5, [&](double v) { return v <= maxError - margin; }, out.umbraLo, out.umbraHi);
+  return out;
+}
+
 DepthRange csmDepthRange(const Scene& scene, float* nearestCaster) {
   return fitShadowingDepthRange(scene, nearestCaster);
 }
@@ -405,7 +635,8 @@ Technique convolutionShadowMapTechnique() {
               blurParam(kDefaultBlurTaps),
               filteringParam(),
               anisotropyParam(),
-              mipmapsParam()};
+              mipmapsParam(),
+              skipErrorParam()};
   t.reads = {.shadowMap = true};
   t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
   t.render = render;

@@ -25,6 +25,20 @@ double csmDefaultOffset(int order, double alpha);
 // an occluder close to its receiver darkens sooner; where the step tops out below 1, its top.
 double csmOffsetThroughOne(int order, double alpha);
 
+// Where the classification pass of modern.csm may skip Eq. 13 (--param skip-error): intervals
+// of t = z - d (d already offset, as csmReconstructedStep's t) on which the clamped, scaled
+// series clamp(scale * csmReconstructedStep(t), 0, 1) stays within `maxError` of 1 (lit) or of
+// 0 (umbra), found on a grid of [-1, 1] whose points must clear the bound by the most the
+// series can move between two points (|d/dt| <= 2 M scale), so that the bound holds for every
+// t inside. An empty interval has lo > hi. The lit one contains `offset` if any does; the
+// umbra one contains t = -1/2 if any does.
+struct CsmSkipIntervals {
+  double litLo = 1, litHi = 0;
+  double umbraLo = 1, umbraHi = 0;
+};
+CsmSkipIntervals csmSkipIntervals(int order, double alpha, double offset, double scale,
+                                  double maxError);
+
 // The light depth range modern.csm normalises linear depth over (Fig. 6: "a tightly fitted
 // light frustum"): near at the nearest caster inside the light frustum, far at the farthest
 // receiver inside the casters' cone (modern/prefiltered_maps.h, fitShadowingDepthRange).

@@ -203,6 +203,8 @@ PrefilterWorkspace::~PrefilterWorkspace() {
   map.texture.release();
   scratch.texture.release();
   fbo.release();
+  depthBounds.release();
+  depthBoundsDilated.release();
 }
 
 PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& key) {

@@ -81,6 +81,16 @@ struct PrefilterWorkspace {
   LayeredMap map;
   LayeredMap scratch;
   Framebuffer fbo;
+  // modern.csm's min/max pyramid of the light depth (RG32F, full chain) for the classification
+  // that skips Eq. 13 where the series is decided (convolution_shadow_map.cpp).
+  Texture depthBounds;
+  Texture depthBoundsDilated;  // each level's 3x3 neighbourhood bounds
+  int depthBoundsSize = 0;
+  int depthBoundsLevels = 0;
+  // modern.csm's skip intervals (csmSkipIntervals: lit lo, hi, umbra lo, hi) and the settings
+  // they were computed for (M, alpha, offset, scale, skip error): a grid of the series, kept.
+  std::vector<double> skipKey;
+  std::vector<double> skipIntervals;
   // CPU work that depends on the scene and the view only (the fitted depth range, the
   // planner's minification estimate): kept with the key it was computed for.
   std::vector<double> sceneKey;

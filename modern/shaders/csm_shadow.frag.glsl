@@ -7,7 +7,33 @@
 // with c_k = pi (2k - 1) (Eq. 11, 13, 14), the ringing attenuation w_k = exp(-alpha (k/M)^2)
 // (§3.2.1), d offset by a constant and the result scaled (§3.2.2), then clamped to [0, 1]
 // (§4.1: "due to ringing, the resulting shadow value can be outside the [0, 1]-range").
+//
+// ORDER (M) and ENCODE_UNSIGNED (8-bit storage) are compile-time defines
+// (convolution_shadow_map.cpp compiles one program per pair), so that the loop over the M/4
+// layers unrolls, every layer index and weight index is a constant, and no per-pixel branch
+// decodes the storage: with uniform bounds llvmpipe ran the loop per lane with masks.
 #version 330 core
+#ifndef ORDER
+#define ORDER 16
+#endif
+#ifndef ENCODE_UNSIGNED
+#define ENCODE_UNSIGNED 1
+#endif
+// CLASSIFY 1: the classification pass (convolution_shadow_map.cpp, classifyInCameraPass). No
+// reconstruction: every pixel that the tests below decide (behind the light, outside the map,
+// nearer than every caster, or every depth texel under the filter footprint inside an interval
+// where the clamped series is within uSkipError of 1 or of 0) is shaded here with that result
+// and its stencil set to 0; every other visible pixel gets stencil 1, and the reconstruction
+// pass (CLASSIFY 0, stencil test EQUAL 1, depth test EQUAL) shades it with Eq. 13.
+#ifndef CLASSIFY
+#define CLASSIFY 0
+#endif
+#if CLASSIFY
+#extension GL_ARB_shader_stencil_export : require
+#endif
+#ifndef DEPTH_BOUNDS_LEVELS
+#define DEPTH_BOUNDS_LEVELS 5
+#endif
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 uniform sampler2DArray uBasis;   // layers 0..S-1: sin(c_k z), S..2S-1: cos(c_k z)
@@ -17,15 +43,21 @@ uniform float uLightNear;
 uniform float uLightFar;
 uniform float uNearestCaster;    // distance along the light axis of the nearest caster
 uniform float uDepthScale;       // the same scale as the stored z (light_linear_depth.frag)
-uniform int uOrder;              // M
-uniform int uSinLayers;          // S = ceil(M / 4)
+const int kSinLayers = (ORDER + 3) / 4;  // S = ceil(M / 4)
 // exp(-alpha (k/M)^2) (2 / c_k) for k = 1..M (§3.2.1 attenuation times Eq. 14's 2 / c_k),
-// computed once per frame on the CPU instead of per pixel and term; 0 beyond M.
-uniform float uWeights[64];
+// computed once per frame on the CPU instead of per pixel and term, four k per vec4; 0 beyond M.
+uniform vec4 uWeights[kSinLayers];
 uniform float uOffset;           // subtracted from d (§3.2.2, Fig. 3c)
 uniform float uScale;            // multiplies f (§3.2.2, Fig. 3d)
-uniform bool uEncodeUnsigned;    // 8-bit storage: v = 2 t - 1
 uniform bool uReceivesShadow;
+#if CLASSIFY
+uniform sampler2D uDepthBounds;  // the dilated min/max pyramid of z (csm_depth_bounds.frag)
+uniform int uDepthMapTexels;     // the depth map's side (level 0)
+uniform vec2 uLitInterval;       // t = z - d: the clamped series is >= 1 - skip error on it
+uniform vec2 uUmbraInterval;     // ... and <= skip error on this one (empty: lo > hi)
+uniform float uFootprintScale;   // footprint radius in texels = scale * rho + margin
+uniform float uFootprintMargin;  // bilinear reach (1) + blur radius
+#endif
 #include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oVisibility;
@@ -43,13 +75,13 @@ float reconstructShadowTest(vec2 p, float d) {
   // The rotation's float32 error grows by ~1e-7 per step: < 1e-5 after 64 terms.
   vec2 term = vec2(cos(PI * d), sin(PI * d));
   vec2 step = vec2(cos(2.0 * PI * d), sin(2.0 * PI * d));
-  for (int layer = 0; layer < uSinLayers; ++layer) {
+  for (int layer = 0; layer < kSinLayers; ++layer) {
     vec4 sines = texture(uBasis, vec3(p, float(layer)));
-    vec4 cosines = texture(uBasis, vec3(p, float(uSinLayers + layer)));
-    if (uEncodeUnsigned) {
-      sines = 2.0 * sines - 1.0;
-      cosines = 2.0 * cosines - 1.0;
-    }
+    vec4 cosines = texture(uBasis, vec3(p, float(kSinLayers + layer)));
+#if ENCODE_UNSIGNED  // 8-bit storage: v = 2 t - 1
+    sines = 2.0 * sines - 1.0;
+    cosines = 2.0 * cosines - 1.0;
+#endif
     vec4 cosD, sinD;  // cos(c_k d), sin(c_k d) for this layer's four k
     for (int c = 0; c < 4; ++c) {
       cosD[c] = term.x;
@@ -58,13 +90,41 @@ float reconstructShadowTest(vec2 p, float d) {
     }
     // a_(2k-1)(d) = 2/c_k cos(c_k d), a_(2k)(d) = -2/c_k sin(c_k d)  (Eq. 14), attenuated
     // (§3.2.1); the weights of k > M are 0.
-    vec4 weights = vec4(uWeights[4 * layer], uWeights[4 * layer + 1], uWeights[4 * layer + 2],
-                        uWeights[4 * layer + 3]);
-    sum += dot(weights, cosD * sines - sinD * cosines);
+    sum += dot(uWeights[layer], cosD * sines - sinD * cosines);
   }
   return sum;
 // @end reconstruct
 }
+
+#if CLASSIFY
+// The least and greatest z of every depth texel that the filtered lookups at p can reach:
+// the box of the pixel's footprint (rho texels per pixel, from the derivatives) times
+// uFootprintScale plus uFootprintMargin texels, bounded by one texel of the dilated pyramid
+// (csm_depth_bounds.frag, DILATE): the finest level L <= DEPTH_BOUNDS_LEVELS - 1 whose block
+// around the box's centre, with its neighbours, covers the box. Every level is read by every
+// pixel, one texelFetch each at a level that is the same for all pixels: Mesa 22.3 llvmpipe's
+// texelFetch with a level that differs between the lanes of a quad returned wrong texels
+// (isolated pixels on lit ground classified as umbra, brabec 1024x768). A box wider than the
+// coarsest level allows: no bounds (vec2(-2, 2), never decided).
+// @pass csm-classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION, issue 20)
+vec2 depthBoundsAround(vec2 p, float rho) {
+  ivec2 size = ivec2(uDepthMapTexels);
+  float radius = uFootprintScale * rho + uFootprintMargin;
+  vec2 u = p * vec2(size) - 0.5;  // texel-centre coordinates
+  ivec2 lo = clamp(ivec2(floor(u - radius)), ivec2(0), size - 1);
+  ivec2 hi = clamp(ivec2(floor(u + radius)) + 1, ivec2(0), size - 1);
+  vec2 bounds = vec2(-2.0, 2.0);
+  for (int level = DEPTH_BOUNDS_LEVELS - 1; level >= 0; --level) {
+    ivec2 a = lo >> level, b = hi >> level;
+    ivec2 centre = min(a + (b - a) / 2, textureSize(uDepthBounds, level) - 1);
+    vec2 levelBounds = texelFetch(uDepthBounds, centre, level).rg;
+    if (all(lessThanEqual(b - a, ivec2(2)))) bounds = levelBounds;  // finer levels win
+  }
+  return bounds;
+// @end csm-classify
+}
+const float kNeedsReconstruction = -1.0;
+#endif
 
 // @pass csm-test: d from the receiver, offset and scale of §3.2.2 (Fig. 3 c-d), clamp to [0, 1] (§4.1)
 float shadowTest(vec3 world) {
@@ -77,7 +137,14 @@ float shadowTest(vec3 world) {
   // llvmpipe's anisotropic path with explicit gradients returned wrong values on a row of
   // isolated pixels, the white dots inside the tree shadows of Fig. 7 (c)-(f); its implicit-
   // derivative path, with the same footprint, does not.)
+#if CLASSIFY
+  // texels per pixel along the longer screen axis (uniform control flow: before any branch)
+  vec2 texels = p * float(uDepthMapTexels);
+  float rho = max(length(dFdx(texels)), length(dFdy(texels)));
+  if (!(rho < 1e4)) rho = 1e4;  // NaN or huge: the whole map
+#else
   float f = reconstructShadowTest(p, d * uDepthScale - uOffset);
+#endif
   if (coord.w <= 0.0) return 0.0;  // behind the light (as modern.hw)
   if (any(lessThan(p, vec2(0.0))) || any(greaterThan(p, vec2(1.0)))) return 1.0;  // outside
   // Nearer than the nearest caster (modern::csmDepthRange): nothing is in front, so lit. Not
@@ -85,12 +152,31 @@ float shadowTest(vec3 world) {
   // blocks (z at the far end) t = z - d + offset reaches 1, the falling edge of the periodic
   // square wave (Eq. 10), which reconstructs 1/2 or less.
   if (distanceAlongAxis < uNearestCaster) return 1.0;
+#if CLASSIFY
+  // Eq. 8: the filtered basis is a convex combination (blur, mip-map, tri-linear, anisotropic
+  // weights are >= 0 and sum to 1) of the basis at the footprint's depths z_i, so Eq. 13 gives
+  // the same combination of the series f(z_i - d) (Eq. 11, 13). If every z_i - d lies in
+  // the lit interval, every term and so the clamped sum is within the skip error of 1; in the
+  // umbra interval, of 0.
+  // DEVIATION (Annen et al. 2007, Eq. 13 at every pixel): such pixels get exactly 1 or 0
+  // without the M terms, the value of the untruncated step (Eq. 1) rather than the truncated
+  // series' ringing around it (at most the skip error, --param skip-error).
+  vec2 t = depthBoundsAround(p, rho) - (d * uDepthScale - uOffset);
+  if (t.x >= uLitInterval.x && t.y <= uLitInterval.y) return 1.0;
+  if (t.x >= uUmbraInterval.x && t.y <= uUmbraInterval.y) return 0.0;
+  return kNeedsReconstruction;
+#else
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
+#endif
 // @end csm-test
 }
 
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;
+#if CLASSIFY
+  gl_FragStencilRefARB = visibility == kNeedsReconstruction ? 1 : 0;
+  visibility = max(visibility, 0.0);  // overwritten by the reconstruction pass where stencil 1
+#endif
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
 }

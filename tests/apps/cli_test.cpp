@@ -362,7 +362,7 @@ std::vector<BadToolInput> badToolInputs() {
       // issue 17 item 5: found before any work, exit 2, nothing on stdout.
       {"csm csv in /proc", CSM_BENCH_BINARY, "--csv /proc/x.csv"},
       {"csm csv with the ratio part", CSM_BENCH_BINARY, "--part ratio --csv /tmp/ratio.csv"},
-      {"csm param without the ratio part", CSM_BENCH_BINARY, "--part table1 --param order=4"},
+      {"csm param with the techniques part", CSM_BENCH_BINARY, "--part techniques --param order=4"},
       {"csm hexadecimal repeat", CSM_BENCH_BINARY, "--repeat 0x3"},
       {"twins empty scene list", TWINS_BINARY, "--scenes ''"},
       {"twins scene list of commas", TWINS_BINARY, "--scenes ,,"},
