@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset asan >/dev/null
-cmake --build build-asan -j"$(nproc)" --target shadowlab test_core test_apps test_stability test_lab
+cmake --build build-asan -j"$(nproc)" --target shadowlab lab_bench test_core test_apps test_stability test_lab
 # Only the suites above are built: the others' ctest entries would be "not found" here.
 # reference.soft's stability cases are left out: 288 Embree rays a pixel take ~20 s each under
 # ASan and exercise no input handling that reference.hard's cases do not.

@@ -82,13 +82,14 @@ int run(int argc, char** argv) {
   std::printf(
       "| technique | p50 ms | p95 ms | max ms | frame p50 ms (GL passes) | drag: rendered / "
       "dropped as stale |\n|---|---|---|---|---|---|\n");
+  int failures = 0;  // techniques whose requests failed
   for (const std::string& t : techniques) {
     std::vector<double> latency, frame;
     std::string failure;
     for (int i = 0; i < warmup + requests && failure.empty(); ++i) {
       const std::string light = "-3," + std::to_string(7.0 + kLightStep * i) + ",3";
       const std::string path = "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size +
-                               "&light=" + light + "&lane=bench";
+                               "&light-position=" + light + "&lane=bench";
       const auto t0 = Clock::now();
       auto r = client.Get(path.c_str());
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -102,6 +103,7 @@ int run(int argc, char** argv) {
     }
     if (!failure.empty()) {
       std::printf("| %s | failed: %s | | | | |\n", t.c_str(), failure.c_str());
+      ++failures;
       continue;
     }
     // The drag: two clients send `burst` requests each into one lane without waiting for
@@ -112,7 +114,7 @@ int run(int argc, char** argv) {
       c.set_read_timeout(300, 0);
       for (int i = 0; i < burst; ++i) {
         const std::string path =
-            "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size + "&light=-3," +
+            "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size + "&light-position=-3," +
             std::to_string(7.0 + kLightStep * (2 * i + offset)) + ",3&lane=drag";
         auto r = c.Get(path.c_str());
         if (r && r->status == 200) ++rendered;
@@ -130,7 +132,8 @@ int run(int argc, char** argv) {
   std::printf("\nload average after: %s (1, 5, 15 min; %u hardware threads)\n",
               loadAverage().c_str(), std::thread::hardware_concurrency());
   server.stop();
-  return 0;
+  // A failed technique is a failed benchmark: scripts/perf_tables.sh must not publish it.
+  return failures == 0 ? 0 : 1;
 }
 
 }  // namespace
