@@ -464,6 +464,13 @@ struct LabServer::Impl {
     answer(res, JobResult{JobResult::Status::kDone, 400, "text/plain", oneLine(message), {}});
   }
 
+  // The request's scene as every command sees it (cli::viewScene: scene knobs, then orbit).
+  Scene requestScene(const LabRequest& r) {
+    Scene scene = engine.scene(r.sceneName);
+    cli::viewScene(r.args, scene);
+    return scene;
+  }
+
   void handleRender(const httplib::Request& req, httplib::Response& res) {
     LabRequest r;
     try {
@@ -473,8 +480,7 @@ struct LabServer::Impl {
     }
     auto future = worker.submit(r.lane, [this, r]() {
       return guarded([&] {
-        Scene scene = engine.scene(r.sceneName);
-        cli::viewScene(r.args, scene);
+        const Scene scene = requestScene(r);
         if (r.view != "passes") {
           const Frame f = engine.render(*r.technique, scene, r.params);
           JobResult out =
@@ -538,8 +544,7 @@ struct LabServer::Impl {
     }
     auto future = worker.submit(r.lane, [this, r]() {
       return guarded([&] {
-        Scene scene = engine.scene(r.sceneName);
-        cli::viewScene(r.args, scene);
+        const Scene scene = requestScene(r);
         const Frame f = engine.render(*r.technique, scene, r.params);
         bool cached = false;
         const Engine::Reference& ref = engine.reference(scene, r.params, cached);
