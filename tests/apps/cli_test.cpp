@@ -15,6 +15,7 @@
 #include "core/errors.h"
 #include "core/image.h"
 #include "command_util.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -252,10 +253,7 @@ std::vector<BadInput> badInputs() {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()), [](const auto& info) {
-  std::string n = info.param.what;
-  for (char& c : n)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return n;
+  return testName(info.param.what);
 });
 
 // The developer tools parse their command lines with CLI11 as the shadowlab command does (issue
@@ -374,10 +372,7 @@ std::vector<BadToolInput> badToolInputs() {
 
 INSTANTIATE_TEST_SUITE_P(All, ToolBadInput, ::testing::ValuesIn(badToolInputs()),
                          [](const auto& info) {
-                           std::string n = info.param.what;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
+                           return testName(info.param.what);
                          });
 
 // csm_bench --part ratio measures the --size and --scene it is given (issue 17 item 5), not
@@ -455,10 +450,7 @@ INSTANTIATE_TEST_SUITE_P(
          "--mask @DIR/mask.png --dump-passes @DIR/dump --shadow-map 60000"},
     }),
     [](const auto& info) {
-      std::string n = info.param.what;
-      for (char& c : n)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-      return n;
+      return testName(info.param.what);
     });
 
 // A rejected scene leaves no dump directory (issue 17 item 5).

@@ -16,6 +16,7 @@
 #include "core/errors.h"
 #include "core/image.h"
 #include "command_util.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -232,10 +233,7 @@ std::vector<std::string> techniqueNames() {
 
 INSTANTIATE_TEST_SUITE_P(All, EveryTechnique, ::testing::ValuesIn(techniqueNames()),
                          [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return testName(info.param);
                          });
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "core/image.h"
 #include "core/scene_library.h"
 #include "command_util.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -230,10 +231,7 @@ std::vector<std::string> techniqueNames() {
 
 INSTANTIATE_TEST_SUITE_P(All, Declarations, ::testing::ValuesIn(techniqueNames()),
                          [](const auto& info) {
-                           std::string n = info.param;
-                           for (char& c : n)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return n;
+                           return testName(info.param);
                          });
 
 }  // namespace

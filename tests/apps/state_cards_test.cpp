@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "command_util.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -209,10 +210,7 @@ INSTANTIATE_TEST_SUITE_P(Twins, TwinLinks,
                          ::testing::Values("modern.hw", "modern.woo", "modern.second-depth",
                                            "modern.ramp", "modern.pcf", "modern.fast-pcf"),
                          [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return testName(info.param);
                          });
 
 }  // namespace

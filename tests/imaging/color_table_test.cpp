@@ -2,6 +2,7 @@
 // selection by table 3.15), 3.6.5 "Color Table Lookup" (table 3.13), 6.1.7 queries, proxies
 // and errors (SGI_color_table "Errors").
 #include "imaging/imaging_test_util.h"
+#include "tests/test_names.h"
 
 namespace sl::imaging::testing {
 namespace {
@@ -237,10 +238,7 @@ INSTANTIATE_TEST_SUITE_P(
                   },
                   GL_INVALID_ENUM}),
     [](const auto& info) {
-      std::string n = info.param.name;
-      for (char& c : n)
-        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
-      return n;
+      return testName(info.param.name);
     });
 
 // GL's error model (2.5): one sticky flag per error; GetError returns and clears one.

@@ -21,6 +21,7 @@
 #include "core/context.h"
 #include "core/errors.h"
 #include "core/scene_library.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -34,11 +35,7 @@ constexpr int kShadowMapTexels = 256;
 
 using Case = std::tuple<twins::TwinPair, std::string, Backend>;
 
-std::string identifier(const std::string& text) {
-  std::string s;
-  for (char c : text) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return s;
-}
+std::string identifier(const std::string& text) { return testName(text); }
 
 // Whether an EGL context can be made here; the reason when not.
 std::string eglUnavailableReason() {

@@ -35,6 +35,7 @@
 #include "core/scene_library.h"
 #include "figures/stability.h"
 #include "reference/reference.h"
+#include "tests/test_names.h"
 
 namespace sl {
 namespace {
@@ -98,10 +99,7 @@ std::vector<Param> allParams() {
 }
 
 std::string paramName(const ::testing::TestParamInfo<Param>& info) {
-  std::string s = std::get<0>(info.param) + "__" + std::get<1>(info.param);
-  for (char& ch : s)
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return s;
+  return testName(std::get<0>(info.param) + "__" + std::get<1>(info.param));
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Stability, ::testing::ValuesIn(allParams()), paramName);
@@ -138,10 +136,7 @@ TEST_P(StabilityMirroring, MirroredObjectsGiveTheUnmirroredMask) {
 
 INSTANTIATE_TEST_SUITE_P(Techniques, StabilityMirroring, ::testing::ValuesIn(techniqueNames()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string s = info.param;
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
+                           return testName(info.param);
                          });
 
 // Issue 17 items 7 and 10 through the command line, as a user meets them: a light cone or a
@@ -288,10 +283,7 @@ TEST_P(StabilityMaxMap, MaximumRendersOrRefuses) {
 
 INSTANTIATE_TEST_SUITE_P(Techniques, StabilityMaxMap, ::testing::ValuesIn(techniqueNames()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string s = info.param;
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
+                           return testName(info.param);
                          });
 
 }  // namespace
