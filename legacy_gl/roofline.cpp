@@ -18,6 +18,7 @@ constexpr int kRampTexels = 256;       // the 8-bit ramp of §2
 constexpr int kRgbaBytes = 4;          // RGBA8 pixel rectangles
 constexpr float kNearWindowZ = -1.0f;  // glOrtho(-1, 1) z: window depth 0, passes LESS/LEQUAL
 constexpr int kSamplesPerGroup = 4;    // §3: four jittered samples per RGBA map
+constexpr float kAccumulateWeight = 0.25f;  // §4 fast PCF 4x4: four phases of weight 1/4
 
 // Window coordinates in pixels, every matrix identity but the projection.
 void loadPixelMatrices(int width, int height) {
@@ -149,10 +150,14 @@ void copyWindowOntoItself(int width, int height) {
   glCopyPixels(0, 0, width, height, GL_COLOR);
 }
 
-// §3 accumulation: what GL_ACCUM must read.
-void readWindow(FloorResources& r, int width, int height) {
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, r.pixels());
+// §3 accumulation: the window added into the accumulation buffer. Mesa has one GL_ACCUM for
+// every driver, main/accum.c on the CPU: both buffers mapped, each colour row unpacked to float,
+// scaled and added into the 16-bit signed accumulation buffer. No cheaper GL call does this
+// work (a glReadPixels of the window reads it but adds nothing; docs/legacy.md compares the two).
+// The accumulation buffer's contents are no state of a frame: each frame starts with GL_LOAD.
+void accumulateWindow(int width, int height) {
+  glViewport(0, 0, width, height);
+  glAccum(GL_ACCUM, kAccumulateWeight);
 }
 
 // §3 accumulation: what GL_RETURN must write.
@@ -176,8 +181,8 @@ void runFloor(FloorResources& r, const FloorTerm& t) {
       return copyWindowToTexture(r, t.width, t.height);
     case FloorWork::kCopyPixels:
       return copyWindowOntoItself(t.width, t.height);
-    case FloorWork::kReadPixels:
-      return readWindow(r, t.width, t.height);
+    case FloorWork::kAccumulate:
+      return accumulateWindow(t.width, t.height);
     case FloorWork::kDrawPixels:
       return drawIntoWindow(r, t.width, t.height);
   }
@@ -197,8 +202,8 @@ const char* workName(FloorWork w) {
       return "glCopyTexSubImage2D";
     case FloorWork::kCopyPixels:
       return "glCopyPixels";
-    case FloorWork::kReadPixels:
-      return "glReadPixels";
+    case FloorWork::kAccumulate:
+      return "glAccum(GL_ACCUM)";
     case FloorWork::kDrawPixels:
       return "glDrawPixels";
   }
@@ -244,7 +249,7 @@ std::optional<std::vector<FloorTerm>> passFloor(const std::string& name,
   if (has("projective pass")) return std::vector<FloorTerm>{{W::kProjectiveSubtractFill, w, h, 1}};
   if (has("copy:")) return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
   if (has("accumulation return")) return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
-  if (has("accumulate")) return std::vector<FloorTerm>{{W::kReadPixels, w, h, 1}};
+  if (has("accumulate")) return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
   if (has("lighting"))  // §5: direct light, then ambient: two layers
     return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
   return std::nullopt;

@@ -4,8 +4,9 @@
 // floor is a sum of terms, each one named piece of real GL work at the pass's size: a clear, a
 // full-window quad with the pass's class of fragment work (ramp-textured and depth-tested,
 // projectively textured and subtracted, lit and blended), a glCopyTexSubImage2D, a plain
-// glCopyPixels (no imaging state: the driver's copy), a glReadPixels or glDrawPixels. A pass
-// draws the scene, at least one layer of the window; the floor counts exactly one.
+// glCopyPixels (no imaging state: the driver's copy), a glDrawPixels, a glAccum(GL_ACCUM) (Mesa
+// accumulates on the CPU, main/accum.c, whatever the driver: the call is the least work there
+// is). A pass draws the scene, at least one layer of the window; the floor counts exactly one.
 #pragma once
 
 #include <memory>
@@ -24,7 +25,7 @@ enum class FloorWork {
   kLitBlendedFill,          // GL lighting, GL_ONE_MINUS_DST_ALPHA blend, depth LEQUAL (§5)
   kCopyTexture,             // glCopyTexSubImage2D, no convolution
   kCopyPixels,              // glCopyPixels(GL_COLOR), no colour table or matrix
-  kReadPixels,              // glReadPixels RGBA8 (what an accumulation must read)
+  kAccumulate,              // glAccum(GL_ACCUM, 1/4) of the window (Mesa's main/accum.c)
   kDrawPixels,              // glDrawPixels RGBA8 (what GL_RETURN must write)
 };
 

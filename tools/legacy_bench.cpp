@@ -4,8 +4,8 @@
 // Roofline (always printed): in the same context as the frames, and interleaved with them
 // round by round so that load hits both alike, each pass's floor is measured: the least GL work
 // of its kind at its size (legacy_gl/roofline.h: a clear, one full-window quad with the pass's
-// class of fragment work, the same glCopyTexSubImage2D / glCopyPixels / glReadPixels /
-// glDrawPixels size). Each pass prints its median time, its floor and time / floor; the first
+// class of fragment work, the same glCopyTexSubImage2D / glCopyPixels / glDrawPixels size, the
+// same glAccum). Each pass prints its median time, its floor and time / floor; the first
 // table the frame's sum of floors and time / floor.
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
 //                [--quick] [--technique T] [--trace-overhead]
