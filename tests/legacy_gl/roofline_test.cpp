@@ -56,9 +56,10 @@ TEST(Roofline, JitteredLightPassFloorCountsTheGroupsSamples) {
   EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture"), 4);
 }
 
-TEST(Roofline, FloorsBetweenFramesLeaveTheFramesUnchanged) {
+// The floors of one variant run between two of its frames in one context; the second frame is
+// bit-identical to the first (the floors restore the state they touch).
+void expectFloorsLeaveFramesUnchanged(const BenchmarkVariant& v) {
   const Scene scene = builtinScene("brabec");
-  const BenchmarkVariant v = paperVariants()[2];  // fast PCF 2x2: table, matrix, convolution
   const Technique& t = findTechnique(v.technique);
   const RenderParams p = smallParams(v);
   auto context = makeRenderContext(t, p);
@@ -74,8 +75,25 @@ TEST(Roofline, FloorsBetweenFramesLeaveTheFramesUnchanged) {
   ASSERT_EQ(floors.passes.size(), terms.size());
   for (size_t i = 0; i < terms.size(); ++i) EXPECT_EQ(floors.passes[i].name, floorName(terms[i]));
   const Frame after = t.render(*context, scene, p);
-  EXPECT_EQ(after.visibility.data, before.visibility.data);
-  EXPECT_EQ(after.color.data, before.color.data);
+  EXPECT_EQ(after.visibility.data, before.visibility.data) << v.label;
+  EXPECT_EQ(after.color.data, before.color.data) << v.label;
+}
+
+TEST(Roofline, FloorsBetweenFramesLeaveTheFramesUnchanged) {
+  expectFloorsLeaveFramesUnchanged(paperVariants()[2]);  // fast PCF 2x2: table, matrix, convolution
+}
+
+// fast PCF 4x4: its accumulate floor is glAccum(GL_ACCUM) into the frame's own accumulation
+// buffer, which each frame starts with GL_LOAD.
+TEST(Roofline, AccumulateFloorIsGlAccumAndLeavesTheFramesUnchanged) {
+  const BenchmarkVariant v = paperVariants()[3];
+  ASSERT_EQ(v.technique, "legacy.fast-pcf");
+  ASSERT_EQ(v.filter, 4);
+  const auto terms = passFloor("6 accumulate (upper-right)", smallParams(v));
+  ASSERT_TRUE(terms.has_value());
+  ASSERT_EQ(terms->size(), 1u);
+  EXPECT_EQ(terms->front().work, FloorWork::kAccumulate);
+  expectFloorsLeaveFramesUnchanged(v);
 }
 
 }  // namespace
