@@ -8,9 +8,12 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/gl.h"
 #include "imaging/imaging.h"
+#include "legacy_gl/fixed_function.h"
 #include "legacy_gl/legacy.h"
 #include "legacy_gl/roofline.h"
+#include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
 namespace {
@@ -130,6 +133,116 @@ std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
     results.push_back(std::move(r));
   }
   return results;
+}
+
+namespace {
+
+constexpr int kSplitCostRampTexels = 256;  // the 8-bit ramp of §2
+
+// §2's camera pass as it draws (clear; the scene white under the ramp on eye-linear texgen;
+// depth LESS and write), timed as one pass named `name`. The texgen plane picks eye depth, so
+// the fragments do the camera pass's work (one 1D lookup each); the values are not the pass's.
+void timeCameraPassDraw(Frame& frame, const std::string& name, const Scene& scene,
+                        const RenderParams& p, unsigned ramp) {
+  using namespace sl::gl;
+  glPushAttrib(GL_ALL_ATTRIB_BITS);
+  for (const GLenum mode : {GLenum(GL_PROJECTION), GLenum(GL_MODELVIEW), GLenum(GL_TEXTURE)}) {
+    glMatrixMode(mode);
+    glPushMatrix();
+    glLoadIdentity();
+  }
+  {
+    PassTimer timer(frame, name);
+    setCameraMatrices(scene, p.width, p.height);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    const float plane[4] = {0.0f, 0.0f, -1.0f / scene.camera.farPlane, 0.0f};
+    glMatrixMode(GL_MODELVIEW);
+    glPushMatrix();
+    glLoadIdentity();  // eye-linear planes are taken through the modelview at specification
+    glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+    glTexGenfv(GL_S, GL_EYE_PLANE, plane);
+    glPopMatrix();
+    glEnable(GL_TEXTURE_GEN_S);
+    glEnable(GL_TEXTURE_1D);
+    glBindTexture(GL_TEXTURE_1D, ramp);
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    drawScene(scene, Draw::kAll, Colors::kWhite);
+  }
+  for (const GLenum mode : {GLenum(GL_TEXTURE), GLenum(GL_MODELVIEW), GLenum(GL_PROJECTION)}) {
+    glMatrixMode(mode);
+    glPopMatrix();
+  }
+  glPopAttrib();
+}
+
+size_t triangles(const Scene& scene) {
+  size_t n = 0;
+  for (const Object& o : scene.objects) n += o.mesh->triangleCount();
+  return n;
+}
+
+}  // namespace
+
+std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& options) {
+  const Technique& t = technique("legacy.ramp");
+  RenderParams p;
+  p.width = options.width;
+  p.height = options.height;
+  p.shadowMapTexels = options.shadowMapTexels;
+  p.filter = 1;
+  p.backend = options.backend;
+  checkParams(t, p, 0);
+  auto context = GlContext::create(contextFor(t, p));
+  const Scene split = tessellateForSpotlight(scene, p.width, p.height);
+  TextureName ramp;
+  {
+    using namespace sl::gl;
+    std::vector<float> texels(kSplitCostRampTexels);
+    for (int i = 0; i < kSplitCostRampTexels; ++i)
+      texels[size_t(i)] = float(i) / float(kSplitCostRampTexels - 1);
+    glBindTexture(GL_TEXTURE_1D, ramp.id());
+    glTexImage1D(GL_TEXTURE_1D, 0, GL_INTENSITY8, kSplitCostRampTexels, 0, GL_LUMINANCE, GL_FLOAT,
+                 texels.data());
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_1D, 0);
+  }
+  auto resources = makeFloorResources(p.shadowMapTexels, p.width, p.height);
+  const std::vector<FloorTerm> floor = *passFloor("2 camera pass: light depth ramp into alpha", p);
+  const std::string ownName = "the scene's own meshes";
+  const std::string splitName = "the split meshes of the camera passes";
+  const auto timings =
+      timeInterleavedSteadyState({[&] { return renderFloors(*resources, floor); },
+                                  [&] {
+                                    Frame f;
+                                    timeCameraPassDraw(f, ownName, scene, p, ramp.id());
+                                    return f;
+                                  },
+                                  [&] {
+                                    Frame f;
+                                    timeCameraPassDraw(f, splitName, split, p, ramp.id());
+                                    return f;
+                                  }},
+                                 options.frames.warmup, options.frames.timed);
+  checkGl("split cost");
+  const double floorMs = timings[0].frameMs;
+  std::ostringstream s;
+  s << "Camera pass draw (clear, ramp-textured scene, depth LESS) of the " << scene.name
+    << " scene at " << p.width << "x" << p.height << " on " << backendName(p.backend)
+    << ", interleaved with its floor: " << timings[0].warmupFrames
+    << " warm-up rounds, then the median of " << timings[0].timedFrames << " rounds\n\n"
+    << "| draw | triangles | ms | / floor |\n| --- | --- | --- | --- |\n"
+    << "| floor: clear + one ramp-textured full-window quad | 2 | " << fixed(floorMs, 2)
+    << " | 1.0x |\n"
+    << "| " << ownName << " | " << triangles(scene) << " | " << fixed(timings[1].frameMs, 2)
+    << " | " << ratio(timings[1].frameMs, floorMs) << " |\n"
+    << "| " << splitName << " | " << triangles(split) << " | " << fixed(timings[2].frameMs, 2)
+    << " | " << ratio(timings[2].frameMs, floorMs) << " |\n";
+  return s.str();
 }
 
 std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {

@@ -57,6 +57,15 @@ std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
                                                    const BenchmarkOptions& options,
                                                    const std::vector<BenchmarkVariant>& variants);
 
+// What the spotlight split of the camera-view scene costs a pass (docs/legacy.md "Feeding the
+// passes"): in one context of legacy.ramp, interleaved round by round, the camera pass's draw
+// (clear, then every object white under the 1D ramp texture with eye-linear texgen, depth test
+// LESS, as §2's camera pass draws it) of the scene's own meshes, of the split meshes the camera
+// passes draw (spotlight_tessellation.h), and the camera pass's floor (legacy_gl/roofline.h:
+// clear + one ramp-textured full-window quad). Markdown: each draw's median ms, triangles and
+// ratio to the floor.
+std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& options);
+
 // The README table: variant | GL | paper fps | ours fps | ours ms/frame | render() wall ms |
 // floor ms/frame | time / floor; then per variant its per-pass table (ms, floor ms, time /
 // floor) and the floors measured.

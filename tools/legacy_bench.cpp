@@ -8,9 +8,12 @@
 // same glAccum). Each pass prints its median time, its floor and time / floor; the first
 // table the frame's sum of floors and time / floor.
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
-//                [--quick] [--technique T] [--trace-overhead]
+//                [--quick] [--technique T] [--trace-overhead] [--split-cost]
 // --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
 // (the context's own dispatch table, as every render runs) and on (core/gl_trace.h), as a ratio.
+// --split-cost: instead, the camera pass's draw of brabec's own meshes and of the split meshes
+// the camera passes draw (spotlight_tessellation.h), beside the pass's floor (docs/legacy.md
+// "Feeding the passes").
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <functional>
@@ -94,7 +97,7 @@ int main(int argc, char** argv) {
     sl::legacy::BenchmarkOptions options;
     std::string backend, imaging, frames;
     std::string only;  // --technique: keep the variants of one technique
-    bool quick = false, traceOverhead = false;
+    bool quick = false, traceOverhead = false, splitCost = false;
     CLI::App app{
         "Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates and each "
         "pass's llvmpipe floor (time / floor; floors measured interleaved in the same "
@@ -113,6 +116,9 @@ int main(int argc, char** argv) {
         ->type_name("T");
     app.add_flag("--trace-overhead", traceOverhead,
                  "frame time with the --dump-passes GL trace off and on (core/gl_trace.h)");
+    app.add_flag("--split-cost", splitCost,
+                 "the camera pass's draw of the scene's own and of its spotlight-split meshes, "
+                 "beside the pass's floor");
     if (!sl::cli::parseTool(app, argc, argv)) return 0;
     if (!backend.empty()) options.backend = sl::parseBackend(backend);
     if (!imaging.empty()) options.imaging = sl::cli::parseImaging(imaging);
@@ -124,6 +130,10 @@ int main(int argc, char** argv) {
     for (const auto& v : sl::legacy::paperVariants())
       if (only.empty() || v.technique == only) variants.push_back(v);
     if (variants.empty()) throw sl::InputError("no benchmark variant of technique '" + only + "'");
+    if (splitCost) {
+      std::cout << sl::legacy::splitCostMarkdown(sl::builtinScene("brabec"), options);
+      return 0;
+    }
     if (traceOverhead) {
       std::cout << traceOverheadMarkdown(options, variants);
       return 0;

@@ -267,7 +267,9 @@ struct Tool {
 
 const std::vector<Tool>& tools() {
   static const std::vector<Tool> kTools = {
-      {"legacy_bench", LEGACY_BENCH_BINARY, {"--backend", "--frames", "--quick", "--technique"}},
+      {"legacy_bench",
+       LEGACY_BENCH_BINARY,
+       {"--backend", "--frames", "--quick", "--technique", "--trace-overhead", "--split-cost"}},
       {"volumes_bench",
        VOLUMES_BENCH_BINARY,
        {"--scene", "--size", "--shadow-map", "--frames", "--backend", "--technique",

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include "core/scene_library.h"
 #include "legacy_gl/benchmark.h"
 #include "registry/registry.h"
@@ -94,6 +96,31 @@ TEST(Roofline, AccumulateFloorIsGlAccumAndLeavesTheFramesUnchanged) {
   ASSERT_EQ(terms->size(), 1u);
   EXPECT_EQ(terms->front().work, FloorWork::kAccumulate);
   expectFloorsLeaveFramesUnchanged(v);
+}
+
+// legacy_bench --split-cost: the camera pass's draw of brabec's own meshes and of the split
+// meshes the camera passes draw, beside the floor; the split has more triangles.
+TEST(Roofline, SplitCostTimesTheOwnAndTheSplitMeshes) {
+  BenchmarkOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.shadowMapTexels = kMap;
+  options.frames = {1, 1};  // one warm-up round, one timed: the table, not the speed
+  const Scene scene = builtinScene("brabec");
+  const std::string table = splitCostMarkdown(scene, options);
+  size_t own = 0;
+  for (const Object& o : scene.objects) own += o.mesh->triangleCount();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(table, m, std::regex(R"(\| the scene's own meshes \| (\d+) \|)")))
+      << table;
+  EXPECT_EQ(std::stoul(m[1].str()), own);
+  ASSERT_TRUE(std::regex_search(
+      table, m, std::regex(R"(\| the split meshes of the camera passes \| (\d+) \| [\d.]+ \|)")))
+      << table;
+  EXPECT_GT(std::stoul(m[1].str()), own);
+  EXPECT_NE(table.find("| floor: clear + one ramp-textured full-window quad | 2 |"),
+            std::string::npos)
+      << table;
 }
 
 }  // namespace
