@@ -151,7 +151,7 @@ void copyWindowOntoItself(int width, int height) {
 }
 
 // §3 accumulation: the window added into the accumulation buffer. Mesa has one GL_ACCUM for
-// every driver, main/accum.c on the CPU: both buffers mapped, each colour row unpacked to float,
+// all its drivers, main/accum.c on the CPU: both buffers mapped, each colour row unpacked to float,
 // scaled and added into the 16-bit signed accumulation buffer. No cheaper GL call does this
 // work (a glReadPixels of the window reads it but adds nothing; docs/legacy.md compares the two).
 // The accumulation buffer's contents are no state of a frame: each frame starts with GL_LOAD.

@@ -5,8 +5,9 @@
 // full-window quad with the pass's class of fragment work (ramp-textured and depth-tested,
 // projectively textured and subtracted, lit and blended), a glCopyTexSubImage2D, a plain
 // glCopyPixels (no imaging state: the driver's copy), a glDrawPixels, a glAccum(GL_ACCUM) (Mesa
-// accumulates on the CPU, main/accum.c, whatever the driver: the call is the least work there
-// is). A pass draws the scene, at least one layer of the window; the floor counts exactly one.
+// accumulates on the CPU for all its drivers, main/accum.c, and imaging/ where a visual has no
+// accumulation buffer: the call is the least work there is). A pass draws the scene, at least
+// one layer of the window; the floor counts exactly one.
 #pragma once
 
 #include <memory>
