@@ -22,6 +22,7 @@ cd "$(dirname "$0")/.."
 # only the command's first paragraph and first table (the summary); other files get it all.
 TABLES=(
   "legacy|README.md:first docs/legacy.md|build/bin/legacy_bench"
+  "legacy-split|docs/legacy.md|build/bin/legacy_bench --split-cost --frames 9"
   "twins-time|README.md|build/bin/shadowlab-twins --no-agreement --frames 7"
   "imaging|docs/imaging.md|build/bin/imaging_bench"
   "csm-ratio|README.md docs/csm.md|build/bin/csm_bench --part ratio"
