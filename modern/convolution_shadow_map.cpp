@@ -421,14 +421,13 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   glStencilMask(0xFF);
   glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  const Program& program =
-      cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
-                    {{"ORDER", std::to_string(s.order)},
-                     {"ENCODE_UNSIGNED", "0"},
-                     {"CLASSIFY", "1"},
-                     {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
-                     {"FIRST_DEPTH_BOUNDS_LEVEL",
-                      std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
+  const Program& program = cachedProgram(
+      "scene.vert.glsl", "csm_shadow.frag.glsl",
+      {{"ORDER", std::to_string(s.order)},
+       {"ENCODE_UNSIGNED", "0"},
+       {"CLASSIFY", "1"},
+       {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
+       {"FIRST_DEPTH_BOUNDS_LEVEL", std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
   setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
   program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
   program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));

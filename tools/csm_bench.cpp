@@ -4,14 +4,15 @@
 //
 //   csm_bench [--quick] [--size WxH] [--repeat N] [--scene S] [--backend osmesa|egl]
 //             [--part techniques|table1|ratio|all] [--csv FILE] [--param key=value ...]
+//             [--shadow-map N]
 //
 // --part ratio: modern.csm against modern.hw on the bench scenes (brabec, fence; or --scene)
-// with --shadow-map N (default 512)
-// at the bench sizes (256x192, 400x300; or --size), each technique's defaults
-// plus --param for CSM; the two contexts render alternately (hw, csm, hw, csm, ...) so that
-// both see the same load on a shared machine, and the ratio of medians is printed with CSM's
-// per-pass medians. --param applies to this part only, and --csv to the others only (a ratio
-// of interleaved runs is not a row of the CSV): either given with the wrong part is exit 2.
+// at the bench sizes (256x192, 400x300; or --size), shadow map 512 (or --shadow-map, this part
+// only: exit 2 with another), each technique's defaults plus --param for CSM; the two contexts
+// render alternately (hw, csm, hw, csm, ...) so that both see the same load on a shared machine,
+// and the ratio of medians is printed with CSM's per-pass medians. --param applies to this part
+// only, and --csv to the others only (a ratio of interleaved runs is not a row of the CSV): either
+// given with the wrong part is exit 2.
 // --csv is checked before anything runs, written to a temporary and renamed at the end.
 //
 // --part table1: every cell of Table 1 as the ratio CSM / PCF (--param key=value: added to
@@ -90,7 +91,7 @@ constexpr int kMaxTimedFrames = 1000;  // --repeat
 constexpr int kMaxWarmupFrames = 100;  // --warmup
 constexpr int kQuickWidth = 512;       // --quick window
 constexpr int kQuickHeight = 384;
-constexpr int kMaxRatioMap = 4096;     // --shadow-map, texels (Table 1's largest is 2048)
+constexpr int kMaxRatioMap = 4096;  // --shadow-map, texels (Table 1's largest is 2048)
 
 // The command line (see the head of this file); std::nullopt after --help.
 std::optional<Options> parseOptions(int argc, char** argv) {
@@ -171,8 +172,8 @@ void runRatio(const Options& o) {
                                               : std::vector<std::string>{"brabec", "fence"};
   const Technique& hw = findTechnique("modern.hw");
   const Technique& csm = findTechnique("modern.csm");
-  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
-              map, o.frames.warmup, o.frames.timed);
+  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved", map,
+              o.frames.warmup, o.frames.timed);
   for (const auto& [k, v] : o.csmParams) std::printf(", csm %s=%s", k.c_str(), v.c_str());
   std::printf(
       "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
