@@ -847,7 +847,8 @@ void columnSumsAvx2(const Convolution& cv, const DyadicPlan& plan, const uint8_t
       sum = _mm256_add_epi16(_mm256_add_epi16(load(0, i), load(2, i)), _mm256_add_epi16(b, b));
     } else {
       sum = _mm256_setzero_si256();
-      for (int m = 0; m < hf; ++m) sum = _mm256_add_epi16(sum, _mm256_mullo_epi16(load(m, i), w[m]));
+      for (int m = 0; m < hf; ++m)
+        sum = _mm256_add_epi16(sum, _mm256_mullo_epi16(load(m, i), w[m]));
     }
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + i), sum);
   }
@@ -907,8 +908,8 @@ void rowSumsAvx2(const Convolution& cv, const DyadicPlan& plan, const uint16_t* 
     const __m256i bytes = _mm256_permute4x64_epi64(_mm256_packus_epi16(low, high), 0xD8);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + j), bytes);
     if (_mm256_testz_si256(ties, ties)) continue;  // the common case on most images
-    uint32_t bits = uint32_t(_mm256_movemask_epi8(
-        _mm256_permute4x64_epi64(_mm256_packs_epi16(tieLow, tieHigh), 0xD8)));
+    uint32_t bits = uint32_t(
+        _mm256_movemask_epi8(_mm256_permute4x64_epi64(_mm256_packs_epi16(tieLow, tieHigh), 0xD8)));
     for (; bits != 0; bits &= bits - 1) tie(j + size_t(__builtin_ctz(bits)));
   }
   for (; j < n; ++j) {  // the components after the last whole vector
@@ -1018,10 +1019,9 @@ bool convolveBytes(TransferState& t, const std::vector<uint8_t>& src, int ws, in
   DyadicPlan dyadic;
   if (!counting && simd == SimdLevel::kBest && haveAvx2ForDyadic() && planDyadic(cv, dyadic)) {
     if (dyadic.separable) {
-      parallelRows(oh, size_t(ow) * kGroup * size_t(cv.wf + cv.hf) / kDyadicSpeedup,
-                   [&](int y0, int y1) {
-                     separableRows(cv, dyadic, src.data(), out.data(), y0, y1);
-                   });
+      parallelRows(
+          oh, size_t(ow) * kGroup * size_t(cv.wf + cv.hf) / kDyadicSpeedup,
+          [&](int y0, int y1) { separableRows(cv, dyadic, src.data(), out.data(), y0, y1); });
       return true;
     }
     parallelRows(oh, size_t(ow) * kGroup * (cv.taps.size() + 1) / kDyadicSpeedup,

@@ -207,8 +207,8 @@ TEST(ConvolutionBytes, DyadicBinomialKernelsWithRoundingTies) {
 // one and two groups (the edge replication is all there is), heights 1-5, as a 2D filter and
 // as the same kernel given separably (glSeparableFilter2D), with the ties these images have.
 TEST(ConvolutionBytes, Binomial3x3AtVectorEdgesAndOddSizes) {
-  const std::vector<Size> sizes = {{1, 3}, {2, 2}, {7, 3}, {8, 4}, {9, 5}, {129, 7}, {300, 3},
-                                   {33, 1}};
+  const std::vector<Size> sizes = {{1, 3}, {2, 2},   {7, 3},   {8, 4},
+                                   {9, 5}, {129, 7}, {300, 3}, {33, 1}};
   for (GLenum border : {GLenum(GL_REDUCE), GLenum(GL_REPLICATE_BORDER)}) {
     expectSameBytes(with2D(filter2D(3, 3, outerProduct({1, 2, 1}, {1, 2, 1}, 16), border)),
                     borderName(border), sizes);
