@@ -173,6 +173,10 @@ struct State {
   bool returnTableValid = false;
   float returnTableValue = 0.0f;
   std::vector<uint8_t> returnTable;
+  // The vector form of that table (returnAccumBytes with this scale), where it gives every
+  // entry of the table exactly (checked on all 65535 when the table is built).
+  bool returnVectorExact = false;
+  float returnScale = 0.0f;
   WriteBack writeBack;
 };
 
@@ -236,6 +240,10 @@ size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n);
 // permutes (AVX-512 VBMI) where the processor has them; returns the components done.
 size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* color, int16_t* accum,
                        size_t n);
+// GL_RETURN on 8-bit colour (accumulation.cpp): out[i] = trunc(clamp(float(accum[i]) * scale,
+// 0, 255) + 0.5) in float for the leading 16-component blocks of n (AVX2); returns the
+// components done (0 without AVX2). The caller uses it only where it equals the exact table.
+size_t returnAccumBytes(float scale, const int16_t* accum, uint8_t* out, size_t n);
 // Apply a map to the leading whole vectors of p[0 .. n) bytes in place; returns the bytes done
 // (the caller's scalar loop does the rest).
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);
