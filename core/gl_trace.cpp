@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <set>
 #include <string_view>
 #include <type_traits>
 #include <unordered_map>
@@ -382,9 +384,69 @@ std::vector<Line> foldedObjects(const std::vector<Line>& lines) {
   return out;
 }
 
+// A line of a vertex-array setup: binding, filling and describing buffers for a later draw.
+bool uploadLine(const Line& l) {
+  auto starts = [&](const char* p) { return l.text.rfind(p, 0) == 0; };
+  return l.group == "vertex arrays" && l.drawKey.empty() &&
+         (starts("glBindVertexArray") || starts("glBindBuffer") || starts("glBufferData") ||
+          starts("glBufferSubData") || starts("glVertexAttribPointer") ||
+          starts("glVertexAttribIPointer") || starts("glEnableVertexAttribArray"));
+}
+
+// The byte count of a "glBufferData(target, bytes, ...)" line; 0 for any other line.
+long long uploadedBytes(const Line& l) {
+  if (l.text.rfind("glBufferData(", 0) != 0) return 0;
+  const size_t comma = l.text.find(", ");
+  return comma == std::string::npos ? 0 : std::atoll(l.text.c_str() + comma + 2);
+}
+
+// Folds the upload of a scene's meshes (every vertex array's buffers filled, attributes
+// described: tens of lines a pass card would open with) into one line that says what it did:
+// "mesh upload: 6 vertex arrays, 18 buffers, 1234 bytes". A single buffer stays as it is.
+std::vector<Line> foldedUploads(const std::vector<Line>& lines) {
+  constexpr int kMinBuffersToFold = 2;
+  std::vector<Line> out;
+  for (size_t i = 0; i < lines.size();) {
+    size_t end = i;
+    while (end < lines.size() && uploadLine(lines[end])) ++end;
+    // The block ends at its last unbind (or last fill); a bind that follows is the next draw's.
+    size_t last = i;
+    int buffers = 0;
+    long long bytes = 0;
+    std::set<std::string> arrays;
+    for (size_t k = i; k < end; ++k) {
+      const std::string& t = lines[k].text;
+      if (t.rfind("glBufferData(", 0) == 0) {
+        buffers += lines[k].repeat;
+        bytes += uploadedBytes(lines[k]) * lines[k].repeat;
+        last = k;
+      } else if (t.rfind("glBindVertexArray(0)", 0) == 0) {
+        last = k;
+      } else if (t.rfind("glBindVertexArray(", 0) == 0) {
+        arrays.insert(t);
+      } else if (t.rfind("glVertexAttrib", 0) == 0 || t.rfind("glEnableVertexAttrib", 0) == 0) {
+        last = k;
+      }
+    }
+    if (buffers < kMinBuffersToFold) {
+      out.push_back(lines[i]);
+      ++i;
+      continue;
+    }
+    Line folded;
+    folded.group = "vertex arrays";
+    folded.text = "mesh upload: " + std::to_string(arrays.size()) + " vertex arrays, " +
+                  std::to_string(buffers) + " buffers, " + std::to_string(bytes) +
+                  " bytes (glBindVertexArray, glBufferData, glVertexAttribPointer per mesh)";
+    out.push_back(std::move(folded));
+    i = last + 1;
+  }
+  return out;
+}
+
 std::vector<GlStateLine> finished(const std::vector<Line>& lines) {
   std::vector<GlStateLine> out;
-  for (const Line& l : foldedObjects(lines)) out.push_back({l.group, finished(l)});
+  for (const Line& l : foldedObjects(foldedUploads(lines))) out.push_back({l.group, finished(l)});
   return out;
 }
 

@@ -245,12 +245,18 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
   for (size_t i : order) {
     const PassImage& p = frame.intermediates[i];
     const int pass = passNumberOf(p.name);
-    std::string stem =
-        passPrefix(pass, seen[pass]++, perPass[pass]) + "-" + fileSafe(afterPassNumber(p.name));
-    for (int k = 2; used.count(stem); ++k) stem += "-" + std::to_string(k);
+    std::string stem = passPrefix(pass, seen[pass]++, perPass[pass]);
+    stem += '-';
+    stem += fileSafe(afterPassNumber(p.name));
+    for (int k = 2; used.count(stem); ++k) {
+      stem += '-';
+      stem += std::to_string(k);
+    }
     used.insert(stem);
     const bool alpha = p.image.channels == 2 || p.image.channels == 4;
-    PassDumpImage main{stem + ".png", pass, p.caption, alpha ? opaque(p.image) : p.image};
+    PassDumpImage main{
+        stem + ".png", pass, p.caption, alpha ? opaque(p.image) : p.image, "", "", "",
+        std::nullopt};
     if (alpha) main.caption += " [shown opaque: alpha ignored; each channel follows in grey]";
     out.push_back(main);
     if (!alpha) continue;
@@ -262,13 +268,16 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
       const std::string& name = names[size_t(c)];
       const std::string meaning =
           size_t(c) < p.channelMeaning.size() ? ": " + p.channelMeaning[size_t(c)] : "";
-      PassDumpImage panel{stem + "-ch" + std::to_string(c + 1) + "-" + name + ".png", pass,
-                          p.caption + " [channel " + name + " (" + channelWord(name) + ")" +
-                              meaning + " alone]",
-                          packed ? stretched(p.image, c, range) : channel(p.image, c), name,
-                          main.file, "channel"};
-      panel.legend = packed ? ValueLegend{"grey", range.lo, range.hi, "1 (far: nothing drawn) = white"}
-                            : ValueLegend{"grey", 0.0, 1.0, ""};
+      PassDumpImage panel{
+          stem + "-ch" + std::to_string(c + 1) + "-" + name + ".png",
+          pass,
+          p.caption + " [channel " + name + " (" + channelWord(name) + ")" + meaning + " alone]",
+          packed ? stretched(p.image, c, range) : channel(p.image, c),
+          name,
+          main.file,
+          "channel",
+          packed ? ValueLegend{"grey", range.lo, range.hi, "1 (far: nothing drawn) = white"}
+                 : ValueLegend{"grey", 0.0, 1.0, ""}};
       out.push_back(panel);
     }
     if (!packed) continue;
@@ -279,22 +288,26 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
       const std::string& centreName = names[size_t(centre)];
       float limit = 0.0f;
       Image diverging = minusCentre(p.image, c, centre, limit);
-      PassDumpImage view{stem + "-ch" + std::to_string(c + 1) + "-" + name + "-minus-" + centreName +
-                             ".png",
-                         pass,
-                         "channel " + name +
-                             (size_t(c) < p.channelMeaning.size() ? " (" + p.channelMeaning[size_t(c)] + ")" : "") +
-                             " minus channel " + centreName +
-                             (size_t(centre) < p.channelMeaning.size()
-                                  ? " (" + p.channelMeaning[size_t(centre)] + ")"
-                                  : "") +
-                             ": white where the neighbour lies at the texel's depth; red / blue "
-                             "along depth edges where the packed neighbour is one texel away "
-                             "(Fig. 5)",
-                         std::move(diverging), name, main.file, "minus centre"};
-      view.legend = ValueLegend{"diverging", -double(limit), double(limit),
-                                "depth difference; clamped beyond the ends (edges against the "
-                                "far plane)"};
+      PassDumpImage view{
+          stem + "-ch" + std::to_string(c + 1) + "-" + name + "-minus-" + centreName + ".png",
+          pass,
+          "channel " + name +
+              (size_t(c) < p.channelMeaning.size() ? " (" + p.channelMeaning[size_t(c)] + ")"
+                                                   : "") +
+              " minus channel " + centreName +
+              (size_t(centre) < p.channelMeaning.size()
+                   ? " (" + p.channelMeaning[size_t(centre)] + ")"
+                   : "") +
+              ": white where the neighbour lies at the texel's depth; red / blue "
+              "along depth edges where the packed neighbour is one texel away "
+              "(Fig. 5)",
+          std::move(diverging),
+          name,
+          main.file,
+          "minus centre",
+          ValueLegend{"diverging", -double(limit), double(limit),
+                      "depth difference; clamped beyond the ends (edges against "
+                      "the far plane)"}};
       out.push_back(view);
     }
   }

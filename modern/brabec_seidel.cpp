@@ -250,7 +250,9 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
     const float weight = float(double(group.samples) / double(footprint));
     glActiveTexture(GLenum(GL_TEXTURE1 + g));
     glBindTexture(GL_TEXTURE_2D, group.map);
-    const std::string i = "[" + std::to_string(g) + "]";
+    // "[g]", built in place: GCC 12's -Wrestrict misfires on "[" + std::to_string(g).
+    std::string i = std::to_string(g);
+    i = '[' + i + ']';
     program.set(("uMaps" + i).c_str(), 1 + g);
     program.set(("uGroupSamples" + i).c_str(), group.samples);
     program.set(("uEyeToShadowMap" + i).c_str(),

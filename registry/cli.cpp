@@ -309,7 +309,7 @@ SceneAdjustments sceneAdjustments(const Args& args) {
   if (auto v = args.value("light-radius")) {
     const double r = parseNumber("--light-radius", *v);
     if (!(r >= 0.0 && r <= kMaxSceneCoordinate))
-      throw InputError("--light-radius must be >= 0 (world units), got " + *v);
+      throw InputError("--light-radius must lie in [0, 1e12] (world units), got " + *v);
     a.lightRadius = float(r);
   }
   if (auto v = args.value("light-position")) a.lightPosition = parsePosition("--light-position", *v);

@@ -109,7 +109,8 @@ TEST(SceneKnobs, BadValuesExitTwoWithOneLine) {
   const fs::path out = dir() / "bad.png";
   for (const std::string bad :
        {"--camera-distance 0", "--camera-distance -2", "--camera-distance x", "--light-radius -0.1",
-        "--light-position 1,2", "--light-position 1,2,3,4",
+        "--light-radius 1e13" /* beyond the scene coordinates' range */, "--light-position 1,2",
+        "--light-position 1,2,3,4",
         "--light-position 0,0,0" /* the analytic light's target: no direction left */}) {
     const CommandResult r = shadowlab("render --scene analytic --technique modern.hw " + bad +
                                       " --out " + out.string());

@@ -113,6 +113,50 @@ TEST(GlTrace, RecordsStatePerPassAndSummarisesDraws) {
   EXPECT_EQ(pass.gl.state.size(), 4u) << state;
 }
 
+// A scene's vertex arrays filled and described before a pass (dozens of calls) read as one
+// line saying how many arrays, buffers and bytes; the draw that follows keeps its own line.
+TEST(GlTrace, MeshUploadIsOneLine) {
+  ContextSpec spec;
+  spec.width = 64;
+  spec.height = 64;
+  spec.profile = Profile::kCore;
+  auto ctx = GlContext::create(spec);
+  constexpr int kMeshes = 3;
+  constexpr GLsizeiptr kPositionBytes = 9 * sizeof(GLfloat);
+  constexpr GLsizeiptr kIndexBytes = 3 * sizeof(GLuint);
+  GLuint arrays[kMeshes];
+  GLuint buffers[2 * kMeshes];
+  glGenVertexArrays(kMeshes, arrays);
+  glGenBuffers(2 * kMeshes, buffers);
+  const GLfloat positions[9] = {};
+  const GLuint indices[3] = {0, 1, 2};
+  GlTrace trace;
+  Frame frame;
+  {
+    PassTimer timer(frame, "1 upload and draw");
+    for (int m = 0; m < kMeshes; ++m) {
+      glBindVertexArray(arrays[m]);
+      glBindBuffer(GL_ARRAY_BUFFER, buffers[2 * m]);
+      glBufferData(GL_ARRAY_BUFFER, kPositionBytes, positions, GL_STATIC_DRAW);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+      glEnableVertexAttribArray(0);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[2 * m + 1]);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, kIndexBytes, indices, GL_STATIC_DRAW);
+      glBindVertexArray(0);
+    }
+    glBindVertexArray(arrays[0]);
+    glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+  }
+  const std::string state = joined(frame.passes.at(0).gl.state);
+  const std::string expected = "vertex arrays: mesh upload: " + std::to_string(kMeshes) +
+                               " vertex arrays, " + std::to_string(2 * kMeshes) + " buffers, " +
+                               std::to_string(kMeshes * (kPositionBytes + kIndexBytes)) + " bytes";
+  EXPECT_NE(state.find(expected), std::string::npos) << state;
+  EXPECT_EQ(state.find("glBufferData("), std::string::npos) << state;
+  EXPECT_NE(state.find("draw: glDrawElements"), std::string::npos) << state;
+}
+
 // Matrices by matrix mode (the colour matrix is its own group), rows first.
 TEST(GlTrace, MatricesAreNamedByModeAndPrintedAsRows) {
   auto ctx = smallContext();
