@@ -160,10 +160,13 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
         exact = converted[i] == lut[size_t(every[i] + 32768)];
       s.returnVectorExact = exact;
     }
-    bytes.resize(size_t(w) * h * 4);
+    // Where a blit may write them (write_back.cpp), the bytes go straight into the flipped
+    // upload buffer (row y at row h-1-y); else into a buffer for glDrawPixels below.
+    const bool blit = blitEqualsReturn(s);
+    if (!blit) bytes.resize(size_t(w) * h * 4);
     // Raw pointers: a byte store through a vector's operator[] may alias the vector itself,
     // which would reload its data pointer on every element.
-    uint8_t* const dst = bytes.data();
+    uint8_t* const dst = blit ? returnRows(s, w, h) : bytes.data();
     const uint8_t* const table = lut.data();
     const size_t n = size_t(w) * 4;
     const bool vector = s.returnVectorExact;
@@ -171,13 +174,14 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
     parallelRows(h, vector ? n / kVectorSpeedup : n, [&](int r0, int r1) {
       for (int y = r0; y < r1; ++y) {
         const int16_t* a = s.accum.data() + (size_t(y + b.y0) * s.accumWidth + b.x0) * 4;
-        uint8_t* const o = dst + size_t(y) * n;
+        uint8_t* const o = dst + size_t(blit ? h - 1 - y : y) * n;
         const size_t done = vector ? returnAccumBytes(scale, a, o, n) : 0;
         for (size_t i = done; i < n; ++i) o[i] = table[size_t(a[i] + 32768)];
       }
     });
+    if (blit) return blitReturnRows(s, b.x0, b.y0, w, h);
+    s.writeBack.lastWasBlit = false;
     data = bytes.data();
-    if (returnBytes(s, b.x0, b.y0, w, h, bytes.data())) return;  // write_back.cpp
   } else if (type == GL_UNSIGNED_SHORT) {
     shorts.resize(size_t(w) * h * 4);
     rows([&](size_t i, int16_t a) {

@@ -419,10 +419,13 @@ void drawBytes(State& s, int w, int h, const uint8_t* bytes);
 // True when the state makes a copy of the bytes into the window at (x, y) = the raster
 // position the same as glDrawPixels (the conditions, with their sections, are in the file).
 bool blitEqualsDrawPixels(State& s, int& x, int& y);
-// Accum(RETURN)'s write of w x h groups at window (x, y) where only the colour mask needs a
-// condition (4.2.4); false (nothing written) when the caller must draw them itself.
+// Accum(RETURN)'s write of w x h groups at window (x, y), inside the window: true when only
+// the colour mask needs a condition (4.2.4) and it holds, so a blit may write them. The caller
+// then writes the groups straight into returnRows(s, w, h), image row r at row h-1-r (the
+// flipped upload, saving a copy), and calls blitReturnRows(s, x, y, w, h).
 bool blitEqualsReturn(State& s);
-bool returnBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes);
+uint8_t* returnRows(State& s, int w, int h);
+void blitReturnRows(State& s, int x, int y, int w, int h);
 // accumulation.cpp
 void emAccum(GLenum, GLfloat);
 void emClearAccum(GLfloat, GLfloat, GLfloat, GLfloat);
