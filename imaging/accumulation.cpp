@@ -76,13 +76,10 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
   if (framebufferType(s) == GL_UNSIGNED_BYTE) {
     std::vector<uint8_t>& bytes = s.scratchIn;  // reused across calls
     bytes.resize(size_t(w) * h * 4);            // every byte is overwritten by the read
-    s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-    s.driver.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    s.driver.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    s.driver.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    s.driver.PixelStorei(GL_PACK_SKIP_ROWS, 0);
-    s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
-    s.driver.PopClientAttrib();
+    {
+      ClientTransfers tight(s);
+      s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    }
     // value * C in accumulator steps, rounded once per byte value; the accumulator is an
     // integer, so A + round(value * C) is the rounded sum.
     int32_t scaled[256];
@@ -200,13 +197,10 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
     gl.Disable(cap);
   gl.PixelZoom(1.0f, 1.0f);
   gl.WindowPos2i(b.x0, b.y0);
-  gl.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  gl.PixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-  gl.PixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-  gl.DrawPixels(w, h, GL_RGBA, type, data);
-  gl.PopClientAttrib();
+  {
+    ClientTransfers tight(s);
+    gl.DrawPixels(w, h, GL_RGBA, type, data);
+  }
   gl.PopAttrib();
 }
 

@@ -800,12 +800,10 @@ uint8_t exactByteAt(const Convolution& cv, const uint8_t* const* rows, int x, in
 // The binomial 3x3 blur: row and column numerators (1, 2, 1) for every component, D = 4 —
 // the kernel of issue 20's blur stage. Its sums need only adds (x + 2y + z), no multiplies.
 bool isBinomial3x3(const Convolution& cv, const DyadicPlan& plan) {
-  constexpr uint16_t kBinomial[3] = {1, 2, 1};
-  constexpr int kBinomialShift = 4;
   if (!plan.separable || cv.wf != 3 || cv.hf != 3 || plan.shift != kBinomialShift) return false;
   for (int k = 0; k < 3; ++k)
     for (int c = 0; c < kGroup; ++c)
-      if (plan.row[k][c] != kBinomial[k] || plan.column[k][c] != kBinomial[k]) return false;
+      if (plan.row[k][c] != kBinomialRow[k] || plan.column[k][c] != kBinomialRow[k]) return false;
   return true;
 }
 

@@ -265,6 +265,14 @@ bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int 
 // A 2D or separable convolution with a non-empty filter is enabled.
 bool convolveBytesApplies(const TransferState& t);
 
+// The 3x3 binomial blur: the outer product of kBinomialRow with itself, over 2^kBinomialShift
+// (issue 20's blur stage; convolution_bytes.cpp sums it with adds only).
+constexpr uint16_t kBinomialRow[3] = {1, 2, 1};
+constexpr int kBinomialShift = 4;  // the weights are multiples of 1/16
+// Its dense weights as glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA,
+// GL_FLOAT, ...) takes them: row-major, four equal floats a tap (convolution.cpp).
+std::vector<float> binomialBlur3x3Rgba();
+
 // A tap of a convolution kernel: offset (n, m) into the (bordered) source, four weights.
 struct Tap {
   int n, m;
@@ -408,6 +416,25 @@ void emCopyTexSubImage1D(GLenum, GLint, GLint, GLint, GLint, GLsizei);
 // Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
 // the final expansion to RGBA": no pixel transfer), through the driver.
 Image4 readFramebuffer(State& s, int x, int y, int w, int h);
+// The emulation's own transfers between the driver and its client memory (its reads of the
+// framebuffer, its glDrawPixels, texture uploads and the write-back): tight pixel storage
+// (3.6.4 "Unpacking", 4.3.2 "Placement in Client Memory": no row length, skips or swapping,
+// alignment 1) and no buffer bound to GL_PIXEL_PACK_BUFFER / GL_PIXEL_UNPACK_BUFFER — with one
+// bound, the pointer argument is an offset into it (ARB_pixel_buffer_object, "Pixel Buffer
+// Object Operations"), not the emulation's memory. The caller's storage and bindings are
+// restored when it goes.
+class ClientTransfers {
+ public:
+  explicit ClientTransfers(const State& s);
+  ~ClientTransfers();
+  ClientTransfers(const ClientTransfers&) = delete;
+  ClientTransfers& operator=(const ClientTransfers&) = delete;
+
+ private:
+  const GlDispatch& gl_;
+  bool pixelBuffers_ = false;  // the context has pixel buffer objects (the extension)
+  GLint pack_ = 0, unpack_ = 0;
+};
 // The client type that carries the colour buffer's precision without loss: unsigned bytes for
 // 8-bit, unsigned shorts for 16-bit, floats otherwise (pixel_paths.cpp).
 GLenum framebufferType(const State& s);

@@ -59,8 +59,6 @@ bool blitTargetIsWindow(const State& s) {
   // 4.2.1: DrawPixels writes the draw buffers of the bound draw framebuffer; the blit below
   // names framebuffer 0, so the caller's must be 0.
   if (integer(s, GL_DRAW_FRAMEBUFFER_BINDING) != 0) return false;
-  // The upload reads client memory only when no pixel unpack buffer is bound.
-  if (integer(s, GL_PIXEL_UNPACK_BUFFER_BINDING) != 0) return false;
   // sRGB conversion is the one colour operation a blit does that DrawPixels need not.
   if (enabled(s, GL_FRAMEBUFFER_SRGB)) return false;
   // 4.2.2 "Fine Control of Buffer Updates": a blit ignores the colour mask.
@@ -172,16 +170,11 @@ void ensureTexture(State& s) {
 // rectangle must lie inside the window.
 void uploadAndBlit(State& s, int x, int y, int w, int h) {
   ensureTexture(s);
-  s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
-                   GL_UNPACK_SKIP_IMAGES, GL_UNPACK_IMAGE_HEIGHT})
-    s.driver.PixelStorei(p, 0);
-  s.driver.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  s.driver.PixelStorei(GL_UNPACK_SWAP_BYTES, GL_FALSE);
-  s.driver.PixelStorei(GL_UNPACK_LSB_FIRST, GL_FALSE);
-  s.driver.TextureSubImage2D(s.writeBack.texture, kTextureLevel, 0, 0, w, h, GL_RGBA,
-                             GL_UNSIGNED_BYTE, s.writeBack.flipped.data());
-  s.driver.PopClientAttrib();
+  {
+    ClientTransfers tight(s);  // also unbinds a pixel unpack buffer: the upload reads ours
+    s.driver.TextureSubImage2D(s.writeBack.texture, kTextureLevel, 0, 0, w, h, GL_RGBA,
+                               GL_UNSIGNED_BYTE, s.writeBack.flipped.data());
+  }
   s.driver.BlitNamedFramebuffer(s.writeBack.framebuffer, 0, 0, h, w, 0, x, y, x + w, y + h,
                                 GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
@@ -206,13 +199,8 @@ void blitBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes) {
 }
 
 void drawPixelsBytes(State& s, int w, int h, const uint8_t* bytes) {
-  s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS})
-    s.driver.PixelStorei(p, 0);
-  s.driver.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  s.driver.PixelStorei(GL_UNPACK_SWAP_BYTES, GL_FALSE);
+  ClientTransfers tight(s);
   s.driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes);
-  s.driver.PopClientAttrib();
 }
 
 }  // namespace

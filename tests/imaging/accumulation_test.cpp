@@ -37,7 +37,9 @@ TEST(AccumulationReturn, EveryValueGivesTheExactConversion) {
     glAccum(GL_RETURN, value);
     const State& s = *currentState();
     EXPECT_EQ(readRgba8(0, 0, kWidth, kHeight), expectedReturn(s, value));
-    if (value == 1.0f && vectorMapsAvailable()) EXPECT_TRUE(s.returnVectorExact);
+    if (value == 1.0f && vectorMapsAvailable()) {
+      EXPECT_TRUE(s.returnVectorExact);
+    }
   }
 }
 

@@ -155,10 +155,7 @@ TEST(ConvolutionBytes, PackingKernelThenColorMatrix) {
 }
 
 TEST(ConvolutionBytes, Blur3x3EveryBorderMode) {
-  const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
-  std::vector<float> k(9 * 4);
-  for (int t = 0; t < 9; ++t)
-    for (int c = 0; c < 4; ++c) k[t * 4 + c] = w[t] / 16.0f;
+  const std::vector<float> k = detail::binomialBlur3x3Rgba();
   for (GLenum border : kBorders)
     expectSameBytes(with2D(filter2D(3, 3, k, border, kBorderColor)), borderName(border));
 }
