@@ -807,6 +807,22 @@ bool isBinomial3x3(const Convolution& cv, const DyadicPlan& plan) {
   return true;
 }
 
+// exactByteAt for the binomial 3x3 blur: its nine taps in kernelTaps' order (filter row m,
+// then column n), weights kBinomialRow[m] * kBinomialRow[n] / 16, none zero, unrolled.
+uint8_t binomialTie(const Convolution& cv, const uint8_t* const* rows, int x, int c) {
+  constexpr float kUnit = 1.0f / float(1 << kBinomialShift);
+  const float* const values = cv.values.px.data() + c;
+  size_t at[3];
+  for (int n = 0; n < 3; ++n)
+    at[n] = size_t(std::clamp(x + n - cv.cw, 0, cv.ws - 1)) * kGroup + size_t(c);
+  float sum = 0.0f;
+  for (int m = 0; m < 3; ++m)
+    for (int n = 0; n < 3; ++n)
+      sum = sum + values[size_t(rows[m][at[n]]) * kGroup] *
+                      (float(kBinomialRow[m] * kBinomialRow[n]) * kUnit);
+  return toByte(sum);
+}
+
 #if defined(SL_CONVOLUTION_X86)
 #pragma GCC push_options
 #pragma GCC target("avx2")  // lambdas inside inherit it (a function attribute would not)
@@ -892,7 +908,10 @@ void rowSumsAvx2(const Convolution& cv, const DyadicPlan& plan, const uint16_t* 
       return sum;
     }
   };
-  auto tie = [&](size_t j) { out[j] = exactByteAt(cv, rows, int(j / kGroup), int(j % kGroup)); };
+  auto tie = [&](size_t j) {
+    const int x = int(j / kGroup), c = int(j % kGroup);
+    out[j] = kBinomial ? binomialTie(cv, rows, x, c) : exactByteAt(cv, rows, x, c);
+  };
   size_t j = 0;
   // The last load reads column[j + 31 + (Wf - 1) * 4] < pw * 4: j + 32 <= n = ow * 4.
   for (; j + 32 <= n; j += 32) {
