@@ -18,10 +18,11 @@
 //      taps in kernelTaps' order with separate multiply and add instructions (no FMA: the
 //      AVX2 code is compiled for "avx2" only, so the compiler cannot contract them), then
 //      scaled, biased and converted to bytes in registers when stages 5-9 are identity.
-//   3. integer sums (dyadicRows): kernels whose weights are multiples of 2^-D (binomial
-//      blurs) on the plain 8-bit prefix with nothing after the convolution: exact integer
-//      sums give every byte but the rounding ties, which are summed again as in form 2
-//      (the error bound that makes this exact is at form 3 below).
+//   3. integer sums (dyadicRows; separableRows where the numerators are an outer product,
+//      the binomial blurs, with adds only for the 3x3 one): kernels whose weights are
+//      multiples of 2^-D on the plain 8-bit prefix with nothing after the convolution: exact
+//      integer sums give every byte but the rounding ties, which are summed again in floats
+//      in tap order (the error bound that makes this exact is at form 3 below).
 //
 // Why terms with a zero weight may be skipped (form 1) or added (form 2) although the general
 // path skips some and adds others: the sum starts at +0.0f and a round-to-nearest sum is -0
