@@ -483,8 +483,11 @@ TEST(Cli, DumpPassesDirectoryIsReplacedAsAWhole) {
   for (const auto& e : fs::directory_iterator(dump)) second.insert(e.path().filename().string());
   EXPECT_FALSE(second.empty());
   EXPECT_TRUE(second.count("passes.json") && second.count("index.html"));
-  for (const std::string& name : second)
-    if (name != "passes.json" && name != "index.html") EXPECT_EQ(first.count(name), 0u) << name;
+  for (const std::string& name : second) {
+    if (name != "passes.json" && name != "index.html") {
+      EXPECT_EQ(first.count(name), 0u) << name;
+    }
+  }
   expectNoTemporaries(d);
   expectNoTemporaries(d / "nested");
   std::ofstream(dump / "notes.txt") << "mine";

@@ -153,12 +153,11 @@ TEST(Lesson, ShowsTheGlStateOfEveryPass) {
 
 // The modern twin's passes show the GLSL lines they run, exactly as the embedded shader has
 // them, and link the legacy pass they replace (passes.json "glsl" and "replaces", from the
-// `// @pass` markers of the shaders). Until this build's shaders carry markers (the trace
-// layer's issue 18 item 3), there is nothing to show and the test says so.
+// `// @pass` markers of the shaders, which every modern technique's shaders carry since issue 18).
 TEST(Lesson, TwinPassesShowTheirGlslLinesAndTheLegacyPassTheyReplace) {
   bool markers = false;
   for (const auto& [name, text] : embeddedShaders()) markers = markers || text.find("@pass") != std::string::npos;
-  if (!markers) GTEST_SKIP() << "no shader of this build carries a // @pass marker yet";
+  ASSERT_TRUE(markers) << "no embedded shader carries a // @pass marker";
   const fs::path dir = test::testDir("lesson", true) / "fast-pcf";
   const test::CommandResult r =
       test::runBinary(SHADOWLAB_BINARY, lessonArgs("modern.fast-pcf", dir), dir.parent_path());

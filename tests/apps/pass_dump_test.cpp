@@ -89,7 +89,7 @@ TEST(PassDump, PassesJsonAndIndexDescribeEveryImage) {
       {"1 light pass", 2.0}, {"2 camera pass (phase 1)", 1.0}, {"2 camera pass (phase 2)", 3.0}};
   f.intermediates = {buffer("2-shaded", 3), buffer("1-light-depth")};
   const std::vector<PassDumpImage> images = planPassDump(f, "t");
-  const nlohmann::json j = passesJson(f, {"t", "paper", "scene", {{"size", "4x2"}}}, images);
+  const nlohmann::json j = passesJson(f, {"t", "paper", "scene", {{"size", "4x2"}}, ""}, images);
   ASSERT_EQ(j["passes"].size(), 2u);
   EXPECT_EQ(j["passes"][0]["number"], 1);
   EXPECT_EQ(j["passes"][0]["name"], "light pass");
@@ -160,17 +160,21 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
     EXPECT_GE(i["pass"].get<int>(), previousPass) << file;
     EXPECT_GE(i["pass"].get<int>(), 0) << file << ": its buffer name has no pass number";
     previousPass = i["pass"].get<int>();
-    if (!i.contains("of")) EXPECT_LT(previousFile, file);
-    if (!i.contains("of")) previousFile = file;
+    if (!i.contains("of")) {
+      EXPECT_LT(previousFile, file);
+      previousFile = file;
+    }
     EXPECT_FALSE(i["caption"].get<std::string>().empty()) << file;
     EXPECT_NE(html.find(file), std::string::npos) << file;
     const Image png = readPng((dump / file).string());
     EXPECT_EQ(png.width, i["width"].get<int>()) << file;
     EXPECT_EQ(png.height, i["height"].get<int>()) << file;
     EXPECT_EQ(png.channels, i["channels"].get<int>()) << file;
-    if (png.channels == 2 || png.channels == 4)
-      for (size_t k = size_t(png.channels) - 1; k < png.data.size(); k += size_t(png.channels))
+    if (png.channels == 2 || png.channels == 4) {
+      for (size_t k = size_t(png.channels) - 1; k < png.data.size(); k += size_t(png.channels)) {
         ASSERT_EQ(png.data[k], 1.0f) << file << " is not opaque";
+      }
+    }
   }
   EXPECT_GE(listed.size(), 1u);
   // Every pass has the fields `shadowlab lesson` reads, and a state card on the page; a pass the
@@ -187,9 +191,10 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
     EXPECT_FALSE(p["section"].get<std::string>().empty()) << p["number"];
     // A timed pass declares its own section (core/technique.h PassTimer; no technique-wide
     // fallback): a paper of /work/shared/papers by its authors, or "ours" where no paper has it.
-    if (!p["timings"].empty())
+    if (!p["timings"].empty()) {
       EXPECT_TRUE(citesAPaperOrSaysOurs(p["section"].get<std::string>()))
           << t.name << " pass " << p["number"] << ": " << p["section"];
+    }
     // A pass that runs a program names the `// @pass` markers of its GLSL (core/shaders.h), and
     // the marked files are files of a program the pass uses.
     // (A program made ready before the pass's timer, "before_pass", counts for the files but
@@ -201,12 +206,15 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
         programs += l["text"].get<std::string>() + "\n";
         usesProgram = usesProgram || !l.value("before_pass", false);
       }
-    if (usesProgram) EXPECT_FALSE(p["glsl"].empty()) << t.name << " pass " << p["number"];
-    for (const nlohmann::json& g : p["glsl"])
+    if (usesProgram) {
+      EXPECT_FALSE(p["glsl"].empty()) << t.name << " pass " << p["number"];
+    }
+    for (const nlohmann::json& g : p["glsl"]) {
       EXPECT_NE(programs.find(g["file"].get<std::string>()), std::string::npos)
           << t.name << " pass " << p["number"] << " names " << g["file"] << " (marker "
           << g["marker"] << ") but uses only:\n"
           << programs;
+    }
     if (!p["timings"].empty()) {
       EXPECT_FALSE(p["source"]["file"].get<std::string>().empty()) << p["number"];
       EXPECT_FALSE(p["source"]["function"].get<std::string>().empty()) << p["number"];

@@ -125,7 +125,9 @@ TEST(StateCards, PackedMapHasMinusCentreViewsWithLegends) {
       EXPECT_LT(i["legend"]["low"].get<double>(), 0.0);
       EXPECT_GT(i["legend"]["high"].get<double>(), 0.0) << "the neighbours differ somewhere";
     }
-    if (i.value("view", "") == "channel") EXPECT_EQ(i["legend"]["kind"], "grey");
+    if (i.value("view", "") == "channel") {
+      EXPECT_EQ(i["legend"]["kind"], "grey");
+    }
   }
   EXPECT_EQ(views, 3) << "R, G and B minus A";
 }

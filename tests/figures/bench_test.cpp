@@ -607,9 +607,11 @@ TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {
   ASSERT_NE(leak, nullptr);
   EXPECT_EQ(leak->verdict.find("not exercised"), std::string::npos) << leak->measured;
   EXPECT_EQ(leak->verdict, "agrees") << leak->measured;
-  for (const BenchRow& row : r.rows)
-    if (row.technique == "modern.vsm")
+  for (const BenchRow& row : r.rows) {
+    if (row.technique == "modern.vsm") {
       EXPECT_GT(row.hard.leakShare, 0.01) << "VSM bleeds on the scene built for it";
+    }
+  }
 }
 
 }  // namespace

@@ -246,7 +246,9 @@ TEST(BytePaths, AccumulateBytesEqualsTheScalarSum) {
             int16_t(std::clamp((keep ? int(accum[i]) : 0) + scaled[color[i]], -kSteps, kSteps));
       const size_t done = accumulateBytes(scaled, keep, color.data(), accum.data(), kComponents);
       EXPECT_EQ(done % 64, 0u);
-      if (vectorTablesAvailable()) EXPECT_EQ(done, kComponents / 64 * 64);
+      if (vectorTablesAvailable()) {
+        EXPECT_EQ(done, kComponents / 64 * 64);
+      }
       for (size_t i = 0; i < done; ++i)
         ASSERT_EQ(accum[i], expected[i]) << "value " << value << " keep " << keep << " at " << i;
     }

@@ -50,7 +50,6 @@ constexpr float kSilhouetteColourJump = 0.08f;
 struct Case {
   std::string technique;
   int filter;
-  bool needsImaging;
   std::map<std::string, std::string> extra;
 };
 
@@ -146,22 +145,18 @@ TEST_P(LegacyParity, ReferenceAndOsmesaMasksAgree) {
   if (!testing::referenceAvailable())
     GTEST_SKIP() << "reference GL (../shared/reference-gl/libOSMesa.so.7.8.2) not found: set "
                     "SHADOWLAB_REFERENCE_GL";
-  if (GetParam().needsImaging && !testing::emulatedImagingWorks())
-    GTEST_SKIP() << GetParam().technique
-                 << " needs the imaging subset on Debian OSMesa: the emulation (branch imaging) "
-                    "has not landed yet";
   for (const char* scene : {"brabec", "analytic"}) expectParity(GetParam(), scene);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     BrabecSeidelAndEveritt, LegacyParity,
-    ::testing::Values(Case{"legacy.ramp", 1, false},
+    ::testing::Values(Case{"legacy.ramp", 1, {}},
                       // GL_NEAREST compare: ARB_shadow leaves the LINEAR compare's weights to the
                       // implementation, so Mesa 7.8 and 22 legitimately differ there everywhere
                       // along penumbrae; the binary test is specified exactly.
-                      Case{"legacy.hw", 1, false, {{"compare", "nearest"}}},
-                      Case{"legacy.pcf", 2, true}, Case{"legacy.pcf", 4, true},
-                      Case{"legacy.fast-pcf", 2, true}, Case{"legacy.fast-pcf", 4, true}),
+                      Case{"legacy.hw", 1, {{"compare", "nearest"}}}, Case{"legacy.pcf", 2, {}},
+                      Case{"legacy.pcf", 4, {}}, Case{"legacy.fast-pcf", 2, {}},
+                      Case{"legacy.fast-pcf", 4, {}}),
     [](const ::testing::TestParamInfo<Case>& info) {
       std::string n = info.param.technique.substr(info.param.technique.find('.') + 1) +
                       std::to_string(info.param.filter);

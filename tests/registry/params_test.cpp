@@ -34,10 +34,11 @@ TEST(ParamDeclarations, EveryKeyReadIsDeclaredWithItsDefault) {
       keys.insert(key);
       const ParamSpec* spec = findParam(t, key);
       ASSERT_NE(spec, nullptr) << t.name << " reads --param " << key << " without declaring it";
-      if (p.extra.count(key) == 0)
+      if (p.extra.count(key) == 0) {
         EXPECT_TRUE(spec->isDefault(value))
             << t.name << " --param " << key << ": read with default " << value
             << ", declared " << spec->defaultText();
+      }
     }
     // Keys declared but not read at all are allowed only where they apply to other settings
     // (anisotropy with filtering=anisotropic, mask-pass with a stencil mask, rays with soft...):
