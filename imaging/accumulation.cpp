@@ -76,13 +76,10 @@ void accumulateColor(State& s, const Box& b, float value, bool keep) {
   if (framebufferType(s) == GL_UNSIGNED_BYTE) {
     std::vector<uint8_t>& bytes = s.scratchIn;  // reused across calls
     bytes.resize(size_t(w) * h * 4);            // every byte is overwritten by the read
-    s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-    s.driver.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    s.driver.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    s.driver.PixelStorei(GL_PACK_SKIP_PIXELS, 0);
-    s.driver.PixelStorei(GL_PACK_SKIP_ROWS, 0);
-    s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
-    s.driver.PopClientAttrib();
+    {
+      ClientTransfers tight(s);
+      s.driver.ReadPixels(b.x0, b.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    }
     // value * C in accumulator steps, rounded once per byte value; the accumulator is an
     // integer, so A + round(value * C) is the rounded sum.
     int32_t scaled[256];
@@ -147,15 +144,41 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
         lut[size_t(k + 32768)] = uint8_t(clamp01(double(k) * step) * 255.0 + 0.5);
       s.returnTableValue = value;
       s.returnTableValid = true;
+      // The float form, 16 components a vector: used only where it gives every one of the
+      // table's 65535 entries (it does for most values, 1 included; accumulation_test.cpp).
+      s.returnScale = float(double(value) * 255.0 / kAccumSteps);
+      std::vector<int16_t> every(size_t(kAccumMax - kAccumMin + 1));
+      for (size_t i = 0; i < every.size(); ++i) every[i] = int16_t(kAccumMin + int(i));
+      std::vector<uint8_t> converted(every.size());
+      const size_t done =
+          returnAccumBytes(s.returnScale, every.data(), converted.data(), every.size());
+      bool exact = done > 0;
+      for (size_t i = 0; i < done && exact; ++i)
+        exact = converted[i] == lut[size_t(every[i] + 32768)];
+      s.returnVectorExact = exact;
     }
-    bytes.resize(size_t(w) * h * 4);
+    // Where a blit may write them (write_back.cpp), the bytes go straight into the flipped
+    // upload buffer (row y at row h-1-y); else into a buffer for glDrawPixels below.
+    const bool blit = blitEqualsReturn(s);
+    if (!blit) bytes.resize(size_t(w) * h * 4);
     // Raw pointers: a byte store through a vector's operator[] may alias the vector itself,
     // which would reload its data pointer on every element.
-    uint8_t* const dst = bytes.data();
+    uint8_t* const dst = blit ? returnRows(s, w, h) : bytes.data();
     const uint8_t* const table = lut.data();
-    rows([dst, table](size_t i, int16_t a) { dst[i] = table[size_t(a + 32768)]; });
+    const size_t n = size_t(w) * 4;
+    const bool vector = s.returnVectorExact;
+    const float scale = s.returnScale;
+    parallelRows(h, vector ? n / kVectorSpeedup : n, [&](int r0, int r1) {
+      for (int y = r0; y < r1; ++y) {
+        const int16_t* a = s.accum.data() + (size_t(y + b.y0) * s.accumWidth + b.x0) * 4;
+        uint8_t* const o = dst + size_t(blit ? h - 1 - y : y) * n;
+        const size_t done = vector ? returnAccumBytes(scale, a, o, n) : 0;
+        for (size_t i = done; i < n; ++i) o[i] = table[size_t(a[i] + 32768)];
+      }
+    });
+    if (blit) return blitReturnRows(s, b.x0, b.y0, w, h);
+    s.writeBack.lastWasBlit = false;
     data = bytes.data();
-    if (returnBytes(s, b.x0, b.y0, w, h, bytes.data())) return;  // write_back.cpp
   } else if (type == GL_UNSIGNED_SHORT) {
     shorts.resize(size_t(w) * h * 4);
     rows([&](size_t i, int16_t a) {
@@ -174,13 +197,10 @@ void returnToColorBuffer(State& s, const Box& b, float value) {
     gl.Disable(cap);
   gl.PixelZoom(1.0f, 1.0f);
   gl.WindowPos2i(b.x0, b.y0);
-  gl.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  gl.PixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
-  gl.PixelStorei(GL_UNPACK_SKIP_ROWS, 0);
-  gl.DrawPixels(w, h, GL_RGBA, type, data);
-  gl.PopClientAttrib();
+  {
+    ClientTransfers tight(s);
+    gl.DrawPixels(w, h, GL_RGBA, type, data);
+  }
   gl.PopAttrib();
 }
 

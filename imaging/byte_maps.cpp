@@ -16,6 +16,8 @@
 //   * tableBytesVbmi: any per-component byte table, by byte permutes over its 256 entries.
 //   * accumulateBytesVbmi: GL_ACCUM / GL_LOAD (accumulation.cpp), the 256 value * C steps
 //     looked up the same way and added with saturating 16-bit adds.
+//   * returnBytesAvx2: GL_RETURN on 8-bit colour (accumulation.cpp), value * A converted in
+//     float, 16 components a vector, used only where it reproduced the exact table.
 // AVX2 (the maps) and AVX-512 VBMI (the tables) when the processor has them, checked at run
 // time (the build targets baseline x86-64); else the caller's scalar loop.
 #include <cstring>
@@ -176,6 +178,33 @@ __attribute__((target("avx512f,avx512bw,avx512vbmi"))) size_t accumulateBytesVbm
 }
 #endif
 
+#if defined(SL_HAVE_X86_VECTORS)
+// One vector of GL_RETURN's conversion: trunc(clamp(float(k) * scale, 0, 255) + 0.5), k the
+// 16-bit accumulator values as 32-bit lanes (separate multiply and add: "avx2", not "fma").
+__attribute__((target("avx2"))) inline __m256i returnLanes(__m256i k, __m256 scale) {
+  const __m256 t = _mm256_mul_ps(_mm256_cvtepi32_ps(k), scale);
+  const __m256 c = _mm256_min_ps(_mm256_max_ps(t, _mm256_setzero_ps()), _mm256_set1_ps(255.0f));
+  return _mm256_cvttps_epi32(_mm256_add_ps(c, _mm256_set1_ps(0.5f)));
+}
+
+__attribute__((target("avx2"))) size_t returnBytesAvx2(float scale, const int16_t* accum,
+                                                       uint8_t* out, size_t n) {
+  const __m256 s = _mm256_set1_ps(scale);
+  size_t i = 0;
+  for (; i + 16 <= n; i += 16) {
+    const __m256i k = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(accum + i));
+    const __m256i a = returnLanes(_mm256_cvtepi16_epi32(_mm256_castsi256_si128(k)), s);
+    const __m256i b = returnLanes(_mm256_cvtepi16_epi32(_mm256_extracti128_si256(k, 1)), s);
+    // packs works per 128-bit lane: the permute puts a's and b's halves back in order.
+    const __m256i w = _mm256_permute4x64_epi64(_mm256_packs_epi32(a, b), 0xD8);
+    const __m128i bytes =
+        _mm_packus_epi16(_mm256_castsi256_si128(w), _mm256_extracti128_si256(w, 1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + i), bytes);
+  }
+  return i;
+}
+#endif
+
 bool haveAvx2() {
 #if defined(SL_HAVE_X86_VECTORS)
   return __builtin_cpu_supports("avx2");
@@ -285,6 +314,14 @@ size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* colo
   if (vectorTablesAvailable()) return accumulateBytesVbmi(scaled, keep, color, accum, n);
 #endif
   (void)scaled, (void)keep, (void)color, (void)accum, (void)n;
+  return 0;
+}
+
+size_t returnAccumBytes(float scale, const int16_t* accum, uint8_t* out, size_t n) {
+#if defined(SL_HAVE_X86_VECTORS)
+  if (haveAvx2()) return returnBytesAvx2(scale, accum, out, n);
+#endif
+  (void)scale, (void)accum, (void)out, (void)n;
   return 0;
 }
 

@@ -109,6 +109,18 @@ std::vector<Tap> kernelTaps(const ConvolutionFilter& f, bool separable, int& wf,
   return taps;
 }
 
+std::vector<float> binomialBlur3x3Rgba() {
+  constexpr int kTaps = 3, kComponents = 4;
+  std::vector<float> k(size_t(kTaps * kTaps * kComponents));
+  const float unit = float(1 << kBinomialShift);
+  for (int m = 0; m < kTaps; ++m)
+    for (int n = 0; n < kTaps; ++n)
+      for (int c = 0; c < kComponents; ++c)
+        k[size_t((m * kTaps + n) * kComponents + c)] =
+            float(kBinomialRow[m] * kBinomialRow[n]) / unit;
+  return k;
+}
+
 // ---------------------------------------------------------------- the stage (3.6.5)
 // C[i', j'] = sum_n sum_m Cs'[i' + n, j' + m] * Cf[n, m]; REDUCE gives (Ws-Wf+1) x (Hs-Hf+1),
 // CONSTANT and REPLICATE keep Ws x Hs with Cr[i, j] = C[i - Cw, j - Ch], Cw = floor(Wf/2).

@@ -173,6 +173,10 @@ struct State {
   bool returnTableValid = false;
   float returnTableValue = 0.0f;
   std::vector<uint8_t> returnTable;
+  // The vector form of that table (returnAccumBytes with this scale), where it gives every
+  // entry of the table exactly (checked on all 65535 when the table is built).
+  bool returnVectorExact = false;
+  float returnScale = 0.0f;
   WriteBack writeBack;
 };
 
@@ -236,6 +240,10 @@ size_t applyByteTable(const uint8_t lut[256 * 4], uint8_t* p, size_t n);
 // permutes (AVX-512 VBMI) where the processor has them; returns the components done.
 size_t accumulateBytes(const int16_t scaled[256], bool keep, const uint8_t* color, int16_t* accum,
                        size_t n);
+// GL_RETURN on 8-bit colour (accumulation.cpp): out[i] = trunc(clamp(float(accum[i]) * scale,
+// 0, 255) + 0.5) in float for the leading 16-component blocks of n (AVX2); returns the
+// components done (0 without AVX2). The caller uses it only where it equals the exact table.
+size_t returnAccumBytes(float scale, const int16_t* accum, uint8_t* out, size_t n);
 // Apply a map to the leading whole vectors of p[0 .. n) bytes in place; returns the bytes done
 // (the caller's scalar loop does the rest).
 size_t applyStepMap(const StepMap& map, uint8_t* p, size_t n);
@@ -256,6 +264,14 @@ bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int 
                          std::vector<uint8_t>& out, int& ow, int& oh);
 // A 2D or separable convolution with a non-empty filter is enabled.
 bool convolveBytesApplies(const TransferState& t);
+
+// The 3x3 binomial blur: the outer product of kBinomialRow with itself, over 2^kBinomialShift
+// (issue 20's blur stage; convolution_bytes.cpp sums it with adds only).
+constexpr uint16_t kBinomialRow[3] = {1, 2, 1};
+constexpr int kBinomialShift = 4;  // the weights are multiples of 1/16
+// Its dense weights as glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA,
+// GL_FLOAT, ...) takes them: row-major, four equal floats a tap (convolution.cpp).
+std::vector<float> binomialBlur3x3Rgba();
 
 // A tap of a convolution kernel: offset (n, m) into the (bordered) source, four weights.
 struct Tap {
@@ -400,6 +416,25 @@ void emCopyTexSubImage1D(GLenum, GLint, GLint, GLint, GLint, GLsizei);
 // Reads a framebuffer rectangle of the read buffer as RGBA floats, exactly ("stopping after
 // the final expansion to RGBA": no pixel transfer), through the driver.
 Image4 readFramebuffer(State& s, int x, int y, int w, int h);
+// The emulation's own transfers between the driver and its client memory (its reads of the
+// framebuffer, its glDrawPixels, texture uploads and the write-back): tight pixel storage
+// (3.6.4 "Unpacking", 4.3.2 "Placement in Client Memory": no row length, skips or swapping,
+// alignment 1) and no buffer bound to GL_PIXEL_PACK_BUFFER / GL_PIXEL_UNPACK_BUFFER — with one
+// bound, the pointer argument is an offset into it (ARB_pixel_buffer_object, "Pixel Buffer
+// Object Operations"), not the emulation's memory. The caller's storage and bindings are
+// restored when it goes.
+class ClientTransfers {
+ public:
+  explicit ClientTransfers(const State& s);
+  ~ClientTransfers();
+  ClientTransfers(const ClientTransfers&) = delete;
+  ClientTransfers& operator=(const ClientTransfers&) = delete;
+
+ private:
+  const GlDispatch& gl_;
+  bool pixelBuffers_ = false;  // the context has pixel buffer objects (the extension)
+  GLint pack_ = 0, unpack_ = 0;
+};
 // The client type that carries the colour buffer's precision without loss: unsigned bytes for
 // 8-bit, unsigned shorts for 16-bit, floats otherwise (pixel_paths.cpp).
 GLenum framebufferType(const State& s);
@@ -411,10 +446,13 @@ void drawBytes(State& s, int w, int h, const uint8_t* bytes);
 // True when the state makes a copy of the bytes into the window at (x, y) = the raster
 // position the same as glDrawPixels (the conditions, with their sections, are in the file).
 bool blitEqualsDrawPixels(State& s, int& x, int& y);
-// Accum(RETURN)'s write of w x h groups at window (x, y) where only the colour mask needs a
-// condition (4.2.4); false (nothing written) when the caller must draw them itself.
+// Accum(RETURN)'s write of w x h groups at window (x, y), inside the window: true when only
+// the colour mask needs a condition (4.2.4) and it holds, so a blit may write them. The caller
+// then writes the groups straight into returnRows(s, w, h), image row r at row h-1-r (the
+// flipped upload, saving a copy), and calls blitReturnRows(s, x, y, w, h).
 bool blitEqualsReturn(State& s);
-bool returnBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes);
+uint8_t* returnRows(State& s, int w, int h);
+void blitReturnRows(State& s, int x, int y, int w, int h);
 // accumulation.cpp
 void emAccum(GLenum, GLfloat);
 void emClearAccum(GLfloat, GLfloat, GLfloat, GLfloat);

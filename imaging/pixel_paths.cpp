@@ -30,27 +30,35 @@ GLenum framebufferType(const State& s) {
   return GL_FLOAT;
 }
 
-namespace {
-
-// Saves the client pixel-store state and sets tight packing for the emulation's own
-// transfers to and from the driver; restores the caller's state when it goes.
-class TightPixelStore {
- public:
-  explicit TightPixelStore(const GlDispatch& gl) : gl_(gl) {
-    gl_.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-    for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
-                     GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_ROWS})
-      gl_.PixelStorei(p, 0);
-    gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+ClientTransfers::ClientTransfers(const State& s) : gl_(s.driver) {
+  const Capabilities& caps = s.context->caps();
+  pixelBuffers_ = caps.hasExtension("GL_ARB_pixel_buffer_object") ||
+                  caps.hasExtension("GL_EXT_pixel_buffer_object");
+  if (pixelBuffers_) {
+    gl_.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_);
+    gl_.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_);
+    if (pack_ != 0) gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (unpack_ != 0) gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
   }
-  ~TightPixelStore() { gl_.PopClientAttrib(); }
-  TightPixelStore(const TightPixelStore&) = delete;
-  TightPixelStore& operator=(const TightPixelStore&) = delete;
+  gl_.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
+  for (GLenum p :
+       {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES,
+        GL_UNPACK_IMAGE_HEIGHT, GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_ROWS})
+    gl_.PixelStorei(p, 0);
+  for (GLenum p :
+       {GL_UNPACK_SWAP_BYTES, GL_UNPACK_LSB_FIRST, GL_PACK_SWAP_BYTES, GL_PACK_LSB_FIRST})
+    gl_.PixelStorei(p, GL_FALSE);
+  gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+}
 
- private:
-  const GlDispatch& gl_;
-};
+ClientTransfers::~ClientTransfers() {
+  gl_.PopClientAttrib();
+  if (pack_ != 0) gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(pack_));
+  if (unpack_ != 0) gl_.BindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpack_));
+}
+
+namespace {
 
 bool eightBitTexture(GLenum internalformat) {
   switch (internalformat) {
@@ -150,7 +158,7 @@ void drawImage(State& s, const Image4& image) {
   const GLenum type = framebufferType(s);
   const std::vector<unsigned char> data = finalConversion(image, type);
   if (type == GL_UNSIGNED_BYTE) return drawBytes(s, image.width, image.height, data.data());
-  TightPixelStore tight(s.driver);
+  ClientTransfers tight(s);
   s.driver.DrawPixels(image.width, image.height, GL_RGBA, type, data.data());
 }
 
@@ -170,7 +178,7 @@ void uploadTexture(State& s, Dimensionality dims, bool sub, GLenum target, GLint
   }
   std::vector<unsigned char> data;
   if (image != nullptr) data = finalConversion(*image, type);
-  TightPixelStore tight(s.driver);
+  ClientTransfers tight(s);
   const void* p = image != nullptr ? data.data() : nullptr;
   const bool oneD = dims == Dimensionality::k1D;
   if (sub) {
@@ -191,7 +199,7 @@ bool eightBitFramebuffer(const State& s) {
 std::vector<uint8_t>& readBytes(State& s, int x, int y, int w, int h) {
   std::vector<uint8_t>& bytes = s.scratchIn;
   bytes.resize(size_t(w) * h * 4);  // every byte is overwritten by the read
-  TightPixelStore tight(s.driver);
+  ClientTransfers tight(s);
   s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
   return bytes;
 }
@@ -213,7 +221,7 @@ Image4 readFramebuffer(State& s, int x, int y, int w, int h) {
   Image4 image(std::max(w, 0), std::max(h, 0));
   if (w <= 0 || h <= 0) return image;
   const GLenum type = framebufferType(s);
-  TightPixelStore tight(s.driver);
+  ClientTransfers tight(s);
   if (type == GL_FLOAT) {
     s.driver.ReadPixels(x, y, w, h, GL_RGBA, GL_FLOAT, image.px.data());
     return image;
@@ -329,7 +337,7 @@ void emCopyTexImage2D(GLenum target, GLint level, GLenum internalformat, GLint x
   if (eightBitFramebuffer(*s) && bytePathApplies(s->transfer) && eightBitTexture(internalformat)) {
     std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
     transformBytes(s->transfer, bytes, w, h);
-    TightPixelStore tight(s->driver);
+    ClientTransfers tight(*s);
     s->driver.TexImage2D(target, level, GLint(internalformat), w, h, border, GL_RGBA,
                          GL_UNSIGNED_BYTE, bytes.data());
     return;
@@ -354,7 +362,7 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
     if (eightBitTexture(GLenum(format))) {
       std::vector<uint8_t>& bytes = readBytes(*s, x, y, w, h);
       transformBytes(s->transfer, bytes, w, h);
-      TightPixelStore tight(s->driver);
+      ClientTransfers tight(*s);
       s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
                               bytes.data());
       return;
@@ -368,7 +376,7 @@ void emCopyTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffse
       std::vector<uint8_t>& out = s->scratchOut;
       int ow = 0, oh = 0;
       if (!convolveBytes(s->transfer, bytes, w, h, out, ow, oh) || ow == 0 || oh == 0) return;
-      TightPixelStore tight(s->driver);
+      ClientTransfers tight(*s);
       s->driver.TexSubImage2D(target, level, xoffset, yoffset, ow, oh, GL_RGBA, GL_UNSIGNED_BYTE,
                               out.data());
       return;

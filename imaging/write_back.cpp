@@ -59,8 +59,6 @@ bool blitTargetIsWindow(const State& s) {
   // 4.2.1: DrawPixels writes the draw buffers of the bound draw framebuffer; the blit below
   // names framebuffer 0, so the caller's must be 0.
   if (integer(s, GL_DRAW_FRAMEBUFFER_BINDING) != 0) return false;
-  // The upload reads client memory only when no pixel unpack buffer is bound.
-  if (integer(s, GL_PIXEL_UNPACK_BUFFER_BINDING) != 0) return false;
   // sRGB conversion is the one colour operation a blit does that DrawPixels need not.
   if (enabled(s, GL_FRAMEBUFFER_SRGB)) return false;
   // 4.2.2 "Fine Control of Buffer Updates": a blit ignores the colour mask.
@@ -167,6 +165,20 @@ void ensureTexture(State& s) {
   wb.height = h;
 }
 
+// Uploads the first h rows of the flipped buffer (w groups each, image row r in buffer row
+// h-1-r) into the texture and mirrors them into the window at (x, y) with one blit; the
+// rectangle must lie inside the window.
+void uploadAndBlit(State& s, int x, int y, int w, int h) {
+  ensureTexture(s);
+  {
+    ClientTransfers tight(s);  // also unbinds a pixel unpack buffer: the upload reads ours
+    s.driver.TextureSubImage2D(s.writeBack.texture, kTextureLevel, 0, 0, w, h, GL_RGBA,
+                               GL_UNSIGNED_BYTE, s.writeBack.flipped.data());
+  }
+  s.driver.BlitNamedFramebuffer(s.writeBack.framebuffer, 0, 0, h, w, 0, x, y, x + w, y + h,
+                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
 // Writes rows [0, h) of the tight RGBA8 image `bytes` (w groups a row, bottom row first) with
 // its lower left group at window (x, y), clipped to the window (4.1.1: the window owns no
 // pixel outside it), by a flipped upload and a mirroring blit.
@@ -183,29 +195,12 @@ void blitBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes) {
   for (int r = 0; r < ch; ++r)
     std::memcpy(flipped.data() + size_t(ch - 1 - r) * rowBytes, first + size_t(r) * w * 4,
                 rowBytes);
-  ensureTexture(s);
-  s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS,
-                   GL_UNPACK_SKIP_IMAGES, GL_UNPACK_IMAGE_HEIGHT})
-    s.driver.PixelStorei(p, 0);
-  s.driver.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  s.driver.PixelStorei(GL_UNPACK_SWAP_BYTES, GL_FALSE);
-  s.driver.PixelStorei(GL_UNPACK_LSB_FIRST, GL_FALSE);
-  s.driver.TextureSubImage2D(s.writeBack.texture, kTextureLevel, 0, 0, cw, ch, GL_RGBA,
-                             GL_UNSIGNED_BYTE, flipped.data());
-  s.driver.PopClientAttrib();
-  s.driver.BlitNamedFramebuffer(s.writeBack.framebuffer, 0, 0, ch, cw, 0, x0, y0, x1, y1,
-                                GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  uploadAndBlit(s, x0, y0, cw, ch);
 }
 
 void drawPixelsBytes(State& s, int w, int h, const uint8_t* bytes) {
-  s.driver.PushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
-  for (GLenum p : {GL_UNPACK_ROW_LENGTH, GL_UNPACK_SKIP_PIXELS, GL_UNPACK_SKIP_ROWS})
-    s.driver.PixelStorei(p, 0);
-  s.driver.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  s.driver.PixelStorei(GL_UNPACK_SWAP_BYTES, GL_FALSE);
+  ClientTransfers tight(s);
   s.driver.DrawPixels(w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes);
-  s.driver.PopClientAttrib();
 }
 
 }  // namespace
@@ -234,10 +229,14 @@ void drawBytes(State& s, int w, int h, const uint8_t* bytes) {
   drawPixelsBytes(s, w, h, bytes);
 }
 
-bool returnBytes(State& s, int x, int y, int w, int h, const uint8_t* bytes) {
-  if (w <= 0 || h <= 0 || !blitEqualsReturn(s)) return s.writeBack.lastWasBlit = false;
-  blitBytes(s, x, y, w, h, bytes);
-  return s.writeBack.lastWasBlit = true;
+uint8_t* returnRows(State& s, int w, int h) {
+  s.writeBack.flipped.resize(size_t(w) * size_t(h) * 4);  // the caller writes every byte
+  return s.writeBack.flipped.data();
+}
+
+void blitReturnRows(State& s, int x, int y, int w, int h) {
+  uploadAndBlit(s, x, y, w, h);
+  s.writeBack.lastWasBlit = true;
 }
 
 }  // namespace sl::imaging::detail

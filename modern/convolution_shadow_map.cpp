@@ -60,6 +60,7 @@ constexpr float kFootprintRoundingTexels = 1.0f;
 // wider than it allows (csm_shadow.frag, depthBoundsAround: about 3 texels per pixel) are not
 // decided by the bounds.
 constexpr int kDepthBoundsLevel = 4;
+constexpr int kSmallestClassifiedMap = 2;  // texels: the pyramid's first level is level 1
 // glPolygonOffset factor and units (depth-slope and resolvable-depth steps) that the
 // reconstruction pass 5c moves its fragments forward by, so that it meets the classification's
 // depth although its program interpolates depth in different generated code.
@@ -296,8 +297,27 @@ void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& fra
 // read by the classification (5b) to bound the depths under each pixel's filter footprint.
 // DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where the
 // bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
-const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace& work,
-                                  Frame& frame) {
+// The footprint margin in depth texels (csm_shadow.frag, uFootprintMargin): the bilinear reach,
+// the blur's radius and one texel for rounding.
+float footprintMargin(const CsmSettings& s) {
+  return 1.0f + float(s.blurTaps / 2) + kFootprintRoundingTexels;
+}
+
+// The finest level of the depth-bounds pyramid that the classification can use away from the
+// map's border: a box of radius r texels (r >= the margin) spans hi - lo >= floor(2 r) + 1
+// texels (csm_shadow.frag, depthBoundsAround), and level L decides it only where that is at most
+// 3 * 2^L - 1 (its block and the two neighbours). Finer levels are never built: at the border,
+// where clamping makes a box narrower, this level's texel still bounds it (a box that spans at
+// most 3 blocks of level L spans at most 3 of level L + 1), only less tightly.
+int firstDepthBoundsLevel(const CsmSettings& s, int levels) {
+  const int minimumSpan = int(std::floor(2.0f * footprintMargin(s))) + 1;
+  int level = 1;  // level 0 never: the margin is at least 2 texels (span >= 5 > 3 * 2^0 - 1)
+  while (level < levels - 1 && minimumSpan > 3 * (1 << level) - 1) ++level;
+  return level;
+}
+
+const Texture& computeDepthBounds(const RenderTarget& depth, const CsmSettings& s,
+                                  PrefilterWorkspace& work, Frame& frame) {
   PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)",
                   "not in Annen et al. 2007: bounds of z under each footprint, so that the "
                   "classification can skip Eq. 13 where they decide the series (issue 20)");
@@ -341,11 +361,15 @@ const Texture& computeDepthBounds(const RenderTarget& depth, PrefilterWorkspace&
     triangle.draw();
   };
   const GLuint pyramid = work.depthBounds.id(), dilated = work.depthBoundsDilated.id();
-  draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 0);
-  for (int level = 1; level < work.depthBoundsLevels; ++level)
+  // Level 1 straight from the R32F depth map (level 0 would be (z, z), a copy); levels finer
+  // than the first the classification can use are neither dilated nor read.
+  const int first = firstDepthBoundsLevel(s, work.depthBoundsLevels);
+  draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 1);
+  for (int level = 2; level < work.depthBoundsLevels; ++level)
     draw("REDUCE", pyramid, level - 1, pyramid, level);
-  for (int level = 0; level < work.depthBoundsLevels; ++level)
+  for (int level = first; level < work.depthBoundsLevels; ++level)
     draw("DILATE", pyramid, level, dilated, level);
+  frame.counters["depth bounds first level"] = first;
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
@@ -397,17 +421,18 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   glStencilMask(0xFF);
   glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  const Program& program =
-      cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
-                    {{"ORDER", std::to_string(s.order)},
-                     {"ENCODE_UNSIGNED", "0"},
-                     {"CLASSIFY", "1"},
-                     {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)}});
+  const Program& program = cachedProgram(
+      "scene.vert.glsl", "csm_shadow.frag.glsl",
+      {{"ORDER", std::to_string(s.order)},
+       {"ENCODE_UNSIGNED", "0"},
+       {"CLASSIFY", "1"},
+       {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
+       {"FIRST_DEPTH_BOUNDS_LEVEL", std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
   setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
   program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
   program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));
   program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
-  program.set("uFootprintMargin", 1.0f + float(s.blurTaps / 2) + kFootprintRoundingTexels);
+  program.set("uFootprintMargin", footprintMargin(s));
   program.set("uDepthMapTexels", params.shadowMapTexels);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, depthBounds.id());
@@ -520,7 +545,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   blurBasisTextures(basis, s, work, frame);
   if (params.capturePasses) capturePasses(depth, basis, s, frame);
   buildBasisMipmaps(basis, s, frame);
-  const Texture* bounds = s.skipError > 0.0 ? &computeDepthBounds(depth, work, frame) : nullptr;
+  // The pyramid starts at level 1 (computeDepthBounds): a 1-texel map is not classified.
+  const bool classify = s.skipError > 0.0 && params.shadowMapTexels >= kSmallestClassifiedMap;
+  const Texture* bounds = classify ? &computeDepthBounds(depth, s, work, frame) : nullptr;
   // The skip intervals depend on the settings only: computed once for them, kept.
   if (std::vector<double> key = {double(s.order), s.alpha, s.offset, s.scale, s.skipError};
       key != work.skipKey) {

@@ -4,13 +4,15 @@
 //
 //   csm_bench [--quick] [--size WxH] [--repeat N] [--scene S] [--backend osmesa|egl]
 //             [--part techniques|table1|ratio|all] [--csv FILE] [--param key=value ...]
+//             [--shadow-map N]
 //
 // --part ratio: modern.csm against modern.hw on the bench scenes (brabec, fence; or --scene)
-// at the bench sizes (256x192, 400x300; or --size), shadow map 512, each technique's defaults
-// plus --param for CSM; the two contexts render alternately (hw, csm, hw, csm, ...) so that
-// both see the same load on a shared machine, and the ratio of medians is printed with CSM's
-// per-pass medians. --param applies to this part only, and --csv to the others only (a ratio
-// of interleaved runs is not a row of the CSV): either given with the wrong part is exit 2.
+// at the bench sizes (256x192, 400x300; or --size), shadow map 512 (or --shadow-map, this part
+// only: exit 2 with another), each technique's defaults plus --param for CSM; the two contexts
+// render alternately (hw, csm, hw, csm, ...) so that both see the same load on a shared machine,
+// and the ratio of medians is printed with CSM's per-pass medians. --param applies to this part
+// only, and --csv to the others only (a ratio of interleaved runs is not a row of the CSV): either
+// given with the wrong part is exit 2.
 // --csv is checked before anything runs, written to a temporary and renamed at the end.
 //
 // --part table1: every cell of Table 1 as the ratio CSM / PCF (--param key=value: added to
@@ -70,6 +72,7 @@ struct Options {
   std::map<std::string, std::string> csmParams;  // --param key=value, for --part ratio
   bool sizeGiven = false;                        // --size: --part ratio measures this size only
   bool sceneGiven = false;                       // --scene: --part ratio measures this scene only
+  int ratioMap = 512;  // --shadow-map: the map of --part ratio (RenderParams' default)
 };
 
 using Timing = SteadyTiming;
@@ -88,6 +91,7 @@ constexpr int kMaxTimedFrames = 1000;  // --repeat
 constexpr int kMaxWarmupFrames = 100;  // --warmup
 constexpr int kQuickWidth = 512;       // --quick window
 constexpr int kQuickHeight = 384;
+constexpr int kMaxRatioMap = 4096;  // --shadow-map, texels (Table 1's largest is 2048)
 
 // The command line (see the head of this file); std::nullopt after --help.
 std::optional<Options> parseOptions(int argc, char** argv) {
@@ -106,6 +110,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   CLI::Option* sceneOption =
       app.add_option("--scene", o.scene, "built-in scene [brabec]")->type_name("S");
   app.add_option("--backend", backend, "osmesa or egl [osmesa]")->type_name("NAME");
+  std::string map;
+  app.add_option("--shadow-map", map, "shadow map side of --part ratio [512]")->type_name("N");
   app.add_option("--part", o.part, "techniques, table1, ratio or all [all]")->type_name("PART");
   CLI::Option* csvOption =
       app.add_option("--csv", o.csv, "also write every row as CSV (not with --part ratio)")
@@ -134,6 +140,9 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       throw InputError("--backend must be osmesa or egl, got '" + backend + "'");
     o.backend = parseBackend(backend);
   }
+  if (!map.empty()) o.ratioMap = cli::parsePositiveInt("--shadow-map", map, kMaxRatioMap);
+  if (!map.empty() && o.part != "ratio")
+    throw InputError("--shadow-map applies to --part ratio only, got --part " + o.part);
   if (o.part != "techniques" && o.part != "table1" && o.part != "ratio" && o.part != "all")
     throw InputError("--part must be techniques, table1, ratio or all, got '" + o.part + "'");
   for (const std::string& kv : params) {
@@ -154,7 +163,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
 
 // modern.csm / modern.hw in one run, frames interleaved (see the header).
 void runRatio(const Options& o) {
-  constexpr int kBenchMap = 512;  // RenderParams' default, what shadowlab bench uses
+  const int map = o.ratioMap;  // default 512: RenderParams' default, shadowlab bench's
   const std::vector<std::pair<int, int>> sizes =
       o.sizeGiven ? std::vector<std::pair<int, int>>{{o.width, o.height}}
                   : std::vector<std::pair<int, int>>{{256, 192}, {400, 300}};
@@ -163,8 +172,8 @@ void runRatio(const Options& o) {
                                               : std::vector<std::string>{"brabec", "fence"};
   const Technique& hw = findTechnique("modern.hw");
   const Technique& csm = findTechnique("modern.csm");
-  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved",
-              kBenchMap, o.frames.warmup, o.frames.timed);
+  std::printf("modern.csm / modern.hw, map %d, %d warm-up + %d timed frames each, interleaved", map,
+              o.frames.warmup, o.frames.timed);
   for (const auto& [k, v] : o.csmParams) std::printf(", csm %s=%s", k.c_str(), v.c_str());
   std::printf(
       "\n\n| scene | size | hw ms | csm ms | csm / hw | csm passes (ms) |\n"
@@ -175,8 +184,8 @@ void runRatio(const Options& o) {
       Options sized = o;
       sized.width = w;
       sized.height = h;
-      const RenderParams hwParams = paramsFor(sized, kBenchMap, {});
-      const RenderParams csmParams = paramsFor(sized, kBenchMap, o.csmParams);
+      const RenderParams hwParams = paramsFor(sized, map, {});
+      const RenderParams csmParams = paramsFor(sized, map, o.csmParams);
       checkParams(hw, hwParams, 0);
       checkParams(csm, csmParams, 0);
       auto hwContext = GlContext::create(contextFor(hw, hwParams));

@@ -1,9 +1,10 @@
 // csm_depth_bounds.frag — the depth bounds that let modern.csm's classification pass skip the
 // Eq. 13 reconstruction (convolution_shadow_map.cpp, computeDepthBounds): a min/max pyramid of
-// the linear light depth z(p) (§4.1). Level 0 is (z, z); each texel of level L holds the least
-// and the greatest z of the texels of level L - 1 that it covers (2x2, and the odd last row or
+// the linear light depth z(p) (§4.1). Level 0 would be (z, z) and is not drawn; each texel of
+// level L holds the least and the greatest z of the texels of level L - 1 that it covers (2x2, and the odd last row or
 // column of a map whose size is not a power of two, so that every base texel is inside one
-// texel of every level). FROM_DEPTH (1: level 0, read from the R32F depth map) is a define.
+// texel of every level). FROM_DEPTH (1: level 1, reduced straight from the R32F depth map, whose
+// z stands for level 0's (z, z)) is a define.
 // DILATE 1: the dilated copy of one level: each texel the bounds of its 3x3 neighbourhood in
 // that level (borders clamp), so that one texel of level L bounds every depth texel within
 // 2^L of any point of its own block (csm_shadow.frag, depthBoundsAround).
@@ -31,9 +32,6 @@ void main() {
       bounds = vec2(min(bounds.x, b.x), max(bounds.y, b.y));
     }
   oBounds = bounds;
-#elif FROM_DEPTH
-  float z = texelFetch(uSource, target, 0).r;
-  oBounds = vec2(z, z);
 #else
   ivec2 sourceSize = textureSize(uSource, 0);
   ivec2 targetSize = max(sourceSize / 2, ivec2(1));
@@ -44,7 +42,11 @@ void main() {
   vec2 bounds = vec2(1e30, -1e30);
   for (int y = lo.y; y <= hi.y; ++y)
     for (int x = lo.x; x <= hi.x; ++x) {
+#if FROM_DEPTH
+      vec2 b = texelFetch(uSource, ivec2(x, y), 0).rr;
+#else
       vec2 b = texelFetch(uSource, ivec2(x, y), 0).rg;
+#endif
       bounds = vec2(min(bounds.x, b.x), max(bounds.y, b.y));
     }
   oBounds = bounds;

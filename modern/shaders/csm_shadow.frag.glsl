@@ -34,6 +34,11 @@
 #ifndef DEPTH_BOUNDS_LEVELS
 #define DEPTH_BOUNDS_LEVELS 5
 #endif
+// The finest level built (convolution_shadow_map.cpp, firstDepthBoundsLevel): no box of at
+// least the margin's width fits a finer one away from the border.
+#ifndef FIRST_DEPTH_BOUNDS_LEVEL
+#define FIRST_DEPTH_BOUNDS_LEVEL 1
+#endif
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 uniform sampler2DArray uBasis;   // layers 0..S-1: sin(c_k z), S..2S-1: cos(c_k z)
@@ -100,7 +105,8 @@ float reconstructShadowTest(vec2 p, float d) {
 // The least and greatest z of every depth texel that the filtered lookups at p can reach:
 // the box of the pixel's footprint (rho texels per pixel, from the derivatives) times
 // uFootprintScale plus uFootprintMargin texels, bounded by one texel of the dilated pyramid
-// (csm_depth_bounds.frag, DILATE): the finest level L <= DEPTH_BOUNDS_LEVELS - 1 whose block
+// (csm_depth_bounds.frag, DILATE): the finest level L <= DEPTH_BOUNDS_LEVELS - 1, and not
+// finer than FIRST_DEPTH_BOUNDS_LEVEL (a coarser level bounds a box as well), whose block
 // around the box's centre, with its neighbours, covers the box. Every level is read by every
 // pixel, one texelFetch each at a level that is the same for all pixels: Mesa 22.3 llvmpipe's
 // texelFetch with a level that differs between the lanes of a quad returned wrong texels
@@ -114,7 +120,7 @@ vec2 depthBoundsAround(vec2 p, float rho) {
   ivec2 lo = clamp(ivec2(floor(u - radius)), ivec2(0), size - 1);
   ivec2 hi = clamp(ivec2(floor(u + radius)) + 1, ivec2(0), size - 1);
   vec2 bounds = vec2(-2.0, 2.0);
-  for (int level = DEPTH_BOUNDS_LEVELS - 1; level >= 0; --level) {
+  for (int level = DEPTH_BOUNDS_LEVELS - 1; level >= FIRST_DEPTH_BOUNDS_LEVEL; --level) {
     ivec2 a = lo >> level, b = hi >> level;
     ivec2 centre = min(a + (b - a) / 2, textureSize(uDepthBounds, level) - 1);
     vec2 levelBounds = texelFetch(uDepthBounds, centre, level).rg;

@@ -364,6 +364,8 @@ std::vector<BadToolInput> badToolInputs() {
       {"csm csv with the ratio part", CSM_BENCH_BINARY, "--part ratio --csv /tmp/ratio.csv"},
       {"csm param with the techniques part", CSM_BENCH_BINARY, "--part techniques --param order=4"},
       {"csm hexadecimal repeat", CSM_BENCH_BINARY, "--repeat 0x3"},
+      {"csm shadow map with the table1 part", CSM_BENCH_BINARY, "--part table1 --shadow-map 256"},
+      {"csm shadow map zero", CSM_BENCH_BINARY, "--part ratio --shadow-map 0"},
       {"twins empty scene list", TWINS_BINARY, "--scenes ''"},
       {"twins scene list of commas", TWINS_BINARY, "--scenes ,,"},
       {"twins unknown scene", TWINS_BINARY, "--scenes nowhere --no-bench"},
@@ -386,6 +388,16 @@ TEST(ToolCli, CsmRatioTakesSizeAndScene) {
   EXPECT_NE(r.out.find("| fence | 48x36 |"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("256x192"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("| brabec |"), std::string::npos) << r.out;
+}
+
+// ... and the --shadow-map it is given (issue 20 item 4: the per-pass costs at Table 1's sizes).
+TEST(ToolCli, CsmRatioTakesShadowMap) {
+  const CommandResult r =
+      runBinary(CSM_BENCH_BINARY,
+                "--part ratio --size 48x36 --scene fence --shadow-map 64 --repeat 1 --warmup 0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("map 64,"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("map 512"), std::string::npos) << r.out;
 }
 
 // Numbers on the command line are strict decimals (core/decimal.h, one parser for all).

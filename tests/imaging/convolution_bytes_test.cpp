@@ -155,10 +155,7 @@ TEST(ConvolutionBytes, PackingKernelThenColorMatrix) {
 }
 
 TEST(ConvolutionBytes, Blur3x3EveryBorderMode) {
-  const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
-  std::vector<float> k(9 * 4);
-  for (int t = 0; t < 9; ++t)
-    for (int c = 0; c < 4; ++c) k[t * 4 + c] = w[t] / 16.0f;
+  const std::vector<float> k = detail::binomialBlur3x3Rgba();
   for (GLenum border : kBorders)
     expectSameBytes(with2D(filter2D(3, 3, k, border, kBorderColor)), borderName(border));
 }
@@ -200,6 +197,29 @@ TEST(ConvolutionBytes, DyadicBinomialKernelsWithRoundingTies) {
         ties += sum % 16 == 8;
       }
   EXPECT_GT(ties, 1000);
+}
+
+// The binomial 3x3 blur's own form (column sums straight from the source rows, adds only):
+// widths around its 32-component vectors (7, 8, 9 groups; 129 and 300: vectors and a tail),
+// one and two groups (the edge replication is all there is), heights 1-5, as a 2D filter and
+// as the same kernel given separably (glSeparableFilter2D), with the ties these images have.
+TEST(ConvolutionBytes, Binomial3x3AtVectorEdgesAndOddSizes) {
+  const std::vector<Size> sizes = {{1, 3}, {2, 2},   {7, 3},   {8, 4},
+                                   {9, 5}, {129, 7}, {300, 3}, {33, 1}};
+  for (GLenum border : {GLenum(GL_REDUCE), GLenum(GL_REPLICATE_BORDER)}) {
+    expectSameBytes(with2D(filter2D(3, 3, outerProduct({1, 2, 1}, {1, 2, 1}, 16), border)),
+                    borderName(border), sizes);
+    TransferState t;
+    ConvolutionFilter& f = t.separable2D;
+    f.width = 3;
+    f.height = 3;
+    const float w[3] = {0.25f, 0.5f, 0.25f};  // (1, 2, 1) / 4: the product is (1 2 1)^2 / 16
+    for (int n = 0; n < 3; ++n) f.row.push_back({w[n], w[n], w[n], w[n]});
+    for (int m = 0; m < 3; ++m) f.column.push_back({w[m], w[m], w[m], w[m]});
+    f.borderMode = border;
+    t.separable2DEnabled = true;
+    expectSameBytes(t, borderName(border), sizes);
+  }
 }
 
 TEST(ConvolutionBytes, DyadicWeightsDifferentPerComponentAndSumsBelowOne) {

@@ -35,11 +35,8 @@ void enableGammaTable() {
 }
 
 void enableBlur() {
-  float k[9 * 4];
-  const float w[9] = {1, 2, 1, 2, 4, 2, 1, 2, 1};
-  for (int t = 0; t < 9; ++t)
-    for (int c = 0; c < 4; ++c) k[t * 4 + c] = w[t] / 16.0f;
-  glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, k);
+  const std::vector<float> k = binomialBlur3x3Rgba();
+  glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, k.data());
   glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_REPLICATE_BORDER);
   glEnable(GL_CONVOLUTION_2D);
 }
