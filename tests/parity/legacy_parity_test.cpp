@@ -53,6 +53,12 @@ struct Case {
   std::map<std::string, std::string> extra;
 };
 
+// ctest and GoogleTest show a case as "legacy.pcf --filter 2", not as the struct's bytes.
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.technique << " --filter " << c.filter;
+  for (const auto& [key, value] : c.extra) *os << " --param " << key << "=" << value;
+}
+
 Image silhouetteBand(const Image& a, const Image& b) {
   Image band(a.width, a.height, 1);
   auto jump = [&](const Image& im, int x, int y, int x2, int y2) {
