@@ -956,10 +956,13 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
                << " using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'Pareto front', '' index "
                << techniques.size()
                << " every 2 using 1:2:3 with labels offset char 0,-1 font ',9' tc rgb '#666666' "
-                  "notitle, '' index "
-               << techniques.size()
-               << " every 2::1 using 1:2:3 with labels offset char 0,1 font ',9' tc rgb '#666666' "
                   "notitle";
+        // Every second front label sits above its point; a front of one point has none, and
+        // gnuplot warns about an empty selection.
+        if (front.size() > 1)
+          script << ", '' index " << techniques.size()
+                 << " every 2::1 using 1:2:3 with labels offset char 0,1 font ',9' tc rgb "
+                    "'#666666' notitle";
         for (size_t i = 0; i < techniques.size(); ++i)
           script << ", '' index " << i << " using 1:2 with points pt " << (i % 13) + 1
                  << " ps 1.6 lw 2 title '" << techniques[i] << "'";

@@ -55,12 +55,6 @@ int roundsGoing(const PanelResult& a, const PanelResult& b, int d, int* rounds) 
   return agreeing;
 }
 
-const PanelResult* findPanel(const FigureResult& fig, const std::string& label) {
-  for (const PanelResult& p : fig.panels)
-    if (p.spec.label == label) return &p;
-  return nullptr;
-}
-
 std::string sceneOf(const FigureResult& fig, const PanelResult& p) {
   return p.spec.scene.empty() ? fig.spec.scene : p.spec.scene;
 }

@@ -507,7 +507,7 @@ struct LabServer::Impl {
     if (!frame.intermediates.empty()) images = planPassDump(frame, r.technique->name);
     json parameters = r.parameters;
     parameters["params"] = effectiveParams(r.params);
-    const PassDumpHeader header{r.technique->name, r.technique->paper, scene.name, parameters};
+    const PassDumpHeader header{r.technique->name, r.technique->paper, scene.name, parameters, ""};
     json doc = passesJson(frame, header, images);
     json medians = json::array();
     std::vector<double> frameTimes;

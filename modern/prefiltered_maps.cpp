@@ -219,7 +219,12 @@ PrefilterWorkspace& prefilterWorkspace(GlContext& context, const std::string& ke
 
 std::vector<double> sceneViewKey(const Scene& scene, const RenderParams& params) {
   std::vector<double> k;
-  auto add = [&](const glm::vec3& v) { k.insert(k.end(), {v.x, v.y, v.z}); };
+  // push_back, not insert of an initializer list: GCC 12's -Wstringop-overflow misfires on it.
+  auto add = [&](const glm::vec3& v) {
+    k.push_back(v.x);
+    k.push_back(v.y);
+    k.push_back(v.z);
+  };
   const Camera& c = scene.camera;
   add(c.position);
   add(c.target);
