@@ -48,6 +48,8 @@ Mode install(GlContext& context, Mode wanted) {
   s.driver = d;
   s.context = &context;
   s.emulateAccum = context.caps().accumRedBits == 0;
+  s.pixelBuffers = context.caps().hasExtension("GL_ARB_pixel_buffer_object") ||
+                   context.caps().hasExtension("GL_EXT_pixel_buffer_object");
   detail::resetMinmax(s.transfer.minmax);
   using namespace detail;
   // The imaging subset's own entry points.

@@ -155,6 +155,7 @@ struct WriteBack {
 struct State {
   GlDispatch driver;  // the entry points as the driver resolved them, before install()
   GlContext* context = nullptr;
+  bool pixelBuffers = false;  // the context has pixel buffer objects (ClientTransfers)
   TransferState transfer;
   bool colorMatrixMode = false;             // glMatrixMode(GL_COLOR) is in effect
   std::vector<AttribSnapshot> attribStack;  // parallel to the driver's attribute stack
@@ -432,7 +433,6 @@ class ClientTransfers {
 
  private:
   const GlDispatch& gl_;
-  bool pixelBuffers_ = false;  // the context has pixel buffer objects (the extension)
   GLint pack_ = 0, unpack_ = 0;
 };
 // The client type that carries the colour buffer's precision without loss: unsigned bytes for

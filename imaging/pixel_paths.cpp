@@ -31,10 +31,7 @@ GLenum framebufferType(const State& s) {
 }
 
 ClientTransfers::ClientTransfers(const State& s) : gl_(s.driver) {
-  const Capabilities& caps = s.context->caps();
-  pixelBuffers_ = caps.hasExtension("GL_ARB_pixel_buffer_object") ||
-                  caps.hasExtension("GL_EXT_pixel_buffer_object");
-  if (pixelBuffers_) {
+  if (s.pixelBuffers) {
     gl_.GetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_);
     gl_.GetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_);
     if (pack_ != 0) gl_.BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
