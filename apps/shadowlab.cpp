@@ -7,7 +7,9 @@
 #include <optional>
 
 #include "registry/cli.h"
+#include "reference/reference.h"  // the references' pixel= param
 #include "registry/registry.h"
+#include "registry/shadow_error.h"
 #include "registry/twins.h"
 #include "core/errors.h"
 #include "core/metrics.h"
@@ -33,7 +35,8 @@ usage:
                    [--precision 8|12|float] [--param key=value ...] [--backend osmesa|egl|reference]
                    [--camera-distance X] [--light-radius R] [--light-position X,Y,Z]
                    --out image.png [--mask visibility.png] [--dump-passes DIR]
-  shadowlab compare --scene S --a T1 --b T2 [render options] [--diff diff.png] [--threshold X]
+  shadowlab compare --scene S --a T1 --b T2 [render options] [--a-param K=V] [--b-param K=V]
+                    [--diff diff.png] [--threshold X]
   shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
   shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
@@ -210,6 +213,77 @@ int render(const cli::Args& args) {
   return 0;
 }
 
+// --a-param / --b-param KEY=VALUE: one side's --params (over --param, which goes to both). A key
+// the side's technique does not declare is an InputError naming its keys, as --param's is.
+void addSideParams(const cli::Args& args, const char* option, const Technique& t,
+                   RenderParams& p) {
+  const auto it = args.options.find(option);
+  if (it == args.options.end()) return;
+  for (const std::string& kv : it->second) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError(std::string("--") + option + " must look like key=value, got '" + kv + "'");
+    const std::string key = kv.substr(0, eq);
+    if (!findParam(t, key)) {
+      std::string keys;
+      for (const std::string& k : paramKeys(t)) keys += (keys.empty() ? "" : ", ") + k;
+      throw InputError(std::string("--") + option + " " + key + ": technique " + t.name +
+                       " has no parameter '" + key + "'" +
+                       (keys.empty() ? std::string(" (it takes none)") : " (it takes " + keys + ")"));
+    }
+    p.extra[key] = kv.substr(eq + 1);
+  }
+}
+
+// compare's score (registry/shadow_error.h, docs/error.md): when one side is a ray-traced
+// reference, the other side's error against it as that truth (pixel=centre: the point metric,
+// pixel=area: the area metric), exactly as bench scores it; otherwise the two masks' difference
+// over the same scored pixels (B as the baseline), the categories from reference.hard.
+struct CompareScore {
+  ShadowError error;
+  std::string truthSide;  // "a", "b" or "" (neither is a reference)
+};
+CompareScore scorePair(const Scene& scene, const Technique& a, const Frame& fa,
+                       const RenderParams& paramsA, const Technique& b, const Frame& fb,
+                       const RenderParams& paramsB, double threshold) {
+  CompareScore out;
+  const bool bIsTruth = isRayTracedReference(b), aIsTruth = !bIsTruth && isRayTracedReference(a);
+  if (aIsTruth || bIsTruth) {
+    const Technique& truthTechnique = bIsTruth ? b : a;
+    const RenderParams& truthParams = bIsTruth ? paramsB : paramsA;
+    const bool area = truthParams.text(reference::kPixelParam, reference::kPixelCentre,
+                                       {reference::kPixelCentre, reference::kPixelArea}) ==
+                      reference::kPixelArea;
+    const ErrorMetric metric = area ? ErrorMetric::kArea : ErrorMetric::kPoint;
+    const bool soft = truthTechnique.name == "reference.soft";
+    std::string name = truthName(soft, metric);
+    for (const auto& [k, v] : truthParams.extra)
+      if (k != reference::kPixelParam) name += " " + k + "=" + v;
+    const ShadowTruth truth =
+        truthFromReferenceFrame(bIsTruth ? fb : fa, metric, soft, std::move(name));
+    out.error = scoreShadow(bIsTruth ? fa.visibility : fb.visibility, truth, threshold);
+    out.truthSide = bIsTruth ? "b" : "a";
+    return out;
+  }
+  ShadowTruth baseline;
+  if (haveRayTracedReferences()) {
+    RenderParams p = paramsB;
+    baseline = renderShadowTruth(scene, p, ErrorMetric::kPoint, false);
+  } else {  // no ray tracer in this build: every pixel is scored
+    baseline.scored = Image(fb.visibility.width, fb.visibility.height, 1, 1.0f);
+    baseline.counts.total = baseline.counts.scored =
+        (long long)fb.visibility.width * fb.visibility.height;
+  }
+  baseline.visibility = fb.visibility;
+  baseline.band = boundaryBand(baseline.visibility, kBandRadiusPixels);
+  for (size_t i = 0; i < baseline.band.data.size(); ++i)
+    baseline.band.data[i] *= baseline.scored.data[i];
+  baseline.name = b.name;
+  out.error = scoreShadow(fa.visibility, baseline, threshold);
+  out.error.metric = "mask difference";
+  return out;
+}
+
 int compare(const cli::Args& args) {
   const std::string sceneName = args.value("scene").value_or(kDefaultScene);
   const SceneAdjustments adjustments = cli::sceneAdjustments(args);
@@ -224,14 +298,19 @@ int compare(const cli::Args& args) {
     threshold = cli::parseNumber("--threshold", *t);
     if (!(threshold >= 0.0 && threshold <= 1.0)) throw InputError("--threshold must lie in [0, 1]");
   }
+  RenderParams paramsA = withReadLog(params), paramsB = withReadLog(params);
+  addSideParams(args, "a-param", a, paramsA);
+  addSideParams(args, "b-param", b, paramsB);
+  // A reference side keeps its passes: its pixel categories decide the scored pixels.
+  paramsA.capturePasses = isRayTracedReference(a);
+  paramsB.capturePasses = isRayTracedReference(b);
   OutputSet outputs;
   addSceneInputs(outputs, sceneName);
   std::optional<std::string> diff;
   if (auto path = args.value("diff")) diff = outputs.addFile("--diff", *path);
-  const RenderParams paramsA = withReadLog(params), paramsB = withReadLog(params);
   const Frame fa = renderTechnique(a, scene, paramsA);
   const Frame fb = renderTechnique(b, scene, paramsB);
-  const MaskDifference d = compareMasks(fa.visibility, fb.visibility, threshold);
+  const CompareScore score = scorePair(scene, a, fa, paramsA, b, fb, paramsB, threshold);
   nlohmann::json made = optionsJson({&a, &b}, params);
   made["scene"] = scene.name;
   addAdjustments(made, adjustments);
@@ -240,7 +319,10 @@ int compare(const cli::Args& args) {
   made["a_params"] = paramsJson(paramsA);
   made["b_params"] = paramsJson(paramsB);
   made["threshold"] = threshold;
-  nlohmann::json out = toJson(d);
+  nlohmann::json out = toJson(score.error);
+  out["truth"] = score.truthSide.empty() ? nlohmann::json(nullptr) : nlohmann::json(score.error.truth);
+  out["truth_side"] = score.truthSide.empty() ? nlohmann::json(nullptr) : nlohmann::json(score.truthSide);
+  out["all_pixels"] = toJson(compareMasks(fa.visibility, fb.visibility, threshold));
   out.update(made);
   out["command"] = commandLine();
   out["commit"] = buildCommit();

@@ -58,9 +58,7 @@ constexpr int kFillBoundWarmup = 2, kFillBoundTimed = 11;
 constexpr int kFullWarmup = 2, kFullTimed = 7;
 // The shadow-boundary band: pixels within 2 pixels of a reference edge (where aliasing and
 // filtering errors live; everything else is either all right or a gross failure).
-constexpr int kBandRadiusPixels = 2;
-// A pixel of the reference's umbra "leaks" when the technique shows it more than 20% lit.
-constexpr float kLeakThreshold = 0.2f;
+// (kBandRadiusPixels and kLeakThreshold: registry/shadow_error.h, the one error definition.)
 // --quick: a variant whose first timed frame takes longer than this is timed over that frame
 // alone, not 3 (CSM on llvmpipe takes 0.3-2 s per frame; its median of 3 would take the whole
 // budget).
@@ -164,22 +162,17 @@ std::string key(const std::string& scene, const std::string& technique,
   return scene + "|" + technique + "|" + variant;
 }
 
-// Pass 1: the references in both forms, their boundary bands, and the area references with
-// the light moved.
+// Pass 1: the truths of both metrics (registry/shadow_error.h: the references in both forms,
+// their scored pixels and edge bands), and the area references with the light moved.
 struct References {
-  Frame hard, soft;                                        // pixel=area: the primary truth
-  Frame hardPoint, softPoint;                              // pixel=centre
-  Image hardBand, softBand, hardPointBand, softPointBand;  // the edge bands, within the region
-  Image region;  // where the light can reach (reference::kDirectLightRegionPass, pixel centres)
+  ShadowTruth hard, soft;            // pixel=area: the area metric's truths (primary)
+  ShadowTruth hardPoint, softPoint;  // pixel=centre: the point metric's truths
   bool withSoft = true;
   // Temporal stability: each reference's mean |change| under lightShiftWorld (< 0: not made).
   double hardTemporal = -1, softTemporal = -1, hardPointTemporal = -1;
+  // The scored pixels (the same for every truth of a frame: the pixel centres' categories).
+  const Image& scored() const { return hardPoint.scored; }
 };
-Image regionBand(const Image& mask, const Image& region) {
-  Image band = boundaryBand(mask, kBandRadiusPixels);
-  for (size_t i = 0; i < band.data.size(); ++i) band.data[i] *= region.data[i] > 0.5f ? 1.0f : 0.0f;
-  return band;
-}
 RenderParams areaParams(const RenderParams& p) {
   RenderParams a = p;
   a.extra[reference::kPixelParam] = reference::kPixelArea;
@@ -189,47 +182,37 @@ References renderReferences(const Scene& scene, const RenderParams& base, bool w
                             bool temporal) {
   References r;
   r.withSoft = withSoft;
-  RenderParams p = base;
-  p.extra.clear();
-  p.capturePasses = true;  // for the direct-light region
-  const Technique& hard = findTechnique("reference.hard");
-  const Technique& soft = findTechnique("reference.soft");
-  r.hardPoint = renderTechnique(hard, scene, p);
-  r.hard = renderTechnique(hard, scene, areaParams(p));
+  r.hardPoint = renderShadowTruth(scene, base, ErrorMetric::kPoint, false);
+  r.hard = renderShadowTruth(scene, base, ErrorMetric::kArea, false);
   if (withSoft) {
-    r.softPoint = renderTechnique(soft, scene, p);
-    r.soft = renderTechnique(soft, scene, areaParams(p));
-  }
-  for (const PassImage& i : r.hardPoint.intermediates)
-    if (i.name == reference::kDirectLightRegionPass) r.region = i.image;
-  if (r.region.empty()) r.region = Image(p.width, p.height, 1, 1.0f);
-  r.hardBand = regionBand(r.hard.visibility, r.region);
-  r.hardPointBand = regionBand(r.hardPoint.visibility, r.region);
-  if (withSoft) {
-    r.softBand = regionBand(r.soft.visibility, r.region);
-    r.softPointBand = regionBand(r.softPoint.visibility, r.region);
+    r.softPoint = renderShadowTruth(scene, base, ErrorMetric::kPoint, true);
+    r.soft = renderShadowTruth(scene, base, ErrorMetric::kArea, true);
   }
   if (temporal) {
     const Scene moved = shiftLight(scene, lightShiftWorld(scene));
+    RenderParams p = base;
+    p.extra.clear();
     p.capturePasses = false;
-    r.hardPointTemporal =
-        meanAbsChange(r.hardPoint.visibility, renderTechnique(hard, moved, p).visibility, r.region);
+    const Technique& hard = findTechnique("reference.hard");
+    const Technique& soft = findTechnique("reference.soft");
+    r.hardPointTemporal = meanAbsChange(r.hardPoint.visibility,
+                                        renderTechnique(hard, moved, p).visibility, r.scored());
     r.hardTemporal = meanAbsChange(
-        r.hard.visibility, renderTechnique(hard, moved, areaParams(p)).visibility, r.region);
+        r.hard.visibility, renderTechnique(hard, moved, areaParams(p)).visibility, r.scored());
     if (withSoft)
       r.softTemporal = meanAbsChange(
-          r.soft.visibility, renderTechnique(soft, moved, areaParams(p)).visibility, r.region);
+          r.soft.visibility, renderTechnique(soft, moved, areaParams(p)).visibility, r.scored());
   }
   return r;
 }
 
 void measureAgainstReferences(BenchRow& row, const Image& mask, const References& refs) {
-  row.hard = measureErrors(mask, refs.hard.visibility, refs.region, refs.hardBand);
-  row.hardPoint = measureErrors(mask, refs.hardPoint.visibility, refs.region, refs.hardPointBand);
+  row.hard = scoreShadow(mask, refs.hard);
+  row.hardPoint = scoreShadow(mask, refs.hardPoint);
   row.softMeasured = refs.withSoft;
   if (refs.withSoft) {
-    row.soft = measureErrors(mask, refs.soft.visibility, refs.region, refs.softBand);
-    row.softPoint = measureErrors(mask, refs.softPoint.visibility, refs.region, refs.softPointBand);
+    row.soft = scoreShadow(mask, refs.soft);
+    row.softPoint = scoreShadow(mask, refs.softPoint);
   }
   row.referenceTemporalChange = row.primaryIsSoft() ? refs.softTemporal : refs.hardTemporal;
 }
@@ -252,8 +235,8 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
       (t.name == "reference.hard" || refs.withSoft)) {
     // The references were rendered once for this scene (pass 1): their row is that frame.
     const bool soft = t.name == "reference.soft";
-    const Frame& f =
-        soft ? (areaForm ? refs.soft : refs.softPoint) : (areaForm ? refs.hard : refs.hardPoint);
+    const Frame& f = soft ? (areaForm ? refs.soft : refs.softPoint).frame
+                          : (areaForm ? refs.hard : refs.hardPoint).frame;
     row.frameMs = row.wallMs = f.totalMilliseconds();
     row.passes = f.passes;
     row.counters = f.counters;
@@ -287,7 +270,7 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
       // One more frame with the light moved by a fifth of a texel (kLightShiftTexels).
       const Frame moved = t.render(*context, shiftLight(scene, lightShiftWorld(scene)), v.params);
       if (!allFinite(moved.visibility)) throw GlError("visibility mask has NaN or Inf");
-      row.temporalChange = meanAbsChange(last.visibility, moved.visibility, refs.region);
+      row.temporalChange = meanAbsChange(last.visibility, moved.visibility, refs.scored());
     }
     maskOut = std::move(last.visibility);
   } catch (const InputError& e) {
@@ -298,15 +281,7 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
   return row;
 }
 
-nlohmann::json errorJson(const ErrorSet& e) {
-  return {{"rmse", e.all.rmse},
-          {"max_abs", e.all.maxAbs},
-          {"share_above_half", e.all.shareAboveHalf},
-          {"band_rmse", e.band.rmse},
-          {"band_max_abs", e.band.maxAbs},
-          {"band_share_above_half", e.band.shareAboveHalf},
-          {"leak_share", e.leakShare}};
-}
+nlohmann::json errorJson(const ErrorSet& e) { return toJson(e); }
 
 nlohmann::json rowJson(const BenchRow& r, bool withSoft) {
   nlohmann::json j = {
@@ -399,18 +374,14 @@ std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& 
 
 ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& region,
                        const Image& band) {
-  ErrorSet e;
-  e.all = compareMasksWithin(mask, reference, region);
-  e.band = compareMasksWithin(mask, reference, band);
-  long long umbra = 0, leaking = 0;
-  for (int y = 0; y < mask.height; ++y)
-    for (int x = 0; x < mask.width; ++x) {
-      if (region.at(x, y) <= 0.5f || reference.at(x, y) != 0.0f || band.at(x, y) > 0.5f) continue;
-      ++umbra;
-      if (mask.at(x, y) > kLeakThreshold) ++leaking;
-    }
-  e.leakShare = umbra > 0 ? double(leaking) / double(umbra) : 0.0;
-  return e;
+  ShadowTruth truth;
+  truth.visibility = reference;
+  truth.scored = region;
+  truth.band = band;
+  truth.counts.total = (long long)region.width * region.height;
+  for (float v : region.data) truth.counts.scored += v > 0.5f ? 1 : 0;
+  truth.counts.noReceiver = truth.counts.total - truth.counts.scored;
+  return scoreShadow(mask, truth);
 }
 
 double lightShiftWorld(const Scene& scene) {
@@ -804,7 +775,8 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
     for (const char* m : {"rmse", "max_abs", "share_above_half", "band_rmse", "band_max_abs",
                           "band_share_above_half", "leak_share"})
       out << "," << ref << "_" << m;
-  out << ",temporal_change,reference_temporal_change,passes\n";
+  // The one error definition's scored pixels (docs/error.md): how many, and the share left out.
+  out << ",metric,scored_pixels,left_out_share,temporal_change,reference_temporal_change,passes\n";
   auto quoted = [](std::string s) {
     for (char& c : s)
       if (c == '"') c = '\'';
@@ -823,6 +795,8 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
       out << "," << e->all.rmse << "," << e->all.maxAbs << "," << e->all.shareAboveHalf << ","
           << e->band.rmse << "," << e->band.maxAbs << "," << e->band.shareAboveHalf << ","
           << e->leakShare;
+    out << "," << r.primary().metric << "," << r.primary().counts.scored << ","
+        << r.primary().counts.leftOutShare();
     // Empty where not measured.
     for (double v : {r.temporalChange, r.referenceTemporalChange}) {
       out << ",";
@@ -845,6 +819,67 @@ bool gnuplotHasTerminal(const std::string& terminal) {
   const std::string command =
       "gnuplot -e 'set terminal " + terminal + "' > /dev/null 2>&1 < /dev/null";
   return std::system(command.c_str()) == 0;
+}
+}  // namespace
+
+namespace {
+// The Pareto front's numbers on an error-against-time plot, placed so that none overlaps
+// another or a plotted point: each label tries below its point, then above, right, left and
+// farther out, and takes the first place that is free. Positions are in data coordinates on
+// the log axes [xLo, xHi] x [yLo, yHi] of a plot area of about kPlotAreaPixels (the 1000x640
+// terminal less its margins and the key outside) with kLabelCharPixels characters.
+struct PlotPoint {
+  double x, y;
+};
+constexpr double kPlotAreaWidthPixels = 720, kPlotAreaHeightPixels = 540;
+constexpr double kLabelCharWidthPixels = 7, kLabelCharHeightPixels = 13;
+constexpr double kMarkerRadiusPixels = 7;  // point size 1.6 of the terminal
+std::vector<PlotPoint> placeFrontLabels(const std::vector<PlotPoint>& front,
+                                        const std::vector<std::string>& labels,
+                                        const std::vector<PlotPoint>& points, double xLo,
+                                        double xHi, double yLo, double yHi) {
+  const double lx = std::log10(xHi / xLo), ly = std::log10(yHi / yLo);
+  auto toPixels = [&](const PlotPoint& p) {
+    return PlotPoint{std::log10(p.x / xLo) / lx * kPlotAreaWidthPixels,
+                     std::log10(p.y / yLo) / ly * kPlotAreaHeightPixels};
+  };
+  auto toData = [&](const PlotPoint& p) {
+    return PlotPoint{xLo * std::pow(10.0, p.x / kPlotAreaWidthPixels * lx),
+                     yLo * std::pow(10.0, p.y / kPlotAreaHeightPixels * ly)};
+  };
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  auto overlaps = [](const Box& a, const Box& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+  };
+  std::vector<Box> taken;
+  for (const PlotPoint& p : points) {
+    const PlotPoint c = toPixels(p);
+    taken.push_back({c.x - kMarkerRadiusPixels, c.y - kMarkerRadiusPixels,
+                     c.x + kMarkerRadiusPixels, c.y + kMarkerRadiusPixels});
+  }
+  // Offsets of the label's centre from its point, in character heights.
+  const std::vector<PlotPoint> candidates = {{0, -1.2}, {0, 1.2},  {1.6, 0},  {-1.6, 0},
+                                             {1.4, -1.2}, {-1.4, 1.2}, {0, -2.3}, {0, 2.3}};
+  std::vector<PlotPoint> placed;
+  for (size_t i = 0; i < front.size(); ++i) {
+    const PlotPoint c = toPixels(front[i]);
+    const double halfW = 0.5 * kLabelCharWidthPixels * double(labels[i].size()) + 1;
+    const double halfH = 0.5 * kLabelCharHeightPixels;
+    PlotPoint chosen{c.x, c.y - 1.2 * kLabelCharHeightPixels};
+    for (const PlotPoint& o : candidates) {
+      const PlotPoint at{c.x + o.x * kLabelCharHeightPixels, c.y + o.y * kLabelCharHeightPixels};
+      const Box box{at.x - halfW, at.y - halfH, at.x + halfW, at.y + halfH};
+      if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return overlaps(box, t); })) {
+        chosen = at;
+        break;
+      }
+    }
+    taken.push_back({chosen.x - halfW, chosen.y - halfH, chosen.x + halfW, chosen.y + halfH});
+    placed.push_back(toData(chosen));
+  }
+  return placed;
 }
 }  // namespace
 
@@ -931,11 +966,25 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
               data << r->frameMs << " " << r->primary().all.rmse << " \"" << r->variant << "\"\n";
           data << "\n\n";
         }
-        data << "# pareto front of the scene (every family), numbered\n";
+        // The front, numbered, with each number's place (placeFrontLabels) in columns 4-5.
+        std::vector<PlotPoint> frontPoints, drawnPoints;
+        std::vector<std::string> numbers;
         for (size_t k = 0; k < front.size(); ++k) {
-          const BenchRow& r = result.rows[front[k]];
-          data << r.frameMs << " " << r.primary().all.rmse << " \"" << k + 1 << "\"\n";
+          frontPoints.push_back({result.rows[front[k]].frameMs,
+                                 result.rows[front[k]].primary().all.rmse});
+          numbers.push_back(std::to_string(k + 1));
         }
+        for (const BenchRow* r : drawn)
+          if (plotFamily(r->technique) == family)
+            drawnPoints.push_back({r->frameMs, r->primary().all.rmse});
+        for (const PlotPoint& p : frontPoints) drawnPoints.push_back(p);
+        const std::vector<PlotPoint> labelAt =
+            placeFrontLabels(frontPoints, numbers, drawnPoints, xLo / kPlotMargin,
+                             xHi * kPlotMargin, yLo / kPlotMargin, yHi * kPlotMargin);
+        data << "# pareto front of the scene (every family), numbered; label x y\n";
+        for (size_t k = 0; k < front.size(); ++k)
+          data << frontPoints[k].x << " " << frontPoints[k].y << " \"" << numbers[k] << "\" "
+               << labelAt[k].x << " " << labelAt[k].y << "\n";
       });
       // The script names its PNG unless told another name (`out`): the run below draws into a
       // temporary and renames it, so that a failed gnuplot leaves no half-written PNG.
@@ -951,18 +1000,11 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
                << "set xrange [" << xLo / kPlotMargin << ":" << xHi * kPlotMargin << "]\n"
                << "set yrange [" << yLo / kPlotMargin << ":" << yHi * kPlotMargin << "]\n"
                << "set xlabel 'median frame time [ms] (sum of pass times)'\n"
-               << "set ylabel 'RMSE of the mask against the pixel-integrated reference'\n"
+               << "set ylabel 'RMSE, area metric (scored pixels; docs/error.md)'\n"
                << "plot '" << dat << "' index " << techniques.size()
                << " using 1:2 with steps lw 2 lc rgb '#aaaaaa' title 'Pareto front', '' index "
                << techniques.size()
-               << " every 2 using 1:2:3 with labels offset char 0,-1 font ',9' tc rgb '#666666' "
-                  "notitle";
-        // Every second front label sits above its point; a front of one point has none, and
-        // gnuplot warns about an empty selection.
-        if (front.size() > 1)
-          script << ", '' index " << techniques.size()
-                 << " every 2::1 using 1:2:3 with labels offset char 0,1 font ',9' tc rgb "
-                    "'#666666' notitle";
+               << " using 4:5:3 with labels font ',9' tc rgb '#444444' notitle";
         for (size_t i = 0; i < techniques.size(); ++i)
           script << ", '' index " << i << " using 1:2 with points pt " << (i % 13) + 1
                  << " ps 1.6 lw 2 title '" << techniques[i] << "'";

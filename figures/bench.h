@@ -14,6 +14,7 @@
 #include "core/metrics.h"
 #include "core/technique.h"
 #include "reference/reference.h"  // kPixelParam: the bench and figures use pixel=area
+#include "registry/shadow_error.h"
 
 namespace sl::figures {
 
@@ -48,15 +49,11 @@ struct BenchVariant {
 // storage=float, or a Table 1 cell equal to a one-axis variant).
 std::vector<BenchVariant> sweepVariants(const Technique& t, const RenderParams& base, bool quick);
 
-// Errors of one mask against one reference, counted where the light can reach (surfaces
-// facing it inside its frustum: elsewhere the direct term is 0 and visibility changes nothing).
-struct ErrorSet {
-  MaskDifference all;   // every pixel of the direct-light region
-  MaskDifference band;  // the region's pixels within 2 pixels of a reference shadow edge
-  // Light leaking: share of the reference's umbra pixels (visibility 0, outside the band)
-  // that the technique shows more than kLeakThreshold lit.
-  double leakShare = 0.0;
-};
+// Errors of one mask against one truth: the one definition of registry/shadow_error.h
+// (docs/error.md), over the scored pixels, with the metric and truth named.
+using ErrorSet = ShadowError;
+// The same arithmetic for a truth given as images (`region`: the pixels scored; `band`: the
+// scored pixels near the truth's edges), for tests and the figures' whole-image details.
 ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& region,
                        const Image& band);
 

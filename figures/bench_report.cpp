@@ -4,12 +4,15 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "core/errors.h"
 #include "core/html.h"
 #include "core/output_files.h"
+#include "core/scene_library.h"
 #include "figures/bench.h"
 
 namespace sl::figures {
@@ -21,6 +24,36 @@ std::string number(double v, int digits) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(digits) << v;
   return s.str();
+}
+
+// The quick bench's claim verdicts as the last run before the one error definition
+// (docs/error.md) printed them: assets/bench/claims-before-error-definition.json, the claim
+// lines of that run's stdout with the commit and command that made them. Key: "id|scene".
+struct PreviousVerdicts {
+  std::string madeBy;
+  std::map<std::string, std::string> verdicts;
+};
+PreviousVerdicts previousVerdicts() {
+  PreviousVerdicts p;
+  std::ifstream in(fs::path(assetDirectory()) / "bench" / "claims-before-error-definition.json");
+  if (!in) return p;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    p.madeBy = j.at("made_by").get<std::string>();
+    for (const nlohmann::json& c : j.at("claims"))
+      p.verdicts[c.at("claim").get<std::string>() + "|" + c.at("scene").get<std::string>()] =
+          c.at("verdict").get<std::string>();
+  } catch (const nlohmann::json::exception& e) {
+    std::cerr << "bench report: claims-before-error-definition.json unreadable: " << e.what()
+              << "\n";
+    return {};
+  }
+  return p;
+}
+
+// "agrees" / "disagrees" / ...: a verdict's first word, what a change of verdict is judged on.
+std::string verdictWord(const std::string& verdict) {
+  return verdict.substr(0, verdict.find_first_of(" ("));
 }
 
 }  // namespace
@@ -106,14 +139,29 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
       << (r.referenceTemporalChange >= 0 ? number(r.referenceTemporalChange, 5) : std::string("-"))
       << ")</td></tr>\n";
   }
-  h << "</table>\n<h3>The papers' comparative claims, checked on these measurements</h3>\n"
-    << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
-       "<th>setup</th><th>measured</th></tr>\n";
-  for (const ClaimCheck& c : claims)
+  const PreviousVerdicts before = previousVerdicts();
+  h << "</table>\n<h3>The papers' comparative claims, checked on these measurements</h3>\n";
+  if (!before.madeBy.empty())
+    h << "<p>Errors are scored by the one definition of <code>docs/error.md</code> (area "
+         "metric, scored pixels only). The column <em>before</em> is the verdict of the last "
+         "run before it (" << htmlEscape(before.madeBy) << "); <b>changed</b> marks the "
+         "verdicts it changed.</p>\n";
+  h << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
+    << (before.madeBy.empty() ? "" : "<th>before</th>") << "<th>setup</th><th>measured</th></tr>\n";
+  for (const ClaimCheck& c : claims) {
     h << "<tr><td>" << htmlEscape(c.claim) << "</td><td>" << htmlEscape(c.source) << "</td><td>"
       << htmlEscape(c.scene) << "</td><td class=" << (c.verdict.rfind("agrees", 0) == 0 ? "ok" : "bad") << ">"
-      << htmlEscape(c.verdict) << "</td><td>" << htmlEscape(c.setup) << "</td><td>" << htmlEscape(c.measured)
-      << "</td></tr>\n";
+      << htmlEscape(c.verdict) << "</td>";
+    if (!before.madeBy.empty()) {
+      const auto it = before.verdicts.find(c.id + "|" + c.scene);
+      if (it == before.verdicts.end())
+        h << "<td>(not checked then)</td>";
+      else
+        h << "<td>" << (verdictWord(it->second) != verdictWord(c.verdict) ? "<b>changed</b>: " : "")
+          << htmlEscape(it->second) << "</td>";
+    }
+    h << "<td>" << htmlEscape(c.setup) << "</td><td>" << htmlEscape(c.measured) << "</td></tr>\n";
+  }
   h << "</table>\n<p>Timings are llvmpipe on this machine; compare them within this "
        "table.</p>\n";
   return h.str();

@@ -345,12 +345,11 @@ std::vector<std::pair<const Technique*, Setup>> timedRenders(const FigureSpec& f
 }
 
 // Step 3's detail: the error near the reference's edges and the light leaking in its umbra, as
-// the bench measures them (figures/bench.h measureErrors; here over the whole image).
-ErrorDetail errorDetailOf(const Image& mask, const Image& reference) {
-  constexpr int kBandPixels = 2;  // as the bench's band
-  const Image band = boundaryBand(reference, kBandPixels);
-  const Image everywhere(reference.width, reference.height, 1, 1.0f);
-  const ErrorSet e = measureErrors(mask, reference, everywhere, band);
+// the bench measures them (registry/shadow_error.h, over the scored pixels).
+ErrorDetail errorDetailOf(const Image& mask, const ShadowTruth& truth) {
+  const Image& reference = truth.visibility;
+  const Image& band = truth.band;
+  const ShadowError e = scoreShadow(mask, truth);
   ErrorDetail d;
   d.bandRmse = e.band.rmse;
   d.bandPixels = e.band.pixels;
@@ -360,7 +359,7 @@ ErrorDetail errorDetailOf(const Image& mask, const Image& reference) {
   long long deepLit = 0;
   for (int y = 0; y < reference.height; ++y)
     for (int x = 0; x < reference.width; ++x) {
-      if (reference.at(x, y) != 0.0f) continue;
+      if (reference.at(x, y) != 0.0f || truth.scored.at(x, y) <= 0.5f) continue;
       d.umbraPixels += band.at(x, y) <= 0.5f ? 1 : 0;
       if (wide.at(x, y) > 0.5f) continue;
       ++d.deepUmbraPixels;
@@ -438,9 +437,18 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
             refSetup.params[reference::kPixelSamplesParam] =
                 std::to_string(kFigureReferencePixelSamplesPerSide);
           }
-          auto rf = r.frame(*ref, refSetup, false);
-          out.error = compareMasks(f->visibility, rf->visibility, 0.5);
-          out.errorDetail = errorDetailOf(f->visibility, rf->visibility);
+          // With its passes: the pixel categories decide the scored pixels (docs/error.md).
+          auto rf = r.frame(*ref, refSetup, true);
+          const bool area = refSetup.params.count(reference::kPixelParam) > 0;
+          const bool soft = ref->name == "reference.soft";
+          const ShadowTruth truth = truthFromReferenceFrame(
+              *rf, area ? ErrorMetric::kArea : ErrorMetric::kPoint, soft,
+              truthName(soft, area ? ErrorMetric::kArea : ErrorMetric::kPoint));
+          const ShadowError score = scoreShadow(f->visibility, truth, kWrongPixelThreshold);
+          out.error = score.all;
+          out.errorMetric =
+              score.metric + " metric vs " + score.truth + "; " + describeLeftOut(score.counts);
+          out.errorDetail = errorDetailOf(f->visibility, truth);
         }
         // Step 4: the legacy/modern twin.
         const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t.name)) : nullptr;

@@ -143,7 +143,7 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
       if (p.error)
         h << "RMSE " << fixed(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
           << fixed(100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
-          << "% of pixels";
+          << "% of scored pixels<br><small>" << htmlEscape(p.errorMetric) << "</small>";
       else
         h << htmlEscape(p.errorNote);
       h << "</td><td>";

@@ -44,6 +44,8 @@ struct ErrorDetail {
   long long deepUmbraPixels = 0;
 };
 constexpr int kDeepUmbraPixels = 8;
+// A panel's pixel is "wrong" when its visibility is off the reference's by more than this.
+constexpr double kWrongPixelThreshold = 0.5;
 constexpr float kDeepLeakThreshold = 0.05f;
 
 struct PanelResult {
@@ -60,7 +62,11 @@ struct PanelResult {
   std::vector<double> frameSamples;  // the timed frames' times, one per interleaved round
   std::vector<PassTime> passes;
   std::map<std::string, double> counters;
-  std::optional<MaskDifference> error;  // against the figure's reference
+  // Against the figure's reference, over the scored pixels of the one error definition
+  // (registry/shadow_error.h); mismatching counts the pixels off by more than
+  // kWrongPixelThreshold. errorMetric names the metric, the truth and the share left out.
+  std::optional<MaskDifference> error;
+  std::string errorMetric;
   std::optional<ErrorDetail> errorDetail;
   std::string errorNote;                // why there is no error number
   std::optional<TwinResult> twin;

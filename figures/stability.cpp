@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "registry/registry.h"
+#include "registry/shadow_error.h"
 #include "core/errors.h"
 #include "core/primitives.h"
 #include "core/scene_library.h"
@@ -353,16 +354,17 @@ const Frame& referenceFor(const Case& c, bool soft, bool withoutOpenCasters) {
              renderTechnique(findTechnique(soft ? "reference.soft" : "reference.hard"), scene, p);
 }
 
-// The pixels a case's bound counts: outside the reference's edge band and on surfaces the light
-// can reach (facing it, inside its frustum; elsewhere visibility does not change the image).
+// The pixels a case's bound counts: the scored pixels of the one error definition
+// (registry/shadow_error.h: receivers facing the light inside its frustum; elsewhere visibility
+// does not change the image) outside the reference's edge band (the point metric, share of
+// pixels off by more than 0.5).
 MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
+  const ShadowTruth truth =
+      truthFromReferenceFrame(ref, ErrorMetric::kPoint, false, "the case's reference");
   const Image band = boundaryBand(ref.visibility, kBandPixels);
-  const Image* facing = nullptr;
-  for (const PassImage& p : ref.intermediates)
-    if (p.name == reference::kDirectLightRegionPass) facing = &p.image;
   Image region(kWidth, kHeight, 1);
   for (size_t i = 0; i < band.data.size(); ++i)
-    region.data[i] = band.data[i] <= 0.5f && (!facing || facing->data[i] > 0.5f) ? 1.0f : 0.0f;
+    region.data[i] = band.data[i] <= 0.5f && truth.scored.data[i] > 0.5f ? 1.0f : 0.0f;
   return compareMasksWithin(visibility, ref.visibility, region, 0.5);
 }
 

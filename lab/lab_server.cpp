@@ -23,6 +23,7 @@
 #include "lab/web_files.h"
 #include "lab/worker.h"
 #include "registry/registry.h"
+#include "registry/shadow_error.h"
 #ifdef SHADOWLAB_HAVE_REFERENCE
 #include "reference/reference.h"
 #endif
@@ -246,8 +247,7 @@ class Engine {
   }
 
   struct Reference {
-    Image visibility;
-    Image region;  // pixels that see lit geometry (reference/reference.h kDirectLightRegionPass)
+    ShadowTruth truth;  // the area metric's truth (registry/shadow_error.h, docs/error.md)
     double milliseconds = 0.0;
   };
   // reference.hard pixel=area (the pixel-integrated truth) for this scene, size and view.
@@ -268,15 +268,9 @@ class Engine {
     RenderParams rp;
     rp.width = p.width;
     rp.height = p.height;
-    rp.capturePasses = true;  // for the direct-light region
-    rp.extra[reference::kPixelParam] = reference::kPixelArea;
-    const Frame f = renderTechnique(findTechnique("reference.hard"), scene, rp);
     Reference r;
-    r.visibility = f.visibility;
-    r.milliseconds = f.totalMilliseconds();
-    for (const PassImage& i : f.intermediates)
-      if (i.name == reference::kDirectLightRegionPass) r.region = i.image;
-    if (r.region.empty()) r.region = Image(p.width, p.height, 1, 1.0f);
+    r.truth = renderShadowTruth(scene, rp, ErrorMetric::kArea, false);
+    r.milliseconds = r.truth.frame.totalMilliseconds();
     references_.emplace_front(key, std::move(r));
     while (int(references_.size()) > kCachedReferences) references_.pop_back();
     return references_.front().second;
@@ -549,26 +543,25 @@ struct LabServer::Impl {
         bool cached = false;
         const Engine::Reference& ref = engine.reference(scene, r.params, cached);
         if (r.view == "image") {
-          JobResult out = pngResult(differenceHeatMap(f.visibility, ref.visibility), 8, r);
+          JobResult out = pngResult(errorHeatMap(f.visibility, ref.truth), 8, r);
           out.headers = {{"X-Shadowlab-Command", r.command}};
           return out;
         }
-        const MaskDifference all = compareMasks(f.visibility, ref.visibility);
-        const MaskDifference lit = compareMasksWithin(f.visibility, ref.visibility, ref.region);
-        json doc = {{"technique", r.technique->name},
-                    {"scene", scene.name},
-                    {"reference", "reference.hard pixel=area"},
-                    {"reference_cached", cached},
-                    {"reference_ms", ref.milliseconds},
-                    {"frame_ms", f.totalMilliseconds()},
-                    {"all_pixels", toJson(all)},
-                    {"rmse", lit.rmse},
-                    {"max_abs", lit.maxAbs},
-                    {"share_above_half", lit.shareAboveHalf},
-                    {"region_pixels", lit.pixels},
-                    {"params", effectiveParams(r.params)},
-                    {"command", r.command},
-                    {"commit", buildCommit()}};
+        const MaskDifference all = compareMasks(f.visibility, ref.truth.visibility);
+        const ShadowError score = scoreShadow(f.visibility, ref.truth);
+        json doc = toJson(score);  // the fields bench and compare print for the same pair
+        doc.update(json{{"technique", r.technique->name},
+                        {"scene", scene.name},
+                        {"reference", score.truth},
+                        {"reference_cached", cached},
+                        {"reference_ms", ref.milliseconds},
+                        {"frame_ms", f.totalMilliseconds()},
+                        {"all_pixels", toJson(all)},
+                        {"region_pixels", score.all.pixels},
+                        {"left_out_text", describeLeftOut(score.counts)},
+                        {"params", effectiveParams(r.params)},
+                        {"command", r.command},
+                        {"commit", buildCommit()}});
         return jsonResult(doc);
       });
     });

@@ -12,17 +12,19 @@
 //   4. shadeFromVisibility    — ambient + visibility * direct, the lighting of
 //                               modern/shaders/hw_shadow.frag.glsl, for figures
 //
-// With --param pixel=area (the pixel-integrated form, issue 14) pass 3 becomes:
+// With --param pixel=area (the pixel-integrated form: the antialiasing metric's truth,
+// docs/error.md) pass 3 becomes:
 //   3. integratePixelArea     — for each of the N x N sub-pixel strata (their centres: an
 //                               ordered-grid supersampling of the pixel's box filter, i.e.
-//                               the mean visibility over the pixel's area):
+//                               the mean visibility over the part of the pixel's area that
+//                               shows the surface its centre sees, sampleShowsCentreSurface):
 //      3a. SurfaceRasteriser::rasterise — pass 1 again with the projection shifted by the
 //                               stratum's offset: each sample has its own surface point
 //      3b. castHardShadowRays / castSoftShadowRaysFromSubsample — the rays of pass 3 from
 //                               those points; hard: one ray per sample, averaged; soft: the
 //                               light's strata dealt out to the sub-pixel points
-// Pass 1's pixel-centre points still give the shading and the direct-light region, so the
-// region (where the bench counts errors) is the same in both forms.
+// Pass 1's pixel-centre points still give the shading, the direct-light region and the pixel
+// categories (kPixelCategoriesPass), so the scored pixels are the same in both forms.
 #include "reference/reference.h"
 
 #include <embree3/rtcore.h>
@@ -32,6 +34,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -136,6 +139,41 @@ bool insideLightFrustum(const SpotLight& light, const glm::mat4& view, const glm
   return std::fabs(l.x) <= -l.z * t && std::fabs(l.y) <= -l.z * t;
 }
 
+// The surface at `s` faces the light: its geometric (triangle) normal points to the light's
+// side. Where it does not, the lighting term is 0 whatever the visibility (the terminator and
+// the self-shadowed side of a caster).
+bool facesLight(const SpotLight& light, const SurfacePoint& s) {
+  return glm::dot(s.geometricNormal, light.position - s.position) > 0.0f;
+}
+
+// The error definition's category of a pixel-centre surface point (reference.h
+// kPixelCategoriesPass).
+float pixelCategory(const Scene& scene, const glm::mat4& lightViewMatrix, const SurfacePoint& s) {
+  if (s.object < 0 || !scene.objects[s.object].receivesShadow) return kCategoryNoReceiver;
+  if (!insideLightFrustum(scene.light, lightViewMatrix, s.position)) return kCategoryOutsideLight;
+  return facesLight(scene.light, s) ? kCategoryScored : kCategoryFacesAway;
+}
+
+// pixel=area: whether a sub-pixel sample `sample` shows the surface the pixel centre `centre`
+// sees (reference.h kSameSurfacePixelFootprints): the same object, near the centre's tangent
+// plane, facing the light inside its frustum (the terminator rule of the scored pixels).
+bool sampleShowsCentreSurface(const Scene& scene, const glm::mat4& lightViewMatrix,
+                              const SurfacePoint& centre, const SurfacePoint& sample,
+                              float pixelFootprintPerDistance) {
+  if (sample.object != centre.object) return false;
+  if (pixelCategory(scene, lightViewMatrix, sample) != kCategoryScored) return false;
+  const float footprint =
+      pixelFootprintPerDistance * glm::length(centre.position - scene.camera.position);
+  return std::fabs(glm::dot(sample.position - centre.position, centre.geometricNormal)) <=
+         kSameSurfacePixelFootprints * footprint;
+}
+
+// The world size of one pixel per unit of distance from the camera (vertical field of view
+// over the window's rows; pixels are square).
+float pixelFootprintPerDistance(const Scene& scene, const RenderParams& params) {
+  return 2.0f * std::tan(glm::radians(0.5f * scene.camera.fovyDegrees)) / float(params.height);
+}
+
 // Runs body(y) for every row on all cores (std::thread; the rows are handed out in chunks).
 template <class Body>
 void forEachRow(int height, Body body) {
@@ -209,6 +247,32 @@ glm::vec2 concentricDisk(float u, float v) {
   return {r * std::cos(phi), r * std::sin(phi)};
 }
 
+// The two independent stratified estimates A and B (n x n strata each) of the visible fraction
+// of the light's disk from `origin` (castSoftShadowRays' comment); none when the origin is the
+// light's centre.
+std::optional<std::array<float, 2>> softVisibilityHalves(const SpotLight& light,
+                                                         const glm::vec3& origin, int n,
+                                                         std::mt19937& rng, RTCScene occluders) {
+  std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+  const glm::vec3 toLight = light.position - origin;
+  const float distance = glm::length(toLight);
+  if (!(distance > 0.0f)) return std::nullopt;
+  // An orthonormal frame of the disk facing the point.
+  const glm::vec3 w = toLight / distance;
+  const glm::vec3 helper = std::fabs(w.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 e1 = glm::normalize(glm::cross(w, helper));
+  const glm::vec3 e2 = glm::cross(w, e1);
+  int litHalf[2] = {0, 0};
+  for (int half = 0; half < 2; ++half)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const glm::vec2 d = concentricDisk((i + jitter(rng)) / n, (j + jitter(rng)) / n);
+        const glm::vec3 target = light.position + light.radius * (d.x * e1 + d.y * e2);
+        if (!occluded(occluders, origin, target)) ++litHalf[half];
+      }
+  return std::array<float, 2>{float(litHalf[0]) / float(n * n), float(litHalf[1]) / float(n * n)};
+}
+
 // Pass 3 (soft): the spherical light of radius r seen from a surface point is a disk of
 // radius r facing the point (its silhouette; for r much smaller than the distance, the disk
 // and the sphere's solid angle agree to O((r/d)^2)). Its visible fraction is estimated with
@@ -228,29 +292,14 @@ Visibility castSoftShadowRays(const Scene& scene, const std::vector<SurfacePoint
   std::vector<long long> rowPenumbra(params.height, 0), rowRays(params.height, 0);
   forEachRow(params.height, [&](int y) {
     std::mt19937 rng(kSoftSeed + unsigned(y));  // per row: the result is thread-count independent
-    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
     for (int x = 0; x < params.width; ++x) {
       const SurfacePoint& s = points[size_t(y) * params.width + x];
       if (s.object < 0 || !scene.objects[s.object].receivesShadow) continue;
       if (!insideLightFrustum(light, view, s.position)) continue;
-      const glm::vec3 origin = rayOrigin(s, offset);
-      const glm::vec3 toLight = light.position - origin;
-      const float distance = glm::length(toLight);
-      if (!(distance > 0.0f)) continue;
-      // An orthonormal frame of the disk facing the point.
-      const glm::vec3 w = toLight / distance;
-      const glm::vec3 helper = std::fabs(w.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-      const glm::vec3 e1 = glm::normalize(glm::cross(w, helper));
-      const glm::vec3 e2 = glm::cross(w, e1);
-      int litHalf[2] = {0, 0};
-      for (int half = 0; half < 2; ++half)
-        for (int i = 0; i < n; ++i)
-          for (int j = 0; j < n; ++j) {
-            const glm::vec2 d = concentricDisk((i + jitter(rng)) / n, (j + jitter(rng)) / n);
-            const glm::vec3 target = light.position + light.radius * (d.x * e1 + d.y * e2);
-            if (!occluded(occluders, origin, target)) ++litHalf[half];
-          }
-      const float a = float(litHalf[0]) / float(n * n), b = float(litHalf[1]) / float(n * n);
+      const std::optional<std::array<float, 2>> halves =
+          softVisibilityHalves(light, rayOrigin(s, offset), n, rng, occluders);
+      if (!halves) continue;
+      const float a = (*halves)[0], b = (*halves)[1];
       const float value = 0.5f * (a + b);
       v.mask.at(x, y) = value;
       rowRays[y] += 2LL * n * n;
@@ -286,13 +335,20 @@ void repairNormals(std::vector<SurfacePoint>& points, const glm::vec3& eye);
 // error. Called once per sub-pixel point s with that point's surface buffer; adds the lit
 // rays of each half to litHalves[pixel][half] (sub-samples that see no geometry, a
 // non-receiver or a point outside the frustum count all their rays as lit, the conventions
-// of reference.h).
+// of reference.h). At a scored pixel (`restricted[p]`) a sub-pixel point that does not show the
+// centre's surface (sampleShowsCentreSurface) casts nothing and its strata are not counted:
+// castHalves[p] counts the strata each half did use, and the estimate is lit / cast over the
+// points that show the surface (a ratio estimator; the dealing stays random per pixel).
 void castSoftShadowRaysFromSubsample(const Scene& scene, const std::vector<SurfacePoint>& points,
+                                     const std::vector<SurfacePoint>& centre,
+                                     const std::vector<char>& restricted,
                                      const RenderParams& params, RTCScene occluders, int n,
                                      int subsamples, int subsample,
                                      std::vector<std::array<int, 2>>& litHalves,
+                                     std::vector<std::array<int, 2>>& castHalves,
                                      std::atomic<long long>& rays) {
   const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  const float footprintPerDistance = pixelFootprintPerDistance(scene, params);
   const glm::mat4 view = lightView(scene.light);
   const SpotLight& light = scene.light;
   const int strata = n * n;
@@ -316,6 +372,10 @@ void castSoftShadowRaysFromSubsample(const Scene& scene, const std::vector<Surfa
         const int first = ((subsample - o) % subsamples + subsamples) % subsamples;
         mine[half] = first < strata ? (strata - 1 - first) / subsamples + 1 : 0;
         const SurfacePoint& s = points[p];
+        if (restricted[p] &&
+            !sampleShowsCentreSurface(scene, view, centre[p], s, footprintPerDistance))
+          continue;  // another surface, or this one facing away: not this pixel's truth
+        castHalves[p][half] += mine[half];
         if (s.object < 0 || !scene.objects[s.object].receivesShadow ||
             !insideLightFrustum(light, view, s.position)) {
           litHalves[p][half] += mine[half];  // lit by convention
@@ -351,15 +411,25 @@ glm::vec2 stratumOffset(int i, int j, int n) {
 }
 
 // Pass 3 (pixel area): the mean visibility over the N x N sub-pixel strata (see the header
-// comment); the sub-pixel surface buffers are made and used one at a time.
+// comment); the sub-pixel surface buffers are made and used one at a time. At a scored pixel
+// (the centre's category, kPixelCategoriesPass) only the samples that show the centre's surface
+// count (sampleShowsCentreSurface); when none does (a sliver of surface between the strata'
+// centres), the pixel centre's own point visibility stands in.
 Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RTCScene occluders,
-                              bool soft, int perSide, int softRays, Frame& frame) {
+                              bool soft, int perSide, int softRays,
+                              const std::vector<SurfacePoint>& centre, Frame& frame) {
   SurfaceRasteriser rasteriser(scene, params);
   const int subsamples = perSide * perSide;
   const size_t pixels = size_t(params.width) * params.height;
   const int n = std::max(1, int(std::lround(std::sqrt(softRays / 2.0))));
+  const glm::mat4 view = lightView(scene.light);
+  const float footprintPerDistance = pixelFootprintPerDistance(scene, params);
+  std::vector<char> restricted(pixels, 0);
+  for (size_t p = 0; p < pixels; ++p)
+    restricted[p] = pixelCategory(scene, view, centre[p]) == kCategoryScored;
   std::vector<double> sum(pixels, 0.0);
-  std::vector<std::array<int, 2>> litHalves(pixels, {0, 0});
+  std::vector<int> counted(pixels, 0);
+  std::vector<std::array<int, 2>> litHalves(pixels, {0, 0}), castHalves(pixels, {0, 0});
   std::atomic<long long> softRayCount{0};
   long long hardRays = 0;
   double rasterMs = 0.0, rayMs = 0.0;
@@ -371,15 +441,48 @@ Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RT
       rasterMs += nowMilliseconds() - start;
       start = nowMilliseconds();
       if (soft) {
-        castSoftShadowRaysFromSubsample(scene, points, params, occluders, n, subsamples,
-                                        i * perSide + j, litHalves, softRayCount);
+        castSoftShadowRaysFromSubsample(scene, points, centre, restricted, params, occluders, n,
+                                        subsamples, i * perSide + j, litHalves, castHalves,
+                                        softRayCount);
       } else {
         const Visibility v = castHardShadowRays(scene, points, params, occluders);
-        for (size_t p = 0; p < pixels; ++p) sum[p] += v.mask.data[p];
+        for (size_t p = 0; p < pixels; ++p) {
+          if (restricted[p] &&
+              !sampleShowsCentreSurface(scene, view, centre[p], points[p], footprintPerDistance))
+            continue;
+          sum[p] += v.mask.data[p];
+          ++counted[p];
+        }
         hardRays += v.rays;
       }
       rayMs += nowMilliseconds() - start;
     }
+  // The scored pixels none of whose samples showed the centre's surface: the centre's own rays.
+  const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
+  long long fallbacks = 0;
+  const double fallbackStart = nowMilliseconds();
+  for (size_t p = 0; p < pixels; ++p) {
+    if (!restricted[p]) continue;
+    if (!soft && counted[p] == 0) {
+      sum[p] = occluded(occluders, rayOrigin(centre[p], offset), scene.light.position) ? 0.0 : 1.0;
+      counted[p] = 1;
+      ++hardRays;
+      ++fallbacks;
+    } else if (soft && (castHalves[p][0] == 0 || castHalves[p][1] == 0)) {
+      std::seed_seq seed{kSoftSeed, unsigned(p), unsigned(subsamples)};
+      std::mt19937 rng(seed);
+      const auto halves =
+          softVisibilityHalves(scene.light, rayOrigin(centre[p], offset), n, rng, occluders);
+      const int strata = n * n;
+      castHalves[p] = {strata, strata};
+      litHalves[p] = {halves ? int(std::lround((*halves)[0] * strata)) : strata,
+                      halves ? int(std::lround((*halves)[1] * strata)) : strata};
+      softRayCount += 2LL * strata;
+      ++fallbacks;
+    }
+  }
+  rayMs += nowMilliseconds() - fallbackStart;
+  frame.counters["area_centre_fallback_pixels"] = double(fallbacks);
   const std::string grid = std::to_string(perSide) + "x" + std::to_string(perSide);
   frame.passes.push_back({"3a sub-pixel surface points (GL, " + grid + ")", rasterMs});
   frame.passes.back().section =
@@ -392,14 +495,15 @@ Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RT
   Visibility v;
   v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
   if (!soft) {
-    for (size_t p = 0; p < pixels; ++p) v.mask.data[p] = float(sum[p] / double(subsamples));
+    for (size_t p = 0; p < pixels; ++p)
+      v.mask.data[p] = counted[p] > 0 ? float(sum[p] / double(counted[p])) : kNoGeometryVisibility;
     v.rays = hardRays;
     return v;
   }
   double squares = 0;
   for (size_t p = 0; p < pixels; ++p) {
-    const float a = float(litHalves[p][0]) / float(n * n);
-    const float b = float(litHalves[p][1]) / float(n * n);
+    const float a = float(litHalves[p][0]) / float(castHalves[p][0]);
+    const float b = float(litHalves[p][1]) / float(castHalves[p][1]);
     const float value = 0.5f * (a + b);
     v.mask.data[p] = value;
     if (value > 0.0f && value < 1.0f) {
@@ -495,7 +599,8 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
   frame.passes.back().section = "ours (the ground truth): Embree's BVH over every caster";
   Visibility v;
   if (area) {
-    v = integratePixelArea(scene, params, occluders.scene.get(), soft, perSide, softRays, frame);
+    v = integratePixelArea(scene, params, occluders.scene.get(), soft, perSide, softRays, points,
+                           frame);
   } else {
     const double castStart = nowMilliseconds();
     v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
@@ -540,6 +645,16 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
         region.data[p] = 1.0f;
     frame.intermediates.push_back(
         {kDirectLightRegionPass, "surface points the light can reach", region});
+    // The error definition's pixel categories (docs/error.md), from the same centre points.
+    Image categories(params.width, params.height, 1, kCategoryNoReceiver);
+    for (size_t p = 0; p < points.size(); ++p)
+      categories.data[p] = pixelCategory(scene, view, points[p]);
+    frame.intermediates.push_back(
+        {kPixelCategoriesPass,
+         "pixel categories of the error metrics: white = scored (faces the light inside its "
+         "frustum), light grey = faces away from the light (terminator, not scored), dark grey = "
+         "outside the light's frustum, black = no receiver",
+         categories});
     frame.intermediates.push_back({"3-visibility", "ray-traced visibility", frame.visibility});
   }
   return frame;

@@ -8,12 +8,18 @@
 //                     itself aliased at shadow edges (what every test and figure panel that
 //                     shows "the reference" uses; bit-identical to the references before
 //                     issue 14)
-//   area              the visibility integrated over the pixel's area (box filter): N x N
-//                     stratified sub-pixel surface points (--param pixel-samples=N per side),
-//                     each rasterised at its own sub-pixel position; hard: one shadow ray per
-//                     sub-pixel point, averaged; soft: the light's rays start from the
-//                     sub-pixel points instead of the pixel centre. The bench measures every
-//                     technique against this form (docs/bench.md).
+//   area              the visibility integrated over the part of the pixel's area that shows
+//                     the surface its centre sees (box filter): N x N stratified sub-pixel
+//                     surface points (--param pixel-samples=N per side), each rasterised at
+//                     its own sub-pixel position; only the samples on that surface (same
+//                     object, within kSameSurfacePixelFootprints of the centre point's tangent
+//                     plane, facing the light, inside its frustum) are averaged, so that a
+//                     geometry edge or a terminator inside the pixel is not counted as shadow
+//                     (docs/error.md); hard: one shadow ray per such sample; soft: the light's
+//                     rays start from those sub-pixel points instead of the pixel centre. At
+//                     pixels that are not scored (see kPixelCategoriesPass) every sample is
+//                     averaged, the plain box filter. The antialiasing metric measures every
+//                     technique against this form (docs/error.md).
 //
 // Both rasterise the camera's surface points with GL (the same camera and the same vertex
 // transform as the modern camera pass), so every technique's mask lines up pixel for pixel
@@ -42,9 +48,35 @@ constexpr float kNoGeometryVisibility = 1.0f;
 // geometry is seen. Error metrics count these pixels: elsewhere visibility changes nothing.
 constexpr const char* kDirectLightRegionPass = "2-direct-light-region";
 
+// With RenderParams::capturePasses the references also add this intermediate: every pixel's
+// category under the error definition of docs/error.md (registry/shadow_error.h reads it), one
+// grey level each so that the dump shows them apart:
+//   scored        a receiver's surface point inside the light's frustum whose geometric
+//                 (triangle) normal faces the light: the pixels every error score counts
+//   faces away    a receiver's point inside the frustum whose surface faces away from the
+//                 light (the self-shadowed side of a caster, its terminator): unlit by the
+//                 lighting term whatever the visibility says, reported apart, not scored
+//   outside light a receiver's point outside the light's frustum (the spotlight sends nothing)
+//   no receiver   no geometry, or an object with receivesShadow == false
+// The categories come from the pixel-centre surface points, so they are the same for every
+// technique and both forms (pixel=centre and pixel=area).
+constexpr const char* kPixelCategoriesPass = "2-pixel-categories";
+constexpr float kCategoryScored = 1.0f;
+constexpr float kCategoryFacesAway = 2.0f / 3.0f;
+constexpr float kCategoryOutsideLight = 1.0f / 3.0f;
+constexpr float kCategoryNoReceiver = 0.0f;
+
 // Shadow rays start this far (times the scene's bounding-box diagonal) along the surface's
 // geometric normal, so that a surface does not shadow itself through float round-off.
 constexpr float kRayOffsetPerSceneDiagonal = 1e-4f;
+
+// pixel=area: a sub-pixel sample shows "the surface the centre sees" when it lies on the same
+// object within this many pixel footprints (the world size of one pixel at the centre point's
+// distance from the camera) of the centre point's tangent plane. On one planar face the
+// distance is round-off; across a curved face within a pixel it is second order in the
+// footprint (well under one); a surface behind a silhouette (another picket, the ground behind
+// a sphere) lies many footprints off the plane in every scene here.
+constexpr float kSameSurfacePixelFootprints = 2.0f;
 
 // reference.soft: rays per pixel, 2 n^2 (two independent stratified halves of n x n strata
 // on the light's disk, whose difference estimates the standard error; see reference.cpp).

@@ -89,9 +89,17 @@ const std::vector<CommandSpec>& commandSpecs() {
               "passes.json and index.html (made or replaced as a whole at the end; an existing "
               "DIR must be empty or hold only a previous dump)"}},
             renderOptions())},
-      {"compare", "render two techniques and compare their visibility masks (one JSON line)",
+      {"compare",
+       "render two techniques and compare their visibility masks (one JSON line). When one is\n"
+       "a ray-traced reference, the other's error against it with the one definition of\n"
+       "docs/error.md (pixel=centre: point metric, pixel=area: area metric), as bench scores;\n"
+       "otherwise the masks' difference over the same scored pixels; all_pixels: every pixel",
        join({{"a", "T1", "first technique, required"},
              {"b", "T2", "second technique, required"},
+             {"a-param", "KEY=VALUE",
+              "a --param for T1 only, repeatable; over --param (which goes to both)"},
+             {"b-param", "KEY=VALUE",
+              "a --param for T2 only, repeatable (--b-param pixel=area: the area metric's truth)"},
              {"diff", "PNG", "difference heat map, PNG"},
              {"threshold", "X", "pixels differing by more than this count as mismatching [0]"}},
             renderOptions())},

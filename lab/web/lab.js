@@ -360,9 +360,11 @@ function showNumbers(lane) {
   if (l.frameMs !== null) add('frame (GL passes)', l.frameMs.toFixed(1) + ' ms');
   if (l.roundTripMs) add('request round trip', l.roundTripMs.toFixed(0) + ' ms');
   if (l.error) {
-    add('RMSE vs reference', l.error.rmse.toFixed(4));
+    add('RMSE (' + l.error.metric + ' metric)', l.error.rmse.toFixed(4));
+    add('truth', l.error.truth);
     add('max |error|', l.error.max_abs.toFixed(3));
-    add('pixels off by > 0.5', (100 * l.error.share_above_half).toFixed(2) + ' %');
+    add('scored pixels off by > 0.5', (100 * l.error.share_above_half).toFixed(2) + ' %');
+    add('not scored (grey in the error view)', (100 * l.error.left_out.share).toFixed(1) + ' %');
   }
   if (l.failure) add('failed', l.failure);
   $('command-' + lane).textContent = l.command;
