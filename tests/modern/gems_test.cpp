@@ -228,11 +228,12 @@ TEST(Gems, BicubicVisibilityIsTheBSplineWeightedSumOfSixteenComparisons) {
     *ambiguous = *ambiguous || std::abs(margin) < kAmbiguousTexels;
     return margin > 0.0f;
   };
-  // 8-bit visibility attachment: half a step of rounding. The lookup point the shader computes
-  // from the interpolated world position differs from the one computed here by float roundoff
-  // (well under 1e-3 texel); the weighted sum changes by at most about 1 per texel moved, so
-  // that adds under 1e-3. One 8-bit step covers both.
-  constexpr float kTolerance = 1.0f / 255.0f;
+  // The visibility attachment is float: what differs is the lookup point, which the shader
+  // computes from the interpolated world position and this test from the pixel centre's ray,
+  // each in float (about 1e-5 texel at 64 texels); the weighted sum moves by at most about 1
+  // per texel moved. 1e-4 is ten times that (measured worst: 3e-6); a wrong weight is off by
+  // far more (box weights: 0.2 at the penumbra's edge).
+  constexpr float kTolerance = 1e-4f;
   int penumbra = 0, checked = 0;
   float worst = 0;
   for (int y = 0; y < p.height; ++y)
