@@ -670,10 +670,10 @@ std::vector<FigureSpec> chanFigures() {
   p311.push_back(plot("time per pass", "chan-3-11"));
   FigureSpec f311 = chanFigure(
       "chan-3-11", "Figure 3-11", "Frame time per part: SM, hybrid, SV",
-      "Times: llvmpipe cannot reproduce Chan's speed-up of the hybrid over shadow volumes (Chan: "
-      "30% to over 100% faster, on a GeForce 6800 with a 2.6 GHz Pentium 4 at 1024x768), "
-      "because the speed-up is fill saved by hardware culling, and llvmpipe culls almost none "
-      "of it: it has no depth-bounds test and no early or hierarchical stencil/depth rejection; "
+      "Times: llvmpipe cannot reproduce Chan's speed-up of the hybrid over shadow volumes "
+      "through its per-pixel computation mask (Chan: 30% to over 100% faster, on a GeForce 6800 "
+      "with a 2.6 GHz Pentium 4 at 1024x768), because that speed-up is fill saved by hardware "
+      "culling and llvmpipe culls none of it: it has no depth-bounds test and no early or hierarchical stencil/depth rejection; "
       "its stencil test runs inside the fragment function, so with the per-pixel stencil mask "
       "the volume pass runs as many fragment shaders as plain volumes although few fragments "
       "update the stencil. It does skip work outside the scissor box: the tile boxes (64x64 "
