@@ -423,9 +423,20 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         out.counters = f->counters;
         Image shown = p.mask ? f->visibility : f->color;
         if (!p.errorsOf.empty()) {  // the pixels other techniques get wrong (Chan Fig. 3-7)
-          const auto first = r.frame(*lookup(p.errorsOf[0]), setup, false);
-          const auto second =
-              p.errorsOf.size() > 1 ? r.frame(*lookup(p.errorsOf[1]), setup, false) : nullptr;
+          // Each compared technique as the figure's panel of it on this scene shows it (its
+          // parameters and map, --set included), or with this panel's setup when none does.
+          auto compared = [&](const std::string& name) {
+            Setup s = setup;
+            for (const PanelSpec& q : fig.panels)
+              if (q.kind == PanelKind::kRender && q.technique == name && q.errorsOf.empty() &&
+                  setupFor(fig, q).sceneKey() == setup.sceneKey()) {
+                s = setupFor(fig, q);
+                break;
+              }
+            return r.frame(*lookup(name), s, false);
+          };
+          const auto first = compared(p.errorsOf[0]);
+          const auto second = p.errorsOf.size() > 1 ? compared(p.errorsOf[1]) : nullptr;
           const Disagreement d = disagreementOverlay(f->color, f->visibility, first->visibility,
                                                      second ? second->visibility : Image());
           shown = d.overlay;
