@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -553,4 +554,21 @@ TEST(Plots, StackSegmentsHaveOneColourEach) {
     EXPECT_EQ(std::set<std::string>(colours.begin(), colours.end()).size(), n)
         << n << " segments";
   }
+  // The chart's script (kept beside the PNG) gives each of twelve segments its colour.
+  std::string why;
+  if (!gnuplotAvailable(&why)) GTEST_SKIP() << why;
+  const fs::path dir = outputDir("stacked-colours");
+  std::vector<std::string> columns;
+  for (int c = 0; c < 12; ++c) columns.push_back("pass " + std::to_string(c));
+  plotStackedBars("t", "ms", {"a", "b"}, columns,
+                  {std::vector<double>(12, 1.0), std::vector<double>(12, 2.0)},
+                  (dir / "chart.png").string(), 400, 300);
+  std::ifstream gp(dir / "chart.gp");
+  const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+  std::set<std::string> used;
+  static const std::regex lc(R"re(lc rgb "(#[0-9a-f]{6})")re");
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), lc);
+       it != std::sregex_iterator(); ++it)
+    used.insert((*it)[1]);
+  EXPECT_EQ(used.size(), 12u) << script;
 }
