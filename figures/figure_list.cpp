@@ -554,32 +554,51 @@ std::vector<FigureSpec> chanFigures() {
   f35.shadowMapTexels = 256;
   out.push_back(f35);
 
-  // Per scene, the 80x80-pixel window where modern.hw and modern.volumes disagree most (found
-  // with `shadowlab compare --diff` at 512x384, 1024² map): a tree crown's terminator, the
-  // dragon's body, the torus's inner rim.
-  const std::pair<const char*, Closeup> scenes37[] = {
-      {"trees", {0.734f, 0.365f, 0.156f, 0.208f, 3}},
-      {"dragon", {0.469f, 0.313f, 0.156f, 0.208f, 3}},
-      {"brabec", {0.313f, 0.417f, 0.156f, 0.208f, 3}}};
+  // Two close-ups per scene, 160x120 pixels each, magnified 6x so that a single pixel is still
+  // 2x2 after figure.png is shrunk by 3. The first: the window holding the most pixels where
+  // modern.hw decides lit or shadow otherwise than modern.volumes (found at 1024x768 with a
+  // 1024² map from the two `render --mask` images, windows on a 4-pixel grid: 1515, 2310 and
+  // 836 such pixels): blocker terminators, the self-shadowing Chan §3.3.1 names. The second:
+  // a long shadow edge on the ground, picked by eye in the overlay, where the map's stair steps
+  // are the wrong pixels: a tree's branch shadows, a bar's shadow, the large sphere's shadow.
+  struct Scene37 {
+    const char* scene;
+    Closeup mostWrong, groundEdge;
+  };
+  const Scene37 scenes37[] = {
+      {"trees", {0.711f, 0.464f, 0.156f, 0.156f, 6}, {0.254f, 0.258f, 0.156f, 0.156f, 6}},
+      {"dragon", {0.469f, 0.365f, 0.156f, 0.156f, 6}, {0.801f, 0.219f, 0.156f, 0.156f, 6}},
+      {"brabec", {0.305f, 0.422f, 0.156f, 0.156f, 6}, {0.674f, 0.414f, 0.156f, 0.156f, 6}}};
   std::vector<PanelSpec> p37;
-  for (const auto& [scene, closeup] : scenes37) {
+  for (const auto& [scene, mostWrong, groundEdge] : scenes37) {
     PanelSpec sm = render(std::string(scene) + ": shadow map", "modern.hw");
     PanelSpec hy = render(std::string(scene) + ": hybrid", "modern.hybrid");
     PanelSpec sv = render(std::string(scene) + ": shadow volumes", "modern.volumes");
-    sm.scene = hy.scene = sv.scene = scene;
-    sm.ownCloseups = hy.ownCloseups = sv.ownCloseups = {closeup};
-    p37.insert(p37.end(), {sm, hy, sv});
+    PanelSpec wrong = render(std::string(scene) + ": wrong vs volumes (magenta SM, yellow both, "
+                                                  "cyan H)",
+                             "modern.volumes");
+    wrong.errorsOf = {"modern.hw", "modern.hybrid"};
+    sm.scene = hy.scene = sv.scene = wrong.scene = scene;
+    sm.ownCloseups = hy.ownCloseups = sv.ownCloseups = wrong.ownCloseups = {mostWrong,
+                                                                           groundEdge};
+    p37.insert(p37.end(), {sm, hy, sv, wrong});
   }
   FigureSpec f37 = chanFigure(
       "chan-3-7", "Figure 3-7", "Image quality: shadow map, hybrid, shadow volumes",
-      "Rows: three scenes of high shadow complexity (our stand-ins: procedural trees, the "
-      "Stanford dragon in a cage of bars for the Dragon Cage, the Brabec scene); columns: a "
-      "1024² shadow map, the hybrid method with the same map, shadow volumes. The decimated "
-      "dragon has holes; the volume-based columns give it the volume of its two-sided surface "
-      "(counted in open_casters_two_sided, docs/volumes.md). Below: per row, the window where the "
-      "shadow map and the shadow volumes differ most, magnified 3x (self-shadowing at the "
-      "terminators of curved blockers, stair steps of the map).",
-      "trees", 3, p37);
+      "At the thesis's size, 1024x768, with its 1024² map. Rows: three scenes of high shadow "
+      "complexity (our stand-ins: procedural trees, the Stanford dragon in a cage of bars for "
+      "the Dragon Cage, the Brabec scene); columns: the shadow map, the hybrid method with the "
+      "same map, shadow volumes, and where the first two decide lit or shadow otherwise than "
+      "the volumes, over the volumes' image in grey: magenta where only the shadow map is "
+      "wrong (the hybrid corrects it), yellow where both are, cyan where only the hybrid is. "
+      "The decimated dragon has holes; the volume-based columns give it the volume of its "
+      "two-sided surface (counted in open_casters_two_sided, docs/volumes.md). Below: per scene, "
+      "two windows of each column magnified 6x: where the shadow map gets the most pixels wrong "
+      "(self-shadowing at the terminators of curved blockers, which the thesis's hybrid "
+      "corrects, §3.3.1), and a long shadow edge on the ground (the map's stair steps). The counts of wrong pixels this run measured are stated below the caption.",
+      "trees", 4, p37);
+  f37.width = 1024;
+  f37.height = 768;
   f37.shadowMapTexels = 1024;
   out.push_back(f37);
 
@@ -651,22 +670,24 @@ std::vector<FigureSpec> chanFigures() {
   p311.push_back(plot("time per pass", "chan-3-11"));
   FigureSpec f311 = chanFigure(
       "chan-3-11", "Figure 3-11", "Frame time per part: SM, hybrid, SV",
-      "Stacked per-pass times of the shadow map (SM), hybrid (H) and shadow volume (SV) "
-      "algorithms, 1024² maps at 800x600; the table gives each part and the counters "
-      "(volume_overdraw: volume fragments per pixel; masked_overdraw: those the mask lets "
-      "update the stencil; tile_overdraw: those inside the tile boxes; "
+      "Times: llvmpipe cannot reproduce Chan's speed-up of the hybrid over shadow volumes "
+      "through its per-pixel computation mask (Chan: 30% to over 100% faster, on a GeForce 6800 "
+      "with a 2.6 GHz Pentium 4 at 1024x768), because that speed-up is fill saved by hardware "
+      "culling and llvmpipe culls none of it: it has no depth-bounds test and no early or hierarchical stencil/depth rejection; "
+      "its stencil test runs inside the fragment function, so with the per-pixel stencil mask "
+      "the volume pass runs as many fragment shaders as plain volumes although few fragments "
+      "update the stencil. It does skip work outside the scissor box: the tile boxes (64x64 "
+      "tiles holding silhouette pixels) cut the fragment-shader runs of the volume pass. "
+      "The chart: stacked per-pass times of the shadow map (SM), hybrid (H) and shadow volume "
+      "(SV) algorithms, one colour per pass, 1024² maps at 800x600; the table gives each part "
+      "and the counters (volume_overdraw: volume fragments per pixel; masked_overdraw: those the "
+      "mask lets update the stencil; tile_overdraw: those inside the tile boxes; "
       "volume_pass_fs_invocations: fragment-shader runs of the volume pass per pixel). "
       "fill-bound is the paper's setting: many overlapping volumes over most of the image, one "
-      "shadow outline. What llvmpipe culls: it has no depth-bounds test and no early or "
-      "hierarchical stencil/depth rejection; its stencil test runs inside the fragment "
-      "function, so with the per-pixel stencil mask the volume pass runs as many fragment "
-      "shaders as plain volumes although few fragments update the stencil. It does skip work "
-      "outside the scissor box: the tile boxes (64x64 tiles holding silhouette pixels) cut the "
-      "fragment-shader runs of the volume pass. Below the caption: the H/SV ratio of every "
-      "hybrid panel against the volumes of its scene (Chan: the hybrid 30-100% faster), with "
-      "the rounds, and the counters, as this run measured them. Every bar and ratio is the "
-      "median of interleaved rounds (all panels rendered once per round): compare ratios "
-      "within this figure, not times.",
+      "shadow outline. Below the caption: the H/SV ratio of every hybrid panel against the "
+      "volumes of its scene, with the rounds, and the counters, as this run measured them. "
+      "Every bar and ratio is the median of interleaved rounds (all panels rendered once per "
+      "round): compare ratios within this figure, not times.",
       "trees", 3, p311);
   f311.width = 800;
   f311.height = 600;
@@ -713,8 +734,9 @@ std::vector<FigureSpec> chanFigures() {
     p48.push_back(
         withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
                   paperMs[row][0]));
-    p48.push_back(
-        withPaper(withMap(render(n + " 16 samples", "modern.gems16"), texels), paperMs[row][1]));
+    p48.push_back(withPaper(
+        withMap(render(n + " bicubic 16 samples", "modern.gems16", {{"kernel", "bicubic"}}), texels),
+        paperMs[row][1]));
     p48.push_back(withPaper(
         withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}),
                 texels),
@@ -725,18 +747,24 @@ std::vector<FigureSpec> chanFigures() {
     ++row;
   }
   FigureSpec f48 = chanFigure(
-      "chan-4-8", "Figure 4-8", "Shadow edges: shadow map, 16-sample PCF, smoothies, with times",
-      "The cylinder's shadow with 256², 512² and 1024² maps (rows). Columns: one comparison "
-      "per pixel; 16-sample PCF (modern.gems16, our stand-in for the paper's bicubic "
-      "16-sample filter); smoothies of size 0.2 and 0.8 in the thesis's units, here widths "
-      "0.025 and 0.1 of the light's image (the same 1:4 ratio). Times per frame beside the "
-      "paper's (GeForce FX 5950 class GPU)."
-      " The paper's 16-sample frame costs about 8 of its plain frames, ours far fewer (the "
-      "times beside each panel): per pass "
-      "(below) both frames are a light pass and a camera pass, and on llvmpipe the camera "
+      "chan-4-8", "Figure 4-8",
+      "Shadow edges: shadow map, 16-sample bicubic PCF, smoothies, with times",
+      "Times: llvmpipe reproduces neither the cost of the thesis's bicubic filter nor its "
+      "smoothies being much faster than that filter. On Chan's GeForce FX 5800 Ultra with a "
+      "2.6 GHz Pentium 4, at 1024x1024, the 16-sample bicubic frame took 129-142 ms against "
+      "16-17 ms for one comparison per pixel and 19-24 ms for smoothies; on llvmpipe the camera "
       "pass's fixed work per pixel (rasterisation, interpolation, lighting) outweighs the "
-      "shadow-map lookups, so going from 1 to 16 lookups adds about one more camera pass, where on the "
-      "paper's GPU they were most of the frame (docs/figures.md).",
+      "shadow-map lookups, so the 16 comparisons add far less than the thesis's factor, and a "
+      "smoothie frame's five passes (silhouettes on the CPU, the map, smoothie depth, smoothie "
+      "alpha, the camera pass) cost more than the bicubic frame's two (the measured ratios, per "
+      "map size and per pass, are below). "
+      "Images: the cylinder's shadow with 256², 512² and 1024² maps (rows). Columns: one "
+      "comparison per pixel; percentage-closer filtering with a bicubic filter, 16 samples "
+      "(modern.gems16 --param kernel=bicubic: 16 single comparisons over the 4x4 texels around "
+      "the lookup, weighted by a cubic B-spline; the thesis does not say which cubic, "
+      "bicubic_pcf.frag.glsl); smoothies of size 0.2 and 0.8 in the thesis's units, here "
+      "widths 0.025 and 0.1 of the light's image (the same 1:4 ratio). Each panel's time "
+      "stands beside the thesis's.",
       "cylinder", 4, p48);
   f48.closeups = {{0.5f, 0.2f, 0.25f, 0.25f, 2}};
   out.push_back(f48);

@@ -63,6 +63,10 @@ struct PanelSpec {
   bool closeups = true;      // apply the figure's close-ups to this panel
   std::vector<Closeup> ownCloseups;  // when not empty: this panel's close-ups instead of the
                                      // figure's (rows of different scenes, Chan Fig. 3-7)
+  std::vector<std::string> errorsOf;  // kRender, one or two techniques: instead of its colour
+                                      // the panel shows the pixels they decide lit/shadow
+                                      // otherwise than its own (exact) technique, same scene,
+                                      // size and map (figures/disagreement.h, Chan Fig. 3-7)
 };
 
 struct FigureSpec {

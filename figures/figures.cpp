@@ -30,6 +30,7 @@
 #include "figures/bench.h"
 #include "figures/bench_report.h"
 #include "figures/diagnostics.h"
+#include "figures/disagreement.h"
 #include "figures/figure_composite.h"
 #include "figures/lesson.h"
 #include "figures/measured.h"
@@ -286,6 +287,8 @@ std::string missingReason(const PanelSpec& p) {
   for (const auto& [key, value] : p.params)
     if (!findParam(*t, key))
       return p.technique + " has no parameter '" + key + "' (needed: " + key + "=" + value + ")";
+  for (const std::string& name : p.errorsOf)
+    if (lookup(name) == nullptr) return "technique " + name + " is not available yet";
   return "";
 }
 
@@ -417,7 +420,32 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           out.passes = f->passes;
         }
         out.counters = f->counters;
-        if (!fig.table) addImage(p.mask ? f->visibility : f->color, p.label, true);
+        Image shown = p.mask ? f->visibility : f->color;
+        if (!p.errorsOf.empty()) {  // the pixels other techniques get wrong (Chan Fig. 3-7)
+          // Each compared technique as the figure's panel of it on this scene shows it (its
+          // parameters and map, --set included), or with this panel's setup when none does.
+          auto compared = [&](const std::string& name) {
+            Setup s = setup;
+            for (const PanelSpec& q : fig.panels)
+              if (q.kind == PanelKind::kRender && q.technique == name && q.errorsOf.empty() &&
+                  setupFor(fig, q).sceneKey() == setup.sceneKey()) {
+                s = setupFor(fig, q);
+                break;
+              }
+            return r.frame(*lookup(name), s, false);
+          };
+          const auto first = compared(p.errorsOf[0]);
+          const auto second = p.errorsOf.size() > 1 ? compared(p.errorsOf[1]) : nullptr;
+          const Disagreement d = disagreementOverlay(f->color, f->visibility, first->visibility,
+                                                     second ? second->visibility : Image());
+          shown = d.overlay;
+          out.counters[kWrongPixelsCounter + p.errorsOf[0]] = double(d.firstWrong);
+          if (second) {
+            out.counters[kWrongPixelsCounter + p.errorsOf[1]] = double(d.secondWrong);
+            out.counters[kBothWrongCounter] = double(d.bothWrong);
+          }
+        }
+        if (!fig.table) addImage(shown, p.label, true);
         // Step 3: error against the reference.
         if (fig.reference.empty()) {
           out.errorNote = "not measured in this figure";

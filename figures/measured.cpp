@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/html.h"
+#include "figures/disagreement.h"
 
 namespace sl::figures {
 namespace {
@@ -288,6 +289,108 @@ std::string chan310(const FigureResult& fig) {
   return h.str();
 }
 
+// ---------------------------------------------------------------- Chan Fig. 3-7
+// Per scene, the pixels the shadow map and the hybrid decide otherwise than the volumes (the
+// counters of the overlay panels, figures/disagreement.h).
+std::string chan37(const FigureResult& fig) {
+  std::string rows;
+  for (const PanelResult& p : fig.panels) {
+    if (!p.ok || p.spec.errorsOf.size() != 2) continue;
+    const auto first = counter(p, kWrongPixelsCounter + p.spec.errorsOf[0]);
+    const auto second = counter(p, kWrongPixelsCounter + p.spec.errorsOf[1]);
+    const auto both = counter(p, kBothWrongCounter);
+    if (!first || !second || !both) continue;
+    const int w = p.spec.width ? p.spec.width : fig.spec.width;
+    const int h = p.spec.height ? p.spec.height : fig.spec.height;
+    const double pixels = double(w) * double(h);
+    rows += "<tr><td>" + htmlEscape(sceneOf(fig, p)) + "</td><td>" + fixed(*first, 0) + " (" +
+            percent(*first / pixels) + ")</td><td>" + fixed(*second, 0) + " (" +
+            percent(*second / pixels) + ")</td><td>" + fixed(*both, 0) + "</td><td>" +
+            (*first > 0 ? percent((*first - *both) / *first) : std::string("-")) + "</td></tr>\n";
+  }
+  if (rows.empty()) return "";
+  return "<p><b>Measured: pixels decided otherwise than the shadow volumes</b> (lit or in "
+         "shadow, at half visibility), per scene; the last column is the share of the shadow "
+         "map's wrong pixels that the hybrid decides right.</p>\n<table><tr><th>scene</th>"
+         "<th>shadow map wrong</th><th>hybrid wrong</th><th>both wrong</th><th>of the shadow "
+         "map's, corrected by the hybrid</th></tr>\n" +
+         rows + "</table>\n";
+}
+
+// ---------------------------------------------------------------- Chan Fig. 4-8
+// The milliseconds of a panel's passes whose name contains `part` ("camera").
+double passMilliseconds(const PanelResult& p, const std::string& part) {
+  double ms = 0;
+  for (const PassTime& pass : p.passes)
+    if (pass.name.find(part) != std::string::npos) ms += pass.milliseconds;
+  return ms;
+}
+
+bool isBicubic(const PanelResult& p) {
+  const auto it = p.spec.params.find("kernel");
+  return p.spec.technique == "modern.gems16" && it != p.spec.params.end() &&
+         it->second == "bicubic";
+}
+
+// Per map size: the bicubic 16-sample frame against one comparison (the thesis: about 8x) and
+// against the narrow smoothie (the thesis: "much faster than using the bicubic filter"), with the
+// camera passes, where the 16 comparisons are made.
+std::string chan48(const FigureResult& fig) {
+  std::ostringstream rows;
+  int compared = 0, withSmoothie = 0, smoothieFaster = 0;
+  std::string smoothieWidth;  // the smoothie panels' --param width, as the figure sets it
+  for (const PanelResult& b : fig.panels) {
+    if (!timedRender(b) || !isBicubic(b)) continue;
+    const PanelResult *plain = nullptr, *smoothie = nullptr;
+    for (const PanelResult& p : fig.panels) {
+      if (!timedRender(p) || texelsOf(fig, p) != texelsOf(fig, b)) continue;
+      if (p.spec.technique == "modern.hw" && plain == nullptr) plain = &p;
+      if (p.spec.technique == "modern.smoothies" && smoothie == nullptr) smoothie = &p;
+    }
+    if (plain == nullptr) continue;
+    ++compared;
+    const auto paperB = paperMilliseconds(b.spec.paperNumbers);
+    const auto paperPlain = paperMilliseconds(plain->spec.paperNumbers);
+    const double cameraB = passMilliseconds(b, "camera");
+    const double cameraPlain = passMilliseconds(*plain, "camera");
+    rows << "<tr><td>" << texelsOf(fig, b) << "²</td><td>" << fixed(b.milliseconds, 1) << " / "
+         << fixed(plain->milliseconds, 1) << " = " << fixed(b.milliseconds / plain->milliseconds, 2)
+         << "</td><td class=paper>"
+         << (paperB && paperPlain ? fixed(*paperB, 0) + " / " + fixed(*paperPlain, 0) + " = " +
+                                        fixed(*paperB / *paperPlain, 2)
+                                  : std::string("-"))
+         << "</td><td>" << fixed(cameraB, 1) << " / " << fixed(cameraPlain, 1) << " = "
+         << fixed(cameraPlain > 0 ? cameraB / cameraPlain : 0.0, 2) << "</td><td>";
+    if (smoothie != nullptr) {
+      if (const auto w = smoothie->spec.params.find("width"); w != smoothie->spec.params.end())
+        smoothieWidth = w->second;
+      ++withSmoothie;
+      smoothieFaster += direction(smoothie->milliseconds / b.milliseconds) < 0 ? 1 : 0;
+      const auto paperS = paperMilliseconds(smoothie->spec.paperNumbers);
+      rows << fixed(smoothie->milliseconds / b.milliseconds, 2) << "</td><td class=paper>"
+           << (paperS && paperB ? fixed(*paperS / *paperB, 2) : std::string("-"));
+    } else {
+      rows << "-</td><td class=paper>-";
+    }
+    rows << "</td></tr>\n";
+  }
+  if (compared == 0) return "";
+  std::ostringstream h;
+  h << "<p><b>Measured: the bicubic 16-sample PCF against one comparison and against "
+       "smoothies.</b> Frame times are medians of the interleaved rounds on this run's "
+       "renderer; the thesis's are on a GeForce FX 5800 Ultra. The camera pass is where the "
+       "16 comparisons (or the one) are made; the light pass is the same in both. The thesis's "
+       "smoothies are faster than its bicubic filter at every map size (\"still much faster "
+       "than using the bicubic filter\", §4.4); ours at "
+    << smoothieFaster << " of " << withSmoothie << ".</p>\n"
+       "<table><tr><th>map</th><th>bicubic / one comparison (ms)</th><th>thesis</th>"
+       "<th>camera pass: bicubic / one comparison (ms)</th><th>smoothie"
+    << htmlEscape(smoothieWidth.empty() ? "" : " (width " + smoothieWidth + ")")
+    << " / bicubic</th><th>thesis</th></tr>\n"
+    << rows.str() << "</table>\n";
+  return h.str();
+}
+
 // ---------------------------------------------------------------- CSM Fig. 9
 std::string csmFig9(const FigureResult& fig) {
   const PanelResult *vsm = nullptr, *csm = nullptr;
@@ -391,6 +494,8 @@ std::string measuredHtml(const FigureResult& fig) {
   if (id == "csm-table1") h += convolutionTrend(fig);
   if (id == "chan-3-11") h += hybridAgainstVolumes(fig) + fillCounters(fig, true);
   if (id == "chan-3-10") h += chan310(fig);
+  if (id == "chan-4-8") h += chan48(fig);
+  if (id == "chan-3-7") h += chan37(fig);
   if (id == "csm-fig9") h += csmFig9(fig);
   return h.empty() ? "" : "<div class=measured>" + h + "</div>\n";
 }

@@ -21,6 +21,16 @@ constexpr int kCurveSamples = 801;         // points per reconstruction curve
 constexpr double kPlotHalfRange = 0.5;     // Fig. 3 shows d - z in [-0.5, 0.5] ("range scaled")
 constexpr double kAttenuationAlpha = 4.0;  // a strong attenuation for Fig. 3 (b)
 
+// Stack segments' colours: the ten saturated colours of Tableau 20 first, then their ten light
+// partners, so that up to ten segments differ in hue and up to twenty differ at all.
+constexpr const char* kSegmentPalette[] = {
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+    "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
+    "#c5b0d5", "#c49c94", "#f7b6d2", "#c7c7c7", "#dbdb8d", "#9edae5"};
+constexpr size_t kSegmentPaletteSize = sizeof(kSegmentPalette) / sizeof(kSegmentPalette[0]);
+constexpr double kSegmentSaturation = 0.65;  // hues spread evenly beyond the palette
+constexpr double kSegmentValue = 0.85;
+
 std::string quote(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -131,6 +141,30 @@ void plotLabelledPoints(
   runScript(s.str(), pngPath);
 }
 
+std::vector<std::string> segmentColours(size_t count) {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < count; ++i) {
+    if (count <= kSegmentPaletteSize) {
+      out.push_back(kSegmentPalette[i]);
+      continue;
+    }
+    // More segments than the palette: hues i / count of the circle (HSV to RGB).
+    const double h = 6.0 * double(i) / double(count);
+    const double c = kSegmentValue * kSegmentSaturation;
+    const double x = c * (1.0 - std::abs(std::fmod(h, 2.0) - 1.0));
+    const double m = kSegmentValue - c;
+    const int sector = int(h);
+    const double r = sector == 0 || sector == 5 ? c : sector == 1 || sector == 4 ? x : 0.0;
+    const double g = sector == 1 || sector == 2 ? c : sector == 0 || sector == 3 ? x : 0.0;
+    const double b = sector == 3 || sector == 4 ? c : sector == 2 || sector == 5 ? x : 0.0;
+    char hex[8];
+    std::snprintf(hex, sizeof(hex), "#%02x%02x%02x", int(std::lround(255.0 * (r + m))),
+                  int(std::lround(255.0 * (g + m))), int(std::lround(255.0 * (b + m))));
+    out.push_back(hex);
+  }
+  return out;
+}
+
 void plotStackedBars(const std::string& title, const std::string& yLabel,
                      const std::vector<std::string>& rows, const std::vector<std::string>& columns,
                      const std::vector<std::vector<double>>& values, const std::string& pngPath,
@@ -149,9 +183,10 @@ void plotStackedBars(const std::string& title, const std::string& yLabel,
     s << "\n";
   }
   s << "EOD\nplot ";
+  const std::vector<std::string> colours = segmentColours(columns.size());
   for (size_t c = 0; c < columns.size(); ++c)
     s << (c ? ", " : "") << "$d using " << c + 2 << (c == 0 ? ":xtic(1)" : "") << " title "
-      << quote(columns[c]);
+      << quote(columns[c]) << " lc rgb " << quote(colours[c]);
   s << "\n";
   runScript(s.str(), pngPath);
 }

@@ -31,7 +31,10 @@ void plotLabelledPoints(
     const std::string& title, const std::string& xLabel, const std::string& yLabel,
     const std::vector<std::pair<std::pair<double, double>, std::string>>& points, bool logX,
     const std::string& pngPath, int width, int height);
-// Stacked bars: one bar per row label, one stack segment per column name.
+// Colours of `count` stack segments, "#rrggbb", all different (one per pass in Chan Fig. 3-11).
+std::vector<std::string> segmentColours(size_t count);
+// Stacked bars: one bar per row label, one stack segment per column name, each its own colour
+// (segmentColours).
 void plotStackedBars(const std::string& title, const std::string& yLabel,
                      const std::vector<std::string>& rows, const std::vector<std::string>& columns,
                      const std::vector<std::vector<double>>& values, const std::string& pngPath,

@@ -3,13 +3,16 @@
 // built from the hardware's own 2x2 filtered compare (GL_LINEAR on a depth texture with
 // compare mode, §11.3, Fig. 11-3): 16 offset lookups (§11.3), or 4 lookups whose choice
 // follows the screen position in a 2x2 dither (§11.4, Fig. 11-4). --param samples=1 gives the
-// single-lookup image of Fig. 11-6.
+// single-lookup image of Fig. 11-6. modern.gems16 --param kernel=bicubic weights its 16 samples
+// by a cubic B-spline instead, one comparison per texel of the 4x4 region: the "bicubic (16
+// samples)" PCF that Chan 2004 (§4.4, Fig. 4-8) times against smoothies (bicubic_pcf.frag).
 //
 // Passes:
 //   1. renderDepthFromLight   — light view into a DEPTH_COMPONENT24 texture, polygon offset,
 //                               compare mode and GL_LINEAR (the 2x2 hardware PCF)
 //   2. filterInCameraPass     — camera view; the receiver moved towards the light by the bias,
-//                               gems_pcf.frag sums offset_lookup (§11.3/§11.4)
+//                               gems_pcf.frag sums offset_lookup (§11.3/§11.4), or
+//                               bicubic_pcf.frag weights 16 single comparisons (kernel=bicubic)
 #include "modern/gems_pcf.h"
 
 #include <algorithm>
@@ -70,13 +73,25 @@ float relativeBias(const Scene& scene, int shadowMapTexels, float biasTexels) {
                   kMaxRelativeBias);
 }
 
+// The weights of the 16 samples (--param kernel).
+enum class Kernel {
+  kBox,      // GPU Gems §11.3: 16 hardware 2x2 lookups, each weighted 1/16
+  kBicubic,  // Chan 2004 Fig. 4-8: 16 single comparisons weighted by a cubic B-spline
+};
+
 // Pass 1 (§11.3, "NVIDIA GPUs have built-in percentage-closer filtering"): the depth map
-// with compare mode and linear filtering, so that one lookup is a bilinear 2x2 PCF.
+// with compare mode and linear filtering, so that one lookup is a bilinear 2x2 PCF; for the
+// bicubic kernel nearest filtering, so that one lookup is one comparison (Chan 2004 Fig. 4-8).
 RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
-                                  float units, Frame& frame) {
+                                  float units, Kernel kernel, Frame& frame) {
   PassTimer timer(frame, "1 depth from light",
-                  "Bunnell & Pellacini 2004, GPU Gems §11.3 (a depth texture with compare mode "
-                  "and GL_LINEAR: the hardware's 2x2 PCF, Fig. 11-3); polygon offset as Everitt");
+                  kernel == Kernel::kBicubic
+                      ? "Chan 2004 §4.4, Fig. 4-8 (the bicubic PCF's map: a depth texture with "
+                        "compare mode and GL_NEAREST, one comparison per lookup); polygon offset "
+                        "as Everitt"
+                      : "Bunnell & Pellacini 2004, GPU Gems §11.3 (a depth texture with compare "
+                        "mode and GL_LINEAR: the hardware's 2x2 PCF, Fig. 11-3); polygon offset "
+                        "as Everitt");
   timer.shaderPasses({"depth-only"});
   const int n = params.shadowMapTexels;
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
@@ -92,9 +107,38 @@ RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& param
   gpu.draw([](const Object& o) { return o.castsShadow; },
            [&](const Object& o) { program.set("uModel", o.model); });
   glDisable(GL_POLYGON_OFFSET_FILL);
-  setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
+  // The hardware 2x2 compare for the box kernel; one comparison per lookup for the bicubic.
+  setDepthCompareParameters(map.depth.id(), /*linear=*/kernel == Kernel::kBox);
   glBindTexture(GL_TEXTURE_2D, 0);
   return map;
+}
+
+// Pass 2 (Chan 2004 §4.4, Fig. 4-8, "bicubic (16 samples)"): the camera view, 16 single
+// comparisons at the 4x4 texel centres around the lookup weighted by the cubic B-spline.
+void bicubicFilterInCameraPass(const GpuScene& gpu, const RenderParams& params,
+                               const RenderTarget& map, float relativeBias, Frame& frame) {
+  PassTimer timer(frame, "2 camera pass, 16-sample bicubic PCF",
+                  "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a bicubic "
+                  "filter, 16 samples (cubic B-spline weights over 4x4 texels; bicubic_pcf.frag)");
+  timer.shaderPasses({"bicubic-weights", "bicubic-region"});
+  const Scene& scene = gpu.scene();
+  RenderTarget target = makeCameraTarget(params, true);
+  clearCameraTarget(target);
+  glEnable(GL_DEPTH_TEST);
+  Program program("scene.vert.glsl", "bicubic_pcf.frag.glsl");
+  program.use();
+  program.set("uViewProjection", cameraViewProjection(scene, params));
+  program.set("uWorldToShadowMap", worldToShadowMap(scene));
+  program.set("uMapSize", glm::vec2(float(map.width), float(map.height)));
+  program.set("uRelativeBias", relativeBias);
+  setLightingUniforms(program, scene);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, map.depth.id());
+  program.set("uShadowMap", 0);
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setObjectUniforms(program, o); });
+  readCameraTarget(target, frame);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 // Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view.
@@ -130,21 +174,36 @@ void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const R
 }
 
 // --dump-passes: the depth map of pass 1 as grey and the filtered camera pass.
-void captureMapAndCameraPass(const RenderTarget& map, int samples, Frame& frame) {
+void captureMapAndCameraPass(const RenderTarget& map, int samples, Kernel kernel, Frame& frame) {
+  const bool bicubic = kernel == Kernel::kBicubic;
   frame.intermediates.push_back(greyDepth(
       "1-light-depth",
-      "pass 1 (GPU Gems §11.3): depth from the light with polygon offset, compared with GL_LINEAR "
-      "(hardware 2x2 PCF)",
+      bicubic ? "pass 1 (Chan 2004 Fig. 4-8, bicubic PCF): depth from the light with polygon "
+                "offset, compared with GL_NEAREST (one comparison per sample)"
+              : "pass 1 (GPU Gems §11.3): depth from the light with polygon offset, compared with "
+                "GL_LINEAR (hardware 2x2 PCF)",
       readDepthTexture(map.depth.id(), map.width, map.height)));
   captureCameraPass(frame, 2,
-                    "gems_pcf.frag, " + std::to_string(samples) + " offset lookups, " +
-                        (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3"));
+                    bicubic ? std::string("bicubic_pcf.frag, 16 comparisons weighted by the cubic "
+                                          "B-spline, Chan 2004 Fig. 4-8")
+                            : "gems_pcf.frag, " + std::to_string(samples) + " offset lookups, " +
+                                  (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3"));
 }
 
 // --param samples: lookups per pixel (GPU Gems §11.3: 16; §11.4: 4 dithered; 1: one lookup).
 ParamSpec samplesParam(int defaultSamples) {
   return choiceParam("samples", std::to_string(defaultSamples), {"1", "4", "16"},
                      "hardware 2x2 PCF lookups per pixel: 16 (§11.3), 4 dithered (§11.4), 1");
+}
+
+// --param kernel (modern.gems16 only): how the 16 samples are weighted.
+constexpr const char* kKernelBox = "box";
+constexpr const char* kKernelBicubic = "bicubic";
+ParamSpec kernelParam() {
+  return choiceParam("kernel", kKernelBox, {kKernelBox, kKernelBicubic},
+                     "weights of the 16 samples: box (GPU Gems §11.3, 16 hardware 2x2 lookups, "
+                     "1/16 each) or bicubic (Chan 2004 Fig. 4-8: 16 single comparisons over 4x4 "
+                     "texels weighted by a cubic B-spline; needs samples=16)");
 }
 
 // --param bias-texels: the receiver-plane bias, in shadow-map texel footprints.
@@ -160,13 +219,23 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const float biasTexels =
       float(params.number(biasTexelsParam()));
+  // Only modern.gems16 declares the kernel; modern.gems4 rejects the key as unknown.
+  const bool bicubic =
+      defaultSamples == 16 && params.text(kernelParam()) == std::string(kKernelBicubic);
+  if (bicubic && samples != "16")
+    throw InputError("modern.gems16: --param kernel=bicubic weights 16 samples; samples=" +
+                     samples + " cannot take it");
+  const Kernel kernel = bicubic ? Kernel::kBicubic : Kernel::kBox;
   Frame frame;
   GpuScene gpu(scene);
-  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, frame);
-  filterInCameraPass(gpu, params, map, std::stoi(samples),
-                     relativeBias(scene, params.shadowMapTexels, biasTexels), frame);
+  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, kernel, frame);
+  const float bias = relativeBias(scene, params.shadowMapTexels, biasTexels);
+  if (bicubic)
+    bicubicFilterInCameraPass(gpu, params, map, bias, frame);
+  else
+    filterInCameraPass(gpu, params, map, std::stoi(samples), bias, frame);
   frame.counters["samples per pixel"] = std::stoi(samples);
-  if (params.capturePasses) captureMapAndCameraPass(map, std::stoi(samples), frame);
+  if (params.capturePasses) captureMapAndCameraPass(map, std::stoi(samples), kernel, frame);
   return frame;
 }
 
@@ -180,6 +249,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.needs.profile = Profile::kCore;
   t.params = {samplesParam(samples), offsetFactorParam(kDefaultOffsetFactor),
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
+  if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);

@@ -108,6 +108,49 @@ TEST(Measured, ConvolutionTrendTellsNoiseFromCostStructure) {
   EXPECT_NE(html.find("3 vertical Gaussian 7x7 +9.0"), std::string::npos) << "per-pass delta";
 }
 
+// Chan Fig. 4-8: the bicubic frame against one comparison and the smoothie against the bicubic,
+// per map size, ours from the medians beside the thesis's from its panels' numbers.
+TEST(Measured, ChanFourEightComparesBicubicWithOneComparisonAndSmoothies) {
+  FigureResult fig;
+  fig.spec.id = "chan-4-8";
+  fig.panels.push_back(timed("256² shadow map", "modern.hw", {40, 40, 40}, "16 ms", 256));
+  fig.panels.back().passes = {{"1 depth from light", 5.0}, {"2 camera pass with shadow test", 30.0}};
+  fig.panels.push_back(timed("256² bicubic", "modern.gems16", {90, 100, 110}, "129 ms", 256));
+  fig.panels.back().spec.params = {{"kernel", "bicubic"}};
+  fig.panels.back().passes = {{"1 depth from light", 5.0}, {"2 camera pass, 16-sample bicubic PCF", 90.0}};
+  fig.panels.push_back(timed("256² smoothie", "modern.smoothies", {50, 50, 50}, "19 ms", 256));
+  fig.panels.back().spec.params = {{"width", "0.025"}};
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("100.0 / 40.0 = 2.50"), std::string::npos) << html;
+  EXPECT_NE(html.find("129 / 16 = 8.06"), std::string::npos) << "the thesis's ratio: " << html;
+  EXPECT_NE(html.find("90.0 / 30.0 = 3.00"), std::string::npos) << "camera passes: " << html;
+  EXPECT_NE(html.find("<td>0.50</td>"), std::string::npos) << "smoothie / bicubic: " << html;
+  EXPECT_NE(html.find("0.15"), std::string::npos) << "thesis 19 / 129: " << html;
+  EXPECT_NE(html.find("width 0.025"), std::string::npos) << html;
+  EXPECT_NE(html.find("ours at 1 of 1."), std::string::npos) << "50 ms is faster than 100: " << html;
+}
+
+// Chan Fig. 3-7: the wrong-pixel counts of the overlay panels, with their shares.
+TEST(Measured, ChanThreeSevenCountsWrongPixelsPerScene) {
+  FigureResult fig;
+  fig.spec.id = "chan-3-7";
+  fig.spec.width = 100;
+  fig.spec.height = 50;
+  PanelResult p;
+  p.ok = true;
+  p.spec.technique = "modern.volumes";
+  p.spec.scene = "dragon";
+  p.spec.errorsOf = {"modern.hw", "modern.hybrid"};
+  p.counters = {{"wrong_pixels modern.hw", 250}, {"wrong_pixels modern.hybrid", 20},
+                {"wrong_pixels of both", 10}};
+  fig.panels.push_back(p);
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("<td>dragon</td><td>250 (5.0%)</td><td>20 (0.40%)</td><td>10</td>"
+                      "<td>96.0%</td>"),
+            std::string::npos)
+      << html;
+}
+
 // Every number in a caption is configuration (the figure's sizes, maps, panel parameters and
 // labels, close-up magnifications) or the paper's, in a clause that names its source; a
 // measured number (an overdraw, a ratio, a share) typed into a caption fails here. The

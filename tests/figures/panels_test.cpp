@@ -11,14 +11,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <string>
 
 #include "registry/registry.h"
 #include "core/scene_library.h"
+#include "core/errors.h"
+#include "figures/disagreement.h"
 #include "figures/figure_spec.h"
 #include "figures/figures.h"
+#include "figures/plots.h"
 #include "figures/report.h"
 
 namespace fs = std::filesystem;
@@ -130,6 +135,8 @@ TEST(FigurePanels, EveryPanelNamesAnAvailableTechniqueParameterAndBuffer) {
       if (p.kind != PanelKind::kRender && p.kind != PanelKind::kIntermediates) continue;
       const Technique* t = lookup(p.technique);
       ASSERT_NE(t, nullptr) << f.id << " " << p.label << ": no technique " << p.technique;
+      for (const std::string& name : p.errorsOf)
+        EXPECT_NE(lookup(name), nullptr) << f.id << " " << p.label << ": no technique " << name;
       for (const auto& [key, value] : p.params)
         EXPECT_NE(findParam(*t, key), nullptr)
             << f.id << " " << p.label << ": " << p.technique << " has no parameter " << key;
@@ -430,4 +437,138 @@ TEST(StencilCapture, IsTheCountTheTechniquesShadeFrom) {
   EXPECT_LT(hybridBlack, black) << "the hybrid counted volumes outside the silhouette pixels";
   EXPECT_EQ(outside, 0);
   EXPECT_EQ(lit, 0);
+}
+
+namespace {
+const FigureSpec& figureById(const std::string& id) {
+  for (const FigureSpec& f : figureList())
+    if (f.id == id) return f;
+  throw std::runtime_error("no figure " + id);
+}
+
+std::string firstSentence(const std::string& caption) {
+  return caption.substr(0, caption.find(". "));
+}
+}  // namespace
+
+// Issue 27 item 6: Chan Fig. 4-8 times a real 16-sample bicubic PCF (modern.gems16
+// --param kernel=bicubic) at every map size, beside the thesis's times, on the thesis's GPU.
+TEST(ChanFigures, FourEightTimesABicubicSixteenSamplePcfAtEveryMapSize) {
+  const FigureSpec& f = figureById("chan-4-8");
+  std::set<int> sizes;
+  for (const PanelSpec& p : f.panels) {
+    const auto kernel = p.params.find("kernel");
+    if (p.technique != "modern.gems16") continue;
+    ASSERT_NE(kernel, p.params.end()) << p.label << ": the 16-sample column is the bicubic one";
+    EXPECT_EQ(kernel->second, "bicubic") << p.label;
+    EXPECT_NE(p.paperNumbers.find(" ms"), std::string::npos) << p.label << " beside the thesis";
+    sizes.insert(p.shadowMapTexels);
+  }
+  EXPECT_EQ(sizes, (std::set<int>{256, 512, 1024}));
+  // Chan §4.4: "a 2.6 GHz Pentium 4 system with an NVIDIA Geforce FX 5800 Ultra".
+  EXPECT_NE(f.caption.find("GeForce FX 5800 Ultra"), std::string::npos) << f.caption;
+  EXPECT_EQ(f.caption.find("5950"), std::string::npos) << "not the thesis's card";
+}
+
+// A timing figure that llvmpipe cannot reproduce says so in its first sentence.
+TEST(ChanFigures, TimingCaptionsLeadWithWhatLlvmpipeCannotReproduce) {
+  for (const char* id : {"chan-3-11", "chan-4-8"}) {
+    const std::string first = firstSentence(figureById(id).caption);
+    EXPECT_NE(first.find("llvmpipe"), std::string::npos) << id << ": " << first;
+    EXPECT_TRUE(std::regex_search(first, std::regex(R"(\b(not|cannot|neither)\b)")))
+        << id << ": " << first;
+  }
+}
+
+// Chan Fig. 3-7 at the thesis's 1024x768 with its 1024² map, and per scene a panel of the
+// pixels the shadow map and the hybrid get wrong against the volumes, with the row's close-up.
+TEST(ChanFigures, ThreeSevenShowsWrongPixelsAgainstTheVolumesAtTheThesisSize) {
+  const FigureSpec& f = figureById("chan-3-7");
+  EXPECT_EQ(f.width, 1024);
+  EXPECT_EQ(f.height, 768);
+  EXPECT_EQ(f.shadowMapTexels, 1024);
+  ASSERT_EQ(f.panels.size() % size_t(f.columns), 0u) << "whole rows";
+  int overlays = 0;
+  for (size_t row = 0; row < f.panels.size() / size_t(f.columns); ++row) {
+    const PanelSpec& last = f.panels[row * size_t(f.columns) + size_t(f.columns) - 1];
+    EXPECT_EQ(last.technique, "modern.volumes") << last.label;
+    EXPECT_EQ(last.errorsOf, (std::vector<std::string>{"modern.hw", "modern.hybrid"}))
+        << last.label;
+    for (int c = 0; c < f.columns; ++c) {
+      const PanelSpec& p = f.panels[row * size_t(f.columns) + size_t(c)];
+      EXPECT_EQ(p.scene, last.scene) << "one scene per row";
+      // Two windows per scene (the most wrong pixels, a long ground shadow edge), the same in
+      // every column of the row, magnified enough to survive figure.png's shrinking.
+      ASSERT_EQ(p.ownCloseups.size(), 2u) << p.label;
+      for (size_t k = 0; k < 2; ++k) {
+        EXPECT_EQ(p.ownCloseups[k].x, last.ownCloseups[k].x) << "one window per row";
+        EXPECT_EQ(p.ownCloseups[k].y, last.ownCloseups[k].y) << "one window per row";
+        EXPECT_GE(p.ownCloseups[k].magnify, 6) << p.label;
+      }
+    }
+    overlays += last.errorsOf.empty() ? 0 : 1;
+  }
+  EXPECT_EQ(overlays, 3);
+}
+
+// The overlay: grey where both techniques agree with the exact one, magenta / yellow / cyan
+// where the first only, both, the second only decide lit or shadow otherwise; counted.
+TEST(Disagreement, ColoursAndCountsEachTechniquesWrongPixels) {
+  // Five pixels in a row: exact lit, lit, shadow, shadow, lit.
+  Image exact(5, 1, 1), first(5, 1, 1), second(5, 1, 1);
+  const float e[] = {1, 1, 0, 0, 0.6f}, a[] = {1, 0, 0, 1, 0.4f}, b[] = {1, 1, 1, 1, 0.6f};
+  for (int x = 0; x < 5; ++x) {
+    exact.at(x, 0) = e[x];
+    first.at(x, 0) = a[x];
+    second.at(x, 0) = b[x];
+  }
+  const Image colour = solid(5, 1, 1.0f, 1.0f, 1.0f);
+  const Disagreement d = disagreementOverlay(colour, exact, first, second);
+  EXPECT_EQ(d.pixels, 5);
+  EXPECT_EQ(d.firstWrong, 3);   // pixels 1, 3, 4
+  EXPECT_EQ(d.secondWrong, 2);  // pixels 2, 3
+  EXPECT_EQ(d.bothWrong, 1);    // pixel 3
+  auto rgb = [&](int x) {
+    return std::array<float, 3>{d.overlay.at(x, 0, 0), d.overlay.at(x, 0, 1),
+                                d.overlay.at(x, 0, 2)};
+  };
+  const float grey = kOverlayBackgroundShare;  // white under the share (luma weights sum to 1)
+  constexpr float kLumaRoundoff = 1e-6f;       // three float products summed
+  for (float c : rgb(0)) EXPECT_NEAR(c, grey, kLumaRoundoff);
+  EXPECT_EQ(rgb(1), (std::array<float, 3>{kFirstOnlyWrong[0], kFirstOnlyWrong[1],
+                                          kFirstOnlyWrong[2]}));
+  EXPECT_EQ(rgb(2), (std::array<float, 3>{kSecondOnlyWrong[0], kSecondOnlyWrong[1],
+                                          kSecondOnlyWrong[2]}));
+  EXPECT_EQ(rgb(3), (std::array<float, 3>{kBothWrong[0], kBothWrong[1], kBothWrong[2]}));
+  EXPECT_THROW(disagreementOverlay(colour, exact, Image(4, 1, 1), second), InputError);
+}
+
+// Chan Fig. 3-11's chart has a dozen passes: each stack segment gets its own colour (gnuplot's
+// default cycle repeats after eight).
+TEST(Plots, StackSegmentsHaveOneColourEach) {
+  static const std::regex hex("#[0-9a-f]{6}");
+  for (size_t n : {1u, 8u, 12u, 20u, 33u}) {
+    const std::vector<std::string> colours = segmentColours(n);
+    ASSERT_EQ(colours.size(), n);
+    for (const std::string& c : colours) EXPECT_TRUE(std::regex_match(c, hex)) << c;
+    EXPECT_EQ(std::set<std::string>(colours.begin(), colours.end()).size(), n)
+        << n << " segments";
+  }
+  // The chart's script (kept beside the PNG) gives each of twelve segments its colour.
+  std::string why;
+  if (!gnuplotAvailable(&why)) GTEST_SKIP() << why;
+  const fs::path dir = outputDir("stacked-colours");
+  std::vector<std::string> columns;
+  for (int c = 0; c < 12; ++c) columns.push_back("pass " + std::to_string(c));
+  plotStackedBars("t", "ms", {"a", "b"}, columns,
+                  {std::vector<double>(12, 1.0), std::vector<double>(12, 2.0)},
+                  (dir / "chart.png").string(), 400, 300);
+  std::ifstream gp(dir / "chart.gp");
+  const std::string script((std::istreambuf_iterator<char>(gp)), std::istreambuf_iterator<char>());
+  std::set<std::string> used;
+  static const std::regex lc(R"re(lc rgb "(#[0-9a-f]{6})")re");
+  for (auto it = std::sregex_iterator(script.begin(), script.end(), lc);
+       it != std::sregex_iterator(); ++it)
+    used.insert((*it)[1]);
+  EXPECT_EQ(used.size(), 12u) << script;
 }

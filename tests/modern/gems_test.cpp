@@ -153,6 +153,115 @@ TEST(Gems, DitherRepeatsWithPeriodTwo) {
   EXPECT_LT(periodTwo, 0.5 * periodOne) << "neighbours one apart use other samples";
 }
 
+// ---------------------------------------------------------------- --param kernel=bicubic
+// The uniform cubic B-spline as a function of the distance d from a texel centre (Mitchell &
+// Netravali 1988, B = 1, C = 0), written independently of bicubic_pcf.frag's per-axis
+// polynomials w0..w3 (Sigg & Hadwiger's form): the two must agree.
+double cubicBSpline(double d) {
+  d = std::abs(d);
+  if (d < 1.0) return 2.0 / 3.0 - d * d + 0.5 * d * d * d;
+  if (d < 2.0) return (2.0 - d) * (2.0 - d) * (2.0 - d) / 6.0;
+  return 0.0;
+}
+
+TEST(Gems, CubicBSplineOfTheTestHasItsKnownValuesAndSumsToOne) {
+  // Known values: 2/3 and 1/6 at the centre and one texel away; 23/48 and 1/48 half a texel and
+  // one and a half away (the weights of a lookup half-way between two texel centres).
+  EXPECT_DOUBLE_EQ(cubicBSpline(0.0), 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(cubicBSpline(1.0), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(cubicBSpline(-0.5), 23.0 / 48.0);
+  EXPECT_DOUBLE_EQ(cubicBSpline(1.5), 1.0 / 48.0);
+  EXPECT_DOUBLE_EQ(cubicBSpline(2.0), 0.0);
+  // Partition of unity: the four texels within 2 of any lookup point weigh 1 in all.
+  constexpr double kRoundoff = 1e-12;  // four double products summed
+  for (double a : {0.0, 0.13, 0.5, 0.77, 0.999}) {
+    double sum = 0;
+    for (int i = -1; i <= 2; ++i) sum += cubicBSpline(a - i);
+    EXPECT_NEAR(sum, 1.0, kRoundoff) << "a = " << a;
+  }
+}
+
+TEST(Gems, BicubicKernelIsDeclaredOnceOnGemsSixteen) {
+  const ParamSpec* kernel = findParam(findTechnique("modern.gems16"), "kernel");
+  ASSERT_NE(kernel, nullptr) << "modern.gems16 declares --param kernel";
+  EXPECT_EQ(kernel->kind, ParamSpec::Kind::kChoice);
+  EXPECT_EQ(kernel->choices, (std::vector<std::string>{"box", "bicubic"}));
+  EXPECT_EQ(kernel->defaultText(), "box") << "GPU Gems' own filter stays the default";
+  EXPECT_NE(describeParam(*kernel).find("bicubic"), std::string::npos) << describeParam(*kernel);
+  // `shadowlab list`, the lab and --param checking read the declaration: gems4 has none.
+  EXPECT_EQ(findParam(findTechnique("modern.gems4"), "kernel"), nullptr);
+}
+
+TEST(Gems, BicubicKernelNeedsSixteenSamples) {
+  const Scene scene = builtinScene("analytic");
+  EXPECT_THROW(renderByName("modern.gems16", scene,
+                            smallParams(32, 32, 32, {{"kernel", "bicubic"}, {"samples", "4"}})),
+               InputError);
+  EXPECT_THROW(
+      renderByName("modern.gems16", scene, smallParams(32, 32, 32, {{"kernel", "cubic"}})),
+      InputError);
+}
+
+// Chan 2004 Fig. 4-8's "bicubic (16 samples)": each pixel's visibility is the B-spline-weighted
+// sum of 16 single comparisons at the texel centres around its lookup point. On the analytic
+// scene the light looks straight down, so the map holds the occluder's top face (an axis-aligned
+// square in texel space) over the ground, and which texels are in shadow is known exactly: the
+// rendered visibility must equal the sum computed here from cubicBSpline, at every pixel.
+TEST(Gems, BicubicVisibilityIsTheBSplineWeightedSumOfSixteenComparisons) {
+  const Scene scene = zoomedAnalytic();
+  // A small map magnified on screen (about 33 pixels per texel) so that the penumbra, four
+  // texels wide, spans many pixels at many fractions a between texel centres.
+  constexpr int kTexels = 64;
+  const RenderParams p = smallParams(256, 192, kTexels, {{"kernel", "bicubic"}});
+  const Frame f = renderByName("modern.gems16", scene, p);
+  ASSERT_TRUE(allFinite(f.visibility));
+  // The occluder's outline in texel space: its top face (nearest the light) seen from above.
+  const glm::vec2 c0 = shadowTexelOf(scene, kTexels, {-0.5f, 1.01f, -0.5f});
+  const glm::vec2 c1 = shadowTexelOf(scene, kTexels, {0.5f, 1.01f, 0.5f});
+  const glm::vec2 lo = glm::min(c0, c1), hi = glm::max(c0, c1);
+  // A texel whose centre lies this close to the outline may fall either way when rasterised.
+  constexpr float kAmbiguousTexels = 0.02f;
+  auto shadowed = [&](int i, int j, bool* ambiguous) {
+    const glm::vec2 c(float(i) + 0.5f, float(j) + 0.5f);
+    const glm::vec2 dLo = c - lo, dHi = hi - c;
+    const float margin = std::min(std::min(dLo.x, dLo.y), std::min(dHi.x, dHi.y));
+    *ambiguous = *ambiguous || std::abs(margin) < kAmbiguousTexels;
+    return margin > 0.0f;
+  };
+  // The visibility attachment is float: what differs is the lookup point, which the shader
+  // computes from the interpolated world position and this test from the pixel centre's ray,
+  // each in float (about 1e-5 texel at 64 texels); the weighted sum moves by at most about 1
+  // per texel moved. 1e-4 is ten times that (measured worst: 3e-6); a wrong weight is off by
+  // far more (box weights: 0.2 at the penumbra's edge).
+  constexpr float kTolerance = 1e-4f;
+  int penumbra = 0, checked = 0;
+  float worst = 0;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      const glm::vec3 g = groundPointOf(scene, p, float(x), float(y));
+      const glm::vec2 t = shadowTexelOf(scene, kTexels, g);
+      double expected = 0;
+      bool ambiguous = false;
+      for (int j = int(std::floor(t.y)) - 3; j <= int(std::floor(t.y)) + 3; ++j)
+        for (int i = int(std::floor(t.x)) - 3; i <= int(std::floor(t.x)) + 3; ++i) {
+          const double w = cubicBSpline(t.x - (i + 0.5)) * cubicBSpline(t.y - (j + 0.5));
+          if (w == 0.0) continue;
+          expected += shadowed(i, j, &ambiguous) ? 0.0 : w;
+        }
+      if (ambiguous) continue;
+      ++checked;
+      const float got = f.visibility.at(x, y);
+      penumbra += expected > 0.02 && expected < 0.98;
+      worst = std::max(worst, std::abs(got - float(expected)));
+      EXPECT_NEAR(got, expected, kTolerance) << "pixel " << x << "," << y << ", lookup point "
+                                             << t.x << "," << t.y << " texels";
+      if (::testing::Test::HasFailure()) return;  // one message, not thousands
+    }
+  EXPECT_GT(checked, p.width * p.height / 2) << "most pixels must be checked";
+  EXPECT_GT(penumbra, 1000) << "the test needs penumbra pixels to say anything";
+  RecordProperty("worst", std::to_string(worst));
+}
+
 TEST(Gems, BadSampleCountIsAnInputError) {
   const Scene scene = builtinScene("analytic");
   EXPECT_THROW(renderByName("modern.gems4", scene, smallParams(32, 32, 32, {{"samples", "8"}})),
