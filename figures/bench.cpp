@@ -35,6 +35,7 @@
 #include "core/errors.h"
 #include "core/frame_timing.h"
 #include "core/output_files.h"
+#include "core/provenance.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
@@ -289,6 +290,9 @@ nlohmann::json rowJson(const BenchRow& r, bool withSoft) {
       {"status", r.status}, {"params", describe(r.params)}, {"reference", r.primaryReference}};
   // null: a reference (the truth, not ranked) or a row that did not run.
   j["pareto_rank"] = r.paretoRank > 0 ? nlohmann::json(r.paretoRank) : nlohmann::json(nullptr);
+  // What made the row (core/provenance.h), as render's and compare's JSON lines say it.
+  j["commit"] = buildCommit();
+  j["command"] = commandLine();
   if (r.status != "ok") return j;
   j["frame_ms"] = r.frameMs;
   j["wall_ms"] = r.wallMs;
