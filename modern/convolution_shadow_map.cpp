@@ -400,14 +400,18 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 
 // Pass 5b: the camera view, classified (csm_shadow.frag with CLASSIFY 1): pixels that the
 // early-outs of pass 5c or the depth bounds decide are shaded here; the others get stencil 1.
-// DEVIATION (Annen et al. 2007, Eq. 13 at every pixel): Eq. 13 of a filtered footprint is the
-// same convex combination of the series at the footprint's depths (Eq. 8), so where every
-// depth lies in an interval on which the clamped series is within skip-error of 1 or 0
-// (csmSkipIntervals), the pixel is 1 or 0 without the M terms. On llvmpipe the stencil test of
+// DEVIATION (Annen et al. 2007, Eq. 13 from the filtered basis at every pixel): Eq. 13 of a
+// filtered footprint is the same convex combination of the series at the footprint's depths
+// (Eq. 8), so where every depth lies in an interval on which the clamped series is within
+// skip-error of 1 or 0 (csmSkipIntervals), the pixel needs none of the 2M filtered lookups: it
+// gets Eq. 13 with the basis of the depth at its footprint's centre, computed (csm_shadow.frag,
+// reconstructFromDepth; exact where the footprint's depth is constant, within skip-error
+// otherwise), so that decided and reconstructed pixels agree. On llvmpipe the stencil test of
 // pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
 // would not (llvmpipe evaluates both sides of a non-uniform branch).
 void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                          const Texture& depthBounds, int depthBoundsLevels,
+                          const Texture& linearDepth, const Texture& depthBounds,
+                          int depthBoundsLevels,
                           const CsmSkipIntervals& skip, const CsmSettings& s,
                           const DepthRange& range, float nearestCaster, Frame& frame) {
   PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
@@ -424,7 +428,7 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   const Program& program = cachedProgram(
       "scene.vert.glsl", "csm_shadow.frag.glsl",
       {{"ORDER", std::to_string(s.order)},
-       {"ENCODE_UNSIGNED", "0"},
+       {"ENCODE_UNSIGNED", s.encodeUnsigned ? "1" : "0"},
        {"CLASSIFY", "1"},
        {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
        {"FIRST_DEPTH_BOUNDS_LEVEL", std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
@@ -434,11 +438,18 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
   program.set("uFootprintMargin", footprintMargin(s));
   program.set("uDepthMapTexels", params.shadowMapTexels);
+  const std::vector<float> weights = termWeights(s);
+  glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, depthBounds.id());
   program.set("uDepthBounds", 1);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, linearDepth.id());
+  program.set("uLinearDepth", 2);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE0);
 }
@@ -448,15 +459,16 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
 // depth equal to the classification's).
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
                              const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
-                             float nearestCaster, const Texture* depthBounds, int depthBoundsLevels,
+                             float nearestCaster, const Texture& linearDepth,
+                             const Texture* depthBounds, int depthBoundsLevels,
                              const CsmSkipIntervals& skip, Frame& frame) {
   const Scene& scene = gpu.scene();
   const bool classified = depthBounds != nullptr;
   RenderTarget target =
       classified ? makeStencilCameraTarget(params, {}) : makeCameraTarget(params, true);
   if (classified) {
-    classifyInCameraPass(gpu, params, *depthBounds, depthBoundsLevels, skip, s, range,
-                         nearestCaster, frame);
+    classifyInCameraPass(gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip, s,
+                         range, nearestCaster, frame);
   } else {
     clearCameraTarget(target);
   }
@@ -557,8 +569,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const CsmSkipIntervals skip{work.skipIntervals[0], work.skipIntervals[1], work.skipIntervals[2],
                               work.skipIntervals[3]};
-  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, bounds,
-                          work.depthBoundsLevels, skip, frame);
+  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, depth.color[0],
+                          bounds, work.depthBoundsLevels, skip, frame);
   if (params.capturePasses) captureCameraPass(frame, 5, "csm_shadow.frag: Eq. 13 reconstruction");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;
