@@ -82,9 +82,10 @@ struct Case {
 };
 
 // Eq. 11 itself: rendered with skip-error=0 (Eq. 13 at every pixel). With the default
-// classification, a pixel the depth bounds decide is exactly 1 or 0 instead of the series'
-// ringing around it (issue 20), so `skipped` is also checked against the same value within
-// the skip error (0.025, the default; docs/csm.md).
+// classification, a pixel the depth bounds decide gets Eq. 13 of the basis of its footprint's
+// centre depth (issue 20, 27), within the skip error of the filtered reconstruction wherever the
+// footprint's depth varies, so `skipped` is also checked against the same value within the skip
+// error (0.025, the default; docs/csm.md).
 void expectMatchesEq11(const Case& c) {
   constexpr double kDefaultSkipError = 0.025;
   const Scene scene = builtinScene("analytic");
