@@ -147,8 +147,11 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   s.blurTaps = parseBlurTaps(params, blurParam(kDefaultBlurTaps));
   s.filtering = parseFiltering(context, params);
   s.skipError = params.number(skipErrorParam());
-  // The classification writes the stencil reference from the shader.
-  if (!context.caps().hasExtension("GL_ARB_shader_stencil_export")) s.skipError = 0.0;
+  // The classification writes the stencil reference from the shader and gathers the depths
+  // around a decided pixel (csm_shadow.frag, reconstructFromDepth).
+  if (!context.caps().hasExtension("GL_ARB_shader_stencil_export") ||
+      !context.caps().hasExtension("GL_ARB_texture_gather"))
+    s.skipError = 0.0;
   // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
   // mipmaps=auto (the default) the chain is built only when the planner finds that the view
   // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
@@ -404,9 +407,10 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 // filtered footprint is the same convex combination of the series at the footprint's depths
 // (Eq. 8), so where every depth lies in an interval on which the clamped series is within
 // skip-error of 1 or 0 (csmSkipIntervals), the pixel needs none of the 2M filtered lookups: it
-// gets Eq. 13 with the basis of the depth at its footprint's centre, computed (csm_shadow.frag,
-// reconstructFromDepth; exact where the footprint's depth is constant, within skip-error
-// otherwise), so that decided and reconstructed pixels agree. On llvmpipe the stencil test of
+// gets the mean of the series at the four depth texels around it with the lookup's bilinear
+// weights (csm_shadow.frag, reconstructFromDepth): Eq. 13's own value where the footprint's
+// depth is constant, within skip-error of it otherwise, so that decided and reconstructed
+// pixels agree (issue 27). On llvmpipe the stencil test of
 // pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
 // would not (llvmpipe evaluates both sides of a non-uniform branch).
 void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
@@ -428,7 +432,7 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   const Program& program = cachedProgram(
       "scene.vert.glsl", "csm_shadow.frag.glsl",
       {{"ORDER", std::to_string(s.order)},
-       {"ENCODE_UNSIGNED", s.encodeUnsigned ? "1" : "0"},
+       {"ENCODE_UNSIGNED", "0"},
        {"CLASSIFY", "1"},
        {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
        {"FIRST_DEPTH_BOUNDS_LEVEL", std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});

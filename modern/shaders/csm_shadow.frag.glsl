@@ -23,7 +23,7 @@
 // filtered lookups: every pixel that the tests below decide (behind the light, outside the map,
 // nearer than every caster, or every depth texel under the filter footprint inside an interval
 // where the clamped series is within the skip error of 1 or of 0) is shaded here, the last
-// kind with Eq. 13 of the basis of its own depth (reconstructFromDepth), and its stencil set to
+// kind with the series at the depths around it (reconstructFromDepth), and its stencil set to
 // 0; every other visible pixel gets stencil 1, and the reconstruction pass (CLASSIFY 0, stencil
 // test EQUAL 1, depth test LEQUAL) shades it with Eq. 13 from the filtered basis.
 #ifndef CLASSIFY
@@ -31,6 +31,7 @@
 #endif
 #if CLASSIFY
 #extension GL_ARB_shader_stencil_export : require
+#extension GL_ARB_texture_gather : require
 #endif
 #ifndef DEPTH_BOUNDS_LEVELS
 #define DEPTH_BOUNDS_LEVELS 5
@@ -64,7 +65,6 @@ uniform vec2 uUmbraInterval;     // ... and <= skip error on this one (empty: lo
 uniform float uFootprintScale;   // footprint radius in texels = scale * rho + margin
 uniform float uFootprintMargin;  // bilinear reach (1) + blur radius
 uniform sampler2D uLinearDepth;  // z(p) of pass 1 (R32F), for the decided pixels' Eq. 13
-const float kEightBitSteps = 255.0;  // unsigned normalised 8 bits: v = round(255 x) / 255
 #endif
 #include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
@@ -72,36 +72,34 @@ layout(location = 1) out vec4 oVisibility;
 
 const float PI = 3.14159265358979;
 
-// @pass reconstruct: f(d, z) ~ 1/2 + sum a_i(d) B_i(z) from the filtered basis (Eq. 13, coefficients Eq. 14)
-// One RGBA layer's four terms of Eq. 13: a_(2k-1)(d) = 2/c_k cos(c_k d), a_(2k)(d) =
-// -2/c_k sin(c_k d) (Eq. 14), attenuated (§3.2.1; the weights of k > M are 0), times the layer's
-// basis values; `term` = (cos, sin)(c_k d) of its first k, rotated by `step` = (cos, sin)(2 pi d)
-// per k (the angle-addition formulas: two transcendental calls per pixel instead of 2M; the
-// rotation's float32 error grows by ~1e-7 per step, < 1e-5 after 64 terms).
-float eq13Layer(int layer, vec4 sines, vec4 cosines, inout vec2 term, vec2 step) {
-#if ENCODE_UNSIGNED  // 8-bit storage: v = 2 t - 1
-  sines = 2.0 * sines - 1.0;
-  cosines = 2.0 * cosines - 1.0;
-#endif
-  vec4 cosD, sinD;  // cos(c_k d), sin(c_k d) for this layer's four k
-  for (int c = 0; c < 4; ++c) {
-    cosD[c] = term.x;
-    sinD[c] = term.y;
-    term = vec2(term.x * step.x - term.y * step.y, term.y * step.x + term.x * step.y);
-  }
-  return dot(uWeights[layer], cosD * sines - sinD * cosines);
-}
-
 // Eq. 13 with the filtered basis images; d is this point's (offset) linear depth. Called in
 // uniform control flow (every pixel, before any branch), so that texture()'s implicit
 // derivatives, which choose the mip level and the anisotropic footprint, are defined.
+// @pass reconstruct: f(d, z) ~ 1/2 + sum a_i(d) B_i(z) from the filtered basis (Eq. 13, coefficients Eq. 14)
 float reconstructShadowTest(vec2 p, float d) {
   float sum = 0.5;  // "we add the constant term 1/2 separately" (§3.1)
-  vec2 term = vec2(cos(PI * d), sin(PI * d));  // c_1 d = pi d
+  // cos(c_k d), sin(c_k d) for c_k = pi (2k - 1): start at c_1 d = pi d and rotate by 2 pi d
+  // per k (the angle-addition formulas), two transcendental calls per pixel instead of 2M.
+  // The rotation's float32 error grows by ~1e-7 per step: < 1e-5 after 64 terms.
+  vec2 term = vec2(cos(PI * d), sin(PI * d));
   vec2 step = vec2(cos(2.0 * PI * d), sin(2.0 * PI * d));
-  for (int layer = 0; layer < kSinLayers; ++layer)
-    sum += eq13Layer(layer, texture(uBasis, vec3(p, float(layer))),
-                     texture(uBasis, vec3(p, float(kSinLayers + layer))), term, step);
+  for (int layer = 0; layer < kSinLayers; ++layer) {
+    vec4 sines = texture(uBasis, vec3(p, float(layer)));
+    vec4 cosines = texture(uBasis, vec3(p, float(kSinLayers + layer)));
+#if ENCODE_UNSIGNED  // 8-bit storage: v = 2 t - 1
+    sines = 2.0 * sines - 1.0;
+    cosines = 2.0 * cosines - 1.0;
+#endif
+    vec4 cosD, sinD;  // cos(c_k d), sin(c_k d) for this layer's four k
+    for (int c = 0; c < 4; ++c) {
+      cosD[c] = term.x;
+      sinD[c] = term.y;
+      term = vec2(term.x * step.x - term.y * step.y, term.y * step.x + term.x * step.y);
+    }
+    // a_(2k-1)(d) = 2/c_k cos(c_k d), a_(2k)(d) = -2/c_k sin(c_k d)  (Eq. 14), attenuated
+    // (§3.2.1); the weights of k > M are 0.
+    sum += dot(uWeights[layer], cosD * sines - sinD * cosines);
+  }
   return sum;
 // @end reconstruct
 }
@@ -135,59 +133,41 @@ vec2 depthBoundsAround(vec2 p, float rho) {
 // @end csm-classify
 }
 
-// z of the depth map (pass 1, sampled nearest) at p, bilinear between the four texel centres
-// around it (borders clamp), as the filtered lookup's own bilinear weights; `level`: the four
-// are equal.
-float depthAt(vec2 p, out bool level) {
-  ivec2 size = ivec2(uDepthMapTexels);
-  vec2 u = p * vec2(size) - 0.5;  // texel-centre coordinates
-  ivec2 a = ivec2(floor(u));
-  vec2 w = u - floor(u);
-  ivec2 lo = clamp(a, ivec2(0), size - 1), hi = clamp(a + 1, ivec2(0), size - 1);
-  float z00 = texelFetch(uLinearDepth, lo, 0).r;
-  float z10 = texelFetch(uLinearDepth, ivec2(hi.x, lo.y), 0).r;
-  float z01 = texelFetch(uLinearDepth, ivec2(lo.x, hi.y), 0).r;
-  float z11 = texelFetch(uLinearDepth, hi, 0).r;
-  level = z00 == z10 && z00 == z01 && z00 == z11;
-  return mix(mix(z00, z10, w.x), mix(z01, z11, w.x), w.y);
+// uScale times the series of Eq. 11 with the attenuation of §3.2.1 (the reconstruction pass's
+// weights) at four t at once. sin(c_k t), c_k = pi (2k - 1), by the recurrence
+// sin((2k + 1) x) = 2 cos(2x) sin((2k - 1) x) - sin((2k - 3) x), x = pi t: one multiply-add
+// per term instead of a rotation; its float32 error grows at most as k^2 eps (< 1e-5 at M = 16,
+// 3e-4 at M = 64).
+vec4 scaledSeries(vec4 t) {
+  vec4 current = sin(PI * t);  // sin(x), k = 1
+  vec4 twoCos = 2.0 - 4.0 * current * current;  // 2 cos(2x) = 2 (1 - 2 sin^2 x)
+  vec4 previous = -current;  // sin(-x), the term before k = 1
+  vec4 sum = vec4(0.5);
+  for (int layer = 0; layer < kSinLayers; ++layer)
+    for (int c = 0; c < 4; ++c) {
+      sum += uWeights[layer][c] * current;  // 0 beyond M
+      vec4 next = twoCos * current - previous;
+      previous = current;
+      current = next;
+    }
+  return uScale * sum;
 }
 
-// Eq. 13 at a pixel whose footprint the depth bounds decided, with the basis B_i(z) made here
-// as pass 2 makes it (csm_basis.frag: the same rotation from c_1 z = pi z) from the depth z at
-// the footprint's centre, instead of read from the filtered textures. Where z is the same
-// under the footprint (an occluder's face seen straight from the light, ground that casts
-// nothing), blur, mip-maps and the filtered lookup average equal values, so with `level` (the
-// 8-bit steps: rounded to them as pass 2's store does) this is the reconstruction's own sum to
-// float rounding. Where z varies, the series at the footprint's centre instead of its weighted
-// mean (Eq. 8), both inside the interval that decided the pixel, and not rounded: the filter's
-// average of many rounded values is closer to the unrounded basis than one rounding is.
-float reconstructFromDepth(float z, bool level, float d) {
-  float sum = 0.5;
-  vec2 term = vec2(cos(PI * d), sin(PI * d));
-  vec2 step = vec2(cos(2.0 * PI * d), sin(2.0 * PI * d));
-  vec2 basis = vec2(cos(PI * z), sin(PI * z));  // cos(c_k z), sin(c_k z), from k = 1
-  vec2 basisStep = vec2(cos(2.0 * PI * z), sin(2.0 * PI * z));
-  for (int layer = 0; layer < kSinLayers; ++layer) {
-    vec4 sines = vec4(0.0), cosines = vec4(0.0);  // 0 beyond M, as pass 2 stores them
-    for (int c = 0; c < 4; ++c) {
-      if (4 * layer + c + 1 <= ORDER) {
-        sines[c] = basis.y;
-        cosines[c] = basis.x;
-      }
-      basis = vec2(basis.x * basisStep.x - basis.y * basisStep.y,
-                   basis.y * basisStep.x + basis.x * basisStep.y);
-    }
-#if ENCODE_UNSIGNED  // stored as 0.5 + 0.5 v in an unsigned normalised 8-bit channel
-    sines = 0.5 + 0.5 * sines;
-    cosines = 0.5 + 0.5 * cosines;
-    if (level) {
-      sines = round(sines * kEightBitSteps) / kEightBitSteps;
-      cosines = round(cosines * kEightBitSteps) / kEightBitSteps;
-    }
-#endif
-    sum += eq13Layer(layer, sines, cosines, term, step);
-  }
-  return sum;
+// Eq. 13 at a pixel whose footprint the depth bounds decided, without the 2M filtered lookups:
+// Eq. 8 makes the filtered reconstruction the weighted mean of the series at the footprint's
+// depths, f(z_i - d); here the mean over the four depth texels around p with the bilinear
+// weights of the lookup (one textureGather; borders clamp to the edge), the blur's and the mip
+// level's wider weights left out. Where z is the same under the whole footprint (an occluder's
+// face seen straight from the light, ground that casts nothing) that is the reconstruction's
+// own value; elsewhere both are means of the series over depths inside the interval that
+// decided the pixel.
+float reconstructFromDepth(vec2 p, float d) {
+  vec2 u = p * vec2(uDepthMapTexels) - 0.5;  // texel-centre coordinates
+  vec2 w = u - floor(u);
+  // (i0, j1), (i1, j1), (i1, j0), (i0, j0) of the bilinear footprint (ARB_texture_gather)
+  vec4 z = textureGather(uLinearDepth, p);
+  vec4 f = scaledSeries(z - d);
+  return mix(mix(f.w, f.z, w.x), mix(f.x, f.y, w.x), w.y);
 }
 const float kNeedsReconstruction = -1.0;
 #endif
@@ -225,16 +205,19 @@ float shadowTest(vec3 world) {
   // the lit interval, every term and so the clamped sum is within the skip error of 1; in the
   // umbra interval, of 0.
   // Such pixels get Eq. 13 without the 2M filtered lookups (reconstructFromDepth): the value
-  // the reconstruction pass would give, ringing and 8-bit steps included, so that a decided
-  // pixel and its reconstructed neighbour agree (issue 27: returning exactly 1 or 0 here drew
-  // the 4x4 blocks of the stencil test as tiles, lit ground 0.008 brighter where decided).
+  // the reconstruction pass would give, ringing included, so that a decided pixel and its
+  // reconstructed neighbour agree (issue 27: returning exactly 1 or 0 here drew tiles around
+  // every shadow, lit ground 0.008 brighter where decided).
+  // DEVIATION (Annen et al. 2007, Eq. 13 from the filtered 8-bit basis): the series of the
+  // depths themselves, so without the basis' 8-bit rounding (on ground that casts nothing,
+  // squares at M = 16: 0.0013 from the reconstruction, a third of an 8-bit grey level), and
+  // weighted by the bilinear weights only (where the depth varies across the blur's or the mip
+  // level's wider footprint: within the skip error, as both are means over the interval).
   vec2 t = depthBoundsAround(p, rho) - (d * uDepthScale - uOffset);
   bool lit = t.x >= uLitInterval.x && t.y <= uLitInterval.y;
   bool umbra = t.x >= uUmbraInterval.x && t.y <= uUmbraInterval.y;
   if (!lit && !umbra) return kNeedsReconstruction;
-  bool level;
-  float z = depthAt(p, level);
-  return clamp(uScale * reconstructFromDepth(z, level, d * uDepthScale - uOffset), 0.0, 1.0);
+  return clamp(reconstructFromDepth(p, d * uDepthScale - uOffset), 0.0, 1.0);  // §4.1 clamp
 #else
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
 #endif

@@ -82,10 +82,10 @@ struct Case {
 };
 
 // Eq. 11 itself: rendered with skip-error=0 (Eq. 13 at every pixel). With the default
-// classification, a pixel the depth bounds decide gets Eq. 13 of the basis of its footprint's
-// centre depth (issue 20, 27), within the skip error of the filtered reconstruction wherever the
-// footprint's depth varies, so `skipped` is also checked against the same value within the skip
-// error (0.025, the default; docs/csm.md).
+// classification, a pixel the depth bounds decide gets the series at the depths around it
+// (issue 20, 27), within the skip error of the filtered reconstruction wherever the footprint's
+// depth varies, so `skipped` is also checked against the same value within the skip error
+// (0.025, the default; docs/csm.md).
 void expectMatchesEq11(const Case& c) {
   constexpr double kDefaultSkipError = 0.025;
   const Scene scene = builtinScene("analytic");
@@ -768,12 +768,12 @@ bool segmentMeetsBox(const glm::vec3& a, const glm::vec3& b, const Bounds& box, 
 // Issue 27: a pixel the classification decided got exactly 1 or 0, where Eq. 13 gives the
 // series' ringing around them (the lit ground of squares at M = 16: 0.992), so decided and
 // reconstructed pixels drew tiles around every shadow (63% of the mask more than 1/255 from
-// skip-error=0, lit ground brighter where decided). Now a decided pixel gets Eq. 13 of the basis
-// of its footprint's depth. The issue's command (squares, M = 16, 5x5 blur, 512x384, 8-bit
-// storage), with the default skip-error and with 0:
+// skip-error=0, lit ground brighter where decided). Now a decided pixel gets the series at the
+// depths around it (csm_shadow.frag, reconstructFromDepth). The issue's command (squares,
+// M = 16, 5x5 blur, 512x384, 8-bit storage), with the default skip-error and with 0:
 // - the masks agree within one 8-bit grey level at all pixels but those where the two programs'
-//   depth tests pick different faces of a square (its edges; measured 0.24% here, 0.2-1.0% on
-//   brabec, fence and trees): at most 1%;
+//   depth tests pick different faces of a square (its edges; measured 0.15% here, 0.17-0.94%
+//   on brabec, fence and trees): at most 1%;
 // - on the lit ground seen past every square, no edge that the full reconstruction does not
 //   have: of the pairs of neighbouring pixels that skip-error=0 shades within half a grey level
 //   of each other, those more than one grey level apart with the default. The tiles' edges
@@ -791,9 +791,10 @@ TEST(Csm, DecidedPixelsEqualTheReconstructionSoLitGroundShowsNoTiles) {
   constexpr float kSilhouetteMargin = 0.02f;
   // Share of the smooth lit ground pairs that may differ by more than a grey level: none is
   // expected (the ground casts nothing, so its footprints' depth is the cleared far value, the
-  // same at every texel, where the decided pixels' sum is the reconstruction's own to float
-  // rounding); 0.1% allows a few pixels whose sum rounds across a grey level. Main (exactly 1
-  // where decided) had 3498 of 313464 (1.1%), the tiles' edges.
+  // same at every texel, where the decided pixels' series differs from the reconstruction by
+  // the 8-bit rounding of the basis only: measured 0.0013, a third of a grey level); 0.1% allows
+  // a few pixels whose value rounds across a grey level. Main (exactly 1 where decided) had 3498
+  // of 313464 (1.1%), the tiles' edges.
   constexpr double kTileEdgeFraction = 0.001;
   const Scene scene = loadScene("squares");
   RenderParams skip = smallParams(512, 384, 512, {{"order", "16"}, {"blur", "5"}});
