@@ -420,7 +420,8 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
                           const DepthRange& range, float nearestCaster, Frame& frame) {
   PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
                   "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
-                  "the series within skip-error of 1 or 0, the pixel is decided without Eq. 13");
+                  "the series within skip-error of 1 or 0, the pixel gets the series at its "
+                  "depths (Eq. 8) without Eq. 13's filtered lookups");
   timer.shaderPasses({"csm-classify", "csm-test"});
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

@@ -136,8 +136,9 @@ vec2 depthBoundsAround(vec2 p, float rho) {
 // uScale times the series of Eq. 11 with the attenuation of §3.2.1 (the reconstruction pass's
 // weights) at four t at once. sin(c_k t), c_k = pi (2k - 1), by the recurrence
 // sin((2k + 1) x) = 2 cos(2x) sin((2k - 1) x) - sin((2k - 3) x), x = pi t: one multiply-add
-// per term instead of a rotation; its float32 error grows at most as k^2 eps (< 1e-5 at M = 16,
-// 3e-4 at M = 64).
+// per term instead of a rotation; a rounding error at one term reaches a later one at most
+// multiplied by the number of terms between them, so the float32 error stays below M^2 eps / 2
+// (1.5e-5 at M = 16, 2.5e-4 at M = 64).
 vec4 scaledSeries(vec4 t) {
   vec4 current = sin(PI * t);  // sin(x), k = 1
   vec4 twoCos = 2.0 - 4.0 * current * current;  // 2 cos(2x) = 2 (1 - 2 sin^2 x)
