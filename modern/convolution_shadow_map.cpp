@@ -147,8 +147,11 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
   s.blurTaps = parseBlurTaps(params, blurParam(kDefaultBlurTaps));
   s.filtering = parseFiltering(context, params);
   s.skipError = params.number(skipErrorParam());
-  // The classification writes the stencil reference from the shader.
-  if (!context.caps().hasExtension("GL_ARB_shader_stencil_export")) s.skipError = 0.0;
+  // The classification writes the stencil reference from the shader and gathers the depths
+  // around a decided pixel (csm_shadow.frag, reconstructFromDepth).
+  if (!context.caps().hasExtension("GL_ARB_shader_stencil_export") ||
+      !context.caps().hasExtension("GL_ARB_texture_gather"))
+    s.skipError = 0.0;
   // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
   // mipmaps=auto (the default) the chain is built only when the planner finds that the view
   // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
@@ -400,19 +403,25 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 
 // Pass 5b: the camera view, classified (csm_shadow.frag with CLASSIFY 1): pixels that the
 // early-outs of pass 5c or the depth bounds decide are shaded here; the others get stencil 1.
-// DEVIATION (Annen et al. 2007, Eq. 13 at every pixel): Eq. 13 of a filtered footprint is the
-// same convex combination of the series at the footprint's depths (Eq. 8), so where every
-// depth lies in an interval on which the clamped series is within skip-error of 1 or 0
-// (csmSkipIntervals), the pixel is 1 or 0 without the M terms. On llvmpipe the stencil test of
+// DEVIATION (Annen et al. 2007, Eq. 13 from the filtered basis at every pixel): Eq. 13 of a
+// filtered footprint is the same convex combination of the series at the footprint's depths
+// (Eq. 8), so where every depth lies in an interval on which the clamped series is within
+// skip-error of 1 or 0 (csmSkipIntervals), the pixel needs none of the 2M filtered lookups: it
+// gets the mean of the series at the four depth texels around it with the lookup's bilinear
+// weights (csm_shadow.frag, reconstructFromDepth): Eq. 13's own value where the footprint's
+// depth is constant, within skip-error of it otherwise, so that decided and reconstructed
+// pixels agree (issue 27). On llvmpipe the stencil test of
 // pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
 // would not (llvmpipe evaluates both sides of a non-uniform branch).
 void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                          const Texture& depthBounds, int depthBoundsLevels,
+                          const Texture& linearDepth, const Texture& depthBounds,
+                          int depthBoundsLevels,
                           const CsmSkipIntervals& skip, const CsmSettings& s,
                           const DepthRange& range, float nearestCaster, Frame& frame) {
   PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
                   "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
-                  "the series within skip-error of 1 or 0, the pixel is decided without Eq. 13");
+                  "the series within skip-error of 1 or 0, the pixel gets the series at its "
+                  "depths (Eq. 8) without Eq. 13's filtered lookups");
   timer.shaderPasses({"csm-classify", "csm-test"});
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -434,11 +443,18 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
   program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
   program.set("uFootprintMargin", footprintMargin(s));
   program.set("uDepthMapTexels", params.shadowMapTexels);
+  const std::vector<float> weights = termWeights(s);
+  glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, depthBounds.id());
   program.set("uDepthBounds", 1);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, linearDepth.id());
+  program.set("uLinearDepth", 2);
   gpu.draw([](const Object&) { return true; },
            [&](const Object& o) { setObjectUniforms(program, o); });
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE0);
 }
@@ -448,15 +464,16 @@ void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
 // depth equal to the classification's).
 void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
                              const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
-                             float nearestCaster, const Texture* depthBounds, int depthBoundsLevels,
+                             float nearestCaster, const Texture& linearDepth,
+                             const Texture* depthBounds, int depthBoundsLevels,
                              const CsmSkipIntervals& skip, Frame& frame) {
   const Scene& scene = gpu.scene();
   const bool classified = depthBounds != nullptr;
   RenderTarget target =
       classified ? makeStencilCameraTarget(params, {}) : makeCameraTarget(params, true);
   if (classified) {
-    classifyInCameraPass(gpu, params, *depthBounds, depthBoundsLevels, skip, s, range,
-                         nearestCaster, frame);
+    classifyInCameraPass(gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip, s,
+                         range, nearestCaster, frame);
   } else {
     clearCameraTarget(target);
   }
@@ -557,8 +574,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const CsmSkipIntervals skip{work.skipIntervals[0], work.skipIntervals[1], work.skipIntervals[2],
                               work.skipIntervals[3]};
-  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, bounds,
-                          work.depthBoundsLevels, skip, frame);
+  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, depth.color[0],
+                          bounds, work.depthBoundsLevels, skip, frame);
   if (params.capturePasses) captureCameraPass(frame, 5, "csm_shadow.frag: Eq. 13 reconstruction");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;

@@ -20,16 +20,18 @@
 #define ENCODE_UNSIGNED 1
 #endif
 // CLASSIFY 1: the classification pass (convolution_shadow_map.cpp, classifyInCameraPass). No
-// reconstruction: every pixel that the tests below decide (behind the light, outside the map,
+// filtered lookups: every pixel that the tests below decide (behind the light, outside the map,
 // nearer than every caster, or every depth texel under the filter footprint inside an interval
-// where the clamped series is within uSkipError of 1 or of 0) is shaded here with that result
-// and its stencil set to 0; every other visible pixel gets stencil 1, and the reconstruction
-// pass (CLASSIFY 0, stencil test EQUAL 1, depth test EQUAL) shades it with Eq. 13.
+// where the clamped series is within the skip error of 1 or of 0) is shaded here, the last
+// kind with the series at the depths around it (reconstructFromDepth), and its stencil set to
+// 0; every other visible pixel gets stencil 1, and the reconstruction pass (CLASSIFY 0, stencil
+// test EQUAL 1, depth test LEQUAL) shades it with Eq. 13 from the filtered basis.
 #ifndef CLASSIFY
 #define CLASSIFY 0
 #endif
 #if CLASSIFY
 #extension GL_ARB_shader_stencil_export : require
+#extension GL_ARB_texture_gather : require
 #endif
 #ifndef DEPTH_BOUNDS_LEVELS
 #define DEPTH_BOUNDS_LEVELS 5
@@ -62,6 +64,7 @@ uniform vec2 uLitInterval;       // t = z - d: the clamped series is >= 1 - skip
 uniform vec2 uUmbraInterval;     // ... and <= skip error on this one (empty: lo > hi)
 uniform float uFootprintScale;   // footprint radius in texels = scale * rho + margin
 uniform float uFootprintMargin;  // bilinear reach (1) + blur radius
+uniform sampler2D uLinearDepth;  // z(p) of pass 1 (R32F), for the decided pixels' Eq. 13
 #endif
 #include "lighting.glsl"
 layout(location = 0) out vec4 oColor;
@@ -129,6 +132,44 @@ vec2 depthBoundsAround(vec2 p, float rho) {
   return bounds;
 // @end csm-classify
 }
+
+// uScale times the series of Eq. 11 with the attenuation of §3.2.1 (the reconstruction pass's
+// weights) at four t at once. sin(c_k t), c_k = pi (2k - 1), by the recurrence
+// sin((2k + 1) x) = 2 cos(2x) sin((2k - 1) x) - sin((2k - 3) x), x = pi t: one multiply-add
+// per term instead of a rotation; a rounding error at one term reaches a later one at most
+// multiplied by the number of terms between them, so the float32 error stays below M^2 eps / 2
+// (1.5e-5 at M = 16, 2.5e-4 at M = 64).
+vec4 scaledSeries(vec4 t) {
+  vec4 current = sin(PI * t);  // sin(x), k = 1
+  vec4 twoCos = 2.0 - 4.0 * current * current;  // 2 cos(2x) = 2 (1 - 2 sin^2 x)
+  vec4 previous = -current;  // sin(-x), the term before k = 1
+  vec4 sum = vec4(0.5);
+  for (int layer = 0; layer < kSinLayers; ++layer)
+    for (int c = 0; c < 4; ++c) {
+      sum += uWeights[layer][c] * current;  // 0 beyond M
+      vec4 next = twoCos * current - previous;
+      previous = current;
+      current = next;
+    }
+  return uScale * sum;
+}
+
+// Eq. 13 at a pixel whose footprint the depth bounds decided, without the 2M filtered lookups:
+// Eq. 8 makes the filtered reconstruction the weighted mean of the series at the footprint's
+// depths, f(z_i - d); here the mean over the four depth texels around p with the bilinear
+// weights of the lookup (one textureGather; borders clamp to the edge), the blur's and the mip
+// level's wider weights left out. Where z is the same under the whole footprint (an occluder's
+// face seen straight from the light, ground that casts nothing) that is the reconstruction's
+// own value; elsewhere both are means of the series over depths inside the interval that
+// decided the pixel.
+float reconstructFromDepth(vec2 p, float d) {
+  vec2 u = p * vec2(uDepthMapTexels) - 0.5;  // texel-centre coordinates
+  vec2 w = u - floor(u);
+  // (i0, j1), (i1, j1), (i1, j0), (i0, j0) of the bilinear footprint (ARB_texture_gather)
+  vec4 z = textureGather(uLinearDepth, p);
+  vec4 f = scaledSeries(z - d);
+  return mix(mix(f.w, f.z, w.x), mix(f.x, f.y, w.x), w.y);
+}
 const float kNeedsReconstruction = -1.0;
 #endif
 
@@ -164,13 +205,20 @@ float shadowTest(vec3 world) {
   // the same combination of the series f(z_i - d) (Eq. 11, 13). If every z_i - d lies in
   // the lit interval, every term and so the clamped sum is within the skip error of 1; in the
   // umbra interval, of 0.
-  // DEVIATION (Annen et al. 2007, Eq. 13 at every pixel): such pixels get exactly 1 or 0
-  // without the M terms, the value of the untruncated step (Eq. 1) rather than the truncated
-  // series' ringing around it (at most the skip error, --param skip-error).
+  // Such pixels get Eq. 13 without the 2M filtered lookups (reconstructFromDepth): the value
+  // the reconstruction pass would give, ringing included, so that a decided pixel and its
+  // reconstructed neighbour agree (issue 27: returning exactly 1 or 0 here drew tiles around
+  // every shadow, lit ground 0.008 brighter where decided).
+  // DEVIATION (Annen et al. 2007, Eq. 13 from the filtered 8-bit basis): the series of the
+  // depths themselves, so without the basis' 8-bit rounding (on ground that casts nothing,
+  // squares at M = 16: 0.0013 from the reconstruction, a third of an 8-bit grey level), and
+  // weighted by the bilinear weights only (where the depth varies across the blur's or the mip
+  // level's wider footprint: within the skip error, as both are means over the interval).
   vec2 t = depthBoundsAround(p, rho) - (d * uDepthScale - uOffset);
-  if (t.x >= uLitInterval.x && t.y <= uLitInterval.y) return 1.0;
-  if (t.x >= uUmbraInterval.x && t.y <= uUmbraInterval.y) return 0.0;
-  return kNeedsReconstruction;
+  bool lit = t.x >= uLitInterval.x && t.y <= uLitInterval.y;
+  bool umbra = t.x >= uUmbraInterval.x && t.y <= uUmbraInterval.y;
+  if (!lit && !umbra) return kNeedsReconstruction;
+  return clamp(reconstructFromDepth(p, d * uDepthScale - uOffset), 0.0, 1.0);  // §4.1 clamp
 #else
   return clamp(uScale * f, 0.0, 1.0);  // §3.2.2 scaling, §4.1 clamp
 #endif
