@@ -43,6 +43,7 @@ usage:
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
+  shadowlab --version                              the commit this binary was built from
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
@@ -340,6 +341,12 @@ int run(int argc, char** argv) {
   if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" ||
                     std::string(argv[1]) == "help")) {
     std::cout << kUsage;
+    return 0;
+  }
+  if (argc >= 2 && std::string(argv[1]) == "--version") {
+    if (argc > 2)
+      throw InputError("--version takes no arguments, got '" + std::string(argv[2]) + "'");
+    std::cout << softwareName() << "\n";  // "shadowlab <commit>" (core/provenance.h)
     return 0;
   }
   cli::Args args;

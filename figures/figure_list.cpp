@@ -854,10 +854,11 @@ const std::vector<FigureSpec>& figureList() {
         "Fast PCF: neighbour packing by convolution",
         "The real intermediate buffers of legacy.fast-pcf (128² map, 320x240 window): one "
         "light pass writes the depth into all four channels, and the 3x3 convolution of Eq. (1) "
-        "packs each texel's three neighbours into its other channels (Fig. 5). The one-texel "
-        "shift shows in the strip after the packed map: lower right, upper left and upper right "
-        "minus the texel's own depth (G, B, A minus R), amplified 32x (grey = equal), non-grey "
-        "along the depth edges that run across the direction of each neighbour."));
+        "keeps each texel's own depth in A and packs its lower-left, lower and left neighbours "
+        "into R, G and B (Fig. 5). The one-texel shift shows in the strip after the packed map: "
+        "lower right, upper left and upper right of the 2x2 block minus its lower left (G, B, A "
+        "minus R), amplified 32x (grey = equal), non-grey along the depth edges that run across "
+        "the direction from the lower-left texel to each other one."));
     v.push_back(everittFig2());
     v.push_back(everittFig4());
     v.push_back(everittFig5());

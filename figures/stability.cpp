@@ -374,25 +374,39 @@ MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
 // Brabec–Seidel §2-§4 compare colour-encoded depth with a constant bias (no slope-scaled
 // offset): a receiver that casts too self-shadows where its depth changes by more than the
 // bias per texel. At 80 degrees that is tan 80 = 5.7 texel widths per texel; at 89, 57: the
-// lit ground self-shadows wholesale. No bound; finiteness and [0, 1] still hold.
+// lit ground self-shadows over much of its area. The entries assert what the limitation
+// predicts (KnownIssue::selfShadowedAtLeast) instead of an error bound: the lit ground shadows
+// itself, and too small a bias only adds shadow, so no pixel is lit where the reference is in
+// shadow (bound 0; a weak check here: 99.9% of the counted pixels are lit in the reference, the
+// post's thin shadow lying mostly in the edge band).
+// Measured (160x120, 512 map; share of the reference's lit counted pixels shadowed; legacy and
+// modern twins alike to 0.01%): 80 degrees ramp 12.3%, PCF 31.8%, fast PCF 55.0%; 89 degrees
+// ramp 43.6%, PCF 65.5%, fast PCF 90.0% (the filters reach neighbour texels, deeper by tan a
+// texel widths each). hw, GPU Gems PCF and the hybrid (polygon offset with a slope factor) and
+// second-depth (by construction) shadow 0% of it, so a fix of the limitation falls far below
+// these floors, which sit under the least measured share of each angle by about a fifth
+// (rounding of the ramp on another driver moves a few rows of texels, not a fifth of the lit
+// ground).
+constexpr double kSelfShadowedAt80 = 0.10;  // least measured: 12.3% (ramp)
+constexpr double kSelfShadowedAt89 = 0.35;  // least measured: 43.6% (ramp)
+constexpr double kNothingShadowedIsLit = 0.0;  // measured 0 in all twelve; bias only darkens
 const char* const kConstantBias =
     "constant depth bias only (Brabec–Seidel §2, no slope-scaled offset): a grazing receiver "
-    "that also casts self-shadows wholesale";
+    "that also casts self-shadows";
 const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   static const std::map<std::pair<std::string, std::string>, KnownIssue> kIssues = {
-      {{"grazing80", "legacy.ramp"}, {1.0, kConstantBias}},
-      {{"grazing80", "legacy.pcf"}, {1.0, kConstantBias}},
-      {{"grazing80", "legacy.fast-pcf"}, {1.0, kConstantBias}},
-
-      {{"grazing80", "modern.ramp"}, {1.0, kConstantBias}},
-      {{"grazing80", "modern.pcf"}, {1.0, kConstantBias}},
-      {{"grazing80", "modern.fast-pcf"}, {1.0, kConstantBias}},
-      {{"grazing89", "legacy.ramp"}, {1.0, kConstantBias}},
-      {{"grazing89", "legacy.pcf"}, {1.0, kConstantBias}},
-      {{"grazing89", "legacy.fast-pcf"}, {1.0, kConstantBias}},
-      {{"grazing89", "modern.ramp"}, {1.0, kConstantBias}},
-      {{"grazing89", "modern.pcf"}, {1.0, kConstantBias}},
-      {{"grazing89", "modern.fast-pcf"}, {1.0, kConstantBias}},
+      {{"grazing80", "legacy.ramp"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing80", "legacy.pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing80", "legacy.fast-pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing80", "modern.ramp"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing80", "modern.pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing80", "modern.fast-pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt80}},
+      {{"grazing89", "legacy.ramp"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
+      {{"grazing89", "legacy.pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
+      {{"grazing89", "legacy.fast-pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
+      {{"grazing89", "modern.ramp"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
+      {{"grazing89", "modern.pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
+      {{"grazing89", "modern.fast-pcf"}, {kNothingShadowedIsLit, kConstantBias, kSelfShadowedAt89}},
       {{"cone_160", "modern.smoothies"},
        {0.12,
         "the smoothie width t is a light-space constant (Chan §4.2): under a 160-degree cone "
@@ -407,6 +421,14 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
   return kIssues;
 }
 
+// No case is refused today: every technique renders every case that applies to it (the whole
+// suite run, issue 28 item 4). A case that must be refused goes here with a part of its
+// message, e.g. {{"open_caster", "modern.x"}, "needs closed casters"}.
+const std::map<std::pair<std::string, std::string>, std::string>& expectedRefusals() {
+  static const std::map<std::pair<std::string, std::string>, std::string> kRefusals = {};
+  return kRefusals;
+}
+
 Outcome evaluate(const Case& c, const Technique& t) {
   Outcome out;
   if (std::string why = c.skip(t); !why.empty()) {
@@ -416,6 +438,9 @@ Outcome evaluate(const Case& c, const Technique& t) {
   }
   out.bound = c.bound;
   out.why = c.why;
+  if (auto refusal = expectedRefusals().find({c.name, t.name});
+      refusal != expectedRefusals().end())
+    out.expectedRefusal = refusal->second;
   auto issue = knownIssues().find({c.name, t.name});
   if (issue != knownIssues().end() && issue->second.bound < 0 &&
       issue->second.why.find("GlError") != std::string::npos) {
@@ -452,6 +477,19 @@ Outcome evaluate(const Case& c, const Technique& t) {
     const MaskDifference without = errorWhereItMatters(f.visibility, referenceFor(c, soft, true));
     if (without.shareAboveHalf < out.error.shareAboveHalf) out.error = without;
   }
+  // The same count split by direction (Outcome::wronglyLit, wronglyShadowed, referenceLit).
+  const Image& truth = out.reference->visibility;
+  if (truth.data.size() != f.visibility.data.size())
+    throw std::logic_error("stability: reference and technique masks differ in size");
+  Image lighter = f.visibility, darker = f.visibility, unlit = f.visibility;
+  for (size_t i = 0; i < truth.data.size(); ++i) {
+    lighter.data[i] = std::max(f.visibility.data[i], truth.data[i]);
+    darker.data[i] = std::min(f.visibility.data[i], truth.data[i]);
+    unlit.data[i] = 0.0f;
+  }
+  out.wronglyLit = errorWhereItMatters(lighter, *out.reference);
+  out.wronglyShadowed = errorWhereItMatters(darker, *out.reference);
+  out.referenceLit = errorWhereItMatters(unlit, *out.reference).shareAboveHalf;
   if (issue != knownIssues().end()) {
     if (issue->second.bound < 0) {
       out.kind = Outcome::Kind::kKnownBug;
@@ -459,6 +497,7 @@ Outcome evaluate(const Case& c, const Technique& t) {
     }
     out.bound = issue->second.bound;
     out.why = issue->second.why;
+    out.selfShadowedAtLeast = issue->second.selfShadowedAtLeast;
   }
   return out;
 }
@@ -489,10 +528,13 @@ std::string summaryHtml(bool progress) {
       }
       switch (o.kind) {
         case Outcome::Kind::kNotApplicable: h << "<td>&ndash;</td>"; break;
-        case Outcome::Kind::kRefused: h << "<td class=ok>refused</td>"; break;
+        case Outcome::Kind::kRefused:
+          h << "<td class=" << (o.refusedAsExpected() ? "ok" : "bad") << ">refused</td>";
+          break;
         case Outcome::Kind::kKnownBug: h << "<td class=bad>known bug</td>"; break;
         case Outcome::Kind::kMeasured: {
-          const bool good = o.finite && o.lowest >= 0.0f && o.highest <= 1.0f && o.withinBound();
+          const bool good = o.finite && o.lowest >= 0.0f && o.highest <= 1.0f &&
+                            o.withinBound() && o.expectedRefusal.empty();
           std::ostringstream v;
           v << std::setprecision(2) << 100.0 * o.error.shareAboveHalf;
           const bool ownBound = o.bound != c.bound;  // a documented limitation of t
@@ -505,7 +547,9 @@ std::string summaryHtml(bool progress) {
   }
   h << "</table>\n<p>* a bound of the technique's own, for a documented limitation: the "
        "Brabec–Seidel techniques compare colour-encoded depth with a constant bias (no "
-       "slope-scaled offset), so a grazing receiver that also casts shadows itself; smoothies "
+       "slope-scaled offset), so a grazing receiver that also casts shadows itself (green "
+       "where it does as predicted: at least the stated share of the lit ground self-shadowed, "
+       "nothing that the reference shadows lit); smoothies "
        "keep a light-space width that stretches on grazing receivers "
        "(figures/stability.cpp, knownIssues).</p>\n";
   return h.str();

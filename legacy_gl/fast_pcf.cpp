@@ -7,15 +7,18 @@
 //   1. renderDepthIntoAllChannels — one light pass, the encoded depth in R, G, B and A (§4)
 //   2. packNeighboursByConvolution — glCopyTexSubImage2D with GL_CONVOLUTION_2D and the 3x3
 //                                  kernel of Eq. (1): R = lower left, G = lower mid, B = mid
-//                                  left, A = centre (Fig. 5); at 4x4 once per phase with the
-//                                  kernel moved to the phase's 2x2 region
+//                                  left, A = centre, i.e. the texel itself (Fig. 5); at 4x4
+//                                  once per phase with the kernel moved to the phase's 2x2
+//                                  region
 //   3. renderReplicatedCameraDepth — the camera pass with the light depth in all four channels
 //   4. subtractPackedMap           — the packed map projected with texture coordinates offset
 //                                  by (ds/2, dt/2) (Fig. 6) and subtracted
 //   5. countShadowedSamples        — glCopyPixels through the colour table and the colour matrix
 //                                  (as §3, Fig. 4): 5 levels per phase
-//   6. accumulatePhases            — 4x4: upper-left, upper-right, lower-left, lower-right 2x2
-//                                  regions summed in the accumulation buffer (4 x 5 = 20 levels)
+//   6. bs::accumulateGroup         — 4x4 (in render(): once per phase, then
+//                                  bs::returnAccumulation): the upper-left, upper-right,
+//                                  lower-left and lower-right 2x2 regions summed in the
+//                                  accumulation buffer, weight 1/4 each (4 x 5 = 20 levels)
 //   7. shade                       — OpenGL lighting, direct light x (1 - alpha) + ambient (§5)
 // Visibility = 1 - alpha (brabec_seidel.h).
 #include <memory>
@@ -173,8 +176,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                                phases.size() == 1 ? "upper right = the texel itself" : "upper right"};
       frame.intermediates.push_back(std::move(packed));
     }
-  // Fig. 5's one-texel shift made visible: each neighbour channel minus the texel's own (R),
-  // non-grey along every depth edge, one texel to the side the neighbour lies on.
+  // Fig. 5's one-texel shift made visible: G, B and A minus R, the lower-left neighbour (the
+  // texel's own depth is A, kTexelItselfChannel), non-grey along every depth edge, one texel to
+  // the side the other channel's texel lies on.
   if (params.capturePasses)
     for (size_t i = 0; i < phases.size(); ++i)
       bs::capture(

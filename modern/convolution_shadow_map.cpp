@@ -11,8 +11,17 @@
 //                                   layer, written several layers at a time with MRT (§4.1)
 //   3. blurBasisTextures          — separable Gaussian 3x3 / 5x5 / 7x7 (§4.1), optional
 //   4. buildBasisMipmaps          — mip-maps, tri-linear + anisotropic filtering (§4, Table 1)
-//   5. reconstructInCameraPass    — Eq. 13 with attenuation (§3.2.1), offset and scale
-//                                   (§3.2.2), clamp to [0, 1] (§4.1); csm_shadow.frag
+//   With --param skip-error > 0 (the default) and a map of 2 texels or more, pass 5 runs as:
+//   5a. computeDepthBounds        — min/max pyramid of z and its dilated copy
+//                                   (csm_depth_bounds.frag); not in the paper (DEVIATION there)
+//   5b. classifyInCameraPass      — camera pass (csm_shadow.frag, CLASSIFY 1): pixels whose
+//                                   footprint depths decide Eq. 13 within skip-error are shaded
+//                                   lit or umbra (Eq. 8, 13), the others marked with stencil 1
+//   5c. reconstructInCameraPass   — Eq. 13 with attenuation (§3.2.1), offset and scale
+//                                   (§3.2.2), clamp to [0, 1] (§4.1), at stencil-1 pixels only;
+//                                   csm_shadow.frag
+//   With skip-error = 0 (or a 1-texel map):
+//   5.  reconstructInCameraPass   — the same reconstruction at every pixel
 #include "modern/convolution_shadow_map.h"
 
 #include <algorithm>

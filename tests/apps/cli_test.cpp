@@ -14,6 +14,7 @@
 
 #include "core/errors.h"
 #include "core/image.h"
+#include "core/provenance.h"
 #include "command_util.h"
 #include "tests/test_names.h"
 
@@ -75,6 +76,21 @@ TEST(Cli, ListAndHelp) {
   const CommandResult help = shadowlab("--help");
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("render"), std::string::npos);
+  EXPECT_NE(help.out.find("--version"), std::string::npos);
+}
+
+// `shadowlab --version` prints the commit the binary was built from (core/provenance.h), the
+// same "shadowlab <commit>" its PNGs carry as "Software"; anything after it is bad input.
+TEST(Cli, VersionPrintsTheBuildCommit) {
+  const CommandResult r = shadowlab("--version");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_EQ(r.out, "shadowlab " + buildCommit() + "\n");
+  const CommandResult extra = shadowlab("--version list");
+  EXPECT_EQ(extra.status, 2) << extra.err;
+  EXPECT_EQ(std::count(extra.err.begin(), extra.err.end(), '\n'), 1) << extra.err;
+  EXPECT_NE(extra.err.find("--version"), std::string::npos) << extra.err;
+  EXPECT_TRUE(extra.out.empty()) << extra.out;
 }
 
 // Every command answers --help with its own options on stdout and exit status 0 (issue 14

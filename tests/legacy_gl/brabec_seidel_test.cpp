@@ -609,10 +609,11 @@ namespace sl {
 namespace {
 
 // Issue 21: the packing figure (brabec-fig5-packing) shows Fig. 5's one-texel shift as the
-// packed map's neighbour channels minus the texel's own. With one light pass in all four
-// channels, the lower-right channel of texel (x, y) is the depth of texel (x + 1, y), the
-// upper-left that of (x, y + 1), the upper-right that of (x + 1, y + 1); the view must be
-// 0.5 + 32 (neighbour - own), clamped, computed here from the R panel of the captured map.
+// packed map's G, B and A channels minus its R channel, the lower left of each texel's 2x2 block
+// (the texel's own depth is A). With one light pass in all four channels, the lower-right
+// channel of texel (x, y) is the lower-left depth of texel (x + 1, y), the upper-left that of
+// (x, y + 1), the upper-right that of (x + 1, y + 1); the view must be
+// 0.5 + 32 (that depth - R), clamped, computed here from the R panel of the captured map.
 TEST(BrabecSeidel, ShiftViewIsTheOneTexelShiftOfFigureFive) {
   RenderParams p = params(Backend::kOsmesa, 2);
   p.capturePasses = true;

@@ -133,14 +133,15 @@ INSTANTIATE_TEST_SUITE_P(Twins, Equivalence,
                                             ::testing::Values(Backend::kOsmesa, Backend::kEgl)),
                          caseName);
 
-// Pairs whose legacy or modern side is not in this build yet are named, not silently dropped.
+// Every planned pair is tested: twinPairs() leaves out a pair whose legacy or modern side is not
+// registered, so a missing or renamed technique would silently shrink the Twins suite above.
+// Every technique is built unconditionally (no build option removes one), so a missing pair is
+// a defect, named here, never a skip (issue 28 item 4).
 TEST(Equivalence, EveryPlannedPairIsPresent) {
   const auto missing = twins::missingPairs();
-  if (!missing.empty()) {
-    std::string list;
-    for (const auto& m : missing) list += "\n  " + m;
-    GTEST_SKIP() << "pairs not testable in this build:" << list;
-  }
+  std::string list;
+  for (const auto& m : missing) list += "\n  " + m;
+  EXPECT_TRUE(missing.empty()) << "planned pairs not testable in this build:" << list;
 }
 
 }  // namespace

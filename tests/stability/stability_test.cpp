@@ -2,14 +2,18 @@
 // that every technique a colleague adds is covered without touching this file.
 //
 // Every (case, technique) test asserts:
-//   1. the render either succeeds or refuses with sl::InputError (one clear line); a GlError
-//      or any other exception fails the test;
+//   1. the render succeeds, or refuses with sl::InputError (one clear line) where the case is
+//      declared to be refused (figures/stability.cpp expectedRefusals, with the expected
+//      message); any other refusal, a declared refusal that renders, a GlError or any other
+//      exception fails the test;
 //   2. no NaN or Inf in any buffer (colour, visibility, every captured intermediate);
 //   3. visibility within [0, 1];
 //   4. the case's error bound against the ray-traced reference (reference.soft for techniques
 //      that approximate area lights, reference.hard otherwise): the share of pixels that differ
 //      by more than 0.5 outside the reference's shadow-boundary band. Each case states its
-//      bound and why it is right.
+//      bound and why it is right. A documented limitation that predicts its failure (knownIssues,
+//      selfShadowedAtLeast) asserts the prediction instead: the lit pixels shadow themselves at
+//      least that much, and the pixels lit where the reference is in shadow stay within bound.
 // Small windows (160x120) keep the whole suite within about 3 minutes on two cores.
 #include <gtest/gtest.h>
 
@@ -67,7 +71,11 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
     case Outcome::Kind::kNotApplicable: GTEST_SKIP() << o.note;
     case Outcome::Kind::kRefused:
       std::cout << "[stability] " << c.name << " " << t.name << ": InputError: " << o.note << "\n";
-      SUCCEED();
+      EXPECT_FALSE(o.expectedRefusal.empty())
+          << "refused, but not declared in figures/stability.cpp expectedRefusals(): " << o.note;
+      EXPECT_TRUE(o.expectedRefusal.empty() || o.refusedAsExpected())
+          << "refused with \"" << o.note << "\", expected a message containing \""
+          << o.expectedRefusal << "\"";
       return;
     case Outcome::Kind::kKnownBug:
       std::cout << "[stability] " << c.name << " " << t.name << ": KNOWN ISSUE, wrong "
@@ -75,6 +83,9 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
       GTEST_SKIP() << "known issue: " << o.note;
     case Outcome::Kind::kMeasured: break;
   }
+  EXPECT_TRUE(o.expectedRefusal.empty())
+      << "declared to refuse (\"" << o.expectedRefusal << "\", figures/stability.cpp "
+      << "expectedRefusals) but rendered";
   ASSERT_EQ(o.frame.visibility.width, kWidth);
   ASSERT_EQ(o.frame.visibility.height, kHeight);
   expectFiniteBuffers(o.frame);
@@ -82,8 +93,21 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
   EXPECT_LE(o.highest, 1.0f);
   std::cout << "[stability] " << c.name << " " << t.name << ": wrong where it matters "
             << 100.0 * o.error.shareAboveHalf << "% (bound " << 100.0 * o.bound << "%), rmse "
-            << o.error.rmse << "\n";
-  EXPECT_LE(o.error.shareAboveHalf, o.bound) << o.why;
+            << o.error.rmse << "; lit where the reference is shadowed "
+            << 100.0 * o.wronglyLit.shareAboveHalf << "%, shadowed where it is lit "
+            << 100.0 * o.wronglyShadowed.shareAboveHalf << "% = " << 100.0 * o.selfShadowed()
+            << "% of its lit " << 100.0 * o.referenceLit << "%\n";
+  if (o.predictsSelfShadowing()) {
+    // The documented limitation, asserted as it predicts (knownIssues): the lit receiver
+    // shadows itself, and nothing the reference shadows is lit.
+    EXPECT_GE(o.selfShadowed(), o.selfShadowedAtLeast)
+        << "the documented limitation no longer shows (fixed? then remove its knownIssues "
+           "entry): "
+        << o.why;
+    EXPECT_LE(o.wronglyLit.shareAboveHalf, o.bound) << o.why;
+  } else {
+    EXPECT_LE(o.error.shareAboveHalf, o.bound) << o.why;
+  }
   if (!o.withinBound()) {  // failure artefacts, one name per test (ctest runs in parallel)
     writePng((outputDir() / (c.name + "-" + t.name + ".png")).string(), o.frame.color);
     writePng((outputDir() / (c.name + "-" + t.name + "-reference.png")).string(),
