@@ -131,8 +131,8 @@ FigureSpec brabecFig8() {
       "steps of the light's depth range, needed against self-shadowing): next to the base the "
       "teapot's lowest body is closer to the ground than that, so the ground counts as lit. "
       "Panel (c), ours, is (a) with 12-bit depth and the bias in 12-bit steps: the leak under "
-      "the base nearly vanishes, and acne spreads over lit surfaces instead; the counts of both "
-      "below are this run's (test TeapotContactLeakIsTheEightBitDepthBias, docs/figures.md). "
+      "the base nearly vanishes, and acne spreads over lit surfaces instead (third row of "
+      "close-ups, the teapot's lit body); the counts of both below are this run's (test TeapotContactLeakIsTheEightBitDepthBias, docs/figures.md). "
       "Brabec & Seidel §6 name the 8-bit depth resolution as the limit.";
   f.scene = "teapot";
   f.width = 800;
@@ -153,7 +153,8 @@ FigureSpec brabecFig8() {
       twelve,
   };
   f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4},
-                {0.475f, 0.275f, 0.125f, 0.067f, 4}};  // under the base: the depth bias's leak
+                {0.475f, 0.275f, 0.125f, 0.067f, 4},  // under the base: the depth bias's leak
+                {0.44f, 0.32f, 0.10f, 0.10f, 4}};     // the lit body: (c)'s acne
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }

@@ -63,7 +63,7 @@ struct PanelSpec {
   std::string counter;       // Frame::counters entry a chart plots for this panel
   std::string paperNumbers;  // what the paper reports for this panel, quoted, or empty
   bool countDepthErrors = false;  // count its leak and acne pixels (figures/measured.h
-                                  // kLeakPixelsCounter) against reference.hard and legacy.hw
+                                  // kLeakPixelsCounter) against reference.hard, legacy.hw
   bool closeups = true;      // apply the figure's close-ups to this panel
   std::vector<Closeup> ownCloseups;  // when not empty: this panel's close-ups instead of the
                                      // figure's (rows of different scenes, Chan Fig. 3-7)
