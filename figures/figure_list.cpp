@@ -154,7 +154,7 @@ FigureSpec brabecFig8() {
   };
   f.closeups = {{0.60f, 0.20f, 0.18f, 0.14f, 4},
                 {0.475f, 0.275f, 0.125f, 0.067f, 4},  // under the base: the depth bias's leak
-                {0.44f, 0.32f, 0.10f, 0.10f, 4}};     // the lit body: (c)'s acne
+                {0.425f, 0.425f, 0.10f, 0.10f, 4}};   // the lit body: (c)'s acne
   f.paperNumbers = "§5: \"about 15 versus 10 frames per second\" (unfiltered vs fast PCF 2x2).";
   return f;
 }
