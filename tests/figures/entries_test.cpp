@@ -130,9 +130,9 @@ TEST(FigureEntries, BrabecFig8CountsTheTwelveBitTrade) {
 
 // Everitt et al., Fig. 6: "The light's view (right) shows the very small portion of the light's
 // image plane [that] needs high frequency sampling." On the dueling scene, the light-view pixels
-// drawn blue (one texel over 4 or more eye pixels: densityColor's top) must exist and be a far
-// smaller share of the light's image than the blue share of the eye's image, and every coloured
-// light-view pixel must be one the eye sees (within the eye's frustum: the eye image has it).
+// drawn blue (one texel over 2 or more eye pixels) must exist and be a far smaller share of the
+// light's image than the blue share of the eye's image, and the light's surfaces the eye does
+// not see (hidden behind the objects from the eye) must stay grey.
 TEST(LightDensity, TheMagnifiedPartIsASmallPatchOfTheLightsView) {
   const Scene scene = loadScene("dueling");
   constexpr int kWidth = 512, kHeight = 384, kTexels = 512;  // everitt-fig6's size and map
@@ -158,14 +158,24 @@ TEST(LightDensity, TheMagnifiedPartIsASmallPatchOfTheLightsView) {
   EXPECT_GT(eye, 0.02) << "the dueling scene's near ground is magnified in the eye's view";
   EXPECT_GT(light, 0.0) << "the magnified part must show in the light's view";
   // The paper's "very small portion": measured 2026-12-03 at the figure's size (512x384, 512²),
-  // 6.4% of the eye's image against 0.28% of the light's (a 23rd); a quarter is a wide margin
-  // that a light view coloured without the eye's visibility test (the whole ground) fails.
+  // 6.4% of the eye's image against 0.28% of the light's (a 23rd); a quarter is a wide margin.
   EXPECT_LT(light, 0.25 * eye) << "eye " << eye << ", light " << light;
-  // Grey where the eye does not see: R = G = B.
-  long grey = 0;
+  // Grey where the eye does not see (R = G = B, the unlit background black): on the dueling
+  // scene the ground behind the objects, seen from the eye, and the objects' far sides.
+  long grey = 0, surface = 0;
   for (int y = 0; y < v.lightDensity.height; ++y)
-    for (int x = 0; x < v.lightDensity.width; ++x)
-      grey += v.lightDensity.at(x, y, 0) == v.lightDensity.at(x, y, 1) &&
-              v.lightDensity.at(x, y, 1) == v.lightDensity.at(x, y, 2);
-  EXPECT_GT(grey, 0) << "the parts the eye does not see keep the light's grey view";
+    for (int x = 0; x < v.lightDensity.width; ++x) {
+      const float r = v.lightDensity.at(x, y, 0), g = v.lightDensity.at(x, y, 1),
+                  b = v.lightDensity.at(x, y, 2);
+      if (r == 0.0f && g == 0.0f && b == 0.0f) continue;  // no geometry (or a black density)
+      ++surface;
+      grey += r == g && g == b ? 1 : 0;
+    }
+  ASSERT_GT(surface, 0);
+  const double unseen = double(grey) / double(surface);
+  // Measured 2026-12-03: 67% of the light's surface pixels unseen by the eye; with the
+  // visibility test switched off (every light-view point inside the eye's frustum coloured)
+  // 12%, only what lies outside the eye's frustum. Half-way between is the bound.
+  constexpr double kUnseenAtLeast = 0.4;
+  EXPECT_GT(unseen, kUnseenAtLeast) << "the eye's occlusion must leave the light's view grey";
 }
