@@ -118,12 +118,11 @@ FigureSpec brabecFig8() {
   f.paperFigure = "Figure 8 (a, b)";
   f.title = "A 1024x1024 map unfiltered vs fast PCF 2x2";
   f.caption =
-      "On a CPU rasteriser the paper's timing cannot be reproduced: the paper's fast PCF 2x2 "
-      "frame is slower than its unfiltered one, here the two tie or swap with the machine's "
-      "load, and the pass-by-pass comparison below says why (as for Fig. 7: both frames are the "
-      "same full-window passes at about the same cost; the pass fast PCF adds, the "
-      "packing convolution of the map during its copy, is a small share of the frame on "
-      "llvmpipe, far from the share the paper's ratio needs). "
+      "On a CPU rasteriser the paper's timing cannot be reproduced: the pass fast PCF adds, "
+      "the packing convolution of the map during its copy, costs a small share of the frame on "
+      "llvmpipe, far from the share the paper's ratio needs, so the order of the two frames "
+      "follows the machine's load; the tables below say it cell by cell and pass by pass, as "
+      "for Fig. 7. "
       "Even a 1024x1024 shadow map leaves blocky shadow boundaries without filtering (a); fast "
       "PCF with a 2x2 footprint smooths them (b). The paper's second test scene is not "
       "published: we use the Utah teapot on a plane. The thin light line under the teapot's "
@@ -132,7 +131,8 @@ FigureSpec brabecFig8() {
       "teapot's lowest body is closer to the ground than that, so the ground counts as lit. "
       "Panel (c), ours, is (a) with 12-bit depth and the bias in 12-bit steps: the leak under "
       "the base nearly vanishes, and acne spreads over lit surfaces instead (third row of "
-      "close-ups, the teapot's lit body); the counts of both below are this run's (test TeapotContactLeakIsTheEightBitDepthBias, docs/figures.md). "
+      "close-ups, the teapot's lit body); the counts of both below are this run's (test "
+      "TeapotContactLeakIsTheEightBitDepthBias, docs/figures.md). "
       "Brabec & Seidel §6 name the 8-bit depth resolution as the limit.";
   f.scene = "teapot";
   f.width = 800;
@@ -472,8 +472,10 @@ std::vector<FigureSpec> csmFigures() {
                        {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}})
               : render("PCF, distance x" + std::to_string(d), technique),
           float(d));
-      if (d >= kFig10CloseupFromDistance) p.ownCloseups = {kFig10Closeup};
-      else p.closeups = false;
+      if (d >= kFig10CloseupFromDistance)
+        p.ownCloseups = {kFig10Closeup};
+      else
+        p.closeups = false;
       fig10.push_back(p);
     }
   out.push_back(csmFigure(

@@ -203,8 +203,8 @@ class Renderer {
     auto it = timed_.find(key);
     if (it != timed_.end()) return it->second;
     Frame last;
-    const SteadyTiming timing =
-        timeTechnique(t, scene(s), params(s, false), FrameCounts{kFigureWarmupFrames, rounds}, &last);
+    const FrameCounts counts{kFigureWarmupFrames, rounds};
+    const SteadyTiming timing = timeTechnique(t, scene(s), params(s, false), counts, &last);
     Timed timed{checked(t, std::move(last)), timing};
     frames_[key] = timed.frame;
     return timed_[key] = timed;

@@ -30,7 +30,9 @@ std::string param(const PanelSpec& p, const std::string& key) {
   return it == p.params.end() ? "" : it->second;
 }
 
-std::string firstSentence(const std::string& caption) { return caption.substr(0, caption.find(". ")); }
+std::string firstSentence(const std::string& caption) {
+  return caption.substr(0, caption.find(". "));
+}
 
 }  // namespace
 
