@@ -108,6 +108,67 @@ TEST(Measured, ConvolutionTrendTellsNoiseFromCostStructure) {
   EXPECT_NE(html.find("3 vertical Gaussian 7x7 +9.0"), std::string::npos) << "per-pass delta";
 }
 
+// Every number in a caption is configuration (the figure's sizes, maps, panel parameters and
+// labels, close-up magnifications) or the paper's, in a clause that names its source; a
+// measured number (an overdraw, a ratio, a share) typed into a caption fails here. The
+// technique constants a caption explains are listed with where they come from.
+TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
+  const std::set<std::string> constants = {
+      "0",   "1",  "2",  // structural words: "box 1", "between 0 and 1", "scaling by 2"
+      "64",              // modern.hybrid's tile side (64x64 tiles, chan-3-11)
+      "1.5",             // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
+      "0.5", "8",        // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
+      "4",   "16",       // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
+      "32",              // legacy_gl's kDifferenceDisplayGain: differences shown amplified 32x
+      "12",              // --precision 12, Brabec–Seidel §6's 12-bit buffers (brabec-fig8)
+  };
+  static const std::regex source(
+      R"(The paper:|paper's own|thesis's|chapter's|Chan's|Chan:|Annen|Brabec|Everitt|Kilgard|GeForce|SGI|Octane|their |Eq\. |Figs?\. |§)");
+  for (const FigureSpec& f : figureList()) {
+    std::set<std::string> config = {std::to_string(f.width), std::to_string(f.height),
+                                    std::to_string(f.shadowMapTexels)};
+    auto addAll = [&](const std::string& text) {
+      for (const std::string& n : numbersIn(text)) config.insert(n);
+    };
+    addAll(f.title);
+    addAll(f.paperFigure);
+    addAll(f.paperNumbers);
+    for (const Closeup& c : f.closeups) config.insert(std::to_string(c.magnify));
+    for (const PanelSpec& p : f.panels) {
+      addAll(p.label);
+      for (const auto& [k, v] : p.params) addAll(v);
+      config.insert(std::to_string(p.shadowMapTexels));
+      config.insert(std::to_string(p.filter));
+      config.insert(trimmed(p.cameraDistance));
+      if (p.lightRadius) config.insert(trimmed(*p.lightRadius));
+      for (const Closeup& c : p.ownCloseups) config.insert(std::to_string(c.magnify));
+    }
+    // Clauses: split at sentence ends (a full stop before a capital), semicolons and
+    // parentheses; "Eq. 10-14" stays one clause.
+    std::string clause;
+    const std::string text = f.caption + ".";
+    for (size_t i = 0; i < text.size(); ++i) {
+      const char c = text[i];
+      const bool end = c == ';' || c == '(' || c == ')' ||
+                       (c == '.' && (i + 1 == text.size() ||
+                                     (text[i + 1] == ' ' && i + 2 < text.size() &&
+                                      std::isupper(static_cast<unsigned char>(text[i + 2])))));
+      if (!end) {
+        clause += c;
+        continue;
+      }
+      if (!std::regex_search(clause, source)) {
+        for (const std::string& n : numbersIn(clause)) {
+          EXPECT_TRUE(config.count(n) || constants.count(n))
+              << f.id << ": the caption's number " << n << " is neither configuration nor "
+              << "quoted from a paper: \"" << clause << "\"";
+        }
+      }
+      clause.clear();
+    }
+  }
+}
+
 // Issue 27 item 6: Table 1's map-size and order trends, with verdicts, as the convolution's.
 TEST(Measured, MapSizeAndOrderTrendsHaveVerdicts) {
   FigureResult fig;
@@ -207,65 +268,4 @@ TEST(Measured, BrabecFig8ExplainsItsTimingPassByPassAndCountsTheBiasTrade) {
                       "pixels"),
             std::string::npos)
       << html;
-}
-
-// Every number in a caption is configuration (the figure's sizes, maps, panel parameters and
-// labels, close-up magnifications) or the paper's, in a clause that names its source; a
-// measured number (an overdraw, a ratio, a share) typed into a caption fails here. The
-// technique constants a caption explains are listed with where they come from.
-TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
-  const std::set<std::string> constants = {
-      "0",   "1",  "2",  // structural words: "box 1", "between 0 and 1", "scaling by 2"
-      "64",              // modern.hybrid's tile side (64x64 tiles, chan-3-11)
-      "1.5",             // modern.gems16's sample offsets (-1.5..1.5 texels, gems-11-6to9)
-      "0.5", "8",        // CSM's 8-bit basis storage, 0.5 = zero (csm-fig5, csm-fig6)
-      "4",   "16",       // csm-fig3's orders M = 4, 8, 16 (a computed chart has no panels)
-      "32",              // legacy_gl's kDifferenceDisplayGain: differences shown amplified 32x
-      "12",              // --precision 12, Brabec–Seidel §6's 12-bit buffers (brabec-fig8)
-  };
-  static const std::regex source(
-      R"(The paper:|paper's own|thesis's|chapter's|Chan's|Chan:|Annen|Brabec|Everitt|Kilgard|GeForce|SGI|Octane|their |Eq\. |Figs?\. |§)");
-  for (const FigureSpec& f : figureList()) {
-    std::set<std::string> config = {std::to_string(f.width), std::to_string(f.height),
-                                    std::to_string(f.shadowMapTexels)};
-    auto addAll = [&](const std::string& text) {
-      for (const std::string& n : numbersIn(text)) config.insert(n);
-    };
-    addAll(f.title);
-    addAll(f.paperFigure);
-    addAll(f.paperNumbers);
-    for (const Closeup& c : f.closeups) config.insert(std::to_string(c.magnify));
-    for (const PanelSpec& p : f.panels) {
-      addAll(p.label);
-      for (const auto& [k, v] : p.params) addAll(v);
-      config.insert(std::to_string(p.shadowMapTexels));
-      config.insert(std::to_string(p.filter));
-      config.insert(trimmed(p.cameraDistance));
-      if (p.lightRadius) config.insert(trimmed(*p.lightRadius));
-      for (const Closeup& c : p.ownCloseups) config.insert(std::to_string(c.magnify));
-    }
-    // Clauses: split at sentence ends (a full stop before a capital), semicolons and
-    // parentheses; "Eq. 10-14" stays one clause.
-    std::string clause;
-    const std::string text = f.caption + ".";
-    for (size_t i = 0; i < text.size(); ++i) {
-      const char c = text[i];
-      const bool end = c == ';' || c == '(' || c == ')' ||
-                       (c == '.' && (i + 1 == text.size() ||
-                                     (text[i + 1] == ' ' && i + 2 < text.size() &&
-                                      std::isupper(static_cast<unsigned char>(text[i + 2])))));
-      if (!end) {
-        clause += c;
-        continue;
-      }
-      if (!std::regex_search(clause, source)) {
-        for (const std::string& n : numbersIn(clause)) {
-          EXPECT_TRUE(config.count(n) || constants.count(n))
-              << f.id << ": the caption's number " << n << " is neither configuration nor "
-              << "quoted from a paper: \"" << clause << "\"";
-        }
-      }
-      clause.clear();
-    }
-  }
 }
