@@ -8,6 +8,11 @@
 //                           centre), the map's value at the pixel's projection (Fig. 4 right)
 //                           and shadow-map texels per pixel from dFdx/dFdy (Fig. 6 left)
 //   3. colourCodeDensity  — log2 of eye pixels per texel as a colour ramp (CPU)
+//   4. renderLightDensity — the light's view again, into two RGBA32F targets: where the eye
+//                           sees each of its points and the eye's texels per pixel there
+//                           (Fig. 6 right)
+//   5. colourLightDensity — the light's view coloured as pass 3 where the eye sees the point,
+//                           grey where it does not (CPU)
 #include "figures/diagnostics.h"
 
 #include <algorithm>
@@ -31,6 +36,15 @@ namespace {
 constexpr float kDensityLog2Range = 2.0f;  // colour ramp spans 1/4 .. 4 eye pixels per texel
 constexpr float kOutsideGrey = 0.35f;      // pixels outside the light frustum
 constexpr float kAmbient = 0.15f;          // light-view shading floor
+// Fig. 6 right: the light's view where the eye does not see the point, grey and dimmed so the
+// coloured part stands out (a share of the N.L shading's luminance).
+constexpr float kUnseenGrey = 0.45f;
+// A light-view point counts as seen by the eye when the eye pixel it falls into sees a point at
+// its light depth: within the depth change across this many eye pixels (the eye pixel's centre
+// is up to half a pixel away along each axis; twice that for the derivatives' 2x2 quads)...
+constexpr float kSeenDepthPixels = 1.0f;
+// ... plus this much of the light's depth range (float rounding of the two renders' depths).
+constexpr float kSeenDepthEpsilon = 1e-4f;
 
 // Reads colour attachment `index` of a target as float RGBA.
 Image readTarget(const RenderTarget& target, int index) {
@@ -144,6 +158,60 @@ Image colourCodeDensity(const Image& probe) {
   return rgb;
 }
 
+// Pass 4 (Everitt Fig. 6 right): for each pixel of the light's view, its eye pixel, depth and
+// the eye's density there, and the depth change across one eye pixel.
+RenderTarget renderLightDensity(const GpuScene& gpu, const LightMatrices& lm, int side,
+                                const glm::mat4& eyeViewProjection, int width, int height,
+                                int texels) {
+  RenderTarget target = modern::makeRenderTarget(side, side, {GL_RGBA32F, GL_RGBA32F}, true);
+  target.bind();
+  const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glDrawBuffers(2, both);
+  const float nothing[4] = {0, 0, 0, -2};  // A = -2: no geometry
+  glClearBufferfv(GL_COLOR, 0, nothing);
+  glClearBufferfv(GL_COLOR, 1, nothing);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  GlName<modern::deleteProgram> program(
+      compileShaderProgram("diagnostics.vert.glsl", "diagnostics_light_density.frag.glsl"));
+  setCommon(program.id(), lm, lm.projection * lm.view);
+  setMat(program.id(), "uEyeViewProjection", eyeViewProjection);
+  glUniform2f(glGetUniformLocation(program.id(), "uEyeSize"), float(width), float(height));
+  glUniform1f(glGetUniformLocation(program.id(), "uTexels"), float(texels));
+  gpu.draw([](const Object&) { return true; },
+           [&](const Object& o) { setMat(program.id(), "uModel", o.model); });
+  checkGl("figures: light density");
+  return target;
+}
+
+// Pass 5 (Everitt Fig. 6 right): "the very small portion of the light's image plane [that]
+// needs high frequency sampling": the light's view in pass 3's colours where the eye sees the
+// point (the eye pixel it falls into shows a point at its light depth, eye probe R), the
+// light's N.L shading in dim grey elsewhere.
+Image colourLightDensity(const Image& lightEye, const Image& lightSlope, const Image& shading,
+                         const Image& probe) {
+  Image rgb(lightEye.width, lightEye.height, 3);
+  for (int y = 0; y < lightEye.height; ++y)
+    for (int x = 0; x < lightEye.width; ++x) {
+      float c[3];
+      const float grey =
+          kUnseenGrey * (0.299f * shading.at(x, y, 0) + 0.587f * shading.at(x, y, 1) +
+                         0.114f * shading.at(x, y, 2));
+      c[0] = c[1] = c[2] = grey;
+      const float texelsPerPixel = lightEye.at(x, y, 3);
+      const int ex = int(std::floor(lightEye.at(x, y, 0)));
+      const int ey = int(std::floor(lightEye.at(x, y, 1)));
+      if (texelsPerPixel > 0.0f && ex >= 0 && ey >= 0 && ex < probe.width && ey < probe.height &&
+          probe.at(ex, ey, 3) > 0.5f) {
+        const float tolerance = kSeenDepthPixels * lightSlope.at(x, y, 0) + kSeenDepthEpsilon;
+        if (std::fabs(probe.at(ex, ey, 0) - lightEye.at(x, y, 2)) <= tolerance)
+          densityColor(1.0f / texelsPerPixel, c);
+      }
+      for (int k = 0; k < 3; ++k) rgb.at(x, y, k) = c[k];
+    }
+  return rgb;
+}
+
 Image probeChannel(const Image& probe, int c) {
   Image out(probe.width, probe.height, 1);
   for (int y = 0; y < probe.height; ++y)
@@ -190,10 +258,17 @@ DiagnosticViews renderDiagnostics(const Scene& scene, int width, int height, int
     out.shadowMap = channel(readTarget(map, 0), 0);
     RenderTarget picture = renderLightDepth(gpu, lm, lightSide);
     out.lightView = toRgb(readTarget(picture, 1));
+    const float aspect = float(width) / float(height);
+    const glm::mat4 eyeViewProjection =
+        cameraProjection(scene.camera, aspect) * cameraView(scene.camera);
     const Image probe = renderEyeProbe(gpu, lm, map, width, height, texels);
     out.lightDistance = probeChannel(probe, 0);
     out.projectedMap = probeChannel(probe, 1);
     out.texelDensity = colourCodeDensity(probe);
+    RenderTarget density =
+        renderLightDensity(gpu, lm, lightSide, eyeViewProjection, width, height, texels);
+    out.lightDensity = colourLightDensity(readTarget(density, 0), readTarget(density, 1),
+                                          readTarget(picture, 1), probe);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   return out;

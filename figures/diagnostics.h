@@ -15,6 +15,8 @@ struct DiagnosticViews {
   Image lightDistance;  // 1 channel, eye image: linearised light depth of each eye pixel
   Image projectedMap;   // 1 channel, eye image: the map's value at each pixel's projection
   Image texelDensity;   // RGB, eye image: eye pixels per texel, colour coded (log2)
+  Image lightDensity;   // RGB, square: the light's view in texelDensity's colours where the
+                        // eye sees the point, dim grey where it does not (Fig. 6 right)
 };
 
 // `lightSide` is the side of the square light-view image; `texels` the shadow map's side.

@@ -26,6 +26,8 @@ enum class PanelKind {
   kLightDistance,  // each eye pixel's distance from the light (Everitt Fig. 4 centre)
   kProjectedMap,   // the shadow map projected onto the scene (Everitt Fig. 4 right)
   kTexelDensity,   // shadow-map texels per eye pixel, colour coded (Everitt Fig. 6)
+  kLightDensity,   // the light's view, coloured where the eye sees it as kTexelDensity
+                   // (Everitt Fig. 6 right)
   kPlot,           // a gnuplot chart made from computed data or from other panels' numbers
 };
 
@@ -60,6 +62,8 @@ struct PanelSpec {
   std::string plot;          // kPlot: which chart (see plots.h)
   std::string counter;       // Frame::counters entry a chart plots for this panel
   std::string paperNumbers;  // what the paper reports for this panel, quoted, or empty
+  bool countDepthErrors = false;  // count its leak and acne pixels (figures/measured.h
+                                  // kLeakPixelsCounter) against reference.hard, legacy.hw
   bool closeups = true;      // apply the figure's close-ups to this panel
   std::vector<Closeup> ownCloseups;  // when not empty: this panel's close-ups instead of the
                                      // figure's (rows of different scenes, Chan Fig. 3-7)
@@ -82,6 +86,7 @@ struct FigureSpec {
   std::vector<PanelSpec> panels;
   std::vector<Closeup> closeups;
   std::string reference = "reference.hard";  // error of every render panel against this
+  int timingRounds = 0;  // interleaved rounds of its timed panels; 0: figures.cpp's default
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted

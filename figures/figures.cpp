@@ -50,6 +50,10 @@ constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
 constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
 constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
+// countDepthErrors's truth (its default: a point sample at each pixel centre's surface point)
+// and witness (24-bit depth with polygon offset: no bias leak, no acne of its own).
+constexpr const char* kDepthErrorTruth = "reference.hard";
+constexpr const char* kDepthErrorWitness = "legacy.hw";
 // The lessons of the main job (figures/lesson.h): small, so that ~21 lessons add about a minute.
 constexpr int kLessonWidth = 320;
 constexpr int kLessonHeight = 240;
@@ -127,8 +131,11 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
 // interleaved: every context warmed up, then kFigureRounds rounds of one frame of each, so
 // that machine load during the figure hits every cell alike. No cell is a median of one frame.
 constexpr int kFigureWarmupFrames = kQuickWarmupFrames;
-constexpr int kFigureRounds = 3;
-constexpr FrameCounts kFigureFrames{kFigureWarmupFrames, kFigureRounds};
+constexpr int kFigureRounds = 3;  // a figure's default (FigureSpec::timingRounds)
+
+int roundsOf(const FigureSpec& fig) {
+  return fig.timingRounds > 0 ? fig.timingRounds : kFigureRounds;
+}
 // Contexts alive at once in one interleaved group (each holds its window's buffers: a 1024x768
 // context ~20 MB with Mesa's depth/stencil; a figure of more timed renders is measured in
 // groups of this many, grouped by shadow-map size so that the cells compared within a column
@@ -192,12 +199,13 @@ class Renderer {
     std::shared_ptr<const Frame> frame;
     SteadyTiming timing;
   };
-  Timed steadyFrame(const Technique& t, const Setup& s) {
+  Timed steadyFrame(const Technique& t, const Setup& s, int rounds) {
     const std::string key = t.name + "|" + s.key();
     auto it = timed_.find(key);
     if (it != timed_.end()) return it->second;
     Frame last;
-    const SteadyTiming timing = timeTechnique(t, scene(s), params(s, false), kFigureFrames, &last);
+    const FrameCounts counts{kFigureWarmupFrames, rounds};
+    const SteadyTiming timing = timeTechnique(t, scene(s), params(s, false), counts, &last);
     Timed timed{checked(t, std::move(last)), timing};
     frames_[key] = timed.frame;
     return timed_[key] = timed;
@@ -207,7 +215,7 @@ class Renderer {
   // number, and their twins), measured interleaved before the panels are made; steadyFrame
   // then finds them. A group that fails (a technique refusing its parameters) is left to
   // steadyFrame, which reports the failing panel alone.
-  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs) {
+  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs, int rounds) {
     std::vector<size_t> todo;
     std::set<std::string> keys;
     for (size_t i = 0; i < jobs.size(); ++i) {
@@ -227,7 +235,7 @@ class Renderer {
           timing.push_back({jobs[i].first, &scene(jobs[i].second), params(jobs[i].second, false)});
         std::vector<Frame> lasts;
         const std::vector<SteadyTiming> timings =
-            timeTechniquesInterleaved(timing, kFigureWarmupFrames, kFigureRounds, &lasts);
+            timeTechniquesInterleaved(timing, kFigureWarmupFrames, rounds, &lasts);
         for (size_t k = 0; k < group.size(); ++k) {
           const Technique& t = *jobs[group[k]].first;
           const std::string key = t.name + "|" + jobs[group[k]].second.key();
@@ -376,6 +384,36 @@ ErrorDetail errorDetailOf(const Image& mask, const ShadowTruth& truth) {
   return d;
 }
 
+// Step 3 for Brabec Fig. 8 (PanelSpec::countDepthErrors): the depth bias's leak and acne in
+// pixels, as docs/figures.md's table of the trade and
+// BrabecSeidel.TeapotContactLeakIsTheEightBitDepthBias count them: the leak where the ray
+// tracer and 24-bit legacy.hw both put the pixel in shadow (so that the shadow map's own edge
+// aliasing, which legacy.hw shares with the panel, is not counted), acne where the ray tracer
+// puts it in light.
+void countDepthErrors(Renderer& r, const Technique& t, const Setup& setup, const Frame& f,
+                      std::map<std::string, double>* counters) {
+  const Technique* truth = lookup(kDepthErrorTruth);
+  const Technique* witness = lookup(kDepthErrorWitness);
+  if (truth == nullptr || witness == nullptr || witness->name == t.name) return;
+  Setup plain = setup;  // the panel's scene, size and map; its technique's own parameters off
+  plain.params.clear();
+  plain.precision.reset();
+  plain.filter = RenderParams{}.filter;
+  const Image& ref = r.frame(*truth, plain, false)->visibility;
+  const Image& hw = r.frame(*witness, plain, false)->visibility;
+  constexpr float kLit = 0.5f;  // visibility above: lit (the masks are 0/1 but at edges)
+  long long leak = 0, acne = 0;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      const bool lit = f.visibility.at(x, y) > kLit;
+      const bool refLit = ref.at(x, y) > kLit, hwLit = hw.at(x, y) > kLit;
+      leak += lit && !refLit && !hwLit ? 1 : 0;
+      acne += !lit && refLit ? 1 : 0;
+    }
+  (*counters)[kLeakPixelsCounter] = double(leak);
+  (*counters)[kAcnePixelsCounter] = double(acne);
+}
+
 // Steps 2-4 for one panel.
 PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
   PanelResult out;
@@ -407,7 +445,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         const bool steady = timedSteadily(fig, p);
         std::shared_ptr<const Frame> f;
         if (steady) {
-          const Renderer::Timed timed = r.steadyFrame(t, setup);
+          const Renderer::Timed timed = r.steadyFrame(t, setup, roundsOf(fig));
           f = timed.frame;
           out.milliseconds = timed.timing.frameMs;
           out.passes = timed.timing.passes;
@@ -478,6 +516,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
               score.metric + " metric vs " + score.truth + "; " + describeLeftOut(score.counts);
           out.errorDetail = errorDetailOf(f->visibility, truth);
         }
+        if (p.countDepthErrors) countDepthErrors(r, t, setup, *f, &out.counters);
         // Step 4: the legacy/modern twin.
         const Technique* twin = fig.twins && !fig.table ? lookup(twinName(t.name)) : nullptr;
         if (twin != nullptr) {
@@ -488,7 +527,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
             std::shared_ptr<const Frame> tf;
             TwinResult tr;
             if (steady) {
-              const Renderer::Timed timed = r.steadyFrame(*twin, setup);
+              const Renderer::Timed timed = r.steadyFrame(*twin, setup, roundsOf(fig));
               tf = timed.frame;
               tr.milliseconds = timed.timing.frameMs;
               tr.timedFrames = timed.timing.timedFrames;
@@ -546,6 +585,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         break;
       case PanelKind::kTexelDensity:
         addImage(r.diagnostics(setup).texelDensity, p.label, false);
+        break;
+      case PanelKind::kLightDensity:
+        addImage(r.diagnostics(setup).lightDensity, p.label, false);
         break;
       case PanelKind::kPlot:
         return out;  // drawn in step 5, once the other panels have their numbers
@@ -765,7 +807,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     const auto figureStart = std::chrono::steady_clock::now();
     FigureResult fr;
     fr.spec = *f;
-    renderer.timeInterleaved(timedRenders(*f));
+    renderer.timeInterleaved(timedRenders(*f), roundsOf(*f));
     for (size_t i = 0; i < f->panels.size(); ++i) {
       if (progress)
         std::cerr << "[" << ++done << "/" << total << "] " << f->id << " " << f->panels[i].label

@@ -32,6 +32,12 @@ struct TrendCell {
 constexpr double kSameTimeShare = 0.05;
 std::vector<TrendCell> timingTrend(const FigureResult& fig);
 
+// Brabec Fig. 8's depth-bias counters (PanelSpec::countDepthErrors, figures.cpp): pixels a
+// panel draws lit where both the ray tracer and 24-bit legacy.hw put them in shadow (the leak
+// under the teapot's base), and drawn in shadow where the ray tracer puts them in light (acne).
+constexpr const char* kLeakPixelsCounter = "leak_pixels";
+constexpr const char* kAcnePixelsCounter = "acne_pixels";
+
 // The HTML block under the figure's caption ("" when it measured nothing to say).
 std::string measuredHtml(const FigureResult& fig);
 

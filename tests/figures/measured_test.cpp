@@ -211,3 +211,104 @@ TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
     }
   }
 }
+
+// Issue 27 item 6: Table 1's map-size and order trends, with verdicts, as the convolution's.
+TEST(Measured, MapSizeAndOrderTrendsHaveVerdicts) {
+  FigureResult fig;
+  fig.spec.id = "csm-table1";
+  const auto cell = [&](const std::string& label, std::vector<double> samples, int texels) {
+    fig.panels.push_back(timed(label, "modern.csm", samples, "50 fps", texels));
+  };
+  // PCF: slower at 2048² in every round (holds).
+  cell("C=none PCF S=256", {10, 10, 10, 10, 10, 10, 10}, 256);
+  cell("C=none PCF S=2048", {30, 31, 29, 30, 30, 30, 30}, 2048);
+  // M=4: 2048² faster than 256² in every round (cost structure).
+  cell("C=none M=4 S=256", {100, 100, 100, 100, 100, 100, 100}, 256);
+  cell("C=none M=4 S=2048", {80, 81, 79, 80, 80, 80, 80}, 2048);
+  fig.panels.back().passes = {{"4 mip-map", 3.5}};
+  // M=16: 256² slower than M=4 in every round (holds); 2048² faster than M=4 in the median, but
+  // three of seven rounds slower (noise).
+  cell("C=none M=16 S=256", {150, 150, 150, 150, 150, 150, 150}, 256);
+  cell("C=none M=16 S=2048", {200, 70, 200, 70, 200, 70, 70}, 2048);
+  const std::string html = measuredHtml(fig);
+  // Size: PCF holds, M=4 inverted in every round, M=16 200/70 vs 150: median 70 < 150, inverted,
+  // three rounds going the paper's way.
+  EXPECT_NE(html.find("Measured: the map-size trend"), std::string::npos) << html;
+  EXPECT_NE(html.find("the 2048² cell is not slower than the 256² cell in 2 of 3 (C, M) rows; 1 "
+                      "of those invert in every interleaved round"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("holds (2048² slower)"), std::string::npos);
+  EXPECT_NE(html.find("inverted in every round (2048² faster): cost structure, not noise"),
+            std::string::npos);
+  EXPECT_NE(html.find("inverted in the median, the rounds disagree (3 of 7 go the paper's way): "
+                      "noise"),
+            std::string::npos);
+  EXPECT_NE(html.find("4 mip-map +3.5"), std::string::npos) << "per-pass delta, 2048² minus 256²";
+  // Order: S=256 holds (M=16 slower), S=2048 inverted in the median only.
+  EXPECT_NE(html.find("Measured: the order trend"), std::string::npos) << html;
+  EXPECT_NE(html.find("the M=16 cell is not slower than the M=4 cell in 1 of 2 (C, S) pairs; 0 "
+                      "of those invert in every interleaved round"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("holds (M=16 slower)"), std::string::npos);
+  // The PCF rows are no order (M) comparison.
+  EXPECT_EQ(html.find("<td>C=none PCF</td><td>100.0 / 33.3"), html.rfind("<td>C=none PCF</td>"))
+      << "PCF is in the size trend once and nowhere else";
+}
+
+// Issue 27 item 6: Brabec Fig. 8 explains its timing pass by pass, as Fig. 7, from the run's
+// pass times; and its 12-bit claim is the run's counts.
+TEST(Measured, BrabecFig8ExplainsItsTimingPassByPassAndCountsTheBiasTrade) {
+  FigureResult fig;
+  fig.spec.id = "brabec-fig8";
+  fig.panels.push_back(timed("(a) unfiltered", "legacy.ramp", {100, 98, 99}, "about 15 fps"));
+  fig.panels.back().passes = {{"mesh feeding: triangles split", 0.0},
+                              {"1 light pass: depth ramp into alpha + copy to texture", 17.6},
+                              {"2 camera pass: light depth ramp into alpha", 12.2},
+                              {"3 projective pass: subtract shadow map", 25.2},
+                              {"4 copy: shadow mask to 0 / 1", 7.9},
+                              {"5 lighting x shadow mask", 36.0}};
+  fig.panels.back().counters = {{kLeakPixelsCounter, 1013}, {kAcnePixelsCounter, 328}};
+  fig.panels.push_back(timed("(b) fast PCF 2x2", "legacy.fast-pcf", {90, 88, 89}, "about 10 fps"));
+  fig.panels.back().passes = {{"mesh feeding: triangles split", 0.0},
+                              {"1 light pass: depth ramp in RGBA", 9.9},
+                              {"2 copy to texture through the 3x3 packing convolution", 2.0},
+                              {"3 camera pass: light depth in RGBA", 18.4},
+                              {"4 projective pass: subtract packed map", 18.2},
+                              {"5 copy: colour table + colour matrix -> alpha", 1.8},
+                              {"7 lighting x shadow term", 38.7}};
+  fig.panels.push_back(timed("(c) unfiltered, 12-bit", "legacy.ramp", {101, 99, 100}));
+  fig.panels.back().counters = {{kLeakPixelsCounter, 54}, {kAcnePixelsCounter, 4763}};
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("(b) fast PCF 2x2 against (a) unfiltered, pass by pass"), std::string::npos)
+      << html;
+  // The packing copy has no partner ("copy to" is not "copy"); 2.0 ms of an 89 ms frame.
+  EXPECT_NE(html.find("adds: 2 copy to texture through the 3x3 packing convolution 2.0 ms, "
+                      "together 2.0 ms, 2.2% of its frame"),
+            std::string::npos)
+      << html;
+  // Paper: 100 ms against 66.7 ms, ratio 1.50: the added work would be a third of the frame.
+  EXPECT_NE(html.find("The paper's ratio (1.50) needs the work (b) fast PCF 2x2 adds to cost "
+                      "33.3% of its frame"),
+            std::string::npos)
+      << html;
+  // 2.2% is under half of 33.3%: the filtering cannot be what orders the two frames.
+  EXPECT_NE(html.find("its added passes cost 2.2%, too little to make the paper's ratio: the "
+                      "paired passes"),
+            std::string::npos)
+      << html;
+  // Paired: light -7.7, camera +6.2, projective -7.0, copy -6.1, lighting +2.7, mesh 0.
+  EXPECT_NE(html.find("The paired passes differ by -11.9 ms in total, the most 1 light pass: "
+                      "depth ramp in RGBA (-7.7 ms)"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<tr><td>4 copy: shadow mask to 0 / 1</td><td>7.9</td><td>5 copy: "
+                      "colour table + colour matrix -&gt; alpha</td><td>1.8</td></tr>"),
+            std::string::npos)
+      << "the mask copies pair up";
+  EXPECT_NE(html.find("the leak falls 1013 -&gt; 54 pixels and the acne rises 328 -&gt; 4763 "
+                      "pixels"),
+            std::string::npos)
+      << html;
+}
