@@ -340,8 +340,8 @@ PointAgreement volumesAgainstRays(const Scene& scene, const RenderParams& size,
 // plane's two-sided volume lies below it and shadows nothing visible). dragon and teapot have
 // open, non-flat casters and are left out.
 const char* const kClosedCasterScenes[] = {
-    "analytic", "brabec", "fence",   "trees",   "dueling",    "ball",    "bleeding",
-    "boxes",    "bunny",  "contact", "cubes",   "cylinder",   "fill-bound", "squares"};
+    "analytic", "brabec", "fence",   "trees", "dueling",  "ball",       "bleeding",
+    "boxes",    "bunny",  "contact", "cubes", "cylinder", "fill-bound", "squares"};
 
 // At most this share of the scored pixels may differ. What may remain is a tie at a shadow
 // edge: a pixel centre closer to the edge than the rasteriser's sub-pixel precision (llvmpipe
