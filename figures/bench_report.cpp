@@ -145,7 +145,9 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
     h << "<p>Errors are scored by the one definition of <code>docs/error.md</code> (area "
          "metric, scored pixels only). The column <em>before</em> is the verdict of the last "
          "run before it (" << htmlEscape(before.madeBy) << "); <b>changed</b> marks the "
-         "verdicts it changed.</p>\n";
+         "verdicts it changed. The error halves of a verdict repeat exactly from run to run; "
+         "its time half (\"not cheaper\") moves with the load of a shared machine, so a time "
+         "verdict that changed here may change back in the next run.</p>\n";
   h << "<table><tr><th>claim</th><th>source</th><th>scene</th><th>verdict</th>"
     << (before.madeBy.empty() ? "" : "<th>before</th>") << "<th>setup</th><th>measured</th></tr>\n";
   for (const ClaimCheck& c : claims) {

@@ -14,7 +14,8 @@ commit=$("$bin" compare --scene analytic --size 16x16 --a modern.volumes --b ref
          python3 -c 'import json,sys; print(json.load(sys.stdin)["commit"])')
 
 # Point metric: modern.volumes against reference.hard (pixel centres), 400x300.
-for scene in analytic brabec cubes fence trees dueling bunny dragon teapot; do
+for scene in analytic brabec fence trees dueling ball bleeding boxes bunny contact cubes cylinder \
+    fill-bound squares dragon teapot; do
   "$bin" compare --scene "$scene" --size 400x300 --a modern.volumes --b reference.hard \
     2>/dev/null | sed "s/^/point $scene /" >> "$out" || echo "point $scene {}" >> "$out"
 done
