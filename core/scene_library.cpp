@@ -429,8 +429,8 @@ Scene loadScene(const std::string& nameOrPath) {
   // there, the message names that file (not the list of scene names).
   const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
                           nameOrPath.find('/') != std::string::npos;
-  const fs::path path =
-      namesAFile ? fs::path(nameOrPath) : fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
+  const fs::path path = namesAFile ? fs::path(nameOrPath)
+                                   : fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     if (namesAFile) throw InputError("scene file " + nameOrPath + ": no such file");

@@ -75,8 +75,8 @@ TEST(InputNames, ImageOutputsArePngOnly) {
 // main answered "unknown scene 'missing.json' (known: ...)".
 TEST(InputNames, AMissingSceneFileIsNamed) {
   const fs::path d = test::testDir("input-names", true);
-  const std::string tail = " --technique legacy.hw" + std::string(kSmall) + " --out " +
-                           (d / "out.png").string();
+  const std::string tail =
+      " --technique legacy.hw" + std::string(kSmall) + " --out " + (d / "out.png").string();
   expectRefused(shadowlab(d, "render --scene missing.json" + tail),
                 "scene file missing.json: no such file");
   expectRefused(shadowlab(d, "render --scene " + (d / "no" / "scene").string() + tail),
@@ -93,9 +93,10 @@ TEST(InputNames, MeshesAreReadBesideTheSceneFile) {
   write(d / "room" / "scene.json",
         R"({"objects": [{"mesh": {"primitive": "plane"}},
                         {"mesh": {"file": "table.obj"}, "translate": [0, 1, 0]}]})");
-  const std::string tail = " --technique legacy.hw" + std::string(kSmall) + " --out " +
-                           (d / "out.png").string();
-  const CommandResult ok = shadowlab(d, "render --scene " + (d / "room" / "scene.json").string() + tail);
+  const std::string tail =
+      " --technique legacy.hw" + std::string(kSmall) + " --out " + (d / "out.png").string();
+  const CommandResult ok =
+      shadowlab(d, "render --scene " + (d / "room" / "scene.json").string() + tail);
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_TRUE(fs::exists(d / "out.png"));
   fs::remove(d / "out.png");
@@ -114,8 +115,8 @@ TEST(InputNames, FlagsTakeOnOrOff) {
   expectRefused(shadowlab(d, "render --scene analytic --technique modern.smoothies" +
                                  std::string(kSmall) + " --param remap=false" + out),
                 "--param remap=false: expected on or off");
-  expectRefused(shadowlab(d, "render --scene analytic --technique modern.hw" +
-                                 std::string(kSmall) + " --param plan=1" + out),
+  expectRefused(shadowlab(d, "render --scene analytic --technique modern.hw" + std::string(kSmall) +
+                                 " --param plan=1" + out),
                 "--param plan=1: expected on or off");
   expectNothingWritten(d);
   const CommandResult ok = shadowlab(d, "render --scene analytic --technique modern.smoothies" +
@@ -131,18 +132,18 @@ TEST(InputNames, EveryFigurePanelsParamsAreAccepted) {
       if (p.technique.empty() || p.params.empty()) continue;
       RenderParams params;
       params.extra = p.params;
-      EXPECT_NO_THROW(checkParams(findTechnique(p.technique), params, 0))
-          << f.id << " " << p.label;
+      EXPECT_NO_THROW(checkParams(findTechnique(p.technique), params, 0)) << f.id << " " << p.label;
     }
 }
 
 // docs/scene-files.md's minimal example through the command, at a tiny size.
 TEST(InputNames, TheMinimalExampleRenders) {
   const fs::path d = test::testDir("input-names", true);
-  const fs::path scene = fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "minimal-scene.json";
-  const CommandResult r = shadowlab(d, "render --scene " + scene.string() +
-                                           " --technique modern.hw" + std::string(kSmall) +
-                                           " --out " + (d / "minimal.png").string());
+  const fs::path scene =
+      fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "minimal-scene.json";
+  const CommandResult r =
+      shadowlab(d, "render --scene " + scene.string() + " --technique modern.hw" +
+                       std::string(kSmall) + " --out " + (d / "minimal.png").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"scene\":\"minimal-scene\""), std::string::npos) << r.out;
   const Image image = readPng((d / "minimal.png").string());

@@ -29,8 +29,7 @@ TEST(ParamFlags, OnlyOnAndOff) {
   EXPECT_TRUE(p.flag(remap));
   for (const char* word : {"true", "false", "1", "0", "yes", "ON", ""}) {
     p.extra["remap"] = word;
-    EXPECT_EQ(flagError(p, remap),
-              std::string("--param remap=") + word + ": expected on or off");
+    EXPECT_EQ(flagError(p, remap), std::string("--param remap=") + word + ": expected on or off");
   }
   EXPECT_EQ(describeParam(remap), "remap=on (on|off): test");
   EXPECT_TRUE(remap.isDefault("on"));

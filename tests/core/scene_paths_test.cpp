@@ -73,7 +73,8 @@ TEST(ScenePaths, AMissingMeshNamesWhereItLooked) {
   const std::string looked = fs::absolute(d / "table.obj").lexically_normal().string();
   EXPECT_EQ(messageOf(scene.string()), "scene file " + scene.string() +
                                            ": objects[0].mesh.file table.obj: no such file "
-                                           "(looked in " + looked + ")");
+                                           "(looked in " +
+                                           looked + ")");
 }
 
 // A name that ends in .json or holds a folder is a file: when it is missing the message names
