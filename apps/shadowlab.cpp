@@ -47,6 +47,7 @@ usage:
 
 `shadowlab COMMAND --help` lists a command's options.
 --mask writes the light-visibility term (1 = lit, 0 = umbra) as a 16-bit grayscale PNG.
+Image outputs (render --out and --mask, compare --diff) are PNG only: their names end in .png.
 Every output is checked before rendering and appears only when the whole run succeeds.
 Exit status: 0 ok, 2 bad input (names, files, numbers), 3 GL failure.
 )";

@@ -234,8 +234,14 @@ Mesh meshFromJson(const json& j, const std::string& where, const std::string& ba
   if (!j.is_object()) throw InputError(what + " must be a JSON object");
   if (j.contains("file")) {
     strictObject(j, what, {"file", "size"});
-    fs::path p = stringValue(j["file"], what + ".file");
+    const std::string given = stringValue(j["file"], what + ".file");
+    // A relative path is read beside the scene file (baseDir is its folder), and only there.
+    fs::path p = given;
     if (p.is_relative()) p = fs::path(baseDir) / p;
+    std::error_code ec;
+    if (!fs::exists(p, ec))
+      throw InputError(what + ".file " + given + ": no such file (looked in " +
+                       fs::absolute(p, ec).lexically_normal().string() + ")");
     Mesh m = loadMesh(p.string());
     if (j.contains("size")) normalizeMesh(m, number(j["size"], what + ".size"), p.string());
     return m;
@@ -419,19 +425,29 @@ Scene loadScene(const std::string& nameOrPath) {
   const auto builtins = builtinSceneNames();
   if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end())
     return builtinScene(nameOrPath);
-  fs::path path = nameOrPath;
-  if (path.extension() != ".json") path = fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
-  std::ifstream in(path);
-  if (!in) {
+  // A name that ends in .json or holds a folder is a file the user named: when it is not
+  // there, the message names that file (not the list of scene names).
+  const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
+                          nameOrPath.find('/') != std::string::npos;
+  const fs::path path = namesAFile ? fs::path(nameOrPath)
+                                   : fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    if (namesAFile) throw InputError("scene file " + nameOrPath + ": no such file");
     std::string known;
     for (const auto& n : builtins) known += (known.empty() ? "" : ", ") + n;
     for (const auto& n : sceneFileNames()) known += ", " + n;
     throw InputError("unknown scene '" + nameOrPath + "' (known: " + known + ")");
   }
+  if (!fs::is_regular_file(path, ec))
+    throw InputError("scene file " + path.string() + ": not a regular file");
+  std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
-  // Mesh paths in scene files are relative to the asset directory (assets/models/...).
-  return parseSceneJson(text.str(), path.string(), assetDirectory());
+  if (!in) throw InputError("scene file " + path.string() + ": cannot read it");
+  // Relative mesh paths in a scene file are read beside the scene file, the files of
+  // assets/scenes/ included (their meshes are ../models/...); docs/scene-files.md.
+  return parseSceneJson(text.str(), path.string(), path.parent_path().string());
 }
 
 }  // namespace sl

@@ -1,7 +1,7 @@
 // core/scene_library.h — finding scenes by name: built-in procedural scenes and JSON files.
 //
-// A --scene argument is resolved in this order: a built-in name (see builtinSceneNames()),
-// a file assets/scenes/<name>.json, or a path to a .json file.
+// A --scene argument: a built-in name, a path when it ends in .json or holds a '/' (no such
+// file: an error naming it), else assets/scenes/<name>.json. Meshes: docs/scene-files.md.
 #pragma once
 
 #include <string>
@@ -20,7 +20,7 @@ std::string assetDirectory();               // $SHADOWLAB_ASSETS or the source t
 // Throws InputError for an unknown name or a malformed file.
 Scene loadScene(const std::string& nameOrPath);
 Scene builtinScene(const std::string& name);  // throws InputError if unknown
-// Parses a JSON scene document; `baseDir` resolves relative mesh paths.
+// Parses a JSON scene document; `baseDir` (the scene file's folder) resolves mesh paths.
 Scene parseSceneJson(const std::string& text, const std::string& sourceName,
                      const std::string& baseDir);
 

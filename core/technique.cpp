@@ -79,13 +79,25 @@ std::string RenderParams::text(const std::string& key, const std::string& fallba
   return it->second;
 }
 
+namespace {
+// The one vocabulary of a flag --param (issue 30): these two words and no others (no
+// true/false/1/0), as `shadowlab list`, the live lab's checkboxes and the figures spell them.
+constexpr const char* kFlagOn = "on";
+constexpr const char* kFlagOff = "off";
+
+// "on" -> true, "off" -> false; any other word is an InputError naming the two.
+bool parseFlagValue(const std::string& key, const std::string& value) {
+  if (value == kFlagOn) return true;
+  if (value == kFlagOff) return false;
+  throw InputError("--param " + key + "=" + value + ": expected " + kFlagOn + " or " + kFlagOff);
+}
+}  // namespace
+
 bool RenderParams::flag(const std::string& key, bool fallback) const {
-  if (readLog) noteRead(*this, key, fallback ? "on" : "off");
+  if (readLog) noteRead(*this, key, fallback ? kFlagOn : kFlagOff);
   auto it = extra.find(key);
   if (it == extra.end()) return fallback;
-  if (it->second == "1" || it->second == "true" || it->second == "on") return true;
-  if (it->second == "0" || it->second == "false" || it->second == "off") return false;
-  throw InputError("--param " + key + "=" + it->second + ": expected on/off");
+  return parseFlagValue(key, it->second);
 }
 
 std::string ParamSpec::defaultText() const {
@@ -93,14 +105,13 @@ std::string ParamSpec::defaultText() const {
     case Kind::kNumber: return acceptsAuto ? std::string(kAutoValue) : formatNumber(fallback);
     case Kind::kInteger: return std::to_string(int(fallback));
     case Kind::kChoice: return choiceFallback;
-    case Kind::kFlag: return flagFallback ? "on" : "off";
+    case Kind::kFlag: return flagFallback ? kFlagOn : kFlagOff;
   }
   return "";
 }
 
 bool ParamSpec::isDefault(const std::string& value) const {
   if (value == defaultText()) return true;
-  if (kind == Kind::kFlag) return (value == "1" || value == "true" || value == "on") == flagFallback;
   if ((kind == Kind::kNumber && !acceptsAuto) || kind == Kind::kInteger) {
     const std::optional<double> v = parseDecimal(value);
     return v && *v == fallback;
@@ -193,7 +204,7 @@ std::string describeParam(const ParamSpec& p) {
     case ParamSpec::Kind::kChoice:
       for (const std::string& c : p.choices) accepted += (accepted.empty() ? "" : "|") + c;
       break;
-    case ParamSpec::Kind::kFlag: accepted = "on|off"; break;
+    case ParamSpec::Kind::kFlag: accepted = std::string(kFlagOn) + "|" + kFlagOff; break;
   }
   return p.key + "=" + p.defaultText() + " (" + accepted + "): " + p.meaning;
 }
@@ -305,13 +316,15 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
   if (p.filter < 1 || p.filter > 16)
     throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
   for (const auto& [key, value] : p.extra) {
-    (void)value;
-    if (!findParam(t, key)) {
+    const ParamSpec* spec = findParam(t, key);
+    if (!spec) {
       std::string list;
       for (const auto& k : paramKeys(t)) list += (list.empty() ? "" : ", ") + k;
       throw InputError("technique " + t.name + " has no parameter '" + key + "'" +
                        (list.empty() ? std::string(" (it takes none)") : " (it takes " + list + ")"));
     }
+    // A flag's word is checked here, before rendering, even where this frame does not read it.
+    if (spec->kind == ParamSpec::Kind::kFlag) parseFlagValue(key, value);
   }
 }
 

@@ -773,14 +773,14 @@ std::vector<FigureSpec> chanFigures() {
   out.push_back(chanFigure(
       "chan-4-4", "Figure 4-4 (b, d)", "Original vs remapped smoothie alpha",
       "A box standing on a floor (the figure's own scene), smoothie width t = 0.06. (b) With "
-      "linearly interpolated alpha (--param remap=false) the penumbra has the fixed width t and "
+      "linearly interpolated alpha (--param remap=off) the penumbra has the fixed width t and "
       "the smoothie darkens the lit floor in front of the box where box and floor meet, a "
       "shadow that does not come from the box (Chan's \"contact error\"); (d) remapping alpha by "
       "the distance ratio b/r (Eq. 4.1) makes the penumbra vanish at the contact and grow away "
       "from it. Bottom: the box-floor contact magnified 3x.",
       "contact", 2,
-      {render("(b) original alpha (remap=false)", "modern.smoothies",
-              {{"remap", "false"}, {"width", kContactWidth}}),
+      {render("(b) original alpha (remap=off)", "modern.smoothies",
+              {{"remap", "off"}, {"width", kContactWidth}}),
        render("(d) remapped alpha (Eq. 4.1, the default)", "modern.smoothies",
               {{"width", kContactWidth}})}));
   out.back().closeups = {{0.22f, 0.22f, 0.36f, 0.3f, 3}};  // the box's front foot and its shadow
@@ -862,7 +862,7 @@ std::vector<FigureSpec> chanFigures() {
       "on box 2 (harder) and on the ground (softer), magnified 3x.",
       "boxes", 3,
       {buffers("smoothie buffer, alpha not remapped", "modern.smoothies", "alpha",
-               {{"remap", "false"}, {"width", kBoxesWidth}}),
+               {{"remap", "off"}, {"width", kBoxesWidth}}),
        buffers("smoothie buffer, alpha remapped (Eq. 4.1)", "modern.smoothies", "alpha",
                {{"width", kBoxesWidth}}),
        render("result (remapped)", "modern.smoothies", {{"width", kBoxesWidth}})}));

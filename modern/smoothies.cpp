@@ -17,7 +17,7 @@
 //        lit, bilinear, sinusoidal falloff texture
 //
 // --param width=t: smoothie width in light-screen-space units, where the shadow map's side is 1
-// (so t = 0.1 is a tenth of the light's view). --param remap=false keeps Chan's original,
+// (so t = 0.1 is a tenth of the light's view). --param remap=off keeps Chan's original,
 // linearly interpolated alpha (§4.2.1 before Eq. 4.1; Figures 4-4b and 4-10 left): a penumbra
 // of fixed width t that does not shrink towards a contact. §4.1 assumes closed blockers; open
 // casters get smoothies on the silhouette of their two-sided solid (boundary edges and folds, see

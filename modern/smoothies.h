@@ -14,7 +14,7 @@ Technique smoothiesTechnique();
 float remapSmoothieAlpha(float a, float bOverR);
 
 // What smoothie_alpha.frag writes for a clamped linear alpha `a` in [0, 1]: Eq. 4.1 when `remap`
-// (the default, --param remap=true), Chan's original linear alpha otherwise (§4.2.1, Figure
+// (the default, --param remap=on), Chan's original linear alpha otherwise (§4.2.1, Figure
 // 4-4b). In both, a smoothie pixel behind the receiver (b/r >= 1) is discarded: 1.
 float smoothieAlpha(float a, float bOverR, bool remap);
 

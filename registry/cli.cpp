@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "core/decimal.h"
@@ -70,6 +72,19 @@ std::vector<OptionSpec> renderOptions() {
   };
 }
 
+// The value form of an option that names a PNG file to write: parse() refuses any other name.
+constexpr const char* kPngValue = "PNG";
+
+// An image output whose name does not end in .png would get PNG bytes under another format's
+// name (a.jpg): refused before anything runs, naming the option.
+void requirePngName(const std::string& option, const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (extension != ".png")
+    throw InputError("--" + option + " " + path + ": PNG only (the name must end in .png)");
+}
+
 std::vector<OptionSpec> join(std::vector<OptionSpec> a, const std::vector<OptionSpec>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
@@ -82,8 +97,10 @@ const std::vector<CommandSpec>& commandSpecs() {
       {"render",
        "render one technique into an image (and its visibility mask and intermediate buffers)",
        join({{"technique", "T", "technique name (shadowlab list), required"},
-             {"out", "PATH", "colour image, PNG, required"},
-             {"mask", "PNG", "light visibility (1 = lit, 0 = umbra) as a 16-bit grey PNG"},
+             {"out", kPngValue, "colour image, PNG only (the name ends in .png), required"},
+             {"mask", kPngValue,
+              "light visibility (1 = lit, 0 = umbra) as a 16-bit grey PNG, PNG only (the name "
+              "ends in .png)"},
              {"dump-passes", "DIR",
               "directory for every intermediate buffer, one PNG each in pipeline order, with "
               "passes.json and index.html (made or replaced as a whole at the end; an existing "
@@ -100,7 +117,7 @@ const std::vector<CommandSpec>& commandSpecs() {
               "a --param for T1 only, repeatable; over --param (which goes to both)"},
              {"b-param", "KEY=VALUE",
               "a --param for T2 only, repeatable (--b-param pixel=area: the area metric's truth)"},
-             {"diff", "PNG", "difference heat map, PNG"},
+             {"diff", kPngValue, "difference heat map, PNG only (the name ends in .png)"},
              {"threshold", "X", "pixels differing by more than this count as mismatching [0]"}},
             renderOptions())},
       {"bench",
@@ -218,6 +235,11 @@ Args parse(int argc, char** argv) {
     }
     a.options[name] = option->results();
   }
+  for (const CommandSpec& c : commands)
+    if (a.command == c.name)
+      for (const OptionSpec& o : c.options)
+        if (o.value && std::string(o.value) == kPngValue && a.options.count(o.name))
+          for (const std::string& path : a.options.at(o.name)) requirePngName(o.name, path);
   return a;
 }
 

@@ -58,9 +58,9 @@ TEST(Smoothies, FalloffIsSinusoidal) {
 }
 
 TEST(Smoothies, OriginalAlphaIsLinearAndOccludedBehindTheReceiver) {
-  // --param remap=false (§4.2.1 before Eq. 4.1, Fig. 4-4b): a' = a whatever b/r, except that a
+  // --param remap=off (§4.2.1 before Eq. 4.1, Fig. 4-4b): a' = a whatever b/r, except that a
   // smoothie pixel behind its receiver is discarded (Fig. 4-7: "If b/r > 1, smoothie pixel is
-  // occluded"), i.e. 1 under minimum blending. remap=true is Eq. 4.1 (remapSmoothieAlpha).
+  // occluded"), i.e. 1 under minimum blending. remap=on is Eq. 4.1 (remapSmoothieAlpha).
   for (float a : {0.0f, 0.1f, 0.5f, 1.0f})
     for (float f : {0.0f, 0.5f, 0.9f, 0.999f}) {
       EXPECT_EQ(modern::smoothieAlpha(a, f, false), a) << a << " " << f;
@@ -82,7 +82,7 @@ Profile penumbraProfile(bool remap) {
   RenderParams p = smallParams(512);
   const double t = 0.2;
   p.extra["width"] = "0.2";
-  p.extra["remap"] = remap ? "true" : "false";
+  p.extra["remap"] = remap ? "on" : "off";
   Profile out;
   out.frame = renderTechnique(findTechnique("modern.smoothies"), scene, p);
   out.expected = Image(p.width, p.height, 1, -1.0f);
@@ -115,7 +115,7 @@ TEST(Smoothies, PenumbraProfileAcrossAnAnalyticEdgeFollowsTheFalloff) {
   // from the corners) the expected visibility is computed here from Chan's definitions alone:
   //   light screen u = 0.5 + 0.5 x / (depth tan(cone/2)), depth = 4 - y;
   //   d = u(ground) - u(edge) (map units), a = d / t, b/r = (4 - 1.01) / 4,
-  //   a' = min(1, a / (1 - b/r)) (remapped, Eq. 4.1) or min(1, a) (remap=false),
+  //   a' = min(1, a / (1 - b/r)) (remapped, Eq. 4.1) or min(1, a) (remap=off),
   //   v = (1 - cos(pi a')) / 2; v = 0 where d < 0 (umbra).
   // Bilinear interpolation of a function linear in the map is exact, so away from the two kinks
   // (d = 0 and a' = 1, excluded within 2 shadow-map texels) the only errors are float round-off
