@@ -15,19 +15,22 @@ bool sameSize(const Image& a, const Image& b) {
 }  // namespace
 
 Disagreement disagreementOverlay(const Image& exactColour, const Image& exactMask,
-                                 const Image& first, const Image& second) {
+                                 const Image& first, const Image& second, const Image& scored) {
   if (!sameSize(exactColour, exactMask) || !sameSize(exactMask, first) ||
-      (!second.empty() && !sameSize(exactMask, second)))
+      (!second.empty() && !sameSize(exactMask, second)) ||
+      (!scored.empty() && !sameSize(exactMask, scored)))
     throw InputError("disagreement overlay: the images differ in size");
   const Image rgb = toRgb(exactColour);
   Disagreement d;
   d.overlay = Image(rgb.width, rgb.height, 3);
-  d.pixels = (long long)rgb.width * rgb.height;
   for (int y = 0; y < rgb.height; ++y)
     for (int x = 0; x < rgb.width; ++x) {
+      const bool counted = scored.empty() || scored.at(x, y) > 0.5f;
+      d.pixels += counted;
       const bool lit = exactMask.at(x, y) >= kLitThreshold;
-      const bool firstWrong = (first.at(x, y) >= kLitThreshold) != lit;
-      const bool secondWrong = !second.empty() && (second.at(x, y) >= kLitThreshold) != lit;
+      const bool firstWrong = counted && (first.at(x, y) >= kLitThreshold) != lit;
+      const bool secondWrong =
+          counted && !second.empty() && (second.at(x, y) >= kLitThreshold) != lit;
       d.firstWrong += firstWrong;
       d.secondWrong += secondWrong;
       d.bothWrong += firstWrong && secondWrong;

@@ -28,14 +28,18 @@ struct Disagreement {
   long long firstWrong = 0;   // pixels the first technique decides otherwise than the exact one
   long long secondWrong = 0;  // the same for the second
   long long bothWrong = 0;    // pixels both decide otherwise
-  long long pixels = 0;       // pixels compared (the whole image)
+  long long pixels = 0;       // pixels compared (the scored ones, or the whole image)
 };
 
 // Compares each technique's visibility mask with the exact one, pixel by pixel, lit or in
 // shadow (kLitThreshold), and draws the exact colour image in grey with the pixels each gets
-// wrong coloured. `second` may be empty (then only the first is compared). Throws InputError
-// when the sizes differ.
+// wrong coloured. `second` may be empty (then only the first is compared). `scored`, when not
+// empty, limits the comparison to the scored pixels of the one error definition
+// (registry/shadow_error.h, docs/error.md: receivers facing the light inside its frustum), so
+// that a terminator, unlit whatever the mask says, is not counted or coloured as an error.
+// Throws InputError when the sizes differ.
 Disagreement disagreementOverlay(const Image& exactColour, const Image& exactMask,
-                                 const Image& first, const Image& second);
+                                 const Image& first, const Image& second,
+                                 const Image& scored = Image());
 
 }  // namespace sl::figures

@@ -474,8 +474,21 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           };
           const auto first = compared(p.errorsOf[0]);
           const auto second = p.errorsOf.size() > 1 ? compared(p.errorsOf[1]) : nullptr;
-          const Disagreement d = disagreementOverlay(f->color, f->visibility, first->visibility,
-                                                     second ? second->visibility : Image());
+          // Only the scored pixels of the one error definition count (docs/error.md): the
+          // categories of reference.hard's pixel centres for this scene and size.
+          Image scored;
+          if (const Technique* hard = lookup("reference.hard")) {
+            Setup refSetup = setup;
+            refSetup.params.clear();
+            refSetup.texels = fig.shadowMapTexels;
+            refSetup.filter = RenderParams{}.filter;
+            scored = truthFromReferenceFrame(*r.frame(*hard, refSetup, true), ErrorMetric::kPoint,
+                                             false, truthName(false, ErrorMetric::kPoint))
+                         .scored;
+          }
+          const Disagreement d =
+              disagreementOverlay(f->color, f->visibility, first->visibility,
+                                  second ? second->visibility : Image(), scored);
           shown = d.overlay;
           out.counters[kWrongPixelsCounter + p.errorsOf[0]] = double(d.firstWrong);
           if (second) {

@@ -498,8 +498,9 @@ std::string chan37(const FigureResult& fig) {
             (*first > 0 ? percent((*first - *both) / *first) : std::string("-")) + "</td></tr>\n";
   }
   if (rows.empty()) return "";
-  return "<p><b>Measured: pixels decided otherwise than the shadow volumes</b> (lit or in "
-         "shadow, at half visibility), per scene; the last column is the share of the shadow "
+  return "<p><b>Measured: scored pixels decided otherwise than the shadow volumes</b> (lit or "
+         "in shadow, at half visibility; the scored pixels of docs/error.md, surfaces facing the "
+         "light; shares of the whole image), per scene; the last column is the share of the shadow "
          "map's wrong pixels that the hybrid decides right.</p>\n<table><tr><th>scene</th>"
          "<th>shadow map wrong</th><th>hybrid wrong</th><th>both wrong</th><th>of the shadow "
          "map's, corrected by the hybrid</th></tr>\n" +
