@@ -91,7 +91,7 @@ struct BenchRow {
   ErrorSet hard, soft;            // against the pixel-integrated (pixel=area) references
   ErrorSet hardPoint, softPoint;  // against the pixel-centre references (the point samples)
   bool softMeasured = false;      // soft and softPoint were measured (reference.soft rendered)
-  // Mean |change| of the mask over the direct-light region when the light moves by
+  // Mean |change| of the mask over the scored pixels (docs/error.md) when the light moves by
   // lightShiftWorld (one extra frame); the primary reference's own change for the same motion
   // beside it (what the true shadow moves by). < 0: not measured.
   double temporalChange = -1.0;

@@ -100,7 +100,7 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         const bool same = sameQuality(pcf->hard.all.rmse, fast->hard.all.rmse);
         const bool cheaper = fast->frameMs < pcf->frameMs;
         c.setup = "default variants (2x2 footprint, 512 map), RMSE against " + areaReference(*pcf) +
-                  " in the direct-light region; same quality = within 10% or 0.005";
+                  " over the scored pixels (docs/error.md); same quality = within 10% or 0.005";
         c.measured = summary(*pcf) + "; " + summary(*fast) + "; time ratio fast/pcf " +
                      fmt(fast->frameMs / pcf->frameMs, 3);
         c.verdict = same && cheaper
@@ -126,7 +126,7 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
       if (many && one) {
         c.setup = "modern.gems16 default (16 samples) vs samples=1, same 512 map, against " +
                   areaReference(*many) +
-                  " in the direct-light region: the shadow-edge error is the band RMSE (within 2 "
+                  " over the scored pixels (docs/error.md): the shadow-edge error is the band RMSE (within 2 "
                   "pixels of the reference's edges), the verdict's measure; RMSE over the whole "
                   "region and the temporal change (what antialiasing is for: less flicker when "
                   "the light moves) beside it";
