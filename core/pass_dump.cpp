@@ -341,7 +341,16 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     // follow a "part" line naming it.
     size_t parts = 0;
     for (const PassTime& u : frame.passes) parts += passNumberOf(u.name) == passNumberOf(t.name);
-    if (parts > 1) p["state"].push_back({{"group", "part"}, {"text", t.name}});
+    if (parts > 1) {
+      p["state"].push_back({{"group", "part"}, {"text", t.name}});
+      // The pass's title is what its parts share: "camera pass", not the first part's
+      // "camera pass (upper-left)"; each part keeps its full name on its "part" line.
+      const std::string name = p["name"].get<std::string>();
+      const std::string part = afterPassNumber(t.name);
+      const size_t open = name.rfind(" (");
+      if (open != std::string::npos && name != part && part.compare(0, open + 2, name, 0, open + 2) == 0)
+        p["name"] = name.substr(0, open);
+    }
     for (const GlStateLine& l : t.gl.setup)
       p["state"].push_back({{"group", l.group}, {"text", l.text}, {"before_pass", true}});
     for (const GlStateLine& l : t.gl.state)

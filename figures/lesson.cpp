@@ -528,7 +528,7 @@ void writeComparison(std::ostream& html, const LessonPage& page) {
             "not the shadow. The legacy side lights with OpenGL's fixed-function lighting, "
             "evaluated at the vertices and interpolated across each triangle (OpenGL 1.2.1 "
             "§2.13.1 and §3.5.1); the modern side evaluates the same lighting model at every "
-            "fragment (modern/shaders/lighting.glsl). The two part most where the light changes "
+            "fragment (modern/shaders/lighting.glsl). The two differ most where the light changes "
             "fastest across a triangle: the spotlight's cone edge and highlights on coarse "
             "meshes. "
          << shadow

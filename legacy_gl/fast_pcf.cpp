@@ -18,7 +18,7 @@
 //   6. bs::accumulateGroup         — 4x4 (in render(): once per phase, then
 //                                  bs::returnAccumulation): the upper-left, upper-right,
 //                                  lower-left and lower-right 2x2 regions summed in the
-//                                  accumulation buffer, weight 1/4 each (4 x 5 = 20 levels)
+//                                  accumulation buffer, weight 1/4 each (§4 counts 4 x 5 = 20 levels; the sums take 17)
 //   7. shade                       — OpenGL lighting, direct light x (1 - alpha) + ambient (§5)
 // Visibility = 1 - alpha (brabec_seidel.h).
 #include <memory>
