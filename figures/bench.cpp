@@ -528,8 +528,9 @@ BenchResult runBenchmark(const BenchOptions& options, std::ostream& json) {
       options.timedFrames > 0 ? options.timedFrames : (options.quick ? kQuickTimed : kFullTimed);
   std::vector<const Technique*> techniques;
   for (const Technique& t : allTechniques())
-    if (!options.technique || t.name == *options.technique) techniques.push_back(&t);
-  if (options.technique && techniques.empty()) findTechnique(*options.technique);  // throws
+    if (options.techniques.empty() || contains(options.techniques, t.name))
+      techniques.push_back(&t);
+  for (const std::string& name : options.techniques) findTechnique(name);  // throws if unknown
   const std::vector<SceneRun> runs = benchSceneRuns(options);
   if (options.scenes.empty() && !contains(sceneFileNames(), kFillBoundScene))
     result.sceneNotes[kFillBoundScene] =
@@ -1034,8 +1035,26 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
 int runBenchCommand(const cli::Args& args) {
   BenchOptions options;
   options.quick = args.has("quick");
-  if (auto s = args.value("scene")) options.scenes = {*s};
-  options.technique = args.value("technique");
+  // --scene and --technique: repeatable, each value also a comma-separated list; every name
+  // given is kept (in order, once).
+  auto listed = [&](const char* key) {
+    std::vector<std::string> names;
+    if (auto it = args.options.find(key); it != args.options.end())
+      for (const std::string& value : it->second) {
+        size_t start = 0;
+        for (size_t comma; start <= value.size(); start = comma + 1) {
+          comma = value.find(',', start);
+          if (comma == std::string::npos) comma = value.size();
+          const std::string name = value.substr(start, comma - start);
+          if (name.empty())
+            throw InputError(std::string("--") + key + " '" + value + "': an empty name");
+          if (!contains(names, name)) names.push_back(name);
+        }
+      }
+    return names;
+  };
+  options.scenes = listed("scene");
+  options.techniques = listed("technique");
   options.csvPath = args.value("csv");
   if (auto out = args.value("out")) options.outDir = *out;
   if (auto size = args.value("size")) cli::parseSize(*size, options.width, options.height);
@@ -1046,7 +1065,7 @@ int runBenchCommand(const cli::Args& args) {
   // Bad names and unwritable destinations fail before any work (core/output_files.h): the
   // CSV is written to a temporary and renamed at the end; the plots' folder must be writable.
   for (const std::string& s : options.scenes) loadScene(s);
-  if (options.technique) findTechnique(*options.technique);
+  for (const std::string& t : options.techniques) findTechnique(t);
   OutputSet outputs;
   for (const std::string& s : options.scenes) outputs.addInput(s);
   std::optional<std::string> csv;

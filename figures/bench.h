@@ -21,7 +21,7 @@ namespace sl::figures {
 struct BenchOptions {
   bool quick = false;
   std::vector<std::string> scenes;       // empty: the fixed set (benchScenes)
-  std::optional<std::string> technique;  // only this technique (all variants)
+  std::vector<std::string> techniques;   // only these techniques (all variants); empty: every one
   std::optional<std::string> csvPath;
   std::string outDir = "out/bench";       // plots, gnuplot scripts and data
   int width = 0, height = 0;              // 0: the mode's default

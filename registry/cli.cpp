@@ -135,8 +135,9 @@ const std::vector<CommandSpec>& commandSpecs() {
        "--out PATH, per scene bench-SCENE.png (error against time, Pareto front),\n"
        "bench-SCENE.dat (its data) and bench-SCENE.gp (its gnuplot script).",
        {{"quick", nullptr, "the quick sweep (two scenes, 256x192; the main job's report uses it)"},
-        {"scene", "S", "only this scene [the benchmark scenes above]"},
-        {"technique", "T", "only this technique (all its variants) [every technique]"},
+        {"scene", "S", "only these scenes: repeatable, or S1,S2 [the benchmark scenes above]"},
+        {"technique", "T",
+         "only these techniques (all their variants): repeatable, or T1,T2 [every technique]"},
         {"csv", "FILE", "also write every row as CSV [none]"},
         {"size", "WxH", "window WxH [quick 256x192, full 400x300]"},
         {"backend", "NAME", "osmesa, reference or egl [osmesa]"},

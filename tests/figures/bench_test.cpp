@@ -94,7 +94,7 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   BenchOptions o;
   o.quick = true;
   o.scenes = {"brabec"};  // also adds the planner scene brabec-light-away
-  o.technique = "modern.hw";
+  o.techniques = {"modern.hw"};
   o.width = 128;
   o.height = 96;
   o.timedFrames = 1;
