@@ -269,17 +269,14 @@ CompareScore scorePair(const Scene& scene, const Technique& a, const Frame& fa,
   }
   ShadowTruth baseline;
   if (haveRayTracedReferences()) {
-    RenderParams p = paramsB;
-    baseline = renderShadowTruth(scene, p, ErrorMetric::kPoint, false);
+    baseline = renderShadowTruth(scene, paramsB, ErrorMetric::kPoint, false);
   } else {  // no ray tracer in this build: every pixel is scored
     baseline.scored = Image(fb.visibility.width, fb.visibility.height, 1, 1.0f);
     baseline.counts.total = baseline.counts.scored =
         (long long)fb.visibility.width * fb.visibility.height;
   }
   baseline.visibility = fb.visibility;
-  baseline.band = boundaryBand(baseline.visibility, kBandRadiusPixels);
-  for (size_t i = 0; i < baseline.band.data.size(); ++i)
-    baseline.band.data[i] *= baseline.scored.data[i];
+  baseline.band = scoredBand(baseline.visibility, baseline.scored);
   baseline.name = b.name;
   out.error = scoreShadow(fa.visibility, baseline, threshold);
   out.error.metric = "mask difference";

@@ -71,6 +71,12 @@ std::string truthName(bool soft, ErrorMetric metric) {
          (metric == ErrorMetric::kPoint ? reference::kPixelCentre : reference::kPixelArea);
 }
 
+Image scoredBand(const Image& visibility, const Image& scored) {
+  Image band = boundaryBand(visibility, kBandRadiusPixels);
+  for (size_t i = 0; i < band.data.size(); ++i) band.data[i] *= scored.data[i];
+  return band;
+}
+
 ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft, std::string name) {
   const Image* categories = nullptr;
   for (const PassImage& i : frame.intermediates)
@@ -87,8 +93,7 @@ ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft, 
   t.scored = Image(categories->width, categories->height, 1, 0.0f);
   for (size_t i = 0; i < t.scored.data.size(); ++i)
     t.scored.data[i] = isCategory(categories->data[i], reference::kCategoryScored) ? 1.0f : 0.0f;
-  t.band = boundaryBand(t.visibility, kBandRadiusPixels);
-  for (size_t i = 0; i < t.band.data.size(); ++i) t.band.data[i] *= t.scored.data[i];
+  t.band = scoredBand(t.visibility, t.scored);
   t.frame = std::move(frame);
   return t;
 }

@@ -74,6 +74,9 @@ ShadowTruth renderShadowTruth(const Scene& scene, const RenderParams& base, Erro
 // (its kPixelCategoriesPass intermediate); InputError when the frame has none.
 ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft,
                                     std::string name);
+// The scored pixels within kBandRadiusPixels of a place where `visibility` crosses 0.5: the
+// band a truth's band error is measured on (ShadowTruth::band).
+Image scoredBand(const Image& visibility, const Image& scored);
 // "reference.hard pixel=centre" and the like; for a references' own params (compare's sides).
 std::string truthName(bool soft, ErrorMetric metric);
 
