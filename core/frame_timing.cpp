@@ -15,6 +15,21 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+namespace {
+// Each pass as first seen, its time the median of its timed frames.
+std::vector<PassTime> medianPasses(const std::vector<PassTime>& order,
+                                   std::map<std::string, std::vector<double>>& perPass) {
+  std::vector<PassTime> out;
+  for (const PassTime& p : order) {
+    PassTime m = p;
+    m.milliseconds = median(perPass[p.name]);
+    m.gl = {};
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+}  // namespace
+
 SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const FrameCounts& counts,
                              Frame* last) {
   if (counts.warmup < 0 || counts.timed < 1 || counts.slowTimed < 1)
@@ -25,7 +40,7 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
   for (int i = 0; i < counts.warmup; ++i) renderFrame();
   // Step 2: timed frames; after a first timed frame slower than the budget, no more.
   std::vector<double> sums, walls;
-  std::vector<std::string> order;
+  std::vector<PassTime> order;  // each pass as first seen (its id, floor, part, source)
   std::map<std::string, std::vector<double>> perPass;
   Frame frame;
   int frames = counts.timed;
@@ -36,7 +51,7 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
     if (i == 0 && walls.back() > counts.slowFrameMs) frames = std::min(counts.slowTimed, frames);
     sums.push_back(frame.totalMilliseconds());
     for (const PassTime& p : frame.passes) {
-      if (!perPass.count(p.name)) order.push_back(p.name);
+      if (!perPass.count(p.name)) order.push_back(p);
       perPass[p.name].push_back(p.milliseconds);
     }
   }
@@ -46,7 +61,7 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
   out.frameMs = median(sums);
   out.minimumFrameMs = *std::min_element(sums.begin(), sums.end());
   out.wallMs = median(walls);
-  for (const std::string& name : order) out.passes.push_back({name, median(perPass[name])});
+  out.passes = medianPasses(order, perPass);
   if (last != nullptr) *last = std::move(frame);
   return out;
 }
@@ -58,19 +73,19 @@ SteadyTiming mediansOf(int warmup, const std::vector<Frame>& frames,
   SteadyTiming out;
   out.warmupFrames = warmup;
   out.timedFrames = int(frames.size());
-  std::vector<std::string> order;
+  std::vector<PassTime> order;
   std::map<std::string, std::vector<double>> perPass;
   for (const Frame& f : frames) {
     out.frameSamples.push_back(f.totalMilliseconds());
     for (const PassTime& p : f.passes) {
-      if (!perPass.count(p.name)) order.push_back(p.name);
+      if (!perPass.count(p.name)) order.push_back(p);
       perPass[p.name].push_back(p.milliseconds);
     }
   }
   out.frameMs = median(out.frameSamples);
   out.minimumFrameMs = *std::min_element(out.frameSamples.begin(), out.frameSamples.end());
   out.wallMs = median(walls);
-  for (const std::string& name : order) out.passes.push_back({name, median(perPass[name])});
+  out.passes = medianPasses(order, perPass);
   return out;
 }
 }  // namespace

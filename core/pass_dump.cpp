@@ -213,6 +213,33 @@ std::string stateCard(const nlohmann::json& pass) {
   return html.str();
 }
 
+// The key a pass is grouped by: its id from the technique's pass table; for a pass timed by
+// hand without one, the number its name starts with.
+std::string passKeyOf(const PassTime& t) {
+  return !t.id.empty() ? t.id : std::to_string(passNumberOf(t.name));
+}
+std::string passKeyOf(const PassImage& p) {
+  return !p.passId.empty() ? p.passId : std::to_string(passNumberOf(p.name));
+}
+
+// Pipeline order of pass keys: by number ("mesh" and other named ids first), then the id
+// ("5a" < "5b").
+struct PipelineOrder {
+  bool operator()(const std::string& a, const std::string& b) const {
+    const int na = passNumberOf(a), nb = passNumberOf(b);
+    return na != nb ? na < nb : a < b;
+  }
+};
+
+// A pass's name without its id: "1 light pass" -> "light pass", "5a depth bounds" -> "depth
+// bounds"; a pass without an id loses its number as afterPassNumber does.
+std::string nameAfterId(const PassTime& t) {
+  if (!t.id.empty() && std::isdigit(static_cast<unsigned char>(t.id[0])) &&
+      t.name.compare(0, t.id.size() + 1, t.id + " ") == 0)
+    return t.name.substr(t.id.size() + 1);
+  return t.id.empty() ? afterPassNumber(t.name) : t.name;
+}
+
 }  // namespace
 
 int passNumberOf(const std::string& name) {
@@ -235,7 +262,7 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
   std::vector<size_t> order(frame.intermediates.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return passNumberOf(frame.intermediates[a].name) < passNumberOf(frame.intermediates[b].name);
+    return PipelineOrder()(passKeyOf(frame.intermediates[a]), passKeyOf(frame.intermediates[b]));
   });
   std::map<int, size_t> perPass;
   for (const PassImage& p : frame.intermediates) ++perPass[passNumberOf(p.name)];
@@ -257,6 +284,7 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
     PassDumpImage main{
         stem + ".png", pass, p.caption, alpha ? opaque(p.image) : p.image, "", "", "",
         std::nullopt};
+    main.passId = passKeyOf(p);
     if (alpha) main.caption += " [shown opaque: alpha ignored; each channel follows in grey]";
     out.push_back(main);
     if (!alpha) continue;
@@ -278,6 +306,7 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
           "channel",
           packed ? ValueLegend{"grey", range.lo, range.hi, "1 (far: nothing drawn) = white"}
                  : ValueLegend{"grey", 0.0, 1.0, ""}};
+      panel.passId = main.passId;
       out.push_back(panel);
     }
     if (!packed) continue;
@@ -308,6 +337,7 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
           ValueLegend{"diverging", -double(limit), double(limit),
                       "depth difference; clamped beyond the ends (edges against "
                       "the far plane)"}};
+      view.passId = main.passId;
       out.push_back(view);
     }
   }
@@ -324,12 +354,12 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   out["frame_ms"] = frame.totalMilliseconds();
   out["counters"] = nlohmann::json::object();
   for (const auto& [key, value] : frame.counters) out["counters"][key] = value;
-  // Passes by number: every timed entry, and passes that only have images.
-  std::map<int, nlohmann::json> passes;
+  // Passes by id: every timed entry, and passes that only have images.
+  std::map<std::string, nlohmann::json, PipelineOrder> passes;
   for (const PassTime& t : frame.passes) {
-    nlohmann::json& p = passes[passNumberOf(t.name)];
+    nlohmann::json& p = passes[passKeyOf(t)];
     if (!p.contains("name")) {
-      p["name"] = afterPassNumber(t.name);
+      p["name"] = nameAfterId(t);
       // Declared by the pass (core/technique.h PassTimer): the paper section, or "ours ...".
       p["section"] = t.section;  // a timed pass declares its own (an empty one is a bug)
       p["source"] = {{"file", t.sourceFile}, {"function", t.sourceFunction}};
@@ -340,13 +370,13 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     // A pass timed in several parts (the phases of a 4x4 footprint): each part's lines
     // follow a "part" line naming it.
     size_t parts = 0;
-    for (const PassTime& u : frame.passes) parts += passNumberOf(u.name) == passNumberOf(t.name);
+    for (const PassTime& u : frame.passes) parts += passKeyOf(u) == passKeyOf(t);
     if (parts > 1) {
       p["state"].push_back({{"group", "part"}, {"text", t.name}});
       // The pass's title is what its parts share: "camera pass", not the first part's
       // "camera pass (upper-left)"; each part keeps its full name on its "part" line.
       const std::string name = p["name"].get<std::string>();
-      const std::string part = afterPassNumber(t.name);
+      const std::string part = nameAfterId(t);
       const size_t open = name.rfind(" (");
       if (open != std::string::npos && name != part && part.compare(0, open + 2, name, 0, open + 2) == 0)
         p["name"] = name.substr(0, open);
@@ -363,10 +393,11 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   }
   out["images"] = nlohmann::json::array();
   for (const PassDumpImage& i : images) {
-    nlohmann::json& p = passes[i.pass];
+    nlohmann::json& p = passes[i.passId.empty() ? std::to_string(i.pass) : i.passId];
     p["files"].push_back(i.file);
     nlohmann::json image = {{"file", i.file},
                             {"pass", i.pass},
+                            {"pass_id", i.passId},
                             {"pass_name", p.value("name", "")},
                             {"caption", i.caption},
                             {"width", i.image.width},
@@ -385,7 +416,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     out["images"].push_back(image);
   }
   out["passes"] = nlohmann::json::array();
-  for (auto& [number, p] : passes) {
+  for (auto& [id, p] : passes) {
     // The legacy passes a twin's pass replaces, in their pipeline order (the markers list them
     // in the shader's order).
     if (p.contains("replaces"))
@@ -393,7 +424,8 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
                        [](const nlohmann::json& a, const nlohmann::json& b) {
                          return replacedPassNumber(a) < replacedPassNumber(b);
                        });
-    p["number"] = number;
+    p["id"] = id;
+    p["number"] = passNumberOf(id);
     if (!p.contains("name")) p["name"] = "";
     if (!p.contains("section")) p["section"] = header.paper;
     if (!p.contains("source")) p["source"] = {{"file", ""}, {"function", ""}};

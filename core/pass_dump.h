@@ -15,19 +15,20 @@
 // the one-texel shift between the packed neighbours appears at every depth edge.
 //
 // passes.json: {"technique", "paper", "scene", "parameters", "frame_ms", "counters",
-//   "passes": [{"number", "name", "milliseconds", "timings": [{"name", "milliseconds"}],
+//   "passes": [{"id", "number", "name", "milliseconds", "timings": [{"name", "milliseconds"}],
 //               "section", "source": {"file", "function"},
 //               "state": [{"group", "text", "before_pass" (true when set before the timer)}],
 //               "glsl": [{"file", "first_line", "last_line", "marker", "title"}],
 //               "replaces": ["legacy.X pass N name"], "files": [...]}],
-//   "images": [{"file", "pass", "pass_name", "caption", "width", "height", "channels",
+//   "images": [{"file", "pass", "pass_id", "pass_name", "caption", "width", "height", "channels",
 //               "channel" and "of" for the grey panel of one channel, "view",
 //               "legend": {"kind", "low", "high", "note"}}]}
 // "section" and "source" come from the pass's PassTimer (core/technique.h), "state" from the GL
 // trace (core/gl_trace.h), "glsl" and "replaces" from the `// @pass` markers of the shaders the
 // pass names (core/shaders.h), "replaces" limited to the legacy twin in the header.
-// A pass is every Frame::passes entry with one number (the phases of a 4x4 footprint are
-// several entries); its "milliseconds" is their sum, "timings" lists them.
+// A pass is every Frame::passes entry with one id (core/pass_table.h; the phases of a 4x4
+// footprint are several entries); its "milliseconds" is their sum, "timings" lists them. "id" is
+// the pass's id in the technique's table, "number" the number it starts with (-1 for "mesh").
 // The times are those of this one render (core/technique.h PassTimer), not a median.
 #pragma once
 
@@ -68,6 +69,7 @@ struct PassDumpImage {
   std::string of;       // the file this is a channel of
   std::string view;     // "channel", "minus centre" (channel minus the centre channel), or ""
   std::optional<ValueLegend> legend;
+  std::string passId;  // the id of its pass in the technique's pass table ("5c")
 };
 
 // The pass number a buffer or pass name starts with ("3a-projected..." -> 3, "1 depth" -> 1),

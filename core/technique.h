@@ -16,6 +16,7 @@
 #include "core/context.h"
 #include "core/gl_trace.h"
 #include "core/image.h"
+#include "core/pass_table.h"
 #include "core/scene.h"
 
 namespace sl {
@@ -119,6 +120,11 @@ struct PassTime {
            const char* function = __builtin_FUNCTION());
   std::string name;
   double milliseconds = 0.0;
+  // From the technique's pass table (core/pass_table.h), for passes run through core/passes.h:
+  // the pass's id ("5c"), its floor class and which of its repeated parts this run is.
+  std::string id;
+  PassFloor floor = PassFloor::kNone;
+  int part = 0;
   // Declared by the pass itself (PassTimer): the paper's section/equation/figure it follows,
   // and where its function lives (file relative to the source tree, function name).
   std::string section;
@@ -137,6 +143,7 @@ struct PassImage {
       : name(std::move(n)), caption(std::move(c)), image(std::move(i)) {}
   std::string name;  // file-name friendly: "1-light-pass-ramp-depth"
   std::string caption;
+  std::string passId;  // the pass of the technique's table it belongs to ("5c")
   Image image;
   // A packed map (several depth samples per texel, Brabec–Seidel §4 Fig. 5): the channel that
   // holds the texel's own (centre) sample and what each channel holds ("lower left", ...). The
@@ -205,6 +212,7 @@ struct Technique {
   std::vector<ParamSpec> params;        // the --param keys it understands, declared once
   CommonOptions reads;                 // the common options its render reads
   PlanTraits plan;                     // what the pass planner asks of it
+  PassTable passes;                    // its passes, declared once (core/pass_table.h)
   std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
 };
 

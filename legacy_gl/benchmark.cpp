@@ -90,20 +90,19 @@ std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
     r.imagingReplaced = mode == imaging::Mode::kEmulated && context->caps().nativeImaging();
     // The floors of the passes the frames ran (known once the first frame has rendered: the
     // technique's frames come first in the warm-up and in every round).
-    std::vector<std::string> passNames;
+    std::vector<PassTime> framePasses;
     std::vector<FloorTerm> terms;
     auto resources = makeFloorResources(p.shadowMapTexels, p.width, p.height);
     const std::function<Frame()> frameSource = [&] {
       Frame f = t.render(*context, scene, p);
-      if (passNames.empty())
-        for (const PassTime& pass : f.passes) passNames.push_back(pass.name);
+      if (framePasses.empty()) framePasses = f.passes;
       return f;
     };
     const std::function<Frame()> floorSource = [&] {
       if (terms.empty())
-        for (const std::string& name : passNames) {
+        for (const PassTime& pass : framePasses) {
           const std::vector<FloorTerm> passTerms =
-              passFloor(name, p).value_or(std::vector<FloorTerm>{});
+              passFloor(pass, p).value_or(std::vector<FloorTerm>{});
           for (const FloorTerm& term : passTerms) {
             const std::string key = floorName(term);
             if (std::none_of(terms.begin(), terms.end(),
@@ -120,7 +119,7 @@ std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
     std::map<std::string, double> floorMs;
     for (const PassTime& f : r.floors) floorMs[f.name] = f.milliseconds;
     for (const PassTime& pass : r.timing.passes) {
-      const auto passTerms = passFloor(pass.name, p);
+      const auto passTerms = passFloor(pass, p);
       if (!passTerms) {
         r.passFloorMs.push_back(std::nullopt);
         continue;
@@ -212,7 +211,7 @@ std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& option
     glBindTexture(GL_TEXTURE_1D, 0);
   }
   auto resources = makeFloorResources(p.shadowMapTexels, p.width, p.height);
-  const std::vector<FloorTerm> floor = *passFloor("2 camera pass: light depth ramp into alpha", p);
+  const std::vector<FloorTerm> floor = *passFloor(PassFloor::kCameraDepth, 0, p);
   const std::string ownName = "the scene's own meshes";
   const std::string splitName = "the split meshes of the camera passes";
   const auto timings =

@@ -15,19 +15,20 @@
 //                                  by (ds/2, dt/2) (Fig. 6) and subtracted
 //   5. countShadowedSamples        — glCopyPixels through the colour table and the colour matrix
 //                                  (as §3, Fig. 4): 5 levels per phase
-//   6. bs::accumulateGroup         — 4x4 (in render(): once per phase, then
-//                                  bs::returnAccumulation): the upper-left, upper-right,
+//   6a. accumulatePhase            — 4x4 only, once per phase: the upper-left, upper-right,
 //                                  lower-left and lower-right 2x2 regions summed in the
-//                                  accumulation buffer, weight 1/4 each (§4 counts 4 x 5 = 20 levels; the sums take 17)
+//                                  accumulation buffer, weight 1/4 each (§4 counts 4 x 5 = 20
+//                                  levels; the sums take 17)
+//   6b. returnAccumulatedPhases    — 4x4 only: the sum back into the colour buffer
 //   7. shade                       — OpenGL lighting, direct light x (1 - alpha) + ambient (§5)
-// Visibility = 1 - alpha (brabec_seidel.h).
+// Visibility = 1 - alpha (brabec_seidel.h). The passes are declared once in fastPcfPasses().
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/errors.h"
 #include "core/gl.h"
-#include "core/gl_trace.h"
+#include "core/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_gl/spotlight_tessellation.h"
@@ -42,10 +43,94 @@ constexpr float kDifferenceDisplayGain = 32.0f;  // a few depth steps made visib
 constexpr float kHalfTexel = 0.5f;
 constexpr int kTexelItselfChannel = 3;  // A: the upper right of the 2x2 region (Eq. (1) centre)
 
+// The passes of §4, declared once: names, the paper's text, the buffers a dump shows, floors.
+PassTable fastPcfPasses() {
+  using F = PassFloor;
+  const std::string gain = std::to_string(int(kDifferenceDisplayGain));
+  return {
+      meshFeedingPass(),
+      {.id = "1",
+       .name = "light pass: depth ramp in RGBA",
+       .reference = "Brabec & Seidel 2001 §4: the map rendered as in §2 (Fig. 1), the encoded "
+                    "depth in all four channels",
+       .writes = {{.name = "light-pass-depth-rgba",
+                   .caption = "Pass 1: one light pass, encoded depth in all four channels (one "
+                              "shown)"}},
+       .floor = F::kLightDepth},
+      {.id = "2",
+       .name = "copy to texture through the 3x3 packing convolution",
+       .reference = "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5",
+       .writes = {{.name = "packed-shadow-map{part}-rgba",
+                   .caption = "Pass 2: the packed map, R | G | B | A = lower left, lower right, "
+                              "upper left, upper right of each texel's 2x2 region (Fig. 5)",
+                   .centreChannel = kTexelItselfChannel,
+                   .channelMeaning = {"lower left", "lower right", "upper left",
+                                      "upper right{itself}"}},
+                  // Fig. 5's one-texel shift made visible: G, B and A minus R, the lower-left
+                  // neighbour, non-grey along every depth edge, one texel to the side the other
+                  // channel's texel lies on.
+                  {.name = "packed-neighbours-minus-lower-left{part}",
+                   .caption = "Pass 2's packed map, lower right | upper left | upper right minus "
+                              "lower left (G | B | A minus R), amplified " + gain +
+                              "x, grey = equal: the one-texel shift of Fig. 5"}},
+       .floor = F::kCopyToTexture},
+      {.id = "3",
+       .name = "camera pass: light depth in RGBA",
+       .reference = "Brabec & Seidel 2001 §4 (\"very similar to ... Section 3\"): §3's camera "
+                    "pass, the light depth replicated over the four channels",
+       .writes = {{.name = "camera-pass-z-replicated",
+                   .caption = "Pass 3: light depth of each visible point in all four "
+                              "channels{again}"}},
+       .floor = F::kCameraDepth},
+      {.id = "4",
+       .name = "projective pass: subtract packed map, offset texture coordinates",
+       .reference = "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "
+                    "coordinates offset by (ds/2, dt/2), subtracted as in §3",
+       .writes = {{.name = "mask-before-colour-table{part}-rgba-x" + gain,
+                   .caption = "Pass 4: camera depth minus the four packed neighbours (R | G | B | "
+                              "A), amplified " + gain + "x: > 0 = that neighbour shadows the "
+                              "point"}},
+       .floor = F::kProjectiveSubtract},
+      {.id = "5",
+       .name = "copy: colour table + colour matrix -> alpha",
+       .reference = "Brabec & Seidel 2001 §3, Fig. 4 (as §4 says): colour table 0 / 64 (63 in "
+                    "alpha), the colour matrix sums the channels into alpha",
+       .writes = {{.name = "mask-after-colour-table{part}-rgba",
+                   .caption = "The same read through the colour table only: 0 or 64 (63 in "
+                              "alpha)"},
+                  {.name = "alpha-after-colour-matrix{part}",
+                   .caption = "Pass 5: alpha = share of the four neighbours that shadow the "
+                              "point"}},
+       .floor = F::kCopyPixels},
+      {.id = "6a",
+       .name = "accumulate",
+       .reference = "Brabec & Seidel 2001 §4 (4x4 footprints)",
+       .floor = F::kAccumulate},
+      {.id = "6b",
+       .name = "accumulation return",
+       .reference = "Brabec & Seidel 2001 §4 (4x4 footprints)",
+       .writes = {{.name = "accumulation-result-alpha",
+                   .caption = "Pass 6: the four phases summed in the accumulation buffer (4 x 5 "
+                              "levels)"}},
+       .floor = F::kAccumulationReturn},
+      {.id = "7",
+       .name = "lighting x shadow term",
+       .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
+                    "(1 - shadow), ambient kept",
+       .writes = {{.name = "shaded", .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
+       .floor = F::kLighting},
+  };
+}
+
+const PassTable& passTable() {
+  static const PassTable table = fastPcfPasses();
+  return table;
+}
+
 // One shadow-mapping phase: which 2x2 region the kernel packs and the texture-coordinate
-// offset (in texels) that makes the lookup land on it.
+// offset (in texels) that makes the lookup land on it; `part` names its runs of passes 2-6.
 struct Phase {
-  std::string name;
+  PassPart part;
   glm::ivec2 blockOffset;  // packingKernel(): the block's upper-right texel is (x+ox, y+oy)
   glm::vec2 offsetTexels;
 };
@@ -56,11 +141,11 @@ struct Phase {
 //   regions use Eq. (1)'s kernel at x = x0 - 1 (offset -ds/2), the right ones the kernel
 //   moved one texel right ({x, x+1}) at x = x0 (offset +ds/2); likewise in t.
 std::vector<Phase> phasesFor(int side) {
-  if (side == 2) return {{"", {0, 0}, {kHalfTexel, kHalfTexel}}};
-  return {{"upper-left", {0, 1}, {-kHalfTexel, kHalfTexel}},
-          {"upper-right", {1, 1}, {kHalfTexel, kHalfTexel}},
-          {"lower-left", {0, 0}, {-kHalfTexel, -kHalfTexel}},
-          {"lower-right", {1, 0}, {kHalfTexel, -kHalfTexel}}};
+  if (side == 2) return {{{}, {0, 0}, {kHalfTexel, kHalfTexel}}};
+  return {{{"(upper-left)", "-upper-left", 0}, {0, 1}, {-kHalfTexel, kHalfTexel}},
+          {{"(upper-right)", "-upper-right", 1}, {1, 1}, {kHalfTexel, kHalfTexel}},
+          {{"(lower-left)", "-lower-left", 2}, {0, 0}, {-kHalfTexel, -kHalfTexel}},
+          {{"(lower-right)", "-lower-right", 3}, {1, 0}, {kHalfTexel, -kHalfTexel}}};
 }
 
 struct FastPcfState {
@@ -69,66 +154,68 @@ struct FastPcfState {
   std::vector<std::unique_ptr<bs::ShadowMapTexture>> maps;  // one packed map per phase
 };
 
-std::string phaseTag(const Phase& p) {
-  return p.name.empty() ? "" : " (" + p.name + ")";
-}
-std::string phaseFileTag(const Phase& p) {
-  return p.name.empty() ? "" : "-" + p.name;
-}
-
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
-void renderDepthIntoAllChannels(const Scene& scene, const RenderParams& params, FastPcfState& s,
-                                Frame& frame) {
-  PassTimer timer(frame, "1 light pass: depth ramp in RGBA",
-                  "Brabec & Seidel 2001 §4: the map rendered as in §2 (Fig. 1), the encoded depth "
-                  "in all four channels");
-  bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
-                       bs::kAllChannels, true);
+void renderDepthIntoAllChannels(Passes& passes, const Scene& scene, const RenderParams& params,
+                                FastPcfState& s) {
+  passes.run("1", [&] {
+    bs::renderLightDepth(scene, s.enc, s.ramp, params.shadowMapTexels, glm::vec2(0.0f),
+                         bs::kAllChannels, true);
+  });
 }
 
 // Pass 2 (Eq. (1), Fig. 5): the copy to the texture with the packing convolution enabled.
-void packNeighboursByConvolution(const RenderParams& params, FastPcfState& s, size_t phase,
-                                 const Phase& p, Frame& frame) {
-  PassTimer timer(frame, "2 copy to texture through the 3x3 packing convolution" + phaseTag(p),
-                  "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5");
-  bs::copyLightPassToMapPacked(*s.maps[phase], params.shadowMapTexels, p.blockOffset);
+void packNeighboursByConvolution(Passes& passes, const RenderParams& params, FastPcfState& s,
+                                 size_t phase, const Phase& p) {
+  passes.run(
+      "2",
+      [&] {
+        bs::copyLightPassToMapPacked(*s.maps[phase], params.shadowMapTexels, p.blockOffset);
+      },
+      p.part);
 }
 
 // Pass 3 (§3/§4): the light depth of every visible point in all four channels.
-void renderReplicatedCameraDepth(const Scene& scene, const RenderParams& params, FastPcfState& s,
-                                 Frame& frame, const std::string& tag) {
-  PassTimer timer(frame, "3 camera pass: light depth in RGBA" + tag,
-                  "Brabec & Seidel 2001 §4 (\"very similar to ... Section 3\"): §3's camera pass, "
-                  "the light depth replicated over the four channels");
-  bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
-                        bs::kAllChannels);
+void renderReplicatedCameraDepth(Passes& passes, const Scene& scene, const RenderParams& params,
+                                 FastPcfState& s, const Phase& p) {
+  passes.run(
+      "3",
+      [&] {
+        bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
+                              bs::kAllChannels);
+      },
+      p.part);
 }
 
 // Pass 4 (Fig. 6): projective packed map, coordinates offset by (ds/2, dt/2), subtracted.
-void subtractPackedMap(const Scene& scene, const RenderParams& params, FastPcfState& s,
-                       size_t phase, const Phase& p, Frame& frame) {
-  PassTimer timer(frame,
-                  "4 projective pass: subtract packed map, offset texture coordinates" + phaseTag(p),
-                  "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "
-                  "coordinates offset by (ds/2, dt/2), subtracted as in §3");
-  bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
+void subtractPackedMap(Passes& passes, const Scene& scene, const RenderParams& params,
+                       FastPcfState& s, size_t phase, const Phase& p) {
+  passes.run(
+      "4",
+      [&] {
+        bs::subtractProjectedMap(scene, params, *s.maps[phase], p.offsetTexels, bs::kAllChannels);
+      },
+      p.part);
 }
 
 // Pass 5 (Fig. 4): colour table + colour matrix -> alpha.
-void countShadowedSamples(const RenderParams& params, FastPcfState& s, Frame& frame,
-                          const std::string& tag) {
-  PassTimer timer(frame, "5 copy: colour table + colour matrix -> alpha" + tag,
-                  "Brabec & Seidel 2001 §3, Fig. 4 (as §4 says): colour table 0 / 64 (63 in "
-                  "alpha), the colour matrix sums the channels into alpha");
-  bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples);
+void countShadowedSamples(Passes& passes, const RenderParams& params, FastPcfState& s,
+                          const Phase& p) {
+  passes.run("5", [&] { bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples); }, p.part);
+}
+
+// Pass 6a (§4, 4x4): one phase's share into the accumulation buffer, weight 1/4.
+void accumulatePhase(Passes& passes, size_t phase, size_t phases, const Phase& p) {
+  passes.run("6a", [&] { bs::accumulateGroup(1.0 / double(phases), phase == 0); }, p.part);
+}
+
+// Pass 6b (§4, 4x4): the sum of the four phases back into the colour buffer.
+void returnAccumulatedPhases(Passes& passes) {
+  passes.run("6b", [&] { bs::returnAccumulation(); });
 }
 
 // Pass 7 (§5 "normal OpenGL lighting").
-void shade(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "7 lighting x shadow term",
-                  "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
-                  "(1 - shadow), ambient kept");
-  bs::shadeWithShadowTerm(scene, params);
+void shade(Passes& passes, const Scene& scene, const RenderParams& params) {
+  passes.run("7", [&] { bs::shadeWithShadowTerm(scene, params); });
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -139,8 +226,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
                      std::to_string(side));
   const std::vector<Phase> phases = phasesFor(side);
   Frame frame;
+  Passes passes(frame, params, passTable());
   // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
-  const Scene camera = cameraPassScene(scene, params, frame);
+  const Scene camera = cameraPassScene(scene, params, passes);
   FastPcfState s;
   s.enc = bs::depthEncoding(params.precision);
   bs::createRampTexture(s.ramp, s.enc);
@@ -153,92 +241,60 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   {
     LightTarget target(n, n <= params.width && n <= params.height, true, s.enc.mapFormat);
     target.bind();
-    renderDepthIntoAllChannels(scene, params, s, frame);
-    if (params.capturePasses) {
-      const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
-      bs::capture(frame, params, "1-light-pass-depth-rgba",
-                  "Pass 1: one light pass, encoded depth in all four channels (one shown)",
-                  channel(readColorBuffer(0, 0, n, n), 0));
-    }
+    renderDepthIntoAllChannels(passes, scene, params, s);
+    passes.capture("1", "light-pass-depth-rgba",
+                   [&] { return channel(readColorBuffer(0, 0, n, n), 0); });
     // The light image stays in the framebuffer while every phase copies its packed map.
     for (size_t i = 0; i < phases.size(); ++i)
-      packNeighboursByConvolution(params, s, i, phases[i], frame);
+      packNeighboursByConvolution(passes, params, s, i, phases[i]);
     target.unbind();
   }
-  if (params.capturePasses)
-    for (size_t i = 0; i < phases.size(); ++i) {
-      PassImage packed("2-packed-shadow-map" + phaseFileTag(phases[i]) + "-rgba",
-                       "Pass 2: the packed map, R | G | B | A = lower left, lower right, upper "
-                       "left, upper right of each texel's 2x2 region (Fig. 5)",
-                       bs::readShadowMap(*s.maps[i], n));
-      packed.centreChannel = kTexelItselfChannel;
-      packed.channelMeaning = {"lower left", "lower right", "upper left",
-                               phases.size() == 1 ? "upper right = the texel itself" : "upper right"};
-      frame.intermediates.push_back(std::move(packed));
-    }
-  // Fig. 5's one-texel shift made visible: G, B and A minus R, the lower-left neighbour (the
-  // texel's own depth is A, kTexelItselfChannel), non-grey along every depth edge, one texel to
-  // the side the other channel's texel lies on.
-  if (params.capturePasses)
-    for (size_t i = 0; i < phases.size(); ++i)
-      bs::capture(
-          frame, params, "2-packed-neighbours-minus-lower-left" + phaseFileTag(phases[i]),
-          "Pass 2's packed map, lower right | upper left | upper right minus lower left "
-          "(G | B | A minus R), amplified " +
-              std::to_string(int(kDifferenceDisplayGain)) +
-              "x, grey = equal: the one-texel shift of Fig. 5",
-          bs::channelsMinusCentre(bs::readShadowMap(*s.maps[i], n), 0, kDifferenceDisplayGain));
+  const std::string itself = phases.size() == 1 ? " = the texel itself" : "";
+  for (size_t i = 0; i < phases.size(); ++i)
+    passes.capture(
+        "2", "packed-shadow-map{part}-rgba", [&] { return bs::readShadowMap(*s.maps[i], n); },
+        phases[i].part, {{"itself", itself}});
+  for (size_t i = 0; i < phases.size(); ++i)
+    passes.capture(
+        "2", "packed-neighbours-minus-lower-left{part}",
+        [&] {
+          return bs::channelsMinusCentre(bs::readShadowMap(*s.maps[i], n), 0,
+                                         kDifferenceDisplayGain);
+        },
+        phases[i].part);
 
+  const std::string again =
+      phases.size() > 1 ? " (drawn again, identical, in each of the " +
+                              std::to_string(phases.size()) + " phases)"
+                        : "";
   for (size_t i = 0; i < phases.size(); ++i) {
     const Phase& p = phases[i];
-    const std::string tag = phaseTag(p), file = phaseFileTag(p);
-    renderReplicatedCameraDepth(camera, params, s, frame, tag);
+    renderReplicatedCameraDepth(passes, camera, params, s, p);
     // The camera pass is the same in every phase (only passes 2, 4 and 5 depend on it): one file.
-    if (params.capturePasses && i == 0)
-      bs::capture(frame, params, "3-camera-pass-z-replicated",
-                  "Pass 3: light depth of each visible point in all four channels" +
-                      std::string(phases.size() > 1 ? " (drawn again, identical, in each of the " +
-                                                          std::to_string(phases.size()) +
-                                                          " phases)"
-                                                    : ""),
-                  toRgb(bs::readWindowRgba(params)));
-    subtractPackedMap(camera, params, s, i, p, frame);
-    if (params.capturePasses) {
-      bs::capture(
-          frame, params, "4-mask-before-colour-table" + file + "-rgba-x32",
-          "Pass 4: camera depth minus the four packed neighbours (R | G | B | A), "
-          "amplified 32x: > 0 = that neighbour shadows the point",
-          bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain)));
-      bs::capture(frame, params, "5-mask-after-colour-table" + file + "-rgba",
-                  "The same read through the colour table only: 0 or 64 (63 in alpha)",
-                  bs::channelPanels(bs::readThroughColorTable(params, s.enc, kPackedSamples)));
-    }
-    countShadowedSamples(params, s, frame, tag);
-    if (params.capturePasses)
-      bs::capture(frame, params, "5-alpha-after-colour-matrix" + file,
-                  "Pass 5: alpha = share of the four neighbours that shadow the point",
-                  bs::alphaOf(bs::readWindowRgba(params)));
-    if (phases.size() > 1) {
-      PassTimer timer(frame, "6 accumulate" + tag, "Brabec & Seidel 2001 §4 (4x4 footprints)");
-      bs::accumulateGroup(1.0 / double(phases.size()), i == 0);
-    }
+    if (i == 0)
+      passes.capture("3", "camera-pass-z-replicated",
+                     [&] { return toRgb(bs::readWindowRgba(params)); }, {}, {{"again", again}});
+    subtractPackedMap(passes, camera, params, s, i, p);
+    passes.capture("4", "mask-before-colour-table{part}-rgba-x32", [&] {
+      return bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain));
+    }, p.part);
+    passes.capture("5", "mask-after-colour-table{part}-rgba", [&] {
+      return bs::channelPanels(bs::readThroughColorTable(params, s.enc, kPackedSamples));
+    }, p.part);
+    countShadowedSamples(passes, params, s, p);
+    passes.capture("5", "alpha-after-colour-matrix{part}",
+                   [&] { return bs::alphaOf(bs::readWindowRgba(params)); }, p.part);
+    if (phases.size() > 1) accumulatePhase(passes, i, phases.size(), p);
   }
   if (phases.size() > 1) {
-    {
-      PassTimer timer(frame, "6 accumulation return", "Brabec & Seidel 2001 §4 (4x4 footprints)");
-      bs::returnAccumulation();
-    }
-    if (params.capturePasses)
-      bs::capture(frame, params, "6-accumulation-result-alpha",
-                  "Pass 6: the four phases summed in the accumulation buffer (4 x 5 levels)",
-                  bs::alphaOf(bs::readWindowRgba(params)));
+    returnAccumulatedPhases(passes);
+    passes.capture("6b", "accumulation-result-alpha",
+                   [&] { return bs::alphaOf(bs::readWindowRgba(params)); });
   }
-  shade(camera, params, frame);
+  shade(passes, camera, params);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = bs::readVisibilityFromAlpha(params);
-  if (params.capturePasses)
-    bs::capture(frame, params, "7-shaded", "Pass 7: OpenGL lighting x (1 - shadow) + ambient",
-                frame.color);
+  passes.capture("7", "shaded", [&] { return frame.color; });
   frame.counters["footprint samples"] = side * side;
   frame.counters["light passes"] = 1;
   checkGl("legacy.fast-pcf");
@@ -262,6 +318,7 @@ Technique fastPcfTechnique() {
   t.plan.colourTableCompare = true;                            // §3 Fig. 4
   t.plan.colourMatrixSum = true;
   t.plan.packingConvolution = true;  // §4 Eq. (1)
+  t.passes = passTable();
   t.render = render;
   return t;
 }

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <regex>
 
 #include "core/errors.h"
 #include "core/gl.h"
@@ -223,36 +222,46 @@ std::string floorName(const FloorTerm& term) {
          std::to_string(term.height);
 }
 
-std::optional<std::vector<FloorTerm>> passFloor(const std::string& name,
+std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
                                                 const RenderParams& params) {
   const int w = params.width, h = params.height, n = params.shadowMapTexels;
-  auto has = [&](const char* s) { return name.find(s) != std::string::npos; };
   using W = FloorWork;
-  if (has("mesh feeding")) return std::vector<FloorTerm>{};  // CPU only, no GL work
-  if (has("light passes: jittered")) {                       // §3 Fig. 3 (legacy.pcf)
-    std::smatch m;
-    const int group =
-        std::regex_search(name, m, std::regex(R"(\(group (\d+)\))")) ? std::stoi(m[1].str()) : 1;
-    const int samples = pcfGroupSamples(params.filter, group);
-    return std::vector<FloorTerm>{{W::kClear, n, n, samples},
-                                  {W::kRampTexturedFill, n, n, samples},
-                                  {W::kCopyTexture, n, n, 1}};
+  switch (floor) {
+    case PassFloor::kNone:
+      return std::nullopt;
+    case PassFloor::kCpuOnly:  // the mesh feeding: no GL work
+      return std::vector<FloorTerm>{};
+    case PassFloor::kJitteredLightGroup: {  // §3 Fig. 3 (legacy.pcf): group part + 1
+      const int samples = pcfGroupSamples(params.filter, part + 1);
+      return std::vector<FloorTerm>{{W::kClear, n, n, samples},
+                                    {W::kRampTexturedFill, n, n, samples},
+                                    {W::kCopyTexture, n, n, 1}};
+    }
+    case PassFloor::kLightDepth:  // §4: one light pass
+      return std::vector<FloorTerm>{{W::kClear, n, n, 1}, {W::kRampTexturedFill, n, n, 1}};
+    case PassFloor::kLightDepthAndCopy:  // §2: the light pass and its copy
+      return std::vector<FloorTerm>{
+          {W::kClear, n, n, 1}, {W::kRampTexturedFill, n, n, 1}, {W::kCopyTexture, n, n, 1}};
+    case PassFloor::kCopyToTexture:
+      return std::vector<FloorTerm>{{W::kCopyTexture, n, n, 1}};
+    case PassFloor::kCameraDepth:
+      return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kRampTexturedFill, w, h, 1}};
+    case PassFloor::kProjectiveSubtract:
+      return std::vector<FloorTerm>{{W::kProjectiveSubtractFill, w, h, 1}};
+    case PassFloor::kCopyPixels:
+      return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
+    case PassFloor::kAccumulationReturn:
+      return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
+    case PassFloor::kAccumulate:
+      return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
+    case PassFloor::kLighting:  // §5: direct light, then ambient: two layers
+      return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
   }
-  if (has("light pass")) {  // §2 (+ its copy in legacy.ramp), §4 one light pass
-    std::vector<FloorTerm> t = {{W::kClear, n, n, 1}, {W::kRampTexturedFill, n, n, 1}};
-    if (has("copy to texture")) t.push_back({W::kCopyTexture, n, n, 1});
-    return t;
-  }
-  if (has("copy to texture")) return std::vector<FloorTerm>{{W::kCopyTexture, n, n, 1}};
-  if (has("camera pass"))
-    return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kRampTexturedFill, w, h, 1}};
-  if (has("projective pass")) return std::vector<FloorTerm>{{W::kProjectiveSubtractFill, w, h, 1}};
-  if (has("copy:")) return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
-  if (has("accumulation return")) return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
-  if (has("accumulate")) return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
-  if (has("lighting"))  // §5: direct light, then ambient: two layers
-    return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
   return std::nullopt;
+}
+
+std::optional<std::vector<FloorTerm>> passFloor(const PassTime& pass, const RenderParams& params) {
+  return passFloor(pass.floor, pass.part, params);
 }
 
 Frame renderFloors(FloorResources& resources, const std::vector<FloorTerm>& terms) {

@@ -40,11 +40,14 @@ struct FloorTerm {
 // "floor: ramp-textured fill 800x600" — the name the floor frame gives the term's timing.
 std::string floorName(const FloorTerm& term);
 
-// The floor of one pass of legacy.ramp, legacy.pcf or legacy.fast-pcf, by its name (as the
-// technique's PassTimer names it) at params' window, map and footprint: its terms, an empty
-// list for a pass without GL work (the mesh feeding), nullopt for a pass no rule knows.
-std::optional<std::vector<FloorTerm>> passFloor(const std::string& passName,
+// The floor of one pass of legacy.ramp, legacy.pcf or legacy.fast-pcf, by the floor class its
+// pass table declares (core/pass_table.h) at params' window, map and footprint (`part`: which
+// PCF group a kJitteredLightGroup run is, 0-based): its terms, an empty list for a pass without
+// GL work (the mesh feeding), nullopt for a pass without a floor (PassFloor::kNone).
+std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
                                                 const RenderParams& params);
+// The same for a pass a frame ran (its PassTime carries the floor and the part).
+std::optional<std::vector<FloorTerm>> passFloor(const PassTime& pass, const RenderParams& params);
 
 // The GL objects the floors draw with (a ramp texture, a map-sized texture, pixel buffers),
 // made once in the current context.

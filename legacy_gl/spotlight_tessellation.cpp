@@ -299,11 +299,10 @@ Scene withMeshes(const Scene& scene, const std::vector<std::shared_ptr<const Mes
 
 }  // namespace
 
-Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
-  PassTimer timer(frame, "mesh feeding: triangles split for per-vertex spotlight lighting",
-                  "ours, not a paper's pass (run before the camera passes, listed first): "
-                  "fixed-function lighting is evaluated per vertex, so the receivers are split "
-                  "until it matches the modern twins' per-pixel lighting (issue 18 item 5)");
+namespace {
+
+// The split scene for this frame (from the context's cache when the key matches).
+Scene splitForSpotlight(const Scene& scene, const RenderParams& params, Frame& frame) {
   TessellationCache* cache = contextCache();
   TessellationKey key(scene, params.width, params.height);
   const CachedTessellation* hit = nullptr;
@@ -327,6 +326,29 @@ Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& fra
   frame.counters["camera-pass triangles"] = double(stats.trianglesOut);
   frame.counters["scene triangles"] = double(stats.trianglesIn);
   return split;
+}
+
+}  // namespace
+
+PassSpec meshFeedingPass() {
+  return {.id = "mesh",
+          .name = "mesh feeding: triangles split for per-vertex spotlight lighting",
+          .reference = "ours, not a paper's pass (run before the camera passes, listed first): "
+                       "fixed-function lighting is evaluated per vertex, so the receivers are split "
+                       "until it matches the modern twins' per-pixel lighting (issue 18 item 5)",
+          .floor = PassFloor::kCpuOnly};
+}
+
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes) {
+  Scene split;
+  passes.run("mesh", [&] { split = splitForSpotlight(scene, params, passes.frame()); });
+  return split;
+}
+
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
+  const PassSpec spec = meshFeedingPass();
+  PassTimer timer(frame, spec.name, spec.reference);
+  return splitForSpotlight(scene, params, frame);
 }
 
 }  // namespace sl::legacy

@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "core/scene.h"
+#include "core/passes.h"
 #include "core/technique.h"
 
 namespace sl::legacy {
@@ -52,6 +53,11 @@ Scene tessellateForSpotlight(const Scene& scene, int width, int height,
 // the light's position, target and cone; the window size), and a later frame with the same key
 // draws the same meshes again instead of splitting anew. Without a current context it splits.
 constexpr std::size_t kCachedTessellations = 4;
+// Runs as the pass "mesh" of the technique's table (meshFeedingPass(), which every legacy
+// technique that lights per vertex lists first).
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes);
+PassSpec meshFeedingPass();
+// TRANSITION: the same timed by hand, for techniques not yet on a pass table.
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame);
 
 }  // namespace sl::legacy

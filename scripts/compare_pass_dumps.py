@@ -47,6 +47,29 @@ def strip(value, ignored):
     return value
 
 
+def first_difference(a, b, path="$"):
+    """The path and the two values where two JSON values first differ."""
+    if type(a) is not type(b):
+        return f"{path}: {json.dumps(a)[:160]} != {json.dumps(b)[:160]}"
+    if isinstance(a, dict):
+        for k in sorted(set(a) | set(b)):
+            if k not in a or k not in b:
+                return f"{path}.{k}: only in {'after' if k in b else 'before'}"
+            d = first_difference(a[k], b[k], f"{path}.{k}")
+            if d:
+                return d
+        return None
+    if isinstance(a, list):
+        for i, (x, y) in enumerate(zip(a, b)):
+            d = first_difference(x, y, f"{path}[{i}]")
+            if d:
+                return d
+        if len(a) != len(b):
+            return f"{path}: {len(a)} items before, {len(b)} after"
+        return None
+    return None if a == b else f"{path}: {json.dumps(a)[:160]} != {json.dumps(b)[:160]}"
+
+
 def main():
     args = sys.argv[1:]
     ignored = set()
@@ -71,7 +94,7 @@ def main():
             elif name.endswith(".json"):
                 ja, jb = (strip(json.load(open(p)), ignored) for p in (a, b))
                 if ja != jb:
-                    problems.append(f"json differs: {rel}")
+                    problems.append(f"json differs: {rel}: {first_difference(ja, jb)}")
             elif name == "stderr.txt":
                 if open(a).read() != open(b).read():
                     problems.append(f"stderr differs: {rel}")

@@ -32,9 +32,10 @@ TEST(Roofline, EveryPassOfEveryPaperVariantHasAFloor) {
     const Frame frame = renderTechnique(findTechnique(v.technique), scene, p);
     ASSERT_FALSE(frame.passes.empty()) << v.label;
     for (const PassTime& pass : frame.passes) {
-      const auto terms = passFloor(pass.name, p);
-      ASSERT_TRUE(terms.has_value()) << v.label << ": no floor rule for '" << pass.name << "'";
-      const bool cpuOnly = pass.name.find("mesh feeding") != std::string::npos;
+      const auto terms = passFloor(pass, p);
+      ASSERT_TRUE(terms.has_value()) << v.label << ": pass '" << pass.name
+                                     << "' declares no floor in its technique's pass table";
+      const bool cpuOnly = pass.id == "mesh";
       EXPECT_EQ(terms->empty(), cpuOnly) << v.label << ": " << pass.name;
       for (const FloorTerm& t : *terms) {
         EXPECT_GT(t.count, 0) << pass.name;
@@ -44,18 +45,20 @@ TEST(Roofline, EveryPassOfEveryPaperVariantHasAFloor) {
       }
     }
   }
-  EXPECT_FALSE(passFloor("an unknown pass", smallParams(paperVariants().front())).has_value());
+  EXPECT_FALSE(passFloor(PassFloor::kNone, 0, smallParams(paperVariants().front())).has_value());
 }
 
 // §3: four jittered samples per map; a 4x4 footprint has four groups of four, 3x3 ends with one.
 TEST(Roofline, JitteredLightPassFloorCountsTheGroupsSamples) {
   RenderParams p;
   p.filter = 3;
-  auto samples = [&](const std::string& name) { return passFloor(name, p)->front().count; };
-  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture (group 1)"), 4);
-  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture (group 3)"), 1);
+  auto samples = [&](int part) {
+    return passFloor(PassFloor::kJitteredLightGroup, part, p)->front().count;
+  };
+  EXPECT_EQ(samples(0), 4);  // group 1
+  EXPECT_EQ(samples(2), 1);  // group 3
   p.filter = 2;
-  EXPECT_EQ(samples("1 light passes: jittered, one channel each + copy to texture"), 4);
+  EXPECT_EQ(samples(0), 4);
 }
 
 // The floors of one variant run between two of its frames in one context; the second frame is
@@ -68,7 +71,7 @@ void expectFloorsLeaveFramesUnchanged(const BenchmarkVariant& v) {
   const Frame before = t.render(*context, scene, p);
   std::vector<FloorTerm> terms;
   for (const PassTime& pass : before.passes) {
-    const auto passTerms = passFloor(pass.name, p);
+    const auto passTerms = passFloor(pass, p);
     ASSERT_TRUE(passTerms.has_value()) << pass.name;
     terms.insert(terms.end(), passTerms->begin(), passTerms->end());
   }
@@ -91,7 +94,8 @@ TEST(Roofline, AccumulateFloorIsGlAccumAndLeavesTheFramesUnchanged) {
   const BenchmarkVariant v = paperVariants()[3];
   ASSERT_EQ(v.technique, "legacy.fast-pcf");
   ASSERT_EQ(v.filter, 4);
-  const auto terms = passFloor("6 accumulate (upper-right)", smallParams(v));
+  const auto terms =
+      passFloor(findPassSpec(findTechnique("legacy.fast-pcf").passes, "6a").floor, 1, smallParams(v));
   ASSERT_TRUE(terms.has_value());
   ASSERT_EQ(terms->size(), 1u);
   EXPECT_EQ(terms->front().work, FloorWork::kAccumulate);

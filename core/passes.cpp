@@ -1,0 +1,106 @@
+// core/passes.cpp — see passes.h.
+#include "core/passes.h"
+
+#include <cctype>
+
+#include "core/errors.h"
+#include "core/gl.h"
+#include "core/gl_trace.h"
+
+namespace sl {
+using namespace sl::gl;
+
+namespace {
+
+// "1 light pass: ..." for numbered ids ("1", "5c"); a named id ("mesh") is not shown.
+std::string displayName(const PassSpec& spec, const PassPart& part, const std::string& suffix) {
+  const bool numbered = !spec.id.empty() && std::isdigit(static_cast<unsigned char>(spec.id[0]));
+  std::string name = (numbered ? spec.id + " " : "") + spec.name + suffix;
+  if (!part.label.empty()) name += " " + part.label;
+  return name;
+}
+
+std::string replaced(std::string text, const std::string& key, const std::string& value) {
+  const std::string mark = "{" + key + "}";
+  for (size_t at = text.find(mark); at != std::string::npos; at = text.find(mark, at + value.size()))
+    text.replace(at, mark.size(), value);
+  return text;
+}
+
+// Ends the pass's GL trace however the body leaves (the body may throw).
+class TracedScope {
+ public:
+  TracedScope() { beginTracedPass(); }
+  ~TracedScope() {
+    if (!ended_) endTracedPass();
+  }
+  TracedPass end() {
+    ended_ = true;
+    return endTracedPass();
+  }
+  TracedScope(const TracedScope&) = delete;
+  TracedScope& operator=(const TracedScope&) = delete;
+
+ private:
+  bool ended_ = false;
+};
+
+}  // namespace
+
+Passes::Passes(Frame& frame, const RenderParams& params, const PassTable& table)
+    : frame_(frame), params_(params), table_(table) {}
+
+void Passes::run(const std::string& id, const std::function<void()>& body, const PassPart& part,
+                 const std::string& suffix, const char* file, const char* function) {
+  const PassSpec& spec = findPassSpec(table_, id);
+  PassTime pass;
+  pass.name = displayName(spec, part, suffix);
+  pass.id = spec.id;
+  pass.floor = spec.floor;
+  pass.part = part.index;
+  pass.section = spec.reference;
+  pass.glsl = spec.shaders;
+  pass.sourceFile = sourceRelativePath(file);
+  pass.sourceFunction = function;
+  glFinish();
+  TracedScope trace;
+  const double start = nowMilliseconds();
+  body();
+  glFinish();
+  pass.milliseconds = nowMilliseconds() - start;
+  pass.gl = trace.end();
+  const std::string name = pass.name;
+  frame_.passes.push_back(std::move(pass));
+  checkGl(name.c_str());
+}
+
+void Passes::capture(const std::string& id, const std::string& buffer,
+                     const std::function<Image()>& read, const PassPart& part,
+                     const std::map<std::string, std::string>& words) {
+  if (!params_.capturePasses) return;
+  const PassSpec& spec = findPassSpec(table_, id);
+  const PassBuffer* declared = nullptr;
+  for (const PassBuffer& b : spec.writes)
+    if (b.name == buffer) declared = &b;
+  if (!declared)
+    throw std::logic_error("pass \"" + id + "\" declares no buffer \"" + buffer + "\"");
+  std::string caption = declared->caption;
+  for (const auto& [key, value] : words) caption = replaced(caption, key, value);
+  Image image;
+  {
+    const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
+    image = read();
+  }
+  std::string name = replaced(declared->name, "part", part.fileTag);
+  for (const auto& [key, value] : words) name = replaced(name, key, value);
+  std::vector<std::string> meaning = declared->channelMeaning;
+  for (std::string& m : meaning)
+    for (const auto& [key, value] : words) m = replaced(m, key, value);
+  PassImage out(id + "-" + name, caption, std::move(image));
+  out.passId = id;
+  out.centreChannel = declared->centreChannel;
+  out.channelMeaning = std::move(meaning);
+  frame_.intermediates.push_back(std::move(out));
+}
+
+}  // namespace sl
