@@ -16,15 +16,16 @@ LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)
 FENCE = re.compile(r"^\s*```")
 
 
-def prose_lines(path):
-    """The lines of a Markdown file outside fenced code blocks, with inline code removed."""
+def prose_lines(path, keep_code=False):
+    """The lines of a Markdown file outside fenced code blocks, inline code removed unless
+    keep_code (headings keep theirs: it is part of the anchor)."""
     inside = False
     for number, line in enumerate(open(path, encoding="utf-8"), 1):
         if FENCE.match(line):
             inside = not inside
             continue
         if not inside:
-            yield number, re.sub(r"`[^`]*`", "", line)
+            yield number, line if keep_code else re.sub(r"`[^`]*`", "", line)
 
 
 def slug(heading):
@@ -35,7 +36,7 @@ def slug(heading):
 
 def anchors(path):
     found = set()
-    for _, line in prose_lines(path):
+    for _, line in prose_lines(path, keep_code=True):
         m = re.match(r"^(#{1,6})\s+(.*?)\s*#*\s*$", line)
         if m:
             base = slug(m.group(2))
