@@ -257,7 +257,7 @@ CompareScore scorePair(const Scene& scene, const Technique& a, const Frame& fa,
                                        {reference::kPixelCentre, reference::kPixelArea}) ==
                       reference::kPixelArea;
     const ErrorMetric metric = area ? ErrorMetric::kArea : ErrorMetric::kPoint;
-    const bool soft = truthTechnique.name == "reference.soft";
+    const bool soft = truthTechnique.light == Technique::Light::kArea;
     std::string name = truthName(soft, metric);
     for (const auto& [k, v] : truthParams.extra)
       if (k != reference::kPixelParam) name += " " + k + "=" + v;

@@ -488,7 +488,8 @@ std::string indexHtml(const nlohmann::json& passes) {
   html << "</table>\n";
   for (const nlohmann::json& p : passes["passes"]) {
     const int number = p["number"].get<int>();
-    html << "<h2>" << (number >= 0 ? "Pass " + std::to_string(number) + ": " : std::string())
+    const std::string id = p.value("id", std::to_string(number));
+    html << "<h2>" << (number >= 0 ? "Pass " + id + ": " : std::string())
          << htmlEscape(p["name"].get<std::string>());
     if (p["milliseconds"].is_number())
       html << " <span class=\"time\">" << milliseconds(p["milliseconds"].get<double>())

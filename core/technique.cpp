@@ -315,6 +315,14 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
                      " (GL_MAX_TEXTURE_SIZE of this GL)");
   if (p.filter < 1 || p.filter > 16)
     throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
+  const std::vector<int>& sides = t.reads.filterSides;
+  if (t.reads.filter && !sides.empty() &&
+      std::find(sides.begin(), sides.end(), p.filter) == sides.end()) {
+    std::string list;
+    for (size_t i = 0; i < sides.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == sides.size() ? " or " : ", ") + std::to_string(sides[i]);
+    throw InputError(t.name + ": --filter must be " + list + ", got " + std::to_string(p.filter));
+  }
   for (const auto& [key, value] : p.extra) {
     const ParamSpec* spec = findParam(t, key);
     if (!spec) {

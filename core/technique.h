@@ -180,6 +180,9 @@ const char* optionFlag(CommonOption o);  // "--shadow-map"
 struct CommonOptions {
   bool shadowMap = false;  // RenderParams::shadowMapTexels
   bool filter = false;     // RenderParams::filter
+  // The --filter sides it accepts when it reads --filter (fast PCF: 2 and 4, the footprints of
+  // Brabec & Seidel §4); empty = every side checkParams allows. checkParams refuses the others.
+  std::vector<int> filterSides;
   bool precision = false;  // RenderParams::precision
 };
 
@@ -213,6 +216,11 @@ struct Technique {
   CommonOptions reads;                 // the common options its render reads
   PlanTraits plan;                     // what the pass planner asks of it
   PassTable passes;                    // its passes, declared once (core/pass_table.h)
+  // What its visibility approximates: the point light's hard shadow (shadow maps, volumes,
+  // reference.hard) or the spherical light's soft one (smoothies, reference.soft). The bench
+  // and the figures score it against the matching ray-traced truth.
+  enum class Light { kPoint, kArea };
+  Light light = Light::kPoint;
   std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
 };
 
