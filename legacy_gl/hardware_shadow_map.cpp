@@ -24,6 +24,8 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
+#include "core/pass_capture.h"
 #include "core/passes.h"
 #include "core/plan.h"
 #include "legacy_gl/fixed_function.h"
@@ -46,7 +48,7 @@ constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any usef
 constexpr float kBehindLightSharpness = 1.0f;
 
 struct HwState {
-  TextureName shadowMap;
+  Texture shadowMap = makeTexture();
 };
 
 // Pass 1 (Everitt Fig. 2, "Polygon offset"): render the casters from the light with slope-scaled
@@ -67,12 +69,13 @@ void renderDepthFromLight(Passes& passes, const Scene& scene, const RenderParams
         glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(factor, units * lightDepthRoundoffScale(scene));
-        loadMatrix(GL_PROJECTION, lightProjection(scene));
-        loadMatrix(GL_MODELVIEW, lightView(scene.light));
-        if (casterInFrustum) drawScene(scene, Draw::kCasters);
-        glDisable(GL_POLYGON_OFFSET_FILL);
+        {
+          const ScopedEnable offset(GL_POLYGON_OFFSET_FILL);
+          glPolygonOffset(factor, units * lightDepthRoundoffScale(scene));
+          loadMatrix(GL_PROJECTION, lightProjection(scene));
+          loadMatrix(GL_MODELVIEW, lightView(scene.light));
+          if (casterInFrustum) drawScene(scene, Draw::kCasters);
+        }
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
         glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
@@ -90,7 +93,7 @@ void renderDepthFromLight(Passes& passes, const Scene& scene, const RenderParams
 // eye coordinates back through (modelview_po)^-1. Texture unit 0 gets (s,t,r,q) for the map;
 // unit 1 gets q alone, scaled, for the behind-the-light step texture.
 void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, GLuint shadowMap,
-                               const TextureName& behindLightStep) {
+                               const Texture& behindLightStep) {
   setCameraMatrices(scene, params.width, params.height);  // modelview = V^-1 (Everitt)
   const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));  // rows as columns
   const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
@@ -125,6 +128,25 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   glActiveTexture(GL_TEXTURE0);
 }
 
+// The texgen pass 2 turns on (unit 0: s, t, r, q; unit 1: s), off again when the camera passes
+// end, however they end: the caller gets the texturing state it had.
+class TexgenOffAfterCameraPasses {
+ public:
+  TexgenOffAfterCameraPasses() = default;
+  ~TexgenOffAfterCameraPasses() {
+    try {
+      glActiveTexture(GL_TEXTURE1);
+      glDisable(GL_TEXTURE_GEN_S);
+      glActiveTexture(GL_TEXTURE0);
+      for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
+        glDisable(e);
+    } catch (...) {  // the context is beyond repair (core/gl_objects.h)
+    }
+  }
+  TexgenOffAfterCameraPasses(const TexgenOffAfterCameraPasses&) = delete;
+  TexgenOffAfterCameraPasses& operator=(const TexgenOffAfterCameraPasses&) = delete;
+};
+
 void enableShadowTexturing(bool on) {
   glActiveTexture(GL_TEXTURE0);
   if (on) glEnable(GL_TEXTURE_2D); else glDisable(GL_TEXTURE_2D);
@@ -158,14 +180,15 @@ void addShadowedDirectLight(Passes& passes, const Scene& scene, const RenderPara
     enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
     glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
     glDepthFunc(GL_EQUAL);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
-    enableShadowTexturing(true);
-    drawScene(scene, Draw::kReceivers);
-    enableShadowTexturing(false);
-    // Objects that do not receive shadows get their direct light unmodulated.
-    drawScene(scene, Draw::kNonReceivers);
-    glDisable(GL_BLEND);
+    {
+      const ScopedEnable blend(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      enableShadowTexturing(true);
+      drawScene(scene, Draw::kReceivers);
+      enableShadowTexturing(false);
+      // Objects that do not receive shadows get their direct light unmodulated.
+      drawScene(scene, Draw::kNonReceivers);
+    }
     glDepthFunc(GL_LESS);
     disableLighting();
   });
@@ -291,7 +314,8 @@ void shadeWithShadowMap(Passes& passes, const Scene& lightScene, const RenderPar
   Frame& frame = passes.frame();
   // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
   const Scene scene = cameraPassScene(lightScene, params, passes);
-  TextureName behindLightStep;
+  const Texture behindLightStep = makeTexture();
+  const TexgenOffAfterCameraPasses texgenOff;
   // Pass 2 (Everitt Eq. 5, Appendix A): timed here, loadEyeLinearTexgenPlanes does it.
   passes.run(texgen, [&] { loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep); });
   renderAmbientPass(passes, scene, params, ambient);
@@ -301,12 +325,6 @@ void shadeWithShadowMap(Passes& passes, const Scene& lightScene, const RenderPar
   frame.visibility = renderVisibilityMask(passes, scene, params, mask);
   passes.capture(direct, "shaded", [&] { return frame.color; });
   passes.capture(mask, "visibility", [&] { return frame.visibility; });
-  // Leave texturing state as we found it for the caller.
-  glActiveTexture(GL_TEXTURE1);
-  glDisable(GL_TEXTURE_GEN_S);
-  glActiveTexture(GL_TEXTURE0);
-  for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
-    glDisable(e);
 }
 
 glm::mat4 worldToShadowMapTexture(const Scene& scene) {

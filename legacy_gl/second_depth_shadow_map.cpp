@@ -13,6 +13,7 @@
 // The passes are declared once in secondDepthPasses().
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "core/pass_capture.h"
 #include "core/passes.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
@@ -60,18 +61,20 @@ void renderBackFacesFromLight(Passes& passes, const Scene& scene, const RenderPa
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glFrontFace(GL_CCW);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_FRONT);
-    loadMatrix(GL_PROJECTION, lightProjection(scene));
-    loadMatrix(GL_MODELVIEW, lightView(scene.light));
-    drawScene(castersOf(scene, true), Draw::kCasters);
-    glDisable(GL_CULL_FACE);
+    {
+      const ScopedEnable cull(GL_CULL_FACE);
+      glCullFace(GL_FRONT);
+      loadMatrix(GL_PROJECTION, lightProjection(scene));
+      loadMatrix(GL_MODELVIEW, lightView(scene.light));
+      drawScene(castersOf(scene, true), Draw::kCasters);
+    }
     glCullFace(GL_BACK);
-    glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
-    glPolygonOffset(kOpenCasterOffsetFactor,
-                    kOpenCasterOffsetUnits * lightDepthRoundoffScale(scene));
-    drawScene(castersOf(scene, false), Draw::kCasters);
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    {
+      const ScopedEnable offset(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION)
+      glPolygonOffset(kOpenCasterOffsetFactor,
+                      kOpenCasterOffsetUnits * lightDepthRoundoffScale(scene));
+      drawScene(castersOf(scene, false), Draw::kCasters);
+    }
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glBindTexture(GL_TEXTURE_2D, shadowMap);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
@@ -112,7 +115,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const int n = params.shadowMapTexels;
   Frame frame;
   Passes passes(frame, params, passTable());
-  TextureName shadowMap;
+  const Texture shadowMap = makeTexture();
   renderBackFacesFromLight(passes, scene, params, shadowMap.id(), linear);
   passes.captureDepth("1", "second-depth-map",
                       [&] { return readDepthTexture(shadowMap.id(), n, n); });

@@ -20,6 +20,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "core/pass_capture.h"
 #include "core/passes.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
@@ -99,12 +100,12 @@ std::vector<float> peelSecondDepthLayer(Passes& passes, const Scene& scene, int 
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
     glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_ALPHA);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-    glEnable(GL_TEXTURE_2D);
-    glEnable(GL_ALPHA_TEST);
-    glAlphaFunc(GL_GREATER, kAlphaTestThreshold);
-    drawScene(scene, Draw::kCasters, Colors::kWhite);
-    glDisable(GL_ALPHA_TEST);
-    glDisable(GL_TEXTURE_2D);
+    {
+      const ScopedEnable firstLayerTexture(GL_TEXTURE_2D);
+      const ScopedEnable alphaTest(GL_ALPHA_TEST);
+      glAlphaFunc(GL_GREATER, kAlphaTestThreshold);
+      drawScene(scene, Draw::kCasters, Colors::kWhite);
+    }
     for (GLenum e : enables) glDisable(e);
     loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
     glMatrixMode(GL_MODELVIEW);
@@ -191,8 +192,8 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const int n = params.shadowMapTexels;
   Frame frame;
   Passes passes(frame, params, passTable());
-  TextureName firstLayer;
-  TextureName midpointMap;
+  const Texture firstLayer = makeTexture();
+  const Texture midpointMap = makeTexture();
   std::vector<float> z1, z2;
   {
     LightTarget target(n, n <= params.width && n <= params.height, false);
