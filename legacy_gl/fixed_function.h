@@ -37,11 +37,6 @@ void disableLighting();
 // The camera's matrices for a window of the given size (viewport set too).
 void setCameraMatrices(const Scene& scene, int width, int height);
 
-// The DEVIATION of LightTarget (below), for the pass tables of the light passes that use it.
-inline constexpr char kOffscreenLightPassDeviation[] =
-    "DEVIATION (Brabec–Seidel §2, Everitt §2): the 2001 code rendered the light view into the "
-    "window; a map larger than our window would be clipped, so we render it off-screen.";
-
 // A framebuffer object standing in for the window when a light pass does not fit in it.
 // DEVIATION (Brabec–Seidel §2, Everitt §2): the 2001 code rendered the light view into the
 // window; a map larger than our window would be clipped, so we render it off-screen.

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <string>
 
 #include "core/gl.h"
 #include "core/pass_table.h"
@@ -22,7 +23,7 @@ void setDepthCompareParameters(bool linearCompare);
 
 // The DEVIATION of core/scene.h lightDepthRoundoffScale, for the pass tables of the passes
 // whose polygon offset or peeling epsilon it scales.
-inline constexpr char kDepthRoundoffScaleDeviation[] =
+inline const std::string kDepthRoundoffScaleDeviation =
     "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "
     "scene; without the factor a flat ground under a light 20 units up was all umbra (issue 17).";
 
