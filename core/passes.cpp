@@ -2,6 +2,8 @@
 #include "core/passes.h"
 
 #include <cctype>
+#include <tuple>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/gl.h"
@@ -77,6 +79,26 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
 void Passes::capture(const std::string& id, const std::string& buffer,
                      const std::function<Image()>& read, const PassPart& part,
                      const std::map<std::string, std::string>& words) {
+  add(id, buffer, [&](const std::string& caption) { return std::pair(read(), caption); }, part,
+      words);
+}
+
+void Passes::captureDepth(const std::string& id, const std::string& buffer,
+                          const std::function<Image()>& readDepth, const PassPart& part,
+                          const std::map<std::string, std::string>& words,
+                          const std::function<WindowDepthSpan()>& span) {
+  add(id, buffer,
+      [&](const std::string& caption) {
+        const Image depth = readDepth();
+        PassImage grey = span ? greyDepth("", caption, depth, span())
+                              : greyDepth("", caption, depth);
+        return std::pair(std::move(grey.image), std::move(grey.caption));
+      },
+      part, words);
+}
+
+void Passes::add(const std::string& id, const std::string& buffer, const Reader& read,
+                 const PassPart& part, const std::map<std::string, std::string>& words) {
   if (!params_.capturePasses) return;
   const PassSpec& spec = findPassSpec(table_, id);
   const PassBuffer* declared = nullptr;
@@ -89,7 +111,7 @@ void Passes::capture(const std::string& id, const std::string& buffer,
   Image image;
   {
     const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
-    image = read();
+    std::tie(image, caption) = read(caption);
   }
   std::string name = replaced(declared->name, "part", part.fileTag);
   for (const auto& [key, value] : words) name = replaced(name, key, value);

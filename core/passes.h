@@ -15,6 +15,7 @@
 #include <map>
 #include <string>
 
+#include "core/pass_capture.h"
 #include "core/pass_table.h"
 #include "core/technique.h"
 
@@ -41,11 +42,25 @@ class Passes {
   void capture(const std::string& id, const std::string& buffer, const std::function<Image()>& read,
                const PassPart& part = {}, const std::map<std::string, std::string>& words = {});
 
+  // --dump-passes: a depth buffer of pass `id` shown as grey (core/pass_capture.h greyDepth):
+  // `readDepth` returns window z; the caption is the declared one followed by the window-z
+  // range the greys span: `span()` (several maps on one scale) or, when empty, the drawn range
+  // of this buffer. Both run only while dumping.
+  void captureDepth(const std::string& id, const std::string& buffer,
+                    const std::function<Image()>& readDepth, const PassPart& part = {},
+                    const std::map<std::string, std::string>& words = {},
+                    const std::function<WindowDepthSpan()>& span = {});
+
   bool capturing() const { return params_.capturePasses; }
   Frame& frame() { return frame_; }
   const PassTable& table() const { return table_; }
 
  private:
+  // The image and its caption, given the declared caption with its words replaced.
+  using Reader = std::function<std::pair<Image, std::string>(const std::string& caption)>;
+  void add(const std::string& id, const std::string& buffer, const Reader& read,
+           const PassPart& part, const std::map<std::string, std::string>& words);
+
   Frame& frame_;
   const RenderParams& params_;
   const PassTable& table_;
