@@ -82,4 +82,17 @@ void captureCameraPass(Frame& frame, int pass, const std::string& source) {
        frame.visibility});
 }
 
+std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source) {
+  return {{.name = "shaded", .caption = "pass " + pass + ": the shaded image (" + source + ")"},
+          {.name = "visibility",
+           .caption = "pass " + pass +
+                      ": the shadow test's result alone, white = lit, black = shadow (" + source +
+                      "); what --mask writes"}};
+}
+
+void captureCameraPass(Passes& passes, const std::string& id) {
+  passes.capture(id, "shaded", [&] { return passes.frame().color; });
+  passes.capture(id, "visibility", [&] { return passes.frame().visibility; });
+}
+
 }  // namespace sl

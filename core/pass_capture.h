@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "core/pass_table.h"
+#include "core/passes.h"
 #include "core/technique.h"
 
 namespace sl {
@@ -44,5 +46,10 @@ Image readDepthTexture(unsigned texture, int width, int height);
 // The camera pass' outcome, as every technique fills Frame::color and Frame::visibility:
 // "<pass>-shaded" and "<pass>-visibility" with captions that name `source` (paper section).
 void captureCameraPass(Frame& frame, int pass, const std::string& source);
+// The same for a technique that runs its passes through core/passes.h: its camera pass's
+// buffers "shaded" and "visibility" for its pass table (PassSpec::writes), captioned as above
+// ("pass <pass>: ..."), and their capture as pass `id` from Frame::color and Frame::visibility.
+std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source);
+void captureCameraPass(Passes& passes, const std::string& id);
 
 }  // namespace sl

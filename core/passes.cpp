@@ -2,6 +2,7 @@
 #include "core/passes.h"
 
 #include <cctype>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 
@@ -74,6 +75,24 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   const std::string name = pass.name;
   frame_.passes.push_back(std::move(pass));
   checkGl(name.c_str());
+}
+
+void Passes::resume(const std::string& id, const std::function<void()>& body) {
+  size_t at = frame_.passes.size();
+  while (at > 0 && frame_.passes[at - 1].id != id) --at;
+  if (at == 0) throw std::logic_error("pass \"" + id + "\" resumed before it ran");
+  glFinish();
+  TracedScope trace;
+  const double start = nowMilliseconds();
+  body();
+  glFinish();
+  const double milliseconds = nowMilliseconds() - start;
+  TracedPass gl = trace.end();
+  PassTime& pass = frame_.passes[at - 1];
+  pass.milliseconds += milliseconds;
+  pass.gl.setup.insert(pass.gl.setup.end(), gl.setup.begin(), gl.setup.end());
+  pass.gl.state.insert(pass.gl.state.end(), gl.state.begin(), gl.state.end());
+  checkGl(pass.name.c_str());
 }
 
 void Passes::capture(const std::string& id, const std::string& buffer,

@@ -35,6 +35,13 @@ class Passes {
            const std::string& suffix = "", const char* file = __builtin_FILE(),
            const char* function = __builtin_FUNCTION());
 
+  // Runs `body` as more of pass `id`, run before in this render: a pass whose work comes in
+  // pieces interleaved with another pass's (reference pixel=area: per sub-pixel position its
+  // surface points, pass 3a, then its rays, pass 3b). The time and GL state of the piece are
+  // added to the pass's last entry in Frame::passes (one entry, however many pieces); throws
+  // std::logic_error when the pass has not run.
+  void resume(const std::string& id, const std::function<void()>& body);
+
   // --dump-passes: adds buffer `buffer` of pass `id` (declared in its `writes`) to
   // Frame::intermediates with its declared caption, calling `read` only while dumping, outside
   // any pass's GL trace. `words` replace "{key}" in its name, caption and channel
