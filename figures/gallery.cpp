@@ -59,11 +59,11 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "With the light low over the scene, the sphere's surface near its terminator is almost "
        "parallel to the light's rays: one texel's footprint is stretched along the surface, and "
        "the lit/shadowed boundary on the sphere becomes a ragged line of long steps.",
-       "shadow-map resolution (256 x 256) under a grazing light (light-position -7,1.6,3)",
+       "shadow-map resolution (128 x 128) under a grazing light (light-position -7,1.6,3)",
        "a 2048 x 2048 map under the same light",
        "brabec", 400, 300, {{"light-position", "-7,1.6,3"}, {"param", "compare=nearest"}},
-       "legacy.hw", "legacy.hw", {{"shadow-map", "256"}}, {{"shadow-map", "2048"}},
-       {200, 80, 100, 75, 4}},
+       "legacy.hw", "legacy.hw", {{"shadow-map", "128"}}, {{"shadow-map", "2048"}},
+       {225, 85, 75, 60, 5}},
       {"ramp-banding", "8-bit depth banding in the ramp shadow map",
        "Brabec & Seidel §2 store depth as an 8-bit colour from a 1D ramp: 256 steps over the "
        "light's range. Without the depth bias a lit surface and its own stored depth fall into "
@@ -349,6 +349,10 @@ std::string galleryLabQuery(const GalleryEntry& e) {
   std::string out;
   for (const auto& [k, v] : q) out += (out.empty() ? "" : "&") + k + "=" + queryValue(v);
   return out;
+}
+
+Image renderGalleryPicture(const GalleryEntry& e, bool wrongSide) {
+  return renderPicture(parsePicture(e, wrongSide));
 }
 
 int writeGallery(const std::string& dir, const std::string& labUrl) {

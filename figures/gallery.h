@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/image.h"
 #include "registry/cli.h"
 
 namespace sl::figures {
@@ -54,6 +55,10 @@ std::string galleryRenderCommand(const GalleryEntry& e, bool wrongSide);
 // The lab page's query for the entry (lab/web/lab.js readState: scene, size, a, b, a-/b-
 // shadow-map, filter, precision and param, light-position, orbit, zoom, center), without "?".
 std::string galleryLabQuery(const GalleryEntry& e);
+
+// One picture, rendered as `shadowlab render` with galleryRenderArguments renders it (the
+// arguments parsed by the CLI's own parser). The colour image, bottom-left origin.
+Image renderGalleryPicture(const GalleryEntry& e, bool wrongSide);
 
 // The address of `shadowlab serve` with its defaults.
 constexpr const char* kDefaultLabUrl = "http://127.0.0.1:8080/";
