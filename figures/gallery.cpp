@@ -1,5 +1,6 @@
 #include "figures/gallery.h"
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -169,9 +170,11 @@ bool perSide(const std::string& key) {
   return key == "shadow-map" || key == "filter" || key == "precision" || key == "param";
 }
 
-std::string numberText(double v) {
+// A fraction with at most 4 decimals, as lab/web/lab.js writes the centre back.
+std::string centreText(double v) {
+  constexpr double kDecimals = 1e4;
   std::ostringstream s;
-  s << v;
+  s << std::round(v * kDecimals) / kDecimals;
   return s.str();
 }
 
@@ -344,8 +347,8 @@ std::string galleryLabQuery(const GalleryEntry& e) {
     }
   const GalleryWindow& w = e.closeup;
   q.emplace_back("zoom", std::to_string(w.magnify));
-  q.emplace_back("center", numberText((w.x + w.width / 2.0) / e.width) + "," +
-                               numberText((w.y + w.height / 2.0) / e.height));
+  q.emplace_back("center", centreText((w.x + w.width / 2.0) / e.width) + "," +
+                               centreText((w.y + w.height / 2.0) / e.height));
   std::string out;
   for (const auto& [k, v] : q) out += (out.empty() ? "" : "&") + k + "=" + queryValue(v);
   return out;
