@@ -67,9 +67,10 @@ const std::vector<GalleryEntry>& galleryEntries() {
        {225, 85, 75, 60, 5}},
       {"ramp-banding", "8-bit depth banding in the ramp shadow map",
        "Brabec & Seidel §2 store depth as an 8-bit colour from a 1D ramp: 256 steps over the "
-       "light's range. Without the depth bias a lit surface and its own stored depth fall into "
-       "the same or neighbouring steps, and the subtraction shadows whole bands of the ground "
-       "(the contour lines of the 8-bit depth).",
+       "light's range. Without the depth bias a lit surface meets its own stored depth, rounded "
+       "in the light's pass and again in the camera's: where the camera's rounding lands a step "
+       "behind the map's, the subtraction shadows the lit ground, in dark streaks along the "
+       "contours of the 8-bit depth.",
        "depth-bias (0 steps) at 8-bit precision",
        "the paper's bias of 2 steps (the technique's default)",
        "brabec", 400, 300, {{"precision", "8"}}, "legacy.ramp", "legacy.ramp",
@@ -113,9 +114,10 @@ const std::vector<GalleryEntry>& galleryEntries() {
        {{"param", "remap=off"}}, {}, {88, 144, 144, 90, 3}},
       {"woo-thin-caster", "Woo's midpoint fails on a thin caster",
        "Woo's map stores the midpoint between the nearest and the second-nearest surface, "
-       "which removes the offset where objects are thick. The slanted square has no thickness: "
-       "its front and back faces are both layers, the midpoint is the square itself, and it "
-       "shadows itself in stripes as if there were no offset at all.",
+       "which replaces the polygon offset where objects are thick. The squares are boxes 0.02 "
+       "thick: the midpoint lies 0.01 under the lit top, less than the depth one 128 x 128 "
+       "texel spans across the tilted square, so the tilted square shadows itself in stripes "
+       "as if there were no offset (the flat squares, facing the light, stay clean).",
        "the technique: legacy.woo (midpoint map, no polygon offset) on a 128 x 128 map",
        "legacy.hw with its polygon offset on the same map",
        "squares", 400, 300, {{"shadow-map", "128"}}, "legacy.woo", "legacy.hw", {}, {},
@@ -267,7 +269,7 @@ std::string pageHtml(const std::vector<GalleryEntry>& entries, const std::string
        ".pair img{max-width:100%;image-rendering:pixelated;border:1px solid #999}\n"
        "figcaption{font-size:.9em;color:#444}\n"
        "code{font-size:.85em;background:#f2f2ec;padding:.1em .25em;word-break:break-all}\n"
-       ".wrong h4{color:#b00}.right h4{color:#070}h4{margin:.2em 0}\n"
+       ".wrong h4{color:#b00}.right h4{color:#070}h4{margin:.2em 0;min-height:2.9em}\n"
        "@media print{section.artefact{break-inside:avoid}}\n"
        "</style>\n</head>\n<body>\n<h1>Shadow-mapping artefacts</h1>\n"
        "<p>Each artefact as a pair of pictures rendered by shadowlab (OSMesa): the wrong one, "

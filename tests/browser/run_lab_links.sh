@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/browser/run_lab_links.sh SHADOWLAB OUT — the ctest `browser.lab_links`: writes the
-# artefact gallery (shadowlab gallery --out OUT), then opens every one of its lab links and the
-# lab's URL round trip in headless Chromium (lab_links.mjs). Screenshots: OUT/shots/.
+# artefact gallery (shadowlab gallery --out OUT) and loads it (check_pages.mjs: every picture
+# loads, no console error), then opens every one of its lab links and the lab's URL round trip
+# in headless Chromium (lab_links.mjs). Screenshots: OUT/shots/.
 # Exit 77 (ctest: skipped) only when node or Debian's chromium is absent; a missing
 # node_modules is a failure: scripts/setup.sh installs it with `npm ci`.
 set -euo pipefail
@@ -16,4 +17,6 @@ if [[ ! -d "$here/node_modules/puppeteer-core" ]]; then
 fi
 mkdir -p "$out"
 "$bin" gallery --out "$out"
+# The gallery page itself: every picture loads, no console error (check_pages.mjs).
+(cd "$out" && node "$here/check_pages.mjs" --shots "$out/shots" gallery/index.html)
 SHADOWLAB_BINARY="$bin" SHADOWLAB_SCREENSHOT_DIR="$out/shots" exec node "$here/lab_links.mjs" "$out/gallery"
