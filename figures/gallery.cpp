@@ -95,6 +95,20 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "squares", 400, 300, {{"param", "alpha=0"}, {"param", "offset-rule=through-1"}},
        "modern.csm", "modern.csm", {{"param", "order=2"}}, {{"param", "order=16"}},
        {235, 75, 90, 75, 3}},
+      {"csm-ringing", "CSM ringing",
+       "The truncated Fourier series of the shadow test's step oscillates about it (Gibbs). "
+       "Without attenuation (alpha = 0) the darkness of a shadow rises and falls with the "
+       "receiver's distance behind the caster: a lighter band runs across the tilted square's "
+       "shadow, darker again beyond it (M = 4, unblurred float basis, so that nothing else "
+       "smooths it; Annen et al. 2007 §3.2.1 and Fig. 3a).",
+       "alpha = 0: no attenuation of the high Fourier terms",
+       "alpha = 1 (the technique's default) damps them: the shadow darkens steadily away from the "
+       "contact, softer next to it, the price §3.2.1 names",
+       "squares", 400, 300,
+       {{"param", "order=4"}, {"param", "offset-rule=through-1"}, {"param", "storage=float"},
+        {"param", "blur=0"}},
+       "modern.csm", "modern.csm", {{"param", "alpha=0"}}, {{"param", "alpha=1"}},
+       {245, 95, 70, 50, 5}},
       {"hybrid-missed-silhouette", "Hybrid: a shadow the silhouette band missed",
        "Chan's hybrid runs shadow volumes only at the silhouette pixels its shadow map finds. A "
        "bar thinner than a texel of a 64 x 64 map is missing from the map, so no silhouette "
