@@ -1,5 +1,5 @@
 // apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures,
-// lesson, serve.
+// lesson, gallery, serve.
 // Contract: docs/design.md "Command-line contract". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
@@ -18,6 +18,7 @@
 #include "core/provenance.h"
 #include "core/scene_library.h"
 #include "figures/figures.h"
+#include "figures/gallery.h"
 #include "figures/lesson.h"
 #include "figures/overrides.h"
 #include "lab/lab_server.h"
@@ -42,6 +43,7 @@ usage:
   shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
+  shadowlab gallery --out DIR                      the artefact gallery: DIR/gallery/index.html
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
   shadowlab --version                              the commit this binary was built from
 
@@ -363,6 +365,7 @@ int run(int argc, char** argv) {
         args.options.count("only") ? args.options.at("only") : std::vector<std::string>{},
         !args.has("no-progress"), figures::parseOverrides(args));
   if (args.command == "lesson") return figures::runLessonCommand(args);
+  if (args.command == "gallery") return figures::runGalleryCommand(args);
   if (args.command == "bench") return figures::runBench(args);
   if (args.command == "serve") return lab::runServe(args);
   if (args.command == "plan") {
