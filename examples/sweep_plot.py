@@ -6,7 +6,7 @@
 Without --spec: four GLSL techniques on fence at 256x192 over three shadow-map sides. Each
 point is a row: its frame time (median of the timed frames) and its RMSE against the row's
 primary reference (reference.hard pixel=area, or reference.soft for smoothies), log axes, one
-series per technique, the view's Pareto front circled. The PNGs carry the spec and the commit.
+series per technique with each point's variant, the view's Pareto front as a line. The PNGs carry the spec and the commit.
 """
 
 import argparse
@@ -35,6 +35,8 @@ def plot_view(rows, title, path, provenance):
     fig, ax = plt.subplots(figsize=(8, 5), dpi=100)
     for technique, group in rows.groupby("technique", sort=False):
         ax.plot(group["frame_ms"], primary_rmse(group), "o", label=technique)
+        for x, y, variant in zip(group["frame_ms"], primary_rmse(group), group["variant"]):
+            ax.annotate(variant, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
     front = rows[rows["pareto_rank"] == 1].sort_values("frame_ms")
     ax.plot(front["frame_ms"], primary_rmse(front), "-", color="grey", lw=1,
             label="Pareto front", zorder=0)
