@@ -98,6 +98,20 @@ def test_a_sweep_row_equals_the_bench_row_of_the_same_variant(python_bench, loca
         assert sweep_row[column] == bench_row[column], column
 
 
+def test_a_value_one_technique_refuses_is_that_rows_status(cli, tmp_path):
+    # Fast PCF packs 2x2 neighbours (and 4x4 in phases): --filter 3 is refused by the technique,
+    # which the sweep records as the bench does, with render's message.
+    spec = {"techniques": ["modern.fast-pcf"], "scenes": ["fence"], "sizes": ["64x48"],
+            "filters": [2, 3], "repeat": 1}
+    rows = shadowlab.sweep(spec)
+    assert list(rows["status"])[0] == "ok"
+    status, _, err = cli("render", "--scene", "fence", "--technique", "modern.fast-pcf",
+                         "--size", "64x48", "--filter", "3", "--out", str(tmp_path / "x.png"))
+    assert status == 2
+    assert rows["status"].iloc[1] == "invalid: " + err.strip()[len("shadowlab: "):]
+    assert pd.isna(rows["pareto_rank"].iloc[1])
+
+
 def test_sweep_orbits_and_params():
     spec = {"techniques": ["modern.csm"], "scenes": ["fence"], "sizes": [[64, 48]],
             "params": {"order": [4, 8]}, "orbits": [None, "20,25,9"], "repeat": 1,

@@ -142,3 +142,17 @@ def test_a_value_of_the_wrong_type_is_a_type_error():
         shadowlab.render(technique="modern.hw", size={"w": 64})
     with pytest.raises(TypeError):
         shadowlab.render(technique="modern.hw", params=["depth-bias=2"])
+
+
+def test_renders_from_threads_equal_renders_one_after_another():
+    # The GIL is released while C++ renders and one lock keeps the GL work one call at a time:
+    # four threads get the frames (and the commands) that four calls in a row get.
+    from concurrent.futures import ThreadPoolExecutor
+    calls = [dict(technique="modern.hw", size=(64, 48)),
+             dict(scene="fence", technique="modern.gems4", size=(64, 48))] * 2
+    alone = [shadowlab.render(**c) for c in calls]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        together = list(pool.map(lambda c: shadowlab.render(**c), calls))
+    for a, b in zip(alone, together):
+        assert np.array_equal(a["mask"], b["mask"]) and np.array_equal(a["image"], b["image"])
+        assert a["command"] == b["command"] and a["technique"] == b["technique"]
