@@ -214,7 +214,9 @@ def sweep_rows(spec):
     """The rows `sweep(spec)` would measure (row, view, scene, width, height, orbit, technique,
     variant), checked but not measured: ValueError for a spec sweep() would refuse."""
     import pandas as pd
-    return pd.DataFrame(json.loads(_core.sweep_plan(json.dumps(spec))))
+    return pd.DataFrame(json.loads(_core.sweep_plan(json.dumps(spec))),
+                        columns=["row", "view", "scene", "width", "height", "orbit", "technique",
+                                 "variant"])
 
 
 def _measure_rows(spec_json, indices, command):
