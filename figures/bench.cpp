@@ -756,8 +756,6 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
   }
 }
 
-namespace {
-// The CSV of writeCsv: one header line, one line per row.
 void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
   out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
          "params,frame_ms,wall_ms,pareto_rank";
@@ -800,7 +798,6 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
     out << "," << quoted(passes) << "\n";
   }
 }
-}  // namespace
 
 void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
   writeFileAtomically(path, [&](std::ostream& out) { writeCsvRows(out, rows); });
@@ -1019,7 +1016,7 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
   return out;
 }
 
-int runBenchCommand(const cli::Args& args) {
+BenchOptions parseBenchOptions(const cli::Args& args) {
   BenchOptions options;
   options.quick = args.has("quick");
   // --scene and --technique: repeatable, each value also a comma-separated list; every name
@@ -1049,10 +1046,16 @@ int runBenchCommand(const cli::Args& args) {
   if (auto r = args.value("repeat"))
     options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
   if (auto b = args.value("budget-ms")) options.budgetMs = parseBudgetMs(*b);
-  // Bad names and unwritable destinations fail before any work (core/output_files.h): the
-  // CSV is written to a temporary and renamed at the end; the plots' folder must be writable.
+  // Bad names fail before any work.
   for (const std::string& s : options.scenes) loadScene(s);
   for (const std::string& t : options.techniques) findTechnique(t);
+  return options;
+}
+
+int runBenchCommand(const cli::Args& args) {
+  const BenchOptions options = parseBenchOptions(args);
+  // Unwritable destinations fail before any work (core/output_files.h): the CSV is written to
+  // a temporary and renamed at the end; the plots' folder must be writable.
   OutputSet outputs;
   for (const std::string& s : options.scenes) outputs.addInput(s);
   std::optional<std::string> csv;
@@ -1087,6 +1090,32 @@ int runBenchCommand(const cli::Args& args) {
   // (stderr, with the other human-readable lines; stdout stays JSON lines).
   if (options.budgetMs) printBudgetRanking(std::cerr, result.rows, *options.budgetMs);
   return 0;
+}
+
+struct BenchReferences {
+  References refs;
+  bool temporal = true;
+};
+
+std::shared_ptr<const BenchReferences> renderBenchReferences(const Scene& scene,
+                                                             const RenderParams& base,
+                                                             bool withSoft, bool temporal) {
+  auto out = std::make_shared<BenchReferences>();
+  out->refs = renderReferences(scene, base, withSoft, temporal);
+  out->temporal = temporal;
+  return out;
+}
+
+BenchRow measureBenchRow(const Technique& t, const Scene& scene, const BenchVariant& v,
+                         const BenchReferences& refs, int warmup, int timed, bool quick) {
+  Image mask;
+  const bool truth = isReference(t);
+  BenchRow row = measureVariant(t, scene, v, refs.refs, truth ? 0 : warmup, truth ? 1 : timed,
+                                quick, refs.temporal, mask);
+  if (row.status == "ok")
+    row.counters["plan_max_shadow_texels_per_pixel"] =
+        planFrame(scene, t, v.params).maxShadowTexelsPerPixel;
+  return row;
 }
 
 }  // namespace sl::figures
