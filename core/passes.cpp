@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_fault.h"
 #include "core/gl_trace.h"
 
 namespace sl {
@@ -31,11 +32,17 @@ std::string replaced(std::string text, const std::string& key, const std::string
 }
 
 // Ends the pass's GL trace however the body leaves (the body may throw).
+// Also the pass boundary of fault injection (core/gl_fault.h): a fault armed for the pass
+// `name` fires inside it.
 class TracedScope {
  public:
-  TracedScope() { beginTracedPass(); }
+  explicit TracedScope(const std::string& name) {
+    beginTracedPass();
+    glFaultPassBegin(name);
+  }
   ~TracedScope() {
     if (!ended_) endTracedPass();
+    glFaultPassEnd();
   }
   TracedPass end() {
     ended_ = true;
@@ -65,8 +72,9 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   pass.glsl = spec.shaders;
   pass.sourceFile = sourceRelativePath(file);
   pass.sourceFunction = function;
+  throwNotedGlError();  // a timed pass's failure (PassTimer) ends the render before this one
   glFinish();
-  TracedScope trace;
+  TracedScope trace(pass.name);
   const double start = nowMilliseconds();
   body();
   glFinish();
@@ -81,8 +89,9 @@ void Passes::resume(const std::string& id, const std::function<void()>& body) {
   size_t at = frame_.passes.size();
   while (at > 0 && frame_.passes[at - 1].id != id) --at;
   if (at == 0) throw std::logic_error("pass \"" + id + "\" resumed before it ran");
+  throwNotedGlError();
   glFinish();
-  TracedScope trace;
+  TracedScope trace(frame_.passes[at - 1].name);
   const double start = nowMilliseconds();
   body();
   glFinish();

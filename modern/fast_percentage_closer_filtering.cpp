@@ -138,7 +138,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
-  t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)
   t.render = render;
   return t;

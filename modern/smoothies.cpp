@@ -495,6 +495,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
 Technique smoothiesTechnique() {
   Technique t;
   t.name = "modern.smoothies";
+  t.light = Technique::Light::kArea;  // fake soft shadows of the spherical light (Chan §4.1)
   t.paper = "Chan 2004 thesis ch. 4 (Chan & Durand 2003, smoothies)";
   t.summary = "fake soft shadows: smoothie edges/corners, depth+alpha buffer, Eq. 4.1, falloff";
   t.status = "complete (square corners at vertices with >2 silhouette edges)";

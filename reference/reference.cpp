@@ -721,6 +721,7 @@ std::vector<Technique> techniques() {
   };
   Technique soft = hard;
   soft.name = "reference.soft";
+  soft.light = Technique::Light::kArea;
   soft.summary = "Monte Carlo visibility of a spherical light of SpotLight::radius, " +
                  std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
   soft.params = {raysParam(), pixelParam(), pixelSamplesParam(true)};
