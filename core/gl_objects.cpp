@@ -69,6 +69,26 @@ ScopedClientAttrib::~ScopedClientAttrib() {
   }
 }
 
+ScopedPushMatrix::ScopedPushMatrix() { glPushMatrix(); }
+
+ScopedPushMatrix::~ScopedPushMatrix() {
+  try {
+    glPopMatrix();
+  } catch (...) {  // the context is beyond repair (core/gl_objects.h)
+  }
+}
+
+ScopedClientState::ScopedClientState(GLenum array) : array_(array) {
+  glEnableClientState(array_);
+}
+
+ScopedClientState::~ScopedClientState() {
+  try {
+    glDisableClientState(array_);
+  } catch (...) {  // the context is beyond repair (core/gl_objects.h)
+  }
+}
+
 ScopedMatrices::ScopedMatrices() {
   for (const GLenum mode : {GLenum(GL_PROJECTION), GLenum(GL_MODELVIEW), GLenum(GL_TEXTURE)}) {
     glMatrixMode(mode);

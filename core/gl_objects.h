@@ -5,7 +5,9 @@
 //                     copied. legacy_gl/ and modern/ hold every object they make in one.
 //   ScopedEnable    — a capability (glEnable) on for a scope, off again after it.
 //   ScopedAttrib    — glPushAttrib / glPopAttrib (and the client-side pair) as a scope.
-//   ScopedMatrices  — the projection, modelview and texture matrices pushed for a scope.
+//   ScopedMatrices  — the projection, modelview and texture matrices pushed for a scope;
+//                     ScopedPushMatrix the current matrix alone.
+//   ScopedClientState — a client-side array (glEnableClientState) on for a scope.
 //
 // The restoring destructors run also when a pass throws (a GL error, bad input), so a context
 // the lab or the benchmark reuses is left as the code found it. They never throw: when the GL
@@ -104,6 +106,28 @@ class ScopedClientAttrib {
   ~ScopedClientAttrib();
   ScopedClientAttrib(const ScopedClientAttrib&) = delete;
   ScopedClientAttrib& operator=(const ScopedClientAttrib&) = delete;
+};
+
+// glPushMatrix() now, glPopMatrix() at the end of the scope, on the stack of the matrix mode
+// current at both ends (the scope must leave that mode as it found it).
+class ScopedPushMatrix {
+ public:
+  ScopedPushMatrix();
+  ~ScopedPushMatrix();
+  ScopedPushMatrix(const ScopedPushMatrix&) = delete;
+  ScopedPushMatrix& operator=(const ScopedPushMatrix&) = delete;
+};
+
+// glEnableClientState(array) now, glDisableClientState(array) at the end of the scope.
+class ScopedClientState {
+ public:
+  explicit ScopedClientState(GLenum array);
+  ~ScopedClientState();
+  ScopedClientState(const ScopedClientState&) = delete;
+  ScopedClientState& operator=(const ScopedClientState&) = delete;
+
+ private:
+  GLenum array_;
 };
 
 // glPushMatrix on the projection, modelview and texture stacks now (in that order), glPopMatrix

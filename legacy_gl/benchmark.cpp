@@ -161,11 +161,12 @@ void timeCameraPassDraw(Frame& frame, const std::string& name, const Scene& scen
     glDepthMask(GL_TRUE);
     const float plane[4] = {0.0f, 0.0f, -1.0f / scene.camera.farPlane, 0.0f};
     glMatrixMode(GL_MODELVIEW);
-    glPushMatrix();
-    glLoadIdentity();  // eye-linear planes are taken through the modelview at specification
-    glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
-    glTexGenfv(GL_S, GL_EYE_PLANE, plane);
-    glPopMatrix();
+    {
+      const ScopedPushMatrix eyeSpace;
+      glLoadIdentity();  // eye-linear planes are taken through the modelview at specification
+      glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+      glTexGenfv(GL_S, GL_EYE_PLANE, plane);
+    }
     glEnable(GL_TEXTURE_GEN_S);
     glEnable(GL_TEXTURE_1D);
     glBindTexture(GL_TEXTURE_1D, ramp);

@@ -40,7 +40,7 @@ void setChannelMask(ChannelMask c) {
 // coordinates"): identity EYE_LINEAR planes, given while the modelview is the identity.
 void enableEyeCoordinateTexgen() {
   glMatrixMode(GL_MODELVIEW);
-  glPushMatrix();
+  const ScopedPushMatrix eyeSpace;
   glLoadIdentity();
   const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
   const GLenum enables[4] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R,
@@ -52,7 +52,6 @@ void enableEyeCoordinateTexgen() {
     glTexGenfv(coords[i], GL_EYE_PLANE, plane);
     glEnable(enables[i]);
   }
-  glPopMatrix();
 }
 
 void disableTexgen() {

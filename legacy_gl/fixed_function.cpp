@@ -16,8 +16,8 @@ void loadMatrix(unsigned mode, const glm::mat4& m) {
 }
 
 void drawScene(const Scene& scene, Draw which, Colors colors) {
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_NORMAL_ARRAY);
+  const ScopedClientState vertices(GL_VERTEX_ARRAY);
+  const ScopedClientState normals(GL_NORMAL_ARRAY);
   glMatrixMode(GL_MODELVIEW);
   for (const Object& o : scene.objects) {
     if (which == Draw::kCasters && !o.castsShadow) continue;
@@ -30,17 +30,14 @@ void drawScene(const Scene& scene, Draw which, Colors colors) {
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, glm::value_ptr(diffuse));
     glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(specular));
     glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, 32.0f);
-    glPushMatrix();
+    const ScopedPushMatrix modelMatrix;
     glMultMatrixf(glm::value_ptr(o.model));
     glVertexPointer(3, GL_FLOAT, 0, o.mesh->positions.data());
     glNormalPointer(GL_FLOAT, 0, o.mesh->normals.data());
     const FrontFaceForModel frontFace(o.model);  // culling keeps seeing a mirrored outside as front
     glDrawElements(GL_TRIANGLES, GLsizei(o.mesh->indices.size()), GL_UNSIGNED_INT,
                    o.mesh->indices.data());
-    glPopMatrix();
   }
-  glDisableClientState(GL_NORMAL_ARRAY);
-  glDisableClientState(GL_VERTEX_ARRAY);
 }
 
 void enableSpotlight(const Scene& scene, LightTerms terms) {

@@ -69,6 +69,25 @@ TEST(GlObjects, ScopedEnableIsOffAfterAnException) {
   EXPECT_EQ(glIsEnabled(GL_BLEND), GL_FALSE);
 }
 
+TEST(GlObjects, ScopedClientStateAndPushMatrixRestoreAfterAnException) {
+  auto context = smallContext();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  ASSERT_EQ(glIsEnabled(GL_VERTEX_ARRAY), GL_FALSE);
+  try {
+    const ScopedClientState vertices(GL_VERTEX_ARRAY);
+    const ScopedPushMatrix model;
+    glTranslatef(1.0f, 2.0f, 3.0f);
+    EXPECT_EQ(glIsEnabled(GL_VERTEX_ARRAY), GL_TRUE);
+    throw std::runtime_error("a draw fails");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(glIsEnabled(GL_VERTEX_ARRAY), GL_FALSE);
+  GLfloat modelview[16];
+  glGetFloatv(GL_MODELVIEW_MATRIX, modelview);
+  EXPECT_EQ(modelview[12], 0.0f);  // the translation went with the popped matrix
+}
+
 TEST(GlObjects, ScopedAttribAndMatricesRestoreAfterAnException) {
   auto context = smallContext();
   glMatrixMode(GL_MODELVIEW);
