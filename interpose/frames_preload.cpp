@@ -1,0 +1,208 @@
+// interpose/frames_preload.cpp — libshadowlab-frames.so: what `shadowlab run-legacy --backend
+// glx` preloads beside libshadowlab-imaging.so to see a GLUT program's frames and to press its
+// keys. Not part of the drop-in library a user preloads.
+//
+// It wraps glutDisplayFunc and glutKeyboardFunc (to keep the program's callbacks) and
+// glutSwapBuffers. A frame is "displayed" when glutSwapBuffers is called (double-buffered:
+// the back buffer is read before the real swap) or when the display callback returns
+// (single-buffered: the front buffer after glFinish). The first displayed frame after
+// start-up and the first after each key are written as $SHADOWLAB_FRAMES_DIR/NNN.png; keys
+// ($SHADOWLAB_KEYS, space-separated: one character, or esc / space) are delivered one at a
+// time through the program's keyboard callback from a GLUT timer, each after the previous
+// frame was written. After the last frame the main loop is left as when the window is closed
+// (glutLeaveMainLoop), so the program ends through its own exit path.
+#include <dlfcn.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+#include <GL/gl.h>
+#include <GL/freeglut.h>
+
+#define SL_EXPORT extern "C" __attribute__((visibility("default")))
+
+namespace sl::interpose {
+namespace {
+
+constexpr unsigned char kEscape = 27;
+constexpr int kFrameNameDigits = 3;  // DIR/NNN.png
+constexpr float kByteMax = 255.0f;
+
+template <class Fn>
+Fn nextFn(const char* name) {
+  return reinterpret_cast<Fn>(dlsym(RTLD_NEXT, name));
+}
+
+// The driver's GL entry point, from libGL itself: never the imaging library's export (its
+// glReadPixels runs the pixel-transfer pipeline; the frame is the framebuffer as shown).
+template <class Fn>
+Fn driverFn(const char* name) {
+  static void* gl = dlopen("libGL.so.1", RTLD_NOW | RTLD_NOLOAD);
+  if (gl == nullptr) return nullptr;
+  return reinterpret_cast<Fn>(dlsym(gl, name));
+}
+
+struct Session {
+  std::string dir;
+  std::vector<unsigned char> keys;
+  std::vector<std::string> keyNames;
+  size_t nextKey = 0;
+  int frame = 0;
+  bool awaiting = true;  // the next displayed frame is written
+  bool done = false;
+  std::map<int, void (*)()> display;
+  std::map<int, void (*)(unsigned char, int, int)> keyboard;
+  int mainWindow = 0;
+};
+
+Session& session() {
+  static Session s = [] {
+    Session made;
+    if (const char* d = std::getenv("SHADOWLAB_FRAMES_DIR")) made.dir = d;
+    if (const char* k = std::getenv("SHADOWLAB_KEYS")) {
+      std::istringstream words(k);
+      std::string w;
+      while (words >> w) {
+        if (w == "esc") made.keys.push_back(kEscape);
+        else if (w == "space") made.keys.push_back(' ');
+        else made.keys.push_back(static_cast<unsigned char>(w[0]));
+        made.keyNames.push_back(w);
+      }
+    }
+    return made;
+  }();
+  return s;
+}
+
+bool active() { return !session().dir.empty(); }
+
+// Reads the window's colour buffer `buffer` (GL_FRONT or GL_BACK) as shown: tight pixel
+// storage, no pack buffer; the program's state is restored.
+Image readWindow(GLenum buffer, int w, int h) {
+  static auto getIntegerv = driverFn<decltype(&::glGetIntegerv)>("glGetIntegerv");
+  static auto pixelStorei = driverFn<decltype(&::glPixelStorei)>("glPixelStorei");
+  static auto readBuffer = driverFn<decltype(&::glReadBuffer)>("glReadBuffer");
+  static auto readPixels = driverFn<decltype(&::glReadPixels)>("glReadPixels");
+  static auto finish = driverFn<decltype(&::glFinish)>("glFinish");
+  static auto bindBuffer = driverFn<void (*)(GLenum, GLuint)>("glBindBuffer");
+  Image image;
+  if (!getIntegerv || !pixelStorei || !readBuffer || !readPixels || !finish || w <= 0 || h <= 0)
+    return image;
+  finish();
+  const GLenum packParams[] = {GL_PACK_ALIGNMENT, GL_PACK_ROW_LENGTH, GL_PACK_SKIP_PIXELS,
+                               GL_PACK_SKIP_ROWS, GL_PACK_SWAP_BYTES, GL_PACK_LSB_FIRST};
+  GLint saved[6] = {};
+  for (int i = 0; i < 6; ++i) getIntegerv(packParams[i], &saved[i]);
+  GLint savedRead = 0, savedPackBuffer = 0;
+  getIntegerv(GL_READ_BUFFER, &savedRead);
+  if (bindBuffer) getIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &savedPackBuffer);
+  const GLint tight[6] = {1, 0, 0, 0, GL_FALSE, GL_FALSE};
+  for (int i = 0; i < 6; ++i) pixelStorei(packParams[i], tight[i]);
+  if (bindBuffer && savedPackBuffer != 0) bindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  readBuffer(buffer);
+  std::vector<unsigned char> bytes(size_t(w) * h * 3);
+  readPixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, bytes.data());
+  readBuffer(GLenum(savedRead));
+  if (bindBuffer && savedPackBuffer != 0) bindBuffer(GL_PIXEL_PACK_BUFFER, GLuint(savedPackBuffer));
+  for (int i = 0; i < 6; ++i) pixelStorei(packParams[i], saved[i]);
+  image = Image(w, h, 3);
+  for (size_t i = 0; i < bytes.size(); ++i) image.data[i] = float(bytes[i]) / kByteMax;
+  return image;
+}
+
+void deliverKey(int index);
+
+// A frame was shown on `buffer`: written when one is awaited, then the next key or the end.
+void frameShown(GLenum buffer) {
+  Session& s = session();
+  if (!active() || !s.awaiting || s.done) return;
+  const int w = glutGet(GLUT_WINDOW_WIDTH), h = glutGet(GLUT_WINDOW_HEIGHT);
+  const Image image = readWindow(buffer, w, h);
+  if (image.empty()) {
+    std::fprintf(stderr, "libshadowlab-frames: cannot read the window (no libGL entry points)\n");
+    s.done = true;
+    glutLeaveMainLoop();
+    return;
+  }
+  char name[32];
+  std::snprintf(name, sizeof name, "%0*d.png", kFrameNameDigits, s.frame);
+  const std::string event = s.frame == 0 ? std::string("start-up")
+                                         : "key " + s.keyNames[size_t(s.frame - 1)];
+  Provenance provenance;
+  if (const char* c = std::getenv("SHADOWLAB_FRAMES_COMMAND")) provenance.command = c;
+  provenance.parameters = "{\"frame\":" + std::to_string(s.frame) + ",\"after\":\"" + event +
+                          "\",\"buffer\":\"" + (buffer == GL_BACK ? "back" : "front") + "\"}";
+  try {
+    writePng(s.dir + "/" + name, image, 8, provenance);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "libshadowlab-frames: %s\n", e.what());
+  }
+  ++s.frame;
+  s.awaiting = false;
+  if (s.nextKey < s.keys.size()) {
+    glutTimerFunc(0, deliverKey, int(s.nextKey));
+    ++s.nextKey;
+  } else {
+    s.done = true;
+    glutLeaveMainLoop();  // as when the window is closed
+  }
+}
+
+void deliverKey(int index) {
+  Session& s = session();
+  const int window = s.mainWindow;
+  auto it = s.keyboard.find(window);
+  if (it == s.keyboard.end() || it->second == nullptr) {
+    std::fprintf(stderr, "libshadowlab-frames: the program has no keyboard callback for key '%s'\n",
+                 s.keyNames[size_t(index)].c_str());
+    s.done = true;
+    glutLeaveMainLoop();
+    return;
+  }
+  glutSetWindow(window);
+  s.awaiting = true;
+  it->second(s.keys[size_t(index)], 0, 0);
+}
+
+void displayHook() {
+  Session& s = session();
+  const int window = glutGetWindow();
+  auto it = s.display.find(window);
+  if (it != s.display.end() && it->second != nullptr) it->second();
+  if (window == s.mainWindow && !glutGet(GLUT_WINDOW_DOUBLEBUFFER)) frameShown(GL_FRONT);
+}
+
+}  // namespace
+}  // namespace sl::interpose
+
+SL_EXPORT void glutDisplayFunc(void (*callback)()) {
+  static auto real = sl::interpose::nextFn<decltype(&::glutDisplayFunc)>("glutDisplayFunc");
+  auto& s = sl::interpose::session();
+  if (!sl::interpose::active()) return real(callback);
+  const int window = glutGetWindow();
+  if (s.mainWindow == 0) s.mainWindow = window;
+  s.display[window] = callback;
+  real(callback != nullptr ? sl::interpose::displayHook : nullptr);
+}
+
+SL_EXPORT void glutKeyboardFunc(void (*callback)(unsigned char, int, int)) {
+  static auto real = sl::interpose::nextFn<decltype(&::glutKeyboardFunc)>("glutKeyboardFunc");
+  if (sl::interpose::active()) sl::interpose::session().keyboard[glutGetWindow()] = callback;
+  real(callback);
+}
+
+SL_EXPORT void glutSwapBuffers() {
+  static auto real = sl::interpose::nextFn<decltype(&::glutSwapBuffers)>("glutSwapBuffers");
+  auto& s = sl::interpose::session();
+  if (sl::interpose::active() && glutGetWindow() == s.mainWindow &&
+      glutGet(GLUT_WINDOW_DOUBLEBUFFER))
+    sl::interpose::frameShown(GL_BACK);
+  real();
+}
