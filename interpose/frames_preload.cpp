@@ -35,9 +35,32 @@ constexpr unsigned char kEscape = 27;
 constexpr int kFrameNameDigits = 3;  // DIR/NNN.png
 constexpr float kByteMax = 255.0f;
 
+// freeglut's own function, by its library's handle (RTLD_NEXT would be answered relative to
+// libshadowlab-imaging.so, whose dlsym wraps glibc's: see interpose/imaging_preload.cpp).
+// The GLUT library is found through a function this library does not wrap (glutGet).
+void* glutLibrary() {
+  static void* glut = [] {
+    Dl_info info{};
+    void* handle = nullptr;
+    if (dladdr(reinterpret_cast<void*>(&glutGet), &info) != 0 && info.dli_fname != nullptr)
+      handle = dlopen(info.dli_fname, RTLD_NOW | RTLD_NOLOAD);
+    if (handle == nullptr) {
+      std::fprintf(stderr, "libshadowlab-frames: the program's GLUT library is not found\n");
+      std::exit(3);
+    }
+    return handle;
+  }();
+  return glut;
+}
+
 template <class Fn>
 Fn nextFn(const char* name) {
-  return reinterpret_cast<Fn>(dlsym(RTLD_NEXT, name));
+  auto fn = reinterpret_cast<Fn>(dlsym(glutLibrary(), name));
+  if (fn == nullptr) {
+    std::fprintf(stderr, "libshadowlab-frames: GLUT has no %s\n", name);
+    std::exit(3);
+  }
+  return fn;
 }
 
 // The driver's GL entry point, from libGL itself: never the imaging library's export (its

@@ -18,7 +18,8 @@
 //     functions for the names exported here.
 // Environment: SHADOWLAB_IMAGING=auto (default: emulate where the GL lacks ARB_imaging),
 // emulate (also where it has it), off (pass everything through);
-// SHADOWLAB_IMAGING_TRACE=FILE appends every glGetHistogram / glGetMinmax result as a JSON line.
+// SHADOWLAB_IMAGING_TRACE=FILE appends every glGetHistogram / glGetMinmax result as a JSON line;
+// SHADOWLAB_IMAGING_VERBOSE=1 says on stderr what was chosen for each context.
 #include <dlfcn.h>
 
 #include <cstdio>
@@ -173,6 +174,12 @@ void bindContext(Api api, const void* handle, void* display, unsigned long drawa
         std::fprintf(stderr, "libshadowlab-imaging: context left to the driver: %s\n", e.what());
         fresh->context.reset();
       }
+      if (std::getenv("SHADOWLAB_IMAGING_VERBOSE") != nullptr)
+        std::fprintf(stderr, "libshadowlab-imaging: %s context %p: %s\n", kApiNames[int(api)],
+                     handle,
+                     !fresh->context ? "left to the driver"
+                     : fresh->emulated ? "imaging emulated"
+                                       : "imaging native or core profile, passed through");
       slot = std::move(fresh);
     }
     a = slot.get();
@@ -568,4 +575,55 @@ SL_EXPORT OSMESAproc OSMesaGetProcAddress(const char* name) {
   if (void* own = sl::interpose::ownExport(name)) return reinterpret_cast<OSMESAproc>(own);
   static auto real = nextFn<decltype(&::OSMesaGetProcAddress)>("OSMesaGetProcAddress");
   return real(name);
+}
+
+static sl::interpose::Registration sRegisterHooks[] = {
+    {"glXMakeCurrent", reinterpret_cast<void*>(&glXMakeCurrent)},
+    {"glXMakeContextCurrent", reinterpret_cast<void*>(&glXMakeContextCurrent)},
+    {"glXDestroyContext", reinterpret_cast<void*>(&glXDestroyContext)},
+    {"glXGetProcAddressARB", reinterpret_cast<void*>(&glXGetProcAddressARB)},
+    {"glXGetProcAddress", reinterpret_cast<void*>(&glXGetProcAddress)},
+    {"eglMakeCurrent", reinterpret_cast<void*>(&eglMakeCurrent)},
+    {"eglDestroyContext", reinterpret_cast<void*>(&eglDestroyContext)},
+    {"eglGetProcAddress", reinterpret_cast<void*>(&eglGetProcAddress)},
+    {"OSMesaMakeCurrent", reinterpret_cast<void*>(&OSMesaMakeCurrent)},
+    {"OSMesaDestroyContext", reinterpret_cast<void*>(&OSMesaDestroyContext)},
+    {"OSMesaGetProcAddress", reinterpret_cast<void*>(&OSMesaGetProcAddress)},
+};
+
+// ---- dlsym: programs that load GL themselves ----------------------------------------------
+// Loaders (waffle under piglit, glad, SDL) dlopen libGL / libEGL and look entry points up by
+// handle, which never sees a preloaded library. For the names wrapped here, a lookup by handle
+// answers ours. Lookups from shadowlab's own libraries (they ask libGL for the driver's
+// functions by handle) and RTLD_DEFAULT / RTLD_NEXT lookups go to glibc's dlsym untouched.
+// DEVIATION (dlsym(3)): an RTLD_NEXT lookup from another library is answered as if this
+// library had asked (glibc takes the caller from the return address, which is now ours).
+namespace sl::interpose {
+namespace {
+using DlsymFn = void* (*)(void*, const char*);
+DlsymFn realDlsym() {
+  static const DlsymFn real = [] {
+    // glibc 2.34 moved dlsym into libc with a new version; older ones have only 2.2.5.
+    void* p = dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.34");
+    if (p == nullptr) p = dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.2.5");
+    return reinterpret_cast<DlsymFn>(p);
+  }();
+  return real;
+}
+
+bool callerIsOurs(const void* returnAddress) {
+  Dl_info info{};
+  if (dladdr(returnAddress, &info) == 0 || info.dli_fname == nullptr) return false;
+  return std::strstr(info.dli_fname, "libshadowlab-") != nullptr;
+}
+}  // namespace
+}  // namespace sl::interpose
+
+SL_EXPORT void* dlsym(void* handle, const char* name) {
+  const sl::interpose::DlsymFn real = sl::interpose::realDlsym();
+  if (handle != RTLD_NEXT && handle != RTLD_DEFAULT && name != nullptr &&
+      sl::interpose::policy() != sl::interpose::Policy::kOff &&
+      !sl::interpose::callerIsOurs(__builtin_return_address(0)))
+    if (void* own = sl::interpose::ownExport(name)) return own;
+  return real(handle, name);
 }
