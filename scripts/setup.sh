@@ -19,6 +19,8 @@ PACKAGES=(
   chromium            # tests/figures: report.html checked in headless Chromium (skips without)
   libcpp-httplib-dev  # `shadowlab serve`: the live lab's HTTP server (lab/)
   nodejs              # tests/browser: the lab's page driven by puppeteer-core (npm ci below)
+  freeglut3-dev xvfb  # run-legacy: unchanged GLUT programs on GLX (Xvfb when there is no display)
+  piglit              # tests/interpose: piglit's pixel tests with and without the drop-in library
 )
 
 missing=()

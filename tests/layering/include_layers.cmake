@@ -1,7 +1,7 @@
 # tests/layering/include_layers.cmake — fails on an include that points up the house.
 #
 # The layers, lowest first (DESIGN.md "Layout"; README "How it is built"):
-#   0 core/      1 imaging/      2 legacy_gl/ modern/ reference/ (never each other)
+#   0 core/      1 imaging/      2 legacy_gl/ modern/ reference/ interpose/ (never each other)
 #   3 registry/  4 figures/ lab/ (never each other)  5 apps/ tools/ (the executables' mains)
 # A source file may include headers of its own folder and of lower layers only.
 # Run: cmake -DSOURCE_DIR=<repo> -P include_layers.cmake   (a CTest test, label "core").
@@ -14,12 +14,13 @@ set(kLayer_imaging 1)
 set(kLayer_legacy_gl 2)
 set(kLayer_modern 2)
 set(kLayer_reference 2)
+set(kLayer_interpose 2)
 set(kLayer_registry 3)
 set(kLayer_figures 4)
 set(kLayer_lab 4)
 set(kLayer_apps 5)
 set(kLayer_tools 5)
-set(kModules core imaging legacy_gl modern reference registry figures lab apps tools)
+set(kModules core imaging legacy_gl modern reference interpose registry figures lab apps tools)
 
 set(violations "")
 set(checked 0)

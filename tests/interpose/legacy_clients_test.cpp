@@ -1,0 +1,359 @@
+// tests/interpose/legacy_clients_test.cpp — the drop-in imaging library on programs nobody here
+// wrote: the Red Book's convolution.c and histogram.c (../shared/legacy-clients), built
+// unchanged by scripts/build_legacy_client.sh and run by `shadowlab run-legacy --backend glx`
+// (Xvfb + freeglut + GLX llvmpipe + LD_PRELOAD); their frames and read-backs are compared
+// with the same calls made in process on the emulation (Debian OSMesa) and on the reference
+// Mesa 7.8.2 (native imaging). Also a C program on OSMesa (osmesa_client.c) and bad input.
+// Skips, with the reason, only where ../shared or the X / GLUT packages are absent.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/command_util.h"
+#include "core/context.h"
+#include "core/gl.h"
+#include "core/image.h"
+#include "imaging/imaging.h"
+
+namespace sl {
+namespace {
+namespace fs = std::filesystem;
+using namespace sl::gl;
+using test::CommandResult;
+using test::runBinary;
+using test::testDir;
+
+constexpr float kByteMax = 255.0f;
+
+fs::path sourceDir() { return fs::path(SHADOWLAB_SOURCE_DIR); }
+fs::path clientsDir() { return sourceDir() / ".." / "shared" / "legacy-clients" / "redbook"; }
+fs::path libraryDir() { return fs::path(SHADOWLAB_BINARY).parent_path() / ".." / "lib"; }
+
+bool onPath(const std::string& tool) {
+  return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+// Why the X path cannot run here, or "" when it can.
+std::string missingForGlx() {
+  if (!fs::exists(clientsDir() / "convolution.c"))
+    return "../shared/legacy-clients is not here (the Red Book clients are test inputs)";
+  if (std::getenv("DISPLAY") == nullptr && !onPath("Xvfb"))
+    return "Xvfb is not installed (scripts/setup.sh installs xvfb)";
+  if (std::system("pkg-config --exists glut gl") != 0)
+    return "freeglut3-dev is not installed (scripts/setup.sh installs it)";
+  if (!fs::exists(libraryDir() / "libshadowlab-frames.so"))
+    return "build/lib/libshadowlab-frames.so was not built (freeglut missing at configure time)";
+  return "";
+}
+
+#define SL_REQUIRE_GLX()                                \
+  if (const std::string why = missingForGlx(); !why.empty()) \
+  GTEST_SKIP() << "skipped: " << why
+
+// Builds a client once per test process, into build/test-output/interpose/clients, with
+// leeds.bin beside it (the programs read it from their working directory).
+fs::path client(const std::string& name) {
+  static std::mutex m;
+  std::lock_guard<std::mutex> lock(m);
+  const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "interpose" / "clients";
+  fs::create_directories(dir);
+  const fs::path program = dir / name;
+  const std::string cmd = (sourceDir() / "scripts" / "build_legacy_client.sh").string() + " " +
+                          (clientsDir() / (name + ".c")).string() + " " + dir.string() +
+                          " >/dev/null";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  fs::copy_file(clientsDir() / "leeds.bin", dir / "leeds.bin",
+                fs::copy_options::overwrite_existing);
+  return program;
+}
+
+// The image the clients draw: big-endian width and height, then RGB bytes (README).
+struct Leeds {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+Leeds readLeeds() {
+  std::ifstream in(clientsDir() / "leeds.bin", std::ios::binary);
+  uint8_t header[8];
+  in.read(reinterpret_cast<char*>(header), 8);
+  Leeds l;
+  l.width = (header[0] << 24) | (header[1] << 16) | (header[2] << 8) | header[3];
+  l.height = (header[4] << 24) | (header[5] << 16) | (header[6] << 8) | header[7];
+  l.rgb.resize(size_t(l.width) * l.height * 3);
+  in.read(reinterpret_cast<char*>(l.rgb.data()), std::streamsize(l.rgb.size()));
+  return l;
+}
+
+// `shadowlab run-legacy --backend glx` from the client's folder.
+CommandResult runLegacy(const fs::path& program, const std::string& keys, const fs::path& frames,
+                        const fs::path& logs, const std::string& env = "") {
+  const std::string args = "run-legacy --backend glx --keys '" + keys + "' --frames " +
+                           frames.string() + " -- ./" + program.filename().string();
+  return runBinary("cd " + program.parent_path().string() + " && " + env + " " +
+                       SHADOWLAB_BINARY,
+                   args, logs);
+}
+
+std::vector<uint8_t> pngBytes(const fs::path& p, int& w, int& h) {
+  const Image img = readPng(p.string());
+  w = img.width;
+  h = img.height;
+  std::vector<uint8_t> out(size_t(w) * h * 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        out[(size_t(y) * w + x) * 3 + c] = uint8_t(std::lround(img.at(x, y, c) * kByteMax));
+  return out;
+}
+
+// The window as the convolution client leaves it, drawn in process on `backend`: the calls
+// its README describes (a 3x3 GL_LUMINANCE filter on GL_CONVOLUTION_2D, glDrawPixels of the
+// image at raster position (1, 1) in a pixel-exact orthographic projection), read back with
+// the convolution disabled.
+std::vector<uint8_t> convolvedInProcess(Backend backend, const Leeds& l, const float kernel[9]) {
+  ContextSpec spec;
+  spec.backend = backend;
+  spec.width = l.width;
+  spec.height = l.height;
+  auto ctx = GlContext::create(spec);
+  imaging::install(*ctx);
+  glViewport(0, 0, l.width, l.height);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, l.width, 0, l.height, -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glClearColor(0, 0, 0, 0);
+  glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_LUMINANCE, 3, 3, GL_LUMINANCE, GL_FLOAT, kernel);
+  glEnable(GL_CONVOLUTION_2D);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glRasterPos2i(1, 1);
+  glDrawPixels(l.width, l.height, GL_RGB, GL_UNSIGNED_BYTE, l.rgb.data());
+  glDisable(GL_CONVOLUTION_2D);
+  glFinish();
+  std::vector<uint8_t> out(size_t(l.width) * l.height * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, l.width, l.height, GL_RGB, GL_UNSIGNED_BYTE, out.data());
+  return out;
+}
+
+// The three kernels the program's keys select (README: horizontal, vertical, Laplacian
+// edge filters), rows as glConvolutionFilter2D takes them.
+constexpr float kHorizontal[9] = {0, -1, 0, 0, 1, 0, 0, 0, 0};
+constexpr float kVertical[9] = {0, 0, 0, -1, 1, 0, 0, 0, 0};
+constexpr float kLaplacianSide = -0.125f;
+constexpr float kLaplacian[9] = {kLaplacianSide, kLaplacianSide, kLaplacianSide,
+                                 kLaplacianSide, 1.0f,           kLaplacianSide,
+                                 kLaplacianSide, kLaplacianSide, kLaplacianSide};
+
+int differingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  int n = 0;
+  for (size_t i = 0; i + 2 < a.size() && i + 2 < b.size(); i += 3)
+    n += a[i] != b[i] || a[i + 1] != b[i + 1] || a[i + 2] != b[i + 2];
+  return n;
+}
+
+TEST(LegacyClients, ConvolutionRefusesWithoutTheEmulation) {
+  SL_REQUIRE_GLX();
+  const fs::path program = client("convolution");
+  const fs::path dir = testDir("interpose", true);
+  // SHADOWLAB_IMAGING=off: the library passes everything through, as if it were absent.
+  const CommandResult r = runLegacy(program, "", dir / "frames", dir, "SHADOWLAB_IMAGING=off");
+  EXPECT_EQ(r.status, 1) << r.err;  // the program's own exit status
+  EXPECT_NE(r.err.find("Sorry, this program requires GL_ARB_imaging."), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "frames")) << "no frames from a failed run";
+}
+
+TEST(LegacyClients, ConvolutionFramesEqualTheInProcessEmulation) {
+  SL_REQUIRE_GLX();
+  const fs::path program = client("convolution");
+  const fs::path dir = testDir("interpose", true);
+  const CommandResult r = runLegacy(program, "h v l", dir / "frames", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Using the laplacian filter"), std::string::npos) << "stdout passes through";
+  const Leeds l = readLeeds();
+  const float* kernels[4] = {kHorizontal, kHorizontal, kVertical, kLaplacian};
+  std::vector<uint8_t> previous;
+  for (int f = 0; f < 4; ++f) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%03d.png", f);
+    int w = 0, h = 0;
+    const std::vector<uint8_t> frame = pngBytes(dir / "frames" / name, w, h);
+    ASSERT_EQ(w, l.width);
+    ASSERT_EQ(h, l.height);
+    const std::vector<uint8_t> expected = convolvedInProcess(Backend::kOsmesa, l, kernels[f]);
+    EXPECT_EQ(differingPixels(frame, expected), 0) << "frame " << name;
+    if (f == 2 || f == 3) EXPECT_GT(differingPixels(frame, previous), 0) << name << " = previous";
+    previous = frame;
+  }
+  EXPECT_FALSE(fs::exists(dir / "frames" / "004.png"));
+}
+
+// The Laplacian's exact value at window pixel (x, y), in 1/(8 * 255) steps: with GL_REDUCE the
+// output group (i, j) lands at (1 + i, 1 + j) and is centred on source pixel (1 + i, 1 + j),
+// so window pixel (x, y) is 8 * centre - the 8 neighbours of source (x, y).
+int laplacianEighths(const Leeds& l, int x, int y, int c) {
+  auto at = [&](int sx, int sy) { return int(l.rgb[(size_t(sy) * l.width + sx) * 3 + c]); };
+  int sum = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (dx != 0 || dy != 0) sum += at(x + dx, y + dy);
+  return 8 * at(x, y) - sum;
+}
+
+// The same frames from the reference Mesa 7.8.2 (native imaging), in process. The three
+// integer kernels give every byte exactly; the Laplacian's -1/8 weights put some results on
+// an exact tie k + 1/2, which single-precision sums round either way (the reference README's
+// "exact ties may go either way"): there, and only there, the two may differ by one.
+TEST(LegacyClients, ConvolutionFramesEqualTheReference) {
+  SL_REQUIRE_GLX();
+  if (referenceGlPath().empty() || !fs::exists(referenceGlPath()))
+    GTEST_SKIP() << "skipped: the reference GL (../shared/reference-gl) is not here";
+  const fs::path program = client("convolution");
+  const fs::path dir = testDir("interpose", true);
+  const CommandResult r = runLegacy(program, "h v l", dir / "frames", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Leeds l = readLeeds();
+  const float* kernels[4] = {kHorizontal, kHorizontal, kVertical, kLaplacian};
+  constexpr int kLaplacianFrame = 3;
+  constexpr int kTieEighths = 4;  // k + 4/8: an exact tie
+  for (int f = 0; f < 4; ++f) {
+    char name[16];
+    std::snprintf(name, sizeof name, "%03d.png", f);
+    int w = 0, h = 0;
+    const std::vector<uint8_t> frame = pngBytes(dir / "frames" / name, w, h);
+    const std::vector<uint8_t> expected = convolvedInProcess(Backend::kReference, l, kernels[f]);
+    ASSERT_EQ(frame.size(), expected.size());
+    if (f != kLaplacianFrame) {
+      EXPECT_EQ(differingPixels(frame, expected), 0) << "frame " << name;
+      continue;
+    }
+    int ties = 0, unexplained = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const size_t i = (size_t(y) * w + x) * 3 + c;
+          if (frame[i] == expected[i]) continue;
+          const bool inside = x >= 1 && y >= 1 && x + 1 < l.width && y + 1 < l.height;
+          const int v = inside ? laplacianEighths(l, x, y, c) : 0;
+          const bool tie = inside && v > 0 && v % 8 == kTieEighths &&
+                           std::abs(int(frame[i]) - int(expected[i])) == 1 &&
+                           std::min(frame[i], expected[i]) == v / 8;
+          tie ? ++ties : ++unexplained;
+        }
+    EXPECT_EQ(unexplained, 0) << "Laplacian bytes that differ off an exact tie";
+    std::cout << "Laplacian frame: " << ties << " bytes differ by one, all on exact ties\n";
+  }
+}
+
+// histogram.c reads its GL_RGB histogram back (glGetHistogram, GL_UNSIGNED_SHORT) in every
+// display; the library's trace records it. It must equal the emulation's in process and the
+// reference's, and 's' (sink) must not change what is counted.
+std::vector<uint32_t> histogramInProcess(Backend backend, const Leeds& l) {
+  ContextSpec spec;
+  spec.backend = backend;
+  spec.width = l.width;
+  spec.height = l.height;
+  auto ctx = GlContext::create(spec);
+  imaging::install(*ctx);
+  constexpr int kBins = 256;  // the program's HISTOGRAM_SIZE (README: 256 bins)
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glHistogram(GL_HISTOGRAM, kBins, GL_RGB, GL_FALSE);
+  glEnable(GL_HISTOGRAM);
+  glViewport(0, 0, l.width, l.height);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, l.width, 0, l.height, -1, 1);
+  glMatrixMode(GL_MODELVIEW);
+  glRasterPos2i(1, 1);
+  glDrawPixels(l.width, l.height, GL_RGB, GL_UNSIGNED_BYTE, l.rgb.data());
+  std::vector<GLushort> values(kBins * 3);
+  glGetHistogram(GL_HISTOGRAM, GL_TRUE, GL_RGB, GL_UNSIGNED_SHORT, values.data());
+  return std::vector<uint32_t>(values.begin(), values.end());
+}
+
+TEST(LegacyClients, HistogramReadBackEqualsInProcessAndReference) {
+  SL_REQUIRE_GLX();
+  const fs::path program = client("histogram");
+  const fs::path dir = testDir("interpose", true);
+  const fs::path trace = dir / "trace.jsonl";
+  const CommandResult r = runLegacy(program, "s", dir / "frames", dir,
+                                    "SHADOWLAB_IMAGING_TRACE=" + trace.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(trace);
+  std::vector<std::vector<uint32_t>> reads;
+  for (std::string line; std::getline(in, line);) {
+    const auto j = nlohmann::json::parse(line);
+    if (j["call"] == "glGetHistogram") reads.push_back(j["values"].get<std::vector<uint32_t>>());
+  }
+  ASSERT_GE(reads.size(), 2u) << "one read-back per displayed frame";
+  const Leeds l = readLeeds();
+  const std::vector<uint32_t> emulated = histogramInProcess(Backend::kOsmesa, l);
+  EXPECT_EQ(reads.front(), emulated);
+  EXPECT_EQ(reads.back(), emulated) << "the sink flag does not change the counts";
+  if (!referenceGlPath().empty() && fs::exists(referenceGlPath()))
+    EXPECT_EQ(reads.front(), histogramInProcess(Backend::kReference, l));
+}
+
+// A C program on OSMesa: extension strings, GetProcAddress, merged errors, enables and
+// queries, the colour matrix on glDrawPixels, contexts on two threads (osmesa_client.c).
+TEST(DropIn, OsmesaClientSeesTheImagingSubset) {
+  if (std::system("pkg-config --exists osmesa") != 0) GTEST_SKIP() << "skipped: no OSMesa headers";
+  const fs::path dir = testDir("interpose", true);
+  const fs::path exe = dir / "osmesa_client";
+  const std::string build = "cc -O1 -o " + exe.string() + " " +
+                            (sourceDir() / "tests" / "interpose" / "osmesa_client.c").string() +
+                            " $(pkg-config --cflags --libs osmesa) -lpthread";
+  ASSERT_EQ(std::system(build.c_str()), 0) << build;
+  const CommandResult without = runBinary(exe.string(), "", dir);
+  EXPECT_EQ(without.status, 1) << "Debian's OSMesa alone has no GL_ARB_imaging";
+  EXPECT_NE(without.out.find("FAIL no GL_ARB_imaging"), std::string::npos) << without.out;
+  const std::string library = (libraryDir() / "libshadowlab-imaging.so").string();
+  const CommandResult with = runBinary("LD_PRELOAD=" + library + " " + exe.string(), "", dir);
+  EXPECT_EQ(with.status, 0) << with.out << with.err;
+  constexpr int kChecks = 7;  // the "ok" lines osmesa_client.c prints
+  int ok = 0;
+  for (size_t p = with.out.find("ok "); p != std::string::npos; p = with.out.find("\nok ", p + 1)) ++ok;
+  EXPECT_EQ(ok, kChecks) << with.out;
+}
+
+TEST(RunLegacy, BadInputIsRefusedWithStatus2) {
+  const fs::path dir = testDir("interpose", true);
+  const std::string bin = SHADOWLAB_BINARY;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run-legacy --frames f -- true", "--backend is required"},
+      {"run-legacy --backend vulkan --frames f -- true", "unknown --backend"},
+      {"run-legacy --backend glx -- true", "--frames DIR is required"},
+      {"run-legacy --backend glx --frames f", "no program"},
+      {"run-legacy --backend glx --frames f -- ./no-such-program", "is not an executable"},
+      {"run-legacy --backend glx --keys 'h ctrl' --frames f -- true", "key 'ctrl'"},
+      {"run-legacy --backend glx --frames f --timeout -1 -- true", "--timeout"},
+      {"run-legacy --backend glx --bogus 1 --frames f -- true", "run-legacy:"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CommandResult r = runBinary("cd " + dir.string() + " && " + bin, args, dir);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  }
+  fs::create_directories(dir / "full");
+  std::ofstream(dir / "full" / "x.png") << "x";
+  const CommandResult r = runBinary(bin, "run-legacy --backend glx --frames " +
+                                             (dir / "full").string() + " -- /bin/true", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("is not empty"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace sl
