@@ -2,8 +2,13 @@
 // drop-in imaging library, every displayed frame written as DIR/NNN.png
 // (docs/legacy-programs.md).
 //
-//   glx   Xvfb (started here when DISPLAY is unset) + Debian's freeglut + GLX on llvmpipe,
-//         with LD_PRELOAD=libshadowlab-imaging.so:libshadowlab-frames.so — the path a user has.
+//   glx        Xvfb (started here when DISPLAY is unset) + Debian's freeglut + GLX on
+//              llvmpipe, with LD_PRELOAD=libshadowlab-imaging.so:libshadowlab-frames.so — the
+//              path a user has.
+//   osmesa     the project's headless GLUT (libshadowlab-glut.so) on Debian's OSMesa, with
+//              libshadowlab-imaging.so: no window system at all.
+//   reference  the headless GLUT on the reference Mesa 7.8.2 (native imaging; the imaging
+//              library is preloaded too and passes it through).
 //
 // The program's stdout and stderr pass through; its exit status is the command's. The frames
 // appear only when the program ended with status 0 and showed every frame asked for.
@@ -27,6 +32,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/context.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 
@@ -39,9 +45,10 @@ constexpr int kXvfbStartSeconds = 15;            // Xvfb names its display withi
 constexpr auto kPollInterval = std::chrono::milliseconds(20);
 constexpr const char* kXvfbScreen = "1280x1024x24";  // larger than the Red Book windows
 constexpr int kExitSignalBase = 128;                  // shell convention for a killed program
+constexpr const char* kDebianOsmesa = "libOSMesa.so.8";  // Debian 12's OSMesa (libosmesa6)
 
 const char* kRunLegacyHelp =
-    R"(usage: shadowlab run-legacy --backend glx [--keys "h v l"] --frames DIR [--timeout S]
+    R"(usage: shadowlab run-legacy --backend glx|osmesa|reference [--keys "h v l"] --frames DIR [--timeout S]
                            -- PROGRAM [ARGS...]
 Runs an unchanged OpenGL 1.x GLUT program with the imaging subset preloaded
 (build/lib/libshadowlab-imaging.so) and writes each displayed frame as DIR/NNN.png: 000.png
@@ -49,8 +56,10 @@ after start-up, then one after each key of --keys (one character each, or esc / 
 delivered to the program's keyboard callback. After the last frame the main loop is left as
 when the window is closed. The program runs in the current directory; its stdout and stderr
 pass through and its exit status is the command's.
-  --backend glx   Xvfb (started when DISPLAY is unset) + freeglut + GLX on llvmpipe
-                  (osmesa and reference, a headless GLUT on OSMesa, are not built yet)
+  --backend glx        Xvfb (started when DISPLAY is unset) + freeglut + GLX on llvmpipe
+  --backend osmesa     the project's headless GLUT on Debian's OSMesa (no display needed)
+  --backend reference  the headless GLUT on the reference Mesa 7.8.2 (native imaging;
+                       $SHADOWLAB_REFERENCE_GL or ../shared/reference-gl)
   --frames DIR    must not exist or be empty; filled only when the run succeeds
   --timeout S     seconds before the program is stopped (exit 3); default 60
 )";
@@ -125,12 +134,11 @@ Options parseOptions(int argc, char** argv) {
     std::exit(0);
   }
   for (int i = split + 1; i < argc; ++i) o.program.emplace_back(argv[i]);
-  if (o.backend.empty()) throw InputError("run-legacy: --backend is required (glx)");
-  if (o.backend == "osmesa" || o.backend == "reference")
-    throw InputError("run-legacy: --backend " + o.backend +
-                     " (a headless GLUT on OSMesa) is not built yet; use --backend glx");
-  if (o.backend != "glx")
-    throw InputError("run-legacy: unknown --backend '" + o.backend + "' (expected glx)");
+  if (o.backend.empty())
+    throw InputError("run-legacy: --backend is required (glx, osmesa or reference)");
+  if (o.backend != "glx" && o.backend != "osmesa" && o.backend != "reference")
+    throw InputError("run-legacy: unknown --backend '" + o.backend +
+                     "' (expected glx, osmesa or reference)");
   if (o.frames.empty()) throw InputError("run-legacy: --frames DIR is required");
   if (o.program.empty()) throw InputError("run-legacy: no program after '--'");
   if (!(o.timeout > 0)) throw InputError("run-legacy: --timeout must be a positive number");
@@ -198,9 +206,25 @@ void checkFramesDir(const fs::path& dir) {
   if (!fs::is_empty(dir)) throw InputError("--frames " + dir.string() + " is not empty");
 }
 
-int runGlx(const Options& o) {
-  const fs::path imaging = libraryPath("libshadowlab-imaging.so");
-  const fs::path frames = libraryPath("libshadowlab-frames.so");
+// What is preloaded, in lookup order, for each back end.
+std::string preloadFor(const Options& o) {
+  if (o.backend == "glx")
+    return libraryPath("libshadowlab-imaging.so").string() + ":" +
+           libraryPath("libshadowlab-frames.so").string();
+  const std::string glut = libraryPath("libshadowlab-glut.so").string();
+  if (o.backend == "osmesa")
+    return libraryPath("libshadowlab-imaging.so").string() + ":" + glut + ":" + kDebianOsmesa;
+  const std::string reference = referenceGlPath();
+  if (reference.empty() || !fs::exists(reference))
+    throw GlError("the reference GL (Mesa 7.8.2) is not here: set SHADOWLAB_REFERENCE_GL or "
+                  "place it at ../shared/reference-gl");
+  // The imaging library stays out of the way of the native subset (it only traces, when
+  // SHADOWLAB_IMAGING_TRACE asks), as it does on any GL that has GL_ARB_imaging.
+  return libraryPath("libshadowlab-imaging.so").string() + ":" + glut + ":" + reference;
+}
+
+int runProgramWithFrames(const Options& o) {
+  std::string preload = preloadFor(o);
   const std::string program = findProgram(o.program[0]);
   const fs::path dir = fs::absolute(o.frames);
   checkFramesDir(dir);
@@ -212,15 +236,14 @@ int runGlx(const Options& o) {
   Child xvfb;
   std::string display;
   if (const char* d = std::getenv("DISPLAY"); d != nullptr && *d != 0) display = d;
-  else display = startXvfb(xvfb);
+  else if (o.backend == "glx") display = startXvfb(xvfb);
 
-  std::string preload = imaging.string() + ":" + frames.string();
   if (const char* p = std::getenv("LD_PRELOAD"); p != nullptr && *p != 0) preload += ":" + std::string(p);
   Child child;
   child.pid = fork();
   if (child.pid < 0) throw GlError("cannot fork for the program");
   if (child.pid == 0) {
-    setenv("DISPLAY", display.c_str(), 1);
+    if (!display.empty()) setenv("DISPLAY", display.c_str(), 1);
     setenv("LD_PRELOAD", preload.c_str(), 1);
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);  // llvmpipe, whatever GPU the machine has
     setenv("SHADOWLAB_FRAMES_DIR", partial.c_str(), 1);
@@ -276,7 +299,7 @@ int runGlx(const Options& o) {
 
 int runLegacy(int argc, char** argv) {
   const Options o = parseOptions(argc, argv);
-  return runGlx(o);
+  return runProgramWithFrames(o);
 }
 
 }  // namespace sl

@@ -44,7 +44,7 @@ usage:
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
-  shadowlab run-legacy --backend glx [--keys "h v l"] --frames DIR -- PROGRAM [ARGS]
+  shadowlab run-legacy --backend glx|osmesa|reference [--keys "h v l"] --frames DIR -- PROGRAM [ARGS]
                                                    an unchanged GL 1.x GLUT program, imaging preloaded
   shadowlab --version                              the commit this binary was built from
 

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "interpose/frame_files.h"
 
 #include <GL/gl.h>
 #include <GL/freeglut.h>
@@ -31,8 +32,6 @@
 namespace sl::interpose {
 namespace {
 
-constexpr unsigned char kEscape = 27;
-constexpr int kFrameNameDigits = 3;  // DIR/NNN.png
 constexpr float kByteMax = 255.0f;
 
 // freeglut's own function, by its library's handle (RTLD_NEXT would be answered relative to
@@ -72,39 +71,19 @@ Fn driverFn(const char* name) {
   return reinterpret_cast<Fn>(dlsym(gl, name));
 }
 
-struct Session {
-  std::string dir;
-  std::vector<unsigned char> keys;
-  std::vector<std::string> keyNames;
-  size_t nextKey = 0;
-  int frame = 0;
-  bool awaiting = true;  // the next displayed frame is written
-  bool done = false;
+// The program's callbacks, per GLUT window.
+struct Callbacks {
   std::map<int, void (*)()> display;
   std::map<int, void (*)(unsigned char, int, int)> keyboard;
   int mainWindow = 0;
 };
 
-Session& session() {
-  static Session s = [] {
-    Session made;
-    if (const char* d = std::getenv("SHADOWLAB_FRAMES_DIR")) made.dir = d;
-    if (const char* k = std::getenv("SHADOWLAB_KEYS")) {
-      std::istringstream words(k);
-      std::string w;
-      while (words >> w) {
-        if (w == "esc") made.keys.push_back(kEscape);
-        else if (w == "space") made.keys.push_back(' ');
-        else made.keys.push_back(static_cast<unsigned char>(w[0]));
-        made.keyNames.push_back(w);
-      }
-    }
-    return made;
-  }();
-  return s;
+Callbacks& callbacks() {
+  static Callbacks c;
+  return c;
 }
 
-bool active() { return !session().dir.empty(); }
+bool active() { return FrameSession::get().active(); }
 
 // Reads the window's colour buffer `buffer` (GL_FRONT or GL_BACK) as shown: tight pixel
 // storage, no pack buffer; the program's state is restored.
@@ -144,8 +123,8 @@ void deliverKey(int index);
 
 // A frame was shown on `buffer`: written when one is awaited, then the next key or the end.
 void frameShown(GLenum buffer) {
-  Session& s = session();
-  if (!active() || !s.awaiting || s.done) return;
+  FrameSession& s = FrameSession::get();
+  if (!s.active() || !s.awaiting || s.done) return;
   const int w = glutGet(GLUT_WINDOW_WIDTH), h = glutGet(GLUT_WINDOW_HEIGHT);
   const Image image = readWindow(buffer, w, h);
   if (image.empty()) {
@@ -154,35 +133,17 @@ void frameShown(GLenum buffer) {
     glutLeaveMainLoop();
     return;
   }
-  char name[32];
-  std::snprintf(name, sizeof name, "%0*d.png", kFrameNameDigits, s.frame);
-  const std::string event = s.frame == 0 ? std::string("start-up")
-                                         : "key " + s.keyNames[size_t(s.frame - 1)];
-  Provenance provenance;
-  if (const char* c = std::getenv("SHADOWLAB_FRAMES_COMMAND")) provenance.command = c;
-  provenance.parameters = "{\"frame\":" + std::to_string(s.frame) + ",\"after\":\"" + event +
-                          "\",\"buffer\":\"" + (buffer == GL_BACK ? "back" : "front") + "\"}";
-  try {
-    writePng(s.dir + "/" + name, image, 8, provenance);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "libshadowlab-frames: %s\n", e.what());
-  }
-  ++s.frame;
-  s.awaiting = false;
-  if (s.nextKey < s.keys.size()) {
-    glutTimerFunc(0, deliverKey, int(s.nextKey));
-    ++s.nextKey;
-  } else {
-    s.done = true;
-    glutLeaveMainLoop();  // as when the window is closed
-  }
+  s.write(image, buffer == GL_BACK ? "back" : "front");
+  const int key = s.takeKey();
+  if (key >= 0) glutTimerFunc(0, deliverKey, key);
+  else glutLeaveMainLoop();  // as when the window is closed
 }
 
 void deliverKey(int index) {
-  Session& s = session();
-  const int window = s.mainWindow;
-  auto it = s.keyboard.find(window);
-  if (it == s.keyboard.end() || it->second == nullptr) {
+  FrameSession& s = FrameSession::get();
+  const int window = callbacks().mainWindow;
+  auto it = callbacks().keyboard.find(window);
+  if (it == callbacks().keyboard.end() || it->second == nullptr) {
     std::fprintf(stderr, "libshadowlab-frames: the program has no keyboard callback for key '%s'\n",
                  s.keyNames[size_t(index)].c_str());
     s.done = true;
@@ -195,11 +156,11 @@ void deliverKey(int index) {
 }
 
 void displayHook() {
-  Session& s = session();
+  Callbacks& c = callbacks();
   const int window = glutGetWindow();
-  auto it = s.display.find(window);
-  if (it != s.display.end() && it->second != nullptr) it->second();
-  if (window == s.mainWindow && !glutGet(GLUT_WINDOW_DOUBLEBUFFER)) frameShown(GL_FRONT);
+  auto it = c.display.find(window);
+  if (it != c.display.end() && it->second != nullptr) it->second();
+  if (window == c.mainWindow && !glutGet(GLUT_WINDOW_DOUBLEBUFFER)) frameShown(GL_FRONT);
 }
 
 }  // namespace
@@ -207,7 +168,7 @@ void displayHook() {
 
 SL_EXPORT void glutDisplayFunc(void (*callback)()) {
   static auto real = sl::interpose::nextFn<decltype(&::glutDisplayFunc)>("glutDisplayFunc");
-  auto& s = sl::interpose::session();
+  auto& s = sl::interpose::callbacks();
   if (!sl::interpose::active()) return real(callback);
   const int window = glutGetWindow();
   if (s.mainWindow == 0) s.mainWindow = window;
@@ -217,13 +178,13 @@ SL_EXPORT void glutDisplayFunc(void (*callback)()) {
 
 SL_EXPORT void glutKeyboardFunc(void (*callback)(unsigned char, int, int)) {
   static auto real = sl::interpose::nextFn<decltype(&::glutKeyboardFunc)>("glutKeyboardFunc");
-  if (sl::interpose::active()) sl::interpose::session().keyboard[glutGetWindow()] = callback;
+  if (sl::interpose::active()) sl::interpose::callbacks().keyboard[glutGetWindow()] = callback;
   real(callback);
 }
 
 SL_EXPORT void glutSwapBuffers() {
   static auto real = sl::interpose::nextFn<decltype(&::glutSwapBuffers)>("glutSwapBuffers");
-  auto& s = sl::interpose::session();
+  auto& s = sl::interpose::callbacks();
   if (sl::interpose::active() && glutGetWindow() == s.mainWindow &&
       glutGet(GLUT_WINDOW_DOUBLEBUFFER))
     sl::interpose::frameShown(GL_BACK);
