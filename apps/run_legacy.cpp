@@ -43,8 +43,8 @@ namespace fs = std::filesystem;
 constexpr double kDefaultTimeoutSeconds = 60.0;  // a Red Book program shows a frame in < 1 s
 constexpr int kXvfbStartSeconds = 15;            // Xvfb names its display within this
 constexpr auto kPollInterval = std::chrono::milliseconds(20);
-constexpr const char* kXvfbScreen = "1280x1024x24";  // larger than the Red Book windows
-constexpr int kExitSignalBase = 128;                  // shell convention for a killed program
+constexpr const char* kXvfbScreen = "1280x1024x24";      // larger than the Red Book windows
+constexpr int kExitSignalBase = 128;                     // shell convention for a killed program
 constexpr const char* kDebianOsmesa = "libOSMesa.so.8";  // Debian 12's OSMesa (libosmesa6)
 
 const char* kRunLegacyHelp =
@@ -195,7 +195,8 @@ std::string startXvfb(Child& xvfb) {
   }
   close(fds[0]);
   if (number.empty())
-    throw GlError("Xvfb did not start (install it: scripts/setup.sh installs xvfb), or set DISPLAY");
+    throw GlError(
+        "Xvfb did not start (install it: scripts/setup.sh installs xvfb), or set DISPLAY");
   return ":" + number;
 }
 
@@ -216,8 +217,9 @@ std::string preloadFor(const Options& o) {
     return libraryPath("libshadowlab-imaging.so").string() + ":" + glut + ":" + kDebianOsmesa;
   const std::string reference = referenceGlPath();
   if (reference.empty() || !fs::exists(reference))
-    throw GlError("the reference GL (Mesa 7.8.2) is not here: set SHADOWLAB_REFERENCE_GL or "
-                  "place it at ../shared/reference-gl");
+    throw GlError(
+        "the reference GL (Mesa 7.8.2) is not here: set SHADOWLAB_REFERENCE_GL or "
+        "place it at ../shared/reference-gl");
   // The imaging library stays out of the way of the native subset (it only traces, when
   // SHADOWLAB_IMAGING_TRACE asks), as it does on any GL that has GL_ARB_imaging.
   return libraryPath("libshadowlab-imaging.so").string() + ":" + glut + ":" + reference;
@@ -235,10 +237,13 @@ int runProgramWithFrames(const Options& o) {
 
   Child xvfb;
   std::string display;
-  if (const char* d = std::getenv("DISPLAY"); d != nullptr && *d != 0) display = d;
-  else if (o.backend == "glx") display = startXvfb(xvfb);
+  if (const char* d = std::getenv("DISPLAY"); d != nullptr && *d != 0)
+    display = d;
+  else if (o.backend == "glx")
+    display = startXvfb(xvfb);
 
-  if (const char* p = std::getenv("LD_PRELOAD"); p != nullptr && *p != 0) preload += ":" + std::string(p);
+  if (const char* p = std::getenv("LD_PRELOAD"); p != nullptr && *p != 0)
+    preload += ":" + std::string(p);
   Child child;
   child.pid = fork();
   if (child.pid < 0) throw GlError("cannot fork for the program");
@@ -257,8 +262,7 @@ int runProgramWithFrames(const Options& o) {
                  std::strerror(errno));
     _exit(kExitGlError);
   }
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration<double>(o.timeout);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.timeout);
   int status = 0;
   for (;;) {
     const pid_t done = waitpid(child.pid, &status, WNOHANG);
@@ -274,8 +278,9 @@ int runProgramWithFrames(const Options& o) {
     std::this_thread::sleep_for(kPollInterval);
   }
   child.pid = -1;
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status)
-                                     : kExitSignalBase + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  const int code = WIFEXITED(status)
+                       ? WEXITSTATUS(status)
+                       : kExitSignalBase + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   if (code != 0) {
     fs::remove_all(partial);
     return code;

@@ -19,9 +19,12 @@ FrameSession& FrameSession::get() {
       std::istringstream words(k);
       std::string w;
       while (words >> w) {
-        if (w == "esc") made.keys.push_back(kEscape);
-        else if (w == "space") made.keys.push_back(' ');
-        else made.keys.push_back(static_cast<unsigned char>(w[0]));
+        if (w == "esc")
+          made.keys.push_back(kEscape);
+        else if (w == "space")
+          made.keys.push_back(' ');
+        else
+          made.keys.push_back(static_cast<unsigned char>(w[0]));
         made.keyNames.push_back(w);
       }
     }
@@ -33,8 +36,8 @@ FrameSession& FrameSession::get() {
 bool FrameSession::write(const Image& rgb, const char* source) {
   char name[32];
   std::snprintf(name, sizeof name, "%0*d.png", kFrameNameDigits, frame);
-  const std::string event = frame == 0 ? std::string("start-up")
-                                       : "key " + keyNames[size_t(frame - 1)];
+  const std::string event =
+      frame == 0 ? std::string("start-up") : "key " + keyNames[size_t(frame - 1)];
   Provenance provenance;
   if (const char* c = std::getenv("SHADOWLAB_FRAMES_COMMAND")) provenance.command = c;
   provenance.parameters = "{\"frame\":" + std::to_string(frame) + ",\"after\":\"" + event +

@@ -11,6 +11,8 @@
 // time through the program's keyboard callback from a GLUT timer, each after the previous
 // frame was written. After the last frame the main loop is left as when the window is closed
 // (glutLeaveMainLoop), so the program ends through its own exit path.
+#include <GL/freeglut.h>
+#include <GL/gl.h>
 #include <dlfcn.h>
 
 #include <cstdio>
@@ -23,9 +25,6 @@
 
 #include "core/image.h"
 #include "interpose/frame_files.h"
-
-#include <GL/gl.h>
-#include <GL/freeglut.h>
 
 #define SL_EXPORT extern "C" __attribute__((visibility("default")))
 
@@ -83,7 +82,9 @@ Callbacks& callbacks() {
   return c;
 }
 
-bool active() { return FrameSession::get().active(); }
+bool active() {
+  return FrameSession::get().active();
+}
 
 // Reads the window's colour buffer `buffer` (GL_FRONT or GL_BACK) as shown: tight pixel
 // storage, no pack buffer; the program's state is restored.
@@ -135,8 +136,10 @@ void frameShown(GLenum buffer) {
   }
   s.write(image, buffer == GL_BACK ? "back" : "front");
   const int key = s.takeKey();
-  if (key >= 0) glutTimerFunc(0, deliverKey, key);
-  else glutLeaveMainLoop();  // as when the window is closed
+  if (key >= 0)
+    glutTimerFunc(0, deliverKey, key);
+  else
+    glutLeaveMainLoop();  // as when the window is closed
 }
 
 void deliverKey(int index) {

@@ -10,6 +10,9 @@
 // it). Frames and keys as in frame_files.h; after the last frame the program exits 0, as
 // freeglut does when its window is closed. Written from the GLUT 3 specification's
 // description of each call (Kilgard 1996), not from any GLUT's source.
+#include <GL/freeglut_std.h>
+#include <GL/gl.h>
+#include <GL/osmesa.h>
 #include <dlfcn.h>
 
 #include <cmath>
@@ -24,21 +27,17 @@
 
 #include "interpose/frame_files.h"
 
-#include <GL/gl.h>
-#include <GL/osmesa.h>
-#include <GL/freeglut_std.h>
-
 #define SL_EXPORT extern "C" __attribute__((visibility("default")))
 
 namespace sl::interpose {
 namespace {
 
-constexpr int kDefaultWindowSide = 300;   // GLUT 3 spec, glutInitWindowSize: 300 x 300
-constexpr int kScreenWidth = 1280;        // the screen GLUT_SCREEN_WIDTH/HEIGHT report
+constexpr int kDefaultWindowSide = 300;  // GLUT 3 spec, glutInitWindowSize: 300 x 300
+constexpr int kScreenWidth = 1280;       // the screen GLUT_SCREEN_WIDTH/HEIGHT report
 constexpr int kScreenHeight = 1024;
-constexpr int kDepthBits = 24;            // what the Red Book programs ask with GLUT_DEPTH
+constexpr int kDepthBits = 24;  // what the Red Book programs ask with GLUT_DEPTH
 constexpr int kStencilBits = 8;
-constexpr int kAccumBits = 16;            // GLUT_ACCUM
+constexpr int kAccumBits = 16;                // GLUT_ACCUM
 constexpr int kMaxIdleWithoutFrame = 100000;  // idle calls that show nothing: a stalled program
 constexpr float kByteMax = 255.0f;
 constexpr double kPi = 3.14159265358979323846;
@@ -198,8 +197,8 @@ void torus(double inner, double outer, int sides, int rings, bool wire) {
     const double u = 2.0 * kPi * ring / rings, v = 2.0 * kPi * side / sides;
     const double nx = std::cos(u) * std::cos(v), ny = std::sin(u) * std::cos(v), nz = std::sin(v);
     g.normal(nx, ny, nz);
-    g.vertex(std::cos(u) * (outer + inner * std::cos(v)), std::sin(u) * (outer + inner * std::cos(v)),
-             inner * nz);
+    g.vertex(std::cos(u) * (outer + inner * std::cos(v)),
+             std::sin(u) * (outer + inner * std::cos(v)), inner * nz);
   };
   for (int r = 0; r < rings; ++r) {
     g.begin(wire ? GL_LINE_STRIP : GL_QUAD_STRIP);
@@ -266,7 +265,8 @@ void cube(double side, bool wire) {
 }
 
 void octahedron(bool wire) {
-  static const double v[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const double v[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   static const int f[8 * 3] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
                                2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
   faces(v, f, 8, 3, 1.0, wire);
@@ -286,7 +286,9 @@ using sl::interpose::glut;
 
 // ---- initialisation and the window ----
 SL_EXPORT void glutInit(int*, char**) {}
-SL_EXPORT void glutInitDisplayMode(unsigned int mode) { glut().displayMode = mode; }
+SL_EXPORT void glutInitDisplayMode(unsigned int mode) {
+  glut().displayMode = mode;
+}
 SL_EXPORT void glutInitDisplayString(const char*) {}
 SL_EXPORT void glutInitWindowSize(int w, int h) {
   if (w > 0 && h > 0) {
@@ -302,12 +304,14 @@ SL_EXPORT void glutInitWindowPosition(int x, int y) {
 SL_EXPORT int glutCreateWindow(const char*) {
   auto& g = glut();
   if (g.window != 0) sl::interpose::fatal("one window only (the program made a second)");
-  static const auto create = sl::interpose::gl<decltype(&::OSMesaCreateContextExt)>("OSMesaCreateContextExt");
-  const bool depth = (g.displayMode & GLUT_DEPTH) != 0, stencil = (g.displayMode & GLUT_STENCIL) != 0,
+  static const auto create =
+      sl::interpose::gl<decltype(&::OSMesaCreateContextExt)>("OSMesaCreateContextExt");
+  const bool depth = (g.displayMode & GLUT_DEPTH) != 0,
+             stencil = (g.displayMode & GLUT_STENCIL) != 0,
              accum = (g.displayMode & GLUT_ACCUM) != 0;
   g.context = create(OSMESA_RGBA, depth ? sl::interpose::kDepthBits : 0,
-                     stencil ? sl::interpose::kStencilBits : 0, accum ? sl::interpose::kAccumBits : 0,
-                     nullptr);
+                     stencil ? sl::interpose::kStencilBits : 0,
+                     accum ? sl::interpose::kAccumBits : 0, nullptr);
   if (g.context == nullptr) sl::interpose::fatal("OSMesaCreateContextExt failed");
   g.width = g.initWidth;
   g.height = g.initHeight;
@@ -322,7 +326,9 @@ SL_EXPORT int glutCreateSubWindow(int, int, int, int, int) {
 }
 SL_EXPORT void glutDestroyWindow(int) {}
 SL_EXPORT void glutSetWindow(int) {}
-SL_EXPORT int glutGetWindow() { return glut().window; }
+SL_EXPORT int glutGetWindow() {
+  return glut().window;
+}
 SL_EXPORT void glutSetWindowTitle(const char*) {}
 SL_EXPORT void glutSetIconTitle(const char*) {}
 SL_EXPORT void glutPositionWindow(int, int) {}
@@ -343,15 +349,29 @@ SL_EXPORT void glutReshapeWindow(int w, int h) {
   g.reshapePending = true;
   g.redisplay = true;
 }
-SL_EXPORT void glutPostRedisplay() { glut().redisplay = true; }
-SL_EXPORT void glutPostWindowRedisplay(int) { glut().redisplay = true; }
-SL_EXPORT void glutSwapBuffers() { sl::interpose::frameShown(); }
+SL_EXPORT void glutPostRedisplay() {
+  glut().redisplay = true;
+}
+SL_EXPORT void glutPostWindowRedisplay(int) {
+  glut().redisplay = true;
+}
+SL_EXPORT void glutSwapBuffers() {
+  sl::interpose::frameShown();
+}
 
 // ---- callbacks ----
-SL_EXPORT void glutDisplayFunc(void (*f)()) { glut().display = f; }
-SL_EXPORT void glutReshapeFunc(void (*f)(int, int)) { glut().reshape = f; }
-SL_EXPORT void glutKeyboardFunc(void (*f)(unsigned char, int, int)) { glut().keyboard = f; }
-SL_EXPORT void glutIdleFunc(void (*f)()) { glut().idle = f; }
+SL_EXPORT void glutDisplayFunc(void (*f)()) {
+  glut().display = f;
+}
+SL_EXPORT void glutReshapeFunc(void (*f)(int, int)) {
+  glut().reshape = f;
+}
+SL_EXPORT void glutKeyboardFunc(void (*f)(unsigned char, int, int)) {
+  glut().keyboard = f;
+}
+SL_EXPORT void glutIdleFunc(void (*f)()) {
+  glut().idle = f;
+}
 SL_EXPORT void glutTimerFunc(unsigned int ms, void (*f)(int), int value) {
   auto& g = glut();
   g.timers.push_back({g.clock + long(ms), g.timerOrder++, f, value});
@@ -366,7 +386,9 @@ SL_EXPORT void glutPassiveMotionFunc(void (*)(int, int)) {}
 SL_EXPORT void glutEntryFunc(void (*)(int)) {}
 SL_EXPORT void glutVisibilityFunc(void (*)(int)) {}
 SL_EXPORT void glutMenuStatusFunc(void (*)(int, int, int)) {}
-SL_EXPORT int glutCreateMenu(void (*)(int)) { return glut().nextMenu++; }
+SL_EXPORT int glutCreateMenu(void (*)(int)) {
+  return glut().nextMenu++;
+}
 SL_EXPORT void glutAddMenuEntry(const char*, int) {}
 SL_EXPORT void glutAddSubMenu(const char*, int) {}
 SL_EXPORT void glutAttachMenu(int) {}
@@ -376,37 +398,64 @@ SL_EXPORT void glutSetMenu(int) {}
 SL_EXPORT int glutGet(GLenum what) {
   const auto& g = glut();
   switch (what) {
-    case GLUT_WINDOW_WIDTH: return g.width;
-    case GLUT_WINDOW_HEIGHT: return g.height;
-    case GLUT_WINDOW_X: return g.initX < 0 ? 0 : g.initX;
-    case GLUT_WINDOW_Y: return g.initY < 0 ? 0 : g.initY;
-    case GLUT_WINDOW_DOUBLEBUFFER: return 0;  // one OSMesa buffer
-    case GLUT_WINDOW_RGBA: return 1;
-    case GLUT_WINDOW_DEPTH_SIZE: return (g.displayMode & GLUT_DEPTH) ? sl::interpose::kDepthBits : 0;
-    case GLUT_WINDOW_STENCIL_SIZE: return (g.displayMode & GLUT_STENCIL) ? sl::interpose::kStencilBits : 0;
-    case GLUT_SCREEN_WIDTH: return sl::interpose::kScreenWidth;
-    case GLUT_SCREEN_HEIGHT: return sl::interpose::kScreenHeight;
-    case GLUT_INIT_WINDOW_WIDTH: return g.initWidth;
-    case GLUT_INIT_WINDOW_HEIGHT: return g.initHeight;
-    case GLUT_INIT_WINDOW_X: return g.initX;
-    case GLUT_INIT_WINDOW_Y: return g.initY;
-    case GLUT_INIT_DISPLAY_MODE: return int(g.displayMode);
-    case GLUT_ELAPSED_TIME: return int(g.clock);
-    case GLUT_DISPLAY_MODE_POSSIBLE: return 1;
-    case GLUT_WINDOW_PARENT: return 0;
-    case GLUT_WINDOW_NUM_CHILDREN: return 0;
-    default: return 0;
+    case GLUT_WINDOW_WIDTH:
+      return g.width;
+    case GLUT_WINDOW_HEIGHT:
+      return g.height;
+    case GLUT_WINDOW_X:
+      return g.initX < 0 ? 0 : g.initX;
+    case GLUT_WINDOW_Y:
+      return g.initY < 0 ? 0 : g.initY;
+    case GLUT_WINDOW_DOUBLEBUFFER:
+      return 0;  // one OSMesa buffer
+    case GLUT_WINDOW_RGBA:
+      return 1;
+    case GLUT_WINDOW_DEPTH_SIZE:
+      return (g.displayMode & GLUT_DEPTH) ? sl::interpose::kDepthBits : 0;
+    case GLUT_WINDOW_STENCIL_SIZE:
+      return (g.displayMode & GLUT_STENCIL) ? sl::interpose::kStencilBits : 0;
+    case GLUT_SCREEN_WIDTH:
+      return sl::interpose::kScreenWidth;
+    case GLUT_SCREEN_HEIGHT:
+      return sl::interpose::kScreenHeight;
+    case GLUT_INIT_WINDOW_WIDTH:
+      return g.initWidth;
+    case GLUT_INIT_WINDOW_HEIGHT:
+      return g.initHeight;
+    case GLUT_INIT_WINDOW_X:
+      return g.initX;
+    case GLUT_INIT_WINDOW_Y:
+      return g.initY;
+    case GLUT_INIT_DISPLAY_MODE:
+      return int(g.displayMode);
+    case GLUT_ELAPSED_TIME:
+      return int(g.clock);
+    case GLUT_DISPLAY_MODE_POSSIBLE:
+      return 1;
+    case GLUT_WINDOW_PARENT:
+      return 0;
+    case GLUT_WINDOW_NUM_CHILDREN:
+      return 0;
+    default:
+      return 0;
   }
 }
-SL_EXPORT int glutGetModifiers() { return 0; }
-SL_EXPORT int glutDeviceGet(GLenum) { return 0; }
-SL_EXPORT int glutLayerGet(GLenum) { return 0; }
+SL_EXPORT int glutGetModifiers() {
+  return 0;
+}
+SL_EXPORT int glutDeviceGet(GLenum) {
+  return 0;
+}
+SL_EXPORT int glutLayerGet(GLenum) {
+  return 0;
+}
 
 // GLUT 3 spec 12.1: true when `name` is a whole word of GL_EXTENSIONS.
 SL_EXPORT int glutExtensionSupported(const char* name) {
   SL_GL(glGetString);
   const char* all = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
-  if (all == nullptr || name == nullptr || *name == 0 || std::strchr(name, ' ') != nullptr) return 0;
+  if (all == nullptr || name == nullptr || *name == 0 || std::strchr(name, ' ') != nullptr)
+    return 0;
   std::istringstream words(all);
   for (std::string w; words >> w;)
     if (w == name) return 1;
@@ -414,7 +463,9 @@ SL_EXPORT int glutExtensionSupported(const char* name) {
 }
 
 // ---- the main loop ----
-SL_EXPORT void glutLeaveMainLoop() { std::exit(0); }
+SL_EXPORT void glutLeaveMainLoop() {
+  std::exit(0);
+}
 
 SL_EXPORT void glutMainLoop() {
   auto& g = glut();
@@ -452,25 +503,65 @@ SL_EXPORT void glutMainLoop() {
 }
 
 // ---- shapes ----
-SL_EXPORT void glutSolidSphere(double r, GLint slices, GLint stacks) { sl::interpose::sphere(r, slices, stacks, false); }
-SL_EXPORT void glutWireSphere(double r, GLint slices, GLint stacks) { sl::interpose::sphere(r, slices, stacks, true); }
-SL_EXPORT void glutSolidCube(double side) { sl::interpose::cube(side, false); }
-SL_EXPORT void glutWireCube(double side) { sl::interpose::cube(side, true); }
-SL_EXPORT void glutSolidTorus(double inner, double outer, GLint sides, GLint rings) { sl::interpose::torus(inner, outer, sides, rings, false); }
-SL_EXPORT void glutWireTorus(double inner, double outer, GLint sides, GLint rings) { sl::interpose::torus(inner, outer, sides, rings, true); }
-SL_EXPORT void glutSolidCone(double base, double height, GLint slices, GLint stacks) { sl::interpose::cone(base, height, slices, stacks, false); }
-SL_EXPORT void glutWireCone(double base, double height, GLint slices, GLint stacks) { sl::interpose::cone(base, height, slices, stacks, true); }
-SL_EXPORT void glutSolidOctahedron() { sl::interpose::octahedron(false); }
-SL_EXPORT void glutWireOctahedron() { sl::interpose::octahedron(true); }
-SL_EXPORT void glutSolidTetrahedron() { sl::interpose::tetrahedron(false); }
-SL_EXPORT void glutWireTetrahedron() { sl::interpose::tetrahedron(true); }
+SL_EXPORT void glutSolidSphere(double r, GLint slices, GLint stacks) {
+  sl::interpose::sphere(r, slices, stacks, false);
+}
+SL_EXPORT void glutWireSphere(double r, GLint slices, GLint stacks) {
+  sl::interpose::sphere(r, slices, stacks, true);
+}
+SL_EXPORT void glutSolidCube(double side) {
+  sl::interpose::cube(side, false);
+}
+SL_EXPORT void glutWireCube(double side) {
+  sl::interpose::cube(side, true);
+}
+SL_EXPORT void glutSolidTorus(double inner, double outer, GLint sides, GLint rings) {
+  sl::interpose::torus(inner, outer, sides, rings, false);
+}
+SL_EXPORT void glutWireTorus(double inner, double outer, GLint sides, GLint rings) {
+  sl::interpose::torus(inner, outer, sides, rings, true);
+}
+SL_EXPORT void glutSolidCone(double base, double height, GLint slices, GLint stacks) {
+  sl::interpose::cone(base, height, slices, stacks, false);
+}
+SL_EXPORT void glutWireCone(double base, double height, GLint slices, GLint stacks) {
+  sl::interpose::cone(base, height, slices, stacks, true);
+}
+SL_EXPORT void glutSolidOctahedron() {
+  sl::interpose::octahedron(false);
+}
+SL_EXPORT void glutWireOctahedron() {
+  sl::interpose::octahedron(true);
+}
+SL_EXPORT void glutSolidTetrahedron() {
+  sl::interpose::tetrahedron(false);
+}
+SL_EXPORT void glutWireTetrahedron() {
+  sl::interpose::tetrahedron(true);
+}
 // Shapes and fonts whose data this GLUT does not carry: stop with a message rather than
 // draw nothing.
-SL_EXPORT void glutSolidTeapot(double) { sl::interpose::fatal("glutSolidTeapot is not provided"); }
-SL_EXPORT void glutWireTeapot(double) { sl::interpose::fatal("glutWireTeapot is not provided"); }
-SL_EXPORT void glutSolidDodecahedron() { sl::interpose::fatal("glutSolidDodecahedron is not provided"); }
-SL_EXPORT void glutWireDodecahedron() { sl::interpose::fatal("glutWireDodecahedron is not provided"); }
-SL_EXPORT void glutSolidIcosahedron() { sl::interpose::fatal("glutSolidIcosahedron is not provided"); }
-SL_EXPORT void glutWireIcosahedron() { sl::interpose::fatal("glutWireIcosahedron is not provided"); }
-SL_EXPORT void glutBitmapCharacter(void*, int) { sl::interpose::fatal("GLUT bitmap fonts are not provided"); }
-SL_EXPORT void glutStrokeCharacter(void*, int) { sl::interpose::fatal("GLUT stroke fonts are not provided"); }
+SL_EXPORT void glutSolidTeapot(double) {
+  sl::interpose::fatal("glutSolidTeapot is not provided");
+}
+SL_EXPORT void glutWireTeapot(double) {
+  sl::interpose::fatal("glutWireTeapot is not provided");
+}
+SL_EXPORT void glutSolidDodecahedron() {
+  sl::interpose::fatal("glutSolidDodecahedron is not provided");
+}
+SL_EXPORT void glutWireDodecahedron() {
+  sl::interpose::fatal("glutWireDodecahedron is not provided");
+}
+SL_EXPORT void glutSolidIcosahedron() {
+  sl::interpose::fatal("glutSolidIcosahedron is not provided");
+}
+SL_EXPORT void glutWireIcosahedron() {
+  sl::interpose::fatal("glutWireIcosahedron is not provided");
+}
+SL_EXPORT void glutBitmapCharacter(void*, int) {
+  sl::interpose::fatal("GLUT bitmap fonts are not provided");
+}
+SL_EXPORT void glutStrokeCharacter(void*, int) {
+  sl::interpose::fatal("GLUT stroke fonts are not provided");
+}

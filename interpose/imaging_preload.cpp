@@ -66,7 +66,9 @@ Policy policy() {
 }
 
 // The definition that follows this library in the program's lookup order.
-void* nextSymbol(const char* name) { return dlsym(RTLD_NEXT, name); }
+void* nextSymbol(const char* name) {
+  return dlsym(RTLD_NEXT, name);
+}
 
 template <class Fn>
 Fn nextFn(const char* name) {
@@ -122,7 +124,8 @@ void* resolveDriver(const char* name, void* user) {
   switch (api) {
     case Api::kGlx: {
       static auto real = nextFn<void (*(*)(const GLubyte*))()>("glXGetProcAddressARB");
-      if (real != nullptr) p = reinterpret_cast<void*>(real(reinterpret_cast<const GLubyte*>(name)));
+      if (real != nullptr)
+        p = reinterpret_cast<void*>(real(reinterpret_cast<const GLubyte*>(name)));
       break;
     }
     case Api::kEgl: {
@@ -165,9 +168,10 @@ void bindContext(Api api, const void* handle, void* display, unsigned long drawa
                                           api == Api::kOsmesa ? Backend::kOsmesa : Backend::kEgl,
                                           width, height, resolveDriver, &input);
         if (fresh->context->spec().profile == Profile::kCompatibility) {
-          const imaging::Mode mode = policy() == Policy::kEmulate
-                                         ? imaging::install(*fresh->context, imaging::Mode::kEmulated)
-                                         : imaging::install(*fresh->context);
+          const imaging::Mode mode =
+              policy() == Policy::kEmulate
+                  ? imaging::install(*fresh->context, imaging::Mode::kEmulated)
+                  : imaging::install(*fresh->context);
           fresh->emulated = mode == imaging::Mode::kEmulated;
         }
       } catch (const std::exception& e) {
@@ -175,11 +179,12 @@ void bindContext(Api api, const void* handle, void* display, unsigned long drawa
         fresh->context.reset();
       }
       if (std::getenv("SHADOWLAB_IMAGING_VERBOSE") != nullptr)
-        std::fprintf(stderr, "libshadowlab-imaging: %s context %p: %s\n", kApiNames[int(api)],
-                     handle,
-                     !fresh->context ? "left to the driver"
+        std::fprintf(stderr, "libshadowlab-imaging: %s context %p: %s (accumulation bits %d)\n",
+                     kApiNames[int(api)], handle,
+                     !fresh->context   ? "left to the driver"
                      : fresh->emulated ? "imaging emulated"
-                                       : "imaging native or core profile, passed through");
+                                       : "imaging native or core profile, passed through",
+                     fresh->context ? fresh->context->caps().accumRedBits : 0);
       slot = std::move(fresh);
     }
     a = slot.get();
@@ -246,7 +251,9 @@ inline GlDispatch* currentTable() {
   Adopted* a = tCurrent;
   return a != nullptr ? &a->context->dispatch() : nullptr;
 }
-inline bool currentEmulated() { return tCurrent != nullptr && tCurrent->emulated; }
+inline bool currentEmulated() {
+  return tCurrent != nullptr && tCurrent->emulated;
+}
 
 // The function to call for entry `Member`: the adopted context's, else the next library's.
 template <auto Member, class Fn>
@@ -265,11 +272,23 @@ inline void beforePixels() {
 // ---- trace of the values the program reads back --------------------------------------
 int componentsOf(GLenum format) {
   switch (format) {
-    case GL_RED: case GL_GREEN: case GL_BLUE: case GL_ALPHA: case GL_LUMINANCE: return 1;
-    case GL_LUMINANCE_ALPHA: return 2;
-    case GL_RGB: case GL_BGR: return 3;
-    case GL_RGBA: case GL_BGRA: case GL_ABGR_EXT: return 4;
-    default: return 0;
+    case GL_RED:
+    case GL_GREEN:
+    case GL_BLUE:
+    case GL_ALPHA:
+    case GL_LUMINANCE:
+      return 1;
+    case GL_LUMINANCE_ALPHA:
+      return 2;
+    case GL_RGB:
+    case GL_BGR:
+      return 3;
+    case GL_RGBA:
+    case GL_BGRA:
+    case GL_ABGR_EXT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -277,20 +296,37 @@ void traceReadBack(const char* call, GLenum format, GLenum type, int groups, con
   static const char* path = std::getenv("SHADOWLAB_IMAGING_TRACE");
   if (path == nullptr || *path == 0 || data == nullptr) return;
   const int n = componentsOf(format) * groups;
-  std::string line = std::string("{\"call\":\"") + call + "\",\"format\":" +
-                     std::to_string(format) + ",\"type\":" + std::to_string(type) +
-                     ",\"groups\":" + std::to_string(groups) + ",\"values\":[";
+  std::string line = std::string("{\"call\":\"") + call +
+                     "\",\"format\":" + std::to_string(format) +
+                     ",\"type\":" + std::to_string(type) + ",\"groups\":" + std::to_string(groups) +
+                     ",\"values\":[";
   for (int i = 0; i < n; ++i) {
     char number[32];
     switch (type) {
-      case GL_UNSIGNED_BYTE: std::snprintf(number, sizeof number, "%u", unsigned(static_cast<const GLubyte*>(data)[i])); break;
-      case GL_BYTE: std::snprintf(number, sizeof number, "%d", int(static_cast<const GLbyte*>(data)[i])); break;
-      case GL_UNSIGNED_SHORT: std::snprintf(number, sizeof number, "%u", unsigned(static_cast<const GLushort*>(data)[i])); break;
-      case GL_SHORT: std::snprintf(number, sizeof number, "%d", int(static_cast<const GLshort*>(data)[i])); break;
-      case GL_UNSIGNED_INT: std::snprintf(number, sizeof number, "%u", static_cast<const GLuint*>(data)[i]); break;
-      case GL_INT: std::snprintf(number, sizeof number, "%d", static_cast<const GLint*>(data)[i]); break;
-      case GL_FLOAT: std::snprintf(number, sizeof number, "%.9g", double(static_cast<const GLfloat*>(data)[i])); break;
-      default: std::snprintf(number, sizeof number, "null"); break;
+      case GL_UNSIGNED_BYTE:
+        std::snprintf(number, sizeof number, "%u", unsigned(static_cast<const GLubyte*>(data)[i]));
+        break;
+      case GL_BYTE:
+        std::snprintf(number, sizeof number, "%d", int(static_cast<const GLbyte*>(data)[i]));
+        break;
+      case GL_UNSIGNED_SHORT:
+        std::snprintf(number, sizeof number, "%u", unsigned(static_cast<const GLushort*>(data)[i]));
+        break;
+      case GL_SHORT:
+        std::snprintf(number, sizeof number, "%d", int(static_cast<const GLshort*>(data)[i]));
+        break;
+      case GL_UNSIGNED_INT:
+        std::snprintf(number, sizeof number, "%u", static_cast<const GLuint*>(data)[i]);
+        break;
+      case GL_INT:
+        std::snprintf(number, sizeof number, "%d", static_cast<const GLint*>(data)[i]);
+        break;
+      case GL_FLOAT:
+        std::snprintf(number, sizeof number, "%.9g", double(static_cast<const GLfloat*>(data)[i]));
+        break;
+      default:
+        std::snprintf(number, sizeof number, "null");
+        break;
     }
     if (i > 0) line += ",";
     line += number;
@@ -312,42 +348,55 @@ using sl::interpose::route;
 
 // ---- the GL entry points the emulation replaces ------------------------------------------
 // SL_ROUTE(ret, Name, (params), (args)): glName forwards to the current context's entry.
-#define SL_ROUTE(ret, Name, params, args)                                                 \
-  SL_EXPORT ret gl##Name params {                                                        \
-    return route<&GlDispatch::Name, decltype(GlDispatch::Name)>("gl" #Name) args;        \
-  }                                                                                      \
-  static sl::interpose::Registration sRegister##Name("gl" #Name,                         \
+#define SL_ROUTE(ret, Name, params, args)                                         \
+  SL_EXPORT ret gl##Name params {                                                 \
+    return route<&GlDispatch::Name, decltype(GlDispatch::Name)>("gl" #Name) args; \
+  }                                                                               \
+  static sl::interpose::Registration sRegister##Name("gl" #Name,                  \
                                                      reinterpret_cast<void*>(&gl##Name));
 // The same, after bringing the window size up to date (pixel paths).
-#define SL_ROUTE_PIXELS(ret, Name, params, args)                                          \
-  SL_EXPORT ret gl##Name params {                                                        \
-    sl::interpose::beforePixels();                                                       \
-    return route<&GlDispatch::Name, decltype(GlDispatch::Name)>("gl" #Name) args;        \
-  }                                                                                      \
-  static sl::interpose::Registration sRegister##Name("gl" #Name,                         \
+#define SL_ROUTE_PIXELS(ret, Name, params, args)                                  \
+  SL_EXPORT ret gl##Name params {                                                 \
+    sl::interpose::beforePixels();                                                \
+    return route<&GlDispatch::Name, decltype(GlDispatch::Name)>("gl" #Name) args; \
+  }                                                                               \
+  static sl::interpose::Registration sRegister##Name("gl" #Name,                  \
                                                      reinterpret_cast<void*>(&gl##Name));
 
 // The imaging subset's own entry points (glspec121 3.6.3, 6.1.7-6.1.10).
-SL_ROUTE(void, ColorTable, (GLenum t, GLenum i, GLsizei w, GLenum f, GLenum ty, const void* d), (t, i, w, f, ty, d))
-SL_ROUTE(void, ColorSubTable, (GLenum t, GLsizei s, GLsizei c, GLenum f, GLenum ty, const void* d), (t, s, c, f, ty, d))
-SL_ROUTE_PIXELS(void, CopyColorTable, (GLenum t, GLenum i, GLint x, GLint y, GLsizei w), (t, i, x, y, w))
-SL_ROUTE_PIXELS(void, CopyColorSubTable, (GLenum t, GLsizei s, GLint x, GLint y, GLsizei w), (t, s, x, y, w))
+SL_ROUTE(void, ColorTable, (GLenum t, GLenum i, GLsizei w, GLenum f, GLenum ty, const void* d),
+         (t, i, w, f, ty, d))
+SL_ROUTE(void, ColorSubTable, (GLenum t, GLsizei s, GLsizei c, GLenum f, GLenum ty, const void* d),
+         (t, s, c, f, ty, d))
+SL_ROUTE_PIXELS(void, CopyColorTable, (GLenum t, GLenum i, GLint x, GLint y, GLsizei w),
+                (t, i, x, y, w))
+SL_ROUTE_PIXELS(void, CopyColorSubTable, (GLenum t, GLsizei s, GLint x, GLint y, GLsizei w),
+                (t, s, x, y, w))
 SL_ROUTE(void, ColorTableParameterfv, (GLenum t, GLenum p, const GLfloat* v), (t, p, v))
 SL_ROUTE(void, ColorTableParameteriv, (GLenum t, GLenum p, const GLint* v), (t, p, v))
 SL_ROUTE(void, GetColorTable, (GLenum t, GLenum f, GLenum ty, void* d), (t, f, ty, d))
 SL_ROUTE(void, GetColorTableParameterfv, (GLenum t, GLenum p, GLfloat* v), (t, p, v))
 SL_ROUTE(void, GetColorTableParameteriv, (GLenum t, GLenum p, GLint* v), (t, p, v))
-SL_ROUTE(void, ConvolutionFilter1D, (GLenum t, GLenum i, GLsizei w, GLenum f, GLenum ty, const void* d), (t, i, w, f, ty, d))
-SL_ROUTE(void, ConvolutionFilter2D, (GLenum t, GLenum i, GLsizei w, GLsizei h, GLenum f, GLenum ty, const void* d), (t, i, w, h, f, ty, d))
-SL_ROUTE(void, SeparableFilter2D, (GLenum t, GLenum i, GLsizei w, GLsizei h, GLenum f, GLenum ty, const void* r, const void* c), (t, i, w, h, f, ty, r, c))
-SL_ROUTE_PIXELS(void, CopyConvolutionFilter1D, (GLenum t, GLenum i, GLint x, GLint y, GLsizei w), (t, i, x, y, w))
-SL_ROUTE_PIXELS(void, CopyConvolutionFilter2D, (GLenum t, GLenum i, GLint x, GLint y, GLsizei w, GLsizei h), (t, i, x, y, w, h))
+SL_ROUTE(void, ConvolutionFilter1D,
+         (GLenum t, GLenum i, GLsizei w, GLenum f, GLenum ty, const void* d), (t, i, w, f, ty, d))
+SL_ROUTE(void, ConvolutionFilter2D,
+         (GLenum t, GLenum i, GLsizei w, GLsizei h, GLenum f, GLenum ty, const void* d),
+         (t, i, w, h, f, ty, d))
+SL_ROUTE(void, SeparableFilter2D,
+         (GLenum t, GLenum i, GLsizei w, GLsizei h, GLenum f, GLenum ty, const void* r,
+          const void* c),
+         (t, i, w, h, f, ty, r, c))
+SL_ROUTE_PIXELS(void, CopyConvolutionFilter1D, (GLenum t, GLenum i, GLint x, GLint y, GLsizei w),
+                (t, i, x, y, w))
+SL_ROUTE_PIXELS(void, CopyConvolutionFilter2D,
+                (GLenum t, GLenum i, GLint x, GLint y, GLsizei w, GLsizei h), (t, i, x, y, w, h))
 SL_ROUTE(void, ConvolutionParameterf, (GLenum t, GLenum p, GLfloat v), (t, p, v))
 SL_ROUTE(void, ConvolutionParameterfv, (GLenum t, GLenum p, const GLfloat* v), (t, p, v))
 SL_ROUTE(void, ConvolutionParameteri, (GLenum t, GLenum p, GLint v), (t, p, v))
 SL_ROUTE(void, ConvolutionParameteriv, (GLenum t, GLenum p, const GLint* v), (t, p, v))
 SL_ROUTE(void, GetConvolutionFilter, (GLenum t, GLenum f, GLenum ty, void* d), (t, f, ty, d))
-SL_ROUTE(void, GetSeparableFilter, (GLenum t, GLenum f, GLenum ty, void* r, void* c, void* s), (t, f, ty, r, c, s))
+SL_ROUTE(void, GetSeparableFilter, (GLenum t, GLenum f, GLenum ty, void* r, void* c, void* s),
+         (t, f, ty, r, c, s))
 SL_ROUTE(void, GetConvolutionParameterfv, (GLenum t, GLenum p, GLfloat* v), (t, p, v))
 SL_ROUTE(void, GetConvolutionParameteriv, (GLenum t, GLenum p, GLint* v), (t, p, v))
 SL_ROUTE(void, Histogram, (GLenum t, GLsizei w, GLenum i, GLboolean s), (t, w, i, s))
@@ -411,8 +460,10 @@ SL_ROUTE(void, Translatef, (GLfloat x, GLfloat y, GLfloat z), (x, y, z))
 SL_ROUTE(void, Translated, (GLdouble x, GLdouble y, GLdouble z), (x, y, z))
 SL_ROUTE(void, Rotatef, (GLfloat a, GLfloat x, GLfloat y, GLfloat z), (a, x, y, z))
 SL_ROUTE(void, Rotated, (GLdouble a, GLdouble x, GLdouble y, GLdouble z), (a, x, y, z))
-SL_ROUTE(void, Ortho, (GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f), (l, r, b, t, n, f))
-SL_ROUTE(void, Frustum, (GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f), (l, r, b, t, n, f))
+SL_ROUTE(void, Ortho, (GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f),
+         (l, r, b, t, n, f))
+SL_ROUTE(void, Frustum, (GLdouble l, GLdouble r, GLdouble b, GLdouble t, GLdouble n, GLdouble f),
+         (l, r, b, t, n, f))
 SL_ROUTE(void, LoadTransposeMatrixf, (const GLfloat* m), (m))
 SL_ROUTE(void, LoadTransposeMatrixd, (const GLdouble* m), (m))
 SL_ROUTE(void, MultTransposeMatrixf, (const GLfloat* m), (m))
@@ -420,17 +471,38 @@ SL_ROUTE(void, MultTransposeMatrixd, (const GLdouble* m), (m))
 
 // The pixel paths the pipeline of 3.6.5 changes (3.6.4, 4.3.2, 4.3.3, 3.8.1-3.8.2), and the
 // accumulation buffer where the window has none (4.2.4).
-SL_ROUTE_PIXELS(void, DrawPixels, (GLsizei w, GLsizei h, GLenum f, GLenum t, const void* d), (w, h, f, t, d))
-SL_ROUTE_PIXELS(void, ReadPixels, (GLint x, GLint y, GLsizei w, GLsizei h, GLenum f, GLenum t, void* d), (x, y, w, h, f, t, d))
-SL_ROUTE_PIXELS(void, CopyPixels, (GLint x, GLint y, GLsizei w, GLsizei h, GLenum t), (x, y, w, h, t))
-SL_ROUTE_PIXELS(void, CopyTexImage1D, (GLenum t, GLint l, GLenum i, GLint x, GLint y, GLsizei w, GLint b), (t, l, i, x, y, w, b))
-SL_ROUTE_PIXELS(void, CopyTexImage2D, (GLenum t, GLint l, GLenum i, GLint x, GLint y, GLsizei w, GLsizei h, GLint b), (t, l, i, x, y, w, h, b))
-SL_ROUTE_PIXELS(void, CopyTexSubImage1D, (GLenum t, GLint l, GLint o, GLint x, GLint y, GLsizei w), (t, l, o, x, y, w))
-SL_ROUTE_PIXELS(void, CopyTexSubImage2D, (GLenum t, GLint l, GLint ox, GLint oy, GLint x, GLint y, GLsizei w, GLsizei h), (t, l, ox, oy, x, y, w, h))
-SL_ROUTE(void, TexImage1D, (GLenum t, GLint l, GLint i, GLsizei w, GLint b, GLenum f, GLenum ty, const void* d), (t, l, i, w, b, f, ty, d))
-SL_ROUTE(void, TexImage2D, (GLenum t, GLint l, GLint i, GLsizei w, GLsizei h, GLint b, GLenum f, GLenum ty, const void* d), (t, l, i, w, h, b, f, ty, d))
-SL_ROUTE(void, TexSubImage1D, (GLenum t, GLint l, GLint o, GLsizei w, GLenum f, GLenum ty, const void* d), (t, l, o, w, f, ty, d))
-SL_ROUTE(void, TexSubImage2D, (GLenum t, GLint l, GLint ox, GLint oy, GLsizei w, GLsizei h, GLenum f, GLenum ty, const void* d), (t, l, ox, oy, w, h, f, ty, d))
+SL_ROUTE_PIXELS(void, DrawPixels, (GLsizei w, GLsizei h, GLenum f, GLenum t, const void* d),
+                (w, h, f, t, d))
+SL_ROUTE_PIXELS(void, ReadPixels,
+                (GLint x, GLint y, GLsizei w, GLsizei h, GLenum f, GLenum t, void* d),
+                (x, y, w, h, f, t, d))
+SL_ROUTE_PIXELS(void, CopyPixels, (GLint x, GLint y, GLsizei w, GLsizei h, GLenum t),
+                (x, y, w, h, t))
+SL_ROUTE_PIXELS(void, CopyTexImage1D,
+                (GLenum t, GLint l, GLenum i, GLint x, GLint y, GLsizei w, GLint b),
+                (t, l, i, x, y, w, b))
+SL_ROUTE_PIXELS(void, CopyTexImage2D,
+                (GLenum t, GLint l, GLenum i, GLint x, GLint y, GLsizei w, GLsizei h, GLint b),
+                (t, l, i, x, y, w, h, b))
+SL_ROUTE_PIXELS(void, CopyTexSubImage1D, (GLenum t, GLint l, GLint o, GLint x, GLint y, GLsizei w),
+                (t, l, o, x, y, w))
+SL_ROUTE_PIXELS(void, CopyTexSubImage2D,
+                (GLenum t, GLint l, GLint ox, GLint oy, GLint x, GLint y, GLsizei w, GLsizei h),
+                (t, l, ox, oy, x, y, w, h))
+SL_ROUTE(void, TexImage1D,
+         (GLenum t, GLint l, GLint i, GLsizei w, GLint b, GLenum f, GLenum ty, const void* d),
+         (t, l, i, w, b, f, ty, d))
+SL_ROUTE(void, TexImage2D,
+         (GLenum t, GLint l, GLint i, GLsizei w, GLsizei h, GLint b, GLenum f, GLenum ty,
+          const void* d),
+         (t, l, i, w, h, b, f, ty, d))
+SL_ROUTE(void, TexSubImage1D,
+         (GLenum t, GLint l, GLint o, GLsizei w, GLenum f, GLenum ty, const void* d),
+         (t, l, o, w, f, ty, d))
+SL_ROUTE(void, TexSubImage2D,
+         (GLenum t, GLint l, GLint ox, GLint oy, GLsizei w, GLsizei h, GLenum f, GLenum ty,
+          const void* d),
+         (t, l, ox, oy, w, h, f, ty, d))
 SL_ROUTE_PIXELS(void, Accum, (GLenum o, GLfloat v), (o, v))
 SL_ROUTE(void, ClearAccum, (GLfloat r, GLfloat g, GLfloat b, GLfloat a), (r, g, b, a))
 
@@ -444,7 +516,8 @@ static sl::interpose::Registration sRegisterClear("glClear", reinterpret_cast<vo
 // glGetString(GL_EXTENSIONS) names GL_ARB_imaging on an emulated context (kept per context:
 // the pointer GL returns stays valid while the context lives).
 SL_EXPORT const GLubyte* glGetString(GLenum name) {
-  const GLubyte* s = route<&GlDispatch::GetString, decltype(GlDispatch::GetString)>("glGetString")(name);
+  const GLubyte* s =
+      route<&GlDispatch::GetString, decltype(GlDispatch::GetString)>("glGetString")(name);
   if (name != GL_EXTENSIONS || s == nullptr || !sl::interpose::currentEmulated()) return s;
   sl::GlContext& c = *sl::interpose::tCurrent->context;
   auto* text = static_cast<std::string*>(c.layerState(sl::interpose::kLayerExtensions));
@@ -479,7 +552,7 @@ SL_EXPORT const GLubyte* glGetStringi(GLenum name, GLuint index) {
       GLint(index) == sl::interpose::driverExtensionCount())
     return reinterpret_cast<const GLubyte*>(sl::interpose::kImagingExtension);
   return route<&GlDispatch::GetStringi, decltype(GlDispatch::GetStringi)>("glGetStringi")(name,
-                                                                                        index);
+                                                                                          index);
 }
 static sl::interpose::Registration sRegisterGetStringi("glGetStringi",
                                                        reinterpret_cast<void*>(&glGetStringi));
@@ -621,7 +694,7 @@ bool callerIsOurs(const void* returnAddress) {
 
 SL_EXPORT void* dlsym(void* handle, const char* name) {
   const sl::interpose::DlsymFn real = sl::interpose::realDlsym();
-  if (handle != RTLD_NEXT && handle != RTLD_DEFAULT && name != nullptr &&
+  if (handle != RTLD_NEXT && handle != RTLD_DEFAULT &&
       sl::interpose::policy() != sl::interpose::Policy::kOff &&
       !sl::interpose::callerIsOurs(__builtin_return_address(0)))
     if (void* own = sl::interpose::ownExport(name)) return own;

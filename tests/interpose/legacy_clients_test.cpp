@@ -35,9 +35,15 @@ using test::testDir;
 
 constexpr float kByteMax = 255.0f;
 
-fs::path sourceDir() { return fs::path(SHADOWLAB_SOURCE_DIR); }
-fs::path clientsDir() { return sourceDir() / ".." / "shared" / "legacy-clients" / "redbook"; }
-fs::path libraryDir() { return fs::path(SHADOWLAB_BINARY).parent_path() / ".." / "lib"; }
+fs::path sourceDir() {
+  return fs::path(SHADOWLAB_SOURCE_DIR);
+}
+fs::path clientsDir() {
+  return sourceDir() / ".." / "shared" / "legacy-clients" / "redbook";
+}
+fs::path libraryDir() {
+  return fs::path(SHADOWLAB_BINARY).parent_path() / ".." / "lib";
+}
 
 bool onPath(const std::string& tool) {
   return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
@@ -56,9 +62,8 @@ std::string missingForGlx() {
   return "";
 }
 
-#define SL_REQUIRE_GLX()                                \
-  if (const std::string why = missingForGlx(); !why.empty()) \
-  GTEST_SKIP() << "skipped: " << why
+#define SL_REQUIRE_GLX() \
+  if (const std::string why = missingForGlx(); !why.empty()) GTEST_SKIP() << "skipped: " << why
 
 // Builds a client once per test process, into build/test-output/interpose/clients, with
 // leeds.bin beside it (the programs read it from their working directory).
@@ -69,11 +74,13 @@ fs::path client(const std::string& name, const fs::path& sources = clientsDir())
   fs::create_directories(dir);
   const fs::path program = dir / name;
   const std::string cmd = (sourceDir() / "scripts" / "build_legacy_client.sh").string() + " " +
-                          (sources / (name + ".c")).string() + " " + dir.string() +
-                          " >/dev/null";
+                          (sources / (name + ".c")).string() + " " + dir.string() + " >/dev/null";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  fs::copy_file(clientsDir() / "leeds.bin", dir / "leeds.bin",
-                fs::copy_options::overwrite_existing);
+  // ctest runs the cases as parallel processes: the image is copied under a name of this
+  // process and renamed, so a program never reads a half-copied file.
+  const fs::path partial = dir / ("leeds.bin." + std::to_string(getpid()));
+  fs::copy_file(clientsDir() / "leeds.bin", partial, fs::copy_options::overwrite_existing);
+  fs::rename(partial, dir / "leeds.bin");
   return program;
 }
 
@@ -100,8 +107,7 @@ CommandResult runLegacy(const fs::path& program, const std::string& keys, const 
                         const std::string& backend = "glx") {
   const std::string args = "run-legacy --backend " + backend + " --keys '" + keys + "' --frames " +
                            frames.string() + " -- ./" + program.filename().string();
-  return runBinary("cd " + program.parent_path().string() + " && " + env + " " +
-                       SHADOWLAB_BINARY,
+  return runBinary("cd " + program.parent_path().string() + " && " + env + " " + SHADOWLAB_BINARY,
                    args, logs);
 }
 
@@ -195,7 +201,9 @@ TEST(LegacyClients, ConvolutionFramesEqualTheInProcessEmulation) {
     ASSERT_EQ(h, l.height);
     const std::vector<uint8_t> expected = convolvedInProcess(Backend::kOsmesa, l, kernels[f]);
     EXPECT_EQ(differingPixels(frame, expected), 0) << "frame " << name;
-    if (f == 2 || f == 3) EXPECT_GT(differingPixels(frame, previous), 0) << name << " = previous";
+    if (f == 2 || f == 3) {
+      EXPECT_GT(differingPixels(frame, previous), 0) << name << " = previous";
+    }
     previous = frame;
   }
   EXPECT_FALSE(fs::exists(dir / "frames" / "004.png"));
@@ -213,10 +221,12 @@ int laplacianEighths(const Leeds& l, int x, int y, int c) {
   return 8 * at(x, y) - sum;
 }
 
-bool referenceHere() { return !referenceGlPath().empty() && fs::exists(referenceGlPath()); }
+bool referenceHere() {
+  return !referenceGlPath().empty() && fs::exists(referenceGlPath());
+}
 
-#define SL_REQUIRE_REFERENCE()                                                          \
-  if (!referenceHere())                                                                 \
+#define SL_REQUIRE_REFERENCE() \
+  if (!referenceHere())        \
   GTEST_SKIP() << "skipped: the reference GL (../shared/reference-gl) is not here"
 
 // One program on the three back ends of run-legacy, each into logs/<backend>.
@@ -368,8 +378,8 @@ TEST(LegacyClients, HistogramReadBackEqualsInProcess) {
   const fs::path program = client("histogram");
   const fs::path dir = testDir("interpose", true);
   const fs::path trace = dir / "trace.jsonl";
-  const CommandResult r = runLegacy(program, "s", dir / "frames", dir,
-                                    "SHADOWLAB_IMAGING_TRACE=" + trace.string());
+  const CommandResult r =
+      runLegacy(program, "s", dir / "frames", dir, "SHADOWLAB_IMAGING_TRACE=" + trace.string());
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(trace);
   std::vector<std::vector<uint32_t>> reads;
@@ -382,7 +392,9 @@ TEST(LegacyClients, HistogramReadBackEqualsInProcess) {
   const std::vector<uint32_t> emulated = histogramInProcess(Backend::kOsmesa, l);
   EXPECT_EQ(reads.front(), emulated);
   EXPECT_EQ(reads.back(), emulated) << "the sink flag does not change the counts";
-  if (referenceHere()) EXPECT_EQ(reads.front(), histogramInProcess(Backend::kReference, l));
+  if (referenceHere()) {
+    EXPECT_EQ(reads.front(), histogramInProcess(Backend::kReference, l));
+  }
 }
 
 // A program of our own in the style of the book's accumulation and imaging chapters
@@ -431,7 +443,8 @@ TEST(DropIn, OsmesaClientSeesTheImagingSubset) {
   EXPECT_EQ(with.status, 0) << with.out << with.err;
   constexpr int kChecks = 7;  // the "ok" lines osmesa_client.c prints
   int ok = 0;
-  for (size_t p = with.out.find("ok "); p != std::string::npos; p = with.out.find("\nok ", p + 1)) ++ok;
+  for (size_t p = with.out.find("ok "); p != std::string::npos; p = with.out.find("\nok ", p + 1))
+    ++ok;
   EXPECT_EQ(ok, kChecks) << with.out;
 }
 
@@ -456,8 +469,8 @@ TEST(RunLegacy, BadInputIsRefusedWithStatus2) {
   }
   fs::create_directories(dir / "full");
   std::ofstream(dir / "full" / "x.png") << "x";
-  const CommandResult r = runBinary(bin, "run-legacy --backend glx --frames " +
-                                             (dir / "full").string() + " -- /bin/true", dir);
+  const CommandResult r = runBinary(
+      bin, "run-legacy --backend glx --frames " + (dir / "full").string() + " -- /bin/true", dir);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("is not empty"), std::string::npos) << r.err;
 }
