@@ -674,14 +674,18 @@ static sl::interpose::Registration sRegisterHooks[] = {
 namespace sl::interpose {
 namespace {
 using DlsymFn = void* (*)(void*, const char*);
-DlsymFn realDlsym() {
-  static const DlsymFn real = [] {
+// Runs before any constructor of this library when a sanitizer runtime preloaded ahead of it
+// looks its interceptors up (dlsym(RTLD_NEXT, "mmap") during its own start-up): no C++ static
+// guard and no instrumentation on this path. The pointer is written once with one value.
+DlsymFn gRealDlsym = nullptr;
+__attribute__((no_sanitize("address", "undefined"))) DlsymFn realDlsym() {
+  if (gRealDlsym == nullptr) {
     // glibc 2.34 moved dlsym into libc with a new version; older ones have only 2.2.5.
     void* p = dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.34");
     if (p == nullptr) p = dlvsym(RTLD_NEXT, "dlsym", "GLIBC_2.2.5");
-    return reinterpret_cast<DlsymFn>(p);
-  }();
-  return real;
+    gRealDlsym = reinterpret_cast<DlsymFn>(p);
+  }
+  return gRealDlsym;
 }
 
 bool callerIsOurs(const void* returnAddress) {
@@ -692,8 +696,10 @@ bool callerIsOurs(const void* returnAddress) {
 }  // namespace
 }  // namespace sl::interpose
 
-SL_EXPORT void* dlsym(void* handle, const char* name) {
+SL_EXPORT __attribute__((no_sanitize("address", "undefined"))) void* dlsym(void* handle,
+                                                                           const char* name) {
   const sl::interpose::DlsymFn real = sl::interpose::realDlsym();
+  if (handle == RTLD_NEXT || handle == RTLD_DEFAULT) return real(handle, name);
   if (handle != RTLD_NEXT && handle != RTLD_DEFAULT &&
       sl::interpose::policy() != sl::interpose::Policy::kOff &&
       !sl::interpose::callerIsOurs(__builtin_return_address(0)))
