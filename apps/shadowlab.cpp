@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "apps/run_legacy.h"
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
@@ -44,6 +45,8 @@ usage:
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
   shadowlab gallery --out DIR                      the artefact gallery: DIR/gallery/index.html
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
+  shadowlab run-legacy --backend glx|osmesa|reference [--keys "h v l"] --frames DIR -- PROGRAM [ARGS]
+                                                   an unchanged GL 1.x GLUT program, imaging preloaded
   shadowlab --version                              the commit this binary was built from
 
 `shadowlab COMMAND --help` lists a command's options.
@@ -160,6 +163,7 @@ int run(int argc, char** argv) {
     std::cout << softwareName() << "\n";  // "shadowlab <commit>" (core/provenance.h)
     return 0;
   }
+  if (argc >= 2 && std::string(argv[1]) == "run-legacy") return runLegacy(argc - 1, argv + 1);
   cli::Args args;
   try {
     args = cli::parse(argc, argv);

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -73,6 +74,7 @@ struct GlContext::Impl {
   std::vector<unsigned char> colorBuffer;  // the OSMesa "window"
   GLenum colorType = GL_UNSIGNED_BYTE;
   bool bound = false;  // OSMesaMakeCurrent has been called once
+  std::string adoptedApi;  // non-empty: the program's context, seen through GlContext::adopt
   std::map<std::string, std::shared_ptr<void>> layers;
 #ifdef SHADOWLAB_HAVE_EGL
   EGLDisplay eglDisplay = EGL_NO_DISPLAY;
@@ -337,10 +339,54 @@ GlContext::~GlContext() {
   }
 }
 
+std::unique_ptr<GlContext> GlContext::adopt(const std::string& api, Backend backend, int width,
+                                            int height, GlResolver resolve, void* user) {
+  std::unique_ptr<GlContext> ctx(new GlContext());
+  ctx->spec_.backend = backend;
+  ctx->spec_.width = width;
+  ctx->spec_.height = height;
+  ctx->spec_.color = ColorFormat::kRgba8;  // window-system colour buffers of 8-bit channels
+  ctx->impl_ = std::make_unique<Impl>();
+  ctx->impl_->adoptedApi = api;
+  resolveGlDispatch(ctx->dispatch_, resolve, user);
+  const GlDispatch& gl = ctx->dispatch_;
+  if (gl.GetString == nullptr || gl.GetIntegerv == nullptr || gl.GetError == nullptr ||
+      gl.GetString(GL_VERSION) == nullptr)
+    throw GlError("the " + api + " context answers no GL_VERSION");
+  // OpenGL 3.2 (glspec32 6.1.5): GL_CONTEXT_PROFILE_MASK tells a core profile from a
+  // compatibility one; earlier versions have only the compatibility behaviour.
+  const std::string version = reinterpret_cast<const char*>(gl.GetString(GL_VERSION));
+  constexpr int kProfileMaskSince = 32;  // OpenGL 3.2, as major * 10 + minor
+  int major = 0, minor = 0;
+  if (std::sscanf(version.c_str(), "%d.%d", &major, &minor) == 2 &&
+      major * 10 + minor >= kProfileMaskSince) {
+    GLint mask = 0;
+    gl.GetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+    if ((mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0) ctx->spec_.profile = Profile::kCore;
+  }
+  ctx->makeCurrent();
+  ctx->queryCapabilities();
+  return ctx;
+}
+
+void GlContext::setDrawableSize(int width, int height) {
+  spec_.width = width;
+  spec_.height = height;
+}
+
+void GlContext::clearCurrent() {
+  tCurrentContext = nullptr;
+  setCurrentGl(nullptr);
+}
+
+bool GlContext::adopted() const { return !impl_->adoptedApi.empty(); }
+
 void GlContext::makeCurrent() {
   Impl& impl = *impl_;
   bool ok = false;
-  if (impl.osmesaContext != nullptr) {
+  if (!impl.adoptedApi.empty()) {
+    ok = true;  // the program bound it; only the dispatch follows
+  } else if (impl.osmesaContext != nullptr) {
     const bool alreadyCurrent = impl.osmesa.getCurrentContext != nullptr &&
                                 impl.osmesa.getCurrentContext() == impl.osmesaContext;
     if (spec_.backend == Backend::kReference && impl.bound) {

@@ -64,6 +64,21 @@ class GlContext {
   void makeCurrent();
   static GlContext* current();  // the context current on this thread, or nullptr
 
+  // Wraps a context that the program made and made current on this thread itself (the drop-in
+  // imaging library sees it through glXMakeCurrent, eglMakeCurrent or OSMesaMakeCurrent):
+  // entry points from `resolve`, capabilities and profile queried now. The wrapper never binds
+  // or destroys the program's context: makeCurrent() only marks it current for the dispatch.
+  // `api` names the window system that made it ("glx", "egl", "osmesa"); `backend` is the
+  // nearest of ours (messages only). Throws GlError when the context answers no GL_VERSION.
+  static std::unique_ptr<GlContext> adopt(const std::string& api, Backend backend, int width,
+                                          int height, GlResolver resolve, void* user);
+  // The size of an adopted context's drawable (a window resized, another surface bound).
+  void setDrawableSize(int width, int height);
+  // No context of ours is current on this thread (the program released or switched to one
+  // that is not adopted).
+  static void clearCurrent();
+  bool adopted() const;
+
   const ContextSpec& spec() const { return spec_; }
   const Capabilities& caps() const { return caps_; }
 

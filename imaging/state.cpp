@@ -12,21 +12,37 @@ State* currentState() {
   return c == nullptr ? nullptr : static_cast<State*>(c->layerState("imaging"));
 }
 
-// 2.5: one sticky flag per error code; a flag already set is not set again.
-void recordError(State& s, GLenum error) {
+// 2.5: one sticky flag per error code; a flag already set is not set again. The emulation and
+// the driver share the flags: the driver's pending errors are taken in first, so that
+// glGetError returns the codes in the order the calls raised them, each code once.
+namespace {
+void addFlag(State& s, GLenum error) {
   for (GLenum e : s.errors)
     if (e == error) return;
   s.errors.push_back(error);
 }
+void takeDriverErrors(State& s) {
+  constexpr int kMaxDriverFlags = 16;  // GL has at most a handful of distinct error codes
+  for (int i = 0; i < kMaxDriverFlags; ++i) {
+    const GLenum e = s.driver.GetError();
+    if (e == GL_NO_ERROR) return;
+    addFlag(s, e);
+  }
+}
+}  // namespace
+
+void recordError(State& s, GLenum error) {
+  takeDriverErrors(s);
+  addFlag(s, error);
+}
 
 GLenum emGetError() {
   State& s = *currentState();
-  if (!s.errors.empty()) {
-    const GLenum e = s.errors.front();
-    s.errors.erase(s.errors.begin());
-    return e;
-  }
-  return s.driver.GetError();
+  takeDriverErrors(s);
+  if (s.errors.empty()) return GL_NO_ERROR;
+  const GLenum e = s.errors.front();
+  s.errors.erase(s.errors.begin());
+  return e;
 }
 
 namespace {

@@ -24,6 +24,8 @@ PACKAGES=(
   python3-distributed  # sweeps on Dask workers (shadowlab.sweep(spec, client=...))
   python3-matplotlib python3-pil  # examples/ plots; tests/python reads PNGs with Pillow
   python3-pytest      # tests/python (ctest label python)
+  freeglut3-dev xvfb  # run-legacy: unchanged GLUT programs on GLX (Xvfb when there is no display)
+  piglit              # tests/interpose: piglit's pixel tests with and without the drop-in library
 )
 
 missing=()
