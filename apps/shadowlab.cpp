@@ -208,7 +208,8 @@ int render(const cli::Args& args) {
   for (const auto& [k, v] : frame.counters) out["counters"][k] = v;
   const std::string line = jsonLine(out);
   const PassDumpHeader dumpHeader{technique.name, technique.paper, scene.name, made,
-                                  twins::legacyTwinOf(technique.name)};
+                                  twins::legacyTwinOf(technique.name),
+                                  twins::legacyTwinPassesOf(technique.name)};
   writeFrameOutputs(frame, dumpHeader, outputs, pngProvenance(made));
   outputs.set.commit();
   std::cout << line << "\n";

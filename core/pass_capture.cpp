@@ -42,6 +42,11 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 
 PassImage greyDepth(std::string name, const std::string& what, const Image& depth,
                     WindowDepthSpan range, float clear) {
+  return {std::move(name), what + "; " + greyDepthRangeText(range, clear),
+          greyDepthImage(depth, range, clear)};
+}
+
+Image greyDepthImage(const Image& depth, WindowDepthSpan range, float clear) {
   Image grey(depth.width, depth.height, 1);
   const float span = range.hi - range.lo;
   for (int y = 0; y < depth.height; ++y)
@@ -51,10 +56,13 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
       const float v = z == clear ? 1.0f : span > 0.0f ? (z - range.lo) / span : 0.5f;
       grey.at(x, y) = std::clamp(v, 0.0f, 1.0f);
     }
-  std::string caption = what + "; window z " + depthText(range.lo) + " (black) .. " +
-                        depthText(range.hi) + " (white); " + depthText(clear) + " = nothing";
-  if (range.lo == clear && range.hi == clear) caption = what + "; empty: nothing drawn (white)";
-  return {std::move(name), std::move(caption), std::move(grey)};
+  return grey;
+}
+
+std::string greyDepthRangeText(WindowDepthSpan range, float clear) {
+  if (range.lo == clear && range.hi == clear) return "empty: nothing drawn (white)";
+  return "window z " + depthText(range.lo) + " (black) .. " + depthText(range.hi) + " (white); " +
+         depthText(clear) + " = nothing";
 }
 
 Image readDepthTexture(unsigned texture, int width, int height) {

@@ -37,6 +37,12 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 PassImage greyDepth(std::string name, const std::string& what, const Image& depth,
                     WindowDepthSpan range, float clear = kClearDepth);
 
+// The parts of greyDepth for a buffer declared in a pass table (core/passes.h), whose caption
+// carries the range as a word: the grey image, and the caption's end after "; ":
+// "window z <lo> (black) .. <hi> (white); <clear> = nothing", or "empty: nothing drawn (white)".
+Image greyDepthImage(const Image& depth, WindowDepthSpan range, float clear = kClearDepth);
+std::string greyDepthRangeText(WindowDepthSpan range, float clear = kClearDepth);
+
 // Reads level 0 of a DEPTH_COMPONENT texture as float window z (rows bottom-up); the
 // GL_TEXTURE_2D binding of the active unit is restored. Compare mode does not apply to reads.
 Image readDepthTexture(unsigned texture, int width, int height);

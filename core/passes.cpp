@@ -76,7 +76,18 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
 
 void Passes::capture(const std::string& id, const std::string& buffer,
                      const std::function<Image()>& read, const PassPart& part,
-                     const std::map<std::string, std::string>& words) {
+                     const PassWords& words) {
+  capture(
+      id, buffer,
+      [&](PassWords& all) {
+        all = words;
+        return read();
+      },
+      part);
+}
+
+void Passes::capture(const std::string& id, const std::string& buffer,
+                     const std::function<Image(PassWords& words)>& read, const PassPart& part) {
   if (!params_.capturePasses) return;
   const PassSpec& spec = findPassSpec(table_, id);
   const PassBuffer* declared = nullptr;
@@ -84,13 +95,14 @@ void Passes::capture(const std::string& id, const std::string& buffer,
     if (b.name == buffer) declared = &b;
   if (!declared)
     throw std::logic_error("pass \"" + id + "\" declares no buffer \"" + buffer + "\"");
-  std::string caption = declared->caption;
-  for (const auto& [key, value] : words) caption = replaced(caption, key, value);
   Image image;
+  PassWords words;
   {
     const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
-    image = read();
+    image = read(words);
   }
+  std::string caption = declared->caption;
+  for (const auto& [key, value] : words) caption = replaced(caption, key, value);
   std::string name = replaced(declared->name, "part", part.fileTag);
   for (const auto& [key, value] : words) name = replaced(name, key, value);
   std::vector<std::string> meaning = declared->channelMeaning;

@@ -20,6 +20,9 @@
 
 namespace sl {
 
+// Words that replace "{key}" in a declared buffer's name, caption and channel meanings.
+using PassWords = std::map<std::string, std::string>;
+
 // The framework a render() runs its passes through (one per render).
 class Passes {
  public:
@@ -39,7 +42,11 @@ class Passes {
   // any pass's GL trace. `words` replace "{key}" in its name, caption and channel
   // meanings ("{part}" in the name is the part's file tag).
   void capture(const std::string& id, const std::string& buffer, const std::function<Image()>& read,
-               const PassPart& part = {}, const std::map<std::string, std::string>& words = {});
+               const PassPart& part = {}, const PassWords& words = {});
+  // The same for a buffer whose words depend on what is read (the depth range a grey depth map
+  // spans): `read` returns the image and sets those words.
+  void capture(const std::string& id, const std::string& buffer,
+               const std::function<Image(PassWords& words)>& read, const PassPart& part = {});
 
   bool capturing() const { return params_.capturePasses; }
   Frame& frame() { return frame_; }

@@ -2,6 +2,7 @@
 #include "figures/lesson.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -228,7 +229,8 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
     parameters["precision"] = precisionName(p.precision);
   side.passes =
       passesJson(*side.frame,
-                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name)},
+                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name),
+                                twins::legacyTwinPassesOf(t.name)},
                  side.images);
   side.prefix = t.name + "_";
   side.renderCommand = renderCommandFor(t, p, s);
@@ -321,8 +323,9 @@ std::string code(const std::string& text) {
   return "<code>" + htmlEscape(text) + "</code>";
 }
 
-std::string passAnchor(const std::string& technique, int pass) {
-  return htmlEscape(technique) + "-pass-" + std::to_string(pass);
+// The anchor of a pass by its id in the technique's pass table ("legacy.fast-pcf-pass-6a").
+std::string passAnchor(const std::string& technique, const std::string& passId) {
+  return htmlEscape(technique + "-pass-" + passId);
 }
 
 // The GL state card of a pass (passes.json "state": [{"group", "text", "before_pass"}] in call
@@ -393,15 +396,18 @@ void writeGlsl(std::ostream& html, const json& pass) {
   }
 }
 
-// "legacy.fast-pcf pass 2 copy ..." -> a link to that pass when this page shows it.
+// "legacy.fast-pcf pass 6a accumulate" -> a link to that pass when this page shows it.
 std::string replacesLink(const std::string& text, const std::vector<Side>& sides) {
-  static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass (\d+)\b.*)");
+  static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass ([0-9a-z]+)\b.*)");
   std::smatch m;
   if (std::regex_match(text, m, kPass))
-    for (const Side& s : sides)
-      if (s.technique->name == m[1].str())
-        return "<a href=\"#" + passAnchor(m[1].str(), std::stoi(m[2].str())) + "\">" +
-               htmlEscape(text) + "</a>";
+    for (const Side& s : sides) {
+      if (s.technique->name != m[1].str()) continue;
+      for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
+        if (pass.value("id", "") == m[2].str())
+          return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" +
+                 htmlEscape(text) + "</a>";
+    }
   return htmlEscape(text);
 }
 
@@ -440,9 +446,11 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
        << code(side.renderCommand) << "</span> (named under each picture, in the folder "
        << code(name + "-passes") << "). Times are of this one render.</p>\n";
   for (const json& pass : side.passes["passes"]) {
-    const int number = pass.value("number", -1);
-    html << "<section class=\"pass\" id=\"" << passAnchor(name, number) << "\">\n<h3>"
-         << (number >= 0 ? "Pass " + std::to_string(number) + ": " : std::string())
+    // Numbered ids ("6a") head the pass; a named one ("mesh") is not shown.
+    const std::string id = pass.value("id", "");
+    const bool numbered = !id.empty() && std::isdigit(static_cast<unsigned char>(id[0]));
+    html << "<section class=\"pass\" id=\"" << passAnchor(name, id) << "\">\n<h3>"
+         << (numbered ? "Pass " + htmlEscape(id) + ": " : std::string())
          << htmlEscape(pass.value("name", ""));
     if (pass["milliseconds"].is_number())
       html << " <span class=\"time\">" << fmt(pass["milliseconds"].get<double>(), "%.2f ms")
