@@ -1,6 +1,6 @@
 // apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures,
 // lesson, serve.
-// Contract: ../shared/DESIGN.md "Contracts". Bad input -> one line on stderr, exit status 2.
+// Contract: docs/design.md "Command-line contract". Bad input -> one line on stderr, exit status 2.
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>

@@ -27,7 +27,7 @@ std::string formatNumber(double value);
 // Name of a GL error enum, e.g. "GL_INVALID_ENUM".
 const char* glErrorName(unsigned error);
 
-// Exit statuses of every shadowlab program (DESIGN.md's CLI contract).
+// Exit statuses of every shadowlab program (docs/design.md, "Command-line contract").
 constexpr int kExitOther = 1;
 constexpr int kExitInputError = 2;
 constexpr int kExitGlError = 3;

@@ -38,7 +38,7 @@ struct ParamReadLog {
 // One --param key a technique understands, declared once where the technique is defined (its
 // kind, default, range or choices, and what it means). The technique reads the value through
 // RenderParams with the same declaration; `list`, checkParams, the bench's sweeps and the live
-// lab read the declarations (DESIGN.md: declared once, never listed by hand again).
+// lab read the declarations (docs/design.md: declared once, never listed by hand again).
 struct ParamSpec {
   enum class Kind { kNumber, kInteger, kChoice, kFlag };
   std::string key;

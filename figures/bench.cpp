@@ -49,7 +49,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Window sizes: quick keeps the whole run under 2 minutes on two cores; full is the papers'
-// 800x600 halved in each direction (llvmpipe fill bounds the run time, DESIGN.md).
+// 800x600 halved in each direction (llvmpipe fill bounds the run time, docs/design.md).
 constexpr int kQuickWidth = 256, kQuickHeight = 192;
 constexpr int kFullWidth = 400, kFullHeight = 300;
 constexpr int kQuickWarmup = 1, kQuickTimed = 3;

@@ -38,7 +38,7 @@ enum class PanelKind {
 // height in the same fractions. {0.70, 0.47, 0.12, 0.12} in an 800x600 panel is the 96x72
 // window whose lower-left pixel is (560, 282) counted from the bottom-left, i.e. whose top row
 // is row 600 - 282 - 72 = 246 counted from the top as an image viewer counts.
-// (docs/figures.md "Close-ups" and README say the same.)
+// (docs/figures.md "Close-ups" and docs/user-guide.md say the same.)
 struct Closeup {
   float x = 0, y = 0, w = 0, h = 0;
   int magnify = 4;

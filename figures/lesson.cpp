@@ -2,7 +2,6 @@
 #include "figures/lesson.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -120,42 +119,24 @@ std::vector<std::pair<std::string, std::string>> refList(const LessonText& t, co
 
 // ---------------------------------------------------------------- known departures
 
+// One departure from the paper, as a pass of a technique's table declares it
+// (core/pass_table.h PassSpec::deviations).
 struct Departure {
-  std::string file;  // relative to the source tree
-  int line = 0;
+  std::string technique;
+  std::string passId;
+  std::string passName;
   std::string text;
 };
 
-// The source tree: assets/ lives at its top (core/scene_library.h assetDirectory()).
-fs::path sourceRoot() {
-  return fs::path(assetDirectory()).parent_path();
-}
-
-// Every `DEVIATION (source, section): why` comment of a C++ or GLSL file: the text from
-// "DEVIATION" to the end of its comment (the following lines that are comments too, up to a
-// blank comment line). References to one ("see the DEVIATION in ...") carry no "(" after the
-// word and are not departures.
-std::vector<Departure> departuresIn(const std::string& relative) {
-  std::ifstream in(sourceRoot() / relative);
+// Every departure the pass tables of `techniques` declare, pass by pass; a text shared by
+// several passes (a helper they all call) is listed once, under the first.
+std::vector<Departure> departuresOf(const std::vector<const Technique*>& techniques) {
   std::vector<Departure> out;
-  if (!in) return out;
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  static const std::regex kComment(R"(^\s*//\s?(.*)$)");
-  for (size_t i = 0; i < lines.size(); ++i) {
-    const size_t at = lines[i].find("DEVIATION (");
-    if (at == std::string::npos || lines[i].find("//") == std::string::npos ||
-        lines[i].find("//") > at)
-      continue;
-    std::string text = lines[i].substr(at);
-    std::smatch m;
-    for (size_t j = i + 1; j < lines.size() && std::regex_match(lines[j], m, kComment); ++j) {
-      const std::string more = m[1].str();
-      if (more.empty() || more.find("DEVIATION (") != std::string::npos) break;
-      text += " " + more;
-    }
-    out.push_back({relative, int(i + 1), text});
-  }
+  for (const Technique* t : techniques)
+    for (const PassSpec& p : t->passes)
+      for (const std::string& d : p.deviations)
+        if (std::none_of(out.begin(), out.end(), [&](const Departure& o) { return o.text == d; }))
+          out.push_back({t->name, p.id, p.name, d});
   return out;
 }
 
@@ -323,9 +304,9 @@ std::string code(const std::string& text) {
   return "<code>" + htmlEscape(text) + "</code>";
 }
 
-// The anchor of a pass by its id in the technique's pass table ("legacy.fast-pcf-pass-6a").
-std::string passAnchor(const std::string& technique, const std::string& passId) {
-  return htmlEscape(technique + "-pass-" + passId);
+// The anchor of a pass on the page: its technique and its id in the pass table.
+std::string passAnchor(const std::string& technique, const std::string& id) {
+  return htmlEscape(technique) + "-pass-" + htmlEscape(id);
 }
 
 // The GL state card of a pass (passes.json "state": [{"group", "text", "before_pass"}] in call
@@ -446,11 +427,10 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
        << code(side.renderCommand) << "</span> (named under each picture, in the folder "
        << code(name + "-passes") << "). Times are of this one render.</p>\n";
   for (const json& pass : side.passes["passes"]) {
-    // Numbered ids ("6a") head the pass; a named one ("mesh") is not shown.
-    const std::string id = pass.value("id", "");
-    const bool numbered = !id.empty() && std::isdigit(static_cast<unsigned char>(id[0]));
+    const int number = pass.value("number", -1);
+    const std::string id = pass.value("id", std::to_string(number));
     html << "<section class=\"pass\" id=\"" << passAnchor(name, id) << "\">\n<h3>"
-         << (numbered ? "Pass " + htmlEscape(id) + ": " : std::string())
+         << (number >= 0 ? "Pass " + id + ": " : std::string())
          << htmlEscape(pass.value("name", ""));
     if (pass["milliseconds"].is_number())
       html << " <span class=\"time\">" << fmt(pass["milliseconds"].get<double>(), "%.2f ms")
@@ -639,9 +619,9 @@ std::string pageHtml(const LessonPage& page) {
   if (page.comparison) writeComparison(html, page);
 
   html << "<h2 id=\"departures\">Known departures</h2>\n<p>Where this implementation departs from "
-          "the paper or the specification, its source says so in a <code>DEVIATION</code> "
-          "comment; these are the ones in the files of this lesson ("
-       << htmlEscape(std::to_string(stringList(text, "sources").size())) << " files).";
+          "the paper or the specification, the pass that departs declares it in its "
+          "technique's pass table (and a <code>DEVIATION</code> comment says so in the source "
+          "at the same place); these are the ones of the passes on this page.";
   html << " Further reading in the repository: ";
   bool first = true;
   for (const std::string& d : stringList(text, "docs")) {
@@ -650,16 +630,13 @@ std::string pageHtml(const LessonPage& page) {
   }
   html << ".</p>\n";
   if (page.departures.empty()) {
-    html << "<p>None is recorded in these files"
-         << (fs::exists(sourceRoot() / "core")
-                 ? ""
-                 : " (the source tree was not found beside the assets)")
-         << ".</p>\n";
+    html << "<p>None: every pass on this page follows its paper as written.</p>\n";
   } else {
     html << "<ul class=\"departures\">\n";
     for (const Departure& d : page.departures)
-      html << "<li>" << code(d.file + ":" + std::to_string(d.line)) << " — " << htmlEscape(d.text)
-           << "</li>\n";
+      html << "<li><a href=\"#" << passAnchor(d.technique, d.passId) << "\">"
+           << htmlEscape(d.technique + " pass " + d.passId + " (" + d.passName + ")") << "</a> — "
+           << htmlEscape(d.text) << "</li>\n";
     html << "</ul>\n";
   }
 
@@ -713,17 +690,10 @@ LessonPage prepareLesson(const Technique& t, const LessonSettings& s, const std:
   } else {
     page.sides.push_back(renderSide(t, paramsForSettings(s), scene, s, cache));
   }
-  // Departures: the lesson's source files, then any other file a pass names.
-  std::vector<std::string> files = stringList(page.text, "sources");
-  for (const Side& side : page.sides)
-    for (const json& pass : side.passes["passes"]) {
-      const json source = pass.value("source", json());
-      if (source.is_object() && source.value("file", "") != "" &&
-          std::find(files.begin(), files.end(), source.value("file", "")) == files.end())
-        files.push_back(source.value("file", ""));
-    }
-  for (const std::string& f : files)
-    for (Departure& d : departuresIn(f)) page.departures.push_back(std::move(d));
+  // Departures: what the pass tables of the page's techniques declare.
+  std::vector<const Technique*> shown;
+  for (const Side& side : page.sides) shown.push_back(side.technique);
+  page.departures = departuresOf(shown);
   return page;
 }
 

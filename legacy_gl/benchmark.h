@@ -66,9 +66,9 @@ std::vector<BenchmarkResult> benchmarkBrabecSeidel(const Scene& scene,
 // ratio to the floor.
 std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& options);
 
-// The README table: variant | GL | paper fps | ours fps | ours ms/frame | render() wall ms |
-// floor ms/frame | time / floor; then per variant its per-pass table (ms, floor ms, time /
-// floor) and the floors measured.
+// The summary table (docs/performance.md): variant | GL | paper fps | ours fps |
+// ours ms/frame | render() wall ms | floor ms/frame | time / floor; then per variant its
+// per-pass table (ms, floor ms, time / floor) and the floors measured.
 std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results);
 
 }  // namespace sl::legacy

@@ -41,6 +41,22 @@ DepthEncoding depthEncoding(Precision precision);
 // Curved surfaces near their terminator still self-shadow: the pipeline has no slope-scaled
 // bias (the paper's 8-bit limitation, §6).
 constexpr double kDefaultDepthBiasSteps = 2.0;
+// The departures above and in brabec_seidel_passes.cpp, as the pass tables declare them
+// (core/pass_table.h PassSpec::deviations): the camera passes' bias; the float encoding
+// (depthEncoding) of the light and camera passes; the clamp of saturateAlphaByCopy.
+inline const std::string kDepthBiasDeviation =
+    "DEVIATION (Brabec–Seidel §2): the paper names no bias. glPolygonOffset moves window z "
+    "only, never texgen values, so the bias is subtracted from the camera pass's ramp "
+    "coordinate through the texture matrix (lightEyeToRamp): a surface counts as shadowed only "
+    "when it lies more than `bias` behind the map.";
+inline const std::string kFloatChannelsDeviation =
+    "DEVIATION (Brabec–Seidel §6): float channels did not exist in 2001; the ramp and the map "
+    "use ARB_texture_float formats (osmesa only; the reference is 8-bit only).";
+inline const std::string kFloatClampDeviation =
+    "DEVIATION (float precision only): a float buffer keeps negative differences (lit points in "
+    "front of the map) and scaled values above 1; two full-window quads blended with "
+    "EXT_blend_minmax clamp alpha to [0, 1] as the fixed-point buffers of 2001 did by "
+    "themselves.";
 // --param depth-bias, declared once for legacy.ramp, legacy.pcf and legacy.fast-pcf.
 ParamSpec depthBiasParam();
 double depthBias(const RenderParams& params, const DepthEncoding& enc);

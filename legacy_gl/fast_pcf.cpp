@@ -56,7 +56,8 @@ PassTable fastPcfPasses() {
        .writes = {{.name = "light-pass-depth-rgba",
                    .caption = "Pass 1: one light pass, encoded depth in all four channels (one "
                               "shown)"}},
-       .floor = F::kLightDepth},
+       .floor = F::kLightDepth,
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
       {.id = "2",
        .name = "copy to texture through the 3x3 packing convolution",
        .reference = "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5",
@@ -81,7 +82,8 @@ PassTable fastPcfPasses() {
        .writes = {{.name = "camera-pass-z-replicated",
                    .caption = "Pass 3: light depth of each visible point in all four "
                               "channels{again}"}},
-       .floor = F::kCameraDepth},
+       .floor = F::kCameraDepth,
+       .deviations = {bs::kDepthBiasDeviation}},
       {.id = "4",
        .name = "projective pass: subtract packed map, offset texture coordinates",
        .reference = "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "

@@ -2,6 +2,8 @@
 // legacy technique (module-internal header).
 #pragma once
 
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "core/gl.h"
@@ -38,6 +40,9 @@ void setCameraMatrices(const Scene& scene, int width, int height);
 // A framebuffer object standing in for the window when a light pass does not fit in it.
 // DEVIATION (Brabec–Seidel §2, Everitt §2): the 2001 code rendered the light view into the
 // window; a map larger than our window would be clipped, so we render it off-screen.
+inline const std::string kOffscreenLightPassDeviation =
+    "DEVIATION (Brabec–Seidel §2, Everitt §2): the 2001 code rendered the light view into the "
+    "window; a map larger than our window would be clipped, so we render it off-screen.";
 class LightTarget {
  public:
   // colorFormat: the colour attachment's internal format (the precision of the light pass).

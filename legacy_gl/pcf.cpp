@@ -59,14 +59,16 @@ PassTable pcfPasses() {
                    .caption = "The four jittered samples minus their mean (R | G | B | A), "
                               "amplified " + gain + "x, grey = equal: the sub-texel jitter of "
                               "Fig. 3"}},
-       .floor = F::kJitteredLightGroup},
+       .floor = F::kJitteredLightGroup,
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
       {.id = "2",
        .name = "camera pass: light depth in RGBA",
        .reference = "Brabec & Seidel 2001 §3: \"we replicate the z values over all four color "
                     "channels\" (the ramp of §2)",
        .writes = {{.name = "camera-pass-z-replicated{part}",
                    .caption = "Pass 2: light depth of each visible point in all four channels"}},
-       .floor = F::kCameraDepth},
+       .floor = F::kCameraDepth,
+       .deviations = {bs::kDepthBiasDeviation}},
       {.id = "3",
        .name = "projective pass: subtract packed map",
        .reference = "Brabec & Seidel 2001 §3 (Reeves' comparison step, Fig. 2): the subtraction "

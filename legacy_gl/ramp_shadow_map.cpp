@@ -40,7 +40,8 @@ PassTable rampPasses() {
        .writes = {{.name = "light-pass-ramp-depth-alpha",
                    .caption = "Pass 1: light-space depth through the 1D ramp, alpha channel of "
                               "the shadow map (black = near, white = far or empty)"}},
-       .floor = F::kLightDepthAndCopy},
+       .floor = F::kLightDepthAndCopy,
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
       {.id = "2",
        .name = "camera pass: light depth ramp into alpha",
        .reference = "Brabec & Seidel 2001 §2: the same ramp from the camera, a 4x4 texture "
@@ -48,7 +49,8 @@ PassTable rampPasses() {
        .writes = {{.name = "camera-pass-ramp-depth-alpha",
                    .caption = "Pass 2: each visible point's own depth from the light, same ramp "
                               "(minus bias)"}},
-       .floor = F::kCameraDepth},
+       .floor = F::kCameraDepth,
+       .deviations = {bs::kDepthBiasDeviation}},
       {.id = "3",
        .name = "projective pass: subtract shadow map",
        .reference = "Brabec & Seidel 2001 §2: the map as a projective texture, subtracted by the "
@@ -68,7 +70,8 @@ PassTable rampPasses() {
                     "values > 0 to 1",
        .writes = {{.name = "shadow-mask-alpha",
                    .caption = "Pass 4 (footnote 1): the mask after the extra copy, 1 = shadow"}},
-       .floor = F::kCopyPixels},
+       .floor = F::kCopyPixels,
+       .deviations = {bs::kFloatClampDeviation}},
       {.id = "5",
        .name = "lighting x shadow mask",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "

@@ -4,7 +4,7 @@
 // The vertex transform is the one of modern/shaders/scene.vert.glsl (uModel, then
 // uViewProjection from the same glm matrices), so GL rasterises the same fragments here as in
 // every technique's camera pass. The module keeps its own GL owners and its shaders in
-// reference/shaders/: the reference does not depend on modern/ (DESIGN.md "Layout").
+// reference/shaders/: the reference does not depend on modern/ (docs/design.md, layering).
 #include "reference/surface_buffer.h"
 
 #include <glm/gtc/type_ptr.hpp>

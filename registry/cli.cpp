@@ -46,7 +46,7 @@ struct CommandSpec {
   const char* positionalHelp = nullptr;
 };
 
-// The rendering options shared by render, compare and plan (DESIGN.md "Contracts").
+// The rendering options shared by render, compare and plan (docs/design.md, CLI).
 std::vector<OptionSpec> renderOptions() {
   return {
       {"scene", "S", "scene name (shadowlab list) or a scene .json file [brabec]"},

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# scripts/perf_tables.sh [--list] [ID...] — re-measures every performance table in README.md
-# and docs/ and writes each into its place, so that no number in them is typed by hand.
+# scripts/perf_tables.sh [--list] [ID...] — re-measures every performance table in docs/
+# (docs/performance.md lists them all) and writes each into its place, so that no number in
+# them is typed by hand.
 #
 # A table lives between two marker lines in a markdown file:
 #   <!-- perf-table ID -->
@@ -21,14 +22,14 @@ cd "$(dirname "$0")/.."
 # ID | files | command (run from the repository root). A file written as FILE:first receives
 # only the command's first paragraph and first table (the summary); other files get it all.
 TABLES=(
-  "legacy|README.md:first docs/legacy.md|build/bin/legacy_bench"
+  "legacy|docs/performance.md:first docs/legacy.md|build/bin/legacy_bench"
   "legacy-split|docs/legacy.md|build/bin/legacy_bench --split-cost --frames 9"
-  "twins-time|README.md|build/bin/shadowlab-twins --no-agreement --frames 7"
+  "twins-time|docs/performance.md|build/bin/shadowlab-twins --no-agreement --frames 7"
   "imaging|docs/imaging.md|build/bin/imaging_bench"
-  "csm-ratio|README.md docs/csm.md|build/bin/csm_bench --part ratio"
+  "csm-ratio|docs/csm.md|build/bin/csm_bench --part ratio"
   "csm-table1|docs/csm.md|build/bin/csm_bench --part table1 --quick"
   "volumes|docs/volumes.md|build/bin/volumes_bench --scene fill-bound --shadow-map 256"
-  "lab-latency|README.md|build/bin/lab_bench --requests 20 --burst 8"
+  "lab-latency|docs/performance.md|build/bin/lab_bench --requests 20 --burst 8"
 )
 TOOLS=(shadowlab legacy_bench imaging_bench csm_bench volumes_bench shadowlab-twins lab_bench)
 

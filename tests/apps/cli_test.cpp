@@ -1,5 +1,5 @@
 // The shadowlab command as a user runs it: outputs on success, and for every kind of bad
-// input one line on stderr, exit status 2, and no output file (DESIGN.md "Contracts").
+// input one line on stderr, exit status 2, and no output file (docs/design.md, CLI).
 #include "registry/cli.h"
 
 #include <gtest/gtest.h>

@@ -43,10 +43,11 @@ const nlohmann::json& pass(const nlohmann::json& dump, int number) {
   throw std::runtime_error("no pass " + std::to_string(number));
 }
 
+// The pass with id `id` of the technique's pass table ("6a").
 const nlohmann::json& passWithId(const nlohmann::json& dump, const std::string& id) {
   for (const nlohmann::json& p : dump["passes"])
     if (p["id"] == id) return p;
-  throw std::runtime_error("no pass " + id);
+  throw std::runtime_error("no pass with id " + id);
 }
 
 // True when some line of the pass (group `group`) contains every one of `parts`.
@@ -116,10 +117,12 @@ TEST(StateCards, FastPcf4x4WritesOneCameraPassAndShowsTheAccumulation) {
   for (const nlohmann::json& i : d["images"])
     if (i["pass"] == 3) ++cameraFiles;
   EXPECT_EQ(cameraFiles, 1);
+  // Pass 6a sums the phases, pass 6b returns the sum (two passes of the table).
   const nlohmann::json& accumulate = passWithId(d, "6a");
   EXPECT_TRUE(hasLine(accumulate, "accum", {"glAccum(GL_LOAD"})) << lines(accumulate);
-  const nlohmann::json& giveBack = passWithId(d, "6b");
-  EXPECT_TRUE(hasLine(giveBack, "accum", {"glAccum(GL_RETURN"})) << lines(giveBack);
+  EXPECT_TRUE(hasLine(accumulate, "accum", {"glAccum(GL_ACCUM"})) << lines(accumulate);
+  const nlohmann::json& back = passWithId(d, "6b");
+  EXPECT_TRUE(hasLine(back, "accum", {"glAccum(GL_RETURN"})) << lines(back);
 }
 
 // The packed map gets a "channel minus centre" view per neighbour on a diverging legend.

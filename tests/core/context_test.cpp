@@ -1,5 +1,5 @@
 // Context creation on every back end and colour precision the project relies on
-// (../shared/DESIGN.md "Platform facts").
+// (docs/design.md "Platform facts").
 #include <gtest/gtest.h>
 
 #include "core/context.h"
@@ -19,7 +19,7 @@ TEST(Context, OsmesaCompatibilityHasAccumulationAndNoImaging) {
   EXPECT_EQ(ctx->caps().redBits, 8);
   EXPECT_EQ(ctx->caps().depthBits, 24);
   EXPECT_EQ(ctx->caps().stencilBits, 8);
-  EXPECT_FALSE(ctx->caps().nativeImaging());  // Mesa removed ARB_imaging (DESIGN.md)
+  EXPECT_FALSE(ctx->caps().nativeImaging());  // Mesa removed ARB_imaging (docs/design.md)
   EXPECT_TRUE(ctx->caps().hasExtension("GL_ARB_shadow"));
   EXPECT_GE(ctx->caps().maxTextureSize, 2048);
 }

@@ -1,6 +1,6 @@
 # tests/layering/include_layers.cmake — fails on an include that points up the house.
 #
-# The layers, lowest first (DESIGN.md "Layout"; README "How it is built"):
+# The layers, lowest first (docs/design.md "Layout and layering"):
 #   0 core/      1 imaging/      2 legacy_gl/ modern/ reference/ (never each other)
 #   3 registry/  4 figures/ lab/ (never each other)  5 apps/ tools/ (the executables' mains)
 # A source file may include headers of its own folder and of lower layers only.

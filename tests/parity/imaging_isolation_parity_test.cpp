@@ -8,10 +8,10 @@
 // (../shared/reference-gl/README.md, departures_test.cpp).
 //
 // Measured (2026-12-02, 400x300, 256^2 map, brabec and analytic): 0 of 120000 pixels differ,
-// mask and image, in every one of the 18 render pairs below (README "Parity with a real imaging
-// implementation"). The passes use RGBA colour tables with entries in [0, 1], the colour
-// matrix, an RGBA convolution filter on a copy, and read back with every stage off: none meets
-// a listed departure, so none is needed to explain a difference and the test asserts
+// mask and image, in every one of the 18 render pairs below (docs/validation.md, "Parity with
+// a real imaging implementation"). The passes use RGBA colour tables with entries in [0, 1],
+// the colour matrix, an RGBA convolution filter on a copy, and read back with every stage off:
+// none meets a listed departure, so none is needed to explain a difference and the test asserts
 // exact equality.
 #include <gtest/gtest.h>
 

@@ -1,0 +1,123 @@
+// Every technique declares its passes once (core/pass_table.h): the table is well formed, every
+// pass a render runs and every buffer it dumps is one of the table's, every floor the legacy
+// roofline needs is declared, and every DEVIATION comment of the lessons' source files is a
+// departure some pass declares (the lessons read the tables, never the source files; a helper
+// several techniques share may depart for one of them only, e.g. the float clamp of legacy.ramp's
+// pass 4, so the comment is matched against every table).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/pass_table.h"
+#include "core/scene_library.h"
+#include "registry/registry.h"
+
+namespace sl {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSmallWidth = 96;  // a render small enough to run every technique quickly
+constexpr int kSmallHeight = 72;
+constexpr int kSmallMapTexels = 128;
+
+TEST(PassTables, EveryTechniqueDeclaresAWellFormedTable) {
+  for (const Technique& t : allTechniques()) {
+    EXPECT_FALSE(t.passes.empty()) << t.name << " declares no passes";
+    for (const std::string& problem : passTableProblems(t.passes))
+      ADD_FAILURE() << t.name << ": " << problem;
+  }
+}
+
+// Each pass a frame ran, and each buffer it captured, names a pass of the table; the frame's
+// pass carries the table's reference and floor.
+TEST(PassTables, EveryPassAndBufferOfARenderIsDeclared) {
+  const Scene scene = builtinScene("brabec");
+  for (const Technique& t : allTechniques()) {
+    RenderParams p;
+    p.width = kSmallWidth;
+    p.height = kSmallHeight;
+    p.shadowMapTexels = kSmallMapTexels;
+    p.capturePasses = true;
+    if (t.name == "reference.soft") p.extra["rays"] = "4";  // the dump, not the noise
+    const Frame frame = renderTechnique(t, scene, p);
+    ASSERT_FALSE(frame.passes.empty()) << t.name;
+    for (const PassTime& pass : frame.passes) {
+      ASSERT_FALSE(pass.id.empty()) << t.name << ": pass '" << pass.name << "' has no id";
+      const PassSpec& spec = findPassSpec(t.passes, pass.id);
+      EXPECT_EQ(pass.section, spec.reference) << t.name << " " << pass.id;
+      EXPECT_EQ(pass.floor, spec.floor) << t.name << " " << pass.id;
+    }
+    for (const PassImage& image : frame.intermediates) {
+      ASSERT_FALSE(image.passId.empty()) << t.name << ": buffer " << image.name;
+      EXPECT_NO_THROW(findPassSpec(t.passes, image.passId)) << t.name << " " << image.name;
+    }
+  }
+}
+
+// The text of every `DEVIATION (source, section): why` comment of a file: from "DEVIATION (" to
+// the end of its comment block (a blank comment line or code ends it), spaces normalised.
+std::vector<std::string> deviationComments(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  static const std::regex kComment(R"(^\s*//\s?(.*)$)");
+  std::vector<std::string> out;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const size_t at = lines[i].find("DEVIATION (");
+    const size_t slashes = lines[i].find("//");
+    if (at == std::string::npos || slashes == std::string::npos || slashes > at) continue;
+    std::string text = lines[i].substr(at);
+    std::smatch m;
+    for (size_t j = i + 1; j < lines.size() && std::regex_match(lines[j], m, kComment); ++j) {
+      const std::string more = m[1].str();
+      if (more.empty() || more.find("DEVIATION (") != std::string::npos) break;
+      text += " " + more;
+    }
+    out.push_back(std::regex_replace(text, std::regex(R"(\s+)"), " "));
+  }
+  return out;
+}
+
+// A declared departure matches a comment when it is the comment's beginning, at least its
+// first sentence (the comment may go on with the reasons for a constant).
+bool declares(const std::string& declared, const std::string& comment) {
+  const std::string d = std::regex_replace(declared, std::regex(R"(\s+)"), " ");
+  const size_t firstSentence = comment.find(". ");
+  const size_t needed = firstSentence == std::string::npos ? comment.size() : firstSentence + 1;
+  return d.size() >= needed && comment.compare(0, d.size(), d) == 0;
+}
+
+TEST(PassTables, EveryDeviationCommentOfALessonsSourcesIsDeclaredByAPass) {
+  const fs::path assets(assetDirectory());
+  const fs::path root = assets.parent_path();
+  std::vector<std::string> declared;
+  for (const Technique& t : allTechniques())
+    for (const PassSpec& p : t.passes)
+      declared.insert(declared.end(), p.deviations.begin(), p.deviations.end());
+  int checked = 0;
+  for (const auto& entry : fs::directory_iterator(assets / "lessons")) {
+    std::ifstream in(entry.path());
+    const nlohmann::json text = nlohmann::json::parse(in);
+    for (const nlohmann::json& lesson : text["lessons"]) {
+      for (const std::string& source : lesson.value("sources", std::vector<std::string>{}))
+        for (const std::string& comment : deviationComments(root / source)) {
+          ++checked;
+          EXPECT_TRUE(std::any_of(declared.begin(), declared.end(),
+                                  [&](const std::string& d) { return declares(d, comment); }))
+              << source << ": " << comment << "\n  is declared by no pass (lesson of "
+              << lesson["techniques"].dump() << ")";
+        }
+    }
+  }
+  EXPECT_GT(checked, 0) << "no DEVIATION comment found: the sources were not read";
+}
+
+}  // namespace
+}  // namespace sl
