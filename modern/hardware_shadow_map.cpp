@@ -35,7 +35,8 @@ PassTable hardwareShadowMapPasses() {
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
                               "offset; {depth-range}"}},
        .shaders = {"depth-only"},
-       .replaces = {"1"}},
+       .replaces = {"1"},
+       .deviations = {kDepthRoundoffScaleDeviation}},
       cameraPassWithShadowTest("2", "hw_shadow.frag, Everitt Eq. 5: textureProj on sampler2DShadow",
                                {"2", "3", "4", "5"}),
   };

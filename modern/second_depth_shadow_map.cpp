@@ -43,7 +43,8 @@ PassTable secondDepthPasses() {
        .deviations = {"DEVIATION (Wang & Molnar 1994; Everitt et al. 2001), as "
                       "legacy.second-depth: open casters have no back face behind their front "
                       "face, so they are drawn with both faces and modern.hw's polygon offset; "
-                      "closed casters keep the second depth."}},
+                      "closed casters keep the second depth.",
+                      kDepthRoundoffScaleDeviation}},
       cameraPassWithShadowTest("2", "hw_shadow.frag on the second-depth map, Everitt Eq. 5",
                                {"2", "3", "4", "5"}),
   };

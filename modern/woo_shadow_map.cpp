@@ -46,7 +46,8 @@ PassTable wooPasses() {
                    .caption = "pass 2: woo_peel.frag discards what is not behind z1, the depth "
                               "test keeps z2; {depth-range}"}},
        .shaders = {"peel"},
-       .replaces = {"2"}},
+       .replaces = {"2"},
+       .deviations = {kDepthRoundoffScaleDeviation}},
       {.id = "3",
        .name = "midpoint of the layers",
        .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
