@@ -15,6 +15,7 @@
 #endif
 
 #include "core/errors.h"
+#include "core/gl_fault.h"
 
 #ifndef SHADOWLAB_DEFAULT_REFERENCE_GL
 #define SHADOWLAB_DEFAULT_REFERENCE_GL ""
@@ -364,7 +365,7 @@ void GlContext::makeCurrent() {
   if (!ok) throw GlError(std::string("cannot make the ") + backendName(spec_.backend) +
                          " context current");
   tCurrentContext = this;
-  setCurrentGl(&dispatch_);
+  setCurrentGl(glFaultLayer(&dispatch_));  // the table itself, unless a fault is armed
 }
 
 GlContext* GlContext::current() { return tCurrentContext; }

@@ -1,10 +1,12 @@
 #include "core/errors.h"
 
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "core/gl.h"
+#include "core/gl_fault.h"
 #include "core/provenance.h"
 
 namespace sl {
@@ -32,7 +34,7 @@ const char* glErrorName(unsigned error) {
   }
 }
 
-void checkGl(const char* pass) {
+std::string drainGlErrors() {
   std::string message;
   constexpr int kMaxQueuedErrors = 16;  // GL keeps one flag per error kind; bound the drain
   for (int i = 0; i < kMaxQueuedErrors; ++i) {
@@ -41,6 +43,31 @@ void checkGl(const char* pass) {
     if (!message.empty()) message += ", ";
     message += glErrorName(e);
   }
+  if (!message.empty()) message += takeGlFaultNote();
+  return message;
+}
+
+namespace {
+// This thread's noted GL failure (noteGlError), like GL's own error flag: per thread.
+thread_local std::optional<std::string> tNotedGlError;
+}  // namespace
+
+void noteGlError(const std::string& message) {
+  if (!tNotedGlError) tNotedGlError = message;
+}
+
+bool glErrorNoted() { return tNotedGlError.has_value(); }
+
+void throwNotedGlError() {
+  if (!tNotedGlError) return;
+  std::string message = std::move(*tNotedGlError);
+  tNotedGlError.reset();
+  throw GlError(message);
+}
+
+void checkGl(const char* pass) {
+  throwNotedGlError();
+  const std::string message = drainGlErrors();
   if (!message.empty()) throw GlError(std::string(pass) + ": " + message);
 }
 

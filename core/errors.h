@@ -18,8 +18,21 @@ struct GlError : std::runtime_error {
 };
 
 // Throws GlError("<pass>: GL error GL_INVALID_OPERATION ...") if glGetError reports anything;
-// drains every queued error so the next pass starts clean.
+// drains every queued error so the next pass starts clean. A GL failure noted earlier on this
+// thread (noteGlError) is thrown first.
 void checkGl(const char* pass);
+
+// Drains glGetError without throwing: "GL_INVALID_OPERATION, GL_OUT_OF_MEMORY", or empty when
+// no error is queued. An injected fault (core/gl_fault.h) adds its note.
+std::string drainGlErrors();
+
+// A GL failure met where throwing is not allowed (PassTimer's destructor, at the end of a pass):
+// kept on this thread, the first one noted, until throwNotedGlError() throws it as GlError. The
+// next pass, checkGl and the end of Technique::render call it, so the failure still ends the
+// render with the pass's name, as if the pass had thrown.
+void noteGlError(const std::string& message);
+void throwNotedGlError();
+bool glErrorNoted();
 
 // A number for a message: shortest form that reads back (0.5, 1e+09, 8e-07), no trailing zeros.
 std::string formatNumber(double value);

@@ -1,6 +1,7 @@
 #include "core/gl.h"
 
 #include "core/errors.h"
+#include "core/gl_fault.h"
 
 namespace sl {
 namespace {
@@ -24,7 +25,9 @@ void setCurrentGl(const GlDispatch* table) { tCurrent = table; }
 
 namespace gl {
 void throwMissingEntryPoint(const char* name) {
-  throw GlError(std::string("the current GL implementation has no entry point ") + name);
+  // An injected fault (core/gl_fault.h) that made the entry point absent says so.
+  throw GlError(std::string("the current GL implementation has no entry point ") + name +
+                takeGlFaultNote());
 }
 }  // namespace gl
 }  // namespace sl

@@ -84,6 +84,10 @@ void appendToString(png_structp png, png_bytep data, png_size_t length) {
 
 }  // namespace
 
+std::vector<unsigned char> quantizedRows(const Image& image, int bitDepth) {
+  return pngRows(image, bitDepth);
+}
+
 namespace {
 // zlib's default level for files; its fastest for in-memory PNGs: the live lab answers with
 // those while a slider moves, on loopback, where a few more bytes cost less than the time of

@@ -37,6 +37,9 @@ void writePng(const std::string& path, const Image& image, int bitDepth = 8,
               const Provenance& provenance = {});
 // The same PNG in memory (the live lab's responses, lab/), deflated at zlib's fastest level.
 std::string encodePng(const Image& image, int bitDepth = 8, const Provenance& provenance = {});
+// The pixels as writePng stores them: rows top-down, each value clamped to [0, 1] and rounded
+// to `bitDepth` (8, or 16 as big-endian byte pairs). The Python module's image arrays.
+std::vector<unsigned char> quantizedRows(const Image& image, int bitDepth);
 // Reads any PNG (palette, gray, RGB, with or without alpha, 8 or 16 bit) as float channels.
 Image readPng(const std::string& path);
 // The text chunks (tEXt, zTXt, iTXt) of a PNG, keyword -> text. Throws InputError.

@@ -42,11 +42,6 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 
 PassImage greyDepth(std::string name, const std::string& what, const Image& depth,
                     WindowDepthSpan range, float clear) {
-  return {std::move(name), what + "; " + greyDepthRangeText(range, clear),
-          greyDepthImage(depth, range, clear)};
-}
-
-Image greyDepthImage(const Image& depth, WindowDepthSpan range, float clear) {
   Image grey(depth.width, depth.height, 1);
   const float span = range.hi - range.lo;
   for (int y = 0; y < depth.height; ++y)
@@ -56,13 +51,10 @@ Image greyDepthImage(const Image& depth, WindowDepthSpan range, float clear) {
       const float v = z == clear ? 1.0f : span > 0.0f ? (z - range.lo) / span : 0.5f;
       grey.at(x, y) = std::clamp(v, 0.0f, 1.0f);
     }
-  return grey;
-}
-
-std::string greyDepthRangeText(WindowDepthSpan range, float clear) {
-  if (range.lo == clear && range.hi == clear) return "empty: nothing drawn (white)";
-  return "window z " + depthText(range.lo) + " (black) .. " + depthText(range.hi) + " (white); " +
-         depthText(clear) + " = nothing";
+  std::string caption = what + "; window z " + depthText(range.lo) + " (black) .. " +
+                        depthText(range.hi) + " (white); " + depthText(clear) + " = nothing";
+  if (range.lo == clear && range.hi == clear) caption = what + "; empty: nothing drawn (white)";
+  return {std::move(name), std::move(caption), std::move(grey)};
 }
 
 Image readDepthTexture(unsigned texture, int width, int height) {
@@ -88,6 +80,19 @@ void captureCameraPass(Frame& frame, int pass, const std::string& source) {
        "pass " + n + ": the shadow test's result alone, white = lit, black = shadow (" + source +
            "); what --mask writes",
        frame.visibility});
+}
+
+std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source) {
+  return {{.name = "shaded", .caption = "pass " + pass + ": the shaded image (" + source + ")"},
+          {.name = "visibility",
+           .caption = "pass " + pass +
+                      ": the shadow test's result alone, white = lit, black = shadow (" + source +
+                      "); what --mask writes"}};
+}
+
+void captureCameraPass(Passes& passes, const std::string& id) {
+  passes.capture(id, "shaded", [&] { return passes.frame().color; });
+  passes.capture(id, "visibility", [&] { return passes.frame().visibility; });
 }
 
 }  // namespace sl

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "core/pass_table.h"
+#include "core/passes.h"
 #include "core/technique.h"
 
 namespace sl {
@@ -37,12 +39,6 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 PassImage greyDepth(std::string name, const std::string& what, const Image& depth,
                     WindowDepthSpan range, float clear = kClearDepth);
 
-// The parts of greyDepth for a buffer declared in a pass table (core/passes.h), whose caption
-// carries the range as a word: the grey image, and the caption's end after "; ":
-// "window z <lo> (black) .. <hi> (white); <clear> = nothing", or "empty: nothing drawn (white)".
-Image greyDepthImage(const Image& depth, WindowDepthSpan range, float clear = kClearDepth);
-std::string greyDepthRangeText(WindowDepthSpan range, float clear = kClearDepth);
-
 // Reads level 0 of a DEPTH_COMPONENT texture as float window z (rows bottom-up); the
 // GL_TEXTURE_2D binding of the active unit is restored. Compare mode does not apply to reads.
 Image readDepthTexture(unsigned texture, int width, int height);
@@ -50,5 +46,10 @@ Image readDepthTexture(unsigned texture, int width, int height);
 // The camera pass' outcome, as every technique fills Frame::color and Frame::visibility:
 // "<pass>-shaded" and "<pass>-visibility" with captions that name `source` (paper section).
 void captureCameraPass(Frame& frame, int pass, const std::string& source);
+// The same for a technique that runs its passes through core/passes.h: its camera pass's
+// buffers "shaded" and "visibility" for its pass table (PassSpec::writes), captioned as above
+// ("pass <pass>: ..."), and their capture as pass `id` from Frame::color and Frame::visibility.
+std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source);
+void captureCameraPass(Passes& passes, const std::string& id);
 
 }  // namespace sl

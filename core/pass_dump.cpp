@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.h"
 #include "core/html.h"
@@ -149,9 +150,9 @@ struct ReplacedPass {
 // Pass `id` of the header's twin, named from the twin's pass table. Throws GlError when the
 // table has no such pass (a shader's @replaces line names a pass that is not there).
 ReplacedPass replacedPass(const PassDumpHeader& header, const std::string& id) {
-  // TRANSITION: a legacy twin whose passes are not declared in a table yet is named by id only.
-  if (header.twinPasses == nullptr || header.twinPasses->empty())
-    return {size_t(std::max(passNumberOf(id), 0)), header.twin + " pass " + id};
+  if (header.twinPasses == nullptr)
+    throw std::logic_error("passes.json: the header names the twin " + header.twin +
+                           " without its pass table");
   const PassTable& table = *header.twinPasses;
   for (size_t i = 0; i < table.size(); ++i)
     if (table[i].id == id) return {i, header.twin + " pass " + id + " " + table[i].name};
@@ -505,7 +506,8 @@ std::string indexHtml(const nlohmann::json& passes) {
   html << "</table>\n";
   for (const nlohmann::json& p : passes["passes"]) {
     const int number = p["number"].get<int>();
-    html << "<h2>" << (number >= 0 ? "Pass " + std::to_string(number) + ": " : std::string())
+    const std::string id = p.value("id", std::to_string(number));
+    html << "<h2>" << (number >= 0 ? "Pass " + id + ": " : std::string())
          << htmlEscape(p["name"].get<std::string>());
     if (p["milliseconds"].is_number())
       html << " <span class=\"time\">" << milliseconds(p["milliseconds"].get<double>())

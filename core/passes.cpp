@@ -2,9 +2,13 @@
 #include "core/passes.h"
 
 #include <cctype>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_fault.h"
 #include "core/gl_trace.h"
 
 namespace sl {
@@ -28,11 +32,17 @@ std::string replaced(std::string text, const std::string& key, const std::string
 }
 
 // Ends the pass's GL trace however the body leaves (the body may throw).
+// Also the pass boundary of fault injection (core/gl_fault.h): a fault armed for the pass
+// `name` fires inside it.
 class TracedScope {
  public:
-  TracedScope() { beginTracedPass(); }
+  explicit TracedScope(const std::string& name) {
+    beginTracedPass();
+    glFaultPassBegin(name);
+  }
   ~TracedScope() {
     if (!ended_) endTracedPass();
+    glFaultPassEnd();
   }
   TracedPass end() {
     ended_ = true;
@@ -62,8 +72,9 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   pass.glsl = spec.shaders;
   pass.sourceFile = sourceRelativePath(file);
   pass.sourceFunction = function;
+  throwNotedGlError();  // a timed pass's failure (PassTimer) ends the render before this one
   glFinish();
-  TracedScope trace;
+  TracedScope trace(pass.name);
   const double start = nowMilliseconds();
   body();
   glFinish();
@@ -74,20 +85,48 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   checkGl(name.c_str());
 }
 
-void Passes::capture(const std::string& id, const std::string& buffer,
-                     const std::function<Image()>& read, const PassPart& part,
-                     const PassWords& words) {
-  capture(
-      id, buffer,
-      [&](PassWords& all) {
-        all = words;
-        return read();
-      },
-      part);
+void Passes::resume(const std::string& id, const std::function<void()>& body) {
+  size_t at = frame_.passes.size();
+  while (at > 0 && frame_.passes[at - 1].id != id) --at;
+  if (at == 0) throw std::logic_error("pass \"" + id + "\" resumed before it ran");
+  throwNotedGlError();
+  glFinish();
+  TracedScope trace(frame_.passes[at - 1].name);
+  const double start = nowMilliseconds();
+  body();
+  glFinish();
+  const double milliseconds = nowMilliseconds() - start;
+  TracedPass gl = trace.end();
+  PassTime& pass = frame_.passes[at - 1];
+  pass.milliseconds += milliseconds;
+  pass.gl.setup.insert(pass.gl.setup.end(), gl.setup.begin(), gl.setup.end());
+  pass.gl.state.insert(pass.gl.state.end(), gl.state.begin(), gl.state.end());
+  checkGl(pass.name.c_str());
 }
 
 void Passes::capture(const std::string& id, const std::string& buffer,
-                     const std::function<Image(PassWords& words)>& read, const PassPart& part) {
+                     const std::function<Image()>& read, const PassPart& part,
+                     const std::map<std::string, std::string>& words) {
+  add(id, buffer, [&](const std::string& caption) { return std::pair(read(), caption); }, part,
+      words);
+}
+
+void Passes::captureDepth(const std::string& id, const std::string& buffer,
+                          const std::function<Image()>& readDepth, const PassPart& part,
+                          const std::map<std::string, std::string>& words,
+                          const std::function<WindowDepthSpan()>& span) {
+  add(id, buffer,
+      [&](const std::string& caption) {
+        const Image depth = readDepth();
+        PassImage grey = span ? greyDepth("", caption, depth, span())
+                              : greyDepth("", caption, depth);
+        return std::pair(std::move(grey.image), std::move(grey.caption));
+      },
+      part, words);
+}
+
+void Passes::add(const std::string& id, const std::string& buffer, const Reader& read,
+                 const PassPart& part, const std::map<std::string, std::string>& words) {
   if (!params_.capturePasses) return;
   const PassSpec& spec = findPassSpec(table_, id);
   const PassBuffer* declared = nullptr;
@@ -95,14 +134,13 @@ void Passes::capture(const std::string& id, const std::string& buffer,
     if (b.name == buffer) declared = &b;
   if (!declared)
     throw std::logic_error("pass \"" + id + "\" declares no buffer \"" + buffer + "\"");
-  Image image;
-  PassWords words;
-  {
-    const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
-    image = read(words);
-  }
   std::string caption = declared->caption;
   for (const auto& [key, value] : words) caption = replaced(caption, key, value);
+  Image image;
+  {
+    const GlTracePause dumpOnly;  // a readback for the dump, not state of a pass
+    std::tie(image, caption) = read(caption);
+  }
   std::string name = replaced(declared->name, "part", part.fileTag);
   for (const auto& [key, value] : words) name = replaced(name, key, value);
   std::vector<std::string> meaning = declared->channelMeaning;

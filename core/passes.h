@@ -15,13 +15,11 @@
 #include <map>
 #include <string>
 
+#include "core/pass_capture.h"
 #include "core/pass_table.h"
 #include "core/technique.h"
 
 namespace sl {
-
-// Words that replace "{key}" in a declared buffer's name, caption and channel meanings.
-using PassWords = std::map<std::string, std::string>;
 
 // The framework a render() runs its passes through (one per render).
 class Passes {
@@ -37,22 +35,39 @@ class Passes {
            const std::string& suffix = "", const char* file = __builtin_FILE(),
            const char* function = __builtin_FUNCTION());
 
+  // Runs `body` as more of pass `id`, run before in this render: a pass whose work comes in
+  // pieces interleaved with another pass's (reference pixel=area: per sub-pixel position its
+  // surface points, pass 3a, then its rays, pass 3b). The time and GL state of the piece are
+  // added to the pass's last entry in Frame::passes (one entry, however many pieces); throws
+  // std::logic_error when the pass has not run.
+  void resume(const std::string& id, const std::function<void()>& body);
+
   // --dump-passes: adds buffer `buffer` of pass `id` (declared in its `writes`) to
   // Frame::intermediates with its declared caption, calling `read` only while dumping, outside
   // any pass's GL trace. `words` replace "{key}" in its name, caption and channel
   // meanings ("{part}" in the name is the part's file tag).
   void capture(const std::string& id, const std::string& buffer, const std::function<Image()>& read,
-               const PassPart& part = {}, const PassWords& words = {});
-  // The same for a buffer whose words depend on what is read (the depth range a grey depth map
-  // spans): `read` returns the image and sets those words.
-  void capture(const std::string& id, const std::string& buffer,
-               const std::function<Image(PassWords& words)>& read, const PassPart& part = {});
+               const PassPart& part = {}, const std::map<std::string, std::string>& words = {});
+
+  // --dump-passes: a depth buffer of pass `id` shown as grey (core/pass_capture.h greyDepth):
+  // `readDepth` returns window z; the caption is the declared one followed by the window-z
+  // range the greys span: `span()` (several maps on one scale) or, when empty, the drawn range
+  // of this buffer. Both run only while dumping.
+  void captureDepth(const std::string& id, const std::string& buffer,
+                    const std::function<Image()>& readDepth, const PassPart& part = {},
+                    const std::map<std::string, std::string>& words = {},
+                    const std::function<WindowDepthSpan()>& span = {});
 
   bool capturing() const { return params_.capturePasses; }
   Frame& frame() { return frame_; }
   const PassTable& table() const { return table_; }
 
  private:
+  // The image and its caption, given the declared caption with its words replaced.
+  using Reader = std::function<std::pair<Image, std::string>(const std::string& caption)>;
+  void add(const std::string& id, const std::string& buffer, const Reader& read,
+           const PassPart& part, const std::map<std::string, std::string>& words);
+
   Frame& frame_;
   const RenderParams& params_;
   const PassTable& table_;

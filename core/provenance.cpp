@@ -76,6 +76,10 @@ void recordCommandLine(int argc, const char* const* argv) {
   storedCommandLine() = shellJoin(arguments);
 }
 
+void recordCommand(std::string command) {
+  storedCommandLine() = std::move(command);
+}
+
 const std::string& commandLine() {
   return storedCommandLine();
 }

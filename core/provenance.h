@@ -26,6 +26,9 @@ std::string shellJoin(const std::vector<std::string>& arguments);
 // The command line of this process: main() records it once; "" until then.
 void recordCommandLine(int argc, const char* const* argv);
 const std::string& commandLine();
+// What made this process's next outputs when no main() command line did: the Python module
+// records each call ("shadowlab.render(scene='brabec', ...)") before it runs.
+void recordCommand(std::string command);
 
 // What a PNG says about how it was made (core/image.h writePng). Every PNG carries "Software"
 // (softwareName()); "shadowlab:command" carries `command`, or commandLine() when `command` is

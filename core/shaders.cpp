@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/gl_objects.h"
 #include "core/gl_trace.h"
 
 namespace sl {
@@ -44,19 +45,18 @@ std::string preprocessShader(const std::string& file, const ShaderDefines& defin
 }
 
 namespace {
-GLuint compileStage(GLenum type, const std::string& file, const ShaderDefines& defines) {
+ShaderName compileStage(GLenum type, const std::string& file, const ShaderDefines& defines) {
   const std::string source = preprocessShader(file, defines);
-  GLuint shader = glCreateShader(type);
+  ShaderName shader(glCreateShader(type));
   const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
+  glShaderSource(shader.id(), 1, &text, nullptr);
+  glCompileShader(shader.id());
   GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (!ok) {
     constexpr int kLogBytes = 4096;
     char log[kLogBytes] = {0};
-    glGetShaderInfoLog(shader, kLogBytes, nullptr, log);
-    glDeleteShader(shader);
+    glGetShaderInfoLog(shader.id(), kLogBytes, nullptr, log);
     throw GlError("compiling " + file + ": " + log);
   }
   return shader;
@@ -125,35 +125,29 @@ std::vector<ShaderPassMarker> shaderPassMarkers() {
 
 GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fragmentFile,
                             const ShaderDefines& defines, const std::string& geometryFile) {
-  std::vector<GLuint> stages;
-  try {
-    stages.push_back(compileStage(GL_VERTEX_SHADER, vertexFile, defines));
-    stages.push_back(compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines));
-    if (!geometryFile.empty())
-      stages.push_back(compileStage(GL_GEOMETRY_SHADER, geometryFile, defines));
-  } catch (...) {
-    for (GLuint s : stages) glDeleteShader(s);
-    throw;
-  }
-  const GLuint program = glCreateProgram();
-  for (GLuint s : stages) glAttachShader(program, s);
-  glBindAttribLocation(program, 0, "aPosition");
-  glBindAttribLocation(program, 1, "aNormal");
-  glLinkProgram(program);
-  for (GLuint s : stages) glDeleteShader(s);
+  std::vector<ShaderName> stages;
+  stages.push_back(compileStage(GL_VERTEX_SHADER, vertexFile, defines));
+  stages.push_back(compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines));
+  if (!geometryFile.empty())
+    stages.push_back(compileStage(GL_GEOMETRY_SHADER, geometryFile, defines));
+  ProgramName program(glCreateProgram());
+  for (const ShaderName& s : stages) glAttachShader(program.id(), s.id());
+  glBindAttribLocation(program.id(), 0, "aPosition");
+  glBindAttribLocation(program.id(), 1, "aNormal");
+  glLinkProgram(program.id());
+  stages.clear();  // the linked program keeps what it needs
   GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   if (!ok) {
     constexpr int kLogBytes = 4096;
     char log[kLogBytes] = {0};
-    glGetProgramInfoLog(program, kLogBytes, nullptr, log);
-    glDeleteProgram(program);
+    glGetProgramInfoLog(program.id(), kLogBytes, nullptr, log);
     throw GlError("linking " + vertexFile + " + " + fragmentFile + ": " + log);
   }
   std::vector<std::string> files = {vertexFile, fragmentFile};
   if (!geometryFile.empty()) files.push_back(geometryFile);
-  noteTracedProgram(program, files);
-  return program;
+  noteTracedProgram(program.id(), files);
+  return program.release();  // the caller owns it (modern/gl_objects.h Program)
 }
 
 }  // namespace sl

@@ -7,6 +7,7 @@
 
 #include "core/decimal.h"
 #include "core/errors.h"
+#include "core/gl_fault.h"
 
 namespace sl {
 using namespace sl::gl;
@@ -315,6 +316,14 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
                      " (GL_MAX_TEXTURE_SIZE of this GL)");
   if (p.filter < 1 || p.filter > 16)
     throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
+  const std::vector<int>& sides = t.reads.filterSides;
+  if (t.reads.filter && !sides.empty() &&
+      std::find(sides.begin(), sides.end(), p.filter) == sides.end()) {
+    std::string list;
+    for (size_t i = 0; i < sides.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == sides.size() ? " or " : ", ") + std::to_string(sides[i]);
+    throw InputError(t.name + ": --filter must be " + list + ", got " + std::to_string(p.filter));
+  }
   for (const auto& [key, value] : p.extra) {
     const ParamSpec* spec = findParam(t, key);
     if (!spec) {
@@ -351,26 +360,56 @@ PassTime::PassTime(std::string n, double ms, const char* file, const char* funct
 PassTimer::PassTimer(Frame& frame, std::string name, std::string section, const char* file,
                      const char* function)
     : frame_(frame) {
+  throwNotedGlError();  // the previous pass's failure ends the render before this pass runs
   pass_.name = std::move(name);
   pass_.section = std::move(section);
   pass_.sourceFile = sourceRelativePath(file);
   pass_.sourceFunction = function;
   glFinish();
   beginTracedPass();
+  glFaultPassBegin(pass_.name);  // core/gl_fault.h: a fault armed for this pass fires here
   start_ = nowMilliseconds();
 }
 
-PassTimer::~PassTimer() noexcept(false) {
+PassTimer::~PassTimer() {
   if (std::uncaught_exceptions() > 0) {
     endTracedPass();
+    glFaultPassEnd();
     return;
   }
-  glFinish();
-  pass_.milliseconds = nowMilliseconds() - start_;
-  pass_.gl = endTracedPass();
   const std::string name = pass_.name;
-  frame_.passes.push_back(std::move(pass_));
-  checkGl(name.c_str());
+  try {
+    glFinish();
+  } catch (const std::exception& e) {  // no entry point or no current context: noted below
+    noteGlError(name + ": " + e.what());
+  }
+  try {
+    pass_.milliseconds = nowMilliseconds() - start_;
+    pass_.gl = endTracedPass();
+    frame_.passes.push_back(std::move(pass_));
+    if (!glErrorNoted()) {
+      const std::string errors = drainGlErrors();
+      if (!errors.empty()) noteGlError(name + ": " + errors);
+    }
+  } catch (const std::exception& e) {
+    noteGlError(name + ": " + e.what());
+  }
+  glFaultPassEnd();
+}
+
+Frame RenderFunction::operator()(GlContext& context, const Scene& scene,
+                                 const RenderParams& params) const {
+  if (!function_) throw std::bad_function_call();
+  throwNotedGlError();
+  Frame frame;
+  try {
+    frame = function_(context, scene, params);
+  } catch (...) {
+    throwNotedGlError();  // a pass failed first
+    throw;
+  }
+  throwNotedGlError();
+  return frame;
 }
 
 Image readColorBuffer(int x, int y, int width, int height) {

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/context.h"
@@ -180,6 +181,9 @@ const char* optionFlag(CommonOption o);  // "--shadow-map"
 struct CommonOptions {
   bool shadowMap = false;  // RenderParams::shadowMapTexels
   bool filter = false;     // RenderParams::filter
+  // The --filter sides it accepts when it reads --filter (fast PCF: 2 and 4, the footprints of
+  // Brabec & Seidel §4); empty = every side checkParams allows. checkParams refuses the others.
+  std::vector<int> filterSides;
   bool precision = false;  // RenderParams::precision
 };
 
@@ -203,6 +207,22 @@ struct PlanTraits {
   Prefilter prefilter = Prefilter::kNone;  // its blur/storage/filtering defaults: its ParamSpecs
 };
 
+// A technique's render function. Calling it renders, then throws as GlError a GL failure that a
+// pass noted at its end (PassTimer; core/errors.h noteGlError); should the render throw
+// something else after that failure, the failure, met first, is what is thrown.
+class RenderFunction {
+ public:
+  using Function = std::function<Frame(GlContext&, const Scene&, const RenderParams&)>;
+  RenderFunction() = default;
+  template <class F, class = std::enable_if_t<std::is_constructible_v<Function, F>>>
+  RenderFunction(F f) : function_(std::move(f)) {}
+  Frame operator()(GlContext& context, const Scene& scene, const RenderParams& params) const;
+  explicit operator bool() const { return bool(function_); }
+
+ private:
+  Function function_;
+};
+
 struct Technique {
   std::string name;      // "legacy.pcf"
   std::string paper;     // "Brabec & Seidel 2001, §3"
@@ -213,7 +233,12 @@ struct Technique {
   CommonOptions reads;                 // the common options its render reads
   PlanTraits plan;                     // what the pass planner asks of it
   PassTable passes;                    // its passes, declared once (core/pass_table.h)
-  std::function<Frame(GlContext&, const Scene&, const RenderParams&)> render;
+  // What its visibility approximates: the point light's hard shadow (shadow maps, volumes,
+  // reference.hard) or the spherical light's soft one (smoothies, reference.soft). The bench
+  // and the figures score it against the matching ray-traced truth.
+  enum class Light { kPoint, kArea };
+  Light light = Light::kPoint;
+  RenderFunction render;
 };
 
 bool readsOption(const Technique& t, CommonOption o);
@@ -229,7 +254,9 @@ ContextSpec contextFor(const Technique& t, const RenderParams& p);
 void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize);
 
 // Times one pass: glFinish() before and after, so the time is the pass's own GPU+CPU work.
-// Also checks GL errors at the end of the pass (throws GlError naming the pass).
+// Also checks GL errors at the end of the pass: the destructor does not throw, it notes the
+// error (core/errors.h noteGlError), and the next pass, checkGl or the end of the render throws
+// it as GlError naming the pass.
 //
 // The pass declares itself here: `section` is the paper's section, equation or figure it
 // follows ("Brabec & Seidel §4, Eq. (1), Fig. 5"); the file and function of the call are filled
@@ -239,7 +266,7 @@ class PassTimer {
  public:
   PassTimer(Frame& frame, std::string name, std::string section = "",
             const char* file = __builtin_FILE(), const char* function = __builtin_FUNCTION());
-  ~PassTimer() noexcept(false);
+  ~PassTimer();
   PassTimer(const PassTimer&) = delete;
   PassTimer& operator=(const PassTimer&) = delete;
 

@@ -70,19 +70,19 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
 
-bool isReference(const Technique& t) {
-  return t.name.rfind("reference.", 0) == 0;
+// What the sweep asks of a technique, from its declaration (core/technique.h), never its name.
+bool isReference(const Technique& t) {  // ray traced: the truth
+  return t.plan.shadowWork == PlanTraits::ShadowWork::kRays;
 }
 bool usesShadowMap(const Technique& t) {
-  return !isReference(t) && t.name.find("volumes") == std::string::npos;
+  return t.reads.shadowMap;
 }
 bool usesFilterFootprint(const Technique& t) {  // Brabec–Seidel §3-4 and their GLSL twins
-  return t.name == "legacy.pcf" || t.name == "legacy.fast-pcf" || t.name == "modern.pcf" ||
-         t.name == "modern.fast-pcf";
+  return t.reads.filter;
 }
 // Techniques whose result approximates an area light (the soft reference is their truth).
 bool approximatesSoftShadows(const Technique& t) {
-  return t.name.find("smoothie") != std::string::npos || t.name == "reference.soft";
+  return t.light == Technique::Light::kArea;
 }
 
 // The values swept for each --param key a technique may declare (only declared keys are
@@ -109,24 +109,11 @@ const std::vector<ParamAxis>& paramAxes() {
   return kAxes;
 }
 
-// Variants the sweep leaves out (issue 21 item 4), read from each technique's parameter
-// parsing. Footprints: Brabec & Seidel §4's fast PCF packs 2x2 neighbours (and 4x4 in four
-// phases) only; legacy/fast_pcf.cpp and modern/fast_percentage_closer_filtering.cpp reject 1
-// and 3 with an InputError.
-struct FootprintRule {
-  const char* technique;
-  std::vector<int> accepted;
-};
-const std::vector<FootprintRule>& footprintRules() {
-  static const std::vector<FootprintRule> kRules = {{"legacy.fast-pcf", {2, 4}},
-                                                    {"modern.fast-pcf", {2, 4}}};
-  return kRules;
-}
+// Footprints a technique does not accept (fast PCF packs 2x2 neighbours, and 4x4 in four
+// phases, only: CommonOptions::filterSides) are not swept.
 bool acceptsFootprint(const Technique& t, int footprint) {
-  for (const FootprintRule& r : footprintRules())
-    if (t.name == r.technique)
-      return std::find(r.accepted.begin(), r.accepted.end(), footprint) != r.accepted.end();
-  return true;
+  const std::vector<int>& sides = t.reads.filterSides;
+  return sides.empty() || std::find(sides.begin(), sides.end(), footprint) != sides.end();
 }
 // A swept --param value the technique's declaration refuses (modern.vsm's storage has no "8"):
 // such a variant is not swept.
@@ -233,9 +220,9 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
   const bool areaForm = pixel != v.params.extra.end() && pixel->second == reference::kPixelArea;
   if (refs.hard.visibility.width > 0 && isReference(t) &&
       v.params.extra.size() == (areaForm ? 1u : 0u) &&
-      (t.name == "reference.hard" || refs.withSoft)) {
+      (t.light == Technique::Light::kPoint || refs.withSoft)) {
     // The references were rendered once for this scene (pass 1): their row is that frame.
-    const bool soft = t.name == "reference.soft";
+    const bool soft = t.light == Technique::Light::kArea;
     const Frame& f = soft ? (areaForm ? refs.soft : refs.softPoint).frame
                           : (areaForm ? refs.hard : refs.hardPoint).frame;
     row.frameMs = row.wallMs = f.totalMilliseconds();
@@ -769,8 +756,6 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
   }
 }
 
-namespace {
-// The CSV of writeCsv: one header line, one line per row.
 void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
   out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
          "params,frame_ms,wall_ms,pareto_rank";
@@ -813,7 +798,6 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
     out << "," << quoted(passes) << "\n";
   }
 }
-}  // namespace
 
 void writeCsv(const std::string& path, const std::vector<BenchRow>& rows) {
   writeFileAtomically(path, [&](std::ostream& out) { writeCsvRows(out, rows); });
@@ -1032,7 +1016,7 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
   return out;
 }
 
-int runBenchCommand(const cli::Args& args) {
+BenchOptions parseBenchOptions(const cli::Args& args) {
   BenchOptions options;
   options.quick = args.has("quick");
   // --scene and --technique: repeatable, each value also a comma-separated list; every name
@@ -1062,10 +1046,16 @@ int runBenchCommand(const cli::Args& args) {
   if (auto r = args.value("repeat"))
     options.timedFrames = cli::parsePositiveInt("--repeat", *r, 1000);
   if (auto b = args.value("budget-ms")) options.budgetMs = parseBudgetMs(*b);
-  // Bad names and unwritable destinations fail before any work (core/output_files.h): the
-  // CSV is written to a temporary and renamed at the end; the plots' folder must be writable.
+  // Bad names fail before any work.
   for (const std::string& s : options.scenes) loadScene(s);
   for (const std::string& t : options.techniques) findTechnique(t);
+  return options;
+}
+
+int runBenchCommand(const cli::Args& args) {
+  const BenchOptions options = parseBenchOptions(args);
+  // Unwritable destinations fail before any work (core/output_files.h): the CSV is written to
+  // a temporary and renamed at the end; the plots' folder must be writable.
   OutputSet outputs;
   for (const std::string& s : options.scenes) outputs.addInput(s);
   std::optional<std::string> csv;
@@ -1100,6 +1090,32 @@ int runBenchCommand(const cli::Args& args) {
   // (stderr, with the other human-readable lines; stdout stays JSON lines).
   if (options.budgetMs) printBudgetRanking(std::cerr, result.rows, *options.budgetMs);
   return 0;
+}
+
+struct BenchReferences {
+  References refs;
+  bool temporal = true;
+};
+
+std::shared_ptr<const BenchReferences> renderBenchReferences(const Scene& scene,
+                                                             const RenderParams& base,
+                                                             bool withSoft, bool temporal) {
+  auto out = std::make_shared<BenchReferences>();
+  out->refs = renderReferences(scene, base, withSoft, temporal);
+  out->temporal = temporal;
+  return out;
+}
+
+BenchRow measureBenchRow(const Technique& t, const Scene& scene, const BenchVariant& v,
+                         const BenchReferences& refs, int warmup, int timed, bool quick) {
+  Image mask;
+  const bool truth = isReference(t);
+  BenchRow row = measureVariant(t, scene, v, refs.refs, truth ? 0 : warmup, truth ? 1 : timed,
+                                quick, refs.temporal, mask);
+  if (row.status == "ok")
+    row.counters["plan_max_shadow_texels_per_pixel"] =
+        planFrame(scene, t, v.params).maxShadowTexelsPerPixel;
+  return row;
 }
 
 }  // namespace sl::figures

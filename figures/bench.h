@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -200,6 +201,8 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
 double parseBudgetMs(const std::string& text);
 
 void writeCsv(const std::string& path, const std::vector<BenchRow>& rows);
+// The same CSV on a stream (the Python module reads it at the stream's precision).
+void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows);
 // Error-against-time plots (gnuplot run as a subprocess), per scene one PNG per technique
 // family, so that no plot carries more than a handful of series (issue 18 item 6). References
 // are the truth, never plotted as competitors. Each plot's x and y ranges are fitted to the
@@ -220,6 +223,19 @@ struct BenchPlots {
 std::string plotFamily(const std::string& technique);
 BenchPlots writePlots(const std::string& outDir, const BenchResult& result);
 
+// `shadowlab bench`'s options from its command line (InputError for a bad name or value).
+BenchOptions parseBenchOptions(const cli::Args& args);
 int runBenchCommand(const cli::Args& args);
+
+// One row at a time, as runBenchmark measures each (figures/sweep.h): the references of one
+// view (scene, window, back end) rendered once, then any variant measured against them.
+struct BenchReferences;
+std::shared_ptr<const BenchReferences> renderBenchReferences(const Scene& scene,
+                                                             const RenderParams& base,
+                                                             bool withSoft, bool temporal);
+// The row of `v` (a reference technique: its frame from `refs`); `quick`: a variant slower
+// than the quick bench's budget per frame is timed over one frame.
+BenchRow measureBenchRow(const Technique& t, const Scene& scene, const BenchVariant& v,
+                         const BenchReferences& refs, int warmup, int timed, bool quick);
 
 }  // namespace sl::figures

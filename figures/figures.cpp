@@ -40,6 +40,7 @@
 #include "figures/report.h"
 #include "figures/stability.h"
 #include "registry/registry.h"
+#include "registry/twins.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -332,9 +333,12 @@ Image framed(const Image& image, const std::vector<Closeup>& closeups) {
   return rgb;
 }
 
+// The other side of a legacy/modern twin pair (registry/twins.h), "" for a technique without.
 std::string twinName(const std::string& name) {
-  if (name.rfind("legacy.", 0) == 0) return "modern." + name.substr(7);
-  if (name.rfind("modern.", 0) == 0) return "legacy." + name.substr(7);
+  for (const twins::TwinPair& p : twins::twinPairs()) {
+    if (p.legacy == name) return p.modern;
+    if (p.modern == name) return p.legacy;
+  }
   return "";
 }
 

@@ -609,8 +609,8 @@ std::string pageHtml(const LessonPage& page) {
   }
 
   for (const Side& s : page.sides) {
-    const bool isLegacy = s.technique->name.rfind("legacy.", 0) == 0;
     const bool isTwin = page.sides.size() > 1;
+    const bool isLegacy = isTwin && &s == &page.sides.front();  // legacy first (LessonPage)
     html << "<h2 id=\"" << htmlEscape(s.technique->name) << "\">"
          << (isTwin ? (isLegacy ? "The 2001 pipeline: " : "The shader twin: ") : "Pass by pass: ")
          << htmlEscape(s.technique->name) << "</h2>\n";

@@ -218,8 +218,8 @@ std::string always(const Technique&) {
   return "";
 }
 void noChange(RenderParams&) {}
-bool isReference(const Technique& t) {
-  return t.name.rfind("reference.", 0) == 0;
+bool isReference(const Technique& t) {  // ray traced: renders no shadow map
+  return t.plan.shadowWork == PlanTraits::ShadowWork::kRays;
 }
 
 const std::vector<Case>& cases() {
@@ -468,7 +468,7 @@ Outcome evaluate(const Case& c, const Technique& t) {
     out.lowest = std::min(out.lowest, v);
     out.highest = std::max(out.highest, v);
   }
-  const bool soft = t.name.find("smoothie") != std::string::npos || t.name == "reference.soft";
+  const bool soft = t.light == Technique::Light::kArea;
   out.reference = &referenceFor(c, soft);
   out.error = errorWhereItMatters(f.visibility, *out.reference);
   auto skipped = f.counters.find("open_casters_skipped");

@@ -454,6 +454,12 @@ struct LabServer::Impl {
     res.set_content(r.body, r.contentType.empty() ? "text/plain" : r.contentType.c_str());
   }
 
+  static void answerNotGet(httplib::Response& res) {
+    res.status = 405;
+    res.set_header("Allow", "GET");
+    res.set_content("the lab answers GET only", "text/plain");
+  }
+
   static void badRequest(httplib::Response& res, const std::string& message) {
     answer(res, JobResult{JobResult::Status::kDone, 400, "text/plain", oneLine(message), {}});
   }
@@ -591,6 +597,14 @@ struct LabServer::Impl {
     server.set_keep_alive_timeout(kSocketTimeoutSeconds);
     server.set_payload_max_length(kMaxPayloadBytes);
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      // A request of another method without Content-Length or Transfer-Encoding has no body
+      // (RFC 9112 §6.3), but httplib would wait for one until the read timeout and answer 400:
+      // it gets its 405 at once. (With a body, the routes below answer 405 once it is read.)
+      if (req.method != "GET" && req.method != "HEAD" && !req.has_header("Content-Length") &&
+          !req.has_header("Transfer-Encoding")) {
+        answerNotGet(res);
+        return httplib::Server::HandlerResponse::Handled;
+      }
       if (req.path.rfind("/api/", 0) == 0 && !allowRequest()) {
         res.status = 429;
         res.set_content("too many requests: the lab answers at most " +
@@ -633,11 +647,7 @@ struct LabServer::Impl {
                                 "default-src 'self'; img-src 'self' blob: data:; style-src 'self'");
                  res.set_content(it->second.text, it->second.contentType.c_str());
                });
-    const auto notGet = [](const httplib::Request&, httplib::Response& res) {
-      res.status = 405;
-      res.set_header("Allow", "GET");
-      res.set_content("the lab answers GET only", "text/plain");
-    };
+    const auto notGet = [](const httplib::Request&, httplib::Response& res) { answerNotGet(res); };
     server.Post(".*", notGet);
     server.Put(".*", notGet);
     server.Delete(".*", notGet);

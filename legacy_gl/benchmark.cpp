@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "imaging/imaging.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/legacy.h"
@@ -144,10 +145,10 @@ constexpr int kSplitCostRampTexels = 256;  // the 8-bit ramp of §2
 void timeCameraPassDraw(Frame& frame, const std::string& name, const Scene& scene,
                         const RenderParams& p, unsigned ramp) {
   using namespace sl::gl;
-  glPushAttrib(GL_ALL_ATTRIB_BITS);
+  const ScopedAttrib state(GL_ALL_ATTRIB_BITS);
+  const ScopedMatrices matrices;
   for (const GLenum mode : {GLenum(GL_PROJECTION), GLenum(GL_MODELVIEW), GLenum(GL_TEXTURE)}) {
     glMatrixMode(mode);
-    glPushMatrix();
     glLoadIdentity();
   }
   {
@@ -171,11 +172,6 @@ void timeCameraPassDraw(Frame& frame, const std::string& name, const Scene& scen
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
     drawScene(scene, Draw::kAll, Colors::kWhite);
   }
-  for (const GLenum mode : {GLenum(GL_TEXTURE), GLenum(GL_MODELVIEW), GLenum(GL_PROJECTION)}) {
-    glMatrixMode(mode);
-    glPopMatrix();
-  }
-  glPopAttrib();
 }
 
 size_t triangles(const Scene& scene) {
@@ -197,7 +193,7 @@ std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& option
   checkParams(t, p, 0);
   auto context = GlContext::create(contextFor(t, p));
   const Scene split = tessellateForSpotlight(scene, p.width, p.height);
-  TextureName ramp;
+  const Texture ramp = makeTexture();
   {
     using namespace sl::gl;
     std::vector<float> texels(kSplitCostRampTexels);

@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/errors.h"
+#include "core/gl_objects.h"
 #include "legacy_gl/brabec_seidel.h"
 
 namespace sl::legacy::bs {
@@ -193,13 +194,14 @@ void renderLightDepth(const Scene& scene, const DepthEncoding& enc, const RampTe
   enableEyeCoordinateTexgen();
   loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, 0.0));
   loadMatrix(GL_MODELVIEW, lightView(scene.light));
-  glEnable(GL_TEXTURE_1D);
-  glBindTexture(GL_TEXTURE_1D, ramp.name.id());
-  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-  setChannelMask(channels);
-  drawScene(scene, Draw::kCasters, Colors::kWhite);
-  setChannelMask(kAllChannels);
-  glDisable(GL_TEXTURE_1D);
+  {
+    const ScopedEnable rampTexture(GL_TEXTURE_1D);
+    glBindTexture(GL_TEXTURE_1D, ramp.name.id());
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    setChannelMask(channels);
+    drawScene(scene, Draw::kCasters, Colors::kWhite);
+    setChannelMask(kAllChannels);
+  }
   disableTexgen();
 }
 
@@ -227,9 +229,8 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
   // Neighbours outside the light image are the far plane (lit), as the map's border.
   glConvolutionParameteri(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_MODE, GL_CONSTANT_BORDER);
   glConvolutionParameterfv(GL_CONVOLUTION_2D, GL_CONVOLUTION_BORDER_COLOR, kFarDepth);
-  glEnable(GL_CONVOLUTION_2D);
+  const ScopedEnable convolution(GL_CONVOLUTION_2D);
   copyLightPassToMap(map, texels);
-  glDisable(GL_CONVOLUTION_2D);
 }
 
 void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias) {
@@ -262,11 +263,12 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
   // §2: "an additional 4x4 texture matrix ... transforms points from camera to light source
   // space", then onto the ramp.
   loadCameraToRampTexgen(scene, enc, bias);
-  glEnable(GL_TEXTURE_1D);
-  glBindTexture(GL_TEXTURE_1D, ramp.name.id());
-  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-  drawScene(scene, Draw::kReceivers, Colors::kWhite);
-  glDisable(GL_TEXTURE_1D);
+  {
+    const ScopedEnable rampTexture(GL_TEXTURE_1D);
+    glBindTexture(GL_TEXTURE_1D, ramp.name.id());
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    drawScene(scene, Draw::kReceivers, Colors::kWhite);
+  }
   disableTexgen();
   setChannelMask(kAllChannels);
 }
@@ -275,11 +277,12 @@ namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params, const ShadowMapTexture& map,
                       glm::vec2 offsetTexels) {
   loadProjectiveTexgen(scene, params, offsetTexels);
-  glEnable(GL_TEXTURE_2D);
-  glBindTexture(GL_TEXTURE_2D, map.name.id());
-  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-  drawScene(scene, Draw::kReceivers, Colors::kWhite);
-  glDisable(GL_TEXTURE_2D);
+  {
+    const ScopedEnable mapTexture(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, map.name.id());
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    drawScene(scene, Draw::kReceivers, Colors::kWhite);
+  }
   disableTexgen();
 }
 }  // namespace
@@ -292,14 +295,15 @@ void subtractProjectedMap(const Scene& scene, const RenderParams& params,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);  // the camera pass's own surfaces (same transforms: invariant)
   glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // framebuffer - fragment (EXT_blend_subtract)
-  glBlendFunc(GL_ONE, GL_ONE);
-  setChannelMask(channels);
-  drawProjectedMap(scene, params, map, offsetTexels);
-  setChannelMask(kAllChannels);
-  glBlendEquation(GL_FUNC_ADD);
-  glDisable(GL_BLEND);
+  {
+    const ScopedEnable blend(GL_BLEND);
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // framebuffer - fragment (EXT_blend_subtract)
+    glBlendFunc(GL_ONE, GL_ONE);
+    setChannelMask(channels);
+    drawProjectedMap(scene, params, map, offsetTexels);
+    setChannelMask(kAllChannels);
+    glBlendEquation(GL_FUNC_ADD);
+  }
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
 }
@@ -334,7 +338,7 @@ void saturateAlphaByCopy(const RenderParams& params, const DepthEncoding& enc) {
                                  {float(params.width), 0},
                                  {float(params.width), float(params.height)},
                                  {0, float(params.height)}};
-    glEnable(GL_BLEND);
+    const ScopedEnable blend(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     for (const GLenum op : {GLenum(GL_MAX), GLenum(GL_MIN)}) {
       glBlendEquation(op);
@@ -345,7 +349,6 @@ void saturateAlphaByCopy(const RenderParams& params, const DepthEncoding& enc) {
       glEnd();
     }
     glBlendEquation(GL_FUNC_ADD);
-    glDisable(GL_BLEND);
   }
   setChannelMask(kAllChannels);
   glEnable(GL_DEPTH_TEST);
@@ -381,9 +384,10 @@ void countShadowSamplesByCopy(const RenderParams& params, const DepthEncoding& e
   prepareWindowCopy(params);
   loadShadowCountTable(enc, samples);
   loadSumIntoAlphaMatrix();
-  glEnable(GL_COLOR_TABLE);
-  glCopyPixels(0, 0, params.width, params.height, GL_COLOR);
-  glDisable(GL_COLOR_TABLE);
+  {
+    const ScopedEnable colourTable(GL_COLOR_TABLE);
+    glCopyPixels(0, 0, params.width, params.height, GL_COLOR);
+  }
   loadMatrix(GL_COLOR, glm::mat4(1.0f));
   glMatrixMode(GL_MODELVIEW);
   setPixelTransferScale(1.0);
@@ -393,9 +397,11 @@ void countShadowSamplesByCopy(const RenderParams& params, const DepthEncoding& e
 Image readThroughColorTable(const RenderParams& params, const DepthEncoding& enc, int samples) {
   const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   loadShadowCountTable(enc, samples);
-  glEnable(GL_COLOR_TABLE);
-  Image image = readColorBuffer(0, 0, params.width, params.height);
-  glDisable(GL_COLOR_TABLE);
+  Image image;
+  {
+    const ScopedEnable colourTable(GL_COLOR_TABLE);
+    image = readColorBuffer(0, 0, params.width, params.height);
+  }
   setPixelTransferScale(1.0);
   return image;
 }
@@ -418,16 +424,17 @@ void shadeWithShadowTerm(const Scene& scene, const RenderParams& params) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
-  glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ZERO);  // direct light x (1 - shadow)
-  drawScene(scene, Draw::kAll);
-  enableSpotlight(scene, LightTerms::kAmbientOnly);
-  glBlendFunc(GL_ONE, GL_ONE);  // + ambient, unshadowed
-  drawScene(scene, Draw::kAll);
-  disableLighting();
-  glDisable(GL_BLEND);
+  {
+    const ScopedEnable blend(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
+    glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ZERO);  // direct light x (1 - shadow)
+    drawScene(scene, Draw::kAll);
+    enableSpotlight(scene, LightTerms::kAmbientOnly);
+    glBlendFunc(GL_ONE, GL_ONE);  // + ambient, unshadowed
+    drawScene(scene, Draw::kAll);
+    disableLighting();
+  }
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   setChannelMask(kAllChannels);

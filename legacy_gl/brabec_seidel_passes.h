@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "core/scene.h"
 #include "core/technique.h"
 #include "legacy_gl/fixed_function.h"
@@ -63,13 +64,13 @@ double depthBias(const RenderParams& params, const DepthEncoding& enc);
 
 // The 1D ramp texture of Fig. 1 (texel i = i / (N - 1)), bound to GL_TEXTURE_1D.
 struct RampTexture {
-  TextureName name;
+  Texture name = makeTexture();
 };
 void createRampTexture(RampTexture& ramp, const DepthEncoding& enc);
 
 // A square RGBA shadow map texture of the encoding's format, bound to GL_TEXTURE_2D.
 struct ShadowMapTexture {
-  TextureName name;
+  Texture name = makeTexture();
 };
 void allocateShadowMap(ShadowMapTexture& map, const DepthEncoding& enc, int texels);
 

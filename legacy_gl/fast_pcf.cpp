@@ -315,7 +315,7 @@ Technique fastPcfTechnique() {
   t.needs.accumulation = true;
   t.needs.colorFromPrecision = true;
   t.params = {bs::depthBiasParam()};
-  t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // §4: packed 2x2 phases
   t.plan.colourTableCompare = true;                            // §3 Fig. 4
   t.plan.colourMatrixSum = true;

@@ -85,19 +85,19 @@ void setCameraMatrices(const Scene& scene, int width, int height) {
 LightTarget::LightTarget(int texels, bool windowFits, bool needColor, unsigned colorFormat)
     : texels_(texels) {
   if (windowFits) return;
-  glGenFramebuffers(1, &fbo_);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glGenTextures(1, &depth_);
-  glBindTexture(GL_TEXTURE_2D, depth_);
+  fbo_ = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  depth_ = makeTexture();
+  glBindTexture(GL_TEXTURE_2D, depth_.id());
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, texels, texels, 0, GL_DEPTH_COMPONENT,
                GL_UNSIGNED_INT, nullptr);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_, 0);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth_.id(), 0);
   if (needColor) {
-    glGenTextures(1, &color_);
-    glBindTexture(GL_TEXTURE_2D, color_);
+    color_ = makeTexture();
+    glBindTexture(GL_TEXTURE_2D, color_.id());
     glTexImage2D(GL_TEXTURE_2D, 0, GLint(colorFormat), texels, texels, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                  nullptr);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
   } else {
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
@@ -108,24 +108,14 @@ LightTarget::LightTarget(int texels, bool windowFits, bool needColor, unsigned c
   if (status != GL_FRAMEBUFFER_COMPLETE) throw GlError("light-pass framebuffer is incomplete");
 }
 
-LightTarget::~LightTarget() {
-  if (fbo_ == 0) return;
-  glDeleteFramebuffers(1, &fbo_);
-  glDeleteTextures(1, &depth_);
-  if (color_ != 0) glDeleteTextures(1, &color_);
-}
-
 void LightTarget::bind() {
-  if (fbo_ != 0) glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  if (fbo_.id() != 0) glBindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
   glViewport(0, 0, texels_, texels_);
 }
 
 void LightTarget::unbind() {
-  if (fbo_ != 0) glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (fbo_.id() != 0) glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
-
-TextureName::TextureName() { glGenTextures(1, &id_); }
-TextureName::~TextureName() { glDeleteTextures(1, &id_); }
 
 Image readRedChannel(int width, int height) {
   Image red(width, height, 1);

@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gl.h"
-
+#include "core/gl_objects.h"
 #include "core/scene.h"
 #include "core/technique.h"
 
@@ -47,31 +47,17 @@ class LightTarget {
  public:
   // colorFormat: the colour attachment's internal format (the precision of the light pass).
   LightTarget(int texels, bool windowFits, bool needColor, unsigned colorFormat = GL_RGBA8);
-  ~LightTarget();
   LightTarget(const LightTarget&) = delete;
   LightTarget& operator=(const LightTarget&) = delete;
   void bind();    // binds the FBO (or the window) and sets the viewport to texels^2
   void unbind();  // back to the window
-  bool offscreen() const { return fbo_ != 0; }
+  bool offscreen() const { return fbo_.id() != 0; }
 
  private:
   int texels_;
-  unsigned fbo_ = 0;
-  unsigned color_ = 0;
-  unsigned depth_ = 0;
-};
-
-// RAII for a texture name.
-class TextureName {
- public:
-  TextureName();
-  ~TextureName();
-  TextureName(const TextureName&) = delete;
-  TextureName& operator=(const TextureName&) = delete;
-  unsigned id() const { return id_; }
-
- private:
-  unsigned id_ = 0;
+  Framebuffer fbo_;  // none when the window fits
+  Texture depth_;
+  Texture color_;  // none without needColor
 };
 
 // Reads the window's red channel as a one-channel image (visibility masks).

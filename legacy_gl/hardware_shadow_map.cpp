@@ -14,6 +14,8 @@
 //                                  blending; fragments behind the light are forced to shadow
 //                                  ("negative projection", §"Advantages and Limitations")
 //   5. renderVisibilityMask      — the comparison result alone, for the --mask output
+// The passes are declared once in hardwareShadowMapPasses(); passes 2-5 (shadowMapCameraPasses)
+// are shared with legacy.woo and legacy.second-depth.
 #include "legacy_gl/hardware_shadow_map.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,7 +24,9 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "core/pass_capture.h"
+#include "core/passes.h"
 #include "core/plan.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/spotlight_tessellation.h"
@@ -44,43 +48,44 @@ constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any usef
 constexpr float kBehindLightSharpness = 1.0f;
 
 struct HwState {
-  TextureName shadowMap;
+  Texture shadowMap = makeTexture();
 };
 
 // Pass 1 (Everitt Fig. 2, "Polygon offset"): render the casters from the light with slope-scaled
 // polygon offset and copy the depth buffer into the depth texture (glCopyTexSubImage2D reads
 // the depth buffer for a DEPTH_COMPONENT texture, ARB_depth_texture).
-void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwState& s,
-                          float factor, float units, bool linearCompare, bool casterInFrustum,
-                          Frame& frame) {
-  PassTimer timer(frame,
-                  casterInFrustum ? "1 depth from light"
-                                  : "1 depth from light left out (planner: no caster in frustum)",
-                  "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
-                  "polygon offset: Why Is Polygon Offset Needed?, Fig. 3");
-  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
-  // depth (every comparison passes) replaces the pass.
-  const int n = casterInFrustum ? params.shadowMapTexels : 1;
-  LightTarget target(n, n <= params.width && n <= params.height, false);
-  target.bind();
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units * lightDepthRoundoffScale(scene));
-  loadMatrix(GL_PROJECTION, lightProjection(scene));
-  loadMatrix(GL_MODELVIEW, lightView(scene.light));
-  if (casterInFrustum) drawScene(scene, Draw::kCasters);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+void renderDepthFromLight(Passes& passes, const Scene& scene, const RenderParams& params,
+                          HwState& s, float factor, float units, bool linearCompare,
+                          bool casterInFrustum) {
+  passes.run(
+      "1",
+      [&] {
+        // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+        // depth (every comparison passes) replaces the pass.
+        const int n = casterInFrustum ? params.shadowMapTexels : 1;
+        LightTarget target(n, n <= params.width && n <= params.height, false);
+        target.bind();
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        {
+          const ScopedEnable offset(GL_POLYGON_OFFSET_FILL);
+          glPolygonOffset(factor, units * lightDepthRoundoffScale(scene));
+          loadMatrix(GL_PROJECTION, lightProjection(scene));
+          loadMatrix(GL_MODELVIEW, lightView(scene.light));
+          if (casterInFrustum) drawScene(scene, Draw::kCasters);
+        }
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
-  glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
-               GL_UNSIGNED_INT, nullptr);
-  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
-  setDepthCompareParameters(linearCompare);
-  target.unbind();
+        glBindTexture(GL_TEXTURE_2D, s.shadowMap.id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, n, n, 0, GL_DEPTH_COMPONENT,
+                     GL_UNSIGNED_INT, nullptr);
+        glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, n, n);
+        setDepthCompareParameters(linearCompare);
+        target.unbind();
+      },
+      {}, casterInFrustum ? "" : " left out (planner: no caster in frustum)");
 }
 
 // Pass 2 (Everitt Eq. 5 and Appendix A): with modelview_po = V^-1 (the camera's view matrix,
@@ -88,7 +93,7 @@ void renderDepthFromLight(const Scene& scene, const RenderParams& params, HwStat
 // eye coordinates back through (modelview_po)^-1. Texture unit 0 gets (s,t,r,q) for the map;
 // unit 1 gets q alone, scaled, for the behind-the-light step texture.
 void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, GLuint shadowMap,
-                               const TextureName& behindLightStep) {
+                               const Texture& behindLightStep) {
   setCameraMatrices(scene, params.width, params.height);  // modelview = V^-1 (Everitt)
   const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));  // rows as columns
   const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
@@ -123,6 +128,25 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   glActiveTexture(GL_TEXTURE0);
 }
 
+// The texgen pass 2 turns on (unit 0: s, t, r, q; unit 1: s), off again when the camera passes
+// end, however they end: the caller gets the texturing state it had.
+class TexgenOffAfterCameraPasses {
+ public:
+  TexgenOffAfterCameraPasses() = default;
+  ~TexgenOffAfterCameraPasses() {
+    try {
+      glActiveTexture(GL_TEXTURE1);
+      glDisable(GL_TEXTURE_GEN_S);
+      glActiveTexture(GL_TEXTURE0);
+      for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
+        glDisable(e);
+    } catch (...) {  // the context is beyond repair (core/gl_objects.h)
+    }
+  }
+  TexgenOffAfterCameraPasses(const TexgenOffAfterCameraPasses&) = delete;
+  TexgenOffAfterCameraPasses& operator=(const TexgenOffAfterCameraPasses&) = delete;
+};
+
 void enableShadowTexturing(bool on) {
   glActiveTexture(GL_TEXTURE0);
   if (on) glEnable(GL_TEXTURE_2D); else glDisable(GL_TEXTURE_2D);
@@ -134,69 +158,84 @@ void enableShadowTexturing(bool on) {
 }
 
 // Pass 3 (Kilgard's note in Everitt): the ambient term, everywhere, unshadowed.
-void renderAmbientPass(const Scene& scene, const RenderParams& params, int pass, Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " ambient",
-                  "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "
-                  "keep some light in the shadow); the ambient term unshadowed");
-  setCameraMatrices(scene, params.width, params.height);
-  glClearColor(0, 0, 0, 1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  enableSpotlight(scene, LightTerms::kAmbientOnly);
-  drawScene(scene, Draw::kAll);
+void renderAmbientPass(Passes& passes, const Scene& scene, const RenderParams& params,
+                       const std::string& id) {
+  passes.run(id, [&] {
+    setCameraMatrices(scene, params.width, params.height);
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    enableSpotlight(scene, LightTerms::kAmbientOnly);
+    drawScene(scene, Draw::kAll);
+  });
 }
 
 // Pass 4 (Everitt "the shadowing result directly modulates the diffuse and specular"): direct
 // light times the comparison result, added on the ambient pass (depth func EQUAL).
-void addShadowedDirectLight(const Scene& scene, const RenderParams& params, int pass,
-                            Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " direct light x shadow test",
-                  "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
-                  "Figs. 4-5; behind the light: Advantages and Limitations (negative "
-                  "projection)");
-  setCameraMatrices(scene, params.width, params.height);
-  enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
-  glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
-  glDepthFunc(GL_EQUAL);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  enableShadowTexturing(true);
-  drawScene(scene, Draw::kReceivers);
-  enableShadowTexturing(false);
-  // Objects that do not receive shadows get their direct light unmodulated.
-  drawScene(scene, Draw::kNonReceivers);
-  glDisable(GL_BLEND);
-  glDepthFunc(GL_LESS);
-  disableLighting();
+void addShadowedDirectLight(Passes& passes, const Scene& scene, const RenderParams& params,
+                            const std::string& id) {
+  passes.run(id, [&] {
+    setCameraMatrices(scene, params.width, params.height);
+    enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
+    glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, GL_SINGLE_COLOR);
+    glDepthFunc(GL_EQUAL);
+    {
+      const ScopedEnable blend(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+      enableShadowTexturing(true);
+      drawScene(scene, Draw::kReceivers);
+      enableShadowTexturing(false);
+      // Objects that do not receive shadows get their direct light unmodulated.
+      drawScene(scene, Draw::kNonReceivers);
+    }
+    glDepthFunc(GL_LESS);
+    disableLighting();
+  });
 }
 
 // Pass 5: the comparison result alone (white surfaces, lighting off) read back as the mask.
-Image renderVisibilityMask(const Scene& scene, const RenderParams& params, int pass,
-                           Frame& frame) {
-  PassTimer timer(frame, std::to_string(pass) + " visibility mask",
-                  "ours, not a paper's pass: the comparison alone on white surfaces, for --mask "
-                  "and the twin comparison");
-  setCameraMatrices(scene, params.width, params.height);
-  glClearColor(1, 1, 1, 1);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  disableLighting();
-  glColor4f(1, 1, 1, 1);
-  // Non-receivers untextured (visibility 1); receivers through the shadow test.
-  enableShadowTexturing(false);
-  drawScene(scene, Draw::kNonReceivers, Colors::kWhite);
-  enableShadowTexturing(true);
-  drawScene(scene, Draw::kReceivers, Colors::kWhite);
-  enableShadowTexturing(false);
-  return readRedChannel(params.width, params.height);
+Image renderVisibilityMask(Passes& passes, const Scene& scene, const RenderParams& params,
+                           const std::string& id) {
+  Image mask;
+  passes.run(id, [&] {
+    setCameraMatrices(scene, params.width, params.height);
+    glClearColor(1, 1, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    disableLighting();
+    glColor4f(1, 1, 1, 1);
+    // Non-receivers untextured (visibility 1); receivers through the shadow test.
+    enableShadowTexturing(false);
+    drawScene(scene, Draw::kNonReceivers, Colors::kWhite);
+    enableShadowTexturing(true);
+    drawScene(scene, Draw::kReceivers, Colors::kWhite);
+    enableShadowTexturing(false);
+    mask = readRedChannel(params.width, params.height);
+  });
+  return mask;
 }
 
-// --dump-passes: the depth map of pass 1 as grey (Everitt Fig. 2).
-void captureLightDepth(GLuint shadowMap, int texels, Frame& frame) {
-  frame.intermediates.push_back(greyDepth(
-      "1-light-depth", "pass 1 (Everitt Fig. 2): depth from the light with polygon offset",
-      readDepthTexture(shadowMap, texels, texels)));
+// The passes of Everitt et al., declared once: pass 1 here, passes 2-5 shared.
+PassTable hardwareShadowMapPasses() {
+  PassTable table = {
+      meshFeedingPass(),
+      {.id = "1",
+       .name = "depth from light",
+       .reference = "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
+                    "polygon offset: Why Is Polygon Offset Needed?, Fig. 3",
+       .writes = {{.name = "light-depth",
+                   .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
+                              "offset"}},
+       .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation}},
+  };
+  for (PassSpec& spec : shadowMapCameraPasses(2)) table.push_back(std::move(spec));
+  return table;
+}
+
+const PassTable& passTable() {
+  static const PassTable table = hardwareShadowMapPasses();
+  return table;
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -205,40 +244,16 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const bool linear = params.text(compareParam()) == "linear";
   Frame frame;
+  Passes passes(frame, params, passTable());
   HwState state;
   const bool casterInFrustum = !params.flag(planParam()) || casterReachesLightFrustum(scene);
-  renderDepthFromLight(scene, params, state, factor, units, linear, casterInFrustum, frame);
-  if (params.capturePasses)
-    captureLightDepth(state.shadowMap.id(), casterInFrustum ? params.shadowMapTexels : 1, frame);
-  shadeWithShadowMap(scene, params, state.shadowMap.id(), 2, frame);
+  renderDepthFromLight(passes, scene, params, state, factor, units, linear, casterInFrustum);
+  const int texels = casterInFrustum ? params.shadowMapTexels : 1;
+  passes.captureDepth("1", "light-depth",
+                      [&] { return readDepthTexture(state.shadowMap.id(), texels, texels); });
+  shadeWithShadowMap(passes, scene, params, state.shadowMap.id(), 2);
   checkGl("legacy.hw");
   return frame;
-}
-
-// --dump-passes: the ambient pass as it stands in the window (Kilgard's note in Everitt).
-void captureAmbientPass(const RenderParams& params, int pass, Frame& frame) {
-  const std::string n = std::to_string(pass);
-  frame.intermediates.push_back(
-      {n + "-ambient",
-       "pass " + n + ": the ambient term alone, unshadowed (Everitt, Kilgard's note)",
-       readRgb(params.width, params.height)});
-}
-
-// --dump-passes: the image after the direct light was added, and the comparison alone.
-void captureShadowTest(int firstPass, Frame& frame) {
-  const std::string direct = std::to_string(firstPass + 2), mask = std::to_string(firstPass + 3);
-  frame.intermediates.push_back(
-      {direct + "-shaded",
-       "pass " + direct +
-           ": + diffuse and specular x the ARB_shadow comparison (Everitt Eq. 5, "
-           "Fig. 5): the final image",
-       frame.color});
-  frame.intermediates.push_back(
-      {mask + "-visibility",
-       "pass " + mask +
-           ": the comparison alone on white surfaces, white = lit, black = shadow "
-           "(what --mask writes)",
-       frame.visibility});
 }
 
 }  // namespace
@@ -257,29 +272,59 @@ void setDepthCompareParameters(bool linearCompare) {
   glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
 }
 
-void shadeWithShadowMap(const Scene& lightScene, const RenderParams& params, unsigned shadowMap,
-                        int firstPass, Frame& frame) {
+PassTable shadowMapCameraPasses(int firstPass) {
+  const std::string texgen = std::to_string(firstPass), ambient = std::to_string(firstPass + 1),
+                    direct = std::to_string(firstPass + 2), mask = std::to_string(firstPass + 3);
+  return {
+      {.id = texgen,
+       .name = "eye-linear texgen planes",
+       .reference = "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
+                    "Second Pass (Depth Map Comparison); Appendix A"},
+      {.id = ambient,
+       .name = "ambient",
+       .reference = "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "
+                    "keep some light in the shadow); the ambient term unshadowed",
+       .writes = {{.name = "ambient",
+                   .caption = "pass " + ambient +
+                              ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}}},
+      {.id = direct,
+       .name = "direct light x shadow test",
+       .reference = "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
+                    "Figs. 4-5; behind the light: Advantages and Limitations (negative "
+                    "projection)",
+       .writes = {{.name = "shaded",
+                   .caption = "pass " + direct +
+                              ": + diffuse and specular x the ARB_shadow comparison (Everitt "
+                              "Eq. 5, Fig. 5): the final image"}}},
+      {.id = mask,
+       .name = "visibility mask",
+       .reference = "ours, not a paper's pass: the comparison alone on white surfaces, for --mask "
+                    "and the twin comparison",
+       .writes = {{.name = "visibility",
+                   .caption = "pass " + mask +
+                              ": the comparison alone on white surfaces, white = lit, black = "
+                              "shadow (what --mask writes)"}}},
+  };
+}
+
+void shadeWithShadowMap(Passes& passes, const Scene& lightScene, const RenderParams& params,
+                        GLuint shadowMap, int firstPass) {
+  const std::string texgen = std::to_string(firstPass), ambient = std::to_string(firstPass + 1),
+                    direct = std::to_string(firstPass + 2), mask = std::to_string(firstPass + 3);
+  Frame& frame = passes.frame();
   // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
-  const Scene scene = cameraPassScene(lightScene, params, frame);
-  TextureName behindLightStep;
-  {
-    PassTimer timer(frame, std::to_string(firstPass) + " eye-linear texgen planes",
-                    "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
-                    "Second Pass (Depth Map Comparison); Appendix A");
-    loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep);
-  }
-  renderAmbientPass(scene, params, firstPass + 1, frame);
-  if (params.capturePasses) captureAmbientPass(params, firstPass + 1, frame);
-  addShadowedDirectLight(scene, params, firstPass + 2, frame);
+  const Scene scene = cameraPassScene(lightScene, params, passes);
+  const Texture behindLightStep = makeTexture();
+  const TexgenOffAfterCameraPasses texgenOff;
+  // Pass 2 (Everitt Eq. 5, Appendix A): timed here, loadEyeLinearTexgenPlanes does it.
+  passes.run(texgen, [&] { loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep); });
+  renderAmbientPass(passes, scene, params, ambient);
+  passes.capture(ambient, "ambient", [&] { return readRgb(params.width, params.height); });
+  addShadowedDirectLight(passes, scene, params, direct);
   frame.color = readRgb(params.width, params.height);
-  frame.visibility = renderVisibilityMask(scene, params, firstPass + 3, frame);
-  if (params.capturePasses) captureShadowTest(firstPass, frame);
-  // Leave texturing state as we found it for the caller.
-  glActiveTexture(GL_TEXTURE1);
-  glDisable(GL_TEXTURE_GEN_S);
-  glActiveTexture(GL_TEXTURE0);
-  for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
-    glDisable(e);
+  frame.visibility = renderVisibilityMask(passes, scene, params, mask);
+  passes.capture(direct, "shaded", [&] { return frame.color; });
+  passes.capture(mask, "visibility", [&] { return frame.visibility; });
 }
 
 glm::mat4 worldToShadowMapTexture(const Scene& scene) {
@@ -300,6 +345,7 @@ Technique hardwareShadowMapTechnique() {
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), compareParam(),
               planParam()};
   t.reads = {.shadowMap = true};
+  t.passes = passTable();
   t.render = render;
   return t;
 }

@@ -2,7 +2,11 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <string>
 
+#include "core/gl.h"
+#include "core/pass_table.h"
+#include "core/passes.h"
 #include "core/technique.h"
 
 namespace sl::legacy {
@@ -17,12 +21,22 @@ glm::mat4 worldToShadowMapTexture(const Scene& scene);
 // LEQUAL, NEAREST or LINEAR compare as in Fig. 5, far-plane border) on the bound 2D texture.
 void setDepthCompareParameters(bool linearCompare);
 
-// Passes 2-5 of legacy.hw on `shadowMap`, a DEPTH_COMPONENT texture of the light's view with
-// setDepthCompareParameters applied: texgen planes, ambient, direct light x shadow test, and
-// the visibility mask. Fills frame.color and frame.visibility; pass names start at
-// `firstPass`. legacy.woo and legacy.second-depth share it: they differ from legacy.hw only
-// in how the map is made.
-void shadeWithShadowMap(const Scene& scene, const RenderParams& params, unsigned shadowMap,
-                        int firstPass, Frame& frame);
+// The DEVIATION of core/scene.h lightDepthRoundoffScale, for the pass tables of the passes
+// whose polygon offset or peeling epsilon it scales.
+inline const std::string kDepthRoundoffScaleDeviation =
+    "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "
+    "scene; without the factor a flat ground under a light 20 units up was all umbra (issue 17).";
+
+// Passes 2-5 of legacy.hw, which legacy.woo and legacy.second-depth share (they differ from
+// legacy.hw only in how the map is made), declared with ids from `firstPass` on: texgen planes,
+// ambient, direct light x shadow test, and the visibility mask. Each of the three techniques
+// lists them in its pass table after meshFeedingPass() and its own light passes.
+PassTable shadowMapCameraPasses(int firstPass);
+
+// Runs those passes (and the mesh feeding before them) through `passes` on `shadowMap`, a
+// DEPTH_COMPONENT texture of the light's view with setDepthCompareParameters applied. Fills
+// frame.color and frame.visibility.
+void shadeWithShadowMap(Passes& passes, const Scene& scene, const RenderParams& params,
+                        GLuint shadowMap, int firstPass);
 
 }  // namespace sl::legacy

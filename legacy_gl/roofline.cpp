@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "legacy_gl/fixed_function.h"
 
 namespace sl::legacy {
@@ -76,8 +77,8 @@ class FloorResources {
   std::uint8_t* pixels() { return pixels_.data(); }
 
  private:
-  TextureName ramp_;
-  TextureName map_;
+  Texture ramp_ = makeTexture();
+  Texture map_ = makeTexture();
   std::vector<std::uint8_t> pixels_;
 };
 
@@ -266,28 +267,18 @@ std::optional<std::vector<FloorTerm>> passFloor(const PassTime& pass, const Rend
 
 Frame renderFloors(FloorResources& resources, const std::vector<FloorTerm>& terms) {
   Frame frame;
-  glPushAttrib(GL_ALL_ATTRIB_BITS);
-  glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
-  for (const GLenum mode : {GLenum(GL_PROJECTION), GLenum(GL_MODELVIEW), GLenum(GL_TEXTURE)}) {
-    glMatrixMode(mode);
-    glPushMatrix();
-  }
-  for (const FloorTerm& t : terms) {
-    glPushAttrib(GL_ALL_ATTRIB_BITS);
-    loadPixelMatrices(t.width, t.height);
-    glClear(GL_DEPTH_BUFFER_BIT);  // untimed: every floor fragment passes its depth test
-    {
+  {
+    const ScopedAttrib state(GL_ALL_ATTRIB_BITS);
+    const ScopedClientAttrib clientState(GL_CLIENT_ALL_ATTRIB_BITS);
+    const ScopedMatrices matrices;
+    for (const FloorTerm& t : terms) {
+      const ScopedAttrib termState(GL_ALL_ATTRIB_BITS);
+      loadPixelMatrices(t.width, t.height);
+      glClear(GL_DEPTH_BUFFER_BIT);  // untimed: every floor fragment passes its depth test
       PassTimer timer(frame, floorName(t));
       runFloor(resources, t);
     }
-    glPopAttrib();
   }
-  for (const GLenum mode : {GLenum(GL_TEXTURE), GLenum(GL_MODELVIEW), GLenum(GL_PROJECTION)}) {
-    glMatrixMode(mode);
-    glPopMatrix();
-  }
-  glPopClientAttrib();
-  glPopAttrib();
   checkGl("roofline floors");
   return frame;
 }

@@ -345,10 +345,4 @@ Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& pa
   return split;
 }
 
-Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame) {
-  const PassSpec spec = meshFeedingPass();
-  PassTimer timer(frame, spec.name, spec.reference);
-  return splitForSpotlight(scene, params, frame);
-}
-
 }  // namespace sl::legacy

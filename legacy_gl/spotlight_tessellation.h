@@ -57,7 +57,5 @@ constexpr std::size_t kCachedTessellations = 4;
 // technique that lights per vertex lists first).
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes);
 PassSpec meshFeedingPass();
-// TRANSITION: the same timed by hand, for techniques not yet on a pass table.
-Scene cameraPassScene(const Scene& scene, const RenderParams& params, Frame& frame);
 
 }  // namespace sl::legacy

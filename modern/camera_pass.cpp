@@ -75,18 +75,6 @@ void readCameraTarget(const RenderTarget& target, Frame& frame) {
   frame.visibility = readChannels(target, 1, GL_RED, 1);
 }
 
-std::vector<PassBuffer> cameraPassBuffers(const std::string& id, const std::string& source) {
-  return {{.name = "shaded", .caption = "pass " + id + ": the shaded image (" + source + ")"},
-          {.name = "visibility",
-           .caption = "pass " + id + ": the shadow test's result alone, white = lit, black = "
-                      "shadow (" + source + "); what --mask writes"}};
-}
-
-void captureCameraPassBuffers(Passes& passes, const std::string& id) {
-  passes.capture(id, "shaded", [&] { return passes.frame().color; });
-  passes.capture(id, "visibility", [&] { return passes.frame().visibility; });
-}
-
 glm::mat4 cameraViewProjection(const Scene& scene, const RenderParams& params) {
   return cameraProjection(scene.camera, float(params.width) / float(params.height)) *
          cameraView(scene.camera);

@@ -3,10 +3,6 @@
 // read-back into a Frame (module-internal header).
 #pragma once
 
-#include <string>
-#include <vector>
-
-#include "core/passes.h"
 #include "core/technique.h"
 #include "modern/gl_objects.h"
 
@@ -28,11 +24,5 @@ void readCameraTarget(const RenderTarget& target, Frame& frame);
 glm::mat4 cameraViewProjection(const Scene& scene, const RenderParams& params);
 // Reads a colour attachment of a target as float RGBA.
 Image readAttachment(const RenderTarget& target, int attachment);
-
-// The camera pass' outcome as its pass table declares it (core/pass_table.h): "shaded" and
-// "visibility", captioned "pass <id>: ..." naming `source` (the shader and the paper's section).
-std::vector<PassBuffer> cameraPassBuffers(const std::string& id, const std::string& source);
-// --dump-passes: Frame::color and Frame::visibility as pass `id`'s "shaded" and "visibility".
-void captureCameraPassBuffers(Passes& passes, const std::string& id);
 
 }  // namespace sl::modern

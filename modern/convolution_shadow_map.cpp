@@ -22,6 +22,7 @@
 //                                   csm_shadow.frag
 //   With skip-error = 0 (or a 1-texel map):
 //   5.  reconstructInCameraPass   — the same reconstruction at every pixel
+// The passes are declared once in csmPasses().
 #include "modern/convolution_shadow_map.h"
 
 #include <algorithm>
@@ -30,6 +31,7 @@
 
 #include "core/errors.h"
 #include "core/pass_capture.h"
+#include "core/passes.h"
 #include "core/plan.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
@@ -75,6 +77,109 @@ constexpr int kSmallestClassifiedMap = 2;  // texels: the pyramid's first level 
 // depth although its program interpolates depth in different generated code.
 constexpr float kReconstructionDepthOffset = 2.0f;
 const char* const kWorkspaceKey = "modern.csm.workspace";  // GL objects kept between frames
+
+// The DEVIATION comments of the passes below (and csm_shadow.frag's), for the pass table.
+constexpr const char* kMipmapsAutoDeviation =
+    "DEVIATION (Annen et al. 2007, §4.1: \"we then build a mip-map of this texture\"): with "
+    "mipmaps=auto (the default) the chain is built only when the planner finds that the view "
+    "minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th "
+    "percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the "
+    "magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving "
+    "it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a large "
+    "share of the frame). mipmaps=always builds it regardless.";
+constexpr const char* kBasisWithBlurDeviation =
+    "DEVIATION (Annen et al. 2007, §4.1 stores the basis, then blurs it): the same sums in "
+    "another order, one write and one read of M/2 layers fewer; with 8-bit storage the basis is "
+    "no longer rounded to 8 bits before the horizontal weights (one rounding fewer, closer to "
+    "Eq. 8).";
+constexpr const char* kDepthBoundsDeviation =
+    "DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where "
+    "the bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.";
+constexpr const char* kClassificationDeviation =
+    "DEVIATION (Annen et al. 2007, Eq. 13 from the filtered basis at every pixel): Eq. 13 of a "
+    "filtered footprint is the same convex combination of the series at the footprint's depths "
+    "(Eq. 8), so where every depth lies in an interval on which the clamped series is within "
+    "skip-error of 1 or 0 (csmSkipIntervals), the pixel needs none of the 2M filtered lookups: it "
+    "gets the mean of the series at the four depth texels around it with the lookup's bilinear "
+    "weights (csm_shadow.frag, reconstructFromDepth): Eq. 13's own value where the footprint's "
+    "depth is constant, within skip-error of it otherwise, so that decided and reconstructed "
+    "pixels agree (issue 27). On llvmpipe the stencil test of pass 5c then skips the "
+    "reconstruction's shader for whole 4x4 blocks; a branch in the shader would not (llvmpipe "
+    "evaluates both sides of a non-uniform branch).";
+constexpr const char* kSeriesOfDepthsDeviation =  // csm_shadow.frag, CLASSIFY 1
+    "DEVIATION (Annen et al. 2007, Eq. 13 from the filtered 8-bit basis): the series of the "
+    "depths themselves, so without the basis' 8-bit rounding (on ground that casts nothing, "
+    "squares at M = 16: 0.0013 from the reconstruction, a third of an 8-bit grey level), and "
+    "weighted by the bilinear weights only (where the depth varies across the blur's or the mip "
+    "level's wider footprint: within the skip error, as both are means over the interval).";
+
+// The passes, declared once: names, the paper's text, the buffers a dump shows, shaders and
+// deviations. Pass 4's name says whether the mip chain is built (`mipmaps`), hence two tables.
+PassTable csmPasses(bool mipmaps) {
+  const std::string reconstruction =
+      "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and scale of §3.2.2 "
+      "(Fig. 3), clamped (§4.1)";
+  const std::vector<PassBuffer> cameraPass =
+      cameraPassBuffers("5", "csm_shadow.frag: Eq. 13 reconstruction");
+  return {
+      {.id = "1",
+       .name = "linear depth from light",
+       .reference = "Annen et al. 2007 §4.1: \"rendering the depth values from the light's point "
+                    "of view\", linear depth [BAS03]",
+       .writes = {{.name = "linear-depth", .caption = "linear light-space depth z(p) (§4.1)"}},
+       .shaders = {"linear-depth"}},
+      {.id = "2",
+       .name = "basis textures",  // + " + horizontal Gaussian (MRT)" or " (MRT)"
+       .reference = "Annen et al. 2007 §4.1: the basis B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 "
+                    "(Eq. 7) into textures (Fig. 5); the Gaussian's first direction (DEVIATION)",
+       // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one.
+       .writes = {{.name = "basis-sin-{range}",
+                   .caption = "sin(c_k z), {range}, after blur (Fig. 5)"},
+                  {.name = "basis-cos-{range}", .caption = "cos(c_k z), {range}, after blur"}},
+       .shaders = {"basis"},
+       .deviations = {kBasisWithBlurDeviation}},
+      {.id = "3",
+       .name = "vertical Gaussian",  // + " NxN"
+       .reference = "Annen et al. 2007 §4.1: the separable Gaussian's second direction",
+       .shaders = {"gaussian"}},
+      {.id = "4",
+       .name = mipmaps ? "mip-maps" : "sampling state (no mip-maps)",
+       .reference = "Annen et al. 2007 §4.1: \"build a mip-map\" of the basis, trilinear or "
+                    "anisotropic filtering (Figs. 7, 10)",
+       .shaders = {"downsample"},
+       .deviations = {kMipmapsAutoDeviation, kDrawnMipChainDeviation}},
+      {.id = "5a",
+       .name = "depth bounds (min/max pyramid of z)",
+       .reference = "not in Annen et al. 2007: bounds of z under each footprint, so that the "
+                    "classification can skip Eq. 13 where they decide the series (issue 20)",
+       .shaders = {"csm-depth-bounds"},
+       .deviations = {kDepthBoundsDeviation}},
+      {.id = "5b",
+       .name = "camera pass: classification (depth bounds)",
+       .reference = "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
+                    "the series within skip-error of 1 or 0, the pixel gets the series at its "
+                    "depths (Eq. 8) without Eq. 13's filtered lookups",
+       .shaders = {"csm-classify", "csm-test"},
+       .deviations = {kClassificationDeviation, kSeriesOfDepthsDeviation}},
+      {.id = "5c",
+       .name = "camera pass, Eq. 13 where undecided",
+       .reference = reconstruction,
+       .writes = cameraPass,
+       .shaders = {"reconstruct", "csm-test"}},
+      // skip-error = 0 (or a 1-texel map): no classification, Eq. 13 at every pixel.
+      {.id = "5",
+       .name = "camera pass, Eq. 13 reconstruction",
+       .reference = reconstruction,
+       .writes = cameraPass,
+       .shaders = {"reconstruct", "csm-test"}},
+  };
+}
+
+const PassTable& passTable(bool mipmaps) {
+  static const PassTable withMipmaps = csmPasses(true);
+  static const PassTable withoutMipmaps = csmPasses(false);
+  return mipmaps ? withMipmaps : withoutMipmaps;
+}
 
 struct CsmSettings {
   int order = kDefaultOrder;  // M
@@ -199,33 +304,31 @@ std::vector<float> termWeights(const CsmSettings& s) {
 
 // Pass 1 (§4.1): linear depth from the light ("we use linear depth values [BAS03]"), over the
 // depth range fitted to the casters and receivers (Fig. 6: "a tightly fitted light frustum").
-const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const RenderParams& params,
-                                               const CsmSettings& s, const DepthRange& range,
-                                               PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, "1 linear depth from light",
-                  "Annen et al. 2007 §4.1: \"rendering the depth values from the light's point "
-                  "of view\", linear depth [BAS03]");
-  timer.shaderPasses({"linear-depth"});
-  const int n = params.shadowMapTexels;
-  if (work.depth.width != n || work.depth.color.empty())
-    work.depth = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
-  const RenderTarget& map = work.depth;
-  map.bind();
-  glViewport(0, 0, n, n);
-  const float far[4] = {s.depthScale(), 0, 0, 1};  // no blocker: the far end of the range
-  glClearBufferfv(GL_COLOR, 0, far);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  const Program& program = cachedProgram("scene.vert.glsl", "light_linear_depth.frag.glsl");
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  setLinearDepthUniforms(program, gpu.scene(), range);
-  program.set("uDepthScale", s.depthScale());
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return map;
+const RenderTarget& renderLinearDepthFromLight(Passes& passes, const GpuScene& gpu,
+                                               const RenderParams& params, const CsmSettings& s,
+                                               const DepthRange& range, PrefilterWorkspace& work) {
+  passes.run("1", [&] {
+    const int n = params.shadowMapTexels;
+    if (work.depth.width != n || work.depth.color.empty())
+      work.depth = makeRenderTarget(n, n, {GL_R32F}, true, GL_DEPTH_COMPONENT24);
+    const RenderTarget& map = work.depth;
+    map.bind();
+    glViewport(0, 0, n, n);
+    const float far[4] = {s.depthScale(), 0, 0, 1};  // no blocker: the far end of the range
+    glClearBufferfv(GL_COLOR, 0, far);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const Program& program = cachedProgram("scene.vert.glsl", "light_linear_depth.frag.glsl");
+    program.use();
+    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+    setLinearDepthUniforms(program, gpu.scene(), range);
+    program.set("uDepthScale", s.depthScale());
+    gpu.draw([](const Object& o) { return o.castsShadow; },
+             [&](const Object& o) { program.set("uModel", o.model); });
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  });
+  return work.depth;
 }
 
 // Pass 2 (§4.1, Eq. 14): the basis images B_i(z(p)), as many layers per pass as the
@@ -235,80 +338,74 @@ const RenderTarget& renderLinearDepthFromLight(const GpuScene& gpu, const Render
 // DEVIATION (Annen et al. 2007, §4.1 stores the basis, then blurs it): the same sums in another
 // order, one write and one read of M/2 layers fewer; with 8-bit storage the basis is no
 // longer rounded to 8 bits before the horizontal weights (one rounding fewer, closer to Eq. 8).
-const LayeredMap& computeBasisTextures(const RenderTarget& depth, const CsmSettings& s,
-                                       PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(
-      frame,
-      s.blurTaps > 0 ? "2 basis textures + horizontal Gaussian (MRT)" : "2 basis textures (MRT)",
-      "Annen et al. 2007 §4.1: the basis B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 "
-      "(Eq. 7) into textures (Fig. 5); the Gaussian's first direction (DEVIATION)");
-  timer.shaderPasses({"basis"});
-  const LayeredMap& basis =
-      reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
-  // Blurred: the horizontal pass's output goes to the scratch map, the vertical one to `basis`.
-  const LayeredMap& target =
-      s.blurTaps > 0 ? reuseLayeredMap(work.scratch, depth.width, s.layers(), s.format, false)
-                     : basis;
-  const int taps = std::max(s.blurTaps, 1);
-  const std::vector<float> weights = binomialWeights(taps);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
-  const FullScreenTriangle triangle;
-  const int perPass = layersPerPass();
-  int passes = 0;
-  for (int first = 0; first < basis.layers; first += perPass, ++passes) {
-    const int count = std::min(perPass, basis.layers - first);
-    // One program per (taps, outputs): constant loop bounds (the shader's header).
-    const bool paired = first == 0 && count == basis.layers;  // all sines and cosines
-    const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl",
-                                           {{"TAPS", std::to_string(taps)},
-                                            {"LAYERS", std::to_string(count)},
-                                            {"PAIRED", paired ? "1" : "0"}});
-    program.use();
-    program.set("uLinearDepth", 0);
-    program.set("uOrder", s.order);
-    program.set("uSinLayers", s.sinLayers());
-    program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
-    glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
-    attachLayers(work.fbo, target, first, count);
-    program.set("uFirstLayer", first);
-    triangle.draw();
-  }
-  frame.counters["basis render passes"] = passes;
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return basis;
+const LayeredMap& computeBasisTextures(Passes& passes, const RenderTarget& depth,
+                                       const CsmSettings& s, PrefilterWorkspace& work) {
+  const std::string suffix = s.blurTaps > 0 ? " + horizontal Gaussian (MRT)" : " (MRT)";
+  passes.run(
+      "2",
+      [&] {
+        const LayeredMap& basis =
+            reuseLayeredMap(work.map, depth.width, s.layers(), s.format, s.filtering.mipmaps);
+        // Blurred: the horizontal pass's output goes to the scratch map, the vertical one to
+        // `basis`.
+        const LayeredMap& target =
+            s.blurTaps > 0 ? reuseLayeredMap(work.scratch, depth.width, s.layers(), s.format, false)
+                           : basis;
+        const int taps = std::max(s.blurTaps, 1);
+        const std::vector<float> weights = binomialWeights(taps);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
+        const FullScreenTriangle triangle;
+        const int perPass = layersPerPass();
+        int draws = 0;
+        for (int first = 0; first < basis.layers; first += perPass, ++draws) {
+          const int count = std::min(perPass, basis.layers - first);
+          // One program per (taps, outputs): constant loop bounds (the shader's header).
+          const bool paired = first == 0 && count == basis.layers;  // all sines and cosines
+          const Program& program = cachedProgram("fullscreen.vert.glsl", "csm_basis.frag.glsl",
+                                                 {{"TAPS", std::to_string(taps)},
+                                                  {"LAYERS", std::to_string(count)},
+                                                  {"PAIRED", paired ? "1" : "0"}});
+          program.use();
+          program.set("uLinearDepth", 0);
+          program.set("uOrder", s.order);
+          program.set("uSinLayers", s.sinLayers());
+          program.set("uEncodeUnsigned", s.encodeUnsigned ? 1 : 0);
+          glUniform1fv(program.uniform("uWeights"), GLsizei(weights.size()), weights.data());
+          attachLayers(work.fbo, target, first, count);
+          program.set("uFirstLayer", first);
+          triangle.draw();
+        }
+        passes.frame().counters["basis render passes"] = draws;
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      },
+      {}, suffix);
+  return work.map;
 }
 
 // Pass 3 (§4.1): "a separable Gaussian filter kernel on the textures": the vertical half (the
 // horizontal one was applied with the basis, pass 2).
-void blurBasisTextures(const LayeredMap& basis, const CsmSettings& s, PrefilterWorkspace& work,
-                       Frame& frame) {
+void blurBasisTextures(Passes& passes, const LayeredMap& basis, const CsmSettings& s,
+                       PrefilterWorkspace& work) {
   if (s.blurTaps == 0) return;
-  PassTimer timer(
-      frame, "3 vertical Gaussian " + std::to_string(s.blurTaps) + "x" + std::to_string(s.blurTaps),
-      "Annen et al. 2007 §4.1: the separable Gaussian's second direction");
-  timer.shaderPasses({"gaussian"});
-  blurLayersOneDirection(work.scratch, basis, s.blurTaps, BlurDirection::kVertical, work.fbo);
+  const std::string taps = std::to_string(s.blurTaps);
+  passes.run(
+      "3",
+      [&] {
+        blurLayersOneDirection(work.scratch, basis, s.blurTaps, BlurDirection::kVertical, work.fbo);
+      },
+      {}, " " + taps + "x" + taps);
 }
 
 // Pass 4 (§4.1): "we then build a mip-map of this texture" and switch on tri-linear (and
 // anisotropic) filtering: "no shader magic is needed".
-void buildBasisMipmaps(const LayeredMap& basis, const CsmSettings& s, Frame& frame) {
-  PassTimer timer(frame, s.filtering.mipmaps ? "4 mip-maps" : "4 sampling state (no mip-maps)",
-                  "Annen et al. 2007 §4.1: \"build a mip-map\" of the basis, trilinear or "
-                  "anisotropic filtering (Figs. 7, 10)");
-  timer.shaderPasses({"downsample"});
-  buildMipmapsAndSetFiltering(basis, s.filtering);
+void buildBasisMipmaps(Passes& passes, const LayeredMap& basis, const CsmSettings& s) {
+  passes.run("4", [&] { buildMipmapsAndSetFiltering(basis, s.filtering); });
 }
 
-// Pass 5a: the min/max pyramid of the linear depth z(p) up to kDepthBoundsLevel, and its dilated
-// copy (each texel the bounds of its 3x3 neighbourhood in its level) (csm_depth_bounds.frag),
-// read by the classification (5b) to bound the depths under each pixel's filter footprint.
-// DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where the
-// bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
 // The footprint margin in depth texels (csm_shadow.frag, uFootprintMargin): the bilinear reach,
 // the blur's radius and one texel for rounding.
 float footprintMargin(const CsmSettings& s) {
@@ -328,70 +425,73 @@ int firstDepthBoundsLevel(const CsmSettings& s, int levels) {
   return level;
 }
 
-const Texture& computeDepthBounds(const RenderTarget& depth, const CsmSettings& s,
-                                  PrefilterWorkspace& work, Frame& frame) {
-  PassTimer timer(frame, "5a depth bounds (min/max pyramid of z)",
-                  "not in Annen et al. 2007: bounds of z under each footprint, so that the "
-                  "classification can skip Eq. 13 where they decide the series (issue 20)");
-  timer.shaderPasses({"csm-depth-bounds"});
-  const int n = depth.width;
-  if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
-    int levels = 1;
-    while (levels <= kDepthBoundsLevel && (n >> levels) >= 1) ++levels;
-    for (Texture* t : {&work.depthBounds, &work.depthBoundsDilated}) {
-      *t = makeTexture();
-      glBindTexture(GL_TEXTURE_2D, t->id());
-      glTexStorage2D(GL_TEXTURE_2D, levels, GL_RG32F, n, n);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+// Pass 5a: the min/max pyramid of the linear depth z(p) up to kDepthBoundsLevel, and its dilated
+// copy (each texel the bounds of its 3x3 neighbourhood in its level) (csm_depth_bounds.frag),
+// read by the classification (5b) to bound the depths under each pixel's filter footprint.
+// DEVIATION (Annen et al. 2007, §4.1 has no such pass): it exists only to skip Eq. 13 where the
+// bounds decide the series (see classifyInCameraPass); skip-error=0 leaves it out.
+const Texture& computeDepthBounds(Passes& passes, const RenderTarget& depth, const CsmSettings& s,
+                                  PrefilterWorkspace& work) {
+  passes.run("5a", [&] {
+    const int n = depth.width;
+    if (work.depthBoundsSize != n || work.depthBounds.id() == 0) {
+      int levels = 1;
+      while (levels <= kDepthBoundsLevel && (n >> levels) >= 1) ++levels;
+      for (Texture* t : {&work.depthBounds, &work.depthBoundsDilated}) {
+        *t = makeTexture();
+        glBindTexture(GL_TEXTURE_2D, t->id());
+        glTexStorage2D(GL_TEXTURE_2D, levels, GL_RG32F, n, n);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      }
+      work.depthBoundsSize = n;
+      work.depthBoundsLevels = levels;
     }
-    work.depthBoundsSize = n;
-    work.depthBoundsLevels = levels;
-  }
-  if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glBindFramebuffer(GL_FRAMEBUFFER, work.fbo.id());
-  const GLenum buffer = GL_COLOR_ATTACHMENT0;
-  glDrawBuffers(1, &buffer);
-  const FullScreenTriangle triangle;
-  glActiveTexture(GL_TEXTURE0);
-  // Reads `source` at `level` only (BASE_LEVEL = MAX_LEVEL = level: no feedback loop, glspec
-  // §4.4.3; texelFetch's level 0 is then that level) while `target` level `targetLevel` is drawn.
-  auto draw = [&](const char* mode, GLuint source, int level, GLuint target, int targetLevel) {
-    const Program& program =
-        cachedProgram("fullscreen.vert.glsl", "csm_depth_bounds.frag.glsl", {{mode, "1"}});
-    program.use();
-    program.set("uSource", 0);
-    glBindTexture(GL_TEXTURE_2D, source);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, level);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target,
-                           targetLevel);
-    const int size = std::max(n >> targetLevel, 1);
-    glViewport(0, 0, size, size);
-    triangle.draw();
-  };
-  const GLuint pyramid = work.depthBounds.id(), dilated = work.depthBoundsDilated.id();
-  // Level 1 straight from the R32F depth map (level 0 would be (z, z), a copy); levels finer
-  // than the first the classification can use are neither dilated nor read.
-  const int first = firstDepthBoundsLevel(s, work.depthBoundsLevels);
-  draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 1);
-  for (int level = 2; level < work.depthBoundsLevels; ++level)
-    draw("REDUCE", pyramid, level - 1, pyramid, level);
-  for (int level = first; level < work.depthBoundsLevels; ++level)
-    draw("DILATE", pyramid, level, dilated, level);
-  frame.counters["depth bounds first level"] = first;
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);  // GL's initial value
-  glBindTexture(GL_TEXTURE_2D, dilated);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, work.depthBoundsLevels - 1);
-  glBindTexture(GL_TEXTURE_2D, 0);
-  checkGl("modern.csm depth bounds");
+    if (work.fbo.id() == 0) work.fbo = makeFramebuffer();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glBindFramebuffer(GL_FRAMEBUFFER, work.fbo.id());
+    const GLenum buffer = GL_COLOR_ATTACHMENT0;
+    glDrawBuffers(1, &buffer);
+    const FullScreenTriangle triangle;
+    glActiveTexture(GL_TEXTURE0);
+    // Reads `source` at `level` only (BASE_LEVEL = MAX_LEVEL = level: no feedback loop, glspec
+    // §4.4.3; texelFetch's level 0 is then that level) while `target` level `targetLevel` is drawn.
+    auto draw = [&](const char* mode, GLuint source, int level, GLuint target, int targetLevel) {
+      const Program& program =
+          cachedProgram("fullscreen.vert.glsl", "csm_depth_bounds.frag.glsl", {{mode, "1"}});
+      program.use();
+      program.set("uSource", 0);
+      glBindTexture(GL_TEXTURE_2D, source);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, level);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target,
+                             targetLevel);
+      const int size = std::max(n >> targetLevel, 1);
+      glViewport(0, 0, size, size);
+      triangle.draw();
+    };
+    const GLuint pyramid = work.depthBounds.id(), dilated = work.depthBoundsDilated.id();
+    // Level 1 straight from the R32F depth map (level 0 would be (z, z), a copy); levels finer
+    // than the first the classification can use are neither dilated nor read.
+    const int first = firstDepthBoundsLevel(s, work.depthBoundsLevels);
+    draw("FROM_DEPTH", depth.color[0].id(), 0, pyramid, 1);
+    for (int level = 2; level < work.depthBoundsLevels; ++level)
+      draw("REDUCE", pyramid, level - 1, pyramid, level);
+    for (int level = first; level < work.depthBoundsLevels; ++level)
+      draw("DILATE", pyramid, level, dilated, level);
+    passes.frame().counters["depth bounds first level"] = first;
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D, depth.color[0].id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);  // GL's initial value
+    glBindTexture(GL_TEXTURE_2D, dilated);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, work.depthBoundsLevels - 1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    checkGl("modern.csm depth bounds");
+  });
   return work.depthBoundsDilated;
 }
 
@@ -422,121 +522,113 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 // pixels agree (issue 27). On llvmpipe the stencil test of
 // pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
 // would not (llvmpipe evaluates both sides of a non-uniform branch).
-void classifyInCameraPass(const GpuScene& gpu, const RenderParams& params,
+void classifyInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                           const Texture& linearDepth, const Texture& depthBounds,
-                          int depthBoundsLevels,
-                          const CsmSkipIntervals& skip, const CsmSettings& s,
-                          const DepthRange& range, float nearestCaster, Frame& frame) {
-  PassTimer timer(frame, "5b camera pass: classification (depth bounds)",
-                  "Annen et al. 2007 Eq. 8 and 13: where every depth under the footprint puts "
-                  "the series within skip-error of 1 or 0, the pixel gets the series at its "
-                  "depths (Eq. 8) without Eq. 13's filtered lookups");
-  timer.shaderPasses({"csm-classify", "csm-test"});
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_STENCIL_TEST);
-  glStencilMask(0xFF);
-  glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
-  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  const Program& program = cachedProgram(
-      "scene.vert.glsl", "csm_shadow.frag.glsl",
-      {{"ORDER", std::to_string(s.order)},
-       {"ENCODE_UNSIGNED", "0"},
-       {"CLASSIFY", "1"},
-       {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
-       {"FIRST_DEPTH_BOUNDS_LEVEL", std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
-  setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
-  program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
-  program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));
-  program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
-  program.set("uFootprintMargin", footprintMargin(s));
-  program.set("uDepthMapTexels", params.shadowMapTexels);
-  const std::vector<float> weights = termWeights(s);
-  glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, depthBounds.id());
-  program.set("uDepthBounds", 1);
-  glActiveTexture(GL_TEXTURE2);
-  glBindTexture(GL_TEXTURE_2D, linearDepth.id());
-  program.set("uLinearDepth", 2);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  glBindTexture(GL_TEXTURE_2D, 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, 0);
-  glActiveTexture(GL_TEXTURE0);
+                          int depthBoundsLevels, const CsmSkipIntervals& skip,
+                          const CsmSettings& s, const DepthRange& range, float nearestCaster) {
+  passes.run("5b", [&] {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_STENCIL_TEST);
+    glStencilMask(0xFF);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);  // the reference comes from gl_FragStencilRefARB
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    const Program& program =
+        cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
+                      {{"ORDER", std::to_string(s.order)},
+                       {"ENCODE_UNSIGNED", "0"},
+                       {"CLASSIFY", "1"},
+                       {"DEPTH_BOUNDS_LEVELS", std::to_string(depthBoundsLevels)},
+                       {"FIRST_DEPTH_BOUNDS_LEVEL",
+                        std::to_string(firstDepthBoundsLevel(s, depthBoundsLevels))}});
+    setCameraPassUniforms(program, gpu.scene(), params, s, range, nearestCaster);
+    program.set("uLitInterval", glm::vec2(float(skip.litLo), float(skip.litHi)));
+    program.set("uUmbraInterval", glm::vec2(float(skip.umbraLo), float(skip.umbraHi)));
+    program.set("uFootprintScale", s.filtering.mipmaps ? kFootprintScale : 0.0f);
+    program.set("uFootprintMargin", footprintMargin(s));
+    program.set("uDepthMapTexels", params.shadowMapTexels);
+    const std::vector<float> weights = termWeights(s);
+    glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, depthBounds.id());
+    program.set("uDepthBounds", 1);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, linearDepth.id());
+    program.set("uLinearDepth", 2);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+  });
 }
 
 // Pass 5 (Eq. 13, §3.2, §4.1): the camera view with the reconstructed, filtered shadow test; with
 // the classification (skip-error > 0), at the pixels it left undecided only (pass 5c: stencil 1,
 // depth equal to the classification's).
-void reconstructInCameraPass(const GpuScene& gpu, const RenderParams& params,
+void reconstructInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                              const LayeredMap& basis, const CsmSettings& s, const DepthRange& range,
                              float nearestCaster, const Texture& linearDepth,
                              const Texture* depthBounds, int depthBoundsLevels,
-                             const CsmSkipIntervals& skip, Frame& frame) {
+                             const CsmSkipIntervals& skip) {
   const Scene& scene = gpu.scene();
   const bool classified = depthBounds != nullptr;
   RenderTarget target =
       classified ? makeStencilCameraTarget(params, {}) : makeCameraTarget(params, true);
   if (classified) {
-    classifyInCameraPass(gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip, s,
-                         range, nearestCaster, frame);
+    classifyInCameraPass(passes, gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip,
+                         s, range, nearestCaster);
   } else {
     clearCameraTarget(target);
   }
-  PassTimer timer(frame,
-                  classified ? "5c camera pass, Eq. 13 where undecided"
-                             : "5 camera pass, Eq. 13 reconstruction",
-                  "Annen et al. 2007 §3.1 Eq. 13 with the coefficients of Eq. 14, offset and "
-                  "scale of §3.2.2 (Fig. 3), clamped (§4.1)");
-  timer.shaderPasses({"reconstruct", "csm-test"});
-  glEnable(GL_DEPTH_TEST);
-  if (classified) {
-    // The same vertex shader and uniforms, but llvmpipe interpolates depth inside each fragment
-    // shader's generated code, so the two programs' depths can differ in the last bits (dots of
-    // undecided pixels on grazing ground with GL_EQUAL): less-or-equal, pulled forward by
-    // kReconstructionDepthOffset units and slope.
-    glDepthFunc(GL_LEQUAL);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(-kReconstructionDepthOffset, -kReconstructionDepthOffset);
-    glDepthMask(GL_FALSE);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  }
-  // One program per (M, storage): constant loop bounds and indices (the shader's header).
-  const Program& program = cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
-                                         {{"ORDER", std::to_string(s.order)},
-                                          {"ENCODE_UNSIGNED", s.encodeUnsigned ? "1" : "0"},
-                                          {"CLASSIFY", "0"}});
-  setCameraPassUniforms(program, scene, params, s, range, nearestCaster);
-  const std::vector<float> weights = termWeights(s);
-  glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, basis.texture.id());
-  program.set("uBasis", 0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  readCameraTarget(target, frame);
-  if (classified) {
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(0.0f, 0.0f);
-    glDisable(GL_STENCIL_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  passes.run(classified ? "5c" : "5", [&] {
+    glEnable(GL_DEPTH_TEST);
+    if (classified) {
+      // The same vertex shader and uniforms, but llvmpipe interpolates depth inside each fragment
+      // shader's generated code, so the two programs' depths can differ in the last bits (dots of
+      // undecided pixels on grazing ground with GL_EQUAL): less-or-equal, pulled forward by
+      // kReconstructionDepthOffset units and slope.
+      glDepthFunc(GL_LEQUAL);
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(-kReconstructionDepthOffset, -kReconstructionDepthOffset);
+      glDepthMask(GL_FALSE);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
+    // One program per (M, storage): constant loop bounds and indices (the shader's header).
+    const Program& program = cachedProgram("scene.vert.glsl", "csm_shadow.frag.glsl",
+                                           {{"ORDER", std::to_string(s.order)},
+                                            {"ENCODE_UNSIGNED", s.encodeUnsigned ? "1" : "0"},
+                                            {"CLASSIFY", "0"}});
+    setCameraPassUniforms(program, scene, params, s, range, nearestCaster);
+    const std::vector<float> weights = termWeights(s);
+    glUniform4fv(program.uniform("uWeights"), GLsizei(s.sinLayers()), weights.data());
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, basis.texture.id());
+    program.set("uBasis", 0);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    readCameraTarget(target, passes.frame());
+    if (classified) {
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(0.0f, 0.0f);
+      glDisable(GL_STENCIL_TEST);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+  });
 }
 
-void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const CsmSettings& s,
-                   Frame& frame) {
-  const Image linear = readAttachment(depth, 0);
-  frame.intermediates.push_back(
-      {"1-linear-depth", "linear light-space depth z(p) (§4.1)", channel(linear, 0)});
-  // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one, the
-  // stored values with [-1, 1] shown as [0, 1].
+// --dump-passes: the linear depth of pass 1 and, as Fig. 5, every sine basis texture (four k
+// per RGBA layer) and the first cosine one of pass 2 after the blur, the stored values with
+// [-1, 1] shown as [0, 1].
+void captureDepthAndBasis(Passes& passes, const RenderTarget& depth, const LayeredMap& basis,
+                          const CsmSettings& s) {
+  passes.capture("1", "linear-depth", [&] { return channel(readAttachment(depth, 0), 0); });
   const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
   const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
   auto range = [&](int layer) {
@@ -544,12 +636,12 @@ void capturePasses(const RenderTarget& depth, const LayeredMap& basis, const Csm
     return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
   };
   for (int layer = 0; layer < s.sinLayers(); ++layer)
-    frame.intermediates.push_back({"2-basis-sin-" + range(layer),
-                                   "sin(c_k z), " + range(layer) + ", after blur (Fig. 5)",
-                                   readLayer(basis, layer, scale, bias)});
-  frame.intermediates.push_back({"2-basis-cos-" + range(0),
-                                 "cos(c_k z), " + range(0) + ", after blur",
-                                 readLayer(basis, s.sinLayers(), scale, bias)});
+    passes.capture(
+        "2", "basis-sin-{range}", [&] { return readLayer(basis, layer, scale, bias); }, {},
+        {{"range", range(layer)}});
+  passes.capture(
+      "2", "basis-cos-{range}", [&] { return readLayer(basis, s.sinLayers(), scale, bias); }, {},
+      {{"range", range(0)}});
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -564,16 +656,17 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const CsmSettings s = parseSettings(context, work.texelsPerPixel, params);
   Frame frame;
+  Passes passes(frame, params, passTable(s.filtering.mipmaps));
   GpuScene gpu(scene);
   const DepthRange range = work.fittedRange;
-  const RenderTarget& depth = renderLinearDepthFromLight(gpu, params, s, range, work, frame);
-  const LayeredMap& basis = computeBasisTextures(depth, s, work, frame);
-  blurBasisTextures(basis, s, work, frame);
-  if (params.capturePasses) capturePasses(depth, basis, s, frame);
-  buildBasisMipmaps(basis, s, frame);
+  const RenderTarget& depth = renderLinearDepthFromLight(passes, gpu, params, s, range, work);
+  const LayeredMap& basis = computeBasisTextures(passes, depth, s, work);
+  blurBasisTextures(passes, basis, s, work);
+  captureDepthAndBasis(passes, depth, basis, s);
+  buildBasisMipmaps(passes, basis, s);
   // The pyramid starts at level 1 (computeDepthBounds): a 1-texel map is not classified.
   const bool classify = s.skipError > 0.0 && params.shadowMapTexels >= kSmallestClassifiedMap;
-  const Texture* bounds = classify ? &computeDepthBounds(depth, s, work, frame) : nullptr;
+  const Texture* bounds = classify ? &computeDepthBounds(passes, depth, s, work) : nullptr;
   // The skip intervals depend on the settings only: computed once for them, kept.
   if (std::vector<double> key = {double(s.order), s.alpha, s.offset, s.scale, s.skipError};
       key != work.skipKey) {
@@ -583,9 +676,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const CsmSkipIntervals skip{work.skipIntervals[0], work.skipIntervals[1], work.skipIntervals[2],
                               work.skipIntervals[3]};
-  reconstructInCameraPass(gpu, params, basis, s, range, work.nearestCaster, depth.color[0],
-                          bounds, work.depthBoundsLevels, skip, frame);
-  if (params.capturePasses) captureCameraPass(frame, 5, "csm_shadow.frag: Eq. 13 reconstruction");
+  reconstructInCameraPass(passes, gpu, params, basis, s, range, work.nearestCaster,
+                          depth.color[0], bounds, work.depthBoundsLevels, skip);
+  captureCameraPass(passes, classify ? "5c" : "5");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;
   frame.counters["order M"] = s.order;
@@ -692,6 +785,7 @@ Technique convolutionShadowMapTechnique() {
               skipErrorParam()};
   t.reads = {.shadowMap = true};
   t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
+  t.passes = passTable(true);
   t.render = render;
   return t;
 }

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/passes.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
@@ -154,7 +155,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
         phases[q].part, {{"itself", packed.size() == 1 ? " = the texel itself" : ""}});
   }
   shadowTestAndShade(passes, gpu, params, ramp, groups);
-  captureCameraPassBuffers(passes, "3");
+  captureCameraPass(passes, "3");
   return frame;
 }
 

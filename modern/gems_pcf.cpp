@@ -13,14 +13,18 @@
 //   2. filterInCameraPass     — camera view; the receiver moved towards the light by the bias,
 //                               gems_pcf.frag sums offset_lookup (§11.3/§11.4), or
 //                               bicubic_pcf.frag weights 16 single comparisons (kernel=bicubic)
+// The passes are declared once in gemsPasses(), one table per variant (samples, kernel).
 #include "modern/gems_pcf.h"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "core/errors.h"
 #include "core/pass_capture.h"
+#include "core/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/prefiltered_maps.h"
@@ -79,115 +83,185 @@ enum class Kernel {
   kBicubic,  // Chan 2004 Fig. 4-8: 16 single comparisons weighted by a cubic B-spline
 };
 
+// The DEVIATION comments of pass 2 (above, and its shaders'), for the pass tables.
+constexpr const char* kLightSpaceBiasDeviation =
+    "DEVIATION (GPU Gems §11.3 gives no bias): we express it in light space, as "
+    "kDefaultBiasTexels texel footprints along the light ray, and apply it to the receiver in the "
+    "camera pass (the point moves towards the light by that distance before it is projected; "
+    "along the ray, so its map coordinates do not change). A footprint at distance r from the "
+    "light is r * 2 tan(cone / 2) / size, so the bias is the fraction kDefaultBiasTexels * 2 "
+    "tan(cone / 2) / size of r: it scales with the scene, the map and the distance, and not with "
+    "the light's depth range.";
+constexpr const char* kGemsShaderBiasDeviation =  // gems_pcf.frag
+    "DEVIATION (the chapter has no bias): the receiver moves towards the light along the light "
+    "ray by uRelativeBias of its distance (gems_pcf.cpp says why); uLightPosition: lighting.glsl.";
+constexpr const char* kBSplineDeviation =  // bicubic_pcf.frag
+    "DEVIATION (Chan 2004 §4.4, Fig. 4-8): the thesis says only \"a version of percentage closer "
+    "filtering [RSC87] with a bicubic filter\", 16 samples; it does not say which cubic or how "
+    "the samples are weighted. We take the B-spline because its weights are non-negative and sum "
+    "to 1, so the filtered value stays a visibility in [0, 1] (Catmull-Rom's negative lobes "
+    "would not).";
+constexpr const char* kBicubicShaderBiasDeviation =  // bicubic_pcf.frag
+    "DEVIATION (neither Chan nor GPU Gems gives this bias): the receiver moves towards the light "
+    "along the light ray by uRelativeBias of its distance, as modern.gems16 (gems_pcf.cpp says "
+    "why; the 4x4 region reaches 2 texels from the lookup point here too).";
+
+// The passes of one variant (lookups per pixel, kernel), declared once: names, the paper's text,
+// the buffers a dump shows, shaders and deviations. The variants' passes are the same two, but
+// their names and sources follow the lookups and the kernel.
+PassTable gemsPasses(int samples, Kernel kernel) {
+  const bool bicubic = kernel == Kernel::kBicubic;
+  PassSpec light{
+      .id = "1",
+      .name = "depth from light",
+      .reference = bicubic ? "Chan 2004 §4.4, Fig. 4-8 (the bicubic PCF's map: a depth texture "
+                             "with compare mode and GL_NEAREST, one comparison per lookup); "
+                             "polygon offset as Everitt"
+                           : "Bunnell & Pellacini 2004, GPU Gems §11.3 (a depth texture with "
+                             "compare mode and GL_LINEAR: the hardware's 2x2 PCF, Fig. 11-3); "
+                             "polygon offset as Everitt",
+      // {range}: the drawn window-z range of the grey scale (greyDepth).
+      .writes = {{.name = "light-depth",
+                  .caption = std::string(bicubic ? "pass 1 (Chan 2004 Fig. 4-8, bicubic PCF): "
+                                                   "depth from the light with polygon offset, "
+                                                   "compared with GL_NEAREST (one comparison per "
+                                                   "sample)"
+                                                 : "pass 1 (GPU Gems §11.3): depth from the light "
+                                                   "with polygon offset, compared with GL_LINEAR "
+                                                   "(hardware 2x2 PCF)") +
+                             "{range}"}},
+      .shaders = {"depth-only"}};
+  if (bicubic)
+    return {
+        light,
+        {.id = "2",
+         .name = "camera pass, 16-sample bicubic PCF",
+         .reference = "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a "
+                      "bicubic filter, 16 samples (cubic B-spline weights over 4x4 texels; "
+                      "bicubic_pcf.frag)",
+         .writes = cameraPassBuffers("2",
+                                     "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
+                                     "B-spline, Chan 2004 Fig. 4-8"),
+         .shaders = {"bicubic-weights", "bicubic-region"},
+         .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation}}};
+  const std::string n = std::to_string(samples);
+  return {
+      light,
+      {.id = "2",
+       .name = "camera pass, " + n + "-sample PCF",
+       .reference = samples == 16  ? "Bunnell & Pellacini 2004, GPU Gems §11.3: 16 "
+                                     "offset_lookup calls over the 4x4-texel region (Figs. "
+                                     "11-2, 11-3)"
+                    : samples == 4 ? "Bunnell & Pellacini 2004, GPU Gems §11.4, Fig. 11-4: "
+                                     "four of the sixteen lookups, dithered by pixel position"
+                                   : "Bunnell & Pellacini 2004, GPU Gems §11.3: one hardware "
+                                     "2x2 lookup (Fig. 11-6)",
+       .writes = cameraPassBuffers("2", "gems_pcf.frag, " + n + " offset lookups, " +
+                                            (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3")),
+       .shaders = {"offset-lookup", "dither", "gems-region"},
+       .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation}}};
+}
+
+// --param samples takes 1, 4 or 16 (samplesParam); the bicubic kernel takes 16 only.
+const PassTable& passTable(int samples, Kernel kernel) {
+  static const std::map<std::pair<int, Kernel>, PassTable> tables = {
+      {{1, Kernel::kBox}, gemsPasses(1, Kernel::kBox)},
+      {{4, Kernel::kBox}, gemsPasses(4, Kernel::kBox)},
+      {{16, Kernel::kBox}, gemsPasses(16, Kernel::kBox)},
+      {{16, Kernel::kBicubic}, gemsPasses(16, Kernel::kBicubic)}};
+  return tables.at({samples, kernel});
+}
+
 // Pass 1 (§11.3, "NVIDIA GPUs have built-in percentage-closer filtering"): the depth map
 // with compare mode and linear filtering, so that one lookup is a bilinear 2x2 PCF; for the
 // bicubic kernel nearest filtering, so that one lookup is one comparison (Chan 2004 Fig. 4-8).
-RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
-                                  float units, Kernel kernel, Frame& frame) {
-  PassTimer timer(frame, "1 depth from light",
-                  kernel == Kernel::kBicubic
-                      ? "Chan 2004 §4.4, Fig. 4-8 (the bicubic PCF's map: a depth texture with "
-                        "compare mode and GL_NEAREST, one comparison per lookup); polygon offset "
-                        "as Everitt"
-                      : "Bunnell & Pellacini 2004, GPU Gems §11.3 (a depth texture with compare "
-                        "mode and GL_LINEAR: the hardware's 2x2 PCF, Fig. 11-3); polygon offset "
-                        "as Everitt");
-  timer.shaderPasses({"depth-only"});
-  const int n = params.shadowMapTexels;
-  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
-  map.bind();
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-  Program program("scene.vert.glsl", "depth_only.frag.glsl");
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  // The hardware 2x2 compare for the box kernel; one comparison per lookup for the bicubic.
-  setDepthCompareParameters(map.depth.id(), /*linear=*/kernel == Kernel::kBox);
-  glBindTexture(GL_TEXTURE_2D, 0);
+RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const RenderParams& params,
+                                  float factor, float units, Kernel kernel) {
+  RenderTarget map;
+  passes.run("1", [&] {
+    const int n = params.shadowMapTexels;
+    map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+    map.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+    Program program("scene.vert.glsl", "depth_only.frag.glsl");
+    program.use();
+    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+    gpu.draw([](const Object& o) { return o.castsShadow; },
+             [&](const Object& o) { program.set("uModel", o.model); });
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    // The hardware 2x2 compare for the box kernel; one comparison per lookup for the bicubic.
+    setDepthCompareParameters(map.depth.id(), /*linear=*/kernel == Kernel::kBox);
+    glBindTexture(GL_TEXTURE_2D, 0);
+  });
   return map;
 }
 
 // Pass 2 (Chan 2004 §4.4, Fig. 4-8, "bicubic (16 samples)"): the camera view, 16 single
 // comparisons at the 4x4 texel centres around the lookup weighted by the cubic B-spline.
-void bicubicFilterInCameraPass(const GpuScene& gpu, const RenderParams& params,
-                               const RenderTarget& map, float relativeBias, Frame& frame) {
-  PassTimer timer(frame, "2 camera pass, 16-sample bicubic PCF",
-                  "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a bicubic "
-                  "filter, 16 samples (cubic B-spline weights over 4x4 texels; bicubic_pcf.frag)");
-  timer.shaderPasses({"bicubic-weights", "bicubic-region"});
-  const Scene& scene = gpu.scene();
-  RenderTarget target = makeCameraTarget(params, true);
-  clearCameraTarget(target);
-  glEnable(GL_DEPTH_TEST);
-  Program program("scene.vert.glsl", "bicubic_pcf.frag.glsl");
-  program.use();
-  program.set("uViewProjection", cameraViewProjection(scene, params));
-  program.set("uWorldToShadowMap", worldToShadowMap(scene));
-  program.set("uMapSize", glm::vec2(float(map.width), float(map.height)));
-  program.set("uRelativeBias", relativeBias);
-  setLightingUniforms(program, scene);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
-  program.set("uShadowMap", 0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  readCameraTarget(target, frame);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+void bicubicFilterInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
+                               const RenderTarget& map, float relativeBias) {
+  passes.run("2", [&] {
+    const Scene& scene = gpu.scene();
+    RenderTarget target = makeCameraTarget(params, true);
+    clearCameraTarget(target);
+    glEnable(GL_DEPTH_TEST);
+    Program program("scene.vert.glsl", "bicubic_pcf.frag.glsl");
+    program.use();
+    program.set("uViewProjection", cameraViewProjection(scene, params));
+    program.set("uWorldToShadowMap", worldToShadowMap(scene));
+    program.set("uMapSize", glm::vec2(float(map.width), float(map.height)));
+    program.set("uRelativeBias", relativeBias);
+    setLightingUniforms(program, scene);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, map.depth.id());
+    program.set("uShadowMap", 0);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    readCameraTarget(target, passes.frame());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  });
 }
 
 // Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view.
-void filterInCameraPass(const GpuScene& gpu, const RenderParams& params, const RenderTarget& map,
-                        int samples, float relativeBias, Frame& frame) {
-  PassTimer timer(frame, "2 camera pass, " + std::to_string(samples) + "-sample PCF",
-                  samples == 16  ? "Bunnell & Pellacini 2004, GPU Gems §11.3: 16 offset_lookup "
-                                   "calls over the 4x4-texel region (Figs. 11-2, 11-3)"
-                  : samples == 4 ? "Bunnell & Pellacini 2004, GPU Gems §11.4, Fig. 11-4: four "
-                                   "of the sixteen lookups, dithered by pixel position"
-                                 : "Bunnell & Pellacini 2004, GPU Gems §11.3: one hardware 2x2 "
-                                   "lookup (Fig. 11-6)");
-  timer.shaderPasses({"offset-lookup", "dither", "gems-region"});
-  const Scene& scene = gpu.scene();
-  RenderTarget target = makeCameraTarget(params, true);
-  clearCameraTarget(target);
-  glEnable(GL_DEPTH_TEST);
-  Program program("scene.vert.glsl", "gems_pcf.frag.glsl", {{"SAMPLES", std::to_string(samples)}});
-  program.use();
-  program.set("uViewProjection", cameraViewProjection(scene, params));
-  program.set("uWorldToShadowMap", worldToShadowMap(scene));
-  const float texel = 1.0f / float(map.width);
-  program.set("uTexmapScale", glm::vec2(texel, texel));
-  program.set("uRelativeBias", relativeBias);
-  setLightingUniforms(program, scene);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
-  program.set("uShadowMap", 0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  readCameraTarget(target, frame);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+void filterInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
+                        const RenderTarget& map, int samples, float relativeBias) {
+  passes.run("2", [&] {
+    const Scene& scene = gpu.scene();
+    RenderTarget target = makeCameraTarget(params, true);
+    clearCameraTarget(target);
+    glEnable(GL_DEPTH_TEST);
+    Program program("scene.vert.glsl", "gems_pcf.frag.glsl",
+                    {{"SAMPLES", std::to_string(samples)}});
+    program.use();
+    program.set("uViewProjection", cameraViewProjection(scene, params));
+    program.set("uWorldToShadowMap", worldToShadowMap(scene));
+    const float texel = 1.0f / float(map.width);
+    program.set("uTexmapScale", glm::vec2(texel, texel));
+    program.set("uRelativeBias", relativeBias);
+    setLightingUniforms(program, scene);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, map.depth.id());
+    program.set("uShadowMap", 0);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    readCameraTarget(target, passes.frame());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  });
 }
 
-// --dump-passes: the depth map of pass 1 as grey and the filtered camera pass.
-void captureMapAndCameraPass(const RenderTarget& map, int samples, Kernel kernel, Frame& frame) {
-  const bool bicubic = kernel == Kernel::kBicubic;
-  frame.intermediates.push_back(greyDepth(
-      "1-light-depth",
-      bicubic ? "pass 1 (Chan 2004 Fig. 4-8, bicubic PCF): depth from the light with polygon "
-                "offset, compared with GL_NEAREST (one comparison per sample)"
-              : "pass 1 (GPU Gems §11.3): depth from the light with polygon offset, compared with "
-                "GL_LINEAR (hardware 2x2 PCF)",
-      readDepthTexture(map.depth.id(), map.width, map.height)));
-  captureCameraPass(frame, 2,
-                    bicubic ? std::string("bicubic_pcf.frag, 16 comparisons weighted by the cubic "
-                                          "B-spline, Chan 2004 Fig. 4-8")
-                            : "gems_pcf.frag, " + std::to_string(samples) + " offset lookups, " +
-                                  (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3"));
+// --dump-passes: the depth map of pass 1 as grey (its caption says the drawn range) and the
+// filtered camera pass.
+void captureMapAndCameraPass(Passes& passes, const RenderTarget& map) {
+  if (passes.capturing()) {
+    const PassImage grey =
+        greyDepth("", "", readDepthTexture(map.depth.id(), map.width, map.height));
+    passes.capture("1", "light-depth", [&] { return grey.image; }, {}, {{"range", grey.caption}});
+  }
+  captureCameraPass(passes, "2");
 }
 
 // --param samples: lookups per pixel (GPU Gems §11.3: 16; §11.4: 4 dithered; 1: one lookup).
@@ -227,15 +301,16 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
                      samples + " cannot take it");
   const Kernel kernel = bicubic ? Kernel::kBicubic : Kernel::kBox;
   Frame frame;
+  Passes passes(frame, params, passTable(std::stoi(samples), kernel));
   GpuScene gpu(scene);
-  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, kernel, frame);
+  RenderTarget map = renderDepthFromLight(passes, gpu, params, factor, units, kernel);
   const float bias = relativeBias(scene, params.shadowMapTexels, biasTexels);
   if (bicubic)
-    bicubicFilterInCameraPass(gpu, params, map, bias, frame);
+    bicubicFilterInCameraPass(passes, gpu, params, map, bias);
   else
-    filterInCameraPass(gpu, params, map, std::stoi(samples), bias, frame);
+    filterInCameraPass(passes, gpu, params, map, std::stoi(samples), bias);
   frame.counters["samples per pixel"] = std::stoi(samples);
-  if (params.capturePasses) captureMapAndCameraPass(map, std::stoi(samples), kernel, frame);
+  captureMapAndCameraPass(passes, map);
   return frame;
 }
 
@@ -251,6 +326,9 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
   if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
+  // The default variant's passes (samples = the technique's own, box kernel); a render with
+  // other --params runs the table of its variant (passTable).
+  t.passes = passTable(samples, Kernel::kBox);
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);
   };

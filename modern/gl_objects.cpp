@@ -9,25 +9,6 @@
 namespace sl::modern {
 using namespace sl::gl;
 
-void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-void deleteProgram(GLuint id) { glDeleteProgram(id); }
-void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-
-Texture makeTexture() {
-  GLuint id = 0;
-  glGenTextures(1, &id);
-  return Texture(id);
-}
-
-Framebuffer makeFramebuffer() {
-  GLuint id = 0;
-  glGenFramebuffers(1, &id);
-  return Framebuffer(id);
-}
-
 Program::Program(const std::string& vertexFile, const std::string& fragmentFile,
                  const std::vector<std::pair<std::string, std::string>>& defines,
                  const std::string& geometryFile)

@@ -1,4 +1,4 @@
-// modern/gl_objects.h — RAII owners for GL objects, shader programs from modern/shaders/*.glsl,
+// modern/gl_objects.h — RAII owners for GL objects (core/gl_objects.h), shader programs from modern/shaders/*.glsl,
 // and the scene uploaded into vertex buffers (module-internal header).
 #pragma once
 
@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/gl.h"
+#include "core/gl_objects.h"
 #include "core/scene.h"
 #include "core/winding.h"
 
@@ -18,50 +19,22 @@ namespace sl::modern {
 
 // Shader sources and their compiler: core/shaders.h (modern/shaders/*.glsl, embedded).
 
-// A move-only owner of one GL name; `Deleter` releases it.
-template <void (*Deleter)(GLuint)>
-class GlName {
- public:
-  GlName() = default;
-  explicit GlName(GLuint id) : id_(id) {}
-  ~GlName() { reset(); }
-  GlName(GlName&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
-  GlName& operator=(GlName&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = std::exchange(o.id_, 0);
-    }
-    return *this;
-  }
-  GlName(const GlName&) = delete;
-  GlName& operator=(const GlName&) = delete;
-  GLuint id() const { return id_; }
-  // Gives the name up without deleting it (its context is about to delete it).
-  GLuint release() { return std::exchange(id_, 0); }
-  void reset() {
-    if (id_ != 0) Deleter(id_);
-    id_ = 0;
-  }
-
- private:
-  GLuint id_ = 0;
-};
-
-void deleteTexture(GLuint id);
-void deleteFramebuffer(GLuint id);
-void deleteBuffer(GLuint id);
-void deleteVertexArray(GLuint id);
-void deleteProgram(GLuint id);
-void deleteRenderbuffer(GLuint id);
-
-using Texture = GlName<deleteTexture>;
-using Framebuffer = GlName<deleteFramebuffer>;
-using Buffer = GlName<deleteBuffer>;
-using VertexArray = GlName<deleteVertexArray>;
-using Renderbuffer = GlName<deleteRenderbuffer>;
-
-Texture makeTexture();
-Framebuffer makeFramebuffer();
+// The owners of GL names are core's (core/gl_objects.h), one discipline with legacy_gl/; modern
+// code names them as before.
+using sl::Buffer;
+using sl::deleteBuffer;
+using sl::deleteFramebuffer;
+using sl::deleteProgram;
+using sl::deleteRenderbuffer;
+using sl::deleteTexture;
+using sl::deleteVertexArray;
+using sl::Framebuffer;
+using sl::GlName;
+using sl::makeFramebuffer;
+using sl::makeTexture;
+using sl::Renderbuffer;
+using sl::Texture;
+using sl::VertexArray;
 
 // A linked program from a vertex and a fragment shader file (and an optional geometry
 // shader). `defines` are inserted after the #version line as "#define NAME VALUE".

@@ -33,7 +33,7 @@ PassTable hardwareShadowMapPasses() {
                     "polygon offset: Why Is Polygon Offset Needed?, Fig. 3",
        .writes = {{.name = "light-depth",
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
-                              "offset; {depth-range}"}},
+                              "offset"}},
        .shaders = {"depth-only"},
        .replaces = {"1"},
        .deviations = {kDepthRoundoffScaleDeviation}},
@@ -147,13 +147,9 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
       renderDepthFromLight(passes, gpu, params, factor, units, linear, casterInFrustum);
   shadeWithShadowMap(passes, "2", gpu, params, map.depth.id());
   // --dump-passes: the depth texture of pass 1 as grey and the camera pass.
-  passes.capture("1", "light-depth", [&](PassWords& words) {
-    const Image depth = readDepthTexture(map.depth.id(), map.width, map.height);
-    const WindowDepthSpan range = drawnDepthRange({&depth});
-    words["depth-range"] = greyDepthRangeText(range);
-    return greyDepthImage(depth, range);
-  });
-  captureCameraPassBuffers(passes, "2");
+  passes.captureDepth("1", "light-depth",
+                      [&] { return readDepthTexture(map.depth.id(), map.width, map.height); });
+  captureCameraPass(passes, "2");
   return frame;
 }
 }  // namespace

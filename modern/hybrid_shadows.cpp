@@ -22,12 +22,14 @@
 //                                 shadowed)
 //   (then, untimed: counters of Figures 3-9 and 3-10 — overdraw with and without the mask, the
 //    share of silhouette pixels)
+// The passes are declared once in hybridPasses().
 #include "modern/hybrid_shadows.h"
 
 #include <algorithm>
 #include <vector>
 
 #include "core/errors.h"
+#include "core/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/shadow_volumes.h"
@@ -57,6 +59,74 @@ constexpr int kMaskTilePixels = 64;
 constexpr double kMaxScissoredImageShare = 1.0 / 3.0;
 
 enum class MaskKind { kDepthBounds, kStencil, kStencilTiles };
+
+// The DEVIATION comments of the passes below, for the pass table.
+constexpr const char* kMaskInClassificationDeviation =
+    "DEVIATION (Chan §3.2, \"we draw a screen-aligned quad\" to set up the mask): the stencil "
+    "mask bit is written here, by the fragment that wins the depth test (its stencil reference "
+    "is the bit at silhouette pixels, 0 elsewhere), saving the full-screen pass. Chan's "
+    "depth-bounds mask cannot be folded in: it overwrites the depth this pass must keep.";
+constexpr const char* kStencilMaskDeviation =
+    "DEVIATION (Chan §3.2): without EXT_depth_bounds_test (llvmpipe) the mask is stencil bit 7, "
+    "set at silhouette pixels; later passes test it. Setting depth to 0 instead would not do: "
+    "z-fail counts exactly the fragments that fail the depth test.";
+constexpr const char* kScissorTilesDeviation =
+    "DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and "
+    "becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the "
+    "scissor; its per-fragment stencil test runs inside the fragment function, after the "
+    "rasteriser has already produced every fragment (measured in docs/volumes.md).";
+
+// The passes of §3.1 steps 1-4 and §3.2, declared once: names, the thesis's text, the buffers a
+// dump shows, shaders and deviations.
+PassTable hybridPasses() {
+  return {
+      {.id = "1",
+       .name = "shadow map",
+       .reference = "Chan 2004 §3.1 step 1 (\"Create a shadow map\"), read with the hardware 2x2 "
+                    "compare",
+       .shaders = {"depth-only"}},
+      {.id = "2",
+       .name = "silhouettes and volumes (CPU)",
+       .reference = "Chan 2004 §3.1 step 3 needs them: silhouette edges and z-fail volumes "
+                    "(§2.1.2, [EK02]) on the CPU",
+       .deviations = {kOpenMeshTwoSidedDeviation}},
+      {.id = "3",
+       .name = "classify silhouette pixels",
+       .reference = "Chan 2004 §3.1 step 2 (\"Identify shadow silhouette pixels\"), Fig. 3-3; "
+                    "the other pixels shaded from the shadow map",
+       .writes = {{.name = "silhouette-pixels",
+                   .caption = "silhouette pixels (Chan Fig. 3-1b, 3-9b)"}},
+       .shaders = {"volume-vertex", "classify"},
+       .deviations = {kMaskInClassificationDeviation}},
+      {.id = "4",
+       .name = "computation mask",
+       .reference = "Chan 2004 §3.4.2 (computation masks): later passes run only at silhouette "
+                    "pixels; here as depth and scissor boxes (DEVIATION)",
+       .shaders = {"computation-mask"},
+       .deviations = {kStencilMaskDeviation, kScissorTilesDeviation}},
+      {.id = "5",
+       .name = "shadow volumes at silhouette pixels",
+       .reference = "Chan 2004 §3.1 step 3 (\"Draw shadow volumes\"): z-fail stencil counts at "
+                    "silhouette pixels only",
+       .writes = {{.name = "stencil-count",
+                   .caption = "stencil buffer: volumes counted at silhouette pixels only, black = "
+                              "non-zero (Chan Fig. 3-1c, 3-9c)"}},
+       .shaders = {"volume-vertex", "depth-only"}},
+      {.id = "6",
+       .name = "shade silhouette pixels",
+       .reference = "Chan 2004 §3.1 step 4 (\"Compute shadows\"): shade the silhouette pixels "
+                    "whose stencil count is zero",
+       .writes = {{.name = "classification",
+                   .caption = "red/blue: shadow map shadowed/lit; black/green: volumes "
+                              "shadowed/lit (Chan Fig. 3-5b)"}},
+       .shaders = {"volume-vertex", "stencil-shade"}},
+  };
+}
+
+const PassTable& passTable() {
+  static const PassTable table = hybridPasses();
+  return table;
+}
 
 // A scissor box in window pixels.
 struct TileRect {
@@ -115,87 +185,102 @@ void forEachScissorBox(const std::vector<TileRect>* rects, const Draws& draws) {
 }
 
 // Pass 1 (§3.1 step 1): an ordinary shadow map, read with the hardware 2x2 compare.
-RenderTarget renderShadowMap(const GpuScene& gpu, const RenderParams& params,
-                             const Program& program, float factor, float units, Frame& frame) {
-  PassTimer timer(frame, "1 shadow map",
-                  "Chan 2004 §3.1 step 1 (\"Create a shadow map\"), read with the hardware 2x2 "
-                  "compare");
-  timer.shaderPasses({"depth-only"});
-  const int n = params.shadowMapTexels;
-  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
-  map.bind();
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the
-  // hybrid see the same blockers.
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  // GL_LINEAR with compare mode = the 2x2 percentage-closer filter of Figure 3-3.
-  setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
-  glBindTexture(GL_TEXTURE_2D, 0);
+RenderTarget renderShadowMap(Passes& passes, const GpuScene& gpu, const RenderParams& params,
+                             const Program& program, float factor, float units) {
+  RenderTarget map;
+  passes.run("1", [&] {
+    const int n = params.shadowMapTexels;
+    map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+    map.bind();
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+    program.use();
+    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+    // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the
+    // hybrid see the same blockers.
+    gpu.draw([](const Object& o) { return o.castsShadow; },
+             [&](const Object& o) { program.set("uModel", o.model); });
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    // GL_LINEAR with compare mode = the 2x2 percentage-closer filter of Figure 3-3.
+    setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
+    glBindTexture(GL_TEXTURE_2D, 0);
+  });
   return map;
 }
 
 // Pass 2 (§3.1 step 3 needs them; Everitt–Kilgard): silhouette edges on the CPU, volumes.
-SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCasters& casters,
-                                            Frame& frame) {
-  PassTimer timer(frame, "2 silhouettes and volumes (CPU)",
-                  "Chan 2004 §3.1 step 3 needs them: silhouette edges and z-fail volumes "
-                  "(§2.1.2, [EK02]) on the CPU");
-  return buildSceneVolumes(casters, scene.light.position);
+SceneVolumes findSilhouettesAndBuildVolumes(Passes& passes, const Scene& scene,
+                                            const SceneCasters& casters) {
+  SceneVolumes volumes;
+  passes.run("2", [&] { volumes = buildSceneVolumes(casters, scene.light.position); });
+  return volumes;
 }
 
 // Pass 3 (§3.1 step 2, Figure 3-3): shade from the shadow map and tag silhouette pixels; the
 // depth buffer keeps the nearest surfaces for the volumes (same vertex shader as the volumes).
-void classifySilhouettePixels(const GpuScene& gpu, const RenderTarget& target,
+void classifySilhouettePixels(Passes& passes, const GpuScene& gpu, const RenderTarget& target,
                               const RenderTarget& map, const Program& program,
-                              const glm::mat4& viewProjection, bool writeMask, Frame& frame) {
-  PassTimer timer(frame, "3 classify silhouette pixels",
-                  "Chan 2004 §3.1 step 2 (\"Identify shadow silhouette pixels\"), Fig. 3-3; "
-                  "the other pixels shaded from the shadow map");
-  timer.shaderPasses({"volume-vertex", "classify"});
-  const Scene& scene = gpu.scene();
-  target.bind();
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  if (writeMask) {
-    // DEVIATION (Chan §3.2, "we draw a screen-aligned quad" to set up the mask): the stencil
-    // mask bit is written here, by the fragment that wins the depth test (its stencil reference
-    // is the bit at silhouette pixels, 0 elsewhere), saving the full-screen pass. Chan's
-    // depth-bounds mask cannot be folded in: it overwrites the depth this pass must keep.
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 0, 0xFF);
-    glStencilMask(kStencilMaskBit);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  }
-  program.use();
-  program.set("uViewProjection", viewProjection);
-  const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
-  program.set("uWorldToShadowMap", S * lightProjection(scene) * lightView(scene.light));
-  setLightingUniforms(program, scene);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, map.depth.id());
-  program.set("uShadowMap", 0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  if (writeMask) {
+                              const glm::mat4& viewProjection, bool writeMask) {
+  passes.run("3", [&] {
+    const Scene& scene = gpu.scene();
+    target.bind();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    if (writeMask) {
+      // DEVIATION (Chan §3.2, "we draw a screen-aligned quad" to set up the mask): the stencil
+      // mask bit is written here, by the fragment that wins the depth test (its stencil reference
+      // is the bit at silhouette pixels, 0 elsewhere), saving the full-screen pass. Chan's
+      // depth-bounds mask cannot be folded in: it overwrites the depth this pass must keep.
+      glEnable(GL_STENCIL_TEST);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glStencilMask(kStencilMaskBit);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    }
+    program.use();
+    program.set("uViewProjection", viewProjection);
+    const glm::mat4 S = glm::mat4(0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0.5f, 0.5f, 0.5f, 1);
+    program.set("uWorldToShadowMap", S * lightProjection(scene) * lightView(scene.light));
+    setLightingUniforms(program, scene);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, map.depth.id());
+    program.set("uShadowMap", 0);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    if (writeMask) {
+      glDisable(GL_STENCIL_TEST);
+      glStencilMask(0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
+    glDepthFunc(GL_LESS);
+  });
+}
+
+// The state drawMaskQuad changes, put back when it ends as the later passes expect it: colour
+// and depth writes on, depth test GL_LESS, stencil test off, every stencil bit writable,
+// stencil operations GL_KEEP.
+class MaskQuadStateRestore {
+ public:
+  MaskQuadStateRestore() = default;
+  ~MaskQuadStateRestore() {
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
     glDisable(GL_STENCIL_TEST);
     glStencilMask(0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   }
-  glDepthFunc(GL_LESS);
-}
+  MaskQuadStateRestore(const MaskQuadStateRestore&) = delete;
+  MaskQuadStateRestore& operator=(const MaskQuadStateRestore&) = delete;
+};
 
 // §3.2's screen-aligned quad: the mask from the silhouette tags (depth := 0 off the
 // silhouette for depth bounds, else the stencil bit on it).
 void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind kind) {
+  const MaskQuadStateRestore restore;
   program.use();
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, target.color[2].id());
@@ -224,12 +309,6 @@ void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind k
   // The tags are an attachment of the bound framebuffer: leaving them bound to a texture unit
   // would make the driver synchronise every later draw (llvmpipe flushes per draw).
   glBindTexture(GL_TEXTURE_2D, 0);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_STENCIL_TEST);
-  glStencilMask(0xFF);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
 }
 
 // Pass 4 (§3.2): the computation mask from the silhouette tags (with mask=tiles, also the
@@ -237,32 +316,30 @@ void drawMaskQuad(const RenderTarget& target, const Program& program, MaskKind k
 // Returns whether the later passes are to be scissored to `tiles` (mask=tiles, boxes covering at
 // most kMaxScissoredImageShare of the image); the quad is then drawn inside the boxes only, since
 // every silhouette pixel lies in one and nothing outside them is drawn again.
-bool buildComputationMask(const RenderTarget& target, const Program& program, MaskKind kind,
-                          bool maskWritten, std::vector<TileRect>& tiles, Frame& frame) {
-  PassTimer timer(frame, "4 computation mask",
-                  "Chan 2004 §3.4.2 (computation masks): later passes run only at silhouette "
-                  "pixels; here as depth and scissor boxes (DEVIATION)");
-  timer.shaderPasses({"computation-mask"});
-  target.bind();
+bool buildComputationMask(Passes& passes, const RenderTarget& target, const Program& program,
+                          MaskKind kind, bool maskWritten, std::vector<TileRect>& tiles) {
   bool scissored = false;
-  if (kind == MaskKind::kStencilTiles) {
-    // DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and
-    // becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the
-    // scissor; its per-fragment stencil test runs inside the fragment function, after the
-    // rasteriser has already produced every fragment (measured in docs/volumes.md).
-    std::vector<unsigned char> tags(size_t(target.width) * size_t(target.height));
-    glReadBuffer(GL_COLOR_ATTACHMENT2);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, target.width, target.height, GL_RED, GL_UNSIGNED_BYTE, tags.data());
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
-    tiles = silhouetteTileRects(tags, target.width, target.height);
-    double tilePixels = 0;
-    for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
-    scissored =
-        tilePixels <= kMaxScissoredImageShare * double(target.width) * double(target.height);
-  }
-  if (!maskWritten)
-    forEachScissorBox(scissored ? &tiles : nullptr, [&] { drawMaskQuad(target, program, kind); });
+  passes.run("4", [&] {
+    target.bind();
+    if (kind == MaskKind::kStencilTiles) {
+      // DEVIATION (Chan §3.2, §3.4.2): the tile level of the mask is read back to the CPU and
+      // becomes scissor boxes, because llvmpipe rejects work before rasterisation only by the
+      // scissor; its per-fragment stencil test runs inside the fragment function, after the
+      // rasteriser has already produced every fragment (measured in docs/volumes.md).
+      std::vector<unsigned char> tags(size_t(target.width) * size_t(target.height));
+      glReadBuffer(GL_COLOR_ATTACHMENT2);
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, target.width, target.height, GL_RED, GL_UNSIGNED_BYTE, tags.data());
+      glReadBuffer(GL_COLOR_ATTACHMENT0);
+      tiles = silhouetteTileRects(tags, target.width, target.height);
+      double tilePixels = 0;
+      for (const TileRect& r : tiles) tilePixels += double(r.width) * r.height;
+      scissored =
+          tilePixels <= kMaxScissoredImageShare * double(target.width) * double(target.height);
+    }
+    if (!maskWritten)
+      forEachScissorBox(scissored ? &tiles : nullptr, [&] { drawMaskQuad(target, program, kind); });
+  });
   return scissored;
 }
 GLuint maskBitFor(MaskKind kind) {
@@ -270,32 +347,29 @@ GLuint maskBitFor(MaskKind kind) {
 }
 
 // Pass 5 (§3.1 step 3): z-fail stencil updates only at silhouette pixels.
-void drawVolumesThroughMask(const SceneVolumes& volumes, const Program& volumeProgram,
-                            MaskKind kind, const std::vector<TileRect>* tiles, Frame& frame) {
-  PassTimer timer(frame, "5 shadow volumes at silhouette pixels",
-                  "Chan 2004 §3.1 step 3 (\"Draw shadow volumes\"): z-fail stencil counts at "
-                  "silhouette pixels only");
-  timer.shaderPasses({"volume-vertex", "depth-only"});
-  if (kind == MaskKind::kDepthBounds) {
-    glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-    glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
-  }
-  forEachScissorBox(tiles, [&] { countVolumesZFail(volumes, volumeProgram, maskBitFor(kind)); });
-  if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+void drawVolumesThroughMask(Passes& passes, const SceneVolumes& volumes,
+                            const Program& volumeProgram, MaskKind kind,
+                            const std::vector<TileRect>* tiles) {
+  passes.run("5", [&] {
+    if (kind == MaskKind::kDepthBounds) {
+      glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
+      glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
+    }
+    forEachScissorBox(tiles, [&] { countVolumesZFail(volumes, volumeProgram, maskBitFor(kind)); });
+    if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+  });
 }
 
 // Pass 6 (§3.1 step 4, "draw and shade the scene only at pixels with stencil values equal to
 // zero"): the silhouette pixels were shaded as shadowed by pass 3; the lit ones (count zero)
 // are drawn here, once.
-void shadeLitSilhouettePixels(const GpuScene& gpu, const Program& shadeProgram, MaskKind kind,
-                              const std::vector<TileRect>* tiles, Frame& frame) {
-  PassTimer timer(frame, "6 shade silhouette pixels",
-                  "Chan 2004 §3.1 step 4 (\"Compute shadows\"): shade the silhouette pixels "
-                  "whose stencil count is zero");
-  timer.shaderPasses({"volume-vertex", "stencil-shade"});
-  if (kind == MaskKind::kDepthBounds) glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
-  forEachScissorBox(tiles, [&] { shadeLitFromStencil(gpu, shadeProgram, maskBitFor(kind)); });
-  if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+void shadeLitSilhouettePixels(Passes& passes, const GpuScene& gpu, const Program& shadeProgram,
+                              MaskKind kind, const std::vector<TileRect>* tiles) {
+  passes.run("6", [&] {
+    if (kind == MaskKind::kDepthBounds) glEnable(GL_DEPTH_BOUNDS_TEST_EXT);
+    forEachScissorBox(tiles, [&] { shadeLitFromStencil(gpu, shadeProgram, maskBitFor(kind)); });
+    if (kind == MaskKind::kDepthBounds) glDisable(GL_DEPTH_BOUNDS_TEST_EXT);
+  });
 }
 
 // Figure 3-5b: non-silhouette pixels red (shadow map: shadowed) / blue (lit); silhouette pixels
@@ -372,23 +446,24 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});
+  Passes passes(frame, params, passTable());
 
-  RenderTarget map = renderShadowMap(gpu, params, mapProgram, factor, units, frame);
-  const SceneVolumes volumes = findSilhouettesAndBuildVolumes(scene, casters, frame);
-  classifySilhouettePixels(gpu, target, map, classifyProgram, viewProjection, maskInClassify,
-                           frame);
+  RenderTarget map = renderShadowMap(passes, gpu, params, mapProgram, factor, units);
+  const SceneVolumes volumes = findSilhouettesAndBuildVolumes(passes, scene, casters);
+  classifySilhouettePixels(passes, gpu, target, map, classifyProgram, viewProjection,
+                           maskInClassify);
   std::vector<TileRect> tiles;
   const bool scissored =
-      buildComputationMask(target, maskProgram, kind, maskInClassify, tiles, frame);
+      buildComputationMask(passes, target, maskProgram, kind, maskInClassify, tiles);
   const std::vector<TileRect>* scissorBoxes = scissored ? &tiles : nullptr;
   target.bind();
   const double volumeInvocations = countFragmentInvocations(
-      [&] { drawVolumesThroughMask(volumes, volumeProgram, kind, scissorBoxes, frame); });
+      [&] { drawVolumesThroughMask(passes, volumes, volumeProgram, kind, scissorBoxes); });
   // The colour target has three attachments; the shading pass writes the first two.
   const GLenum shadeBuffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE};
   glDrawBuffers(3, shadeBuffers);
   if (kind == MaskKind::kDepthBounds) glDepthBoundsEXT(kDepthBoundsMin, kDepthBoundsMax);
-  shadeLitSilhouettePixels(gpu, shadeProgram, kind, scissorBoxes, frame);
+  shadeLitSilhouettePixels(passes, gpu, shadeProgram, kind, scissorBoxes);
   readCameraTarget(target, frame);
 
   // Untimed counters (Chan §3.3.2, Figures 3-9 and 3-10).
@@ -419,19 +494,10 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
     frame.counters["tile_overdraw"] = tileFragments / pixels;
     frame.counters["mask_tiles_scissored"] = scissored ? 1 : 0;
   }
-  if (params.capturePasses) {
-    frame.intermediates.push_back(
-        {"3-silhouette-pixels", "silhouette pixels (Chan Fig. 3-1b, 3-9b)", silhouette});
-    frame.intermediates.push_back(
-        {"6-classification",
-         "red/blue: shadow map shadowed/lit; black/green: volumes shadowed/lit (Chan Fig. 3-5b)",
-         classificationImage(silhouette, frame.visibility)});
-    frame.intermediates.push_back(
-        {"5-stencil-count",
-         "stencil buffer: volumes counted at silhouette pixels only, black = non-zero (Chan Fig. "
-         "3-1c, 3-9c)",
-         stencilCountImage(target)});
-  }
+  passes.capture("3", "silhouette-pixels", [&] { return silhouette; });
+  passes.capture("6", "classification",
+                 [&] { return classificationImage(silhouette, frame.visibility); });
+  passes.capture("5", "stencil-count", [&] { return stencilCountImage(target); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return frame;
 }
@@ -449,6 +515,7 @@ Technique hybridShadowsTechnique() {
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), maskParam(),
               maskPassParam()};
   t.reads = {.shadowMap = true};
+  t.passes = passTable();
   t.render = render;
   return t;
 }

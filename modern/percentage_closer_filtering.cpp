@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/passes.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
@@ -108,7 +109,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
         {{"group", std::to_string(g)}});
   }
   shadowTestAndShade(passes, gpu, params, ramp, groups);
-  captureCameraPassBuffers(passes, "2");
+  captureCameraPass(passes, "2");
   return frame;
 }
 

@@ -11,6 +11,7 @@
 //                                     blending does, > 0 = shadowed (footnote 1); shading
 // The passes are declared once in rampPasses().
 #include "core/errors.h"
+#include "core/pass_capture.h"
 #include "core/passes.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
@@ -109,7 +110,7 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const RenderTarget map = renderDepthAsColourFromLight(passes, gpu, params, ramp);
   passes.capture("1", "light-pass-ramp-depth", [&] { return readAttachment(map, 0); });
   shadowTestAndShade(passes, gpu, params, ramp, map);
-  captureCameraPassBuffers(passes, "2");
+  captureCameraPass(passes, "2");
   return frame;
 }
 

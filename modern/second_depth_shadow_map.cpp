@@ -37,7 +37,7 @@ PassTable secondDepthPasses() {
        .writes = {{.name = "second-depth-map",
                    .caption = "pass 1 (Wang & Molnar 1994, Everitt \"Advantages and "
                               "Limitations\"): back faces of closed casters from the light, open "
-                              "casters with polygon offset; {depth-range}"}},
+                              "casters with polygon offset"}},
        .shaders = {"depth-only"},
        .replaces = {"1"},
        .deviations = {"DEVIATION (Wang & Molnar 1994; Everitt et al. 2001), as "
@@ -93,13 +93,9 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   RenderTarget map = renderBackFacesFromLight(passes, gpu, params.shadowMapTexels, linear);
   shadeWithShadowMap(passes, "2", gpu, params, map.depth.id());
   // --dump-passes: the second-depth map of pass 1 as grey and the camera pass.
-  passes.capture("1", "second-depth-map", [&](PassWords& words) {
-    const Image depth = readDepthTexture(map.depth.id(), map.width, map.height);
-    const WindowDepthSpan range = drawnDepthRange({&depth});
-    words["depth-range"] = greyDepthRangeText(range);
-    return greyDepthImage(depth, range);
-  });
-  captureCameraPassBuffers(passes, "2");
+  passes.captureDepth("1", "second-depth-map",
+                      [&] { return readDepthTexture(map.depth.id(), map.width, map.height); });
+  captureCameraPass(passes, "2");
   return frame;
 }
 

@@ -18,6 +18,7 @@
 //   3. countVolumeCrossings           — z-fail: back faces ++, front faces -- on depth fail
 //   4. shadeFromStencil               — lit where the count is 0, shadowed elsewhere
 //   (then, untimed: measureVolumeFill, the overdraw counters of Chan Figure 3-10)
+// The passes are declared once in volumesPasses().
 #include "modern/shadow_volumes.h"
 
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/errors.h"
+#include "core/passes.h"
 #include "core/winding.h"
 #include "modern/camera_pass.h"
 
@@ -41,7 +43,8 @@ constexpr float kInfinityEpsilon = 2.4e-7f * 4.0f;  // a few 24-bit depth steps
 // legend strip shows one box per power of two up to the peak, named in its caption.
 struct OverdrawView {
   Image image, legend;
-  std::string caption, legendCaption;
+  std::string caption;
+  std::string levelNames;  // the legend's boxes left to right: "0, 1, 2, 4, 8, 11"
 };
 
 OverdrawView overdrawView(const Image& counts) {
@@ -64,19 +67,17 @@ OverdrawView overdrawView(const Image& counts) {
   for (int n = 1; n < int(peak); n *= 2) levels.push_back(n);
   levels.push_back(int(std::lround(peak)));
   out.legend = Image(kLegendBox * int(levels.size()), kLegendBox, 1);
-  std::string names;
   for (size_t i = 0; i < levels.size(); ++i) {
     for (int y = 0; y < kLegendBox; ++y)
       for (int x = 0; x < kLegendBox; ++x)
         out.legend.at(int(i) * kLegendBox + x, y, 0) = grey(float(levels[i]));
-    names += (i ? ", " : "") + std::to_string(levels[i]);
+    out.levelNames += (i ? ", " : "") + std::to_string(levels[i]);
   }
   const int mean = covered > 0 ? int(std::lround(sum / covered)) : 0;
   out.caption = "shadow-volume overdraw per pixel, grey = log2(1 + n) / log2(1 + " +
                 std::to_string(int(std::lround(peak))) + "): mean " + std::to_string(mean) +
                 " over the covered pixels (grey " + std::to_string(grey(float(mean))).substr(0, 4) +
                 "), peak " + std::to_string(int(std::lround(peak))) + " (white)";
-  out.legendCaption = "boxes left to right: " + names + " layers";
   return out;
 }
 }  // namespace
@@ -315,46 +316,74 @@ void reportVolumePassInvocations(double invocations, const RenderParams& params,
 
 namespace {
 
+// The passes, declared once: names, the paper's text, the buffers a dump shows, shaders.
+PassTable volumesPasses() {
+  return {
+      {.id = "1",
+       .name = "silhouettes and volumes (CPU)",
+       .reference = "Chan 2004 §2.1.2 (Fig. 2-6; Everitt & Kilgard [EK02]): silhouette edges "
+                    "extruded from the light, capped, to an infinite far plane",
+       .deviations = {kOpenMeshTwoSidedDeviation}},
+      {.id = "2",
+       .name = "depth from camera",
+       .reference = "Chan 2004 §2.1.2: the scene's depth from the camera, which the volumes are "
+                    "tested against",
+       .shaders = {"volume-vertex", "depth-only"}},
+      {.id = "3",
+       .name = "stencil volumes (z-fail)",
+       .reference = "Chan 2004 §2.1.2 (Fig. 2-7) and §3.1 step 3: the robust z-fail stencil count "
+                    "[EK02], front faces down, back faces up where the depth test fails",
+       // The overdraw is measured after the frame (measureVolumeFill), untimed.
+       .writes = {{.name = "volume-overdraw", .caption = "{overdraw} (Chan Fig. 3-9a)"},
+                  {.name = "overdraw-legend",
+                   .caption = "legend of the overdraw image: boxes left to right: {levels} layers"},
+                  {.name = "stencil-count",
+                   .caption = "stencil buffer after z-fail counting: black = non-zero count (in "
+                              "shadow)"}},
+       .shaders = {"volume-vertex", "depth-only"}},
+      {.id = "4",
+       .name = "shade from stencil",
+       .reference = "Chan 2004 §2.1.2: lit where the stencil count is zero, shadowed elsewhere",
+       .shaders = {"volume-vertex", "stencil-shade"}},
+  };
+}
+
+const PassTable& passTable() {
+  static const PassTable table = volumesPasses();
+  return table;
+}
+
 // Pass 1 (Everitt–Kilgard; Chan §4.2 step 2): silhouette edges from edge adjacency, volumes.
-SceneVolumes findSilhouettesAndBuildVolumes(const Scene& scene, const SceneCasters& casters,
-                                            Frame& frame) {
-  PassTimer timer(frame, "1 silhouettes and volumes (CPU)",
-                  "Chan 2004 §2.1.2 (Fig. 2-6; Everitt & Kilgard [EK02]): silhouette edges "
-                  "extruded from the light, capped, to an infinite far plane");
-  return buildSceneVolumes(casters, scene.light.position);
+SceneVolumes findSilhouettesAndBuildVolumes(Passes& passes, const Scene& scene,
+                                            const SceneCasters& casters) {
+  SceneVolumes volumes;
+  passes.run("1", [&] { volumes = buildSceneVolumes(casters, scene.light.position); });
+  return volumes;
 }
 
 // Pass 2 (Everitt–Kilgard, step 1 of the z-fail algorithm): depth of the visible surfaces.
-void fillDepthFromCamera(const GpuScene& gpu, const Program& depthProgram, Frame& frame) {
-  PassTimer timer(frame, "2 depth from camera",
-                  "Chan 2004 §2.1.2: the scene's depth from the camera, which the volumes are "
-                  "tested against");
-  timer.shaderPasses({"volume-vertex", "depth-only"});
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  depthProgram.use();
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { depthProgram.set("uModel", o.model); });
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+void fillDepthFromCamera(Passes& passes, const GpuScene& gpu, const Program& depthProgram) {
+  passes.run("2", [&] {
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    depthProgram.use();
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { depthProgram.set("uModel", o.model); });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  });
 }
 
 // Pass 3 (Everitt–Kilgard, z-fail): count the volume faces behind each visible surface.
-void countVolumeCrossings(const SceneVolumes& volumes, const Program& volumeProgram, Frame& frame) {
-  PassTimer timer(frame, "3 stencil volumes (z-fail)",
-                  "Chan 2004 §2.1.2 (Fig. 2-7) and §3.1 step 3: the robust z-fail stencil count "
-                  "[EK02], front faces down, back faces up where the depth test fails");
-  timer.shaderPasses({"volume-vertex", "depth-only"});
-  countVolumesZFail(volumes, volumeProgram, 0);
+void countVolumeCrossings(Passes& passes, const SceneVolumes& volumes,
+                          const Program& volumeProgram) {
+  passes.run("3", [&] { countVolumesZFail(volumes, volumeProgram, 0); });
 }
 
 // Pass 4 (Everitt–Kilgard, final pass): shade, lit only where the stencil count is zero.
-void shadeWithStencil(const GpuScene& gpu, const Program& shadeProgram, Frame& frame) {
-  PassTimer timer(frame, "4 shade from stencil",
-                  "Chan 2004 §2.1.2: lit where the stencil count is zero, shadowed elsewhere");
-  timer.shaderPasses({"volume-vertex", "stencil-shade"});
-  shadeFromStencil(gpu, shadeProgram, 0);
+void shadeWithStencil(Passes& passes, const GpuScene& gpu, const Program& shadeProgram) {
+  passes.run("4", [&] { shadeFromStencil(gpu, shadeProgram, 0); });
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
@@ -370,29 +399,28 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   shadeProgram.set("uViewProjection", viewProjection);
   setLightingUniforms(shadeProgram, scene);
   RenderTarget target = makeStencilCameraTarget(params);
+  Passes passes(frame, params, passTable());
 
-  const SceneVolumes volumes = findSilhouettesAndBuildVolumes(scene, casters, frame);
+  const SceneVolumes volumes = findSilhouettesAndBuildVolumes(passes, scene, casters);
   target.bind();
-  fillDepthFromCamera(gpu, depthProgram, frame);
+  fillDepthFromCamera(passes, gpu, depthProgram);
   const double volumeInvocations =
-      countFragmentInvocations([&] { countVolumeCrossings(volumes, depthProgram, frame); });
-  shadeWithStencil(gpu, shadeProgram, frame);
+      countFragmentInvocations([&] { countVolumeCrossings(passes, volumes, depthProgram); });
+  shadeWithStencil(passes, gpu, shadeProgram);
   readCameraTarget(target, frame);
 
   const VolumeFill fill = measureVolumeFill(target, volumes, viewProjection, 0, false);
   reportVolumeCounters(casters, volumes, fill, params, frame);
   reportVolumePassInvocations(volumeInvocations, params, frame);
-  if (params.capturePasses) {
+  // The overdraw view's captions say its peak and mean: made only while dumping.
+  if (passes.capturing()) {
     const OverdrawView view = overdrawView(fill.overdraw);
-    frame.intermediates.push_back(
-        {"3-volume-overdraw", view.caption + " (Chan Fig. 3-9a)", view.image});
-    frame.intermediates.push_back(
-        {"3-overdraw-legend", "legend of the overdraw image: " + view.legendCaption, view.legend});
-    frame.intermediates.push_back(
-        {"3-stencil-count",
-         "stencil buffer after z-fail counting: black = non-zero count (in shadow)",
-         stencilCountImage(target)});
+    passes.capture("3", "volume-overdraw", [&] { return view.image; }, {},
+                   {{"overdraw", view.caption}});
+    passes.capture("3", "overdraw-legend", [&] { return view.legend; }, {},
+                   {{"levels", view.levelNames}});
   }
+  passes.capture("3", "stencil-count", [&] { return stencilCountImage(target); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return frame;
 }
@@ -407,6 +435,7 @@ Technique shadowVolumesTechnique() {
   t.needs.profile = Profile::kCore;
   t.reads = {};  // no shadow map, no filter, no colour-encoded depth
   t.plan.shadowWork = PlanTraits::ShadowWork::kShadowVolumes;
+  t.passes = passTable();
   t.render = render;
   return t;
 }

@@ -72,6 +72,17 @@ SceneCasters collectCasters(const Scene& scene) {
   return out;
 }
 
+const char* const kOpenMeshTwoSidedDeviation =
+    "DEVIATION (Chan §3.1, Everitt–Kilgard §\"Shadow volume construction\": blockers must be "
+    "closed): an open mesh is taken as the closed, zero-thickness solid made of both faces of "
+    "each of its triangles. Each triangle then has one light-facing face (front cap) and one "
+    "facing away (back cap at infinity), and the silhouette is the sum of every light-facing "
+    "face's boundary loop: edges walked both ways cancel, so what remains is every boundary edge "
+    "(always a potential silhouette: its two faces are the two sides of one triangle) once, and "
+    "every edge where the surface folds over as seen from the light (one neighbour faces the "
+    "light, the other away) twice, as the solid has two sheets there. The volume is closed, so "
+    "z-fail counting is exact; the same works for non-manifold edges.";
+
 Silhouette findSilhouette(const EdgeAdjacency& mesh, const glm::vec3& light) {
   Silhouette s;
   s.facesLight.resize(mesh.triangles.size());

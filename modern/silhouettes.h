@@ -81,6 +81,8 @@ struct Silhouette {
 // twice, as the solid has two sheets there. The volume is closed, so z-fail counting is exact;
 // the same works for non-manifold edges. `light` is in the mesh's object space.
 Silhouette findSilhouette(const EdgeAdjacency& mesh, const glm::vec3& light);
+// That DEVIATION, for the pass tables of the passes that find silhouettes (core/pass_table.h).
+extern const char* const kOpenMeshTwoSidedDeviation;
 
 // The closed shadow volume of one blocker in object-space homogeneous coordinates, as a
 // triangle list with every face oriented outwards (Everitt–Kilgard §"Shadow volume

@@ -34,8 +34,7 @@ PassTable wooPasses() {
        .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the "
                     "nearest layer from the light, no polygon offset",
        .writes = {{.name = "first-depth-layer",
-                   .caption = "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph); "
-                              "{depth-range}"}},
+                   .caption = "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)"}},
        .shaders = {"depth-only"},
        .replaces = {"1"}},
       {.id = "2",
@@ -44,7 +43,7 @@ PassTable wooPasses() {
                     "depth peeling [2]: the second-nearest layer",
        .writes = {{.name = "second-depth-layer",
                    .caption = "pass 2: woo_peel.frag discards what is not behind z1, the depth "
-                              "test keeps z2; {depth-range}"}},
+                              "test keeps z2"}},
        .shaders = {"peel"},
        .replaces = {"2"},
        .deviations = {kDepthRoundoffScaleDeviation}},
@@ -53,8 +52,7 @@ PassTable wooPasses() {
        .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
                     "is the average of the two layers, written as gl_FragDepth",
        .writes = {{.name = "midpoint-shadow-map",
-                   .caption = "pass 3: woo_midpoint.frag, gl_FragDepth = (z1 + z2) / 2; "
-                              "{depth-range}"}},
+                   .caption = "pass 3: woo_midpoint.frag, gl_FragDepth = (z1 + z2) / 2"}},
        .shaders = {"midpoint"},
        .replaces = {"3"}},
       cameraPassWithShadowTest("4", "hw_shadow.frag on the midpoint map, Everitt Eq. 5",
@@ -147,15 +145,6 @@ Image readDepth(const RenderTarget& map) {
   return readDepthTexture(map.depth.id(), map.width, map.height);
 }
 
-// --dump-passes: one of z1, z2 and the midpoint as grey on their common scale: the nearest z1
-// black, the clear depth 1 white (one affine map, as legacy.woo shows them).
-Image greyOnLayerScale(const RenderTarget& map, const RenderTarget& first, PassWords& words) {
-  const Image z1 = readDepth(first);
-  const WindowDepthSpan range{drawnDepthRange({&z1}).lo, kClearDepth};
-  words["depth-range"] = greyDepthRangeText(range);
-  return greyDepthImage(readDepth(map), range);
-}
-
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text(compareParam()) == "linear";
   const int n = params.shadowMapTexels;
@@ -166,13 +155,19 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   RenderTarget second = peelSecondDepthLayer(passes, gpu, n, first);
   RenderTarget midpoint = storeMidpointDepth(passes, n, first, second, linear);
   shadeWithShadowMap(passes, "4", gpu, params, midpoint.depth.id());
-  passes.capture("1", "first-depth-layer",
-                 [&](PassWords& words) { return greyOnLayerScale(first, first, words); });
-  passes.capture("2", "second-depth-layer",
-                 [&](PassWords& words) { return greyOnLayerScale(second, first, words); });
-  passes.capture("3", "midpoint-shadow-map",
-                 [&](PassWords& words) { return greyOnLayerScale(midpoint, first, words); });
-  captureCameraPassBuffers(passes, "4");
+  // --dump-passes: z1, z2 and the midpoint on one grey scale, the nearest z1 black, the clear
+  // depth 1 white (one affine map, as legacy.woo shows them).
+  const auto layerScale = [&] {
+    const Image z1 = readDepth(first);
+    return WindowDepthSpan{drawnDepthRange({&z1}).lo, kClearDepth};
+  };
+  passes.captureDepth("1", "first-depth-layer", [&] { return readDepth(first); }, {}, {},
+                      layerScale);
+  passes.captureDepth("2", "second-depth-layer", [&] { return readDepth(second); }, {}, {},
+                      layerScale);
+  passes.captureDepth("3", "midpoint-shadow-map", [&] { return readDepth(midpoint); }, {}, {},
+                      layerScale);
+  captureCameraPass(passes, "4");
   return frame;
 }
 

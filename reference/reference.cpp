@@ -25,6 +25,7 @@
 //                               light's strata dealt out to the sub-pixel points
 // Pass 1's pixel-centre points still give the shading, the direct-light region and the pixel
 // categories (kPixelCategoriesPass), so the scored pixels are the same in both forms.
+// The passes are declared once in referencePasses().
 #include "reference/reference.h"
 
 #include <embree3/rtcore.h>
@@ -39,6 +40,7 @@
 #include <thread>
 
 #include "core/errors.h"
+#include "core/passes.h"
 #include "reference/surface_buffer.h"
 
 namespace sl::reference {
@@ -46,16 +48,65 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kSpecularExponent = 32.0f;  // as in hw_shadow.frag.glsl
-// The paper section of the ray passes (core/technique.h PassTime::section): none, they are ours.
-constexpr const char* kRaySection =
-    "ours (the ground truth): Embree shadow rays from each surface point to the light (point "
-    "light), or stratified over the light's sphere (reference.soft)";
 constexpr int kMinSoftRays = 4;
 constexpr int kMaxSoftRays = 16384;
 constexpr unsigned kSoftSeed = 20011u;  // fixed: the reference is deterministic
 constexpr int kRowsPerTask = 4;         // work unit of the worker threads
 // pixel=area, soft: the seed of the per-pixel dealing of light strata to sub-pixel points.
 constexpr unsigned long long kDealSeed = 0x9E3779B97F4A7C15ull;
+
+// The passes of reference.hard (soft = false) and reference.soft, declared once: none is a
+// paper's, they are ours (the ground truth). The CPU passes are timed like the GL ones.
+PassTable referencePasses(bool soft) {
+  // The paper section of the ray passes: none, they are ours.
+  const std::string raySection =
+      "ours (the ground truth): Embree shadow rays from each surface point to the light (point "
+      "light), or stratified over the light's sphere (reference.soft)";
+  const std::string rays = soft ? "soft shadow rays" : "shadow rays";
+  return {
+      {.id = "1",
+       .name = "surface points (GL)",
+       .reference = "ours (the ground truth, no paper's pass): the camera view rasterised to "
+                    "world positions and normals, the rays' start points",
+       .writes = {{.name = "surface-normals", .caption = "surface normals from the GL pass"}},
+       .shaders = {"surface-points"}},
+      // Its buffers come from pass 1's points; the error metrics find them by name
+      // (kDirectLightRegionPass = "2-direct-light-region", kPixelCategoriesPass).
+      {.id = "2",
+       .name = "build occluder BVH (Embree)",
+       .reference = "ours (the ground truth): Embree's BVH over every caster",
+       .writes = {{.name = "direct-light-region", .caption = "surface points the light can reach"},
+                  {.name = "pixel-categories",
+                   .caption = "pixel categories of the error metrics: white = scored (faces the "
+                              "light inside its frustum), light grey = faces away from the light "
+                              "(terminator, not scored), dark grey = outside the light's "
+                              "frustum, black = no receiver"}}},
+      {.id = "3",
+       .name = rays + " (Embree)",
+       .reference = raySection,
+       .writes = {{.name = "visibility", .caption = "ray-traced visibility"}}},
+      // pixel=area: pass 3 as 3a and 3b, once per sub-pixel position, interleaved.
+      {.id = "3a",
+       .name = "sub-pixel surface points",  // + " (GL, NxN)"
+       .reference =
+           "ours (the ground truth): the surface points of each sub-pixel position (pixel = area)",
+       .shaders = {"surface-points"}},
+      {.id = "3b",
+       .name = rays,  // + " from NxN sub-pixel points (Embree)"
+       .reference = raySection,
+       .writes = {{.name = "visibility", .caption = "ray-traced visibility"}}},
+      {.id = "4",
+       .name = "shade",
+       .reference = "ours (the ground truth): the modern techniques' lighting "
+                    "(modern/shaders/lighting.glsl) x the rays' visibility"},
+  };
+}
+
+const PassTable& passTable(bool soft) {
+  static const PassTable hard = referencePasses(false);
+  static const PassTable softTable = referencePasses(true);
+  return soft ? softTable : hard;
+}
 
 struct DeviceDeleter {
   void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
@@ -417,7 +468,7 @@ glm::vec2 stratumOffset(int i, int j, int n) {
 // centres), the pixel centre's own point visibility stands in.
 Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RTCScene occluders,
                               bool soft, int perSide, int softRays,
-                              const std::vector<SurfacePoint>& centre, Frame& frame) {
+                              const std::vector<SurfacePoint>& centre, Passes& passes) {
   SurfaceRasteriser rasteriser(scene, params);
   const int subsamples = perSide * perSide;
   const size_t pixels = size_t(params.width) * params.height;
@@ -432,19 +483,21 @@ Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RT
   std::vector<std::array<int, 2>> litHalves(pixels, {0, 0}), castHalves(pixels, {0, 0});
   std::atomic<long long> softRayCount{0};
   long long hardRays = 0;
-  double rasterMs = 0.0, rayMs = 0.0;
+  const std::string grid = std::to_string(perSide) + "x" + std::to_string(perSide);
   for (int i = 0; i < perSide; ++i)
     for (int j = 0; j < perSide; ++j) {
-      double start = nowMilliseconds();
-      std::vector<SurfacePoint> points = rasteriser.rasterise(stratumOffset(i, j, perSide));
-      repairNormals(points, scene.camera.position);
-      rasterMs += nowMilliseconds() - start;
-      start = nowMilliseconds();
-      if (soft) {
-        castSoftShadowRaysFromSubsample(scene, points, centre, restricted, params, occluders, n,
-                                        subsamples, i * perSide + j, litHalves, castHalves,
-                                        softRayCount);
-      } else {
+      std::vector<SurfacePoint> points;
+      const auto rasterise = [&] {
+        points = rasteriser.rasterise(stratumOffset(i, j, perSide));
+        repairNormals(points, scene.camera.position);
+      };
+      const auto castRays = [&] {
+        if (soft) {
+          castSoftShadowRaysFromSubsample(scene, points, centre, restricted, params, occluders, n,
+                                          subsamples, i * perSide + j, litHalves, castHalves,
+                                          softRayCount);
+          return;
+        }
         const Visibility v = castHardShadowRays(scene, points, params, occluders);
         for (size_t p = 0; p < pixels; ++p) {
           if (restricted[p] &&
@@ -454,44 +507,44 @@ Visibility integratePixelArea(const Scene& scene, const RenderParams& params, RT
           ++counted[p];
         }
         hardRays += v.rays;
+      };
+      // Passes 3a and 3b, a piece of each per sub-pixel position: the first position runs
+      // them, the others resume them (one entry each, its time the sum of its pieces).
+      if (i == 0 && j == 0) {
+        passes.run("3a", rasterise, {}, " (GL, " + grid + ")");
+        passes.run("3b", castRays, {}, " from " + grid + " sub-pixel points (Embree)");
+      } else {
+        passes.resume("3a", rasterise);
+        passes.resume("3b", castRays);
       }
-      rayMs += nowMilliseconds() - start;
     }
   // The scored pixels none of whose samples showed the centre's surface: the centre's own rays.
   const float offset = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
   long long fallbacks = 0;
-  const double fallbackStart = nowMilliseconds();
-  for (size_t p = 0; p < pixels; ++p) {
-    if (!restricted[p]) continue;
-    if (!soft && counted[p] == 0) {
-      sum[p] = occluded(occluders, rayOrigin(centre[p], offset), scene.light.position) ? 0.0 : 1.0;
-      counted[p] = 1;
-      ++hardRays;
-      ++fallbacks;
-    } else if (soft && (castHalves[p][0] == 0 || castHalves[p][1] == 0)) {
-      std::seed_seq seed{kSoftSeed, unsigned(p), unsigned(subsamples)};
-      std::mt19937 rng(seed);
-      const auto halves =
-          softVisibilityHalves(scene.light, rayOrigin(centre[p], offset), n, rng, occluders);
-      const int strata = n * n;
-      castHalves[p] = {strata, strata};
-      litHalves[p] = {halves ? int(std::lround((*halves)[0] * strata)) : strata,
-                      halves ? int(std::lround((*halves)[1] * strata)) : strata};
-      softRayCount += 2LL * strata;
-      ++fallbacks;
+  passes.resume("3b", [&] {
+    for (size_t p = 0; p < pixels; ++p) {
+      if (!restricted[p]) continue;
+      if (!soft && counted[p] == 0) {
+        sum[p] =
+            occluded(occluders, rayOrigin(centre[p], offset), scene.light.position) ? 0.0 : 1.0;
+        counted[p] = 1;
+        ++hardRays;
+        ++fallbacks;
+      } else if (soft && (castHalves[p][0] == 0 || castHalves[p][1] == 0)) {
+        std::seed_seq seed{kSoftSeed, unsigned(p), unsigned(subsamples)};
+        std::mt19937 rng(seed);
+        const auto halves =
+            softVisibilityHalves(scene.light, rayOrigin(centre[p], offset), n, rng, occluders);
+        const int strata = n * n;
+        castHalves[p] = {strata, strata};
+        litHalves[p] = {halves ? int(std::lround((*halves)[0] * strata)) : strata,
+                        halves ? int(std::lround((*halves)[1] * strata)) : strata};
+        softRayCount += 2LL * strata;
+        ++fallbacks;
+      }
     }
-  }
-  rayMs += nowMilliseconds() - fallbackStart;
-  frame.counters["area_centre_fallback_pixels"] = double(fallbacks);
-  const std::string grid = std::to_string(perSide) + "x" + std::to_string(perSide);
-  frame.passes.push_back({"3a sub-pixel surface points (GL, " + grid + ")", rasterMs});
-  frame.passes.back().section =
-      "ours (the ground truth): the surface points of each sub-pixel position (pixel = area)";
-  frame.passes.back().glsl = {"surface-points"};
-  frame.passes.push_back({std::string(soft ? "3b soft shadow rays" : "3b shadow rays") + " from " +
-                              grid + " sub-pixel points (Embree)",
-                          rayMs});
-  frame.passes.back().section = kRaySection;
+  });
+  passes.frame().counters["area_centre_fallback_pixels"] = double(fallbacks);
   Visibility v;
   v.mask = Image(params.width, params.height, 1, kNoGeometryVisibility);
   if (!soft) {
@@ -584,38 +637,28 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
   const bool area = params.text(pixelParam()) == kPixelArea;
   const int perSide = params.integer(pixelSamplesParam(soft));
   Frame frame;
+  Passes passes(frame, params, passTable(soft));
   std::vector<SurfacePoint> points;
-  {
-    PassTimer timer(frame, "1 surface points (GL)",
-                    "ours (the ground truth, no paper's pass): the camera view rasterised to "
-                    "world positions and normals, the rays' start points");
-    timer.shaderPasses({"surface-points"});
+  passes.run("1", [&] {
     points = rasteriseSurfacePoints(scene, params);
     repairNormals(points, scene.camera.position);
-  }
-  const double buildStart = nowMilliseconds();
-  Occluders occluders = buildOcclusionScene(scene);
-  frame.passes.push_back({"2 build occluder BVH (Embree)", nowMilliseconds() - buildStart});
-  frame.passes.back().section = "ours (the ground truth): Embree's BVH over every caster";
+  });
+  Occluders occluders;
+  passes.run("2", [&] { occluders = buildOcclusionScene(scene); });
   Visibility v;
   if (area) {
     v = integratePixelArea(scene, params, occluders.scene.get(), soft, perSide, softRays, points,
-                           frame);
+                           passes);
   } else {
-    const double castStart = nowMilliseconds();
-    v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
-             : castHardShadowRays(scene, points, params, occluders.scene.get());
-    frame.passes.push_back({soft ? "3 soft shadow rays (Embree)" : "3 shadow rays (Embree)",
-                            nowMilliseconds() - castStart});
-    frame.passes.back().section = kRaySection;
+    passes.run("3", [&] {
+      v = soft ? castSoftShadowRays(scene, points, params, occluders.scene.get(), softRays)
+               : castHardShadowRays(scene, points, params, occluders.scene.get());
+    });
   }
-  const double shadeStart = nowMilliseconds();
-  frame.color = shadeFromVisibility(scene, points, v.mask);
-  frame.visibility = std::move(v.mask);
-  frame.passes.push_back({"4 shade", nowMilliseconds() - shadeStart});
-  frame.passes.back().section =
-      "ours (the ground truth): the modern techniques' lighting (modern/shaders/lighting.glsl) x "
-      "the rays' visibility";
+  passes.run("4", [&] {
+    frame.color = shadeFromVisibility(scene, points, v.mask);
+    frame.visibility = std::move(v.mask);
+  });
   frame.counters["rays"] = double(v.rays);
   frame.counters["ray_offset_world"] = kRayOffsetPerSceneDiagonal * sceneDiagonal(scene);
   if (area) frame.counters["pixel_samples"] = double(perSide * perSide);
@@ -626,37 +669,35 @@ Frame renderReference(const Scene& scene, const RenderParams& params, bool soft)
     frame.counters["noise_rms_standard_error"] = v.noiseRms;
     frame.counters["noise_max_standard_error"] = v.noiseMax;
   }
-  if (params.capturePasses) {
-    Image depth(params.width, params.height, 3, 0.0f);
+  passes.capture("1", "surface-normals", [&] {
+    Image normals(params.width, params.height, 3, 0.0f);
     for (size_t p = 0; p < points.size(); ++p)
       if (points[p].object >= 0)
         for (int k = 0; k < 3; ++k)
-          depth.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
-    frame.intermediates.push_back({"1-surface-normals", "surface normals from the GL pass", depth});
-    // Where direct light can arrive: the surface faces the light (geometric normal) inside the
-    // light's frustum. Elsewhere the direct term is 0 and visibility does not change the image
-    // (second-depth maps rely on this; behind the light, Everitt's techniques force 0).
+          normals.data[p * 3 + k] = 0.5f + 0.5f * points[p].shadingNormal[k];
+    return normals;
+  });
+  const glm::mat4 view = lightView(scene.light);
+  // Where direct light can arrive: the surface faces the light (geometric normal) inside the
+  // light's frustum. Elsewhere the direct term is 0 and visibility does not change the image
+  // (second-depth maps rely on this; behind the light, Everitt's techniques force 0).
+  passes.capture("2", "direct-light-region", [&] {
     Image region(params.width, params.height, 1, 0.0f);
-    const glm::mat4 view = lightView(scene.light);
     for (size_t p = 0; p < points.size(); ++p)
       if (points[p].object >= 0 &&
           glm::dot(points[p].geometricNormal, scene.light.position - points[p].position) > 0.0f &&
           insideLightFrustum(scene.light, view, points[p].position))
         region.data[p] = 1.0f;
-    frame.intermediates.push_back(
-        {kDirectLightRegionPass, "surface points the light can reach", region});
-    // The error definition's pixel categories (docs/error.md), from the same centre points.
+    return region;
+  });
+  // The error definition's pixel categories (docs/error.md), from the same centre points.
+  passes.capture("2", "pixel-categories", [&] {
     Image categories(params.width, params.height, 1, kCategoryNoReceiver);
     for (size_t p = 0; p < points.size(); ++p)
       categories.data[p] = pixelCategory(scene, view, points[p]);
-    frame.intermediates.push_back(
-        {kPixelCategoriesPass,
-         "pixel categories of the error metrics: white = scored (faces the light inside its "
-         "frustum), light grey = faces away from the light (terminator, not scored), dark grey = "
-         "outside the light's frustum, black = no receiver",
-         categories});
-    frame.intermediates.push_back({"3-visibility", "ray-traced visibility", frame.visibility});
-  }
+    return categories;
+  });
+  passes.capture(area ? "3b" : "3", "visibility", [&] { return frame.visibility; });
   return frame;
 }
 
@@ -674,6 +715,7 @@ std::vector<Technique> techniques() {
   hard.status = "complete";
   hard.needs.profile = Profile::kCore;
   hard.plan.shadowWork = PlanTraits::ShadowWork::kRays;
+  hard.passes = passTable(false);
   hard.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, false);
   };
@@ -683,6 +725,7 @@ std::vector<Technique> techniques() {
                  std::to_string(kDefaultSoftRays) + " stratified rays per pixel";
   soft.params = {raysParam(), pixelParam(), pixelSamplesParam(true)};
   soft.reads = {};  // ray traced: no shadow map, no filter, no colour-encoded depth
+  soft.passes = passTable(true);
   soft.render = [](GlContext&, const Scene& s, const RenderParams& p) {
     return renderReference(s, p, true);
   };

@@ -3,5 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-scripts/build.sh shadowlab   # only the program this job runs (the tests build in scripts/test.sh)
+# The program this job runs and the Python module (build/python); the tests build in
+# scripts/test.sh.
+scripts/build.sh shadowlab shadowlab_python
 build/bin/shadowlab figures --out out/figures "$@"

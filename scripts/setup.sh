@@ -19,6 +19,11 @@ PACKAGES=(
   chromium            # tests/figures: report.html checked in headless Chromium (skips without)
   libcpp-httplib-dev  # `shadowlab serve`: the live lab's HTTP server (lab/)
   nodejs              # tests/browser: the lab's page driven by puppeteer-core (npm ci below)
+  python3-dev pybind11-dev  # the Python module `shadowlab` (build/python; docs/python.md)
+  python3-numpy python3-pandas  # its arrays and DataFrames
+  python3-distributed  # sweeps on Dask workers (shadowlab.sweep(spec, client=...))
+  python3-matplotlib python3-pil  # examples/ plots; tests/python reads PNGs with Pillow
+  python3-pytest      # tests/python (ctest label python)
 )
 
 missing=()

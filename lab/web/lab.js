@@ -10,6 +10,9 @@ const kLightUnitsPerPixel = 0.01;    // light drag, times the scene's size
 const kMaxZoom = 16;                 // image magnification of the wipe view
 const kMaxPlotPoints = 60;           // points kept on the error/time plot
 const kErrorDelayMs = 250;           // error request after a frame settles
+const kLinearSliderSteps = 1000;     // positions of a linear parameter slider
+const kLogSliderSteps = 500;         // positions of a logarithmic slider on each side of 0
+const kLogSliderSpan = 50;           // a range wider than this (and holding 0) is logarithmic
 
 const state = {
   techniques: [], scenes: [], byName: {},
@@ -63,24 +66,41 @@ function optionControl(lane, spec) {
     input.checked = current === 'on';
   } else if (spec.kind === 'number' || spec.kind === 'integer' || spec.kind === 'pow2') {
     const span = spec.max - spec.min;
-    const slider = !spec.auto && isFinite(span) && span > 0 && span <= 1e4;
+    // Wide ranges get a slider only where it is logarithmic (sliderScale); a wide integer range
+    // (rays 4..16384) stays a number field.
+    const holdsZero = spec.kind === 'number' && spec.min <= 0 && spec.max >= 0;
+    const slider = !spec.auto && isFinite(span) && span > 0 && (span <= 1e4 || holdsZero);
+    spec.scale = sliderScale(spec, slider);
     input = document.createElement('input');
     input.type = slider ? 'range' : 'number';
     if (spec.kind === 'pow2') {
       input.min = Math.log2(spec.min); input.max = Math.log2(spec.max); input.step = 1;
-      input.value = Math.log2(Number(current));
+    } else if (spec.scale === 'log') {
+      input.min = spec.min < 0 ? -kLogSliderSteps : 0;
+      input.max = spec.max > 0 ? kLogSliderSteps : 0;
+      input.step = 1;
     } else {
       input.min = spec.min; input.max = spec.max;
-      input.step = spec.kind === 'integer' ? 1 : (slider ? span / 200 : 'any');
-      input.value = current;
+      input.step = spec.kind === 'integer' ? 1 : (slider ? span / kLinearSliderSteps : 'any');
     }
+    setSliderValue(spec, input, current);
     if (slider) {
-      const shown = document.createElement('span');
-      shown.className = 'value';
-      shown.textContent = current;
-      input.addEventListener('input', () => { shown.textContent = valueOf(spec, input); });
+      // The exact value, editable: typing moves the slider, the slider rewrites the box.
+      const box = document.createElement('input');
+      box.type = 'number';
+      box.className = 'value';
+      box.step = 'any';
+      box.value = current;
+      box.dataset.valueOf = spec.id;
+      input.addEventListener('input', () => { box.value = valueOf(spec, input); });
+      box.addEventListener('change', () => {
+        if (box.value === '' || !isFinite(Number(box.value))) { box.value = valueOf(spec, input); return; }
+        setSliderValue(spec, input, box.value);
+        setValue(l, spec, String(box.value));
+        requestFrame(lane);
+      });
       label.appendChild(input);
-      label.appendChild(shown);
+      label.appendChild(box);
     }
   } else {
     input = document.createElement('input');
@@ -92,17 +112,42 @@ function optionControl(lane, spec) {
   if (spec.auto && input.type === 'number') input.placeholder = 'auto';
   if (!label.contains(input)) label.appendChild(input);
   const changed = () => {
-    const v = valueOf(spec, input);
-    if (v === String(spec.default) || v === '') delete l.values[spec.id]; else l.values[spec.id] = v;
+    setValue(l, spec, valueOf(spec, input));
     requestFrame(lane);
   };
   input.addEventListener(input.type === 'range' ? 'input' : 'change', changed);
   return label;
 }
 
+function setValue(l, spec, v) {
+  if (v === String(spec.default) || v === '') delete l.values[spec.id]; else l.values[spec.id] = v;
+}
+
+// A number whose range holds 0 and spans more than kLogSliderSpan (polygon offset factor
+// -100..100, units -1e6..1e6, depth bias 0..255) gets a signed logarithmic slider: steps of
+// about 0.01 near 0, where acne appears, and still the whole range at the ends.
+function sliderScale(spec, slider) {
+  if (!slider || spec.kind !== 'number') return 'linear';
+  return spec.min <= 0 && spec.max >= 0 && spec.max - spec.min > kLogSliderSpan ? 'log' : 'linear';
+}
+
+function logRange(spec) { return Math.log1p(Math.max(Math.abs(spec.min), Math.abs(spec.max))); }
+
+function setSliderValue(spec, input, value) {
+  const v = Number(value);
+  if (spec.kind === 'pow2') input.value = Math.log2(v);
+  else if (spec.scale === 'log') input.value = Math.sign(v) * Math.round(kLogSliderSteps * Math.log1p(Math.abs(v)) / logRange(spec));
+  else input.value = value;
+}
+
 function valueOf(spec, input) {
   if (spec.kind === 'flag') return input.checked ? 'on' : 'off';
   if (spec.kind === 'pow2') return String(2 ** Number(input.value));
+  if (spec.scale === 'log' && input.type === 'range') {
+    const p = Number(input.value);
+    const v = Math.sign(p) * Math.expm1(Math.abs(p) / kLogSliderSteps * logRange(spec));
+    return String(Number(Math.min(spec.max, Math.max(spec.min, v)).toPrecision(3)));
+  }
   if (spec.kind === 'number' && input.type === 'range') {
     return String(Number(Number(input.value).toPrecision(4)));
   }
@@ -148,17 +193,150 @@ function query(lane, view) {
     if (id.startsWith('param:')) q.append('param', id.slice(6) + '=' + v);
     else q.append(id, v);
   }
-  const fmt = (x) => String(Number(x.toFixed(4)));
-  q.append('light-position', state.light.map(fmt).join(','));
-  q.append('orbit', state.orbit.map(fmt).join(','));
+  // The scene's own light and camera are left out, as `shadowlab render` leaves them out.
+  if (!samePose(state.light, currentScene().light)) q.append('light-position', poseText(state.light));
+  if (!samePose(state.orbit, currentScene().orbit)) q.append('orbit', poseText(state.orbit));
   q.append('view', view);
   return q;
+}
+
+const poseText = (v) => v.map((x) => String(Number(x.toFixed(4)))).join(',');
+const samePose = (v, scene) => poseText(v) === poseText(scene);
+
+// ------------------------------------------------------------------ the page's URL
+//
+// The whole state of the page lives in its query, so that any view can be shared as a link
+// (docs/lab.md "Links"). The keys are the command line's option names:
+//   scene=S  size=WxH  view=image|mask|difference|error
+//   a=T  b=T                                 techniques A and B
+//   a-shadow-map=N  a-filter=K  a-precision=P  a-param=key=value (repeatable); b-... the same
+//   light-position=X,Y,Z  orbit=AZ,EL,DIST   when not the scene's own
+//   zoom=Z  center=X,Y  wipe=W               magnification, the image point at the centre
+//                                            (fractions from the top left), wipe position %
+// readUrlState applies a query; writeUrlState writes the current state back (replaceState).
+
+const kLaneOptions = ['shadow-map', 'filter', 'precision'];
+
+function urlText(v) {
+  return encodeURIComponent(v).replace(/%3D/g, '=').replace(/%2C/g, ',').replace(/%3A/g, ':');
+}
+
+function pageQuery() {
+  const pairs = [['scene', $('scene').value], ['size', $('size').value]];
+  if ($('view').value !== 'image') pairs.push(['view', $('view').value]);
+  for (const lane of kLanes) pairs.push([lane, state.lanes[lane].technique]);
+  for (const lane of kLanes) {
+    const l = state.lanes[lane];
+    const t = state.byName[l.technique];
+    for (const o of kLaneOptions) if (l.values[o] !== undefined) pairs.push([lane + '-' + o, l.values[o]]);
+    for (const p of t.params) {
+      const v = l.values['param:' + p.key];
+      if (v !== undefined) pairs.push([lane + '-param', p.key + '=' + v]);
+    }
+  }
+  if (!samePose(state.light, currentScene().light)) pairs.push(['light-position', poseText(state.light)]);
+  if (!samePose(state.orbit, currentScene().orbit)) pairs.push(['orbit', poseText(state.orbit)]);
+  if (state.zoom !== 1) {
+    pairs.push(['zoom', String(Number(state.zoom.toPrecision(4)))]);
+    pairs.push(['center', [state.panX, state.panY].map((x) => String(Number(x.toFixed(4)))).join(',')]);
+  }
+  if (Number($('wipe').value) !== 50) pairs.push(['wipe', $('wipe').value]);
+  return pairs.map(([k, v]) => k + '=' + urlText(v)).join('&');
+}
+
+function writeUrlState() {
+  if (!state.ready) return;
+  const q = pageQuery();
+  if (location.search !== '?' + q) history.replaceState(null, '', '?' + q);
+  document.body.dataset.query = q;
+}
+
+function parseNumbers(text, n) {
+  const parts = String(text).split(',');
+  if (parts.length !== n || parts.some((x) => x.trim() === '' || !isFinite(Number(x)))) return null;
+  return parts.map(Number);
+}
+
+// Applies the page's query; returns the problems (one line each) with what it could not use.
+function readUrlState(search) {
+  const q = new URLSearchParams(search);
+  const problems = [];
+  const known = new Set(['scene', 'size', 'view', 'a', 'b', 'light-position', 'orbit', 'zoom',
+                         'center', 'wipe']);
+  for (const lane of kLanes) {
+    known.add(lane + '-param');
+    for (const o of kLaneOptions) known.add(lane + '-' + o);
+  }
+  for (const k of new Set(q.keys())) if (!known.has(k)) problems.push('unknown key ' + k);
+  const select = (id, value, what) => {
+    if (value === null) return;
+    if ([...$(id).options].some((o) => o.value === value)) $(id).value = value;
+    else problems.push('no ' + what + ' ' + value);
+  };
+  select('scene', q.get('scene'), 'scene');
+  const size = q.get('size');
+  if (size !== null) {
+    const m = /^(\d{1,4})x(\d{1,4})$/.exec(size);
+    if (!m || Number(m[1]) < 1 || Number(m[2]) < 1 || Number(m[1]) > state.caps.width ||
+        Number(m[2]) > state.caps.height) {
+      problems.push('size must be WxH up to ' + state.caps.width + 'x' + state.caps.height);
+    } else {
+      if (![...$('size').options].some((o) => o.value === size)) {
+        const o = document.createElement('option');
+        o.value = o.textContent = size;
+        $('size').appendChild(o);
+      }
+      $('size').value = size;
+    }
+  }
+  select('view', q.get('view'), 'view');
+  for (const lane of kLanes) {
+    select('technique-' + lane, q.get(lane), 'technique');
+    buildOptions(lane);
+    const l = state.lanes[lane];
+    const t = state.byName[l.technique];
+    for (const o of kLaneOptions) {
+      const v = q.get(lane + '-' + o);
+      if (v === null) continue;
+      if (t.reads[o]) l.values[o] = v; else problems.push(t.name + ' does not read ' + o);
+    }
+    for (const kv of q.getAll(lane + '-param')) {
+      const eq = kv.indexOf('=');
+      const key = eq > 0 ? kv.slice(0, eq) : kv;
+      if (eq <= 0) problems.push(lane + '-param must be key=value, got ' + kv);
+      else if (!t.params.some((p) => p.key === key)) problems.push(t.name + ' has no parameter ' + key);
+      else l.values['param:' + key] = kv.slice(eq + 1);
+    }
+    buildOptions(lane);  // the controls show the values read
+  }
+  resetView();
+  for (const [key, field] of [['light-position', 'light'], ['orbit', 'orbit']]) {
+    if (q.get(key) === null) continue;
+    const v = parseNumbers(q.get(key), 3);
+    if (v) state[field] = v; else problems.push(key + ' must be three numbers X,Y,Z');
+  }
+  if (q.get('zoom') !== null) {
+    const z = Number(q.get('zoom'));
+    const c = parseNumbers(q.get('center') || '0.5,0.5', 2);
+    if (isFinite(z) && z >= 1 && z <= kMaxZoom && c) {
+      state.zoom = z; state.panX = c[0]; state.panY = c[1];
+    } else {
+      problems.push('zoom must lie in 1..' + kMaxZoom + ' with center=X,Y');
+    }
+  }
+  if (q.get('wipe') !== null) {
+    const w = Number(q.get('wipe'));
+    if (isFinite(w) && w >= 0 && w <= 100) $('wipe').value = String(w); else problems.push('wipe must lie in 0..100');
+  }
+  showPose();
+  return problems;
 }
 
 // One request in flight per lane: a change while one is out marks the lane dirty, and only
 // the latest settings are sent when it returns (the server drops stale ones too).
 async function requestFrame(lane) {
   const l = state.lanes[lane];
+  writeUrlState();
   if (l.inFlight) { l.dirty = true; return; }
   l.inFlight = true;
   l.dirty = false;
@@ -309,6 +487,8 @@ function differenceImage() {
 }
 
 function draw() {
+  writeUrlState();
+  showLegend();
   const canvas = $('canvas');
   const [w, h] = $('size').value.split('x').map(Number);
   if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
@@ -345,6 +525,53 @@ function draw() {
   g.moveTo(split + 0.5, 0);
   g.lineTo(split + 0.5, h);
   g.stroke();
+}
+
+// ------------------------------------------------------------------ the legend of a view
+
+const clamp01 = (x) => Math.min(1, Math.max(0, x));
+// core/image.cpp differenceHeatMap, which /api/error?view=image draws (d = |mask - truth|).
+function errorRamp(d) {
+  if (!(d > 0)) return [0, 0, 0];
+  const t = 0.15 + 0.85 * d;
+  return [clamp01(3 * t - 0.5), clamp01(3 * t - 1.5), t < 0.33 ? 0.6 : clamp01(3 * t - 2)];
+}
+// differenceImage's ramp (d = |A - B| of the masks).
+const differenceRamp = (d) => [clamp01(3 * d), clamp01(3 * d - 1), clamp01(3 * d - 2)];
+const maskRamp = (d) => [d, d, d];
+
+const kLegends = {
+  mask: { ramp: maskRamp, low: 'in shadow 0', high: '1 lit',
+          text: 'visibility: black in shadow, white lit, grey partly lit (filtered edges).' },
+  difference: { ramp: differenceRamp, low: 'equal 0', high: '1',
+                text: '|A − B| of the visibility masks: black where A and B agree; red, yellow, ' +
+                      'white as they differ more (white: one lit, the other in shadow).' },
+  error: { ramp: errorRamp, low: 'exact 0', high: '1', grey: true,
+           text: '|visibility − reference| (reference.hard pixel=area): black where the ' +
+                 'technique matches the ray-traced truth; dark blue for tiny errors, then red, ' +
+                 'yellow, white (1: lit where the truth is shadow, or the reverse).' },
+};
+
+function showLegend() {
+  const legend = kLegends[$('view').value];
+  $('legend').hidden = !legend;
+  if (!legend) return;
+  const c = $('legend-ramp');
+  const g = c.getContext('2d');
+  const image = g.createImageData(c.width, c.height);
+  for (let x = 0; x < c.width; ++x) {
+    const rgb = legend.ramp(x / (c.width - 1));
+    for (let y = 0; y < c.height; ++y) {
+      const i = 4 * (y * c.width + x);
+      image.data[i] = 255 * rgb[0]; image.data[i + 1] = 255 * rgb[1];
+      image.data[i + 2] = 255 * rgb[2]; image.data[i + 3] = 255;
+    }
+  }
+  g.putImageData(image, 0, 0);
+  $('legend-low').textContent = legend.low;
+  $('legend-high').textContent = legend.high;
+  $('legend-text').textContent = legend.text;
+  $('legend-grey').hidden = !legend.grey;
 }
 
 function showNumbers(lane) {
@@ -505,9 +732,13 @@ async function main() {
     setStatus('cannot load the lab: ' + e.message, true);
     return;
   }
-  resetView();
+  const problems = readUrlState(location.search);
+  state.ready = true;
+  if (problems.length) {
+    $('link-problems').textContent = 'the link asks for what the lab cannot show: ' + problems.join('; ');
+    $('link-problems').hidden = false;
+  }
   for (const lane of kLanes) {
-    buildOptions(lane);
     $('technique-' + lane).addEventListener('change', () => { buildOptions(lane); requestFrame(lane); });
   }
   $('scene').addEventListener('change', () => { resetView(); requestBoth(); });

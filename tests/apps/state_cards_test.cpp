@@ -14,7 +14,6 @@
 #include <sstream>
 
 #include "command_util.h"
-#include "registry/registry.h"
 #include "tests/test_names.h"
 
 namespace sl {
@@ -197,13 +196,11 @@ TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
   const std::string legacyName = "legacy." + modernName.substr(modernName.find('.') + 1);
   const nlohmann::json modern = dumpOf(modernName, "", "twin_links_");
   const nlohmann::json legacy = dumpOf(legacyName, "", "twin_links_of_" + modernName + "_");
-  // TRANSITION: a legacy twin not on a pass table yet has its replaced passes named by id only.
-  const bool named = !findTechnique(legacyName).passes.empty();
   std::map<std::string, std::string> legacyPasses;  // id -> name, the numbered ones
   for (const nlohmann::json& p : legacy["passes"])
     if (p["number"].get<int>() >= 1) legacyPasses[p["id"].get<std::string>()] = p["name"];
   std::set<std::string> replaced;
-  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass ([0-9a-z]+)(?: (.*))?)re");
+  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass ([0-9a-z]+) (.*))re");
   for (const nlohmann::json& p : modern["passes"]) {
     EXPECT_FALSE(p["replaces"].empty()) << modernName << " pass " << p["id"];
     EXPECT_FALSE(p["glsl"].empty()) << modernName << " pass " << p["id"];
@@ -214,7 +211,7 @@ TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
       EXPECT_EQ(m[1].str(), legacyName) << text;
       const std::string id = m[2].str();
       if (!legacyPasses.count(id)) continue;
-      if (named) EXPECT_EQ(m[3].str(), legacyPasses[id]) << "the legacy dump names pass " << id;
+      EXPECT_EQ(m[3].str(), legacyPasses[id]) << "the legacy dump names pass " << id;
       replaced.insert(id);
     }
   }

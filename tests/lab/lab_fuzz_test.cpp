@@ -195,5 +195,27 @@ TEST(LabFuzz, MalformedRequestsGet4xxAndTheServerKeepsAnswering) {
   EXPECT_NE(page.find("<title>shadowlab"), std::string::npos);
 }
 
+// README: "a method other than GET 405". A request without Content-Length or Transfer-Encoding
+// has no body (RFC 9112 §6.3); the server used to wait for one until its read timeout and answer
+// 400. Sent without closing the sending side, so a server that waits for a body is caught.
+TEST(LabFuzz, BodilessRequestsOfOtherMethodsGet405) {
+  int port = 0;
+  auto server = startLab(kTestRequestsPerSecond, kTestBurst, &port);
+  for (const std::string method : {"POST", "PUT", "DELETE", "PATCH", "OPTIONS"})
+    for (const std::string path : {"/api/render?technique=legacy.hw", "/"}) {
+      const std::string reply = exchange(
+          port, method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", false);
+      EXPECT_EQ(statusOf(reply), 405) << method << " " << path << "\n" << reply.substr(0, 300);
+      EXPECT_NE(reply.find("Allow: GET"), std::string::npos) << method << " " << path;
+    }
+  // With a body the answer is the same.
+  const std::string withBody = exchange(
+      port,
+      "POST /api/render HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 3\r\nConnection: "
+      "close\r\n\r\nabc",
+      false);
+  EXPECT_EQ(statusOf(withBody), 405) << withBody.substr(0, 300);
+}
+
 }  // namespace
 }  // namespace sl::test

@@ -2,7 +2,8 @@
 #
 # The layers, lowest first (docs/design.md "Layout and layering"):
 #   0 core/      1 imaging/      2 legacy_gl/ modern/ reference/ (never each other)
-#   3 registry/  4 figures/ lab/ (never each other)  5 apps/ tools/ (the executables' mains)
+#   3 registry/  4 figures/ lab/ (never each other)
+#   5 apps/ tools/ python/ (the executables' mains and the Python module's binding)
 # A source file may include headers of its own folder and of lower layers only.
 # Run: cmake -DSOURCE_DIR=<repo> -P include_layers.cmake   (a CTest test, label "core").
 if(NOT SOURCE_DIR)
@@ -19,7 +20,8 @@ set(kLayer_figures 4)
 set(kLayer_lab 4)
 set(kLayer_apps 5)
 set(kLayer_tools 5)
-set(kModules core imaging legacy_gl modern reference registry figures lab apps tools)
+set(kLayer_python 5)
+set(kModules core imaging legacy_gl modern reference registry figures lab apps tools python)
 
 set(violations "")
 set(checked 0)

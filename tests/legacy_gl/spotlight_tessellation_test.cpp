@@ -137,6 +137,13 @@ void expectSameMeshes(const Scene& a, const Scene& b) {
   }
 }
 
+// cameraPassScene run as the mesh-feeding pass of a table holding that pass alone.
+Scene splitThroughPasses(const Scene& scene, const RenderParams& params, Frame& frame) {
+  static const PassTable table = {meshFeedingPass()};
+  Passes passes(frame, params, table);
+  return cameraPassScene(scene, params, passes);
+}
+
 // Issue 20 item 2: cameraPassScene keeps the split meshes in the current context. A second call
 // with the same scene, camera, light and window draws the very meshes of the first, which are
 // those a fresh split makes; a moved camera is split anew.
@@ -150,8 +157,8 @@ TEST(SpotlightTessellation, CachedSplitEqualsAFreshOneAndFollowsTheCamera) {
   params.width = kWidth;
   params.height = kHeight;
   Frame first, second;
-  const Scene a = cameraPassScene(scene, params, first);
-  const Scene b = cameraPassScene(scene, params, second);
+  const Scene a = splitThroughPasses(scene, params, first);
+  const Scene b = splitThroughPasses(scene, params, second);
   for (size_t i = 0; i < a.objects.size(); ++i)
     EXPECT_EQ(a.objects[i].mesh, b.objects[i].mesh) << "the second frame split again";
   expectSameMeshes(b, tessellateForSpotlight(scene, kWidth, kHeight));
@@ -161,12 +168,12 @@ TEST(SpotlightTessellation, CachedSplitEqualsAFreshOneAndFollowsTheCamera) {
   Scene moved = scene;
   moved.camera.position += glm::vec3(0.5f, 0.0f, 0.0f);
   Frame third;
-  const Scene c = cameraPassScene(moved, params, third);
+  const Scene c = splitThroughPasses(moved, params, third);
   expectSameMeshes(c, tessellateForSpotlight(moved, kWidth, kHeight));
   EXPECT_NE(c.objects.front().mesh, a.objects.front().mesh);
   // The first key is still cached (kCachedTessellations > 1).
   Frame fourth;
-  EXPECT_EQ(cameraPassScene(scene, params, fourth).objects.front().mesh, a.objects.front().mesh);
+  EXPECT_EQ(splitThroughPasses(scene, params, fourth).objects.front().mesh, a.objects.front().mesh);
 }
 
 // Frames rendered one after another in one context (the second one drawing the cached split)

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "core/errors.h"
+#include "core/pass_table.h"
 #include "core/primitives.h"
 #include "filtered_shadows_util.h"
 #include "modern/convolution_shadow_map.h"
@@ -640,6 +641,32 @@ TEST(Csm, MipChainLeftOutOnlyWhereNothingMinifies) {
       trees.camera.target + 3.0f * (trees.camera.position - trees.camera.target);
   const Frame far = renderByName("modern.csm", trees, smallParams(128, 96, 2048, {{"blur", "0"}}));
   EXPECT_EQ(far.counters.at("mip-maps"), 1.0);
+}
+
+// The passes run under the ids of modern.csm's pass table: the classified camera pass as 5a
+// (depth bounds), 5b (classification) and 5c (Eq. 13 where undecided), each its own pass with
+// its own name; skip-error = 0 runs pass 5 alone. The declared table is well formed.
+TEST(Csm, ClassifiedCameraPassRunsAsPasses5aTo5c) {
+  const Technique csm = findTechnique("modern.csm");
+  EXPECT_TRUE(passTableProblems(csm.passes).empty());
+  const Scene scene = builtinScene("analytic");
+  auto idsAndNames = [&](const RenderParams& p) {
+    std::vector<std::string> out;
+    for (const PassTime& t : renderByName("modern.csm", scene, p).passes)
+      out.push_back(t.id + ": " + t.name);
+    return out;
+  };
+  EXPECT_EQ(idsAndNames(smallParams(160, 120, 64, {{"mipmaps", "always"}})),
+            (std::vector<std::string>{"1: 1 linear depth from light",
+                                      "2: 2 basis textures + horizontal Gaussian (MRT)",
+                                      "3: 3 vertical Gaussian 3x3", "4: 4 mip-maps",
+                                      "5a: 5a depth bounds (min/max pyramid of z)",
+                                      "5b: 5b camera pass: classification (depth bounds)",
+                                      "5c: 5c camera pass, Eq. 13 where undecided"}));
+  EXPECT_EQ(idsAndNames(smallParams(160, 120, 64,
+                                    {{"skip-error", "0"}, {"blur", "0"}, {"mipmaps", "always"}})),
+            (std::vector<std::string>{"1: 1 linear depth from light", "2: 2 basis textures (MRT)",
+                                      "4: 4 mip-maps", "5: 5 camera pass, Eq. 13 reconstruction"}));
 }
 
 // The mip chain drawn with layered_downsample.frag (issue 14, instead of glGenerateMipmap):

@@ -13,8 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "core/pass_dump.h"
-#include "core/scene_library.h"
 #include "core/shaders.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
@@ -27,34 +25,17 @@ const std::string kMeshFeeding = "mesh";
 // Each twin pair of registry/twins.cpp: ramp, pcf, fast-pcf, hw, woo, second-depth.
 constexpr size_t kTwins = 6;
 
-// One pair per modern twin: the one with the largest footprint, whose render makes every pass
-// (the accumulation exists above 2x2 only).
+// One pair per modern twin.
 std::map<std::string, twins::TwinPair> pairByModern() {
   std::map<std::string, twins::TwinPair> out;
-  for (const twins::TwinPair& p : twins::twinPairs()) {
-    auto it = out.find(p.modern);
-    if (it == out.end() || p.filter > it->second.filter) out[p.modern] = p;
-  }
+  for (const twins::TwinPair& p : twins::twinPairs()) out.emplace(p.modern, p);
   return out;
 }
 
 // The ids of the legacy twin's passes, from its table.
-// TRANSITION: a legacy technique not on a pass table yet is rendered and its passes are taken by
-// the number their names start with (what its dump shows as "id").
 std::vector<std::string> legacyPassIds(const twins::TwinPair& pair) {
-  const Technique& legacy = findTechnique(pair.legacy);
   std::vector<std::string> ids;
-  for (const PassSpec& spec : legacy.passes) ids.push_back(spec.id);
-  if (!ids.empty()) return ids;
-  constexpr int kSide = 64;  // the pass list does not depend on the size
-  const Frame frame = renderTechnique(legacy, loadScene("brabec"),
-                                      twins::paramsFor(pair, true, kSide, kSide, kSide,
-                                                       Backend::kOsmesa));
-  for (const PassTime& t : frame.passes) {
-    const int number = passNumberOf(t.name);
-    const std::string id = number < 0 ? kMeshFeeding : std::to_string(number);
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
-  }
+  for (const PassSpec& spec : findTechnique(pair.legacy).passes) ids.push_back(spec.id);
   return ids;
 }
 

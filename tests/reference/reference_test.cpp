@@ -14,6 +14,7 @@
 
 #include "registry/registry.h"
 #include "core/errors.h"
+#include "core/pass_table.h"
 #include "core/primitives.h"
 #include "core/scene_library.h"
 
@@ -485,6 +486,29 @@ TEST(ReferenceMirroring, SymmetricObjectsScaledByMinusOneChangeNothing) {
   const Image* rb = mirroring::directLightRegion(b);
   ASSERT_TRUE(ra && rb);
   EXPECT_EQ(ra->data, rb->data);
+}
+
+// pixel=area rasterises each sub-pixel position (3a) and casts its rays (3b) in turn: each is
+// one pass of the frame however many positions there are, its pieces summed (Passes::resume),
+// with the names the dump and the benches show. The references' tables are well formed.
+TEST(ReferenceArea, SubPixelPassesAreOneEntryEach) {
+  const Scene scene = builtinScene("analytic");
+  for (const char* name : {"reference.hard", "reference.soft"}) {
+    const Technique t = findTechnique(name);
+    EXPECT_TRUE(passTableProblems(t.passes).empty()) << name;
+    RenderParams p = area::areaParams(3);
+    if (std::string(name) == "reference.soft") p.extra["rays"] = "8";
+    const std::string rays =
+        std::string(name) == "reference.soft" ? "soft shadow rays" : "shadow rays";
+    std::vector<std::string> passes;
+    for (const PassTime& pass : renderTechnique(t, scene, p).passes)
+      passes.push_back(pass.id + ": " + pass.name);
+    EXPECT_EQ(passes, (std::vector<std::string>{
+                          "1: 1 surface points (GL)", "2: 2 build occluder BVH (Embree)",
+                          "3a: 3a sub-pixel surface points (GL, 3x3)",
+                          "3b: 3b " + rays + " from 3x3 sub-pixel points (Embree)", "4: 4 shade"}))
+        << name;
+  }
 }
 
 TEST(ReferenceArea, CentreIsTheDefaultAndBadValuesAreInputErrors) {
