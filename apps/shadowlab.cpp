@@ -126,7 +126,8 @@ int render(const cli::Args& args) {
   const std::string line = jsonLine(run.line);
   const Technique& technique = *request.technique;
   const PassDumpHeader dumpHeader{technique.name, technique.paper, request.scene.name, run.made,
-                                  twins::legacyTwinOf(technique.name)};
+                                  twins::legacyTwinOf(technique.name),
+                                  twins::legacyTwinPassesOf(technique.name)};
   writeFrameOutputs(run.frame, dumpHeader, outputs, pngProvenance(run.made));
   outputs.set.commit();
   std::cout << line << "\n";

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.h"
 #include "core/html.h"
@@ -139,9 +140,30 @@ std::string shownValue(const nlohmann::json& v) {
                        : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-// The GLSL lines marked `// @pass id` (core/shaders.h) and the legacy passes they replace (those
-// of `twin`; none without a twin), added to a pass of passes.json once each.
-void addShaderPass(nlohmann::json& pass, const std::string& id, const std::string& twin) {
+// A legacy pass that a twin's pass replaces: its place in the twin's pass table and its
+// "replaces" text.
+struct ReplacedPass {
+  size_t order = 0;
+  std::string text;  // "legacy.fast-pcf pass 6a accumulate"
+};
+
+// Pass `id` of the header's twin, named from the twin's pass table. Throws GlError when the
+// table has no such pass (a shader's @replaces line names a pass that is not there).
+ReplacedPass replacedPass(const PassDumpHeader& header, const std::string& id) {
+  if (header.twinPasses == nullptr)
+    throw std::logic_error("passes.json: the header names the twin " + header.twin +
+                           " without its pass table");
+  const PassTable& table = *header.twinPasses;
+  for (size_t i = 0; i < table.size(); ++i)
+    if (table[i].id == id) return {i, header.twin + " pass " + id + " " + table[i].name};
+  throw GlError("a shader's @replaces names " + header.twin + " pass " + id +
+                ", which is not in " + header.twin + "'s pass table");
+}
+
+// The GLSL lines marked `// @pass id` (core/shaders.h), added to a pass of passes.json once
+// each, and the passes of the header's twin they replace (none without a twin) to `replaced`.
+void addShaderPass(nlohmann::json& pass, const std::string& id, const PassDumpHeader& header,
+                   std::vector<ReplacedPass>& replaced) {
   bool found = false;
   for (const ShaderPassMarker& m : shaderPassMarkers()) {
     if (m.id != id) continue;
@@ -153,20 +175,15 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const std::strin
                             {"title", m.title}};
     if (std::find(pass["glsl"].begin(), pass["glsl"].end(), where) == pass["glsl"].end())
       pass["glsl"].push_back(where);
-    for (const std::string& r : m.replaces) {
-      if (twin.empty() || r.rfind(twin + " ", 0) != 0) continue;  // a twin's passes only
-      if (std::find(pass["replaces"].begin(), pass["replaces"].end(), r) == pass["replaces"].end())
-        pass["replaces"].push_back(r);
+    for (const ShaderReplaces& r : m.replaces) {
+      if (header.twin.empty() || r.technique != header.twin) continue;  // a twin's passes only
+      ReplacedPass named = replacedPass(header, r.passId);
+      if (std::none_of(replaced.begin(), replaced.end(),
+                       [&](const ReplacedPass& p) { return p.text == named.text; }))
+        replaced.push_back(std::move(named));
     }
   }
   if (!found) throw GlError("a pass names the shader marker @pass " + id + ", which no shader has");
-}
-
-// The pass number in "legacy.X pass N name" (a "replaces" entry), or -1.
-int replacedPassNumber(const nlohmann::json& entry) {
-  const std::string text = entry.is_string() ? entry.get<std::string>() : "";
-  const size_t at = text.find(" pass ");
-  return at == std::string::npos ? -1 : passNumberOf(text.substr(at + 6));
 }
 
 // A value legend under an image: a gradient bar with its end values.
@@ -356,6 +373,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   for (const auto& [key, value] : frame.counters) out["counters"][key] = value;
   // Passes by id: every timed entry, and passes that only have images.
   std::map<std::string, nlohmann::json, PipelineOrder> passes;
+  std::map<std::string, std::vector<ReplacedPass>> replaced;  // by pass key
   for (const PassTime& t : frame.passes) {
     nlohmann::json& p = passes[passKeyOf(t)];
     if (!p.contains("name")) {
@@ -389,7 +407,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
       p["glsl"] = nlohmann::json::array();
       p["replaces"] = nlohmann::json::array();
     }
-    for (const std::string& id : t.glsl) addShaderPass(p, id, header.twin);
+    for (const std::string& id : t.glsl) addShaderPass(p, id, header, replaced[passKeyOf(t)]);
   }
   out["images"] = nlohmann::json::array();
   for (const PassDumpImage& i : images) {
@@ -417,13 +435,13 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   }
   out["passes"] = nlohmann::json::array();
   for (auto& [id, p] : passes) {
-    // The legacy passes a twin's pass replaces, in their pipeline order (the markers list them
-    // in the shader's order).
-    if (p.contains("replaces"))
-      std::stable_sort(p["replaces"].begin(), p["replaces"].end(),
-                       [](const nlohmann::json& a, const nlohmann::json& b) {
-                         return replacedPassNumber(a) < replacedPassNumber(b);
-                       });
+    // The legacy passes a twin's pass replaces, in the order of the twin's table (the markers
+    // list them in the shader's order).
+    std::vector<ReplacedPass>& legacy = replaced[id];
+    std::stable_sort(legacy.begin(), legacy.end(),
+                     [](const ReplacedPass& a, const ReplacedPass& b) { return a.order < b.order; });
+    p["replaces"] = nlohmann::json::array();
+    for (const ReplacedPass& r : legacy) p["replaces"].push_back(r.text);
     p["id"] = id;
     p["number"] = passNumberOf(id);
     if (!p.contains("name")) p["name"] = "";

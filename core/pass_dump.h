@@ -19,13 +19,15 @@
 //               "section", "source": {"file", "function"},
 //               "state": [{"group", "text", "before_pass" (true when set before the timer)}],
 //               "glsl": [{"file", "first_line", "last_line", "marker", "title"}],
-//               "replaces": ["legacy.X pass N name"], "files": [...]}],
+//               "replaces": ["legacy.X pass ID name"], "files": [...]}],
 //   "images": [{"file", "pass", "pass_id", "pass_name", "caption", "width", "height", "channels",
 //               "channel" and "of" for the grey panel of one channel, "view",
 //               "legend": {"kind", "low", "high", "note"}}]}
 // "section" and "source" come from the pass's PassTimer (core/technique.h), "state" from the GL
 // trace (core/gl_trace.h), "glsl" and "replaces" from the `// @pass` markers of the shaders the
-// pass names (core/shaders.h), "replaces" limited to the legacy twin in the header.
+// pass names (core/shaders.h), "replaces" limited to the legacy twin in the header: each
+// `// @replaces legacy.X ID` of those markers, named from the twin's pass table
+// ("legacy.fast-pcf pass 6a accumulate"), in the order of that table.
 // A pass is every Frame::passes entry with one id (core/pass_table.h; the phases of a 4x4
 // footprint are several entries); its "milliseconds" is their sum, "timings" lists them. "id" is
 // the pass's id in the technique's table, "number" the number it starts with (-1 for "mesh").
@@ -37,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pass_table.h"
 #include "core/provenance.h"
 #include "core/technique.h"
 
@@ -49,6 +52,9 @@ struct PassDumpHeader {
   std::string scene;
   nlohmann::json parameters;  // the options and --params as they took effect
   std::string twin;           // a modern technique's legacy twin (registry/twins.h), or ""
+  // The twin's pass table (its Technique::passes): names the legacy passes a modern pass
+  // replaces; null without a twin.
+  const PassTable* twinPasses = nullptr;
 };
 
 // How a file's values map to grey or colour, for the legend beside it.

@@ -91,7 +91,19 @@ std::vector<ShaderPassMarker> shaderPassMarkers() {
       } else if (line.rfind(kReplaces, 0) == 0) {
         if (open.empty() || open.back().firstLine != number)
           throw GlError(where + ": @replaces must follow its @pass line");
-        open.back().replaces.push_back(trimmed(line.substr(kReplaces.size())));
+        std::istringstream words(line.substr(kReplaces.size()));
+        std::string technique, id;
+        words >> technique;
+        const bool legacyName = technique.rfind("legacy.", 0) == 0;
+        size_t ids = 0;
+        while (words >> id) {
+          if (!legacyName) break;
+          open.back().replaces.push_back({technique, id});
+          ++ids;
+        }
+        if (!legacyName || ids == 0)
+          throw GlError(where + ": @replaces takes a legacy technique and its pass ids "
+                        "(\"legacy.fast-pcf 6a 6b\"), got \"" + line + "\"");
         open.back().firstLine = number + 1;
       } else if (line.rfind(kEnd, 0) == 0) {
         const std::string id = trimmed(line.substr(kEnd.size()));

@@ -32,21 +32,31 @@ GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fr
 
 // A pass of a modern technique marked in the shader source that does it (issue 18 item 3):
 //   // @pass ID: what the lines do (paper section)
-//   // @replaces legacy.fast-pcf pass 2 copy to texture through the packing convolution
+//   // @replaces legacy.fast-pcf 2
+//   // @replaces legacy.pcf 5a 5b
 //   ... the GLSL of the pass ...
 //   // @end ID
 // One ID may be marked in several files (a vertex and a fragment stage) and several times in a
-// file; @replaces lines (any number, right after @pass) name the legacy passes the lines replace.
+// file; @replaces lines (any number, right after @pass) name the legacy passes the lines replace:
+// a legacy technique and one or more ids of its pass table (core/pass_table.h), nothing else.
+struct ShaderReplaces {
+  std::string technique;  // "legacy.fast-pcf"
+  std::string passId;     // "6a"
+  bool operator==(const ShaderReplaces& o) const {
+    return technique == o.technique && passId == o.passId;
+  }
+};
 struct ShaderPassMarker {
   std::string id;
   std::string file;    // "fast_pcf_pack.frag.glsl"
   int firstLine = 0;   // the marked code, 1-based, without the marker lines
   int lastLine = 0;
   std::string title;   // the text after "@pass ID:"
-  std::vector<std::string> replaces;
+  std::vector<ShaderReplaces> replaces;  // in the order of the @replaces lines
 };
 // Every marker of every embedded shader, by file then line. Throws GlError naming the file and
-// line of a marker without its @end, an @end without its @pass, or an empty block.
+// line of a marker without its @end, an @end without its @pass, an empty block, or an @replaces
+// line that is not "legacy.X ID [ID ...]".
 std::vector<ShaderPassMarker> shaderPassMarkers();
 
 }  // namespace sl

@@ -210,7 +210,8 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
     parameters["precision"] = precisionName(p.precision);
   side.passes =
       passesJson(*side.frame,
-                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name)},
+                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name),
+                                twins::legacyTwinPassesOf(t.name)},
                  side.images);
   side.prefix = t.name + "_";
   side.renderCommand = renderCommandFor(t, p, s);
@@ -378,13 +379,16 @@ void writeGlsl(std::ostream& html, const json& pass) {
 
 // "legacy.fast-pcf pass 6a accumulate" -> a link to that pass when this page shows it.
 std::string replacesLink(const std::string& text, const std::vector<Side>& sides) {
-  static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass (\S+)\b.*)");
+  static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass ([0-9a-z]+)\b.*)");
   std::smatch m;
   if (std::regex_match(text, m, kPass))
-    for (const Side& s : sides)
-      if (s.technique->name == m[1].str())
-        return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" + htmlEscape(text) +
-               "</a>";
+    for (const Side& s : sides) {
+      if (s.technique->name != m[1].str()) continue;
+      for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
+        if (pass.value("id", "") == m[2].str())
+          return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" +
+                 htmlEscape(text) + "</a>";
+    }
   return htmlEscape(text);
 }
 

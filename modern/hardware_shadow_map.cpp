@@ -7,6 +7,7 @@
 //                             left out when the pass planner (core/plan.h) finds no caster in
 //                             the light frustum (--param plan=off keeps it)
 //   2. shadeWithShadowMap   — camera view; hw_shadow.frag does textureProj on sampler2DShadow
+// The passes are declared once in hardwareShadowMapPasses().
 #include "modern/hardware_shadow_map.h"
 
 #include "core/errors.h"
@@ -22,32 +23,56 @@ constexpr float kDefaultOffsetFactor = 2.0f;  // same as legacy.hw (Everitt Fig.
 constexpr float kDefaultOffsetUnits = 4.0f;
 constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
 
+// The passes, declared once: names, the paper's text, the buffers a dump shows, the GLSL they
+// run and the passes of legacy.hw (legacy_gl/hardware_shadow_map.cpp) they replace.
+PassTable hardwareShadowMapPasses() {
+  return {
+      {.id = "1",
+       .name = "depth from light",
+       .reference = "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
+                    "polygon offset: Why Is Polygon Offset Needed?, Fig. 3",
+       .writes = {{.name = "light-depth",
+                   .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
+                              "offset"}},
+       .shaders = {"depth-only"},
+       .replaces = {"1"},
+       .deviations = {kDepthRoundoffScaleDeviation}},
+      cameraPassWithShadowTest("2", "hw_shadow.frag, Everitt Eq. 5: textureProj on sampler2DShadow",
+                               {"2", "3", "4", "5"}),
+  };
+}
+
+const PassTable& passTable() {
+  static const PassTable table = hardwareShadowMapPasses();
+  return table;
+}
+
 // Pass 1 (Everitt Fig. 2): depth from the light with slope-scaled polygon offset.
-RenderTarget renderDepthFromLight(const GpuScene& gpu, const RenderParams& params, float factor,
-                                  float units, bool linear, bool casterInFrustum, Frame& frame) {
-  PassTimer timer(frame,
-                  casterInFrustum ? "1 depth from light"
-                                  : "1 depth from light left out (planner: no caster in frustum)",
-                  "Everitt, Rege & Cebenoyan 2001, First Pass (Depth Map Generation), Fig. 2; "
-                  "polygon offset: Why Is Polygon Offset Needed?, Fig. 3");
-  timer.shaderPasses({"depth-only"});
-  // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
-  // depth (every comparison passes) replaces the pass.
-  const int n = casterInFrustum ? params.shadowMapTexels : 1;
-  RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
-  map.bind();
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  setDepthCompareParameters(map.depth.id(), linear);
+RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const RenderParams& params,
+                                  float factor, float units, bool linear, bool casterInFrustum) {
+  RenderTarget map;
+  passes.run(
+      "1",
+      [&] {
+        // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
+        // depth (every comparison passes) replaces the pass.
+        const int n = casterInFrustum ? params.shadowMapTexels : 1;
+        map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
+        map.bind();
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+        const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
+        program.use();
+        program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+        gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
+                 [&](const Object& o) { program.set("uModel", o.model); });
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        setDepthCompareParameters(map.depth.id(), linear);
+      },
+      {}, casterInFrustum ? "" : " left out (planner: no caster in frustum)");
   return map;
 }
 
@@ -72,42 +97,43 @@ glm::mat4 worldToShadowMap(const Scene& scene) {
   return S * lightProjection(scene) * lightView(scene.light);
 }
 
+PassSpec cameraPassWithShadowTest(const std::string& id, const std::string& source,
+                                  std::vector<std::string> replaces) {
+  return {.id = id,
+          .name = "camera pass with shadow test",
+          .reference = "Everitt, Rege & Cebenoyan 2001, Second Pass (Depth Map Comparison): the "
+                       "planes of Eq. 5 as one matrix, the comparison of How It Works (Fig. 5) by "
+                       "sampler2DShadow, direct light x result + ambient",
+          .writes = cameraPassBuffers(id, source),
+          .shaders = {"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"},
+          .replaces = std::move(replaces)};
+}
+
 // Everitt Eq. 5: shading with the comparison result modulating direct light.
-void shadeWithShadowMap(const GpuScene& gpu, const RenderParams& params, GLuint shadowMap,
-                        const std::string& passName, Frame& frame) {
-  PassTimer timer(frame, passName,
-                  "Everitt, Rege & Cebenoyan 2001, Second Pass (Depth Map Comparison): the "
-                  "planes of Eq. 5 as one matrix, the comparison of How It Works (Fig. 5) by "
-                  "sampler2DShadow, direct light x result + ambient");
-  timer.shaderPasses({"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"});
-  const Scene& scene = gpu.scene();
-  RenderTarget target = makeCameraTarget(params, false);
-  clearCameraTarget(target);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  const Program& program = cachedProgram("scene.vert.glsl", "hw_shadow.frag.glsl");
-  program.use();
-  program.set("uViewProjection", cameraViewProjection(scene, params));
-  program.set("uWorldToShadowMap", worldToShadowMap(scene));
-  setLightingUniforms(program, scene);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, shadowMap);
-  program.set("uShadowMap", 0);
-  gpu.draw([](const Object&) { return true; },
-           [&](const Object& o) { setObjectUniforms(program, o); });
-  readCameraTarget(target, frame);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+void shadeWithShadowMap(Passes& passes, const std::string& id, const GpuScene& gpu,
+                        const RenderParams& params, GLuint shadowMap) {
+  passes.run(id, [&] {
+    const Scene& scene = gpu.scene();
+    RenderTarget target = makeCameraTarget(params, false);
+    clearCameraTarget(target);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const Program& program = cachedProgram("scene.vert.glsl", "hw_shadow.frag.glsl");
+    program.use();
+    program.set("uViewProjection", cameraViewProjection(scene, params));
+    program.set("uWorldToShadowMap", worldToShadowMap(scene));
+    setLightingUniforms(program, scene);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, shadowMap);
+    program.set("uShadowMap", 0);
+    gpu.draw([](const Object&) { return true; },
+             [&](const Object& o) { setObjectUniforms(program, o); });
+    readCameraTarget(target, passes.frame());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  });
 }
 
 namespace {
-
-// --dump-passes: the depth texture of pass 1 as grey and the camera pass (Everitt Fig. 2, Eq. 5).
-void captureDepthAndCameraPass(const RenderTarget& map, Frame& frame) {
-  frame.intermediates.push_back(greyDepth(
-      "1-light-depth", "pass 1 (Everitt Fig. 2): depth from the light with polygon offset",
-      readDepthTexture(map.depth.id(), map.width, map.height)));
-  captureCameraPass(frame, 2, "hw_shadow.frag, Everitt Eq. 5: textureProj on sampler2DShadow");
-}
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
@@ -115,10 +141,15 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text(compareParam()) == "linear";
   const bool casterInFrustum = !params.flag(planParam()) || casterReachesLightFrustum(scene);
   Frame frame;
+  Passes passes(frame, params, passTable());
   GpuScene gpu(scene);
-  RenderTarget map = renderDepthFromLight(gpu, params, factor, units, linear, casterInFrustum, frame);
-  shadeWithShadowMap(gpu, params, map.depth.id(), "2 camera pass with shadow test", frame);
-  if (params.capturePasses) captureDepthAndCameraPass(map, frame);
+  RenderTarget map =
+      renderDepthFromLight(passes, gpu, params, factor, units, linear, casterInFrustum);
+  shadeWithShadowMap(passes, "2", gpu, params, map.depth.id());
+  // --dump-passes: the depth texture of pass 1 as grey and the camera pass.
+  passes.captureDepth("1", "light-depth",
+                      [&] { return readDepthTexture(map.depth.id(), map.width, map.height); });
+  captureCameraPass(passes, "2");
   return frame;
 }
 }  // namespace
@@ -134,6 +165,7 @@ Technique hardwareShadowMapTechnique() {
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), compareParam(),
               planParam()};
   t.reads = {.shadowMap = true};
+  t.passes = passTable();
   t.render = render;
   return t;
 }

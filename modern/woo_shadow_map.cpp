@@ -8,6 +8,7 @@
 //                              the depth test keeps the second layer z2
 //   3. storeMidpointDepth    — woo_midpoint.frag writes gl_FragDepth = (z1 + z2) / 2
 //   4. shadeWithShadowMap    — modern.hw's camera pass on the midpoint map
+// The passes are declared once in wooPasses().
 #include "core/errors.h"
 #include "core/pass_capture.h"
 #include "modern/camera_pass.h"
@@ -23,6 +24,47 @@ namespace {
 // lightDepthRoundoffScale (core/scene.h) where the light's depth range is narrow.
 constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
 
+// The passes, declared once: names, the paper's text, the buffers a dump shows, the GLSL they
+// run and the passes of legacy.woo (legacy_gl/woo_shadow_map.cpp) they replace. The three maps
+// are shown on one grey scale (nearest z1 black, the clear depth 1 white).
+PassTable wooPasses() {
+  return {
+      {.id = "1",
+       .name = "first depth layer",
+       .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the "
+                    "nearest layer from the light, no polygon offset",
+       .writes = {{.name = "first-depth-layer",
+                   .caption = "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)"}},
+       .shaders = {"depth-only"},
+       .replaces = {"1"}},
+      {.id = "2",
+       .name = "peel to second depth layer",
+       .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]), by "
+                    "depth peeling [2]: the second-nearest layer",
+       .writes = {{.name = "second-depth-layer",
+                   .caption = "pass 2: woo_peel.frag discards what is not behind z1, the depth "
+                              "test keeps z2"}},
+       .shaders = {"peel"},
+       .replaces = {"2"},
+       .deviations = {kDepthRoundoffScaleDeviation}},
+      {.id = "3",
+       .name = "midpoint of the layers",
+       .reference = "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
+                    "is the average of the two layers, written as gl_FragDepth",
+       .writes = {{.name = "midpoint-shadow-map",
+                   .caption = "pass 3: woo_midpoint.frag, gl_FragDepth = (z1 + z2) / 2"}},
+       .shaders = {"midpoint"},
+       .replaces = {"3"}},
+      cameraPassWithShadowTest("4", "hw_shadow.frag on the midpoint map, Everitt Eq. 5",
+                               {"4", "5", "6", "7"}),
+  };
+}
+
+const PassTable& passTable() {
+  static const PassTable table = wooPasses();
+  return table;
+}
+
 RenderTarget makeDepthMap(int n) {
   RenderTarget map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
   map.bind();
@@ -31,107 +73,101 @@ RenderTarget makeDepthMap(int n) {
 }
 
 // Pass 1 (Everitt, Woo paragraph): nearest depth layer from the light, without polygon offset.
-RenderTarget renderFirstDepthLayer(const GpuScene& gpu, int n, Frame& frame) {
-  PassTimer timer(frame, "1 first depth layer",
-                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the "
-                  "nearest layer from the light, no polygon offset");
-  timer.shaderPasses({"depth-only"});
-  RenderTarget map = makeDepthMap(n);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
+RenderTarget renderFirstDepthLayer(Passes& passes, const GpuScene& gpu, int n) {
+  RenderTarget map;
+  passes.run("1", [&] {
+    map = makeDepthMap(n);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
+    program.use();
+    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+    gpu.draw([](const Object& o) { return o.castsShadow; },
+             [&](const Object& o) { program.set("uModel", o.model); });
+  });
   return map;
 }
 
 // Pass 2 (Everitt, depth peeling [2]): keep only fragments behind the first layer.
-RenderTarget peelSecondDepthLayer(const GpuScene& gpu, int n, const RenderTarget& first,
-                                  Frame& frame) {
-  PassTimer timer(frame, "2 peel to second depth layer",
-                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]), by "
-                  "depth peeling [2]: the second-nearest layer");
-  timer.shaderPasses({"peel"});
-  glBindTexture(GL_TEXTURE_2D, first.depth.id());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
-  RenderTarget map = makeDepthMap(n);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  const Program& program = cachedProgram("scene.vert.glsl", "woo_peel.frag.glsl");
-  program.use();
-  program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-  program.set("uWorldToShadowMap", worldToShadowMap(gpu.scene()));
-  program.set("uPeelEpsilon", kPeelEpsilon * lightDepthRoundoffScale(gpu.scene()));
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, first.depth.id());
-  program.set("uFirstLayer", 0);
-  gpu.draw([](const Object& o) { return o.castsShadow; },
-           [&](const Object& o) { program.set("uModel", o.model); });
+RenderTarget peelSecondDepthLayer(Passes& passes, const GpuScene& gpu, int n,
+                                  const RenderTarget& first) {
+  RenderTarget map;
+  passes.run("2", [&] {
+    glBindTexture(GL_TEXTURE_2D, first.depth.id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+    map = makeDepthMap(n);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    const Program& program = cachedProgram("scene.vert.glsl", "woo_peel.frag.glsl");
+    program.use();
+    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+    program.set("uWorldToShadowMap", worldToShadowMap(gpu.scene()));
+    program.set("uPeelEpsilon", kPeelEpsilon * lightDepthRoundoffScale(gpu.scene()));
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, first.depth.id());
+    program.set("uFirstLayer", 0);
+    gpu.draw([](const Object& o) { return o.castsShadow; },
+             [&](const Object& o) { program.set("uModel", o.model); });
+  });
   return map;
 }
 
 // Pass 3 (Woo's midpoint): (z1 + z2) / 2 as the depth of a full-screen triangle.
-RenderTarget storeMidpointDepth(int n, const RenderTarget& first, const RenderTarget& second,
-                                bool linear, Frame& frame) {
-  PassTimer timer(frame, "3 midpoint of the layers",
-                  "Everitt, Rege & Cebenoyan 2001, Advantages and Limitations (Woo [9]): the map "
-                  "is the average of the two layers, written as gl_FragDepth");
-  timer.shaderPasses({"midpoint"});
-  for (GLuint t : {first.depth.id(), second.depth.id()}) {
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  }
-  RenderTarget map = makeDepthMap(n);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  const Program& program = cachedProgram("fullscreen.vert.glsl", "woo_midpoint.frag.glsl");
-  program.use();
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, first.depth.id());
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, second.depth.id());
-  glActiveTexture(GL_TEXTURE0);
-  program.set("uFirstLayer", 0);
-  program.set("uSecondLayer", 1);
-  FullScreenTriangle().draw();
-  glDepthFunc(GL_LESS);
-  setDepthCompareParameters(map.depth.id(), linear);
+RenderTarget storeMidpointDepth(Passes& passes, int n, const RenderTarget& first,
+                                const RenderTarget& second, bool linear) {
+  RenderTarget map;
+  passes.run("3", [&] {
+    for (GLuint t : {first.depth.id(), second.depth.id()}) {
+      glBindTexture(GL_TEXTURE_2D, t);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    }
+    map = makeDepthMap(n);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    const Program& program = cachedProgram("fullscreen.vert.glsl", "woo_midpoint.frag.glsl");
+    program.use();
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, first.depth.id());
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, second.depth.id());
+    glActiveTexture(GL_TEXTURE0);
+    program.set("uFirstLayer", 0);
+    program.set("uSecondLayer", 1);
+    FullScreenTriangle().draw();
+    glDepthFunc(GL_LESS);
+    setDepthCompareParameters(map.depth.id(), linear);
+  });
   return map;
 }
 
-// --dump-passes: z1, z2 and the midpoint on one grey scale (nearest z1 black, the clear depth
-// 1 white: one affine map, as legacy.woo shows them), then the camera pass.
-void captureLayersAndCameraPass(const RenderTarget& first, const RenderTarget& second,
-                                const RenderTarget& midpoint, Frame& frame) {
-  const Image z1 = readDepthTexture(first.depth.id(), first.width, first.height);
-  const Image z2 = readDepthTexture(second.depth.id(), second.width, second.height);
-  const Image mid = readDepthTexture(midpoint.depth.id(), midpoint.width, midpoint.height);
-  const WindowDepthSpan range{drawnDepthRange({&z1}).lo, kClearDepth};
-  frame.intermediates.push_back(
-      greyDepth("1-first-depth-layer",
-                "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)", z1, range));
-  frame.intermediates.push_back(greyDepth(
-      "2-second-depth-layer",
-      "pass 2: woo_peel.frag discards what is not behind z1, the depth test keeps z2", z2, range));
-  frame.intermediates.push_back(greyDepth("3-midpoint-shadow-map",
-                                          "pass 3: woo_midpoint.frag, gl_FragDepth = (z1 + z2) / 2",
-                                          mid, range));
-  captureCameraPass(frame, 4, "hw_shadow.frag on the midpoint map, Everitt Eq. 5");
+Image readDepth(const RenderTarget& map) {
+  return readDepthTexture(map.depth.id(), map.width, map.height);
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const bool linear = params.text(compareParam()) == "linear";
   const int n = params.shadowMapTexels;
   Frame frame;
+  Passes passes(frame, params, passTable());
   GpuScene gpu(scene);
-  RenderTarget first = renderFirstDepthLayer(gpu, n, frame);
-  RenderTarget second = peelSecondDepthLayer(gpu, n, first, frame);
-  RenderTarget midpoint = storeMidpointDepth(n, first, second, linear, frame);
-  shadeWithShadowMap(gpu, params, midpoint.depth.id(), "4 camera pass with shadow test", frame);
-  if (params.capturePasses) captureLayersAndCameraPass(first, second, midpoint, frame);
+  RenderTarget first = renderFirstDepthLayer(passes, gpu, n);
+  RenderTarget second = peelSecondDepthLayer(passes, gpu, n, first);
+  RenderTarget midpoint = storeMidpointDepth(passes, n, first, second, linear);
+  shadeWithShadowMap(passes, "4", gpu, params, midpoint.depth.id());
+  // --dump-passes: z1, z2 and the midpoint on one grey scale, the nearest z1 black, the clear
+  // depth 1 white (one affine map, as legacy.woo shows them).
+  const auto layerScale = [&] {
+    const Image z1 = readDepth(first);
+    return WindowDepthSpan{drawnDepthRange({&z1}).lo, kClearDepth};
+  };
+  passes.captureDepth("1", "first-depth-layer", [&] { return readDepth(first); }, {}, {},
+                      layerScale);
+  passes.captureDepth("2", "second-depth-layer", [&] { return readDepth(second); }, {}, {},
+                      layerScale);
+  passes.captureDepth("3", "midpoint-shadow-map", [&] { return readDepth(midpoint); }, {}, {},
+                      layerScale);
+  captureCameraPass(passes, "4");
   return frame;
 }
 
@@ -146,6 +182,7 @@ Technique wooShadowMapTechnique() {
   t.needs.profile = Profile::kCore;
   t.params = {compareParam()};
   t.reads = {.shadowMap = true};
+  t.passes = passTable();
   t.render = render;
   return t;
 }

@@ -194,6 +194,11 @@ std::string legacyTwinOf(const std::string& modern) {
   return "";
 }
 
+const PassTable* legacyTwinPassesOf(const std::string& modern) {
+  const std::string legacy = legacyTwinOf(modern);
+  return legacy.empty() ? nullptr : &findTechnique(legacy).passes;
+}
+
 std::vector<std::string> missingPairs() {
   std::vector<std::string> out;
   for (const TwinPair& p : allPairs())

@@ -33,6 +33,9 @@ std::vector<std::string> missingPairs();
 // The legacy technique a modern one is the twin of ("modern.fast-pcf" -> "legacy.fast-pcf"),
 // "" when it has none.
 std::string legacyTwinOf(const std::string& modern);
+// That twin's pass table (core/pass_table.h; what passes.json names its replaced passes from),
+// null when it has none.
+const PassTable* legacyTwinPassesOf(const std::string& modern);
 
 // Scenes every pair is checked on: analytic (exact shadow known), brabec (Brabec–Seidel §5, the
 // torus shadows itself) and dueling (the same meshes, light facing the camera: self-shadowing

@@ -15,9 +15,9 @@ uniform bool uFaithful;
 layout(location = 0) out vec4 oColor;
 void main() {
   // @pass encode-depth: light depth through the ramp, as colour in every channel (§2 Fig. 1, §4)
-  // @replaces legacy.fast-pcf pass 1 light pass: depth ramp in RGBA
-  // @replaces legacy.pcf pass 1 light passes: jittered, one channel each + copy to texture
-  // @replaces legacy.ramp pass 1 light pass: depth ramp into alpha + copy to texture
+  // @replaces legacy.fast-pcf 1
+  // @replaces legacy.pcf 1
+  // @replaces legacy.ramp 1
   float d = dot(uDepthPlane, vec4(vWorldPosition, 1.0));
   float encoded = uFaithful ? textureProj(uRamp, vRampCoord).r : d;
   oColor = vec4(encoded);

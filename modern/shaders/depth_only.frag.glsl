@@ -3,8 +3,8 @@
 // for modern.second-depth) is GL state set by the C++ pass, not this shader's.
 #version 330 core
 // @pass depth-only: no colour output, only depth (and stencil) written; which fragments are kept is the GL state of the pass (depth test, culling, polygon offset, stencil)
-// @replaces legacy.hw pass 1 depth from light
-// @replaces legacy.woo pass 1 first depth layer
-// @replaces legacy.second-depth pass 1 back faces from light
+// @replaces legacy.hw 1
+// @replaces legacy.woo 1
+// @replaces legacy.second-depth 1
 void main() {}
 // @end depth-only

@@ -12,7 +12,7 @@ uniform ivec2 uRegionOrigin;
 layout(location = 0) out vec4 oPacked;
 
 // @pass pack: Eq. (1)'s kernel as four texel fetches, R G B A = lower left, lower right, upper left, upper right (§4, Fig. 5)
-// @replaces legacy.fast-pcf pass 2 copy to texture through the 3x3 packing convolution
+// @replaces legacy.fast-pcf 2
 float sampleAt(ivec2 p, int channel) {
   ivec2 size = textureSize(uEncodedDepth, 0);
   if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, size))) return 1.0;

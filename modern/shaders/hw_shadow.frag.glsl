@@ -6,9 +6,9 @@ in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 uniform sampler2DShadow uShadowMap;
 // @pass texgen-planes: the EYE_LINEAR planes E_po = S·P_light·L^-1 as one matrix (Everitt Eq. 5)
-// @replaces legacy.hw pass 2 eye-linear texgen planes
-// @replaces legacy.woo pass 4 eye-linear texgen planes
-// @replaces legacy.second-depth pass 2 eye-linear texgen planes
+// @replaces legacy.hw 2
+// @replaces legacy.woo 4
+// @replaces legacy.second-depth 2
 uniform mat4 uWorldToShadowMap;   // S · P_light · L^-1 (Everitt Eq. 5)
 // @end texgen-planes
 uniform bool uReceivesShadow;
@@ -19,9 +19,9 @@ layout(location = 1) out vec4 oVisibility;
 // The shadow comparison: 1 = lit. Behind the light (q <= 0) is always shadowed (Everitt,
 // "negative projection").
 // @pass shadow-test: r/q <= depth(s/q, t/q) by sampler2DShadow, GL_LINEAR = 2x2 PCF; behind the light = shadow (Everitt, How It Works, Fig. 5)
-// @replaces legacy.hw pass 4 direct light x shadow test
-// @replaces legacy.woo pass 6 direct light x shadow test
-// @replaces legacy.second-depth pass 4 direct light x shadow test
+// @replaces legacy.hw 4
+// @replaces legacy.woo 6
+// @replaces legacy.second-depth 4
 float shadowTest(vec3 world) {
   vec4 coord = uWorldToShadowMap * vec4(world, 1.0);
   if (coord.w <= 0.0) return 0.0;
@@ -32,18 +32,18 @@ float shadowTest(vec3 world) {
 void main() {
   float visibility = uReceivesShadow ? shadowTest(vWorldPosition) : 1.0;
   // @pass hw-shade: ambient + direct light x comparison in one fragment (Everitt, shading after Fig. 4)
-  // @replaces legacy.hw pass 3 ambient
-  // @replaces legacy.hw pass 4 direct light x shadow test
-  // @replaces legacy.woo pass 5 ambient
-  // @replaces legacy.woo pass 6 direct light x shadow test
-  // @replaces legacy.second-depth pass 3 ambient
-  // @replaces legacy.second-depth pass 4 direct light x shadow test
+  // @replaces legacy.hw 3
+  // @replaces legacy.hw 4
+  // @replaces legacy.woo 5
+  // @replaces legacy.woo 6
+  // @replaces legacy.second-depth 3
+  // @replaces legacy.second-depth 4
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   // @end hw-shade
   // @pass hw-visibility: the comparison alone into a second render target (ours: the --mask output)
-  // @replaces legacy.hw pass 5 visibility mask
-  // @replaces legacy.woo pass 7 visibility mask
-  // @replaces legacy.second-depth pass 5 visibility mask
+  // @replaces legacy.hw 5
+  // @replaces legacy.woo 7
+  // @replaces legacy.second-depth 5
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
   // @end hw-visibility
 }

@@ -69,10 +69,10 @@ vec4 projectedMap(int g) {
 vec4 inUse(int g) { return vec4(greaterThan(ivec4(uGroupSamples[g]), ivec4(0, 1, 2, 3))); }
 
 // @pass subtract-and-count: packed map minus fragment depth, colour table, colour matrix sum (§3 Fig. 4, §4 Fig. 6)
-// @replaces legacy.fast-pcf pass 4 projective pass: subtract packed map, offset texture coordinates
-// @replaces legacy.fast-pcf pass 5 copy: colour table + colour matrix -> alpha
-// @replaces legacy.pcf pass 3 projective pass: subtract packed map
-// @replaces legacy.pcf pass 4 copy: colour table + colour matrix -> alpha
+// @replaces legacy.fast-pcf 4
+// @replaces legacy.fast-pcf 5
+// @replaces legacy.pcf 3
+// @replaces legacy.pcf 4
 // Steps 2-4, faithful: the alpha code the colour matrix leaves for group g.
 float groupAlphaCode(int g, float fragmentCode) {
   vec4 difference = max(vec4(fragmentCode) - code(projectedMap(g)), vec4(0.0));
@@ -85,15 +85,15 @@ float groupAlphaCode(int g, float fragmentCode) {
 // @end subtract-and-count
 
 // @pass camera-depth: the fragment's light depth through the ramp, replicated over the channels (§3)
-// @replaces legacy.fast-pcf pass 3 camera pass: light depth in RGBA
-// @replaces legacy.pcf pass 2 camera pass: light depth in RGBA
+// @replaces legacy.fast-pcf 3
+// @replaces legacy.pcf 2
 float faithfulShadow() {
   float fragment = textureProj(uRamp, vRampCoord).r;
   float fragmentCode = code(fragment);
 // @end camera-depth
   // @pass accumulate: the groups or 4x4 phases summed as the accumulation buffer sums them (§3, §4)
-  // @replaces legacy.fast-pcf pass 6 accumulate
-  // @replaces legacy.pcf pass 5 accumulate
+  // @replaces legacy.fast-pcf 6a 6b
+  // @replaces legacy.pcf 5a 5b
   if (uGroupCount == 1) return groupAlphaCode(0, fragmentCode) * uReadScale;
   if (uAccumMode == 1) {
     int accumulator = 0;  // GL_LOAD, then GL_ACCUM: (short)(c * value * 32767)
@@ -114,12 +114,12 @@ float faithfulShadow() {
 }
 
 // @pass float-shadow: --precision float: compare and count without the 2001 quantisations
-// @replaces legacy.fast-pcf pass 4 projective pass: subtract packed map, offset texture coordinates
-// @replaces legacy.fast-pcf pass 5 copy: colour table + colour matrix -> alpha
-// @replaces legacy.fast-pcf pass 6 accumulate
-// @replaces legacy.pcf pass 3 projective pass: subtract packed map
-// @replaces legacy.pcf pass 4 copy: colour table + colour matrix -> alpha
-// @replaces legacy.pcf pass 5 accumulate
+// @replaces legacy.fast-pcf 4
+// @replaces legacy.fast-pcf 5
+// @replaces legacy.fast-pcf 6a 6b
+// @replaces legacy.pcf 3
+// @replaces legacy.pcf 4
+// @replaces legacy.pcf 5a 5b
 float floatShadow(float d) {
   float shadow = 0.0;
   for (int g = 0; g < uGroupCount; ++g) {
@@ -137,8 +137,8 @@ void main() {
     visibility = 1.0 - (uFaithful ? faithfulShadow() : floatShadow(d));
   }
   // @pass shade: OpenGL lighting x (1 - shadow) + ambient (§5)
-  // @replaces legacy.fast-pcf pass 7 lighting x shadow term
-  // @replaces legacy.pcf pass 6 lighting x shadow term
+  // @replaces legacy.fast-pcf 7
+  // @replaces legacy.pcf 6
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   // @end shade
   oVisibility = vec4(visibility, visibility, visibility, 1.0);

@@ -32,21 +32,21 @@ float code(float v) { return uFloatBuffer ? v : roundEven(v * uBufferMax); }
 
 float shadowTerm() {
   // @pass ramp-subtract: the map as a projective texture (§2, third pass)
-  // @replaces legacy.ramp pass 3 projective pass: subtract shadow map
+  // @replaces legacy.ramp 3
   float map = textureProj(uShadowMap, vShadowCoord[0]).r;
   // @end ramp-subtract
   // @pass ramp-float: --param arithmetic=float: light depth minus bias against the map, without the 2001 quantisations
   if (!uFaithful) return dot(uDepthPlane, vec4(vWorldPosition, 1.0)) - uBias > map ? 1.0 : 0.0;
   // @end ramp-float
   // @pass ramp-camera-depth: the fragment's light depth through the same ramp (§2, second pass)
-  // @replaces legacy.ramp pass 2 camera pass: light depth ramp into alpha
+  // @replaces legacy.ramp 2
   float fragment = textureProj(uRamp, vRampCoord).r;
   // @end ramp-camera-depth
   // @pass ramp-subtract: (continued) the fragment's code minus the map's, clamped at 0 as reverse-subtract blending leaves it
   float difference = max(code(fragment) - code(map), 0.0);  // reverse-subtract blending
   // @end ramp-subtract
   // @pass ramp-saturate: the extra copy of footnote 1: one depth step or more becomes 1 (§2)
-  // @replaces legacy.ramp pass 4 copy: shadow mask to 0 / 1
+  // @replaces legacy.ramp 4
   float saturated = clamp(difference * uReadScale * uSaturateScale, 0.0, 1.0);  // footnote 1
   return code(saturated) * uReadScale;  // stored in the colour buffer's alpha, read back
   // @end ramp-saturate
@@ -55,7 +55,7 @@ float shadowTerm() {
 void main() {
   float visibility = uReceivesShadow ? 1.0 - shadowTerm() : 1.0;
   // @pass ramp-shade: OpenGL lighting, the direct term x (1 - mask), ambient kept (§5)
-  // @replaces legacy.ramp pass 5 lighting x shadow mask
+  // @replaces legacy.ramp 5
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   // @end ramp-shade
   oVisibility = vec4(visibility, visibility, visibility, 1.0);

@@ -6,7 +6,7 @@ uniform sampler2D uFirstLayer;   // z1, compare mode off
 uniform sampler2D uSecondLayer;  // z2 (1 where nothing lies behind z1)
 void main() {
   // @pass midpoint: the map's depth = (z1 + z2) / 2 (Everitt, Advantages and Limitations, Woo [9])
-  // @replaces legacy.woo pass 3 midpoint of the layers
+  // @replaces legacy.woo 3
   ivec2 texel = ivec2(gl_FragCoord.xy);
   float z1 = texelFetch(uFirstLayer, texel, 0).r;
   float z2 = texelFetch(uSecondLayer, texel, 0).r;

@@ -9,7 +9,7 @@ uniform mat4 uWorldToShadowMap;       // S · P_light · L^-1 (Everitt Eq. 5)
 uniform float uPeelEpsilon;           // window-depth tolerance of the peel
 void main() {
   // @pass peel: keep only caster fragments behind the first layer z1 (Everitt, Woo [9] by depth peeling [2])
-  // @replaces legacy.woo pass 2 peel to second depth layer
+  // @replaces legacy.woo 2
   vec4 coord = uWorldToShadowMap * vec4(vWorldPosition, 1.0);
   coord.z -= uPeelEpsilon * coord.w;  // legacy: the texture matrix translates r
   if (textureProj(uFirstLayer, coord) <= 0.5) discard;  // legacy: alpha test GREATER 0.5

@@ -165,16 +165,17 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
   EXPECT_TRUE(hasLine(pack, "program", {"fast_pcf_pack.frag.glsl"})) << lines(pack);
   EXPECT_TRUE(hasLine(pack, "uniforms", {"uRegionOrigin = (-1, -1)"})) << lines(pack);
   EXPECT_TRUE(hasLine(pack, "draw", {"glDrawArrays(GL_TRIANGLES), 3 vertices"})) << lines(pack);
-  // The camera pass replaces legacy passes 3 to 7, each named (pass 6, the accumulation, exists
-  // in the 4x4 footprint only).
+  // The camera pass replaces legacy passes 3 to 7, each named by its id (passes 6a and 6b, the
+  // accumulation and its return, exist in the 4x4 footprint only).
   const nlohmann::json& camera = pass(modern, 3);
-  EXPECT_NE(std::find(camera["replaces"].begin(), camera["replaces"].end(),
-                      "legacy.fast-pcf pass 6 accumulate"),
-            camera["replaces"].end());
-  for (int legacyPass : {3, 4, 5, 7}) {
-    const std::string named =
-        "legacy.fast-pcf pass " + std::to_string(legacyPass) + " " +
-        pass(legacy, legacyPass)["name"].get<std::string>();
+  for (const char* accumulation :
+       {"legacy.fast-pcf pass 6a accumulate", "legacy.fast-pcf pass 6b accumulation return"})
+    EXPECT_NE(std::find(camera["replaces"].begin(), camera["replaces"].end(), accumulation),
+              camera["replaces"].end())
+        << accumulation << " in " << camera["replaces"].dump();
+  for (const char* legacyPass : {"3", "4", "5", "7"}) {
+    const std::string named = "legacy.fast-pcf pass " + std::string(legacyPass) + " " +
+                              passWithId(legacy, legacyPass)["name"].get<std::string>();
     EXPECT_NE(std::find(camera["replaces"].begin(), camera["replaces"].end(), named),
               camera["replaces"].end())
         << named << " in " << camera["replaces"].dump();
@@ -183,10 +184,11 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
 
 // Every modern twin (registry/twins.h) is linked pass by pass, from the `// @replaces` lines of
 // its shaders: each of its passes names at least one legacy pass and its GLSL lines, each named
-// legacy pass exists under that number and name in the legacy dump (markers are not hand-typed
-// line numbers, and they cannot name a pass that is not there), and every numbered legacy pass
-// is replaced by some modern pass. Pass numbers the default run does not make (the accumulation
-// of footprints above 2x2) are only checked where they exist.
+// legacy pass exists under that id and name in the legacy dump (markers name pass ids of the
+// legacy pass table, and they cannot name a pass that is not there), and every numbered legacy
+// pass is replaced by some modern pass. Passes the default run does not make (the accumulation
+// of footprints above 2x2) are only checked where they exist; tests/modern/
+// twin_pass_links_test.cpp checks the tables themselves.
 class TwinLinks : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
@@ -194,28 +196,28 @@ TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
   const std::string legacyName = "legacy." + modernName.substr(modernName.find('.') + 1);
   const nlohmann::json modern = dumpOf(modernName, "", "twin_links_");
   const nlohmann::json legacy = dumpOf(legacyName, "", "twin_links_of_" + modernName + "_");
-  std::map<int, std::string> legacyPasses;  // number -> name, the numbered ones
+  std::map<std::string, std::string> legacyPasses;  // id -> name, the numbered ones
   for (const nlohmann::json& p : legacy["passes"])
-    if (p["number"].get<int>() >= 1) legacyPasses[p["number"].get<int>()] = p["name"];
-  std::set<int> replaced;
-  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass (\d+) (.*))re");
+    if (p["number"].get<int>() >= 1) legacyPasses[p["id"].get<std::string>()] = p["name"];
+  std::set<std::string> replaced;
+  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass ([0-9a-z]+) (.*))re");
   for (const nlohmann::json& p : modern["passes"]) {
-    EXPECT_FALSE(p["replaces"].empty()) << modernName << " pass " << p["number"];
-    EXPECT_FALSE(p["glsl"].empty()) << modernName << " pass " << p["number"];
+    EXPECT_FALSE(p["replaces"].empty()) << modernName << " pass " << p["id"];
+    EXPECT_FALSE(p["glsl"].empty()) << modernName << " pass " << p["id"];
     for (const nlohmann::json& r : p["replaces"]) {
       std::smatch m;
       const std::string text = r;
       ASSERT_TRUE(std::regex_match(text, m, kNamed)) << text;
       EXPECT_EQ(m[1].str(), legacyName) << text;
-      const int number = std::stoi(m[2].str());
-      if (!legacyPasses.count(number)) continue;
-      EXPECT_EQ(m[3].str(), legacyPasses[number]) << "the legacy dump names pass " << number;
-      replaced.insert(number);
+      const std::string id = m[2].str();
+      if (!legacyPasses.count(id)) continue;
+      EXPECT_EQ(m[3].str(), legacyPasses[id]) << "the legacy dump names pass " << id;
+      replaced.insert(id);
     }
   }
-  for (const auto& [number, name] : legacyPasses)
-    EXPECT_TRUE(replaced.count(number)) << legacyName << " pass " << number << " " << name
-                                        << " is replaced by no pass of " << modernName;
+  for (const auto& [id, name] : legacyPasses)
+    EXPECT_TRUE(replaced.count(id)) << legacyName << " pass " << id << " " << name
+                                    << " is replaced by no pass of " << modernName;
 }
 
 INSTANTIATE_TEST_SUITE_P(Twins, TwinLinks,
