@@ -280,6 +280,11 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
                             {exerciseRenderCommand(e, a), json{{"arguments", args}}.dump()}});
       }
   summary.pictures = int(pictures.size());
+  // DIR itself is made now: an OutputSet whose destination's parent is missing renames its
+  // temporary over the first missing folder, which would replace the gallery and the lessons.
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError("--out: cannot create " + dir + ": " + ec.message());
   OutputSet outputs;
   const std::string teacherDir = outputs.addDirectory("--out", (fs::path(dir) / kTeacherDir).string());
   if (settings.progress) std::cerr << "[course] the artefact gallery" << std::endl;
