@@ -249,7 +249,14 @@ std::string exerciseRenderCommand(const CourseExercise& e, bool sideA) {
 
 std::string exerciseLabLink(const CourseExercise& e, const std::string& labUrl) {
   if (!e.lab) throw InputError("exercise " + e.id + " has no lab link");
-  return labUrl + "?" + galleryLabQuery(e.pair);
+  // The exercises open on the whole frame: the lab's default view, so its zoom and centre
+  // are left out of the link (as the lab leaves them out of its own address).
+  std::string query = galleryLabQuery(e.pair);
+  const std::string wholeFrame = "&zoom=1&center=0.5,0.5";
+  if (query.size() > wholeFrame.size() &&
+      query.compare(query.size() - wholeFrame.size(), wholeFrame.size(), wholeFrame) == 0)
+    query.erase(query.size() - wholeFrame.size());
+  return labUrl + "?" + query;
 }
 
 CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings) {
@@ -303,6 +310,34 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
   writeFileAtomically((fs::path(dir) / "teacher.html").string(), [&](std::ostream& out) { out << teacher; });
   writeFileAtomically((fs::path(dir) / "index.html").string(), [&](std::ostream& out) { out << index; });
   return summary;
+}
+
+std::string writeCourseForReport(const std::string& outDir, bool progress) {
+  const auto start = std::chrono::steady_clock::now();
+  CourseSettings s;
+  s.writeLessons = false;
+  s.lessonsHref = "../lessons/";
+  std::ostringstream h;
+  h << "<section id=course><h2>The course</h2>\n";
+  try {
+    const CourseSummary summary = writeCourse((fs::path(outDir) / "course").string(), s);
+    const long seconds =
+        std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (progress)
+      std::cerr << "[course] " << summary.exercises << " exercises (" << summary.pictures
+                << " pictures) and the gallery (" << summary.artefacts << " artefacts) in "
+                << seconds << " s" << std::endl;
+    h << "<p><a href=\"course/index.html\">The lessons in a teaching order</a> ("
+      << summary.steps << " steps, what each adds, " << summary.exercises
+      << " exercises; <code>shadowlab course --out DIR</code>), <a href=\"course/teacher.html\">"
+         "the teacher's page</a> (answers and expected pictures) and <a "
+         "href=\"course/gallery/index.html\">the artefact gallery</a>.</p>\n";
+  } catch (const std::exception& e) {
+    if (progress) std::cerr << "        course not written: " << e.what() << std::endl;
+    h << "<p class=bad>The course could not be written: " << htmlEscape(e.what()) << "</p>\n";
+  }
+  h << "</section>\n";
+  return h.str();
 }
 
 int runCourseCommand(const cli::Args& args) {

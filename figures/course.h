@@ -81,6 +81,12 @@ struct CourseSummary {
 // then the two pages. Throws InputError for bad input, GlError for a GL failure.
 CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings);
 
+// The main job's course (figures/figures.cpp): writes OUT/course/ with the lessons the main job
+// wrote in OUT/lessons/ (not rendered again), and returns report.html's section linking the
+// course, its teacher's page and its gallery; a course that could not be written is named in
+// red with the reason.
+std::string writeCourseForReport(const std::string& outDir, bool progress);
+
 // `shadowlab course --out DIR [--lab URL]`.
 int runCourseCommand(const cli::Args& args);
 
