@@ -95,6 +95,22 @@ const char* kStyle =
     "nav.toc{break-after:page}section.step{break-inside:avoid-page}"
     "div.exercise{break-inside:avoid}.pair img{max-width:48%}pre,code{background:none}}\n";
 
+// A text of course.json as HTML: escaped, and `...` (a command or an option) as <code>.
+std::string prose(const std::string& text) {
+  std::string out;
+  bool open = false;
+  for (char c : htmlEscape(text)) {
+    if (c == '`') {
+      out += open ? "</code>" : "<code>";
+      open = !open;
+    } else {
+      out += c;
+    }
+  }
+  if (open) throw InputError("course " + courseFile() + ": an unpaired ` in: " + text);
+  return out;
+}
+
 std::string head(const std::string& title) {
   return "<!doctype html>\n<html lang=en>\n<head>\n<meta charset=utf-8>\n<title>" +
          htmlEscape(title) + "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body>\n";
@@ -128,19 +144,19 @@ std::string commandsHtml(const CourseExercise& e, const std::string& labUrl) {
 std::string indexHtml(const Course& c, const CourseSettings& s, const std::string& command) {
   std::ostringstream h;
   h << head("shadowlab — " + c.title) << "<h1>" << htmlEscape(c.title) << "</h1>\n<p>"
-    << htmlEscape(c.intro) << "</p>\n<p>The <a href=\"gallery/index.html\">artefact gallery</a> "
+    << prose(c.intro) << "</p>\n<p>The <a href=\"gallery/index.html\">artefact gallery</a> "
     << "shows each classic artefact as a wrong/right pair; the exercises refer to it.</p>\n"
     << "<nav class=toc><h2>The order</h2>\n<ol>\n";
   for (const CourseStep& st : c.steps)
     h << "<li><a href=\"#step-" << htmlEscape(st.id) << "\">" << htmlEscape(lessonTitle(st.techniques.front()))
-      << "</a><br><span class=adds>adds " << htmlEscape(st.adds) << "</span></li>\n";
+      << "</a><br><span class=adds>adds " << prose(st.adds) << "</span></li>\n";
   h << "</ol>\n<p><a href=\"gallery/index.html\">The artefact gallery</a></p>\n</nav>\n";
   int n = 0;
   for (const CourseStep& st : c.steps) {
     ++n;
     h << "<section class=step id=\"step-" << htmlEscape(st.id) << "\">\n<h2>Step " << n << ": "
       << htmlEscape(lessonTitle(st.techniques.front())) << "</h2>\n<p class=adds>Adds "
-      << htmlEscape(st.adds) << ".</p>\n<p>Lesson: ";
+      << prose(st.adds) << ".</p>\n<p>" << (st.techniques.size() > 1 ? "Lessons: " : "Lesson: ");
     for (size_t i = 0; i < st.techniques.size(); ++i)
       h << (i ? ", " : "") << "<a class=lesson href=\"" << htmlEscape(lessonHref(s, st.techniques[i]))
         << "\">" << htmlEscape(st.techniques[i]) << "</a>";
@@ -148,7 +164,7 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
     int k = 0;
     for (const CourseExercise& e : st.exercises) {
       h << "<div class=exercise id=\"ex-" << htmlEscape(e.id) << "\">\n<h3>Exercise " << n << "."
-        << ++k << "</h3>\n<p><b>Try:</b> " << htmlEscape(e.tryText) << "</p>\n"
+        << ++k << "</h3>\n<p><b>Try:</b> " << prose(e.tryText) << "</p>\n"
         << commandsHtml(e, s.labUrl) << "<p><b>Question:</b> " << htmlEscape(e.question)
         << "</p>\n</div>\n";
     }

@@ -99,6 +99,7 @@ try {
       const m = out.match(/the lab is at (http:\/\/127\.0\.0\.1:\d+\/)/);
       if (m) { clearTimeout(timer); resolve(m[1]); }
     });
+    server.on('error', reject);
     server.on('exit', (code) => reject(new Error('shadowlab serve exited with ' + code)));
   });
   const exercises = courseData();

@@ -7,7 +7,7 @@
 # Exit 77 (ctest: skipped) only when node or Debian's chromium is absent; a missing
 # node_modules is a failure: scripts/setup.sh installs it with `npm ci`.
 set -euo pipefail
-bin=$1
+bin=$(realpath "$1")
 out=$(realpath -m "$2")
 here="$(cd "$(dirname "$0")" && pwd)"
 if ! command -v node >/dev/null 2>&1; then echo "SKIP: node is not installed"; exit 77; fi

@@ -159,36 +159,45 @@ TEST(Course, EveryExerciseCommandParsesAndNamesOptionsItsTechniqueReads) {
   EXPECT_GE(exercises, 2 * int(course.steps.size()));
 }
 
-// The whole course, with small lessons (their size does not change what is linked).
-TEST(Course, WritesEveryPagePictureLessonAndTheGallery) {
-  const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "course" / "whole";
-  fs::remove_all(dir);
-  CourseSettings s;
-  s.lessons = LessonSettings{"brabec", 160, 120, 128};
-  const CourseSummary summary = writeCourse(dir.string(), s);
-  EXPECT_TRUE(summary.lessonErrors.empty());
+// The main job's course (writeCourseForReport): OUT/course/ over the lessons in OUT/lessons/,
+// written here small (their size does not change what is linked).
+TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
+  const fs::path out = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "course" / "main-job";
+  fs::remove_all(out);
   const Course course = loadCourse();
-  EXPECT_EQ(summary.steps, int(course.steps.size()));
-  EXPECT_EQ(summary.pictures, 2 * summary.exercises);
-  EXPECT_TRUE(fs::is_regular_file(dir / "gallery" / "index.html"));
-  for (const CourseStep& st : course.steps) {
-    for (const std::string& t : st.techniques)
-      EXPECT_TRUE(fs::is_regular_file(dir / "lessons" / t / "index.html")) << t;
+  std::vector<std::string> techniques;
+  for (const CourseStep& st : course.steps)
+    techniques.insert(techniques.end(), st.techniques.begin(), st.techniques.end());
+  for (const LessonLink& l : writeLessons((out / "lessons").string(), techniques,
+                                          LessonSettings{"brabec", 160, 120, 128}, false))
+    EXPECT_TRUE(l.error.empty()) << l.technique << ": " << l.error;
+  const std::string section = writeCourseForReport(out.string(), false);
+  for (const char* href : {"course/index.html", "course/teacher.html", "course/gallery/index.html"}) {
+    EXPECT_NE(section.find(std::string("href=\"") + href + "\""), std::string::npos) << section;
+    EXPECT_TRUE(fs::is_regular_file(out / href)) << href;
+  }
+  EXPECT_EQ(section.find("could not"), std::string::npos) << section;
+  const fs::path dir = out / "course";
+  for (const CourseStep& st : course.steps)
     for (const CourseExercise& e : st.exercises)
       for (const char* side : {"-a.png", "-b.png"})
         EXPECT_TRUE(fs::is_regular_file(dir / "teacher" / (e.id + side))) << e.id << side;
-  }
   const std::string index = slurp(dir / "index.html"), teacher = slurp(dir / "teacher.html");
   for (const std::string* page : {&index, &teacher}) {
     EXPECT_NE(page->find("@media print"), std::string::npos);
     EXPECT_NE(page->find("Made by <code>"), std::string::npos);
   }
-  for (const CourseStep& st : course.steps)
+  for (const CourseStep& st : course.steps) {
+    for (const std::string& t : st.techniques)
+      EXPECT_NE(index.find("href=\"../lessons/" + t + "/index.html\""), std::string::npos) << t;
     for (const CourseExercise& e : st.exercises) {
       EXPECT_NE(index.find(htmlEscape(e.question.substr(0, 40))), std::string::npos) << e.id;
-      EXPECT_EQ(index.find(htmlEscape(e.answer.substr(0, 60))), std::string::npos) << e.id << ": answer on the students' page";
+      EXPECT_EQ(index.find(htmlEscape(e.answer.substr(0, 60))), std::string::npos)
+          << e.id << ": answer on the students' page";
       EXPECT_NE(teacher.find(htmlEscape(e.answer.substr(0, 40))), std::string::npos) << e.id;
     }
+  }
+  // Every relative link (the lessons' included) and anchor resolves.
   expectLinksResolve(dir / "index.html");
   expectLinksResolve(dir / "teacher.html");
 }
