@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -293,14 +294,21 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
     Provenance provenance;
   };
   std::vector<Rendered> pictures;
+  std::map<std::vector<std::string>, size_t> made;  // equal commands (but --out) render once
   for (const CourseStep& st : course.steps)
     for (const CourseExercise& e : st.exercises)
       for (bool a : {true, false}) {
+        const std::vector<std::string> arguments = exerciseRenderArguments(e, a);
+        const Provenance provenance{exerciseRenderCommand(e, a),
+                                    json{{"arguments", arguments}}.dump()};
+        const auto same = made.find(arguments);
+        if (same != made.end()) {
+          pictures.push_back({pictureName(e, a), pictures[same->second].image, provenance});
+          continue;
+        }
         if (settings.progress) std::cerr << "[course] " << e.id << (a ? " A" : " B") << std::endl;
-        json args = json::array();
-        for (const std::string& x : exerciseRenderArguments(e, a)) args.push_back(x);
-        pictures.push_back({pictureName(e, a), toRgb(renderGalleryPicture(e.pair, a)),
-                            {exerciseRenderCommand(e, a), json{{"arguments", args}}.dump()}});
+        made[arguments] = pictures.size();
+        pictures.push_back({pictureName(e, a), toRgb(renderGalleryPicture(e.pair, a)), provenance});
       }
   summary.pictures = int(pictures.size());
   // DIR itself is made now: an OutputSet whose destination's parent is missing renames its
