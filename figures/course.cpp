@@ -87,14 +87,15 @@ const char* kStyle =
     "padding:.3em .5em;margin:.2em 0}\n"
     "code{font-size:.88em;background:#f2f2ec;padding:0 .2em}\n"
     ".pair{display:flex;flex-wrap:wrap;gap:1em}.pair figure{margin:0}\n"
-    ".pair img{border:1px solid #999;max-width:100%}\n"
+    ".pair img{border:1px solid #999;max-width:100%;height:auto}\n"
     "figcaption{font-size:.85em;color:#444}\n"
     ".error{color:#b00}\n"
     ".answer{background:#eef7ee;padding:.3em .6em}\n"
     "footer{border-top:1px solid #ccc;margin-top:2em;font-size:.85em;color:#555}\n"
     "@media print{body{max-width:none;font-size:11pt}a{color:inherit;text-decoration:none}"
     "nav.toc{break-after:page}section.step{break-inside:avoid-page}"
-    "div.exercise{break-inside:avoid}.pair img{max-width:48%}pre,code{background:none}}\n";
+    "div.exercise{break-inside:avoid}.pair{flex-wrap:nowrap}.pair figure{flex:1 1 50%}"
+    ".pair img{width:100%}pre,code{background:none}}\n";
 
 // A text of course.json as HTML: escaped, and `...` (a command or an option) as <code>.
 std::string prose(const std::string& text) {
