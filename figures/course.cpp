@@ -53,6 +53,7 @@ CourseExercise exerciseFrom(const json& j, const std::string& defaultSize) {
   e.question = j.at("question").get<std::string>();
   e.answer = j.at("answer").get<std::string>();
   e.lab = j.at("lab").get<bool>();
+  e.gallery = j.value("gallery", std::string());
   GalleryEntry& p = e.pair;
   p.id = e.id;
   p.title = e.question;
@@ -140,6 +141,11 @@ std::string commandsHtml(const CourseExercise& e, const std::string& labUrl) {
   if (e.lab)
     h += "<p><a class=lab href=\"" + htmlEscape(exerciseLabLink(e, labUrl)) +
          "\">open A and B in the lab</a> (<code>shadowlab serve</code> first)</p>\n";
+  if (!e.gallery.empty())
+    for (const GalleryEntry& g : galleryEntries())
+      if (g.id == e.gallery)
+        h += "<p>The gallery's artefact: <a class=gallery href=\"gallery/index.html#" +
+             htmlEscape(g.id) + "\">" + htmlEscape(g.title) + "</a></p>\n";
   return h;
 }
 

@@ -37,6 +37,7 @@ struct CourseExercise {
   std::string question;  // for the student
   std::string answer;    // for the teacher's page: checked against the rendered pictures
   bool lab = false;      // every option is one the lab's URL names (docs/lab.md)
+  std::string gallery;   // the id of the artefact gallery's entry it shows, or empty
   GalleryEntry pair;
 };
 

@@ -128,6 +128,11 @@ TEST(Course, EveryExerciseCommandParsesAndNamesOptionsItsTechniqueReads) {
       ++exercises;
       EXPECT_TRUE(ids.insert(e.id).second) << "two exercises named " << e.id;
       EXPECT_FALSE(e.question.empty() || e.answer.empty() || e.tryText.empty()) << e.id;
+      if (!e.gallery.empty()) {  // names an entry of the artefact gallery
+        bool found = false;
+        for (const GalleryEntry& g : galleryEntries()) found = found || g.id == e.gallery;
+        EXPECT_TRUE(found) << e.id << ": no gallery entry " << e.gallery;
+      }
       for (bool a : {true, false}) {
         const std::string command = exerciseRenderCommand(e, a);
         SCOPED_TRACE(command);
