@@ -17,6 +17,7 @@
 #include "core/pass_dump.h"
 #include "core/provenance.h"
 #include "core/scene_library.h"
+#include "figures/course.h"
 #include "figures/figures.h"
 #include "figures/gallery.h"
 #include "figures/lesson.h"
@@ -44,6 +45,7 @@ usage:
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
   shadowlab gallery --out DIR                      the artefact gallery: DIR/gallery/index.html
+  shadowlab course --out DIR                       the lessons in order, exercises, teacher's page
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
   shadowlab run-legacy --backend glx|osmesa|reference [--keys "h v l"] --frames DIR -- PROGRAM [ARGS]
                                                    an unchanged GL 1.x GLUT program, imaging preloaded
@@ -182,6 +184,7 @@ int run(int argc, char** argv) {
         !args.has("no-progress"), figures::parseOverrides(args));
   if (args.command == "lesson") return figures::runLessonCommand(args);
   if (args.command == "gallery") return figures::runGalleryCommand(args);
+  if (args.command == "course") return figures::runCourseCommand(args);
   if (args.command == "bench") return figures::runBench(args);
   if (args.command == "serve") return lab::runServe(args);
   if (args.command == "plan") {

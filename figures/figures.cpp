@@ -28,6 +28,7 @@
 #include "core/errors.h"
 #include "core/scene_library.h"
 #include "figures/bench.h"
+#include "figures/course.h"
 #include "figures/bench_report.h"
 #include "figures/diagnostics.h"
 #include "figures/disagreement.h"
@@ -868,6 +869,8 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
                                                            lessonsStart)
                                  .count())
               << " s" << std::endl;
+  // The whole set: the course over those lessons (figures/course.h), linked from the report.
+  if (only.empty()) info.lessonsHtml += writeCourseForReport(outDir, progress);
   if (only.empty()) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);

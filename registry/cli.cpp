@@ -176,6 +176,12 @@ const std::vector<CommandSpec>& commandSpecs() {
        "the artefact gallery: wrong/right picture pairs, their render commands and lab links",
        {{"out", "DIR", "writes DIR/gallery/ (index.html and PNGs; replaced as a whole), required"},
         {"lab", "URL", "address of `shadowlab serve` the lab links open [http://127.0.0.1:8080/]"}}},
+      {"course",
+       "the lessons in a teaching order, with exercises, a teacher's page and the gallery",
+       {{"out", "DIR", "writes DIR/index.html, DIR/teacher.html, DIR/teacher/, DIR/gallery/ and "
+                       "DIR/lessons/, required"},
+        {"lab", "URL", "address of `shadowlab serve` the lab links open [http://127.0.0.1:8080/]"},
+        {"no-progress", nullptr, "no progress lines on stderr"}}},
       {"serve",
        "the live lab: a page and its API (/api/techniques, /api/scenes, /api/render, /api/error)",
        {{"host", "ADDRESS",

@@ -1,0 +1,147 @@
+// tests/browser/course_links.mjs — the course (`shadowlab course --out DIR`) in Debian's headless
+// Chromium (puppeteer-core, no browser download):
+//   1. Every link of the course's pages (DIR/index.html, DIR/teacher.html) resolves: a relative
+//      link names a file that exists, and its #anchor an element of the page it opens (loaded
+//      in the browser, so the id is what the browser finds).
+//   2. Every lab link (from <script id=course-data>) parses in the lab's URL scheme: opened
+//      against `shadowlab serve`, the page names no problem with it, writes the same state back
+//      into its own address, and its /api/render requests for A and B carry exactly the
+//      options of the exercise's two `shadowlab render` commands. The render requests are
+//      answered by the test (HTTP 204) instead of the server: what is checked is the state the
+//      link sets, not the frames (browser.lab_links renders the gallery's).
+// usage: SHADOWLAB_BINARY=... node course_links.mjs COURSE_DIR
+import { spawn } from 'node:child_process';
+import { existsSync, readFileSync } from 'node:fs';
+import path from 'node:path';
+import url from 'node:url';
+import puppeteer from 'puppeteer-core';
+
+const kChromium = process.env.SHADOWLAB_CHROMIUM || '/usr/bin/chromium';
+const kStartTimeoutMs = 60000;   // the server prints its URL
+const kStateTimeoutMs = 60000;   // the page has read its URL and asked for both frames
+const binary = process.env.SHADOWLAB_BINARY;
+const dir = path.resolve(process.argv[2]);
+
+let failures = 0;
+function fail(message) {
+  console.error('FAIL: ' + message);
+  failures += 1;
+  process.exitCode = 1;
+}
+
+function courseData() {
+  const html = readFileSync(path.join(dir, 'index.html'), 'utf8');
+  const m = html.match(/<script type="application\/json" id=course-data>([\s\S]*?)<\/script>/);
+  if (!m) throw new Error('no course-data in ' + dir + '/index.html');
+  return JSON.parse(m[1]);
+}
+
+function pairsOf(search, skip = []) {
+  const out = [];
+  for (const [k, v] of new URLSearchParams(search)) if (!skip.includes(k)) out.push(k + '=' + v);
+  return out.sort();
+}
+function commandPairs(args) {
+  const out = [];
+  for (let i = 0; i + 1 < args.length; i += 2) out.push(args[i].replace(/^--/, '') + '=' + args[i + 1]);
+  return out.sort();
+}
+const sameList = (x, y) => JSON.stringify(x) === JSON.stringify(y);
+
+const browser = await puppeteer.launch({
+  executablePath: kChromium,
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync', '--no-first-run'],
+});
+let server = null;
+try {
+  // ---------------------------------------------------------------- 1. links and anchors
+  const idsOf = new Map();  // file -> the ids its page has
+  async function ids(file) {
+    if (!idsOf.has(file)) {
+      const page = await browser.newPage();
+      await page.goto(url.pathToFileURL(file).href, { waitUntil: 'load' });
+      idsOf.set(file, new Set(await page.$$eval('[id]', (xs) => xs.map((x) => x.id))));
+      await page.close();
+    }
+    return idsOf.get(file);
+  }
+  let links = 0, labLinks = 0;
+  for (const name of ['index.html', 'teacher.html']) {
+    const file = path.join(dir, name);
+    const page = await browser.newPage();
+    await page.goto(url.pathToFileURL(file).href, { waitUntil: 'load' });
+    const hrefs = await page.$$eval('a[href]', (as) => as.map((a) => a.getAttribute('href')));
+    const broken = await page.$$eval('img', (is) => is.filter((i) => !(i.complete && i.naturalWidth > 0))
+                                                        .map((i) => i.getAttribute('src')));
+    for (const src of broken) fail(`${name}: broken image ${src}`);
+    await page.close();
+    for (const href of hrefs) {
+      if (/^https?:/.test(href)) { labLinks += 1; continue; }
+      links += 1;
+      const [target, anchor] = href.split('#');
+      const targetFile = target ? path.resolve(path.dirname(file), decodeURIComponent(target)) : file;
+      if (!existsSync(targetFile)) { fail(`${name}: link to a missing file: ${href}`); continue; }
+      if (anchor && !(await ids(targetFile)).has(anchor)) fail(`${name}: no #${anchor} in ${target || name}`);
+    }
+  }
+  console.log(`course pages: ${links} relative links, ${labLinks} lab links`);
+  if (links < 20) fail('the course pages have only ' + links + ' relative links');
+
+  // ---------------------------------------------------------------- 2. lab links
+  server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const base = await new Promise((resolve, reject) => {
+    let out = '';
+    const timer = setTimeout(() => reject(new Error('no URL from shadowlab serve')), kStartTimeoutMs);
+    server.stdout.on('data', (chunk) => {
+      out += chunk;
+      const m = out.match(/the lab is at (http:\/\/127\.0\.0\.1:\d+\/)/);
+      if (m) { clearTimeout(timer); resolve(m[1]); }
+    });
+    server.on('error', reject);
+    server.on('exit', (code) => reject(new Error('shadowlab serve exited with ' + code)));
+  });
+  const exercises = courseData();
+  let opened = 0;
+  for (const e of exercises.filter((x) => x.lab)) {
+    const before = failures;
+    const link = new URL(e.lab_link);
+    const page = await browser.newPage();
+    const requests = { a: [], b: [] };
+    await page.setRequestInterception(true);
+    page.on('request', (r) => {
+      const u = new URL(r.url());
+      if (u.pathname !== '/api/render' && u.pathname !== '/api/error') { r.continue(); return; }
+      const lane = u.searchParams.get('lane');
+      if (u.pathname === '/api/render' && (lane === 'a' || lane === 'b')) requests[lane].push(u.search);
+      r.respond({ status: 204, body: '' });
+    });
+    await page.goto(base + link.search, { waitUntil: 'load' });
+    await page.waitForFunction(() => typeof state !== 'undefined' && state.ready, { timeout: kStateTimeoutMs });
+    for (let waited = 0; !(requests.a.length && requests.b.length) && waited < kStateTimeoutMs; waited += 100)
+      await new Promise((r) => setTimeout(r, 100));
+    const problems = await page.$eval('#link-problems', (x) => (x.hidden ? '' : x.textContent));
+    if (problems) fail(`${e.id}: ${problems}`);
+    for (const lane of ['a', 'b']) {
+      const want = commandPairs(e[lane].arguments);
+      if (!requests[lane].length) fail(`${e.id}: no render request for ${lane}`);
+      for (const q of requests[lane]) {
+        const got = pairsOf(q, ['lane', 'view']);
+        if (!sameList(got, want)) fail(`${e.id} ${lane}: request ${got.join('&')}\n  the command says ${want.join('&')}`);
+      }
+    }
+    const written = await page.evaluate(() => location.search);
+    if (!sameList(pairsOf(written), pairsOf(link.search))) fail(`${e.id}: the page's URL ${written}\n  the link's ${link.search}`);
+    await page.close();
+    opened += 1;
+    console.log(`lab link ${e.id}: ${failures === before ? 'ok' : 'FAILED'}`);
+  }
+  if (opened < 10) fail('only ' + opened + ' lab links in the course');
+} catch (e) {
+  fail(e.stack || String(e));
+} finally {
+  await browser.close();
+  if (server) server.kill('SIGINT');
+}
+console.log(process.exitCode ? 'course links: FAILED' : 'course links: ok');
