@@ -58,7 +58,7 @@ restore() {
 if [ "$dry_run" = 0 ]; then trap restore ERR; fi
 
 DRY_RUN=$dry_run python3 - <<'PYTHON'
-import os, re, subprocess, sys
+import os, re, shutil, subprocess, sys
 
 dry = os.environ.get("DRY_RUN") == "1"
 
@@ -165,6 +165,7 @@ TEXT = (".h", ".cpp", ".inc", ".c", ".glsl", ".cmake", ".txt", ".md", ".sh", ".p
 tracked = subprocess.run(["git", "ls-files"], check=True, capture_output=True,
                          text=True).stdout.splitlines()
 changed = 0
+reformat = {}
 for path in tracked:
     if path == "scripts/restructure_rooms.sh" or path == "docs/rooms.md":
         continue  # these name the old places on purpose
@@ -184,7 +185,19 @@ for path in tracked:
         with open(path, "w", encoding="utf-8") as f:
             f.write(new)
         changed += 1
+        if path.endswith((".h", ".cpp")):
+            lines = [i + 1 for i, (a, b) in enumerate(zip(text.split("\n"), new.split("\n"))) if a != b]
+            reformat[path] = lines
 print("restructure_rooms.sh: rewrote mentions of moved paths in %d files" % changed)
+# The rewritten lines only, through clang-format (.clang-format): include blocks sorted again,
+# comments that grew past 100 columns wrapped. Nothing else of a file changes.
+if reformat and shutil.which("clang-format"):
+    for path, lines in sorted(reformat.items()):
+        run("clang-format", "-i", *["--lines=%d:%d" % (n, n) for n in lines], path)
+    print("restructure_rooms.sh: clang-format on the rewritten lines of %d C++ files" % len(reformat))
+elif reformat:
+    print("restructure_rooms.sh: clang-format not found: rewritten #include blocks are not re-sorted",
+          file=sys.stderr)
 
 # ------------------------------------------------------------------ 3. build files
 def edit(path, steps):
@@ -198,8 +211,7 @@ def edit(path, steps):
     with open(path, "w", encoding="utf-8") as f:
         f.write(text)
 
-ROOMS_CMAKE = r"""\1
-# ---------------------------------------------------------------- teach (layer 4)
+ROOMS_CMAKE = r"""# ---------------------------------------------------------------- teach (layer 4)
 # The inspection and teaching room: pass dumps (index.html, passes.json) and lessons.
 file(GLOB_RECURSE SL_TEACH_SOURCES CONFIGURE_DEPENDS teach/*.cpp)
 add_library(sl_teach STATIC ${SL_TEACH_SOURCES})
@@ -218,7 +230,7 @@ edit("CMakeLists.txt", [
      r"file\(GLOB SL_CORE_SOURCES CONFIGURE_DEPENDS core/\*\.cpp\)",
      "file(GLOB_RECURSE SL_CORE_SOURCES CONFIGURE_DEPENDS core/*.cpp)", 0),
     ("the figures block '# ---...--- figures'",
-     r"(\n)# -+ figures\n", ROOMS_CMAKE + "# ---------------------------------------------------------------- figures\n", 0),
+     r"# -+ figures\n", ROOMS_CMAKE + "# ---------------------------------------------------------------- figures\n", 0),
     ("sl_figures' link line",
      r"target_link_libraries\(sl_figures PUBLIC sl_registry",
      "target_link_libraries(sl_figures PUBLIC sl_teach sl_measure sl_registry", 0),
