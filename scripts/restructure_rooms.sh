@@ -186,15 +186,18 @@ for path in tracked:
             f.write(new)
         changed += 1
         if path.endswith((".h", ".cpp")):
-            lines = [i + 1 for i, (a, b) in enumerate(zip(text.split("\n"), new.split("\n"))) if a != b]
-            reformat[path] = lines
+            lines = [i + 1 for i, (a, b) in enumerate(zip(text.split("\n"), new.split("\n")))
+                     if a != b and b.lstrip().startswith("#")]
+            if lines:
+                reformat[path] = lines
 print("restructure_rooms.sh: rewrote mentions of moved paths in %d files" % changed)
-# The rewritten lines only, through clang-format (.clang-format): include blocks sorted again,
-# comments that grew past 100 columns wrapped. Nothing else of a file changes.
+# The rewritten #include lines only, through clang-format (.clang-format), so that each include
+# block is sorted again. Nothing else of a file changes (a comment that grew past 100 columns
+# stays as it is: clang-format would break the code line it trails instead).
 if reformat and shutil.which("clang-format"):
     for path, lines in sorted(reformat.items()):
         run("clang-format", "-i", *["--lines=%d:%d" % (n, n) for n in lines], path)
-    print("restructure_rooms.sh: clang-format on the rewritten lines of %d C++ files" % len(reformat))
+    print("restructure_rooms.sh: clang-format on the rewritten #include lines of %d C++ files" % len(reformat))
 elif reformat:
     print("restructure_rooms.sh: clang-format not found: rewritten #include blocks are not re-sorted",
           file=sys.stderr)
