@@ -160,6 +160,42 @@ def rewrite_mention(m):
 test_names = [(re.compile(r"\blegacy_gl\.Roofline\b"), "measure.Roofline"),
               (re.compile(r"\bfigures\.Bench"), "measure.Bench")]
 
+# A // comment line that the longer paths pushed past the 100 columns of .clang-format is
+# broken at its last space before them, and the words that did not fit are carried into the
+# next line of the same comment paragraph (same prefix), which is broken in turn if it then
+# is too long; after the paragraph's last line they make a new line.
+COLUMNS = 100
+def rewrap(text, new):
+    before = set(text.split("\n"))
+    lines = new.split("\n")
+    out = []
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        m = re.match(r"^(\s*//+\s*)\S", line)
+        if line in before or len(line) <= COLUMNS or not m:
+            out.append(line)
+            i += 1
+            continue
+        prefix = m.group(1)
+        while True:
+            cut = line.rfind(" ", len(prefix), COLUMNS + 1)
+            if len(line) <= COLUMNS or cut <= len(prefix):
+                out.append(line)
+                i += 1
+                break
+            out.append(line[:cut])
+            carry = line[cut + 1:]
+            nxt = lines[i + 1] if i + 1 < len(lines) else None
+            if nxt is not None and nxt.startswith(prefix) and nxt[len(prefix):len(prefix) + 1].strip():
+                line = prefix + carry + " " + nxt[len(prefix):]
+                i += 1
+            else:
+                line = prefix + carry
+                lines.insert(i + 1, line)
+                i += 1
+    return "\n".join(out)
+
 TEXT = (".h", ".cpp", ".inc", ".c", ".glsl", ".cmake", ".txt", ".md", ".sh", ".py", ".json",
         ".mjs", ".js", ".html", ".css", ".cff", ".yml", ".yaml", ".map", "")
 tracked = subprocess.run(["git", "ls-files"], check=True, capture_output=True,
@@ -181,13 +217,16 @@ for path in tracked:
     new = mention.sub(rewrite_mention, text)
     for rule, replacement in test_names:
         new = rule.sub(replacement, new)
+    if new != text and path.endswith((".h", ".cpp", ".inc", ".glsl")):
+        new = rewrap(text, new)
     if new != text:
         with open(path, "w", encoding="utf-8") as f:
             f.write(new)
         changed += 1
         if path.endswith((".h", ".cpp")):
-            lines = [i + 1 for i, (a, b) in enumerate(zip(text.split("\n"), new.split("\n")))
-                     if a != b and b.lstrip().startswith("#")]
+            before = set(text.split("\n"))
+            lines = [i + 1 for i, b in enumerate(new.split("\n"))
+                     if b.lstrip().startswith("#") and b not in before]
             if lines:
                 reformat[path] = lines
 print("restructure_rooms.sh: rewrote mentions of moved paths in %d files" % changed)
