@@ -3,6 +3,8 @@
 # (docs/rooms.md describes the target layout and why each file goes where).
 #
 #   usage: bash scripts/restructure_rooms.sh [--dry-run]
+#          bash scripts/restructure_rooms.sh --mentions   (after merging a branch made before the
+#            move: rewrites the old paths its files name, moves nothing, stages nothing)
 #
 # What it does, in one go, on a clean checkout:
 #   1. decides every move from patterns (not from a fixed file list, so files it has never
@@ -28,16 +30,31 @@ set -euo pipefail
 cd "$(git rev-parse --show-toplevel)"
 
 dry_run=0
+mode=move
 case "${1:-}" in
   --dry-run) dry_run=1 ;;
+  --mentions) mode=mentions ;;
   "") ;;
-  *) echo "restructure_rooms.sh: unknown argument '$1' (usage: [--dry-run])" >&2; exit 2 ;;
+  *) echo "restructure_rooms.sh: unknown argument '$1' (usage: [--dry-run | --mentions])" >&2; exit 2 ;;
 esac
 
 # Done state: the layering test knows the measuring room, and core/ has its parts.
 if grep -q 'kLayer_measure' tests/layering/include_layers.cmake 2>/dev/null && [ -d core/technique ]; then
+  if [ "$mode" = mentions ]; then
+    # After a late merge: rewrite the old paths the merged files still name, move nothing.
+    MODE=mentions DRY_RUN=0 python3 - <<'PYTHON'
+import os
+exec(open(os.path.join("scripts", "restructure_rooms.sh")).read().split("#@PYTHON@\n")[1].split("\nPYTHON\n")[0])
+PYTHON
+    exit 0
+  fi
   echo "restructure_rooms.sh: the tree is already in rooms (tests/layering/include_layers.cmake has kLayer_measure, core/technique/ exists); nothing to do"
+  echo "  (after merging a branch made before the move: bash scripts/restructure_rooms.sh --mentions)"
   exit 0
+fi
+if [ "$mode" = mentions ]; then
+  echo "restructure_rooms.sh: --mentions is for a tree already in rooms; this one is not" >&2
+  exit 1
 fi
 if [ -e measure ] || [ -e teach/pass_dump.h ] || [ -d core/technique ] || [ -d core/gl ]; then
   echo "restructure_rooms.sh: the tree is half restructured (measure/, teach/pass_dump.h, core/gl/ or core/technique/ exists but the layering test has no measure layer); refusing" >&2
@@ -57,10 +74,12 @@ restore() {
 }
 if [ "$dry_run" = 0 ]; then trap restore ERR; fi
 
-DRY_RUN=$dry_run python3 - <<'PYTHON'
+MODE=move DRY_RUN=$dry_run python3 - <<'PYTHON'
+#@PYTHON@
 import os, re, shutil, subprocess, sys
 
 dry = os.environ.get("DRY_RUN") == "1"
+mentions_only = os.environ.get("MODE") == "mentions"
 
 def run(*args):
     subprocess.run(args, check=True)
@@ -123,19 +142,42 @@ for old, new in [("tests/legacy_gl/roofline_test.cpp", "tests/measure/roofline_t
     if os.path.exists(old):
         moves.append((old, new))
 
+if mentions_only:
+    # The moves as they were, read back from the new places (the same rules, reversed). Files a
+    # late merge added at an old place are named: move them by hand (git mv) and run again.
+    for old, new in moves:
+        print("restructure_rooms.sh: %s is at an old place; move it by hand: git mv %s %s" % (old, old, new),
+              file=sys.stderr)
+    moves = []
+    back = [(r"^core/(base|gl|scene|technique)/([^/]+)$", r"core/\2"),
+            (r"^teach/(pass_dump[^/]*)$", r"core/\1"),
+            (r"^teach/(lesson[^/]*)$", r"figures/\1"),
+            (r"^measure/legacy_(benchmark[^/]*)$", r"legacy_gl/\1"),
+            (r"^measure/(roofline[^/]*)$", r"legacy_gl/\1"),
+            (r"^measure/(volumes_bench[^/]*)$", r"modern/\1"),
+            (r"^measure/((bench|stability)[^/]*)$", r"figures/\1"),
+            (r"^tests/measure/(roofline_test\.cpp)$", r"tests/legacy_gl/\1"),
+            (r"^tests/measure/(bench_test\.cpp)$", r"tests/figures/\1")]
+    for folder in ["core", "teach", "measure", "tests/measure"]:
+        for path in files_under(folder):
+            for rule, old in back:
+                if re.match(rule, path):
+                    moves.append((re.sub(rule, old, path), path))
+                    break
 for path in unplaced:
     print("restructure_rooms.sh: no rule places %s; it stays in core/ (layer 0)" % path,
           file=sys.stderr)
-for old, new in moves:
+for old, new in ([] if mentions_only else moves):
     if os.path.exists(new):
         sys.exit("restructure_rooms.sh: %s exists already (would be the new place of %s)" % (new, old))
-print("restructure_rooms.sh: %d files move" % len(moves))
-for old, new in moves:
-    print("  %-42s -> %s" % (old, new))
+if not mentions_only:
+    print("restructure_rooms.sh: %d files move" % len(moves))
+    for old, new in moves:
+        print("  %-42s -> %s" % (old, new))
 if dry:
     sys.exit(0)
 
-for old, new in moves:
+for old, new in ([] if mentions_only else moves):
     os.makedirs(os.path.dirname(new), exist_ok=True)
     run("git", "mv", old, new)
 
@@ -240,6 +282,9 @@ if reformat and shutil.which("clang-format"):
 elif reformat:
     print("restructure_rooms.sh: clang-format not found: rewritten #include blocks are not re-sorted",
           file=sys.stderr)
+
+if mentions_only:
+    sys.exit(0)  # the build files and docs were edited by the move itself
 
 # ------------------------------------------------------------------ 3. build files
 def edit(path, steps):
