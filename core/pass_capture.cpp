@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/gl.h"
 #include "core/gl_trace.h"
+#include "core/passes.h"
 
 namespace sl {
 namespace {

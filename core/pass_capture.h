@@ -14,10 +14,11 @@
 #include <vector>
 
 #include "core/pass_table.h"
-#include "core/passes.h"
 #include "core/technique.h"
 
 namespace sl {
+
+class Passes;  // core/passes.h (which includes this header)
 
 // The depth value a cleared depth buffer holds (glClearDepth's default): "nothing drawn".
 constexpr float kClearDepth = 1.0f;
