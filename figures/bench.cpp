@@ -1339,6 +1339,7 @@ nlohmann::json effectiveParamsJson(const BenchRow& row) {
 }
 
 bool timesWithinSpread(const BenchRow& a, const BenchRow& b) {
+  if (a.framesTimed == 0 || b.framesTimed == 0) return false;  // no timing statistics to judge
   return a.q1Ms <= b.q3Ms && b.q1Ms <= a.q3Ms;
 }
 

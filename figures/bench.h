@@ -213,7 +213,8 @@ std::string benchRowJsonLine(const BenchRow& row);
 // (shadow_map, filter, precision); the JSON's "params" and the CSV's "params" column.
 nlohmann::json effectiveParamsJson(const BenchRow& row);
 // Whether two rows' median frame times cannot be ordered by this run: their interquartile
-// ranges [q1, q3] overlap (a claim or a plot that ranks by time says so).
+// ranges [q1, q3] overlap (a claim or a plot that ranks by time says so). False when either
+// has no timed frames (a row that did not run, or one made without timing statistics).
 bool timesWithinSpread(const BenchRow& a, const BenchRow& b);
 // The group a row is Pareto-ranked in: scene, window and camera orbit ("brabec|256x192|").
 std::string rankGroup(const std::string& scene, int width, int height, const std::string& orbit);

@@ -424,6 +424,18 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   const ClaimCheck* measured = claim(fillClaims, "hybrid-vs-volumes", kFillBoundScene);
   ASSERT_NE(measured, nullptr);
   EXPECT_EQ(measured->verdict, "agrees") << "same masks, half the time: " << measured->measured;
+  // The same medians with spreads that overlap: the verdict says the time order is not firm.
+  BenchResult spread = fill;
+  for (BenchRow& row : spread.rows) {
+    row.framesTimed = 5;
+    row.q1Ms = 0.5;
+    row.q3Ms = 2.5;
+  }
+  const std::vector<ClaimCheck> spreadClaims = checkClaims(spread);
+  const ClaimCheck* unsure = claim(spreadClaims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(unsure, nullptr);
+  EXPECT_EQ(unsure->verdict.rfind("agrees (time ranking within the spread", 0), 0u)
+      << unsure->verdict;
   for (const ClaimCheck& c : claims) {
     if (c.verdict.rfind("not measured", 0) != 0 && c.scene != "-") {
       EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
@@ -619,6 +631,7 @@ TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {
 
 TEST(BenchTiming, SpreadIsTheInterquartileRangeAndLargeAboveTheNamedShare) {
   BenchRow r = row("a", 10.0, 0.1);
+  r.framesTimed = 5;
   r.q1Ms = 9.0;
   r.q3Ms = 9.0 + kSpreadFlagRatio * 10.0;  // exactly at the bound: not flagged
   EXPECT_DOUBLE_EQ(r.iqrMs(), kSpreadFlagRatio * 10.0);
@@ -629,6 +642,8 @@ TEST(BenchTiming, SpreadIsTheInterquartileRangeAndLargeAboveTheNamedShare) {
   BenchRow b = row("b", 12.0, 0.1);
   b.q1Ms = 11.0;
   b.q3Ms = 13.0;
+  EXPECT_FALSE(timesWithinSpread(r, b)) << "b has no timed frames: nothing to judge";
+  b.framesTimed = 5;
   EXPECT_TRUE(timesWithinSpread(r, b)) << "[9, 12] and [11, 13] overlap";
   b.q1Ms = 12.5;
   EXPECT_FALSE(timesWithinSpread(r, b));
