@@ -234,8 +234,8 @@ def sweep(spec, client=None, task_rows=_SWEEP_TASK_ROWS):
 
     client=None: in this process. client=dask.distributed.Client(...): the rows run as Dask
     tasks on its workers (each worker process imports this module and makes its own GL; nothing
-    is shared), and the DataFrame is the same as the local run's (the times differ, as any two
-    runs' do). task_rows: at most this many rows of one view per task (each process renders a
+    is shared), and the DataFrame is the same as the local run's (the times, their spread, the
+    load and the date differ, as any two runs' do). task_rows: at most this many rows of one view per task (each process renders a
     view's references once, for its first task of that view).
     """
     import pandas as pd
