@@ -40,6 +40,7 @@ usage:
   shadowlab compare --scene S --a T1 --b T2 [render options] [--a-param K=V] [--b-param K=V]
                     [--diff diff.png] [--threshold X]
   shadowlab bench  [--quick] [--scene S] [--technique T] [--csv FILE]
+  shadowlab bench  --sweep FILE.json [--csv FILE]  | --merge A.jsonl --merge B.jsonl ...
   shadowlab plan   --scene S --technique T         passes kept and passes left out, and why
   shadowlab figures [--out DIR] [--only ID ...]    the main job: every figure + report.html
   shadowlab figures --only ID --set key=value ...  one figure re-made with parameters changed

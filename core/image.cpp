@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/errors.h"
+#include "core/png_text.h"
 
 namespace sl {
 namespace {
@@ -320,6 +321,75 @@ Image sideBySide(const std::vector<Image>& images, int gap) {
 
 bool allFinite(const Image& image) {
   return std::all_of(image.data.begin(), image.data.end(), [](float v) { return std::isfinite(v); });
+}
+
+}  // namespace sl
+
+namespace sl {
+
+// core/png_text.h: the pixels and their format as they are, the text chunks replaced.
+void addPngProvenance(const std::string& path, const Provenance& provenance) {
+  File in(std::fopen(path.c_str(), "rb"));
+  if (!in) throw InputError("cannot open " + path + ": " + std::strerror(errno));
+  png_structp read = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop readInfo = read ? png_create_info_struct(read) : nullptr;
+  if (read == nullptr || readInfo == nullptr) {
+    png_destroy_read_struct(&read, &readInfo, nullptr);
+    throw InputError("libpng could not start reading " + path);
+  }
+  if (setjmp(png_jmpbuf(read))) {
+    png_destroy_read_struct(&read, &readInfo, nullptr);
+    throw InputError("cannot read " + path + ": not a PNG libpng can decode");
+  }
+  png_init_io(read, in.get());
+  png_read_png(read, readInfo, PNG_TRANSFORM_IDENTITY, nullptr);
+  in.reset();
+  png_uint_32 width = 0, height = 0;
+  int bitDepth = 0, colorType = 0, interlace = 0, compression = 0, filter = 0;
+  png_get_IHDR(read, readInfo, &width, &height, &bitDepth, &colorType, &interlace, &compression,
+               &filter);
+  png_bytepp rows = png_get_rows(read, readInfo);
+  // Copies what the output needs from the decoded file: the palette and transparency when
+  // there are any, and the text chunks whose keywords the provenance does not replace.
+  png_colorp palette = nullptr;
+  int paletteSize = 0;
+  const bool hasPalette = png_get_PLTE(read, readInfo, &palette, &paletteSize) != 0;
+  png_bytep trans = nullptr;
+  int transCount = 0;
+  png_color_16p transColor = nullptr;
+  const bool hasTrans = png_get_tRNS(read, readInfo, &trans, &transCount, &transColor) != 0;
+  const std::string temp = path + ".part-" + std::to_string(::getpid());
+  File out(std::fopen(temp.c_str(), "wb"));
+  if (!out) {
+    png_destroy_read_struct(&read, &readInfo, nullptr);
+    throw InputError("cannot write " + path + ": " + std::strerror(errno));
+  }
+  png_structp write = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop writeInfo = write ? png_create_info_struct(write) : nullptr;
+  if (write == nullptr || writeInfo == nullptr || setjmp(png_jmpbuf(write))) {
+    png_destroy_write_struct(&write, &writeInfo);
+    png_destroy_read_struct(&read, &readInfo, nullptr);
+    out.reset();
+    std::remove(temp.c_str());
+    throw InputError("libpng failed while writing " + path);
+  }
+  png_init_io(write, out.get());
+  png_set_compression_level(write, kFilePngCompression);
+  png_set_IHDR(write, writeInfo, width, height, bitDepth, colorType, interlace, compression,
+               filter);
+  if (hasPalette) png_set_PLTE(write, writeInfo, palette, paletteSize);
+  if (hasTrans) png_set_tRNS(write, writeInfo, trans, transCount, transColor);
+  setProvenanceText(write, writeInfo, provenance);
+  png_set_rows(write, writeInfo, rows);
+  png_write_png(write, writeInfo, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_destroy_write_struct(&write, &writeInfo);
+  png_destroy_read_struct(&read, &readInfo, nullptr);
+  const bool flushed = std::fflush(out.get()) == 0;
+  out.reset();
+  if (!flushed || std::rename(temp.c_str(), path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw InputError("cannot write " + path + ": " + std::strerror(errno));
+  }
 }
 
 }  // namespace sl

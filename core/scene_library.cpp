@@ -421,6 +421,15 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
   }
 }
 
+std::string sceneFilePath(const std::string& nameOrPath) {
+  const auto builtins = builtinSceneNames();
+  if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end()) return "";
+  const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
+                          nameOrPath.find('/') != std::string::npos;
+  return namesAFile ? nameOrPath
+                    : (fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json")).string();
+}
+
 Scene loadScene(const std::string& nameOrPath) {
   const auto builtins = builtinSceneNames();
   if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end())
@@ -429,8 +438,7 @@ Scene loadScene(const std::string& nameOrPath) {
   // there, the message names that file (not the list of scene names).
   const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
                           nameOrPath.find('/') != std::string::npos;
-  const fs::path path = namesAFile ? fs::path(nameOrPath)
-                                   : fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json");
+  const fs::path path = sceneFilePath(nameOrPath);
   std::error_code ec;
   if (!fs::exists(path, ec)) {
     if (namesAFile) throw InputError("scene file " + nameOrPath + ": no such file");

@@ -19,6 +19,9 @@ std::string assetDirectory();               // $SHADOWLAB_ASSETS or the source t
 
 // Throws InputError for an unknown name or a malformed file.
 Scene loadScene(const std::string& nameOrPath);
+// The file a --scene argument reads: "" for a built-in scene, else the path loadScene opens
+// (the argument itself, or assets/scenes/<name>.json); not checked for existence here.
+std::string sceneFilePath(const std::string& nameOrPath);
 Scene builtinScene(const std::string& name);  // throws InputError if unknown
 // Parses a JSON scene document; `baseDir` (the scene file's folder) resolves mesh paths.
 Scene parseSceneJson(const std::string& text, const std::string& sourceName,

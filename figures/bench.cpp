@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
@@ -34,14 +35,18 @@
 #include "core/decimal.h"
 #include "core/errors.h"
 #include "core/frame_timing.h"
+#include "core/gl.h"
 #include "core/output_files.h"
+#include "core/png_text.h"
 #include "core/provenance.h"
 #include "core/plan.h"
 #include "core/scene_library.h"
 #include "imaging/imaging.h"
 #include "reference/reference.h"
+#include "registry/commands.h"  // optionsJson: the common options a technique reads
 #include "registry/registry.h"
 #include "registry/twins.h"
+#include "figures/sweep.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -160,7 +165,48 @@ struct References {
   double hardTemporal = -1, softTemporal = -1, hardPointTemporal = -1;
   // The scored pixels (the same for every truth of a frame: the pixel centres' categories).
   const Image& scored() const { return hardPoint.scored; }
+  // The back end's GL strings (a small probe context), for rows that made no context.
+  std::string glVendor, glRenderer, glVersion;
 };
+
+// GL_VENDOR, GL_RENDERER and GL_VERSION of a context.
+void readGlStrings(GlContext& context, std::string& vendor, std::string& renderer,
+                   std::string& version) {
+  const GLubyte* v = context.dispatch().GetString(GL_VENDOR);
+  vendor = v ? reinterpret_cast<const char*>(v) : "";
+  renderer = context.caps().renderer;
+  version = context.caps().version;
+}
+
+// The back end's strings from a context of its own (the size of a few texels: nothing is drawn).
+void probeGlStrings(Backend backend, References& r) {
+  constexpr int kProbeSide = 16;
+  try {
+    ContextSpec spec;
+    spec.backend = backend;
+    spec.width = spec.height = kProbeSide;
+    spec.accumulation = false;
+    auto context = GlContext::create(spec);
+    readGlStrings(*context, r.glVendor, r.glRenderer, r.glVersion);
+  } catch (const std::exception& e) {
+    r.glVendor = r.glRenderer = r.glVersion = std::string("unknown: ") + e.what();
+  }
+}
+
+// The quartile q (0.25, 0.75) of `sorted` by linear interpolation between order statistics.
+double quartile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return 0.0;
+  const double at = q * double(sorted.size() - 1);
+  const size_t lo = size_t(std::floor(at)), hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (at - double(lo)) * (sorted[hi] - sorted[lo]);
+}
+void setSpread(BenchRow& row, std::vector<double> samples) {
+  std::sort(samples.begin(), samples.end());
+  row.framesTimed = int(samples.size());
+  row.q1Ms = quartile(samples, 0.25);
+  row.q3Ms = quartile(samples, 0.75);
+  row.minFrameMs = samples.empty() ? 0.0 : samples.front();
+}
 RenderParams areaParams(const RenderParams& p) {
   RenderParams a = p;
   a.extra[reference::kPixelParam] = reference::kPixelArea;
@@ -170,6 +216,7 @@ References renderReferences(const Scene& scene, const RenderParams& base, bool w
                             bool temporal) {
   References r;
   r.withSoft = withSoft;
+  probeGlStrings(base.backend, r);
   r.hardPoint = renderShadowTruth(scene, base, ErrorMetric::kPoint, false);
   r.hard = renderShadowTruth(scene, base, ErrorMetric::kArea, false);
   if (withSoft) {
@@ -214,6 +261,11 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
   row.technique = t.name;
   row.variant = v.label;
   row.params = v.params;
+  row.backend = backendName(v.params.backend);
+  row.glVendor = refs.glVendor;
+  row.glRenderer = refs.glRenderer;
+  row.glVersion = refs.glVersion;
+  row.loadBefore = readLoadAverage();
   row.primaryReference =
       approximatesSoftShadows(t) && refs.withSoft ? kPrimarySoftReference : kPrimaryHardReference;
   const auto pixel = v.params.extra.find(reference::kPixelParam);
@@ -226,6 +278,9 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
     const Frame& f = soft ? (areaForm ? refs.soft : refs.softPoint).frame
                           : (areaForm ? refs.hard : refs.hardPoint).frame;
     row.frameMs = row.wallMs = f.totalMilliseconds();
+    setSpread(row, {row.frameMs});
+    row.loadAfter = readLoadAverage();
+    row.date = utcIsoNow();
     row.passes = f.passes;
     row.counters = f.counters;
     measureAgainstReferences(row, f.visibility, refs);
@@ -240,6 +295,7 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
     checkParams(t, v.params, 0);
     auto context = GlContext::create(contextFor(t, v.params));
     checkParams(t, v.params, context->caps().maxTextureSize);
+    readGlStrings(*context, row.glVendor, row.glRenderer, row.glVersion);
     if (t.needs.profile == Profile::kCompatibility) imaging::install(*context);
     // The steady-state median (core/frame_timing.h) on this context, which the temporal frame
     // below reuses; quick mode's budget times a slow variant over one frame.
@@ -248,8 +304,10 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
                              quick ? kSlowFrameMs : std::numeric_limits<double>::infinity(), 1};
     const SteadyTiming timing =
         timeSteadyState([&] { return t.render(*context, scene, v.params); }, counts, &last);
+    row.loadAfter = readLoadAverage();
     row.frameMs = timing.frameMs;
     row.wallMs = timing.wallMs;
+    setSpread(row, timing.frameSamples);
     row.passes = timing.passes;
     row.counters = last.counters;
     if (!allFinite(last.visibility)) throw GlError("visibility mask has NaN or Inf");
@@ -266,22 +324,47 @@ BenchRow measureVariant(const Technique& t, const Scene& scene, const BenchVaria
   } catch (const GlError& e) {
     row.status = std::string("GL error: ") + e.what();
   }
+  if (row.loadAfter < 0) row.loadAfter = readLoadAverage();
+  row.date = utcIsoNow();
   return row;
 }
 
 nlohmann::json errorJson(const ErrorSet& e) { return toJson(e); }
 
 nlohmann::json rowJson(const BenchRow& r, bool withSoft) {
-  nlohmann::json j = {
-      {"scene", r.scene},   {"technique", r.technique},     {"variant", r.variant},
-      {"status", r.status}, {"params", describe(r.params)}, {"reference", r.primaryReference}};
+  using Json = nlohmann::json;
+  const Json params = effectiveParamsJson(r);
+  Json j = {{"scene", r.scene},
+            {"technique", r.technique},
+            {"variant", r.variant},
+            {"status", r.status},
+            {"reference", r.primaryReference},
+            {"width", r.params.width},
+            {"height", r.params.height},
+            {"orbit", r.orbit.empty() ? Json(nullptr) : Json(r.orbit)}};
+  // The common options: the value used, or null where the technique does not read it.
+  for (const char* option : {"shadow_map", "filter", "precision"})
+    j[option] = params.contains(option) ? params.at(option) : Json(nullptr);
+  j["params"] = params;
   // null: a reference (the truth, not ranked) or a row that did not run.
-  j["pareto_rank"] = r.paretoRank > 0 ? nlohmann::json(r.paretoRank) : nlohmann::json(nullptr);
-  // What made the row (core/provenance.h), as render's and compare's JSON lines say it.
+  j["pareto_rank"] = r.paretoRank > 0 ? Json(r.paretoRank) : Json(nullptr);
+  // What made the row (core/provenance.h), as render's and compare's JSON lines say it, and
+  // where and when it ran.
   j["commit"] = buildCommit();
   j["command"] = commandLine();
+  j["backend"] = r.backend;
+  j["gl_vendor"] = r.glVendor;
+  j["gl_renderer"] = r.glRenderer;
+  j["gl_version"] = r.glVersion;
+  j["date"] = r.date;
+  j["load_before"] = r.loadBefore >= 0 ? Json(r.loadBefore) : Json(nullptr);
+  j["load_after"] = r.loadAfter >= 0 ? Json(r.loadAfter) : Json(nullptr);
   if (r.status != "ok") return j;
   j["frame_ms"] = r.frameMs;
+  j["frames_timed"] = r.framesTimed;
+  j["frame_iqr_ms"] = r.iqrMs();
+  j["frame_min_ms"] = r.minFrameMs;
+  j["spread_large"] = r.spreadLarge();
   j["wall_ms"] = r.wallMs;
   j["error"] = errorJson(r.primary());
   j["vs_reference_hard_area"] = errorJson(r.hard);
@@ -757,8 +840,11 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
 }
 
 void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
-  out << "scene,technique,variant,status,reference,width,height,shadow_map,filter,precision,"
-         "params,frame_ms,wall_ms,pareto_rank";
+  // The JSON line's fields as columns: the common options empty where the technique does not
+  // read them, "params" the same JSON object as the line's (CSV-quoted, quotes doubled).
+  out << "scene,technique,variant,status,reference,width,height,orbit,shadow_map,filter,"
+         "precision,params,frame_ms,frames_timed,frame_iqr_ms,frame_min_ms,spread_large,wall_ms,"
+         "pareto_rank";
   // hard_*, soft_*: against the pixel-integrated references (pixel=area, the primary truth);
   // hard_point_*, soft_point_*: against the pixel-centre references.
   for (const char* ref : {"hard", "soft", "hard_point", "soft_point"})
@@ -766,20 +852,34 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
                           "band_share_above_half", "leak_share"})
       out << "," << ref << "_" << m;
   // The one error definition's scored pixels (docs/error.md): how many, and the share left out.
-  out << ",metric,scored_pixels,left_out_share,temporal_change,reference_temporal_change,passes\n";
+  out << ",metric,scored_pixels,left_out_share,temporal_change,reference_temporal_change,passes,"
+         "load_before,load_after,backend,gl_vendor,gl_renderer,gl_version,date,commit,command\n";
+  auto csvField = [](const std::string& s) {  // RFC 4180: in quotes, inner quotes doubled
+    std::string out = "\"";
+    for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+  };
   auto quoted = [](std::string s) {
     for (char& c : s)
       if (c == '"') c = '\'';
     return "\"" + s + "\"";
   };
   for (const BenchRow& r : rows) {
-    std::string extra;
-    for (const auto& [k, v] : r.params.extra) extra += (extra.empty() ? "" : " ") + k + "=" + v;
+    const nlohmann::json params = effectiveParamsJson(r);
+    auto common = [&](const char* key) -> std::string {  // empty: not read by the technique
+      if (!params.contains(key)) return "";
+      return params.at(key).is_string() ? params.at(key).get<std::string>() : params.at(key).dump();
+    };
+    const bool ran = r.status == "ok";
+    auto timing = [&](double v) { return ran ? formatNumber(v) : std::string(); };
     out << r.scene << "," << r.technique << "," << quoted(r.variant) << "," << quoted(r.status)
         << "," << r.primaryReference << "," << r.params.width << "," << r.params.height << ","
-        << r.params.shadowMapTexels << "," << r.params.filter << ","
-        << precisionName(r.params.precision) << "," << quoted(extra) << "," << r.frameMs << ","
-        << r.wallMs << ",";
+        << quoted(r.orbit) << "," << common("shadow_map") << "," << common("filter") << ","
+        << common("precision") << ","
+        << csvField(params.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)) << ","
+        << r.frameMs << "," << (ran ? std::to_string(r.framesTimed) : "") << ","
+        << timing(r.iqrMs()) << "," << timing(r.minFrameMs) << ","
+        << (ran ? (r.spreadLarge() ? "1" : "0") : "") << "," << r.wallMs << ",";
     if (r.paretoRank > 0) out << r.paretoRank;  // empty: a reference, or a row that did not run
     for (const ErrorSet* e : {&r.hard, &r.soft, &r.hardPoint, &r.softPoint})
       out << "," << e->all.rmse << "," << e->all.maxAbs << "," << e->all.shareAboveHalf << ","
@@ -795,7 +895,14 @@ void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows) {
     std::string passes;
     for (const PassTime& p : r.passes)
       passes += (passes.empty() ? "" : "; ") + p.name + "=" + std::to_string(p.milliseconds);
-    out << "," << quoted(passes) << "\n";
+    out << "," << quoted(passes);
+    for (double load : {r.loadBefore, r.loadAfter}) {
+      out << ",";
+      if (load >= 0) out << load;
+    }
+    out << "," << quoted(r.backend) << "," << quoted(r.glVendor) << "," << quoted(r.glRenderer)
+        << "," << quoted(r.glVersion) << "," << r.date << "," << quoted(buildCommit()) << ","
+        << csvField(commandLine()) << "\n";
   }
 }
 
@@ -924,6 +1031,9 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
       line << k + 1 << ": " << r.technique << " " << r.variant << " (" << std::fixed
            << std::setprecision(1) << r.frameMs << " ms, RMSE " << std::setprecision(4)
            << r.primary().all.rmse << ")";
+      // The front is ordered by time: say where this run cannot order two neighbours.
+      if (k > 0 && timesWithinSpread(result.rows[front[k - 1]], r))
+        line << " [time within the spread of " << k << ": interquartile ranges overlap]";
       out.pareto[scene].push_back(line.str());
     }
     for (const std::string& family : families) {
@@ -1010,6 +1120,17 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
         std::cerr << "bench: no plot for " << scene << " " << family << " (gnuplot failed)\n";
         continue;
       }
+      // The same tEXt chunks as our own PNGs (core/png_text.h), added after gnuplot drew it.
+      const nlohmann::json parameters = {
+          {"plot", "visibility error against frame time"}, {"scene", scene},
+          {"family", family}, {"techniques", techniques}, {"data", dat},
+          {"script", base.string() + ".gp"}, {"commit", buildCommit()}};
+      try {
+        addPngProvenance(png, {commandLine(), parameters.dump(-1, ' ', true,
+                                                              nlohmann::json::error_handler_t::replace)});
+      } catch (const InputError& e) {
+        std::cerr << "bench: " << png << ": no provenance chunks (" << e.what() << ")\n";
+      }
       out.plots.push_back({scene, family, png});
     }
   }
@@ -1052,7 +1173,72 @@ BenchOptions parseBenchOptions(const cli::Args& args) {
   return options;
 }
 
+namespace {
+// The options --sweep and --merge take from elsewhere (the spec, the merged files).
+void rejectWith(const cli::Args& args, const std::string& mode,
+                const std::vector<std::string>& options) {
+  for (const std::string& o : options)
+    if (args.has(o))
+      throw InputError(mode + " does not take --" + o +
+                       (mode == "--sweep" ? " (the sweep file says what to run)"
+                                          : " (the merged rows are printed as they were run)"));
+}
+
+// `bench --merge A.jsonl B.jsonl ...`: the rows on stdout with their Pareto ranks recomputed.
+int runBenchMerge(const cli::Args& args) {
+  rejectWith(args, "--merge",
+             {"sweep", "quick", "scene", "technique", "csv", "size", "backend", "repeat", "out",
+              "budget-ms"});
+  const std::vector<nlohmann::json> rows = mergeBenchRows(args.options.at("merge"));
+  for (const nlohmann::json& row : rows)
+    std::cout << row.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+  std::cerr << "bench: merged " << rows.size() << " rows from " << args.options.at("merge").size()
+            << " files; Pareto ranks recomputed per scene, window and orbit\n";
+  return 0;
+}
+
+// `bench --sweep FILE.json`: the rows of a sweep spec (figures/sweep.h), one JSON line each
+// in the spec's order, with Pareto ranks within each view; --csv as the bench's.
+int runBenchSweep(const cli::Args& args) {
+  rejectWith(args, "--sweep",
+             {"quick", "scene", "technique", "size", "backend", "repeat", "budget-ms", "out"});
+  const std::string path = *args.value("sweep");
+  std::ifstream in(path);
+  if (!in) throw InputError("--sweep " + path + ": cannot open it");
+  const nlohmann::json spec = nlohmann::json::parse(in, nullptr, false);
+  if (spec.is_discarded()) throw InputError("--sweep " + path + ": not valid JSON");
+  const SweepPlan plan = planSweep(spec);
+  OutputSet outputs;
+  outputs.addInput(path);
+  std::optional<std::string> csv;
+  if (auto file = args.value("csv")) csv = outputs.addFile("--csv", *file);
+  SweepReferenceCache cache;
+  std::vector<BenchRow> rows;
+  std::vector<std::string> groups;
+  for (size_t i = 0; i < plan.rows.size(); ++i) {
+    BenchRow row = measureSweepRows(plan, {i}, cache).front();
+    const SweepView& view = plan.views[plan.rows[i].view];
+    groups.push_back(rankGroup(view.scene, view.width, view.height, view.orbit.value_or("")));
+    std::cerr << "bench: sweep row " << i + 1 << "/" << plan.rows.size() << " " << row.scene
+              << " " << row.technique << " " << row.variant << ": "
+              << (row.status == "ok" ? std::to_string(row.frameMs) + " ms" : row.status) << "\n";
+    rows.push_back(std::move(row));
+  }
+  assignSweepParetoRanks(rows, groups);
+  for (const BenchRow& row : rows) std::cout << benchRowJsonLine(row) << "\n";
+  std::cout << std::flush;
+  if (csv) {
+    writeCsv(*csv, rows);
+    outputs.commit();
+    std::cerr << "bench: wrote " << *args.value("csv") << "\n";
+  }
+  return 0;
+}
+}  // namespace
+
 int runBenchCommand(const cli::Args& args) {
+  if (args.options.count("merge")) return runBenchMerge(args);
+  if (args.value("sweep")) return runBenchSweep(args);
   const BenchOptions options = parseBenchOptions(args);
   // Unwritable destinations fail before any work (core/output_files.h): the CSV is written to
   // a temporary and renamed at the end; the plots' folder must be writable.
@@ -1116,6 +1302,95 @@ BenchRow measureBenchRow(const Technique& t, const Scene& scene, const BenchVari
     row.counters["plan_max_shadow_texels_per_pixel"] =
         planFrame(scene, t, v.params).maxShadowTexelsPerPixel;
   return row;
+}
+
+double readLoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double oneMinute = -1.0;
+  if (!(in >> oneMinute)) return -1.0;
+  return oneMinute;
+}
+
+std::string utcIsoNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+nlohmann::json effectiveParamsJson(const BenchRow& row) {
+  nlohmann::json out = nlohmann::json::object();
+  const Technique* t = nullptr;
+  for (const Technique& candidate : allTechniques())
+    if (candidate.name == row.technique) t = &candidate;
+  if (t == nullptr) return out;  // not a technique of this build (a merged row's)
+  const nlohmann::json common = optionsJson({t}, row.params);
+  for (const char* option : {"shadow_map", "filter", "precision", "imaging"})
+    if (!common.at(option).is_null()) out[option] = common.at(option);
+  for (const ParamSpec& spec : t->params) {
+    const auto given = row.params.extra.find(spec.key);
+    out[spec.key] = given != row.params.extra.end() ? given->second : spec.defaultText();
+  }
+  for (const auto& [key, value] : row.params.extra)
+    if (!out.contains(key)) out[key] = value;
+  return out;
+}
+
+bool timesWithinSpread(const BenchRow& a, const BenchRow& b) {
+  if (a.framesTimed == 0 || b.framesTimed == 0) return false;  // no timing statistics to judge
+  return a.q1Ms <= b.q3Ms && b.q1Ms <= a.q3Ms;
+}
+
+std::string rankGroup(const std::string& scene, int width, int height, const std::string& orbit) {
+  return scene + "|" + std::to_string(width) + "x" + std::to_string(height) + "|" + orbit;
+}
+
+std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths) {
+  using Json = nlohmann::json;
+  std::vector<Json> lines;
+  std::vector<BenchRow> rows;  // what the ranking reads of each line
+  for (const std::string& path : paths) {
+    std::ifstream in(path);
+    if (!in) throw InputError("--merge " + path + ": cannot open it");
+    std::string text;
+    for (int number = 1; std::getline(in, text); ++number) {
+      if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+      const std::string where = "--merge " + path + " line " + std::to_string(number);
+      Json j = Json::parse(text, nullptr, false);
+      if (j.is_discarded() || !j.is_object()) throw InputError(where + ": not a JSON object");
+      if (j.contains("claim")) continue;  // a claim's verdict, not a row
+      for (const char* key : {"scene", "technique", "status", "reference", "width", "height"})
+        if (!j.contains(key))
+          throw InputError(where + ": not a bench row (no \"" + key +
+                           "\"; rows of this version's bench carry it)");
+      BenchRow r;
+      try {
+        const std::string orbit = j.value("orbit", Json(nullptr)).is_string()
+                                      ? j.at("orbit").get<std::string>()
+                                      : std::string();
+        r.scene = rankGroup(j.at("scene").get<std::string>(), j.at("width").get<int>(),
+                            j.at("height").get<int>(), orbit);
+        r.technique = j.at("technique").get<std::string>();
+        r.status = j.at("status").get<std::string>();
+        r.primaryReference = j.at("reference").get<std::string>();
+        if (r.status == "ok") {
+          r.frameMs = j.at("frame_ms").get<double>();
+          const double rmse = j.at("error").at("rmse").get<double>();
+          (r.primaryIsSoft() ? r.soft : r.hard).all.rmse = rmse;
+        }
+      } catch (const Json::exception& e) {
+        throw InputError(where + ": a field of the wrong type (" + e.what() + ")");
+      }
+      lines.push_back(std::move(j));
+      rows.push_back(std::move(r));
+    }
+  }
+  assignParetoRanks(rows);
+  for (size_t i = 0; i < rows.size(); ++i)
+    lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
+  return lines;
 }
 
 }  // namespace sl::figures

@@ -6,6 +6,7 @@
 #include <iosfwd>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,8 +85,21 @@ double lightShiftWorld(const Scene& scene);
 // `scene` with the light (position and target) moved by `world` along the light's x axis.
 Scene shiftLight(const Scene& scene, double world);
 
+// Timing spread (docs/user-guide.md "Reading the timings"): a row whose interquartile range of
+// timed frames exceeds this share of its median is flagged (spread_large). A quarter: two
+// back-to-back quick runs at load ~1 moved variants by up to a half of their time and swapped
+// neighbours whose medians were within a quarter; beyond it one run cannot order rows whose
+// medians differ by less than their own spread, which is what a reader of a ranking must know.
+constexpr double kSpreadFlagRatio = 0.25;
+
+// The 1-minute load average (/proc/loadavg, first field); < 0 when it cannot be read.
+double readLoadAverage();
+// Now, in UTC, as ISO 8601 ("2026-12-03T13:05:12Z").
+std::string utcIsoNow();
+
 struct BenchRow {
   std::string scene, technique, variant;
+  std::string orbit;  // a sweep view's camera orbit ("AZ,EL,DIST"); "": the scene's camera
   std::string status = "ok";  // "ok", or why the variant could not run
   RenderParams params;
   std::string primaryReference;   // kPrimaryHardReference or kPrimarySoftReference
@@ -105,6 +119,17 @@ struct BenchRow {
   double wallMs = 0.0;           // median wall time of render() (includes set-up)
   std::vector<PassTime> passes;  // median per pass
   std::map<std::string, double> counters;
+  // The timed frames' spread: how many, their quartiles (linear interpolation between order
+  // statistics) and the least; a reference row is its one frame.
+  int framesTimed = 0;
+  double q1Ms = 0.0, q3Ms = 0.0, minFrameMs = 0.0;
+  double iqrMs() const { return q3Ms - q1Ms; }
+  bool spreadLarge() const { return frameMs > 0.0 && iqrMs() / frameMs > kSpreadFlagRatio; }
+  // The load average just before the first warm-up frame and just after the last timed one.
+  double loadBefore = -1.0, loadAfter = -1.0;
+  // What made the row: the back end and the GL strings of the context that rendered it (the
+  // back end's when it made none: a ray-traced reference, a refused variant), and when.
+  std::string backend, glVendor, glRenderer, glVersion, date;
   bool primaryIsSoft() const { return primaryReference.rfind("reference.soft", 0) == 0; }
   const ErrorSet& primary() const { return primaryIsSoft() ? soft : hard; }
 };
@@ -183,6 +208,22 @@ void assignParetoRanks(std::vector<BenchRow>& rows);
 void sortRowsBySceneThenTime(std::vector<BenchRow>& rows);
 // The rows' JSON line (one object; the bench's stdout and bench.jsonl).
 std::string benchRowJsonLine(const BenchRow& row);
+// The technique's full effective parameters on a row, as one JSON object: every --param it
+// declares with the value the row used (given or its default), and the common options it reads
+// (shadow_map, filter, precision); the JSON's "params" and the CSV's "params" column.
+nlohmann::json effectiveParamsJson(const BenchRow& row);
+// Whether two rows' median frame times cannot be ordered by this run: their interquartile
+// ranges [q1, q3] overlap (a claim or a plot that ranks by time says so). False when either
+// has no timed frames (a row that did not run, or one made without timing statistics).
+bool timesWithinSpread(const BenchRow& a, const BenchRow& b);
+// The group a row is Pareto-ranked in: scene, window and camera orbit ("brabec|256x192|").
+std::string rankGroup(const std::string& scene, int width, int height, const std::string& orbit);
+
+// `bench --merge A.jsonl B.jsonl ...`: the bench rows of several runs' JSON lines (claim lines
+// and blank lines are skipped) with pareto_rank recomputed over all of them, per rankGroup, by
+// assignParetoRanks; every other field as it was. InputError naming the file and line for a
+// line that is not a bench row.
+std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths);
 
 // --budget-ms (issue 21 item 4): one scene's answer to "which technique at this budget".
 struct BudgetRanking {

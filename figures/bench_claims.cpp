@@ -36,6 +36,15 @@ struct Finder {
   }
 };
 
+// A claim that ranks two rows by frame time says when this run cannot order them: their
+// timed frames' interquartile ranges overlap (figures/bench.h timesWithinSpread).
+std::string spreadNote(const BenchRow& a, const BenchRow& b) {
+  if (!timesWithinSpread(a, b)) return "";
+  return " (time ranking within the spread: interquartile ranges " + std::to_string(a.q1Ms) +
+         "-" + std::to_string(a.q3Ms) + " ms and " + std::to_string(b.q1Ms) + "-" +
+         std::to_string(b.q3Ms) + " ms overlap)";
+}
+
 std::string fmt(double v, int digits = 4) {
   std::ostringstream s;
   s.precision(digits);
@@ -102,11 +111,13 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         c.setup = "default variants (2x2 footprint, 512 map), RMSE against " + areaReference(*pcf) +
                   " over the scored pixels (docs/error.md); same quality = within 10% or 0.005";
         c.measured = summary(*pcf) + "; " + summary(*fast) + "; time ratio fast/pcf " +
-                     fmt(fast->frameMs / pcf->frameMs, 3);
-        c.verdict = same && cheaper
-                        ? "agrees"
-                        : std::string("disagrees (") + (same ? "" : "quality differs") +
-                              (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
+                     fmt(fast->frameMs / pcf->frameMs, 3) + spreadNote(*fast, *pcf);
+        c.verdict = (same && cheaper
+                         ? std::string("agrees")
+                         : std::string("disagrees (") + (same ? "" : "quality differs") +
+                               (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") +
+                               ")") +
+                    spreadNote(*fast, *pcf);
       }
       out.push_back(c);
     }
@@ -241,11 +252,14 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         c.measured =
             "hybrid vs volumes at silhouette band: " + fmt(100 * inBand.shareAboveHalf, 3) +
             "% pixels differ > 0.5 (all pixels " + fmt(100 * all.shareAboveHalf, 3) + "%); " +
-            fmt(hybrid->frameMs, 3) + " ms vs " + fmt(volumes->frameMs, 3) + " ms";
-        c.verdict = same && cheaper
-                        ? "agrees"
-                        : std::string("disagrees (") + (same ? "" : "masks differ") +
-                              (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")";
+            fmt(hybrid->frameMs, 3) + " ms vs " + fmt(volumes->frameMs, 3) + " ms" +
+            spreadNote(*hybrid, *volumes);
+        c.verdict = (same && cheaper
+                         ? std::string("agrees")
+                         : std::string("disagrees (") + (same ? "" : "masks differ") +
+                               (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") +
+                               ")") +
+                    spreadNote(*hybrid, *volumes);
       }
       out.push_back(c);
     }

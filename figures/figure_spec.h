@@ -46,6 +46,9 @@ struct Closeup {
 
 struct PanelSpec {
   std::string label;  // "(a) unfiltered"
+  // The `figures --set` overrides that change this panel ("shadow-map=1024"), drawn in its
+  // label on figure.png (figures/overrides.h applyOverrides); empty for a listed figure.
+  std::vector<std::string> overridden;
   PanelKind kind = PanelKind::kRender;
   std::string technique;      // registry name; for kLightView..kTexelDensity none is needed
   std::string scene;          // empty: the figure's scene

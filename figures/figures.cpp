@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -36,6 +37,8 @@
 #include "figures/lesson.h"
 #include "figures/measured.h"
 #include "figures/overrides.h"
+#include "core/png_text.h"
+#include "core/provenance.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
@@ -266,10 +269,13 @@ class Renderer {
     timed_.clear();
   }
 
+  // `parameters`: what made the image (its shadowlab:parameters tEXt, as render's PNGs carry).
   std::string write(const std::string& figureId, const std::string& name, const Image& image,
-                    int bitDepth = 8) {
+                    const nlohmann::json& parameters, int bitDepth = 8) {
     const std::string rel = figureId + "/" + name + ".png";
-    writePng((fs::path(outDir_) / rel).string(), image, bitDepth);
+    writePng((fs::path(outDir_) / rel).string(), image, bitDepth,
+             {commandLine(),
+              parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)});
     return rel;
   }
   const std::string& outDir() const { return outDir_; }
@@ -419,6 +425,31 @@ void countDepthErrors(Renderer& r, const Technique& t, const Setup& setup, const
   (*counters)[kAcnePixelsCounter] = double(acne);
 }
 
+// What made a panel's images (their PNG provenance): the figure, the panel, and the setup it
+// was rendered with; the common options null where the panel's technique does not read them.
+nlohmann::json panelParameters(const FigureSpec& fig, const PanelSpec& p, const Setup& s) {
+  using Json = nlohmann::json;
+  const Technique* t = p.technique.empty() ? nullptr : lookup(p.technique);
+  auto reads = [&](CommonOption o) { return t == nullptr || readsOption(*t, o); };
+  Json out = {{"figure", fig.id},
+              {"panel", p.label},
+              {"technique", p.technique.empty() ? Json(nullptr) : Json(p.technique)},
+              {"scene", s.sceneName},
+              {"size", std::to_string(s.width) + "x" + std::to_string(s.height)},
+              {"shadow_map", reads(CommonOption::kShadowMap) ? Json(s.texels) : Json(nullptr)},
+              {"filter", reads(CommonOption::kFilter) ? Json(s.filter) : Json(nullptr)},
+              {"precision", reads(CommonOption::kPrecision) && s.precision
+                                ? Json(precisionName(*s.precision))
+                                : Json(nullptr)},
+              {"params", s.params},
+              {"camera_distance", s.cameraDistance}};
+  if (s.lightRadius) out["light_radius"] = *s.lightRadius;
+  if (s.lightPosition) out["light_position"] = {s.lightPosition->x, s.lightPosition->y,
+                                                s.lightPosition->z};
+  if (!p.overridden.empty()) out["set"] = p.overridden;
+  return out;
+}
+
 // Steps 2-4 for one panel.
 PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, int index) {
   PanelResult out;
@@ -436,11 +467,15 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
                       const std::string& name = "") {
     const bool close = withCloseups && p.closeups && !closeups.empty();
     const std::string file = base + name;
-    out.images.push_back({r.write(fig.id, file, close ? framed(image, closeups) : image), caption});
+    nlohmann::json made = panelParameters(fig, p, setup);
+    made["image"] = caption;
+    out.images.push_back(
+        {r.write(fig.id, file, close ? framed(image, closeups) : image, made), caption});
     if (!close) return;
     for (size_t i = 0; i < closeups.size(); ++i)
       out.closeups.push_back(
-          {r.write(fig.id, file + "-closeup" + std::to_string(i), closeupOf(image, closeups[i])),
+          {r.write(fig.id, file + "-closeup" + std::to_string(i), closeupOf(image, closeups[i]),
+                   made),
            caption + " magnified " + std::to_string(closeups[i].magnify) + "x"});
   };
   try {
@@ -554,13 +589,18 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
               tr.milliseconds = tf->totalMilliseconds();
             }
             tr.technique = twin->name;
-            tr.file = r.write(fig.id, base + "-twin", tf->color);
+            nlohmann::json made = panelParameters(fig, tp, setup);
+            made["image"] = "GLSL twin of " + p.technique;
+            tr.file = r.write(fig.id, base + "-twin", tf->color, made);
+            made["image"] = "visibility difference, " + p.technique + " against its twin";
             tr.diffFile = r.write(fig.id, base + "-twin-diff",
-                                  differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale));
+                                  differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale),
+                                  made);
             tr.difference = compareMasks(f->visibility, tf->visibility, 0.0);
             tr.image = twins::judgeImages(f->color, tf->color, f->visibility, tf->visibility);
+            made["image"] = "colour difference, " + p.technique + " against its twin";
             tr.imageDiffFile = r.write(fig.id, base + "-twin-image-diff",
-                                       twins::colourDifferenceHeatMap(f->color, tf->color));
+                                       twins::colourDifferenceHeatMap(f->color, tf->color), made);
             out.twin = tr;
           }
         }
@@ -627,6 +667,12 @@ std::vector<LabelledTile> compositeTiles(const std::string& outDir, const Figure
                                          const PanelResult& p, const std::string& letter) {
   std::string label = letter + p.spec.label;
   if (!p.spec.technique.empty()) label += " \u2014 " + p.spec.technique;
+  // A figure re-made with --set: the overrides that changed this panel, in its drawn label.
+  if (!p.spec.overridden.empty()) {
+    std::string set;
+    for (const std::string& o : p.spec.overridden) set += (set.empty() ? "" : ", ") + o;
+    label += " [--set " + set + "]";
+  }
   std::vector<LabelledTile> tiles;
   if (p.ok) {
     const bool buffers = p.spec.kind == PanelKind::kIntermediates;
@@ -647,7 +693,12 @@ void writeComposite(Renderer& r, FigureResult& fig) {
   if (fig.spec.table) return;
   const Image composite = composeFigure(fig, r.outDir());
   if (!composite.empty())
-    fig.composite = r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite);
+    fig.composite = r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite,
+                            {{"figure", fig.spec.id},
+                             {"source_figure", fig.spec.sourceId.empty() ? fig.spec.id
+                                                                         : fig.spec.sourceId},
+                             {"set", fig.spec.overrides},
+                             {"panels", fig.panels.size()}});
 }
 
 // Step 5: charts.
@@ -728,6 +779,17 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
     // left part of one, which must not pass for the chart.
     std::error_code ec;
     fs::remove(png, ec);
+    plot.reason = std::string("failed: ") + e.what();
+    return;
+  }
+  try {  // gnuplot drew it: the same tEXt chunks as our PNGs, added through libpng
+    addPngProvenance(png, {commandLine(), nlohmann::json{{"figure", fig.spec.id},
+                                                         {"chart", chart},
+                                                         {"panel", plot.spec.label},
+                                                         {"set", fig.spec.overrides}}
+                                              .dump(-1, ' ', true,
+                                                    nlohmann::json::error_handler_t::replace)});
+  } catch (const InputError& e) {
     plot.reason = std::string("failed: ") + e.what();
     return;
   }

@@ -167,6 +167,8 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
   }
   for (PanelSpec& p : f.panels) {
     if (!rendersScene(p)) continue;
+    // The keys this panel changes: those whose count of concerned panels it raises.
+    const std::map<std::string, int> before = concerned;
     const Technique* t = rendersTechnique(p) ? lookup(p.technique) : nullptr;
     if (o.width) {
       if (p.width) listed["size"].insert(std::to_string(p.width) + "x" + std::to_string(p.height));
@@ -211,6 +213,11 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
       listed[key].insert(had == p.params.end() ? "default" : had->second);
       p.params[key] = value;
       ++concerned[key];
+    }
+    for (const auto& [key, value] : o.given) {
+      const auto had = before.find(key);
+      if (concerned[key] > (had == before.end() ? 0 : had->second))
+        p.overridden.push_back(key + "=" + value);
     }
   }
   // A key that changes nothing in this figure is an input error (as `render` refuses options

@@ -310,6 +310,7 @@ std::vector<BenchRow> measureSweepRows(const SweepPlan& plan, const std::vector<
     const BenchVariant variant{row.variant, cli::renderParams(row.options)};
     rows.push_back(measureBenchRow(*row.technique, view->scene, variant, *view->references,
                                    plan.warmup, plan.repeat, true));
+    rows.back().orbit = plan.views[row.view].orbit.value_or("");
   }
   return rows;
 }

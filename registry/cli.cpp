@@ -144,6 +144,13 @@ const std::vector<CommandSpec>& commandSpecs() {
         {"repeat", "N",
          "timed frames per variant, after the warm-up frames [quick 3 after 1, full 7 after 2]"},
         {"out", "PATH", "directory for plots and their data [out/bench]"},
+        {"sweep", "FILE",
+         "run the sweep spec FILE.json instead (techniques x scenes x sizes x shadow maps x "
+         "filters x precisions x params x orbits; docs/user-guide.md \"Sweeps\"): one JSON "
+         "line per row in the spec's order, --csv as above, no plots or claims"},
+        {"merge", "FILE",
+         "merge bench JSON-line files (repeatable): their rows on stdout with pareto_rank "
+         "recomputed over all of them per scene, window and orbit"},
         {"budget-ms", "X",
          "after the sweep, per scene: the variants with a median frame time within X ms, "
          "ranked by RMSE, with band RMSE, temporal change and Pareto rank (references are "

@@ -1,5 +1,6 @@
 #include "registry/commands.h"
 
+#include "core/content_hash.h"
 #include "core/errors.h"
 #include "core/metrics.h"
 #include "core/provenance.h"
@@ -36,6 +37,14 @@ Scene viewedScene(const cli::Args& args, const std::string& sceneName) {
   Scene scene = loadScene(sceneName);
   cli::viewScene(args, scene);
   return scene;
+}
+
+// Where the scene came from when a file: its path and the SHA-256 of its bytes (the file may
+// change after the run; the hash says which content made the output). Built-in: both null.
+void addSceneFile(nlohmann::json& made, const std::string& sceneName) {
+  const std::string path = sceneFilePath(sceneName);
+  made["scene_file"] = path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
+  made["scene_sha256"] = path.empty() ? nlohmann::json(nullptr) : nlohmann::json(sha256OfFile(path));
 }
 
 // The scene knobs given, in the JSON line and the PNGs' provenance.
@@ -164,6 +173,7 @@ RenderRun runRender(const RenderRequest& request) {
   run.made = optionsJson({&technique}, request.params);
   run.made["technique"] = technique.name;
   run.made["scene"] = request.scene.name;
+  addSceneFile(run.made, request.sceneName);
   addAdjustments(run.made, request.adjustments);
   run.made["params"] = paramsJson(request.params);
   run.line = run.made;
@@ -208,6 +218,7 @@ CompareRun runCompare(const CompareRequest& request) {
                                        request.paramsB, request.threshold);
   run.made = optionsJson({&a, &b}, request.params);
   run.made["scene"] = request.scene.name;
+  addSceneFile(run.made, request.sceneName);
   addAdjustments(run.made, request.adjustments);
   run.made["a"] = a.name;
   run.made["b"] = b.name;

@@ -9,6 +9,7 @@ PACKAGES=(
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri  # EGL back end (Mesa llvmpipe here, NVIDIA on GPU machines)
   libglm-dev          # vector and matrix math
   libpng-dev zlib1g-dev  # PNG images, gzip-compressed meshes
+  libssl-dev          # SHA-256 of scene files in render's provenance (OpenSSL libcrypto)
   nlohmann-json3-dev  # scene files and machine-readable output
   libcli11-dev        # command-line parsing (shadowlab COMMAND --help)
   libassimp-dev       # OBJ and PLY meshes

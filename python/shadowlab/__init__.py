@@ -18,16 +18,18 @@ import warnings
 from . import _shadowlab as _core
 from ._shadowlab import GLError
 
-__all__ = ["techniques", "scenes", "render", "compare", "bench", "sweep", "sweep_rows",
+__all__ = ["techniques", "scenes", "render", "compare", "bench", "sweep", "sweep_rows", "merge",
            "commit", "GLError"]
 
 # The columns of bench and sweep rows that hold text; every other column is numeric (an empty
 # cell: not measured, NaN).
 _TEXT_COLUMNS = {"scene", "technique", "variant", "status", "reference", "precision", "params",
-                 "metric", "passes", "orbit"}
+                 "metric", "passes", "orbit", "backend", "gl_vendor", "gl_renderer", "gl_version",
+                 "date", "commit", "command"}
 
 # The columns of whole numbers (a size, a count, a rank).
-_COUNT_COLUMNS = {"width", "height", "shadow_map", "filter", "pareto_rank", "scored_pixels"}
+_COUNT_COLUMNS = {"width", "height", "shadow_map", "filter", "pareto_rank", "scored_pixels",
+                  "frames_timed", "spread_large"}
 
 # A sweep's rows of one view are measured in tasks of at most this many rows: the references of
 # a view are rendered once per process that measures any of its rows.
@@ -232,8 +234,8 @@ def sweep(spec, client=None, task_rows=_SWEEP_TASK_ROWS):
 
     client=None: in this process. client=dask.distributed.Client(...): the rows run as Dask
     tasks on its workers (each worker process imports this module and makes its own GL; nothing
-    is shared), and the DataFrame is the same as the local run's (the times differ, as any two
-    runs' do). task_rows: at most this many rows of one view per task (each process renders a
+    is shared), and the DataFrame is the same as the local run's (the times, their spread, the
+    load and the date differ, as any two runs' do). task_rows: at most this many rows of one view per task (each process renders a
     view's references once, for its first task of that view).
     """
     import pandas as pd
@@ -260,6 +262,12 @@ def sweep(spec, client=None, task_rows=_SWEEP_TASK_ROWS):
     frame["orbit"] = [row["orbit"] or "" for row in plan]
     groups = [f'{row["scene"]}|{row["width"]}x{row["height"]}|{row["orbit"] or ""}'
               for row in plan]
+    return _ranked(frame, groups)
+
+
+def _ranked(frame, groups):
+    """`frame` with pareto_rank recomputed within each group (the C++ ranking of the bench)."""
+    import pandas as pd
     ranks = _core.pareto_ranks(groups, list(frame["technique"]), list(frame["status"]),
                                list(frame["reference"]),
                                [float(v) for v in frame["frame_ms"].fillna(0.0)],
@@ -267,3 +275,17 @@ def sweep(spec, client=None, task_rows=_SWEEP_TASK_ROWS):
                                [float(v) for v in frame["soft_rmse"].fillna(0.0)])
     frame["pareto_rank"] = pd.array([r if r > 0 else None for r in ranks], dtype="Int64")
     return frame
+
+
+def merge(*frames):
+    """The rows of several bench() / sweep() DataFrames as one, with pareto_rank recomputed over
+    all of them within each scene, window and orbit (the ranking `shadowlab bench --merge`
+    applies to JSON lines, the same C++). Every other column is kept as it was measured."""
+    import pandas as pd
+    if not frames:
+        raise ValueError("merge: no DataFrames given")
+    frame = pd.concat(frames, ignore_index=True)
+    orbits = frame["orbit"].fillna("") if "orbit" in frame else [""] * len(frame)
+    groups = [f"{scene}|{width}x{height}|{orbit}" for scene, width, height, orbit in
+              zip(frame["scene"], frame["width"], frame["height"], orbits)]
+    return _ranked(frame, groups)

@@ -60,6 +60,8 @@ TEST(Provenance, RenderJsonLineAndPngsNameEveryParameterAndTheCommit) {
   EXPECT_EQ(line["backend"], "osmesa");
   EXPECT_EQ(line["imaging"], "emulated");  // Debian's OSMesa has no native imaging subset
   EXPECT_EQ(line["params"]["depth-bias"], "3");
+  EXPECT_TRUE(line["scene_file"].is_null()) << "a built-in scene has no file";
+  EXPECT_TRUE(line["scene_sha256"].is_null());
   EXPECT_EQ(line["commit"], buildCommit());
   const std::string command = line["command"];
   EXPECT_NE(command.find(" render --scene analytic --technique legacy.pcf"), std::string::npos)
@@ -77,6 +79,25 @@ TEST(Provenance, RenderJsonLineAndPngsNameEveryParameterAndTheCommit) {
                             "params", "backend", "imaging"})
       EXPECT_EQ(made[key], line[key]) << key << " in " << file;
   }
+}
+
+// A scene from a file: the JSON line names the file and the SHA-256 of its bytes (checked
+// against coreutils' sha256sum, another implementation).
+TEST(Provenance, RenderNamesTheSceneFileAndItsContentHash) {
+  const fs::path scene = fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "minimal-scene.json";
+  const fs::path png = dir() / "minimal.png";
+  const CommandResult r = shadowlab("render --scene " + scene.string() +
+                                    " --technique modern.hw --size 32x24 --out " + png.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json line = json::parse(r.out);
+  EXPECT_EQ(line["scene_file"], scene.string());
+  const CommandResult sum = test::runBinary("/usr/bin/sha256sum", scene.string(), dir());
+  ASSERT_EQ(sum.status, 0) << sum.err;
+  const std::string expected = sum.out.substr(0, sum.out.find(' '));
+  EXPECT_EQ(expected.size(), 64u) << sum.out;
+  EXPECT_EQ(line["scene_sha256"], expected);
+  const json made = json::parse(readPngText(png.string()).at("shadowlab:parameters"));
+  EXPECT_EQ(made["scene_sha256"], expected) << "the PNG says the same";
 }
 
 // The --params a technique read are printed with the values it used, defaults included.

@@ -1,6 +1,7 @@
 // The bench's machinery (figures/bench.h): the sweep declares only what a technique declares,
 // the Pareto front, the error metrics and a tiny end-to-end run with CSV, JSON and plot.
 #include "figures/bench.h"
+#include "figures/sweep.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -10,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -421,6 +424,18 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   const ClaimCheck* measured = claim(fillClaims, "hybrid-vs-volumes", kFillBoundScene);
   ASSERT_NE(measured, nullptr);
   EXPECT_EQ(measured->verdict, "agrees") << "same masks, half the time: " << measured->measured;
+  // The same medians with spreads that overlap: the verdict says the time order is not firm.
+  BenchResult spread = fill;
+  for (BenchRow& row : spread.rows) {
+    row.framesTimed = 5;
+    row.q1Ms = 0.5;
+    row.q3Ms = 2.5;
+  }
+  const std::vector<ClaimCheck> spreadClaims = checkClaims(spread);
+  const ClaimCheck* unsure = claim(spreadClaims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(unsure, nullptr);
+  EXPECT_EQ(unsure->verdict.rfind("agrees (time ranking within the spread", 0), 0u)
+      << unsure->verdict;
   for (const ClaimCheck& c : claims) {
     if (c.verdict.rfind("not measured", 0) != 0 && c.scene != "-") {
       EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
@@ -612,6 +627,119 @@ TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {
       EXPECT_GT(row.hard.leakShare, 0.01) << "VSM bleeds on the scene built for it";
     }
   }
+}
+
+TEST(BenchTiming, SpreadIsTheInterquartileRangeAndLargeAboveTheNamedShare) {
+  BenchRow r = row("a", 10.0, 0.1);
+  r.framesTimed = 5;
+  r.q1Ms = 9.0;
+  r.q3Ms = 9.0 + kSpreadFlagRatio * 10.0;  // exactly at the bound: not flagged
+  EXPECT_DOUBLE_EQ(r.iqrMs(), kSpreadFlagRatio * 10.0);
+  EXPECT_FALSE(r.spreadLarge());
+  r.q3Ms += 0.5;
+  EXPECT_TRUE(r.spreadLarge());
+  // Overlapping interquartile ranges: this run cannot order the two by time.
+  BenchRow b = row("b", 12.0, 0.1);
+  b.q1Ms = 11.0;
+  b.q3Ms = 13.0;
+  EXPECT_FALSE(timesWithinSpread(r, b)) << "b has no timed frames: nothing to judge";
+  b.framesTimed = 5;
+  EXPECT_TRUE(timesWithinSpread(r, b)) << "[9, 12] and [11, 13] overlap";
+  b.q1Ms = 12.5;
+  EXPECT_FALSE(timesWithinSpread(r, b));
+  EXPECT_FALSE(timesWithinSpread(b, r)) << "symmetric";
+}
+
+TEST(BenchMerge, RanksAreRecomputedOverEveryFileWithinSceneAndWindow) {
+  // Run 1 alone: a (1 ms, 0.5) and b (2 ms, 0.2) are both on the front. Run 2 adds c (1 ms,
+  // 0.1), which dominates both; d is the same scene at another window, ranked on its own.
+  const fs::path dir = fs::path(SHADOWLAB_TEST_OUTPUT_DIR) / "bench-merge";
+  fs::create_directories(dir);
+  auto withWindow = [](BenchRow r, int w, int h) {
+    r.params.width = w;
+    r.params.height = h;
+    return r;
+  };
+  std::vector<BenchRow> one = {withWindow(row("a", 1, 0.5), 64, 48),
+                               withWindow(row("b", 2, 0.2), 64, 48)};
+  assignParetoRanks(one);
+  ASSERT_EQ(one[0].paretoRank, 1);
+  ASSERT_EQ(one[1].paretoRank, 1);
+  std::ofstream(dir / "one.jsonl") << benchRowJsonLine(one[0]) << "\n"
+                                   << benchRowJsonLine(one[1]) << "\n"
+                                   << R"({"claim": "x", "verdict": "agrees"})" << "\n";
+  BenchRow d = withWindow(row("d", 9, 0.9), 128, 96);
+  d.paretoRank = 7;  // whatever its run said
+  std::ofstream(dir / "two.jsonl") << benchRowJsonLine(withWindow(row("c", 1, 0.1), 64, 48))
+                                   << "\n\n" << benchRowJsonLine(d) << "\n";
+  const std::vector<nlohmann::json> merged =
+      mergeBenchRows({(dir / "one.jsonl").string(), (dir / "two.jsonl").string()});
+  ASSERT_EQ(merged.size(), 4u) << "the claim and the blank line are skipped";
+  std::map<std::string, nlohmann::json> rank;
+  for (const nlohmann::json& j : merged) rank[j["technique"]] = j["pareto_rank"];
+  EXPECT_EQ(rank["c"], 1);
+  EXPECT_EQ(rank["a"], 2) << "dominated by c (as fast, lower error)";
+  EXPECT_EQ(rank["b"], 2);
+  EXPECT_EQ(rank["d"], 1) << "another window: ranked on its own";
+  EXPECT_EQ(merged[0]["frame_ms"], 1.0) << "every other field as it was";
+  // A line that is not a row names its file and line.
+  std::ofstream(dir / "bad.jsonl") << benchRowJsonLine(one[0]) << "\n[1, 2]\n";
+  try {
+    mergeBenchRows({(dir / "bad.jsonl").string()});
+    FAIL() << "a JSON array is not a bench row";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.jsonl line 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BenchRowJson, ParamsAreTheTechniquesFullEffectiveSetAndUnreadOptionsNull) {
+  // GPU Gems PCF reads the map side and its --params, not --filter or --precision (it used to
+  // print filter=2 precision=8 in every row); PCF reads --filter.
+  BenchRow gems = row("modern.gems16", 1, 0.1);
+  gems.params.filter = 3;  // given to the run, not read by the technique
+  const nlohmann::json g = nlohmann::json::parse(benchRowJsonLine(gems));
+  EXPECT_TRUE(g["filter"].is_null()) << g.dump();
+  EXPECT_TRUE(g["precision"].is_null()) << g.dump();
+  EXPECT_EQ(g["shadow_map"], gems.params.shadowMapTexels);
+  for (const std::string& key : paramKeys(findTechnique("modern.gems16")))
+    EXPECT_TRUE(g["params"].contains(key)) << key << ": every declared --param, at its default";
+  EXPECT_FALSE(g["params"].contains("filter"));
+  BenchRow pcf = row("modern.pcf", 1, 0.1);
+  pcf.params.filter = 3;
+  const nlohmann::json p = nlohmann::json::parse(benchRowJsonLine(pcf));
+  EXPECT_EQ(p["filter"], 3);
+  EXPECT_EQ(p["params"]["filter"], 3);
+  // The CSV: empty cells where the JSON has null.
+  std::ostringstream csv;
+  writeCsvRows(csv, {gems});
+  std::string header, line;
+  std::istringstream in(csv.str());
+  std::getline(in, header);
+  std::getline(in, line);
+  // orbit "", shadow_map, filter and precision empty, then the params object.
+  EXPECT_NE(line.find(",\"\"," + std::to_string(gems.params.shadowMapTexels) + ",,,\"{"),
+            std::string::npos)
+      << line;
+}
+
+TEST(SweepFiles, TheGuidesExamplesLoad) {
+  // docs/user-guide.md "Sweeps": the minimal and the full example are valid specs.
+  for (const char* name : {"sweep-minimal.json", "sweep-full.json"}) {
+    std::ifstream in(fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / name);
+    ASSERT_TRUE(in) << name;
+    const SweepPlan plan = planSweep(nlohmann::json::parse(in));
+    EXPECT_FALSE(plan.rows.empty()) << name;
+    for (const SweepRow& r : plan.rows) {  // each row sweeps only what its technique reads
+      if (r.variant.find("filter=") != std::string::npos) {
+        EXPECT_TRUE(readsOption(*r.technique, CommonOption::kFilter)) << name << r.variant;
+      }
+    }
+  }
+  std::ifstream in(fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "sweep-full.json");
+  const SweepPlan full = planSweep(nlohmann::json::parse(in));
+  EXPECT_EQ(full.views.size(), 2u * 2u * 3u) << "scenes x sizes x orbits";
+  EXPECT_EQ(full.repeat, 5);
+  EXPECT_FALSE(full.softReference);
 }
 
 }  // namespace

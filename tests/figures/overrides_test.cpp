@@ -8,9 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "core/errors.h"
+#include "core/image.h"
 #include "figures/figure_spec.h"
 
 namespace fs = std::filesystem;
@@ -64,6 +67,15 @@ TEST(FigureOverrides, MapSizeReachesEveryPanelAndTheCaption) {
       << f.caption;
   ASSERT_EQ(f.overrides.size(), 1u);
   EXPECT_EQ(f.overrides[0], "shadow-map=1024");
+  // The panels it changes carry it (figure.png draws it into their labels).
+  int marked = 0;
+  for (const PanelSpec& p : f.panels)
+    if (!p.overridden.empty()) {
+      ++marked;
+      EXPECT_EQ(p.overridden, std::vector<std::string>{"shadow-map=1024"}) << p.label;
+    }
+  EXPECT_EQ(marked, 4) << "the caption's count";
+  for (const PanelSpec& p : fig.panels) EXPECT_TRUE(p.overridden.empty()) << "the listed figure";
 }
 
 TEST(FigureOverrides, PanelMapSizesAndTechniqueParamsAreReplaced) {
@@ -117,12 +129,21 @@ TEST(FigureOverrides, FiguresCommandRemakesIntoItsOwnFolder) {
   ASSERT_EQ(WEXITSTATUS(raw), 0);
   const fs::path folder = dir / "everitt-fig5--shadow-map-64";
   ASSERT_TRUE(fs::is_directory(folder));
-  int pngs = 0;
+  int pngs = 0, marked = 0;
   for (const auto& e : fs::directory_iterator(folder)) {
     ++pngs;
     EXPECT_NE(e.path().filename().string().find("--shadow-map-64"), std::string::npos) << e.path();
+    // Every panel PNG and figure.png say what made them, as render's PNGs do.
+    if (e.path().extension() != ".png") continue;
+    const auto text = readPngText(e.path().string());
+    EXPECT_EQ(text.count("Software"), 1u) << e.path();
+    ASSERT_EQ(text.count("shadowlab:parameters"), 1u) << e.path();
+    const nlohmann::json made = nlohmann::json::parse(text.at("shadowlab:parameters"));
+    EXPECT_EQ(made["figure"], "everitt-fig5--shadow-map-64") << e.path();
+    if (made.contains("set") && made["set"] == nlohmann::json{"shadow-map=64"}) ++marked;
   }
   EXPECT_GT(pngs, 2);
+  EXPECT_GT(marked, 0) << "the panels the override changed name it";
   std::ifstream in(dir / "report.html");
   std::stringstream html;
   html << in.rdbuf();

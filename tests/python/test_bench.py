@@ -135,3 +135,20 @@ def test_sweep_orbits_and_params():
 def test_a_bad_spec_is_a_value_error_before_anything_runs(spec, message):
     with pytest.raises(ValueError, match=message):
         shadowlab.sweep(spec)
+
+
+def test_merge_recomputes_ranks_over_every_frame(local_sweep):
+    # A copy of the sweep a million times faster (every copy faster than every original, the
+    # same errors): each copy dominates its original and no original dominates a copy, so the
+    # copies take the originals' ranks and every original drops behind its copy.
+    faster = local_sweep.copy()
+    faster["frame_ms"] = faster["frame_ms"] / 1e6
+    merged = shadowlab.merge(local_sweep, faster)
+    n = len(local_sweep)
+    assert len(merged) == 2 * n
+    assert list(merged["pareto_rank"][n:]) == list(local_sweep["pareto_rank"])
+    for before, after in zip(local_sweep["pareto_rank"], merged["pareto_rank"][:n]):
+        assert after > before
+    assert (local_sweep["frame_ms"] == merged["frame_ms"][:n]).all(), "the inputs are kept"
+    with pytest.raises(ValueError):
+        shadowlab.merge()

@@ -14,8 +14,10 @@ distributed = pytest.importorskip("distributed")
 SPEC = {"techniques": ["modern.hw", "modern.gems4"], "scenes": ["fence"], "sizes": ["64x48"],
         "shadow_maps": [256, 512], "orbits": [None, [20, 25, 9]], "repeat": 1}
 
-# Columns that are measured times, equal only by chance between two runs.
-TIME_COLUMNS = {"frame_ms", "wall_ms", "passes", "pareto_rank"}
+# Columns that are measured times (and their spread, the machine's load and the date of the
+# measurement), equal only by chance between two runs.
+TIME_COLUMNS = {"frame_ms", "wall_ms", "passes", "pareto_rank", "frame_iqr_ms", "frame_min_ms",
+                "spread_large", "load_before", "load_after", "date"}
 
 
 def error_columns(frame):
