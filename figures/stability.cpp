@@ -241,7 +241,7 @@ const std::vector<Case>& cases() {
        "near/far 1e-6 would put all geometry into the last ~20 steps of a 24-bit depth buffer: "
        "lightDepthRange narrows a range below 1e-4 to the geometry, which moves no fragment"},
       {"near_far_1e-7", [] { return nearFar(1e-7f); }, noChange, always, kWellConditioned,
-       "near 8e-7, far 8 (issue 17 item 7: hw and GPU Gems PCF were all lit): narrowed to the "
+       "near 8e-7, far 8 (unnarrowed, hw and GPU Gems PCF were all lit): narrowed to the "
        "geometry like near_far_1e-6"},
       {"cone_160", [] { return wideCone(160); }, noChange, always, 0.05,
        "the widest cone validateScene accepts: the central texels span 5.7x those of a "

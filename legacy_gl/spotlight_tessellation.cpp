@@ -335,7 +335,7 @@ PassSpec meshFeedingPass() {
           .name = "mesh feeding: triangles split for per-vertex spotlight lighting",
           .reference = "ours, not a paper's pass (run before the camera passes, listed first): "
                        "fixed-function lighting is evaluated per vertex, so the receivers are split "
-                       "until it matches the modern twins' per-pixel lighting (issue 18 item 5)",
+                       "until it matches the modern twins' per-pixel lighting",
           .floor = PassFloor::kCpuOnly};
 }
 

@@ -103,7 +103,7 @@ constexpr const char* kClassificationDeviation =
     "gets the mean of the series at the four depth texels around it with the lookup's bilinear "
     "weights (csm_shadow.frag, reconstructFromDepth): Eq. 13's own value where the footprint's "
     "depth is constant, within skip-error of it otherwise, so that decided and reconstructed "
-    "pixels agree (issue 27). On llvmpipe the stencil test of pass 5c then skips the "
+    "pixels agree. On llvmpipe the stencil test of pass 5c then skips the "
     "reconstruction's shader for whole 4x4 blocks; a branch in the shader would not (llvmpipe "
     "evaluates both sides of a non-uniform branch).";
 constexpr const char* kSeriesOfDepthsDeviation =  // csm_shadow.frag, CLASSIFY 1
@@ -151,7 +151,7 @@ PassTable csmPasses(bool mipmaps) {
       {.id = "5a",
        .name = "depth bounds (min/max pyramid of z)",
        .reference = "not in Annen et al. 2007: bounds of z under each footprint, so that the "
-                    "classification can skip Eq. 13 where they decide the series (issue 20)",
+                    "classification can skip Eq. 13 where they decide the series",
        .shaders = {"csm-depth-bounds"},
        .deviations = {kDepthBoundsDeviation}},
       {.id = "5b",
@@ -519,9 +519,9 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 // gets the mean of the series at the four depth texels around it with the lookup's bilinear
 // weights (csm_shadow.frag, reconstructFromDepth): Eq. 13's own value where the footprint's
 // depth is constant, within skip-error of it otherwise, so that decided and reconstructed
-// pixels agree (issue 27). On llvmpipe the stencil test of
-// pass 5c then skips the reconstruction's shader for whole 4x4 blocks; a branch in the shader
-// would not (llvmpipe evaluates both sides of a non-uniform branch).
+// pixels agree. On llvmpipe the stencil test of pass 5c then skips the reconstruction's shader
+// for whole 4x4 blocks; a branch in the shader would not (llvmpipe evaluates both sides of a
+// non-uniform branch).
 void classifyInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                           const Texture& linearDepth, const Texture& depthBounds,
                           int depthBoundsLevels, const CsmSkipIntervals& skip,

@@ -21,7 +21,7 @@ uniform sampler2D uSource;
 layout(location = 0) out vec2 oBounds;  // (min z, max z)
 
 void main() {
-  // @pass csm-depth-bounds: min/max pyramid of z and its 3x3 dilation, for the classification (not in Annen et al. 2007; issue 20)
+  // @pass csm-depth-bounds: min/max pyramid of z and its 3x3 dilation, for the classification (not in Annen et al. 2007)
   ivec2 target = ivec2(gl_FragCoord.xy);
 #if DILATE
   ivec2 size = textureSize(uSource, 0);

@@ -115,7 +115,7 @@ float reconstructShadowTest(vec2 p, float d) {
 // texelFetch with a level that differs between the lanes of a quad returned wrong texels
 // (isolated pixels on lit ground classified as umbra, brabec 1024x768). A box wider than the
 // coarsest level allows: no bounds (vec2(-2, 2), never decided).
-// @pass csm-classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION, issue 20)
+// @pass csm-classify: the depth bounds under the footprint decide lit or umbra without Eq. 13 (Eq. 8; DEVIATION)
 vec2 depthBoundsAround(vec2 p, float rho) {
   ivec2 size = ivec2(uDepthMapTexels);
   float radius = uFootprintScale * rho + uFootprintMargin;
@@ -207,7 +207,7 @@ float shadowTest(vec3 world) {
   // umbra interval, of 0.
   // Such pixels get Eq. 13 without the 2M filtered lookups (reconstructFromDepth): the value
   // the reconstruction pass would give, ringing included, so that a decided pixel and its
-  // reconstructed neighbour agree (issue 27: returning exactly 1 or 0 here drew tiles around
+  // reconstructed neighbour agree (returning exactly 1 or 0 here drew tiles around
   // every shadow, lit ground 0.008 brighter where decided).
   // DEVIATION (Annen et al. 2007, Eq. 13 from the filtered 8-bit basis): the series of the
   // depths themselves, so without the basis' 8-bit rounding (on ground that casts nothing,
