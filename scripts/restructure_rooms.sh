@@ -100,8 +100,8 @@ CORE_PARTS = [
     # frame timing.
     ("technique", re.compile(r"^(technique|technique_.*|pass_table|passes|pass_capture|plan|frame_timing)$")),
     # what everything stands on: errors, numbers, images and PNG, metrics, provenance,
-    # all-or-nothing output files, HTML escaping.
-    ("base", re.compile(r"^(errors|decimal|image|metrics|provenance|output_files|html)$")),
+    # all-or-nothing output files, HTML escaping, content hashes.
+    ("base", re.compile(r"^(errors|decimal|image|png_text|metrics|provenance|content_hash|output_files|html)$")),
 ]
 moves = []   # (old, new)
 unplaced = []
