@@ -32,9 +32,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/provenance.h"
+#include "core/base/errors.h"
+#include "core/base/provenance.h"
+#include "core/gl/context.h"
 
 namespace sl {
 namespace {

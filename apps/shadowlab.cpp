@@ -7,22 +7,22 @@
 #include <optional>
 
 #include "apps/run_legacy.h"
+#include "core/base/errors.h"
+#include "core/base/metrics.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
+#include "figures/course.h"
+#include "figures/figures.h"
+#include "figures/gallery.h"
+#include "figures/overrides.h"
+#include "lab/lab_server.h"
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
-#include "core/errors.h"
-#include "core/metrics.h"
-#include "core/output_files.h"
-#include "core/pass_dump.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
-#include "figures/course.h"
-#include "figures/figures.h"
-#include "figures/gallery.h"
-#include "figures/lesson.h"
-#include "figures/overrides.h"
-#include "lab/lab_server.h"
+#include "teach/lesson.h"
+#include "teach/pass_dump.h"
 
 namespace sl {
 namespace {
@@ -76,7 +76,7 @@ int list() {
   return 0;
 }
 
-// The files a --scene argument reads (core/scene_library.cpp loadScene): the argument itself
+// The files a --scene argument reads (core/scene/scene_library.cpp loadScene): the argument itself
 // when it is a file, or assets/scenes/<name>.json. No output may replace them.
 void addSceneInputs(OutputSet& outputs, const std::string& scene) {
   outputs.addInput(scene);
@@ -95,7 +95,7 @@ Provenance pngProvenance(const nlohmann::json& parameters) {
   return {commandLine(), parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)};
 }
 
-// The destinations of `render`, checked before rendering (core/output_files.h).
+// The destinations of `render`, checked before rendering (core/base/output_files.h).
 struct RenderOutputs {
   OutputSet set;
   std::string image;                // temporary of --out
@@ -103,7 +103,7 @@ struct RenderOutputs {
   std::optional<std::string> dump;  // temporary directory of --dump-passes
 };
 
-// --dump-passes (core/pass_dump.h): the buffers in pipeline order, passes.json, index.html.
+// --dump-passes (teach/pass_dump.h): the buffers in pipeline order, passes.json, index.html.
 void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, RenderOutputs& outputs,
                        const Provenance& provenance) {
   if (!frame.color.empty() && !allFinite(frame.color)) throw GlError("the image has NaN or Inf");
@@ -164,7 +164,7 @@ int run(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "--version") {
     if (argc > 2)
       throw InputError("--version takes no arguments, got '" + std::string(argv[2]) + "'");
-    std::cout << softwareName() << "\n";  // "shadowlab <commit>" (core/provenance.h)
+    std::cout << softwareName() << "\n";  // "shadowlab <commit>" (core/base/provenance.h)
     return 0;
   }
   if (argc >= 2 && std::string(argv[1]) == "run-legacy") return runLegacy(argc - 1, argv + 1);

@@ -2,7 +2,7 @@
 # hash of SOURCE_DIR's HEAD, with "-dirty" when `git status --porcelain` lists anything, or
 # "unknown" without git or a repository. Run at configure time and by the sl_build_commit target
 # on every build; the header is rewritten only when the value changes, so an unchanged tree
-# recompiles nothing and a new commit recompiles core/provenance.cpp alone.
+# recompiles nothing and a new commit recompiles core/base/provenance.cpp alone.
 #   cmake -DSOURCE_DIR=<repo> -DOUTPUT=<header> -P build_commit.cmake
 set(commit "unknown")
 find_program(SL_GIT git)

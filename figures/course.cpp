@@ -10,12 +10,12 @@
 #include <set>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/html.h"
-#include "core/image.h"
-#include "core/output_files.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/base/html.h"
+#include "core/base/image.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 
 namespace sl::figures {

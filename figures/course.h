@@ -1,4 +1,4 @@
-// figures/course.h — `shadowlab course --out DIR`: the lessons (figures/lesson.h) in a teaching
+// figures/course.h — `shadowlab course --out DIR`: the lessons (teach/lesson.h) in a teaching
 // order, with exercises, a teacher's page and the artefact gallery (figures/gallery.h).
 //
 //   DIR/index.html            the course: the steps in order, what each adds, links to each
@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "figures/gallery.h"
-#include "figures/lesson.h"
 #include "registry/cli.h"
+#include "teach/lesson.h"
 
 namespace sl::figures {
 

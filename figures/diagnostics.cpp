@@ -19,10 +19,10 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/shaders.h"
-#include "core/technique.h"
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+#include "core/gl/shaders.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 
 namespace sl::figures {

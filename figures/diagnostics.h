@@ -4,8 +4,8 @@
 // Figs. 2, 4 and 6). One core-profile OSMesa context, GLSL written here, no shadows.
 #pragma once
 
-#include "core/image.h"
-#include "core/scene.h"
+#include "core/base/image.h"
+#include "core/scene/scene.h"
 
 namespace sl::figures {
 

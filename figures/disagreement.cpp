@@ -1,7 +1,7 @@
 // figures/disagreement.cpp — the overlay of figures/disagreement.h.
 #include "figures/disagreement.h"
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sl::figures {
 

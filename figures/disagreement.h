@@ -2,7 +2,7 @@
 // Fig. 3-7: which pixels the shadow map and the hybrid method get wrong against shadow volumes).
 #pragma once
 
-#include "core/image.h"
+#include "core/base/image.h"
 
 namespace sl::figures {
 

@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;

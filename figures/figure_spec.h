@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 
 namespace sl::figures {
 
@@ -32,7 +32,7 @@ enum class PanelKind {
 };
 
 // A close-up: a rectangle in fractions of the panel, magnified with nearest-neighbour sampling
-// so the texels stay visible. Origin bottom-left, y up (as core/image.h and GL window
+// so the texels stay visible. Origin bottom-left, y up (as core/base/image.h and GL window
 // coordinates): (x, y) is the rectangle's lower-left corner, x the fraction of the panel's width
 // from its left edge, y the fraction of its height from its BOTTOM edge; w and h its width and
 // height in the same fractions. {0.70, 0.47, 0.12, 0.12} in an 800x600 panel is the 96x72

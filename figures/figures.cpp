@@ -7,7 +7,7 @@
 //                          reported as missing with the reason (never skipped silently)
 //   2. renderPanel       — the frame, the close-ups (crop + nearest magnification + red frame);
 //                          a panel whose time stands beside a paper's number is timed at
-//                          steady state (timedSteadily, core/frame_timing.h)
+//                          steady state (timedSteadily, core/technique/frame_timing.h)
 //   3. measurePanel      — error of the visibility mask against the figure's reference
 //                          (reference.hard / reference.soft) when that exists
 //   4. renderTwin        — legacy.X beside modern.X with the difference heat map of the masks
@@ -21,30 +21,30 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/scene_library.h"
-#include "figures/bench.h"
+#include "core/base/errors.h"
+#include "core/base/png_text.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "figures/course.h"
-#include "figures/bench_report.h"
 #include "figures/diagnostics.h"
 #include "figures/disagreement.h"
 #include "figures/figure_composite.h"
-#include "figures/lesson.h"
 #include "figures/measured.h"
 #include "figures/overrides.h"
-#include "core/png_text.h"
-#include "core/provenance.h"
 #include "figures/plan.h"
 #include "figures/plots.h"
 #include "figures/report.h"
-#include "figures/stability.h"
+#include "measure/bench.h"
+#include "measure/bench_report.h"
+#include "measure/stability.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
+#include "teach/lesson.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -59,7 +59,7 @@ constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
 // and witness (24-bit depth with polygon offset: no bias leak, no acne of its own).
 constexpr const char* kDepthErrorTruth = "reference.hard";
 constexpr const char* kDepthErrorWitness = "legacy.hw";
-// The lessons of the main job (figures/lesson.h): small, so that ~21 lessons add about a minute.
+// The lessons of the main job (teach/lesson.h): small, so that ~21 lessons add about a minute.
 constexpr int kLessonWidth = 320;
 constexpr int kLessonHeight = 240;
 constexpr int kLessonShadowMap = 256;
@@ -91,7 +91,7 @@ struct Setup {
   std::optional<glm::vec3> lightPosition;
   std::optional<Precision> precision;
   float cameraDistance = 1;
-  // The scene knobs (core/scene.h adjustScene) and their part of the keys.
+  // The scene knobs (core/scene/scene.h adjustScene) and their part of the keys.
   SceneAdjustments adjustments() const {
     SceneAdjustments a;
     if (cameraDistance != 1.0f) a.cameraDistance = cameraDistance;
@@ -131,7 +131,7 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
 }
 
 // Timing (issue 21 item 6). A panel whose time is set beside a paper's number is timed as the
-// benches time a technique (core/frame_timing.h: warm-up frames on one context, then the
+// benches time a technique (core/technique/frame_timing.h: warm-up frames on one context, then the
 // median of timed frames), and all such panels of a figure (with their twins) are measured
 // interleaved: every context warmed up, then kFigureRounds rounds of one frame of each, so
 // that machine load during the figure hits every cell alike. No cell is a median of one frame.
@@ -198,8 +198,8 @@ class Renderer {
   }
 
   // A frame whose time is set beside a paper's number: the steady-state median on one context
-  // (core/frame_timing.h, kFigureFrames); the frame kept is the last timed one, and it also
-  // serves later plain requests for the same render.
+  // (core/technique/frame_timing.h, kFigureFrames); the frame kept is the last timed one, and it
+  // also serves later plain requests for the same render.
   struct Timed {
     std::shared_ptr<const Frame> frame;
     SteadyTiming timing;
@@ -544,7 +544,7 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           out.errorNote = fig.reference + " not available yet";
         } else if (ref->name != t.name) {
           // The pixel-integrated form of the reference (--param pixel=area), the truth of a
-          // displayed pixel, as in the bench (figures/bench.h kPrimaryHardReference), with
+          // displayed pixel, as in the bench (measure/bench.h kPrimaryHardReference), with
           // kFigureReferencePixelSamplesPerSide^2 samples. The reference ignores the shadow
           // map and the footprint: one frame per scene and size.
           Setup refSetup = setup;
@@ -910,7 +910,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - figureStart).count();
     results.push_back(std::move(fr));
   }
-  // A lesson per technique (figures/lesson.h), small so that all of them cost about a minute;
+  // A lesson per technique (teach/lesson.h), small so that all of them cost about a minute;
   // with --only, the techniques the selected figures show.
   std::vector<std::string> lessonTechniques;
   for (const Technique& t : allTechniques()) {
@@ -958,7 +958,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
 
 int runBench(const cli::Args& args) {
   return runBenchCommand(args);
-}  // figures/bench.cpp
+}  // measure/bench.cpp
 int runPlan(const cli::Args& args) {
   return runPlanCommand(args);
 }  // figures/plan.cpp

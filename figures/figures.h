@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
+#include "core/base/image.h"
 #include "figures/figure_composite.h"
 #include "figures/report.h"
 #include "registry/cli.h"
@@ -22,7 +22,7 @@ std::vector<FigureInfo> listFigures();
 struct FigureOverrides;  // figures/overrides.h
 
 // Renders every figure (or only the ids in `only`) into outDir, a lesson per technique into
-// outDir/lessons/ (figures/lesson.h; with `only`, the techniques those figures show) and writes
+// outDir/lessons/ (teach/lesson.h; with `only`, the techniques those figures show) and writes
 // outDir/report.html, which links them. With overrides (figures --set, with exactly one --only):
 // the figure re-made with them, into outDir/ID--<overrides>/ (figures/overrides.h).
 int runFigures(const std::string& outDir, const std::vector<std::string>& only, bool progress,

@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/html.h"
-#include "core/image.h"
-#include "core/output_files.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/base/html.h"
+#include "core/base/image.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 
 namespace sl::figures {
@@ -224,7 +224,7 @@ Image renderPicture(const Picture& p) {
   return frame.color;
 }
 
-// The close-up window in the bottom-left-origin coordinates of core/image.h crop.
+// The close-up window in the bottom-left-origin coordinates of core/base/image.h crop.
 Image closeupOf(const Image& image, const GalleryWindow& w) {
   return magnifyNearest(toRgb(crop(image, w.x, image.height - w.y - w.height, w.width, w.height)),
                         w.magnify);

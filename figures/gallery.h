@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/image.h"
+#include "core/base/image.h"
 #include "registry/cli.h"
 
 namespace sl::figures {
@@ -63,7 +63,7 @@ Image renderGalleryPicture(const GalleryEntry& e, bool wrongSide);
 // The address of `shadowlab serve` with its defaults.
 constexpr const char* kDefaultLabUrl = "http://127.0.0.1:8080/";
 
-// Renders every entry and writes DIR/gallery/ as a whole (core/output_files.h). Throws
+// Renders every entry and writes DIR/gallery/ as a whole (core/base/output_files.h). Throws
 // InputError for bad input, GlError for a GL failure. Returns the number of entries.
 int writeGallery(const std::string& dir, const std::string& labUrl = kDefaultLabUrl);
 

@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "core/html.h"
+#include "core/base/html.h"
 #include "figures/disagreement.h"
 
 namespace sl::figures {

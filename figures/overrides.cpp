@@ -5,8 +5,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 
 namespace sl::figures {

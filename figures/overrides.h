@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 #include "figures/figure_spec.h"
 #include "registry/cli.h"
 

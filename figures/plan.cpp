@@ -2,9 +2,9 @@
 
 #include <iostream>
 
+#include "core/scene/scene_library.h"
+#include "core/technique/plan.h"
 #include "registry/registry.h"
-#include "core/plan.h"
-#include "core/scene_library.h"
 
 namespace sl::figures {
 

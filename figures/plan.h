@@ -1,5 +1,5 @@
 // figures/plan.h — `shadowlab plan --scene S --technique T`: prints the pass planner's result
-// (core/plan.h): the passes, light-pass objects and resources kept and left out, and why.
+// (core/technique/plan.h): the passes, light-pass objects and resources kept and left out, and why.
 #pragma once
 
 #include "registry/cli.h"

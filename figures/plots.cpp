@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/output_files.h"
+#include "core/base/errors.h"
+#include "core/base/output_files.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;

@@ -10,10 +10,10 @@
 #include <iomanip>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/html.h"
-#include "core/output_files.h"
-#include "core/provenance.h"
+#include "core/base/errors.h"
+#include "core/base/html.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -31,8 +31,8 @@ std::string msAndFps(double ms) {
   return fixed(ms, 1) + " ms (" + fixed(1000.0 / ms, 1) + " fps)";
 }
 
-// A frame time and how it was measured: a steady-state median (core/frame_timing.h) or one
-// first frame in a fresh context (marked, as it is not comparable with a paper's number).
+// A frame time and how it was measured: a steady-state median (core/technique/frame_timing.h) or
+// one first frame in a fresh context (marked, as it is not comparable with a paper's number).
 std::string frameTime(double ms, int timedFrames) {
   if (ms <= 0) return "";
   if (timedFrames > 0)

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/metrics.h"
-#include "core/technique.h"
+#include "core/base/metrics.h"
+#include "core/technique/technique.h"
 #include "figures/figure_spec.h"
 #include "registry/twins.h"
 
@@ -55,8 +55,8 @@ struct PanelResult {
   std::vector<ImageFile> images;  // the panel's image(s); several for intermediates
   std::vector<ImageFile> closeups;
   // Frame time (sum of the pass times) and per-pass times: the steady-state medians
-  // (core/frame_timing.h) over timedFrames frames after warmupFrames, where the time stands
-  // beside a paper's number; timedFrames 0: one first frame in a fresh context.
+  // (core/technique/frame_timing.h) over timedFrames frames after warmupFrames, where the time
+  // stands beside a paper's number; timedFrames 0: one first frame in a fresh context.
   double milliseconds = 0;
   int warmupFrames = 0, timedFrames = 0;
   std::vector<double> frameSamples;  // the timed frames' times, one per interleaved round
@@ -84,8 +84,8 @@ struct ReportInfo {
   std::string renderer;  // GL_RENDERER of the default back end
   std::string date;
   double totalSeconds = 0;
-  std::string benchHtml;  // the quick bench's section (figures/bench_report.cpp), if it ran
-  std::string lessonsHtml;  // links to the lessons (figures/lesson.h lessonIndexHtml)
+  std::string benchHtml;  // the quick bench's section (measure/bench_report.cpp), if it ran
+  std::string lessonsHtml;  // links to the lessons (teach/lesson.h lessonIndexHtml)
 };
 
 // Writes outDir/report.html (a gallery per paper; missing panels in red with the reason).

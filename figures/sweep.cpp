@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <set>
 
-#include "core/errors.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 
 namespace sl::figures {
@@ -51,7 +51,7 @@ std::vector<Json> axisValues(const Json& spec, const std::string& key) {
 }
 
 // A scalar as the command line spells it: strings as they are, numbers in their shortest form
-// that reads back, true/false as on/off (the flags' words, core/technique.h).
+// that reads back, true/false as on/off (the flags' words, core/technique/technique.h).
 std::string optionText(const std::string& what, const Json& v) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_number_integer()) return std::to_string(v.get<long long>());

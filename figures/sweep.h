@@ -1,6 +1,6 @@
 // figures/sweep.h — a sweep: techniques x scenes x window sizes x shadow-map sides x filter
 // footprints x precisions x --param values x camera orbits, each row measured as `shadowlab
-// bench` measures a variant (figures/bench.h measureBenchRow) against the ray-traced references
+// bench` measures a variant (measure/bench.h measureBenchRow) against the ray-traced references
 // of its view. The spec is one JSON object (docs/python.md "Sweeps"); the Python module's
 // sweep() takes it as a dict and runs its rows in this process or as Dask tasks.
 #pragma once
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "figures/bench.h"
+#include "measure/bench.h"
 
 namespace sl::figures {
 
@@ -78,7 +78,7 @@ class SweepReferenceCache {
 std::vector<BenchRow> measureSweepRows(const SweepPlan& plan, const std::vector<size_t>& indices,
                                        SweepReferenceCache& cache);
 
-// Pareto ranks (figures/bench.h assignParetoRanks) within each group of rows: `groups[i]` names
+// Pareto ranks (measure/bench.h assignParetoRanks) within each group of rows: `groups[i]` names
 // row i's view (its scene, window and orbit), so that rows of different windows or cameras are
 // never ranked against each other.
 void assignSweepParetoRanks(std::vector<BenchRow>& rows, const std::vector<std::string>& groups);

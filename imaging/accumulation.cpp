@@ -9,7 +9,7 @@
 //   ADD    A <- A + value
 // Operations act on the scissor box when the scissor test is enabled. The buffer keeps each
 // component as 16-bit signed fixed point k / 32767 in [-1, 1] (the precision of the visuals
-// the project asks for, core/context.cpp kAccumBits), so results quantise as a real one's.
+// the project asks for, core/gl/context.cpp kAccumBits), so results quantise as a real one's.
 // Every operation is a table lookup per component: an 8-bit colour has 256 values and a
 // 16-bit accumulator 65536, so the arithmetic is done once per value, in double precision.
 #include <cmath>

@@ -17,7 +17,7 @@
 
 #include <memory>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "imaging/internal.h"
 
 namespace sl::imaging {

@@ -1,7 +1,7 @@
 // imaging/imaging.h — the OpenGL 1.2 imaging subset (ARB_imaging) for contexts that lack it.
 #pragma once
 
-#include "core/context.h"
+#include "core/gl/context.h"
 
 namespace sl::imaging {
 

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/context.h"
+#include "core/gl/context.h"
 #include "imaging/imaging.h"
 
 namespace sl::imaging::detail {

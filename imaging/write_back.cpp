@@ -152,7 +152,7 @@ bool drawPixelsRectangle(const State& s, int& x, int& y) {
 // The texture the image is uploaded into and its framebuffer, made once per context at the
 // window's size. DEVIATION (house rule "RAII for GL objects"): they belong to the context and
 // are freed with it — the emulation's state outlives the OSMesa context by a few
-// instructions (core/context.cpp destroys the context first), so no destructor may call GL.
+// instructions (core/gl/context.cpp destroys the context first), so no destructor may call GL.
 void ensureTexture(State& s) {
   WriteBack& wb = s.writeBack;
   const int w = s.context->spec().width, h = s.context->spec().height;

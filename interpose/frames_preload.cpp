@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
+#include "core/base/image.h"
 #include "interpose/frame_files.h"
 
 #define SL_EXPORT extern "C" __attribute__((visibility("default")))

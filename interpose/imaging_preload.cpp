@@ -31,8 +31,8 @@
 #include <string>
 #include <utility>
 
-#include "core/context.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
+#include "core/gl/context.h"
 #include "imaging/imaging.h"
 
 // Window-system headers last: Xlib defines macros (None, Bool, Status) the others must not see.

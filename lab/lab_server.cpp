@@ -14,16 +14,16 @@
 #include <optional>
 #include <thread>
 
-#include "core/decimal.h"
-#include "core/errors.h"
-#include "core/metrics.h"
-#include "core/pass_dump.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
+#include "core/base/decimal.h"
+#include "core/base/errors.h"
+#include "core/base/metrics.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "lab/web_files.h"
 #include "lab/worker.h"
 #include "registry/registry.h"
 #include "registry/shadow_error.h"
+#include "teach/pass_dump.h"
 #ifdef SHADOWLAB_HAVE_REFERENCE
 #include "reference/reference.h"
 #endif
@@ -378,8 +378,8 @@ struct LabServer::Impl {
     return true;
   }
 
-  // /api/techniques: every technique with its --params as it declares them (core/technique.h
-  // ParamSpec), so the page builds its controls from the declarations.
+  // /api/techniques: every technique with its --params as it declares them
+  // (core/technique/technique.h ParamSpec), so the page builds its controls from the declarations.
   static std::string buildTechniques() {
     json out = json::array();
     for (const Technique& t : allTechniques()) {

@@ -3,12 +3,12 @@
 //
 //   GET /api/techniques   names, papers, summaries, the common options each reads, and every
 //                         --param key with its kind, default and range (as the technique reads
-//                         it: core/technique.h ParamDeclaration)
+//                         it: core/technique/technique.h ParamDeclaration)
 //   GET /api/scenes       built-in and asset scenes with their camera orbit and light position
 //   GET /api/render?scene=S&technique=T&size=WxH&shadow-map=N&filter=K&precision=P
 //                  &param=key=value(&param=...)&light=X,Y,Z&orbit=AZ,EL,DIST
 //                  &view=image|mask|passes&lane=L
-//                         image/mask: PNG; passes: JSON (core/pass_dump.h passesJson, with each
+//                         image/mask: PNG; passes: JSON (teach/pass_dump.h passesJson, with each
 //                         pass's median time over kPassTimingFrames and a URL per pass image)
 //   GET /api/error?...    the same frame's visibility against reference.hard pixel=area (the
 //                         pixel-integrated truth, cached per scene/size/light/camera):

@@ -26,8 +26,8 @@
 
 #include <glm/glm.hpp>
 
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 

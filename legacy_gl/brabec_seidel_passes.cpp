@@ -8,8 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/errors.h"
-#include "core/gl_objects.h"
+#include "core/base/errors.h"
+#include "core/gl/gl_objects.h"
 #include "legacy_gl/brabec_seidel.h"
 
 namespace sl::legacy::bs {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 #include "legacy_gl/fixed_function.h"
 
 namespace sl::legacy::bs {
@@ -43,7 +43,7 @@ DepthEncoding depthEncoding(Precision precision);
 // bias (the paper's 8-bit limitation, §6).
 constexpr double kDefaultDepthBiasSteps = 2.0;
 // The departures above and in brabec_seidel_passes.cpp, as the pass tables declare them
-// (core/pass_table.h PassSpec::deviations): the camera passes' bias; the float encoding
+// (core/technique/pass_table.h PassSpec::deviations): the camera passes' bias; the float encoding
 // (depthEncoding) of the light and camera passes; the clamp of saturateAlphaByCopy.
 inline const std::string kDepthBiasDeviation =
     "DEVIATION (Brabec–Seidel §2): the paper names no bias. glPolygonOffset moves window z "

@@ -3,7 +3,7 @@
 // Wang & Molnar's second-depth shadow map (legacy.second-depth).
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 

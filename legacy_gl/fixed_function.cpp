@@ -2,10 +2,10 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/gl_trace.h"
-#include "core/winding.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_trace.h"
+#include "core/gl/winding.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -123,7 +123,7 @@ Image readRedChannel(int width, int height) {
 }
 
 Image readRgb(int width, int height) {
-  const GlTracePause readback;  // reading the result is not state of a pass (core/gl_trace.h)
+  const GlTracePause readback;  // reading the result is not state of a pass (core/gl/gl_trace.h)
   Image rgb(width, height, 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGB, GL_FLOAT, rgb.data.data());

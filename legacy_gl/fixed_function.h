@@ -2,14 +2,13 @@
 // legacy technique (module-internal header).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
 
-#include <glm/glm.hpp>
-
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 

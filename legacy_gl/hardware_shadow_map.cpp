@@ -4,8 +4,8 @@
 // Passes:
 //   1. renderDepthFromLight      — the scene from the light, polygon offset, depth copied
 //                                  into a DEPTH_COMPONENT texture (Fig. 2, "Polygon offset");
-//                                  left out when the pass planner (core/plan.h) finds no caster
-//                                  in the light frustum (--param plan=off keeps it)
+//                                  left out when the pass planner (core/technique/plan.h) finds no
+//                                  caster in the light frustum (--param plan=off keeps it)
 //   2. loadEyeLinearTexgenPlanes — EYE_LINEAR planes E_po = S·P_light·L^-1 specified while the
 //                                  modelview holds the view matrix (Eq. 1-5, Appendix A)
 //   3. renderAmbientPass         — lighting with the ambient term only (Kilgard's note)
@@ -22,12 +22,12 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
-#include "core/plan.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
+#include "core/technique/plan.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
@@ -60,8 +60,8 @@ void renderDepthFromLight(Passes& passes, const Scene& scene, const RenderParams
   passes.run(
       "1",
       [&] {
-        // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
-        // depth (every comparison passes) replaces the pass.
+        // The planner (core/technique/plan.h) found no caster in the light frustum: a 1x1 map at
+        // the far depth (every comparison passes) replaces the pass.
         const int n = casterInFrustum ? params.shadowMapTexels : 1;
         LightTarget target(n, n <= params.width && n <= params.height, false);
         target.bind();
@@ -140,7 +140,7 @@ class TexgenOffAfterCameraPasses {
       glActiveTexture(GL_TEXTURE0);
       for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
         glDisable(e);
-    } catch (...) {  // the context is beyond repair (core/gl_objects.h)
+    } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
     }
   }
   TexgenOffAfterCameraPasses(const TexgenOffAfterCameraPasses&) = delete;

@@ -4,10 +4,10 @@
 #include <glm/glm.hpp>
 #include <string>
 
-#include "core/gl.h"
-#include "core/pass_table.h"
-#include "core/passes.h"
-#include "core/technique.h"
+#include "core/gl/gl.h"
+#include "core/technique/pass_table.h"
+#include "core/technique/passes.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 
@@ -21,7 +21,7 @@ glm::mat4 worldToShadowMapTexture(const Scene& scene);
 // LEQUAL, NEAREST or LINEAR compare as in Fig. 5, far-plane border) on the bound 2D texture.
 void setDepthCompareParameters(bool linearCompare);
 
-// The DEVIATION of core/scene.h lightDepthRoundoffScale, for the pass tables of the passes
+// The DEVIATION of core/scene/scene.h lightDepthRoundoffScale, for the pass tables of the passes
 // whose polygon offset or peeling epsilon it scales.
 inline const std::string kDepthRoundoffScaleDeviation =
     "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "

@@ -10,7 +10,7 @@
 
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 

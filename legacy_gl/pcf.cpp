@@ -22,9 +22,9 @@
 #include <memory>
 #include <string>
 
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_gl/spotlight_tessellation.h"

@@ -13,9 +13,9 @@
 //   4. saturateShadowMask        — footnote 1's extra copy: every alpha > 0 becomes 1
 //   5. shade                     — OpenGL lighting, direct light x (1 - alpha) + ambient (§5)
 // Visibility = 1 - alpha (brabec_seidel.h). The passes are declared once in rampPasses().
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_gl/spotlight_tessellation.h"

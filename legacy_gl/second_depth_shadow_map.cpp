@@ -11,11 +11,11 @@
 //   2-5. shadeWithShadowMap     — legacy.hw's camera passes (texgen planes, ambient, direct
 //                                 light x shadow test, visibility mask)
 // The passes are declared once in secondDepthPasses().
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/hardware_shadow_map.h"
@@ -48,7 +48,7 @@ Scene castersOf(const Scene& scene, bool closed) {
 }
 
 // Pass 1 (Wang & Molnar via Everitt): the second depth of closed casters = their back faces.
-// Meshes wind counter-clockwise seen from outside (core/primitives.h), so culling GL_FRONT in
+// Meshes wind counter-clockwise seen from outside (core/scene/primitives.h), so culling GL_FRONT in
 // the light's view keeps the faces that point away from the light.
 void renderBackFacesFromLight(Passes& passes, const Scene& scene, const RenderParams& params,
                               GLuint shadowMap, bool linearCompare) {

@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/context.h"
+#include "core/gl/context.h"
 
 namespace sl::legacy {
 namespace {

@@ -8,9 +8,9 @@
 
 #include <cstddef>
 
-#include "core/scene.h"
-#include "core/passes.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/passes.h"
+#include "core/technique/technique.h"
 
 namespace sl::legacy {
 

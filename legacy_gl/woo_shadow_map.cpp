@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "legacy_gl/depth_layer_shadow_maps.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/hardware_shadow_map.h"
@@ -38,7 +38,7 @@ namespace {
 // z of the very same fragment differ only by float rounding (~1e-7) and the 24-bit storage of
 // z1 (6e-8), so 2^-20 (16 depth units) separates the layer from itself and nothing else —
 // for a wide depth range; a narrow one far from the light multiplies r/q's round-off, and the
-// tolerance with it (core/scene.h lightDepthRoundoffScale).
+// tolerance with it (core/scene/scene.h lightDepthRoundoffScale).
 constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
 constexpr float kAlphaTestThreshold = 0.5f;  // ARB_shadow gives 0 or 1 with GL_NEAREST
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern::bs {

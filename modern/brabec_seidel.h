@@ -7,7 +7,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 
 namespace sl::modern::bs {

@@ -3,7 +3,7 @@
 // legacy.fast-pcf.
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 

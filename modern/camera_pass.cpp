@@ -1,12 +1,11 @@
 #include "modern/camera_pass.h"
 
-#include "core/gl_trace.h"
-
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
+#include "core/gl/gl_trace.h"
 
 namespace sl::modern {
 using namespace sl::gl;
@@ -46,7 +45,7 @@ void setObjectUniforms(const Program& program, const Object& object) {
 }
 
 Image readAttachment(const RenderTarget& target, int attachment) {
-  const GlTracePause dumpOnly;  // readbacks are not state of a pass (core/gl_trace.h)
+  const GlTracePause dumpOnly;  // readbacks are not state of a pass (core/gl/gl_trace.h)
   Image image(target.width, target.height, 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo.id());
   glReadBuffer(GLenum(GL_COLOR_ATTACHMENT0 + attachment));

@@ -3,7 +3,7 @@
 // read-back into a Frame (module-internal header).
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 
 namespace sl::modern {

@@ -29,10 +29,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
-#include "core/plan.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
+#include "core/technique/plan.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
 #include "modern/shadow_volumes.h"
@@ -82,7 +82,7 @@ const char* const kWorkspaceKey = "modern.csm.workspace";  // GL objects kept be
 constexpr const char* kMipmapsAutoDeviation =
     "DEVIATION (Annen et al. 2007, §4.1: \"we then build a mip-map of this texture\"): with "
     "mipmaps=auto (the default) the chain is built only when the planner finds that the view "
-    "minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th "
+    "minifies the map (core/technique/plan.h, more than one shadow-map texel per pixel at the 95th "
     "percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the "
     "magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving "
     "it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a large "
@@ -268,7 +268,7 @@ CsmSettings parseSettings(const GlContext& context, double texelsPerPixel,
     s.skipError = 0.0;
   // DEVIATION (Annen et al. 2007, §4.1: "we then build a mip-map of this texture"): with
   // mipmaps=auto (the default) the chain is built only when the planner finds that the view
-  // minifies the map (core/plan.h, more than one shadow-map texel per pixel at the 95th
+  // minifies the map (core/technique/plan.h, more than one shadow-map texel per pixel at the 95th
   // percentile of the receivers' pixels). Where no pixel minifies, GL samples level 0 with the
   // magnification filter (lambda <= 0, glspec §3.8.8) and the chain is never read, so leaving
   // it out changes nothing but the time (on llvmpipe the mip chain of M/2 layers is a

@@ -2,7 +2,7 @@
 // Bekaert, Seidel & Kautz 2007).
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 

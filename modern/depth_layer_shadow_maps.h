@@ -3,7 +3,7 @@
 // legacy_gl/second_depth_shadow_map.cpp.
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 

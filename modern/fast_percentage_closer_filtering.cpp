@@ -14,9 +14,9 @@
 // The passes are declared once in fastPcfPasses().
 #include <string>
 
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"

@@ -22,9 +22,9 @@
 #include <string>
 #include <utility>
 
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/prefiltered_maps.h"

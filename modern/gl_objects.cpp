@@ -2,9 +2,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/shaders.h"
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+#include "core/gl/shaders.h"
 
 namespace sl::modern {
 using namespace sl::gl;

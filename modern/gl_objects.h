@@ -1,25 +1,24 @@
-// modern/gl_objects.h — RAII owners for GL objects (core/gl_objects.h), shader programs from modern/shaders/*.glsl,
-// and the scene uploaded into vertex buffers (module-internal header).
+// modern/gl_objects.h — RAII owners for GL objects (core/gl/gl_objects.h), shader programs from
+// modern/shaders/*.glsl, and the scene uploaded into vertex buffers (module-internal header).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <map>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "core/gl.h"
-#include "core/gl_objects.h"
-#include "core/scene.h"
-#include "core/winding.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_objects.h"
+#include "core/gl/winding.h"
+#include "core/scene/scene.h"
 
 namespace sl::modern {
 
-// Shader sources and their compiler: core/shaders.h (modern/shaders/*.glsl, embedded).
+// Shader sources and their compiler: core/gl/shaders.h (modern/shaders/*.glsl, embedded).
 
-// The owners of GL names are core's (core/gl_objects.h), one discipline with legacy_gl/; modern
+// The owners of GL names are core's (core/gl/gl_objects.h), one discipline with legacy_gl/; modern
 // code names them as before.
 using sl::Buffer;
 using sl::deleteBuffer;
@@ -86,7 +85,8 @@ class GpuScene {
     for (const GpuObject& o : objects_) {
       if (!select(*o.object)) continue;
       perObject(*o.object);
-      // gl_FrontFacing and culling see a mirrored object's outside as its front (core/winding.h).
+      // gl_FrontFacing and culling see a mirrored object's outside as its front
+      // (core/gl/winding.h).
       const FrontFaceForModel frontFace(o.object->model);
       gl::glBindVertexArray(o.vao.id());
       gl::glDrawElements(GL_TRIANGLES, o.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -4,15 +4,15 @@
 //
 // Passes:
 //   1. renderDepthFromLight — light view into a DEPTH_COMPONENT24 texture, polygon offset;
-//                             left out when the pass planner (core/plan.h) finds no caster in
-//                             the light frustum (--param plan=off keeps it)
+//                             left out when the pass planner (core/technique/plan.h) finds no
+//                             caster in the light frustum (--param plan=off keeps it)
 //   2. shadeWithShadowMap   — camera view; hw_shadow.frag does textureProj on sampler2DShadow
 // The passes are declared once in hardwareShadowMapPasses().
 #include "modern/hardware_shadow_map.h"
 
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/plan.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/plan.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern {
@@ -54,8 +54,8 @@ RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const Ren
   passes.run(
       "1",
       [&] {
-        // The planner (core/plan.h) found no caster in the light frustum: a 1x1 map at the far
-        // depth (every comparison passes) replaces the pass.
+        // The planner (core/technique/plan.h) found no caster in the light frustum: a 1x1 map at
+        // the far depth (every comparison passes) replaces the pass.
         const int n = casterInFrustum ? params.shadowMapTexels : 1;
         map = makeRenderTarget(n, n, {}, true, GL_DEPTH_COMPONENT24);
         map.bind();

@@ -1,19 +1,18 @@
 // modern/hardware_shadow_map.h — modern.hw (Everitt et al. 2001 as GLSL).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "core/passes.h"
-#include "core/technique.h"
+#include "core/technique/passes.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 
 namespace sl::modern {
 Technique hardwareShadowMapTechnique();
 
-// The DEVIATION of core/scene.h lightDepthRoundoffScale, for the pass tables of the passes
+// The DEVIATION of core/scene/scene.h lightDepthRoundoffScale, for the pass tables of the passes
 // whose polygon offset or peeling epsilon it scales.
 inline constexpr char kDepthRoundoffScaleDeviation[] =
     "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "

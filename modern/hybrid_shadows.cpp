@@ -28,8 +28,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/shadow_volumes.h"

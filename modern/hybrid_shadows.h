@@ -2,7 +2,7 @@
 // volumes with a computation mask).
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 Technique hybridShadowsTechnique();

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 

@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sl::modern {
 using namespace sl::gl;
@@ -17,7 +17,7 @@ constexpr int kMaxOutputsPerPass = 8;     // separable_gaussian.frag declares 8 
 constexpr float kMaxAnisotropy = 16.0f;   // Annen Table 1: "16x anisotropic tri-linear"
 constexpr int kMaxBlurTaps = 7;           // 7x7, the largest kernel of Annen Table 1
 constexpr float kFarAway = 1e30f;         // larger than any light-view distance
-constexpr float kDepthMargin = 0.02f;     // of the span, as lightDepthRange (core/scene.cpp)
+constexpr float kDepthMargin = 0.02f;     // of the span, as lightDepthRange (core/scene/scene.cpp)
 constexpr float kMinDepthSpan = 1e-6f;    // world units: a flat scene still gets a range
 constexpr float kMinNearOverFar = 1e-4f;  // as lightDepthRange
 const char* const kAnisotropicExtension = "GL_EXT_texture_filter_anisotropic";

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 #include "modern/hardware_shadow_map.h"
 
@@ -120,7 +120,7 @@ void attachLayers(const Framebuffer& fbo, const LayeredMap& map, int first, int 
 // Annen §4.1: separable Gaussian blur of every layer (horizontal into a scratch map, then
 // vertical back), `taps` in {3, 5, 7}; encoded 8-bit values blur correctly because the
 // encoding is affine.
-// (The technique's pass function runs it as its pass: core/passes.h.)
+// (The technique's pass function runs it as its pass: core/technique/passes.h.)
 void blurLayers(const LayeredMap& map, int taps);
 // The same with a caller-kept scratch map (reallocated by reuseLayeredMap when it does not fit).
 void blurLayers(const LayeredMap& map, LayeredMap& scratch, int taps);
@@ -134,7 +134,7 @@ void blurLayersOneDirection(const LayeredMap& source, const LayeredMap& target, 
 // chain is drawn with MRT, several layers per draw (layered_downsample.frag, a 2x2 box).
 void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filtering);
 // Its departure from Annen §4.1 (the chain drawn, not auto-generated), for the pass tables of
-// the passes that run it (modern.csm pass 4, modern.vsm pass 3; core/pass_table.h).
+// the passes that run it (modern.csm pass 4, modern.vsm pass 3; core/technique/pass_table.h).
 extern const char* const kDrawnMipChainDeviation;
 
 // worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.

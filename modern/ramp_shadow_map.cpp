@@ -10,9 +10,9 @@
 //                                     minus the projected map, clamped at 0 as subtractive
 //                                     blending does, > 0 = shadowed (footnote 1); shading
 // The passes are declared once in rampPasses().
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"

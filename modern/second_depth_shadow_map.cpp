@@ -7,8 +7,8 @@
 //                                 casters with both faces and polygon offset (fallback)
 //   2. shadeWithShadowMap       — modern.hw's camera pass on that map
 // The passes are declared once in secondDepthPasses().
-#include "core/errors.h"
-#include "core/pass_capture.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"

@@ -25,9 +25,9 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/errors.h"
-#include "core/passes.h"
-#include "core/winding.h"
+#include "core/base/errors.h"
+#include "core/gl/winding.h"
+#include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 
 namespace sl::modern {
@@ -115,7 +115,7 @@ void drawVolumes(const SceneVolumes& volumes, const Program& program) {
   for (const GpuVolume& v : volumes.volumes) {
     program.set("uModel", v.model);
     // Two-sided stencil counts front faces down and back faces up: a mirrored caster's volume
-    // must keep its outside as the front, or its count cancels another's (core/winding.h).
+    // must keep its outside as the front, or its count cancels another's (core/gl/winding.h).
     const FrontFaceForModel frontFace(v.model);
     glBindVertexArray(v.vao.id());
     glDrawArrays(GL_TRIANGLES, 0, v.vertexCount);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 #include "modern/gl_objects.h"
 #include "modern/silhouettes.h"
 

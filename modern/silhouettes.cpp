@@ -4,7 +4,7 @@
 #include <map>
 #include <tuple>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sl::modern {
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace sl::modern {
 
@@ -81,7 +81,8 @@ struct Silhouette {
 // twice, as the solid has two sheets there. The volume is closed, so z-fail counting is exact;
 // the same works for non-manifold edges. `light` is in the mesh's object space.
 Silhouette findSilhouette(const EdgeAdjacency& mesh, const glm::vec3& light);
-// That DEVIATION, for the pass tables of the passes that find silhouettes (core/pass_table.h).
+// That DEVIATION, for the pass tables of the passes that find silhouettes
+// (core/technique/pass_table.h).
 extern const char* const kOpenMeshTwoSidedDeviation;
 
 // The closed shadow volume of one blocker in object-space homogeneous coordinates, as a

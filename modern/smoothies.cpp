@@ -32,9 +32,9 @@
 #include <map>
 #include <utility>
 
-#include "core/errors.h"
-#include "core/passes.h"
-#include "core/winding.h"
+#include "core/base/errors.h"
+#include "core/gl/winding.h"
+#include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/silhouettes.h"
 

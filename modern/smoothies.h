@@ -2,7 +2,7 @@
 // "Rendering Fake Soft Shadows with Smoothies").
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 

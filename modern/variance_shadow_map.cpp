@@ -13,9 +13,9 @@
 // The passes are declared once in vsmPasses().
 #include "modern/variance_shadow_map.h"
 
-#include "core/errors.h"
-#include "core/pass_capture.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
+#include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/prefiltered_maps.h"
 

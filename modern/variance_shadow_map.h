@@ -2,7 +2,7 @@
 // the comparison of Annen et al. 2007 (§2, Fig. 9).
 #pragma once
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::modern {
 Technique varianceShadowMapTechnique();

@@ -9,8 +9,8 @@
 //   3. storeMidpointDepth    — woo_midpoint.frag writes gl_FragDepth = (z1 + z2) / 2
 //   4. shadeWithShadowMap    — modern.hw's camera pass on the midpoint map
 // The passes are declared once in wooPasses().
-#include "core/errors.h"
-#include "core/pass_capture.h"
+#include "core/base/errors.h"
+#include "core/technique/pass_capture.h"
 #include "modern/camera_pass.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/hardware_shadow_map.h"
@@ -21,7 +21,7 @@ using namespace sl::gl;
 namespace {
 
 // Same tolerance as legacy.woo (see legacy_gl/woo_shadow_map.cpp): 2^-20 in window depth, times
-// lightDepthRoundoffScale (core/scene.h) where the light's depth range is narrow.
+// lightDepthRoundoffScale (core/scene/scene.h) where the light's depth range is narrow.
 constexpr float kPeelEpsilon = 1.0f / float(1 << 20);
 
 // The passes, declared once: names, the paper's text, the buffers a dump shows, the GLSL they

@@ -1,7 +1,7 @@
 // python/shadowlab_module.cpp — the compiled half of the Python module `shadowlab`
 // (docs/python.md; the Python half: python/shadowlab/__init__.py). Every call goes through the
 // command line's own code: its parser (registry/cli.h parse) reads the options the Python side
-// spells as render's, compare's and bench's arguments, and registry/commands.h, figures/bench.h
+// spells as render's, compare's and bench's arguments, and registry/commands.h, measure/bench.h
 // and figures/sweep.h do the work, so a row from Python equals the CLI's for the same options.
 //
 // Threads: the GIL is released while C++ works, and one lock (glLock) makes the process's GL
@@ -15,12 +15,12 @@
 #include <mutex>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/image.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
-#include "figures/bench.h"
+#include "core/base/errors.h"
+#include "core/base/image.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "figures/sweep.h"
+#include "measure/bench.h"
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
@@ -167,7 +167,7 @@ py::tuple compare(const std::vector<std::string>& arguments, const std::string& 
   return py::make_tuple(line, warnings);
 }
 
-// The bench CSV's text (figures/bench.h writeCsvRows) at full double precision.
+// The bench CSV's text (measure/bench.h writeCsvRows) at full double precision.
 std::string csvText(const std::vector<figures::BenchRow>& rows) {
   constexpr int kRoundTripDigits = 17;  // every double reads back exactly
   std::ostringstream out;

@@ -39,8 +39,8 @@
 #include <random>
 #include <thread>
 
-#include "core/errors.h"
-#include "core/passes.h"
+#include "core/base/errors.h"
+#include "core/technique/passes.h"
 #include "reference/surface_buffer.h"
 
 namespace sl::reference {

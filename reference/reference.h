@@ -28,7 +28,7 @@
 
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::reference {
 

@@ -10,9 +10,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
-#include "core/errors.h"
-#include "core/shaders.h"
-#include "core/winding.h"
+#include "core/base/errors.h"
+#include "core/gl/shaders.h"
+#include "core/gl/winding.h"
 
 namespace sl::reference {
 using namespace sl::gl;
@@ -42,7 +42,7 @@ namespace {
 
 constexpr int kAttachments = kSurfaceAttachments;
 
-// reference/shaders/surface_points.{vert,frag}.glsl (embedded, core/shaders.h).
+// reference/shaders/surface_points.{vert,frag}.glsl (embedded, core/gl/shaders.h).
 void buildProgram(SurfaceGlObjects& gl) {
   gl.program = compileShaderProgram("surface_points.vert.glsl", "surface_points.frag.glsl");
 }
@@ -106,7 +106,7 @@ void draw(const SurfaceGlObjects& gl, const Scene& scene) {
     glUniformMatrix4fv(model, 1, GL_FALSE, glm::value_ptr(scene.objects[i].model));
     glUniform1f(objectId, float(i + 1));
     // The fragment shader turns the normals by gl_FrontFacing: a mirrored object's outside
-    // must stay its front (core/winding.h).
+    // must stay its front (core/gl/winding.h).
     const FrontFaceForModel frontFace(scene.objects[i].model);
     glDrawElements(GL_TRIANGLES, GLsizei(scene.objects[i].mesh->indices.size()), GL_UNSIGNED_INT,
                    nullptr);

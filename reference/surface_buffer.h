@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/technique.h"
+#include "core/technique/technique.h"
 
 namespace sl::reference {
 

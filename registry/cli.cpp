@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "core/decimal.h"
-#include "core/errors.h"
+#include "core/base/decimal.h"
+#include "core/base/errors.h"
 
 namespace sl::cli {
 

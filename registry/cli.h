@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 
 namespace CLI {
 class App;
@@ -43,7 +43,7 @@ Args parse(int argc, char** argv);
 // Validation that throws InputError inside the options' callbacks passes through unchanged.
 [[nodiscard]] bool parseTool(CLI::App& app, int argc, char** argv);
 
-// Numbers on the command line are strict decimals (core/decimal.h): no hexadecimal, inf, nan,
+// Numbers on the command line are strict decimals (core/base/decimal.h): no hexadecimal, inf, nan,
 // spaces or trailing characters. Each throws InputError naming the option `what`.
 int parsePositiveInt(const std::string& what, const std::string& text, int maxValue);
 double parseNumber(const std::string& what, const std::string& text);
@@ -52,7 +52,7 @@ ImagingChoice parseImaging(const std::string& text);               // "native" o
 // Fills RenderParams from --size, --shadow-map, --filter, --precision, --param, --backend,
 // --imaging.
 RenderParams renderParams(const Args& args);
-// --camera-distance, --light-radius and --light-position (core/scene.h adjustScene).
+// --camera-distance, --light-radius and --light-position (core/scene/scene.h adjustScene).
 SceneAdjustments sceneAdjustments(const Args& args);
 glm::vec3 parsePosition(const std::string& what, const std::string& text);  // "X,Y,Z"
 // The options among --shadow-map, --filter, --precision and --imaging given explicitly

@@ -1,10 +1,10 @@
 #include "registry/commands.h"
 
-#include "core/content_hash.h"
-#include "core/errors.h"
-#include "core/metrics.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
+#include "core/base/content_hash.h"
+#include "core/base/errors.h"
+#include "core/base/metrics.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "reference/reference.h"  // the references' pixel= param
 #include "registry/registry.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/technique.h"
+#include "core/scene/scene.h"
+#include "core/technique/technique.h"
 #include "registry/cli.h"
 #include "registry/shadow_error.h"
 

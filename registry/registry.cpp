@@ -2,8 +2,8 @@
 
 #include <optional>
 
-#include "core/errors.h"
-#include "core/gl_trace.h"
+#include "core/base/errors.h"
+#include "core/gl/gl_trace.h"
 #include "imaging/imaging.h"
 #include "legacy_gl/legacy.h"
 #include "modern/modern.h"
@@ -126,7 +126,7 @@ void checkRenderable(const Technique& technique, const RenderParams& params) {
 Frame renderTechnique(const Technique& technique, const Scene& scene, const RenderParams& params) {
   auto context = contextForRender(technique, params);
   if (!params.capturePasses) return technique.render(*context, scene, params);
-  // --dump-passes: the GL state of every pass (core/gl_trace.h), traced on top of the
+  // --dump-passes: the GL state of every pass (core/gl/gl_trace.h), traced on top of the
   // context's table as the imaging subset left it, so the trace sees the technique's calls.
   GlTrace trace;
   return technique.render(*context, scene, params);

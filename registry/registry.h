@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/frame_timing.h"
-#include "core/technique.h"
+#include "core/technique/frame_timing.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 
@@ -13,7 +13,7 @@ const std::vector<Technique>& allTechniques();
 const Technique& findTechnique(const std::string& name);  // throws InputError if unknown
 
 // Options a technique ignores are input errors (issue 21 item 3). `given` are the common
-// options (core/technique.h CommonOption) given explicitly on the command line; throws
+// options (core/technique/technique.h CommonOption) given explicitly on the command line; throws
 // InputError for the first one `technique` does not read: "legacy.ramp does not filter:
 // --filter has no effect on it (techniques that read --filter: ...)".
 void rejectIgnoredOptions(const Technique& technique, const std::vector<CommonOption>& given);
@@ -36,17 +36,17 @@ std::unique_ptr<GlContext> makeRenderContext(const Technique& technique,
 // `shadowlab render` refuses. Throws InputError.
 void checkRenderable(const Technique& technique, const RenderParams& params);
 
-// The steady-state frame time (core/frame_timing.h) of a technique on one context made as
+// The steady-state frame time (core/technique/frame_timing.h) of a technique on one context made as
 // renderTechnique makes it; `last` receives the last timed frame. `traceGl`: with the GL trace
-// of --dump-passes running (core/gl_trace.h), to measure what it costs (legacy_bench
+// of --dump-passes running (core/gl/gl_trace.h), to measure what it costs (legacy_bench
 // --trace-overhead).
 SteadyTiming timeTechnique(const Technique& technique, const Scene& scene,
                            const RenderParams& params, const FrameCounts& counts,
                            Frame* last = nullptr, bool traceGl = false);
 
-// Several renders timed interleaved (core/frame_timing.h timeInterleavedSteadyState), each on
-// its own context made as renderTechnique makes it, all contexts alive at once (switched with
-// makeCurrent between frames). `lasts` receives every job's last frame.
+// Several renders timed interleaved (core/technique/frame_timing.h timeInterleavedSteadyState),
+// each on its own context made as renderTechnique makes it, all contexts alive at once (switched
+// with makeCurrent between frames). `lasts` receives every job's last frame.
 struct TimingJob {
   const Technique* technique = nullptr;
   const Scene* scene = nullptr;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "reference/reference.h"  // the categories' grey levels and the pixel= params
 #include "registry/registry.h"
 

@@ -23,9 +23,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/image.h"
-#include "core/metrics.h"
-#include "core/technique.h"
+#include "core/base/image.h"
+#include "core/base/metrics.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 
@@ -93,8 +93,8 @@ struct ShadowError {
 // as mismatching (compare --threshold). InputError on a size mismatch.
 ShadowError scoreShadow(const Image& mask, const ShadowTruth& truth, double threshold = 0.0);
 
-// |mask - truth| as core/image.h differenceHeatMap colours it, on the scored pixels; the pixels
-// left out are kLeftOutGrey, so a viewer sees what the score does not count.
+// |mask - truth| as core/base/image.h differenceHeatMap colours it, on the scored pixels; the
+// pixels left out are kLeftOutGrey, so a viewer sees what the score does not count.
 constexpr float kLeftOutGrey = 0.3f;
 Image errorHeatMap(const Image& mask, const ShadowTruth& truth);
 

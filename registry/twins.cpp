@@ -4,9 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "registry/registry.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "imaging/imaging.h"
+#include "registry/registry.h"
 
 namespace sl::twins {
 namespace {

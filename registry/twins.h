@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/metrics.h"
-#include "core/technique.h"
+#include "core/base/metrics.h"
+#include "core/technique/technique.h"
 
 namespace sl::twins {
 
@@ -33,8 +33,8 @@ std::vector<std::string> missingPairs();
 // The legacy technique a modern one is the twin of ("modern.fast-pcf" -> "legacy.fast-pcf"),
 // "" when it has none.
 std::string legacyTwinOf(const std::string& modern);
-// That twin's pass table (core/pass_table.h; what passes.json names its replaced passes from),
-// null when it has none.
+// That twin's pass table (core/technique/pass_table.h; what passes.json names its replaced passes
+// from), null when it has none.
 const PassTable* legacyTwinPassesOf(const std::string& modern);
 
 // Scenes every pair is checked on: analytic (exact shadow known), brabec (Brabec–Seidel §5, the
@@ -44,7 +44,7 @@ const std::vector<std::string>& equivalenceScenes();
 
 // The 'not bit-exact' bound (issue 5): |legacy - modern| <= one 8-bit step on at least
 // 99.9% of pixels, and every larger difference inside the shadow-boundary band of the legacy
-// mask (core/metrics.h boundaryBand with kBandRadius).
+// mask (core/base/metrics.h boundaryBand with kBandRadius).
 constexpr double kOneStep = 1.0 / 255.0;
 constexpr double kMaxShareBeyondOneStep = 0.001;
 // One pixel on either side of the boundary: a depth tie flips a pixel only where the legacy
@@ -98,7 +98,7 @@ struct ImageAgreement {
 };
 ImageAgreement judgeImages(const Image& legacyColor, const Image& modernColor,
                            const Image& legacyMask, const Image& modernMask);
-// The largest channel difference of two colour images as core/image.h's heat map, full scale
+// The largest channel difference of two colour images as core/base/image.h's heat map, full scale
 // kImageDiffFullScale; differences within kImageSteps (rounding, Gouraud) are drawn black, so
 // the picture shows what judgeImages counts; a lit/unlit flip is white.
 constexpr float kImageDiffFullScale = 16.0f / 255.0f;
@@ -109,13 +109,14 @@ RenderParams paramsFor(const TwinPair& pair, bool legacySide, int width, int hei
                        int shadowMapTexels, Backend backend);
 
 // Why the legacy side of `pair` cannot run at the pair's precision with these parameters, ""
-// when it can: EGL pbuffers are 8-bit (core/context.cpp), so legacy 12-bit and float colour
+// when it can: EGL pbuffers are 8-bit (core/gl/context.cpp), so legacy 12-bit and float colour
 // is not there and the pair is not comparable.
 std::string unavailablePrecision(const TwinPair& pair, const RenderParams& legacyParams);
 
 // Frame time (sum of the technique's timed passes) over `frames` frames rendered in one context
-// after kWarmupFrames warm-up frames (core/frame_timing.h, registry/registry.h timeTechnique): the
-// median, and the minimum (the least disturbed by other processes on a shared machine).
+// after kWarmupFrames warm-up frames (core/technique/frame_timing.h, registry/registry.h
+// timeTechnique): the median, and the minimum (the least disturbed by other processes on a shared
+// machine).
 struct FrameTimes {
   double median = 0.0;
   double minimum = 0.0;

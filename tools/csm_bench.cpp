@@ -19,7 +19,7 @@
 // every CSM cell, under the cell's own order, blur and filtering), the two timed interleaved in one
 // run, beside the paper's ratio (PCF fps / CSM fps of the same map size) and ours / paper.
 //
-// Each configuration is timed at steady state (core/frame_timing.h, registry/registry.h
+// Each configuration is timed at steady state (core/technique/frame_timing.h, registry/registry.h
 // timeTechnique): in one context, --warmup frames first (shader compilation, first
 // allocation), then the median of --repeat frames of the sum of the pass times (default
 // kSteadyFrames: 2 + 5). --quick: 512x384 and kQuickFrames (1 warm-up, median of 3; one timed
@@ -36,12 +36,12 @@
 #include <string>
 #include <vector>
 
+#include "core/base/errors.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
-#include "core/errors.h"
-#include "core/output_files.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
 
 namespace sl {
 namespace {
@@ -303,7 +303,7 @@ int run(int argc, char** argv) {
   if (!parsed) return 0;  // --help
   const Options& o = *parsed;
   const Scene scene = builtinScene(o.scene);
-  // The CSV's rows are kept in memory and written at the end (core/output_files.h): a run that
+  // The CSV's rows are kept in memory and written at the end (core/base/output_files.h): a run that
   // fails or is interrupted leaves no file, and the destination is checked before any work.
   OutputSet outputs;
   std::optional<std::string> csvTemporary;

@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
-#include "core/context.h"
+#include "core/gl/context.h"
 #include "imaging/imaging.h"
 #include "imaging/internal.h"
 
-// After core/gl.h, which includes GL/gl.h with the extension prototypes it needs.
+// After core/gl/gl.h, which includes GL/gl.h with the extension prototypes it needs.
 #include <GL/osmesa.h>
 
 namespace sl::imaging::bench {

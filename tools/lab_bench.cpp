@@ -21,8 +21,8 @@
 #include <thread>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/provenance.h"
+#include "core/base/errors.h"
+#include "core/base/provenance.h"
 #include "lab/lab_server.h"
 #include "registry/cli.h"
 

@@ -3,14 +3,14 @@
 // tables (docs/legacy.md).
 // Roofline (always printed): in the same context as the frames, and interleaved with them
 // round by round so that load hits both alike, each pass's floor is measured: the least GL work
-// of its kind at its size (legacy_gl/roofline.h: a clear, one full-window quad with the pass's
+// of its kind at its size (measure/roofline.h: a clear, one full-window quad with the pass's
 // class of fragment work, the same glCopyTexSubImage2D / glCopyPixels / glDrawPixels size, the
 // same glAccum). Each pass prints its median time, its floor and time / floor; the first
 // table the frame's sum of floors and time / floor.
 //   legacy_bench [--backend osmesa|reference] [--imaging native|emulated] [--frames N]
 //                [--quick] [--technique T] [--trace-overhead] [--split-cost]
 // --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
-// (the context's own dispatch table, as every render runs) and on (core/gl_trace.h), as a ratio.
+// (the context's own dispatch table, as every render runs) and on (core/gl/gl_trace.h), as a ratio.
 // --split-cost: instead, the camera pass's draw of brabec's own meshes and of the split meshes
 // the camera passes draw (spotlight_tessellation.h), beside the pass's floor (docs/legacy.md
 // "Feeding the passes").
@@ -22,26 +22,26 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/frame_timing.h"
-#include "core/gl_trace.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
-#include "legacy_gl/benchmark.h"
+#include "core/base/errors.h"
+#include "core/base/provenance.h"
+#include "core/gl/gl_trace.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/frame_timing.h"
+#include "measure/legacy_benchmark.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
 
 namespace {
 constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
 
-// The cost of the GL trace (core/gl_trace.h): off, every call goes through the context's own
+// The cost of the GL trace (core/gl/gl_trace.h): off, every call goes through the context's own
 // table (the trace is not there at all); on, through the recording table. The two are timed
-// interleaved (core/frame_timing.h timeInterleavedSteadyState), each on its own context, so that
-// a change of the machine's load hits both alike; the ratio is of the two medians.
+// interleaved (core/technique/frame_timing.h timeInterleavedSteadyState), each on its own context,
+// so that a change of the machine's load hits both alike; the ratio is of the two medians.
 std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
                                   const std::vector<sl::legacy::BenchmarkVariant>& variants) {
   std::ostringstream out;
-  out << "GL trace of --dump-passes (core/gl_trace.h), brabec scene " << options.width << "x"
+  out << "GL trace of --dump-passes (core/gl/gl_trace.h), brabec scene " << options.width << "x"
       << options.height << ", shadow map " << options.shadowMapTexels << ", "
       << sl::backendName(options.backend) << ", off and on interleaved: median of "
       << options.frames.timed << " rounds after " << options.frames.warmup
@@ -92,7 +92,7 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
 }
 
 int main(int argc, char** argv) {
-  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/base/provenance.h)
   try {
     sl::legacy::BenchmarkOptions options;
     std::string backend, imaging, frames;
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
     CLI::App app{
         "Brabec & Seidel 2001 §5 per pass, beside the paper's frame rates and each "
         "pass's llvmpipe floor (time / floor; floors measured interleaved in the same "
-        "context, legacy_gl/roofline.h) (markdown)",
+        "context, measure/roofline.h) (markdown)",
         "legacy_bench"};
     app.add_option("--backend", backend, "osmesa or reference (Mesa 7.8.2) [osmesa]")
         ->type_name("NAME");
@@ -111,11 +111,11 @@ int main(int argc, char** argv) {
         ->type_name("native|emulated");
     app.add_option("--frames", frames, "timed frames per variant, after the warm-up frames")
         ->type_name("N");
-    app.add_flag("--quick", quick, "the quick frame counts (core/frame_timing.h kQuickFrames)");
+    app.add_flag("--quick", quick, "the quick frame counts (core/technique/frame_timing.h kQuickFrames)");
     app.add_option("--technique", only, "only legacy.ramp, legacy.pcf or legacy.fast-pcf")
         ->type_name("T");
     app.add_flag("--trace-overhead", traceOverhead,
-                 "frame time with the --dump-passes GL trace off and on (core/gl_trace.h)");
+                 "frame time with the --dump-passes GL trace off and on (core/gl/gl_trace.h)");
     app.add_flag("--split-cost", splitCost,
                  "the camera pass's draw of the scene's own and of its spotlight-split meshes, "
                  "beside the pass's floor");

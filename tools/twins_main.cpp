@@ -7,20 +7,20 @@
 //
 // Agreement: every pair of registry/twins.h on every scene, at the equivalence tests' size by
 // default (320x240, 256^2 map), judged against the pair's bound. Speed: each technique's median
-// frame time (sum of its timed passes after warm-up frames, core/frame_timing.h) at the paper's
-// configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
+// frame time (sum of its timed passes after warm-up frames, core/technique/frame_timing.h) at the
+// paper's configuration (Brabec–Seidel §5: 800x600, 512^2 map, the brabec scene) and legacy/modern.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
 #include <optional>
 #include <sstream>
 
+#include "core/base/errors.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
-#include "core/errors.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
 
 namespace sl {
 namespace {

@@ -9,20 +9,20 @@
 //   volumes_bench --doc-images DIR     the three images of docs/volumes.md
 //
 // S: cubes (the default, assets/scenes/cubes.json), a built-in scene or a scene file.
-#include "modern/volumes_bench.h"
+#include "measure/volumes_bench.h"
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 #include <map>
 
+#include "core/base/errors.h"
+#include "core/base/image.h"
+#include "core/base/output_files.h"
+#include "core/base/provenance.h"
+#include "core/scene/scene_library.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
-#include "core/errors.h"
-#include "core/image.h"
-#include "core/output_files.h"
-#include "core/provenance.h"
-#include "core/scene_library.h"
 
 namespace {
 using namespace sl;
@@ -35,7 +35,7 @@ constexpr int kMaxFrames = 1000;        // timed frames: more would take hours o
 // smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
 // and the hybrid's classification (Fig. 3-5b).
 // The three files are checked before rendering and renamed into place together at the end
-// (core/output_files.h): all three or none.
+// (core/base/output_files.h): all three or none.
 void writeDocImages(const std::string& dir) {
   const std::string crops = "volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png";
   const std::string cubes = "volumes-cubes-image-overdraw-classification.png";
@@ -82,7 +82,7 @@ void writeDocImages(const std::string& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/provenance.h)
+  sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/base/provenance.h)
   using namespace sl;
   try {
     std::string sceneName = "cubes";
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
     params.width = 800;
     params.height = 600;
     params.shadowMapTexels = 1024;
-    int frames = kTimedFrames;  // after kWarmupFrames (core/frame_timing.h)
+    int frames = kTimedFrames;  // after kWarmupFrames (core/technique/frame_timing.h)
     std::vector<std::string> techniques;
     std::string size, shadowMap, framesText, backend, docImages;
     CLI::App app{"frame times and overdraw counters of the shadow-volume techniques (JSON lines)",

@@ -530,7 +530,7 @@ function draw() {
 // ------------------------------------------------------------------ the legend of a view
 
 const clamp01 = (x) => Math.min(1, Math.max(0, x));
-// core/image.cpp differenceHeatMap, which /api/error?view=image draws (d = |mask - truth|).
+// core/base/image.cpp differenceHeatMap, which /api/error?view=image draws (d = |mask - truth|).
 function errorRamp(d) {
   if (!(d > 0)) return [0, 0, 0];
   const t = 0.15 + 0.85 * d;

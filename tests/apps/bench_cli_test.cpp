@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "command_util.h"
-#include "core/image.h"
+#include "core/base/image.h"
 
 namespace sl {
 namespace {

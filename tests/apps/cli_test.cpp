@@ -12,10 +12,10 @@
 #include <set>
 #include <sstream>
 
-#include "core/errors.h"
-#include "core/image.h"
-#include "core/provenance.h"
 #include "command_util.h"
+#include "core/base/errors.h"
+#include "core/base/image.h"
+#include "core/base/provenance.h"
 #include "tests/test_names.h"
 
 namespace sl {
@@ -79,7 +79,7 @@ TEST(Cli, ListAndHelp) {
   EXPECT_NE(help.out.find("--version"), std::string::npos);
 }
 
-// `shadowlab --version` prints the commit the binary was built from (core/provenance.h), the
+// `shadowlab --version` prints the commit the binary was built from (core/base/provenance.h), the
 // same "shadowlab <commit>" its PNGs carry as "Software"; anything after it is bad input.
 TEST(Cli, VersionPrintsTheBuildCommit) {
   const CommandResult r = shadowlab("--version");
@@ -162,7 +162,7 @@ TEST(Cli, CompareReportsStatisticsAsJson) {
   EXPECT_TRUE(fs::exists(diff));
 }
 
-// No temporary of core/output_files.h (".tmp-", ".old-") or of writePng (".part-") is left.
+// No temporary of core/base/output_files.h (".tmp-", ".old-") or of writePng (".part-") is left.
 void expectNoTemporaries(const fs::path& directory) {
   for (const auto& entry : fs::directory_iterator(directory))
     for (const char* mark : {".tmp-", ".old-", ".part-"})
@@ -416,7 +416,7 @@ TEST(ToolCli, CsmRatioTakesShadowMap) {
   EXPECT_EQ(r.out.find("map 512"), std::string::npos) << r.out;
 }
 
-// Numbers on the command line are strict decimals (core/decimal.h, one parser for all).
+// Numbers on the command line are strict decimals (core/base/decimal.h, one parser for all).
 TEST(Cli, StrictDecimalNumbers) {
   for (const char* good : {"0.5", "-0.5", "+2", ".5", "2.", "1e-3", "3E2"})
     EXPECT_NO_THROW(cli::parseNumber("--x", good)) << good;

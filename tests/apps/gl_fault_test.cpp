@@ -1,4 +1,4 @@
-// `shadowlab render` under an injected GL fault (SHADOWLAB_INJECT_GL_FAULT, core/gl_fault.h):
+// `shadowlab render` under an injected GL fault (SHADOWLAB_INJECT_GL_FAULT, core/gl/gl_fault.h):
 // at any pass of legacy and modern techniques, a GL error or a missing entry point ends the run
 // with exit 3, one line on stderr naming the pass and the fault, and no output at all — not the
 // image, not the mask, not the pass dump, no temporary left beside them.
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "apps/command_util.h"
-#include "core/image.h"
+#include "core/base/image.h"
 #include "tests/test_names.h"
 
 namespace sl::test {

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "command_util.h"
-#include "core/image.h"
-#include "core/technique.h"
+#include "core/base/image.h"
+#include "core/technique/technique.h"
 #include "figures/figure_spec.h"
 #include "registry/registry.h"
 

@@ -1,7 +1,7 @@
-// `shadowlab lesson TECHNIQUE --out DIR` (figures/lesson.h, issue 18 item 4): one self-contained
+// `shadowlab lesson TECHNIQUE --out DIR` (teach/lesson.h, issue 18 item 4): one self-contained
 // page per technique with the paper's idea, every pass, the twin, legacy against modern and the
 // known departures; bad input is one line and exit 2 with nothing written.
-#include "figures/lesson.h"
+#include "teach/lesson.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "command_util.h"
-#include "core/html.h"
-#include "core/shaders.h"
+#include "core/base/html.h"
+#include "core/gl/shaders.h"
 #include "registry/registry.h"
 
 namespace sl {
@@ -134,7 +134,7 @@ TEST(Lesson, RefusesAFolderWithOtherFiles) {
   EXPECT_FALSE(fs::exists(dir / "index.html"));
 }
 
-// Every pass of both strips shows the GL state the trace layer recorded (core/gl_trace.h,
+// Every pass of both strips shows the GL state the trace layer recorded (core/gl/gl_trace.h,
 // passes.json "state") and the paper section its PassTimer declares.
 TEST(Lesson, ShowsTheGlStateOfEveryPass) {
   const fs::path dir = test::testDir("lesson", true) / "fast-pcf";

@@ -1,8 +1,8 @@
-// core/output_files.h as the commands use it (issue 17 item 4): every destination checked up
+// core/base/output_files.h as the commands use it (issue 17 item 4): every destination checked up
 // front, written through temporaries, renamed together at the end, or none at all. The
 // commands' own cases are in cli_test.cpp; these drive OutputSet directly, including a commit
 // that fails half-way.
-#include "core/output_files.h"
+#include "core/base/output_files.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,8 +12,8 @@
 #include <set>
 #include <sstream>
 
-#include "core/errors.h"
 #include "command_util.h"
+#include "core/base/errors.h"
 
 namespace sl {
 namespace {
@@ -93,7 +93,7 @@ TEST(OutputSet, FailedCommitIsUndone) {
   EXPECT_EQ(names(d), (std::set<std::string>{"dump", "first.txt"}));
 }
 
-// A previous dump (PNGs, passes.json, index.html, core/pass_dump.h) is replaced as a whole; a
+// A previous dump (PNGs, passes.json, index.html, teach/pass_dump.h) is replaced as a whole; a
 // directory holding anything else is refused untouched.
 TEST(OutputSet, ReplacesOnlyAPreviousDump) {
   const fs::path d = freshDir();

@@ -1,7 +1,7 @@
-// `shadowlab render --dump-passes DIR` (core/pass_dump.h, issue 18 item 1): every technique in
+// `shadowlab render --dump-passes DIR` (teach/pass_dump.h, issue 18 item 1): every technique in
 // the registry dumps its buffers in pipeline order with passes.json and index.html; a frame
 // with nothing to dump is an input error, never an empty folder.
-#include "core/pass_dump.h"
+#include "teach/pass_dump.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -12,10 +12,10 @@
 #include <set>
 #include <sstream>
 
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/image.h"
 #include "command_util.h"
+#include "core/base/errors.h"
+#include "core/base/image.h"
+#include "registry/registry.h"
 #include "tests/test_names.h"
 
 namespace sl {
@@ -192,13 +192,14 @@ TEST_P(EveryTechnique, DumpsItsPassesWithPassesJsonAndIndex) {
     for (const char* key : {"section", "source", "state", "glsl", "replaces"})
       EXPECT_TRUE(p.contains(key)) << key << " in pass " << p["number"];
     EXPECT_FALSE(p["section"].get<std::string>().empty()) << p["number"];
-    // A timed pass declares its own section (core/technique.h PassTimer; no technique-wide
-    // fallback): a paper of /work/shared/papers by its authors, or "ours" where no paper has it.
+    // A timed pass declares its own section (core/technique/technique.h PassTimer; no
+    // technique-wide fallback): a paper of /work/shared/papers by its authors, or "ours" where no
+    // paper has it.
     if (!p["timings"].empty()) {
       EXPECT_TRUE(citesAPaperOrSaysOurs(p["section"].get<std::string>()))
           << t.name << " pass " << p["number"] << ": " << p["section"];
     }
-    // A pass that runs a program names the `// @pass` markers of its GLSL (core/shaders.h), and
+    // A pass that runs a program names the `// @pass` markers of its GLSL (core/gl/shaders.h), and
     // the marked files are files of a program the pass uses.
     // (A program made ready before the pass's timer, "before_pass", counts for the files but
     // does not make a CPU pass a GLSL one.)

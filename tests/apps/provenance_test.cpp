@@ -2,7 +2,7 @@
 // 2 and 3): the JSON lines of `render` and `compare`, the text chunks of the PNGs they write,
 // and the refusal of --shadow-map, --filter and --precision where the technique does not read
 // them, checked against what the techniques actually do.
-#include "core/provenance.h"
+#include "core/base/provenance.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "registry/registry.h"
-#include "core/image.h"
-#include "core/scene_library.h"
 #include "command_util.h"
+#include "core/base/image.h"
+#include "core/scene/scene_library.h"
+#include "registry/registry.h"
 #include "tests/test_names.h"
 
 namespace sl {

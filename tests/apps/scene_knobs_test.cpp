@@ -7,7 +7,7 @@
 #include <string>
 
 #include "command_util.h"
-#include "core/image.h"
+#include "core/base/image.h"
 
 namespace sl {
 namespace {

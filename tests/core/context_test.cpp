@@ -1,9 +1,10 @@
 // Context creation on every back end and colour precision the project relies on
 // (docs/design.md "Platform facts").
+#include "core/gl/context.h"
+
 #include <gtest/gtest.h>
 
-#include "core/context.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
 
 namespace sl {
 namespace {

@@ -1,8 +1,8 @@
-// The steady-state median (core/frame_timing.h) on a scripted frame source: each call returns
-// the next Frame of a list whose pass times are chosen here, so which frames were discarded
+// The steady-state median (core/technique/frame_timing.h) on a scripted frame source: each call
+// returns the next Frame of a list whose pass times are chosen here, so which frames were discarded
 // and which median was taken can be read from the result exactly. No GL is involved: the
 // helper only sees Frames.
-#include "core/frame_timing.h"
+#include "core/technique/frame_timing.h"
 
 #include <gtest/gtest.h>
 

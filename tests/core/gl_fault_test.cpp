@@ -1,19 +1,19 @@
-// core/gl_fault.h: a GL error or a missing entry point injected at a chosen pass or GL call,
+// core/gl/gl_fault.h: a GL error or a missing entry point injected at a chosen pass or GL call,
 // caught by the project's own error handling (checkGl, PassTimer's end-of-pass check, the
-// dispatch's entry-point check); and core/technique.h PassTimer, whose destructor notes the
-// end-of-pass error instead of throwing.
-#include "core/gl_fault.h"
+// dispatch's entry-point check); and core/technique/technique.h PassTimer, whose destructor notes
+// the end-of-pass error instead of throwing.
+#include "core/gl/gl_fault.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 #include <type_traits>
 
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/gl_trace.h"
-#include "core/technique.h"
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+#include "core/gl/gl.h"
+#include "core/gl/gl_trace.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 namespace {

@@ -1,7 +1,7 @@
-// core/gl_objects.h on a real OSMesa context: owned names are deleted when their owner goes
+// core/gl/gl_objects.h on a real OSMesa context: owned names are deleted when their owner goes
 // (also after a move), and the scoped state helpers undo their change when the scope is left by
 // an exception, as a failing pass leaves it.
-#include "core/gl_objects.h"
+#include "core/gl/gl_objects.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/context.h"
+#include "core/gl/context.h"
 
 namespace sl {
 namespace {

@@ -1,16 +1,16 @@
-// core/gl_trace.h: the tracing layer on the dispatch table (issue 18 item 2). Off, the context's
+// core/gl/gl_trace.h: the tracing layer on the dispatch table (issue 18 item 2). Off, the context's
 // own table is current and untouched; on, calls go through a second table that records them per
 // pass and forwards to the first; afterwards the first is current again, unchanged.
-#include "core/gl_trace.h"
+#include "core/gl/gl_trace.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
 
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/gl.h"
-#include "core/technique.h"
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+#include "core/gl/gl.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 namespace {

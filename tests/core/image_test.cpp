@@ -1,14 +1,14 @@
-// PNG round trips and the close-up helpers (core/image.h).
+// PNG round trips and the close-up helpers (core/base/image.h).
+#include "core/base/image.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
-#include "core/errors.h"
-#include "core/image.h"
+#include "core/base/errors.h"
 
 namespace sl {
 namespace {

@@ -1,5 +1,5 @@
-// A deterministic fuzz test of the mesh loader (core/mesh_io.h, issue 17): small valid OBJ and
-// PLY files (ascii and binary, plain and gzipped) mutated by a seeded PRNG — bit flips,
+// A deterministic fuzz test of the mesh loader (core/scene/mesh_io.h, issue 17): small valid OBJ
+// and PLY files (ascii and binary, plain and gzipped) mutated by a seeded PRNG — bit flips,
 // truncations, inserted and repeated bytes, edited header counts and numbers, removed or
 // replaced line ends, gzip wrapping and damaged gzip streams. Every case must either load into
 // a valid mesh or throw InputError: any other exception fails the test, a crash or a hang
@@ -20,8 +20,8 @@
 #include <typeinfo>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/mesh_io.h"
+#include "core/base/errors.h"
+#include "core/scene/mesh_io.h"
 #include "mesh_test_files.h"
 
 namespace sl {

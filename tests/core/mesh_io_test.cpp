@@ -1,7 +1,7 @@
-// Mesh loading against the malformed files of issue 17 (core/mesh_io.h): each is refused with an
-// InputError that names the file (and the cap where one is exceeded), never a crash, a hang or
+// Mesh loading against the malformed files of issue 17 (core/scene/mesh_io.h): each is refused with
+// an InputError that names the file (and the cap where one is exceeded), never a crash, a hang or
 // an allocation of what the file merely declares.
-#include "core/mesh_io.h"
+#include "core/scene/mesh_io.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "mesh_test_files.h"
 
 namespace sl {
@@ -67,7 +67,7 @@ TEST(MeshLoading, WindowsLineEndsLoad) {
 }
 
 // The issue's 2 KB .ply.gz with no newline: Assimp 5.2 looped past its line cache on such
-// headers (see core/mesh_io.cpp). Every variant: no line end at all, '\r' or '\0' line ends,
+// headers (see core/scene/mesh_io.cpp). Every variant: no line end at all, '\r' or '\0' line ends,
 // binary and ascii, with about 2 KB of compressed payload after the header.
 TEST(MeshLoading, PlyGzWithoutNewlinesIsRefused) {
   std::string payload;

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "core/errors.h"
-#include "core/technique.h"
+#include "core/base/errors.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 namespace {

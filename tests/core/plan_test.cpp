@@ -1,14 +1,14 @@
-// The pass planner (core/plan.h) on purpose-built scenes: each test builds a scene in which one
-// omission must happen (or must not) and checks it, with the expected numbers computed here
-// from the scene's geometry.
-#include "core/plan.h"
+// The pass planner (core/technique/plan.h) on purpose-built scenes: each test builds a scene in
+// which one omission must happen (or must not) and checks it, with the expected numbers computed
+// here from the scene's geometry.
+#include "core/technique/plan.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/primitives.h"
+#include "core/scene/primitives.h"
 
 namespace sl {
 namespace {
@@ -47,8 +47,9 @@ Scene column() {
   return s;
 }
 
-// Techniques described only by what they declare to the planner (core/technique.h PlanTraits).
-// Their names are deliberately not those of real techniques: the planner must ask, not match.
+// Techniques described only by what they declare to the planner (core/technique/technique.h
+// PlanTraits). Their names are deliberately not those of real techniques: the planner must ask, not
+// match.
 Technique named(const std::string& name) {
   Technique t;
   t.name = name;

@@ -1,15 +1,15 @@
 // What made an output (issue 21 item 2): the PNG text chunks written by writePng and read back
 // through libpng, the shell quoting of the recorded command line, and the effective --params
-// a render reads (core/provenance.h, core/image.h, core/technique.h).
-#include "core/provenance.h"
+// a render reads (core/base/provenance.h, core/base/image.h, core/technique/technique.h).
+#include "core/base/provenance.h"
 
 #include <gtest/gtest.h>
 
 #include <cctype>
 #include <filesystem>
 
-#include "core/image.h"
-#include "core/technique.h"
+#include "core/base/image.h"
+#include "core/technique/technique.h"
 
 namespace sl {
 namespace {

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "core/errors.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
 
 namespace sl {
 namespace {

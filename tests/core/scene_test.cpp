@@ -4,13 +4,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/errors.h"
-#include "core/mesh_io.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/mesh_io.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
 
 namespace sl {
 namespace {

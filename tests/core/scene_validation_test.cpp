@@ -2,7 +2,6 @@
 // ranges, impossible cameras and lights. Each bad input is an InputError whose one line names
 // the field; the command line turns it into exit status 2 with nothing written.
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -10,13 +9,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
-#include "core/errors.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
 
 namespace sl {
 namespace {

@@ -4,6 +4,8 @@
 // the lab's URL keys (docs/lab.md), and an exercise without one has an option the lab lacks;
 // writeCourse writes every page, picture, lesson and the gallery, and every relative link and
 // anchor of the two pages resolves.
+#include "figures/course.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,10 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/html.h"
-#include "core/scene_library.h"
-#include "figures/course.h"
+#include "core/base/errors.h"
+#include "core/base/html.h"
+#include "core/scene/scene_library.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
 

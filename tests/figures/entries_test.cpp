@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/scene_library.h"
+#include "core/scene/scene_library.h"
 #include "figures/diagnostics.h"
 #include "figures/figure_spec.h"
 

@@ -1,6 +1,6 @@
 // Issue 14 item 2: a time that `shadowlab figures` sets beside a paper's number is the
-// steady-state median of core/frame_timing.h, not a first frame in a fresh context. The real
-// program renders a cheap figure (chan-4-1: one render panel with the thesis's 39 fps, beside
+// steady-state median of core/technique/frame_timing.h, not a first frame in a fresh context. The
+// real program renders a cheap figure (chan-4-1: one render panel with the thesis's 39 fps, beside
 // three buffer and view panels) and the report must say how each time was measured. Speed
 // itself is never asserted.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/frame_timing.h"
+#include "core/technique/frame_timing.h"
 
 namespace fs = std::filesystem;
 

@@ -2,6 +2,8 @@
 // `shadowlab render` command parses with the CLI's parser and names what the entry says, its lab
 // link names the same state, and its one parameter really changes the picture where the
 // artefact is (the wrong and right images differ inside the close-up window).
+#include "figures/gallery.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,8 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/image.h"
-#include "figures/gallery.h"
+#include "core/base/image.h"
 #include "registry/cli.h"
 
 using namespace sl;

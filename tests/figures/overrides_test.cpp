@@ -12,8 +12,8 @@
 #include <sstream>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/image.h"
+#include "core/base/errors.h"
+#include "core/base/image.h"
 #include "figures/figure_spec.h"
 
 namespace fs = std::filesystem;

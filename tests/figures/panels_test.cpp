@@ -17,14 +17,14 @@
 #include <set>
 #include <string>
 
-#include "registry/registry.h"
-#include "core/scene_library.h"
-#include "core/errors.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
 #include "figures/disagreement.h"
 #include "figures/figure_spec.h"
 #include "figures/figures.h"
 #include "figures/plots.h"
 #include "figures/report.h"
+#include "registry/registry.h"
 
 namespace fs = std::filesystem;
 using namespace sl;
@@ -79,7 +79,8 @@ int mismatches(const Image& composite, const Image& tile, int x0, int y0) {
   return bad;
 }
 
-// A rectangle of composeFigure's layout (top-left origin) as core/image.h's bottom-left corner.
+// A rectangle of composeFigure's layout (top-left origin) as core/base/image.h's bottom-left
+// corner.
 int bottomOf(const Image& composite, const TileRect& r) {
   return composite.height - r.y - r.height;
 }

@@ -1,7 +1,7 @@
 // The planner consulted by legacy.hw and modern.hw, end to end: with no caster in the light
 // frustum the light pass is left out, and the result is the one the full pass gives; and the
 // `shadowlab plan` command.
-#include "core/plan.h"
+#include "core/technique/plan.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -11,8 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
-#include "core/scene_library.h"
 
 namespace sl {
 namespace {

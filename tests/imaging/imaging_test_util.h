@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/context.h"
+#include "core/gl/context.h"
 #include "imaging/imaging.h"
 
 namespace sl::imaging::testing {

@@ -13,7 +13,7 @@
 #include "imaging/internal.h"
 #include "imaging_test_util.h"
 
-// After core/gl.h, which includes GL/gl.h with the extension prototypes it needs.
+// After core/gl/gl.h, which includes GL/gl.h with the extension prototypes it needs.
 #include <GL/osmesa.h>
 
 namespace sl::imaging::detail {

@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "apps/command_util.h"
-#include "core/context.h"
-#include "core/gl.h"
-#include "core/image.h"
+#include "core/base/image.h"
+#include "core/gl/context.h"
+#include "core/gl/gl.h"
 #include "imaging/imaging.h"
 
 namespace sl {

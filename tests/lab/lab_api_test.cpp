@@ -10,7 +10,7 @@
 #include <set>
 #include <thread>
 
-#include "core/metrics.h"
+#include "core/base/metrics.h"
 #include "lab/worker.h"
 #include "lab_test_util.h"
 

@@ -1,9 +1,9 @@
-// The live lab under an injected GL fault (core/gl_fault.h): the request that meets it answers
+// The live lab under an injected GL fault (core/gl/gl_fault.h): the request that meets it answers
 // 500 with the one-line GL error naming the fault and its pass, and the next request renders
 // the same frame as before the fault (the failed context is dropped and made afresh).
 #include <gtest/gtest.h>
 
-#include "core/gl_fault.h"
+#include "core/gl/gl_fault.h"
 #include "lab_test_util.h"
 
 namespace sl::test {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "apps/command_util.h"
-#include "core/image.h"
+#include "core/base/image.h"
 #include "lab/lab_server.h"
 
 namespace sl::test {
@@ -33,7 +33,7 @@ inline std::unique_ptr<lab::LabServer> startLab(double rate = kTestRequestsPerSe
   return server;
 }
 
-// A PNG body decoded through a file (core/image.h reads PNGs from files).
+// A PNG body decoded through a file (core/base/image.h reads PNGs from files).
 inline Image decodePng(const std::string& body, const std::filesystem::path& dir,
                        const std::string& name) {
   const std::filesystem::path file = dir / name;

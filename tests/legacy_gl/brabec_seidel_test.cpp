@@ -12,12 +12,12 @@
 #include <set>
 #include <string>
 
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
 #include "imaging/imaging.h"
 #include "legacy_gl/brabec_seidel_passes.h"
 #include "legacy_test_support.h"
+#include "registry/registry.h"
 
 namespace sl {
 namespace {
@@ -626,7 +626,7 @@ TEST(BrabecSeidel, ShiftViewIsTheOneTexelShiftOfFigureFive) {
   }
   ASSERT_NE(packed, nullptr);
   ASSERT_NE(view, nullptr);
-  constexpr int kPanelGap = 4;         // sideBySide's default gap (core/image.h)
+  constexpr int kPanelGap = 4;         // sideBySide's default gap (core/base/image.h)
   constexpr float kGain = 32.0f;       // the view's amplification (legacy_gl/fast_pcf.cpp)
   constexpr float kTolerance = 1e-5f;  // float arithmetic on the same stored values
   const int n = kMapTexels;

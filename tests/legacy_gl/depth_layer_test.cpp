@@ -10,9 +10,9 @@
 #include <glm/glm.hpp>
 #include <string>
 
-#include "registry/registry.h"
-#include "core/scene_library.h"
+#include "core/scene/scene_library.h"
 #include "legacy_gl/hardware_shadow_map.h"
+#include "registry/registry.h"
 
 namespace sl {
 namespace {
@@ -185,7 +185,8 @@ TEST(DepthLayerShadowMaps, WooMapIsTheMidpointOfTheFirstTwoLayers) {
   p.capturePasses = true;
   const Frame f = renderTechnique(findTechnique("legacy.woo"), loadScene("brabec"), p);
   // The first three are the layers and the map, shown on one affine grey scale (window z from
-  // the nearest layer's depth to 1, core/pass_capture.h), so their relations hold in grey too.
+  // the nearest layer's depth to 1, core/technique/pass_capture.h), so their relations hold in grey
+  // too.
   ASSERT_GE(f.intermediates.size(), 3u);
   const Image& z1 = f.intermediates[0].image;
   const Image& z2 = f.intermediates[1].image;

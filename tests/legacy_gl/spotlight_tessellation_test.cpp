@@ -10,8 +10,8 @@
 #include <map>
 #include <utility>
 
-#include "core/context.h"
-#include "core/scene_library.h"
+#include "core/gl/context.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 
 namespace sl::legacy {

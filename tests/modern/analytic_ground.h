@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 namespace sl::testing {
 

@@ -18,9 +18,9 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "core/errors.h"
-#include "core/pass_table.h"
-#include "core/primitives.h"
+#include "core/base/errors.h"
+#include "core/scene/primitives.h"
+#include "core/technique/pass_table.h"
 #include "filtered_shadows_util.h"
 #include "modern/convolution_shadow_map.h"
 #include "modern/prefiltered_maps.h"

@@ -2,7 +2,7 @@
 // render the same scene with the same parameters; their visibility masks are compared pixel by
 // pixel against the bound the pair states in registry/twins.cpp (bit-exact for 'faithful'
 // arithmetic; otherwise <= 1/255 on 99.9% of pixels and every larger difference on the
-// shadow-boundary band that core/metrics.h boundaryBand computes from the legacy mask), and
+// shadow-boundary band that core/base/metrics.h boundaryBand computes from the legacy mask), and
 // their images against the image bound of registry/twins.h (judgeImages: beyond three 8-bit
 // steps only on the spotlight cone's edge band or where the masks differ).
 //
@@ -16,11 +16,11 @@
 #include <filesystem>
 #include <tuple>
 
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
-#include "core/context.h"
-#include "core/errors.h"
-#include "core/scene_library.h"
 #include "tests/test_names.h"
 
 namespace sl {

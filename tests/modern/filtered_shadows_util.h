@@ -8,10 +8,10 @@
 #include <map>
 #include <string>
 
+#include "core/base/image.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/scene_library.h"
 
 namespace sl::testing_filtered {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "filtered_shadows_util.h"
 
 namespace sl {

@@ -1,5 +1,5 @@
-// The pass tables (core/pass_table.h) of the modern techniques without a legacy twin: each
-// table well formed, and a frame's passes and dumped buffers exactly those the table declares,
+// The pass tables (core/technique/pass_table.h) of the modern techniques without a legacy twin:
+// each table well formed, and a frame's passes and dumped buffers exactly those the table declares,
 // with the table's names, paper references and shaders.
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/pass_table.h"
-#include "core/scene_library.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/pass_table.h"
 #include "filtered_shadows_util.h"
 #include "test_names.h"
 

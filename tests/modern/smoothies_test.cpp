@@ -11,11 +11,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
 #include "modern/silhouettes.h"
+#include "registry/registry.h"
 #include "tests/modern/analytic_ground.h"
 
 namespace sl {

@@ -1,7 +1,7 @@
-// The links between a modern twin and its legacy twin, by pass id (core/pass_table.h): every
-// modern twin's pass table says which legacy passes each of its passes `replaces`, and the GLSL
-// it runs says the same in `// @replaces legacy.X ID` lines (core/shaders.h). For every twin
-// (registry/twins.h): each id named by the table or by a shader exists in the legacy twin's
+// The links between a modern twin and its legacy twin, by pass id (core/technique/pass_table.h):
+// every modern twin's pass table says which legacy passes each of its passes `replaces`, and the
+// GLSL it runs says the same in `// @replaces legacy.X ID` lines (core/gl/shaders.h). For every
+// twin (registry/twins.h): each id named by the table or by a shader exists in the legacy twin's
 // table, the table and the shaders agree pass by pass, and every legacy pass but the mesh
 // feeding (which has no counterpart: the shaders light per fragment) is replaced by some
 // modern pass.
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/shaders.h"
+#include "core/gl/shaders.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
 

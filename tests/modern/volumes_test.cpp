@@ -9,14 +9,14 @@
 #include <iostream>
 #include <map>
 
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/metrics.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/base/metrics.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
 #include "modern/shadow_volumes.h"
 #include "modern/silhouettes.h"
 #include "reference/reference.h"
+#include "registry/registry.h"
 #include "tests/modern/analytic_ground.h"
 
 namespace sl {
@@ -335,10 +335,10 @@ PointAgreement volumesAgainstRays(const Scene& scene, const RenderParams& size,
   return a;
 }
 
-// The scenes of core/scene_library.cpp and assets/scenes whose casters are closed 2-manifolds,
-// or closed solids beside a casting ground plane (brabec, dueling, contact, cylinder: the open
-// plane's two-sided volume lies below it and shadows nothing visible). dragon and teapot have
-// open, non-flat casters and are left out.
+// The scenes of core/scene/scene_library.cpp and assets/scenes whose casters are closed
+// 2-manifolds, or closed solids beside a casting ground plane (brabec, dueling, contact, cylinder:
+// the open plane's two-sided volume lies below it and shadows nothing visible). dragon and teapot
+// have open, non-flat casters and are left out.
 const char* const kClosedCasterScenes[] = {
     "analytic", "brabec", "fence",   "trees", "dueling",  "ball",       "bleeding",
     "boxes",    "bunny",  "contact", "cubes", "cylinder", "fill-bound", "squares"};

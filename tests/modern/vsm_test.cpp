@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/errors.h"
+#include "core/base/errors.h"
 #include "filtered_shadows_util.h"
 
 namespace sl {

@@ -20,12 +20,12 @@
 #include <string>
 
 #include "../legacy_gl/legacy_test_support.h"
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/image.h"
-#include "core/metrics.h"
-#include "core/scene_library.h"
+#include "core/base/errors.h"
+#include "core/base/image.h"
+#include "core/base/metrics.h"
+#include "core/scene/scene_library.h"
 #include "parity/parity_util.h"
+#include "registry/registry.h"
 
 namespace sl {
 namespace {

@@ -19,10 +19,10 @@
 #include <string>
 
 #include "../legacy_gl/legacy_test_support.h"
+#include "core/base/image.h"
+#include "core/base/metrics.h"
+#include "core/scene/scene_library.h"
 #include "registry/registry.h"
-#include "core/image.h"
-#include "core/metrics.h"
-#include "core/scene_library.h"
 
 namespace sl {
 namespace {

@@ -3,7 +3,7 @@
 // (../shared/reference-gl), and the outcomes are compared: 8-bit data bit for bit, float data
 // within 1e-6, and the GL errors raised.
 //
-// Only one reference context can be bound at a time (core/context.h), so each run creates
+// Only one reference context can be bound at a time (core/gl/context.h), so each run creates
 // its own context and destroys it before the next one is made.
 #pragma once
 

@@ -52,7 +52,7 @@ def json_line(stdout):
 
 
 def quantized_16(mask):
-    """The 16-bit samples --mask writes (core/image.cpp pngRows): clamp to [0, 1], the product
+    """The 16-bit samples --mask writes (core/base/image.cpp pngRows): clamp to [0, 1], the product
     with 65535 in float32, rounded half away from zero (lround; the values are >= 0)."""
     scaled = np.clip(mask, 0.0, 1.0).astype(np.float32) * np.float32(65535.0)
     return np.floor(scaled.astype(np.float64) + 0.5).astype(np.uint16)

@@ -12,11 +12,11 @@
 #include <iostream>
 #include <optional>
 
+#include "core/base/errors.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/pass_table.h"
 #include "registry/registry.h"
-#include "core/errors.h"
-#include "core/pass_table.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
 
 namespace sl {
 namespace {
@@ -24,7 +24,7 @@ namespace {
 constexpr int kWidth = 400;  // small window: the whole suite stays within seconds
 constexpr int kHeight = 300;
 
-// The analytic scene's geometry (core/scene_library.cpp analyticScene): light 4 units above
+// The analytic scene's geometry (core/scene/scene_library.cpp analyticScene): light 4 units above
 // the plane y = 0, a 1 x 0.02 x 1 box centred 1 unit above it, ground 6 x 6.
 constexpr float kLightHeight = 4.0f;
 constexpr float kOccluderHalf = 0.5f;

@@ -1,15 +1,16 @@
-// tests/registry/params_test.cpp — each technique's --param declarations (core/technique.h
-// ParamSpec) are the whole truth: every key its render reads is declared, with the default the
-// declaration states, and `list` prints them. The render reads through the declarations, so a
-// key read without one (a bare extra.find) or a second, drifting default would show here.
+// tests/registry/params_test.cpp — each technique's --param declarations
+// (core/technique/technique.h ParamSpec) are the whole truth: every key its render reads is
+// declared, with the default the declaration states, and `list` prints them. The render reads
+// through the declarations, so a key read without one (a bare extra.find) or a second, drifting
+// default would show here.
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
 
-#include "core/errors.h"
-#include "core/scene_library.h"
-#include "core/technique.h"
+#include "core/base/errors.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/technique.h"
 #include "registry/registry.h"
 
 namespace sl {

@@ -1,5 +1,5 @@
-// Every technique declares its passes once (core/pass_table.h): the table is well formed, every
-// pass a render runs and every buffer it dumps is one of the table's, every floor the legacy
+// Every technique declares its passes once (core/technique/pass_table.h): the table is well formed,
+// every pass a render runs and every buffer it dumps is one of the table's, every floor the legacy
 // roofline needs is declared, and every DEVIATION comment of the lessons' source files is a
 // departure some pass declares (the lessons read the tables, never the source files; a helper
 // several techniques share may depart for one of them only, e.g. the float clamp of legacy.ramp's
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "core/pass_table.h"
-#include "core/scene_library.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/pass_table.h"
 #include "registry/registry.h"
 
 namespace sl {

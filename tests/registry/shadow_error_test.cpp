@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "core/scene_library.h"
+#include "core/scene/scene_library.h"
 #include "reference/reference.h"
 #include "registry/registry.h"
 

@@ -3,7 +3,7 @@
 //
 // Every (case, technique) test asserts:
 //   1. the render succeeds, or refuses with sl::InputError (one clear line) where the case is
-//      declared to be refused (figures/stability.cpp expectedRefusals, with the expected
+//      declared to be refused (measure/stability.cpp expectedRefusals, with the expected
 //      message); any other refusal, a declared refusal that renders, a GlError or any other
 //      exception fails the test;
 //   2. no NaN or Inf in any buffer (colour, visibility, every captured intermediate);
@@ -15,8 +15,9 @@
 //      selfShadowedAtLeast) asserts the prediction instead: the lit pixels shadow themselves at
 //      least that much, and the pixels lit where the reference is in shadow stay within bound.
 // Small windows (160x120) keep the whole suite within about 3 minutes on two cores.
-#include <gtest/gtest.h>
+#include "measure/stability.h"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -32,19 +33,18 @@
 #include <mutex>
 #include <tuple>
 
-#include "registry/registry.h"
-#include "core/errors.h"
-#include "core/metrics.h"
-#include "core/primitives.h"
-#include "core/scene_library.h"
-#include "figures/stability.h"
+#include "core/base/errors.h"
+#include "core/base/metrics.h"
+#include "core/scene/primitives.h"
+#include "core/scene/scene_library.h"
 #include "reference/reference.h"
+#include "registry/registry.h"
 #include "tests/test_names.h"
 
 namespace sl {
 namespace {
 
-using namespace figures::stability;  // the cases, bounds and measurement (figures/stability.h)
+using namespace figures::stability;  // the cases, bounds and measurement (measure/stability.h)
 
 std::filesystem::path outputDir() {
   const std::filesystem::path dir = std::filesystem::path(SHADOWLAB_TEST_OUTPUT_DIR) / "stability";
@@ -72,7 +72,7 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
     case Outcome::Kind::kRefused:
       std::cout << "[stability] " << c.name << " " << t.name << ": InputError: " << o.note << "\n";
       EXPECT_FALSE(o.expectedRefusal.empty())
-          << "refused, but not declared in figures/stability.cpp expectedRefusals(): " << o.note;
+          << "refused, but not declared in measure/stability.cpp expectedRefusals(): " << o.note;
       EXPECT_TRUE(o.expectedRefusal.empty() || o.refusedAsExpected())
           << "refused with \"" << o.note << "\", expected a message containing \""
           << o.expectedRefusal << "\"";
@@ -84,7 +84,7 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
     case Outcome::Kind::kMeasured: break;
   }
   EXPECT_TRUE(o.expectedRefusal.empty())
-      << "declared to refuse (\"" << o.expectedRefusal << "\", figures/stability.cpp "
+      << "declared to refuse (\"" << o.expectedRefusal << "\", measure/stability.cpp "
       << "expectedRefusals) but rendered";
   ASSERT_EQ(o.frame.visibility.width, kWidth);
   ASSERT_EQ(o.frame.visibility.height, kHeight);
@@ -241,7 +241,7 @@ TEST(StabilityStiffRanges, WorldCoordinatesBeyondBoundAreRefusedNamingTheObject)
 }
 
 // Issue 17 item 7: a given light range with near/far below 1e-4 is narrowed to the geometry
-// (core/scene.cpp lightDepthRange); a range that clips geometry keeps its clipping plane.
+// (core/scene/scene.cpp lightDepthRange); a range that clips geometry keeps its clipping plane.
 TEST(StabilityStiffRanges, StiffLightRangeIsNarrowedToTheGeometry) {
   Scene fitted = stage();
   const DepthRange fit = lightDepthRange(fitted);

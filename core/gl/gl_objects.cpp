@@ -1,0 +1,109 @@
+// core/gl/gl_objects.cpp — see gl_objects.h.
+#include "core/gl/gl_objects.h"
+
+namespace sl {
+using namespace sl::gl;
+
+void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+void deleteShader(GLuint id) { glDeleteShader(id); }
+void deleteProgram(GLuint id) { glDeleteProgram(id); }
+
+Texture makeTexture() {
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  return Texture(id);
+}
+
+Framebuffer makeFramebuffer() {
+  GLuint id = 0;
+  glGenFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+
+Renderbuffer makeRenderbuffer() {
+  GLuint id = 0;
+  glGenRenderbuffers(1, &id);
+  return Renderbuffer(id);
+}
+
+Buffer makeBuffer() {
+  GLuint id = 0;
+  glGenBuffers(1, &id);
+  return Buffer(id);
+}
+
+VertexArray makeVertexArray() {
+  GLuint id = 0;
+  glGenVertexArrays(1, &id);
+  return VertexArray(id);
+}
+
+ScopedEnable::ScopedEnable(GLenum cap) : cap_(cap) { glEnable(cap_); }
+
+ScopedEnable::~ScopedEnable() {
+  try {
+    glDisable(cap_);
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+ScopedAttrib::ScopedAttrib(GLbitfield mask) { glPushAttrib(mask); }
+
+ScopedAttrib::~ScopedAttrib() {
+  try {
+    glPopAttrib();
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+ScopedClientAttrib::ScopedClientAttrib(GLbitfield mask) { glPushClientAttrib(mask); }
+
+ScopedClientAttrib::~ScopedClientAttrib() {
+  try {
+    glPopClientAttrib();
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+ScopedPushMatrix::ScopedPushMatrix() { glPushMatrix(); }
+
+ScopedPushMatrix::~ScopedPushMatrix() {
+  try {
+    glPopMatrix();
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+ScopedClientState::ScopedClientState(GLenum array) : array_(array) {
+  glEnableClientState(array_);
+}
+
+ScopedClientState::~ScopedClientState() {
+  try {
+    glDisableClientState(array_);
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+ScopedMatrices::ScopedMatrices() {
+  for (const GLenum mode : {GLenum(GL_PROJECTION), GLenum(GL_MODELVIEW), GLenum(GL_TEXTURE)}) {
+    glMatrixMode(mode);
+    glPushMatrix();
+  }
+}
+
+ScopedMatrices::~ScopedMatrices() {
+  try {
+    for (const GLenum mode : {GLenum(GL_TEXTURE), GLenum(GL_MODELVIEW), GLenum(GL_PROJECTION)}) {
+      glMatrixMode(mode);
+      glPopMatrix();
+    }
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+}  // namespace sl

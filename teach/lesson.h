@@ -1,0 +1,58 @@
+// teach/lesson.h — `shadowlab lesson TECHNIQUE --out DIR` (issue 18 item 4): one
+// self-contained HTML page that teaches a technique pass by pass.
+//
+//   DIR/index.html                     the lesson (no network; every link relative)
+//   DIR/<technique>_<dump file>.png    the pass images of each technique shown (teach/pass_dump.h)
+//   DIR/diff-mask.png, diff-image.png  legacy against modern, where the technique has a twin
+//
+// The page holds: the paper's idea in our words with its section, equation and figure numbers
+// (assets/lessons/*.json, read with nlohmann-json); the legacy pass strip with captions and GL
+// state cards; the modern twin's passes with the GLSL lines they run beside them (the ranges
+// passes.json gives, read from the embedded shaders); legacy against modern for the mask and
+// the image, with counts, difference images and the reason for image differences
+// (registry/twins.h gives the pair and its bound); the command that re-makes each picture; and
+// the known departures (every `DEVIATION (...)` comment of the technique's source files).
+// A pass whose passes.json entry has no "state" shows "state card: not recorded".
+// A technique without a twin (the later papers, the references) shows its own passes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "registry/cli.h"
+
+namespace sl::figures {
+
+// What the lessons render: the scene and sizes. Small sizes keep the main job fast.
+struct LessonSettings {
+  std::string scene = "brabec";
+  int width = 400;
+  int height = 300;
+  int shadowMapTexels = 512;
+};
+
+// `shadowlab lesson TECHNIQUE --out DIR [--scene S] [--size WxH] [--shadow-map N]`: renders,
+// then writes DIR as a whole (core/base/output_files.h: all or none). Bad input -> InputError.
+int runLessonCommand(const cli::Args& args);
+
+// The main job's lessons: one folder per technique under `lessonsDir` (lessonsDir/<name>/).
+struct LessonLink {
+  std::string technique;
+  std::string href;   // "<name>/index.html", relative to lessonsDir
+  std::string title;  // the lesson's title
+  std::string error;  // why it could not be written; empty when written
+};
+std::vector<LessonLink> writeLessons(const std::string& lessonsDir,
+                                     const std::vector<std::string>& techniques,
+                                     const LessonSettings& settings, bool progress);
+
+// The report's section linking the lessons (hrefs prefixed with `base`, e.g. "lessons/"); a
+// lesson that could not be written is listed in red with the reason.
+std::string lessonIndexHtml(const std::vector<LessonLink>& links, const std::string& base);
+
+// Techniques registered in this build that have no entry in assets/lessons/*.json (a test
+// asserts there are none), and the title of a technique's lesson (InputError when none).
+std::vector<std::string> techniquesWithoutLesson();
+std::string lessonTitle(const std::string& technique);
+
+}  // namespace sl::figures
