@@ -128,7 +128,10 @@ int render(const cli::Args& args) {
   const RenderRun run = runRender(request);
   const std::string line = jsonLine(run.line);
   const Technique& technique = *request.technique;
-  const PassDumpHeader dumpHeader{technique.name, technique.paper, request.scene.name, run.made,
+  const PassDumpHeader dumpHeader{technique.name,
+                                  technique.paper,
+                                  request.scene.name,
+                                  run.made,
                                   twins::legacyTwinOf(technique.name),
                                   twins::legacyTwinPassesOf(technique.name)};
   writeFrameOutputs(run.frame, dumpHeader, outputs, pngProvenance(run.made));
@@ -198,6 +201,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace sl
 
-int main(int argc, char** argv) {
-  return sl::runProgram("shadowlab", argc, argv, sl::run);
-}
+int main(int argc, char** argv) { return sl::runProgram("shadowlab", argc, argv, sl::run); }

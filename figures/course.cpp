@@ -34,13 +34,16 @@ constexpr int kMaxExercises = 3;
 
 const char* kTeacherDir = "teacher";
 
-std::string courseFile() { return (fs::path(assetDirectory()) / "course" / "course.json").string(); }
+std::string courseFile() {
+  return (fs::path(assetDirectory()) / "course" / "course.json").string();
+}
 
 std::vector<RenderOption> optionList(const json& list) {
   std::vector<RenderOption> out;
   for (const json& o : list) {
     if (!o.is_array() || o.size() != 2)
-      throw InputError("course " + courseFile() + ": an option must be [key, value], got " + o.dump());
+      throw InputError("course " + courseFile() + ": an option must be [key, value], got " +
+                       o.dump());
     out.emplace_back(o.at(0).get<std::string>(), o.at(1).get<std::string>());
   }
   return out;
@@ -156,8 +159,9 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
     << "shows each classic artefact as a wrong/right pair; the exercises refer to it.</p>\n"
     << "<nav class=toc><h2>The order</h2>\n<ol>\n";
   for (const CourseStep& st : c.steps)
-    h << "<li><a href=\"#step-" << htmlEscape(st.id) << "\">" << htmlEscape(lessonTitle(st.techniques.front()))
-      << "</a><br><span class=adds>adds " << prose(st.adds) << "</span></li>\n";
+    h << "<li><a href=\"#step-" << htmlEscape(st.id) << "\">"
+      << htmlEscape(lessonTitle(st.techniques.front())) << "</a><br><span class=adds>adds "
+      << prose(st.adds) << "</span></li>\n";
   h << "</ol>\n<p><a href=\"gallery/index.html\">The artefact gallery</a></p>\n</nav>\n";
   int n = 0;
   for (const CourseStep& st : c.steps) {
@@ -166,8 +170,9 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
       << htmlEscape(lessonTitle(st.techniques.front())) << "</h2>\n<p class=adds>Adds "
       << prose(st.adds) << ".</p>\n<p>" << (st.techniques.size() > 1 ? "Lessons: " : "Lesson: ");
     for (size_t i = 0; i < st.techniques.size(); ++i)
-      h << (i ? ", " : "") << "<a class=lesson href=\"" << htmlEscape(lessonHref(s, st.techniques[i]))
-        << "\">" << htmlEscape(st.techniques[i]) << "</a>";
+      h << (i ? ", " : "") << "<a class=lesson href=\""
+        << htmlEscape(lessonHref(s, st.techniques[i])) << "\">" << htmlEscape(st.techniques[i])
+        << "</a>";
     h << "</p>\n";
     int k = 0;
     for (const CourseExercise& e : st.exercises) {
@@ -211,16 +216,19 @@ std::string teacherHtml(const Course& c, const CourseSettings& s, const std::str
     int k = 0;
     for (const CourseExercise& e : st.exercises) {
       h << "<div class=exercise id=\"ex-" << htmlEscape(e.id) << "\">\n<h3><a href=\"index.html#ex-"
-        << htmlEscape(e.id) << "\">Exercise " << n << "." << ++k << "</a></h3>\n<p><b>Question:</b> "
-        << htmlEscape(e.question) << "</p>\n<p class=answer><b>Answer:</b> "
-        << htmlEscape(e.answer) << "</p>\n<div class=pair>\n";
+        << htmlEscape(e.id) << "\">Exercise " << n << "." << ++k
+        << "</a></h3>\n<p><b>Question:</b> " << htmlEscape(e.question)
+        << "</p>\n<p class=answer><b>Answer:</b> " << htmlEscape(e.answer)
+        << "</p>\n<div class=pair>\n";
       for (bool a : {true, false}) {
         const std::vector<RenderOption>& own = a ? e.pair.wrong : e.pair.right;
-        std::string label = (a ? "A: " : "B: ") + (a ? e.pair.wrongTechnique : e.pair.rightTechnique);
+        std::string label =
+            (a ? "A: " : "B: ") + (a ? e.pair.wrongTechnique : e.pair.rightTechnique);
         for (const auto& [key, value] : own) label += " --" + key + " " + value;
         h << "<figure><img src=\"" << kTeacherDir << "/" << htmlEscape(pictureName(e, a))
           << "\" width=" << e.pair.width << " height=" << e.pair.height << " alt=\""
-          << htmlEscape(label) << "\"><figcaption>" << htmlEscape(label) << "</figcaption></figure>\n";
+          << htmlEscape(label) << "\"><figcaption>" << htmlEscape(label)
+          << "</figcaption></figure>\n";
       }
       h << "</div>\n" << commandsHtml(e, s.labUrl) << "</div>\n";
     }
@@ -248,7 +256,8 @@ Course loadCourse() {
       st.techniques = s.at("techniques").get<std::vector<std::string>>();
       st.adds = s.at("adds").get<std::string>();
       for (const json& e : s.at("exercises")) st.exercises.push_back(exerciseFrom(e, size));
-      if (st.techniques.empty()) throw InputError("course " + file + ": step " + st.id + " has no technique");
+      if (st.techniques.empty())
+        throw InputError("course " + file + ": step " + st.id + " has no technique");
       if (int(st.exercises.size()) < kMinExercises || int(st.exercises.size()) > kMaxExercises)
         throw InputError("course " + file + ": step " + st.id + " has " +
                          std::to_string(st.exercises.size()) + " exercises, not 2 or 3");
@@ -324,12 +333,13 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
   fs::create_directories(dir, ec);
   if (ec) throw InputError("--out: cannot create " + dir + ": " + ec.message());
   OutputSet outputs;
-  const std::string teacherDir = outputs.addDirectory("--out", (fs::path(dir) / kTeacherDir).string());
+  const std::string teacherDir =
+      outputs.addDirectory("--out", (fs::path(dir) / kTeacherDir).string());
   if (settings.progress) std::cerr << "[course] the artefact gallery" << std::endl;
   summary.artefacts = writeGallery(dir, settings.labUrl);
   if (settings.writeLessons)
-    for (const LessonLink& l :
-         writeLessons((fs::path(dir) / "lessons").string(), techniques, settings.lessons, settings.progress))
+    for (const LessonLink& l : writeLessons((fs::path(dir) / "lessons").string(), techniques,
+                                            settings.lessons, settings.progress))
       if (!l.error.empty()) summary.lessonErrors.push_back(l.technique + ": " + l.error);
   outputs.beginWriting();
   for (const Rendered& r : pictures)
@@ -338,8 +348,10 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
   const std::string command = commandLine();
   const std::string index = indexHtml(course, settings, command);
   const std::string teacher = teacherHtml(course, settings, command);
-  writeFileAtomically((fs::path(dir) / "teacher.html").string(), [&](std::ostream& out) { out << teacher; });
-  writeFileAtomically((fs::path(dir) / "index.html").string(), [&](std::ostream& out) { out << index; });
+  writeFileAtomically((fs::path(dir) / "teacher.html").string(),
+                      [&](std::ostream& out) { out << teacher; });
+  writeFileAtomically((fs::path(dir) / "index.html").string(),
+                      [&](std::ostream& out) { out << index; });
   return summary;
 }
 
@@ -352,14 +364,14 @@ std::string writeCourseForReport(const std::string& outDir, bool progress) {
   h << "<section id=course><h2>The course</h2>\n";
   try {
     const CourseSummary summary = writeCourse((fs::path(outDir) / "course").string(), s);
-    const long seconds =
-        std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    const long seconds = std::lround(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (progress)
       std::cerr << "[course] " << summary.exercises << " exercises (" << summary.pictures
                 << " pictures) and the gallery (" << summary.artefacts << " artefacts) in "
                 << seconds << " s" << std::endl;
-    h << "<p><a href=\"course/index.html\">The lessons in a teaching order</a> ("
-      << summary.steps << " steps, what each adds, " << summary.exercises
+    h << "<p><a href=\"course/index.html\">The lessons in a teaching order</a> (" << summary.steps
+      << " steps, what each adds, " << summary.exercises
       << " exercises; <code>shadowlab course --out DIR</code>), <a href=\"course/teacher.html\">"
          "the teacher's page</a> (answers and expected pictures) and <a "
          "href=\"course/gallery/index.html\">the artefact gallery</a>.</p>\n";
@@ -384,9 +396,10 @@ int runCourseCommand(const cli::Args& args) {
   for (const std::string& e : summary.lessonErrors)
     std::cerr << "shadowlab: lesson not written: " << e << "\n";
   std::cout << "wrote " << (fs::path(out) / "index.html").string() << " and teacher.html ("
-            << summary.steps << " steps, " << summary.exercises << " exercises, " << summary.pictures
-            << " pictures, " << summary.artefacts << " artefacts, "
-            << std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+            << summary.steps << " steps, " << summary.exercises << " exercises, "
+            << summary.pictures << " pictures, " << summary.artefacts << " artefacts, "
+            << std::lround(
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
             << " s)" << std::endl;
   return summary.lessonErrors.empty() ? 0 : 3;
 }

@@ -66,8 +66,8 @@ std::string exerciseRenderCommand(const CourseExercise& e, bool sideA);
 std::string exerciseLabLink(const CourseExercise& e, const std::string& labUrl);
 
 struct CourseSettings {
-  LessonSettings lessons;               // how writeCourse renders the lessons
-  bool writeLessons = true;             // false: the caller wrote them at lessonsHref
+  LessonSettings lessons;                // how writeCourse renders the lessons
+  bool writeLessons = true;              // false: the caller wrote them at lessonsHref
   std::string lessonsHref = "lessons/";  // relative to DIR, ending in "/"
   std::string labUrl = kDefaultLabUrl;
   bool progress = false;  // progress lines on stderr

@@ -55,7 +55,6 @@ Image readTarget(const RenderTarget& target, int index) {
   return image;
 }
 
-
 void setMat(GLuint program, const char* name, const glm::mat4& m) {
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(m));
 }

@@ -9,9 +9,7 @@ namespace {
 // Rec. 709 luma weights: the grey of the background.
 constexpr float kLumaR = 0.2126f, kLumaG = 0.7152f, kLumaB = 0.0722f;
 
-bool sameSize(const Image& a, const Image& b) {
-  return a.width == b.width && a.height == b.height;
-}
+bool sameSize(const Image& a, const Image& b) { return a.width == b.width && a.height == b.height; }
 }  // namespace
 
 Disagreement disagreementOverlay(const Image& exactColour, const Image& exactMask,
@@ -42,9 +40,9 @@ Disagreement disagreementOverlay(const Image& exactColour, const Image& exactMas
         for (int c = 0; c < 3; ++c) d.overlay.at(x, y, c) = colour[c];
         continue;
       }
-      const float grey = kOverlayBackgroundShare * (kLumaR * rgb.at(x, y, 0) +
-                                                    kLumaG * rgb.at(x, y, 1) +
-                                                    kLumaB * rgb.at(x, y, 2));
+      const float grey =
+          kOverlayBackgroundShare *
+          (kLumaR * rgb.at(x, y, 0) + kLumaG * rgb.at(x, y, 1) + kLumaB * rgb.at(x, y, 2));
       for (int c = 0; c < 3; ++c) d.overlay.at(x, y, c) = grey;
     }
   return d;

@@ -139,8 +139,8 @@ FigureSpec brabecFig8() {
   f.height = 600;
   f.shadowMapTexels = 1024;
   f.columns = 3;
-  PanelSpec unfiltered = withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1),
-                                   "about 15 fps");
+  PanelSpec unfiltered =
+      withPaper(withFilter(render("(a) unfiltered", "legacy.ramp"), 1), "about 15 fps");
   unfiltered.countDepthErrors = true;
   PanelSpec twelve = withFilter(render("(c) unfiltered, 12-bit depth, bias in 12-bit steps",
                                        "legacy.ramp", {{"depth-bias", kTwelveBitDepthBias}}),
@@ -256,10 +256,10 @@ FigureSpec everittFig6() {
   f.scene = "dueling";
   f.columns = 3;
   f.twins = false;
-  f.panels = {view("eye pixels per texel", PanelKind::kTexelDensity),
-              render("eye view (modern.hw)", "modern.hw"),
-              view("light's view, eye pixels per texel where the eye sees it",
-                   PanelKind::kLightDensity)};
+  f.panels = {
+      view("eye pixels per texel", PanelKind::kTexelDensity),
+      render("eye view (modern.hw)", "modern.hw"),
+      view("light's view, eye pixels per texel where the eye sees it", PanelKind::kLightDensity)};
   return f;
 }
 
@@ -467,11 +467,10 @@ std::vector<FigureSpec> csmFigures() {
   for (const char* technique : {"modern.hw", "modern.csm"})
     for (int d : kFig10Distances) {
       const bool csm = std::string(technique) == "modern.csm";
-      PanelSpec p = far(
-          csm ? render("CSM, distance x" + std::to_string(d), technique,
-                       {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}})
-              : render("PCF, distance x" + std::to_string(d), technique),
-          float(d));
+      PanelSpec p = far(csm ? render("CSM, distance x" + std::to_string(d), technique,
+                                     {{"order", "16"}, {"filtering", "trilinear"}, {"blur", "5"}})
+                            : render("PCF, distance x" + std::to_string(d), technique),
+                        float(d));
       if (d >= kFig10CloseupFromDistance)
         p.ownCloseups = {kFig10Closeup};
       else
@@ -635,13 +634,13 @@ std::vector<FigureSpec> chanFigures() {
     PanelSpec sm = render(std::string(scene) + ": shadow map", "modern.hw");
     PanelSpec hy = render(std::string(scene) + ": hybrid", "modern.hybrid");
     PanelSpec sv = render(std::string(scene) + ": shadow volumes", "modern.volumes");
-    PanelSpec wrong = render(std::string(scene) + ": wrong vs volumes (magenta SM, yellow both, "
-                                                  "cyan H)",
+    PanelSpec wrong = render(std::string(scene) +
+                                 ": wrong vs volumes (magenta SM, yellow both, "
+                                 "cyan H)",
                              "modern.volumes");
     wrong.errorsOf = {"modern.hw", "modern.hybrid"};
     sm.scene = hy.scene = sv.scene = wrong.scene = scene;
-    sm.ownCloseups = hy.ownCloseups = sv.ownCloseups = wrong.ownCloseups = {mostWrong,
-                                                                           groundEdge};
+    sm.ownCloseups = hy.ownCloseups = sv.ownCloseups = wrong.ownCloseups = {mostWrong, groundEdge};
     p37.insert(p37.end(), {sm, hy, sv, wrong});
   }
   FigureSpec f37 = chanFigure(
@@ -658,7 +657,8 @@ std::vector<FigureSpec> chanFigures() {
       "two-sided surface (counted in open_casters_two_sided, docs/volumes.md). Below: per scene, "
       "two windows of each column magnified 6x: where the two approximations get the most "
       "scored pixels wrong (near the terminators of curved blockers, where the thesis's hybrid "
-      "corrects self-shadowing, §3.3.1), and a long shadow edge on the ground (the map's stair steps). The counts of wrong pixels this run measured are stated below the caption.",
+      "corrects self-shadowing, §3.3.1), and a long shadow edge on the ground (the map's stair "
+      "steps). The counts of wrong pixels this run measured are stated below the caption.",
       "trees", 4, p37);
   f37.width = 1024;
   f37.height = 768;
@@ -736,7 +736,8 @@ std::vector<FigureSpec> chanFigures() {
       "Times: llvmpipe cannot reproduce Chan's speed-up of the hybrid over shadow volumes "
       "through its per-pixel computation mask (Chan: 30% to over 100% faster, on a GeForce 6800 "
       "with a 2.6 GHz Pentium 4 at 1024x768), because that speed-up is fill saved by hardware "
-      "culling and llvmpipe culls none of it: it has no depth-bounds test and no early or hierarchical stencil/depth rejection; "
+      "culling and llvmpipe culls none of it: it has no depth-bounds test and no early or "
+      "hierarchical stencil/depth rejection; "
       "its stencil test runs inside the fragment function, so with the per-pixel stencil mask "
       "the volume pass runs as many fragment shaders as plain volumes although few fragments "
       "update the stencil. It does skip work outside the scissor box: the tile boxes (64x64 "
@@ -798,7 +799,8 @@ std::vector<FigureSpec> chanFigures() {
         withPaper(withMap(render(n + " shadow map", "modern.hw", {{"compare", "nearest"}}), texels),
                   paperMs[row][0]));
     p48.push_back(withPaper(
-        withMap(render(n + " bicubic 16 samples", "modern.gems16", {{"kernel", "bicubic"}}), texels),
+        withMap(render(n + " bicubic 16 samples", "modern.gems16", {{"kernel", "bicubic"}}),
+                texels),
         paperMs[row][1]));
     p48.push_back(withPaper(
         withMap(render(n + " smoothie width 0.025", "modern.smoothies", {{"width", "0.025"}}),

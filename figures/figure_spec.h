@@ -61,15 +61,15 @@ struct PanelSpec {
   std::optional<Precision> precision;         // RenderParams::precision; unset: its default
   float cameraDistance = 1.0f;                // > 1 moves the camera away (minification)
   bool mask = false;                          // show the visibility mask instead of colour
-  std::string intermediate;  // kIntermediates: substring of the PassImage names to show
-  std::string plot;          // kPlot: which chart (see plots.h)
-  std::string counter;       // Frame::counters entry a chart plots for this panel
-  std::string paperNumbers;  // what the paper reports for this panel, quoted, or empty
-  bool countDepthErrors = false;  // count its leak and acne pixels (figures/measured.h
-                                  // kLeakPixelsCounter) against reference.hard, legacy.hw
-  bool closeups = true;      // apply the figure's close-ups to this panel
-  std::vector<Closeup> ownCloseups;  // when not empty: this panel's close-ups instead of the
-                                     // figure's (rows of different scenes, Chan Fig. 3-7)
+  std::string intermediate;           // kIntermediates: substring of the PassImage names to show
+  std::string plot;                   // kPlot: which chart (see plots.h)
+  std::string counter;                // Frame::counters entry a chart plots for this panel
+  std::string paperNumbers;           // what the paper reports for this panel, quoted, or empty
+  bool countDepthErrors = false;      // count its leak and acne pixels (figures/measured.h
+                                      // kLeakPixelsCounter) against reference.hard, legacy.hw
+  bool closeups = true;               // apply the figure's close-ups to this panel
+  std::vector<Closeup> ownCloseups;   // when not empty: this panel's close-ups instead of the
+                                      // figure's (rows of different scenes, Chan Fig. 3-7)
   std::vector<std::string> errorsOf;  // kRender, one or two techniques: instead of its colour
                                       // the panel shows the pixels they decide lit/shadow
                                       // otherwise than its own (exact) technique, same scene,
@@ -89,7 +89,7 @@ struct FigureSpec {
   std::vector<PanelSpec> panels;
   std::vector<Closeup> closeups;
   std::string reference = "reference.hard";  // error of every render panel against this
-  int timingRounds = 0;  // interleaved rounds of its timed panels; 0: figures.cpp's default
+  int timingRounds = 0;      // interleaved rounds of its timed panels; 0: figures.cpp's default
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted

@@ -53,8 +53,8 @@ namespace {
 
 constexpr int kPlotWidth = 900;  // pixels of a gnuplot chart
 constexpr int kPlotHeight = 560;
-constexpr float kDiffFullScale = 1.0f;    // heat-map full scale: a whole visibility step
-constexpr float kMissingRed = 0.55f;      // a missing panel's block in that PNG
+constexpr float kDiffFullScale = 1.0f;  // heat-map full scale: a whole visibility step
+constexpr float kMissingRed = 0.55f;    // a missing panel's block in that PNG
 // countDepthErrors's truth (its default: a point sample at each pixel centre's surface point)
 // and witness (24-bit depth with polygon offset: no bias leak, no acne of its own).
 constexpr const char* kDepthErrorTruth = "reference.hard";
@@ -273,9 +273,9 @@ class Renderer {
   std::string write(const std::string& figureId, const std::string& name, const Image& image,
                     const nlohmann::json& parameters, int bitDepth = 8) {
     const std::string rel = figureId + "/" + name + ".png";
-    writePng((fs::path(outDir_) / rel).string(), image, bitDepth,
-             {commandLine(),
-              parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)});
+    writePng(
+        (fs::path(outDir_) / rel).string(), image, bitDepth,
+        {commandLine(), parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)});
     return rel;
   }
   const std::string& outDir() const { return outDir_; }
@@ -444,8 +444,8 @@ nlohmann::json panelParameters(const FigureSpec& fig, const PanelSpec& p, const 
               {"params", s.params},
               {"camera_distance", s.cameraDistance}};
   if (s.lightRadius) out["light_radius"] = *s.lightRadius;
-  if (s.lightPosition) out["light_position"] = {s.lightPosition->x, s.lightPosition->y,
-                                                s.lightPosition->z};
+  if (s.lightPosition)
+    out["light_position"] = {s.lightPosition->x, s.lightPosition->y, s.lightPosition->z};
   if (!p.overridden.empty()) out["set"] = p.overridden;
   return out;
 }
@@ -473,10 +473,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         {r.write(fig.id, file, close ? framed(image, closeups) : image, made), caption});
     if (!close) return;
     for (size_t i = 0; i < closeups.size(); ++i)
-      out.closeups.push_back(
-          {r.write(fig.id, file + "-closeup" + std::to_string(i), closeupOf(image, closeups[i]),
-                   made),
-           caption + " magnified " + std::to_string(closeups[i].magnify) + "x"});
+      out.closeups.push_back({r.write(fig.id, file + "-closeup" + std::to_string(i),
+                                      closeupOf(image, closeups[i]), made),
+                              caption + " magnified " + std::to_string(closeups[i].magnify) + "x"});
   };
   try {
     switch (p.kind) {
@@ -526,9 +525,8 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
                                              false, truthName(false, ErrorMetric::kPoint))
                          .scored;
           }
-          const Disagreement d =
-              disagreementOverlay(f->color, f->visibility, first->visibility,
-                                  second ? second->visibility : Image(), scored);
+          const Disagreement d = disagreementOverlay(f->color, f->visibility, first->visibility,
+                                                     second ? second->visibility : Image(), scored);
           shown = d.overlay;
           out.counters[kWrongPixelsCounter + p.errorsOf[0]] = double(d.firstWrong);
           if (second) {
@@ -593,9 +591,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
             made["image"] = "GLSL twin of " + p.technique;
             tr.file = r.write(fig.id, base + "-twin", tf->color, made);
             made["image"] = "visibility difference, " + p.technique + " against its twin";
-            tr.diffFile = r.write(fig.id, base + "-twin-diff",
-                                  differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale),
-                                  made);
+            tr.diffFile =
+                r.write(fig.id, base + "-twin-diff",
+                        differenceHeatMap(f->visibility, tf->visibility, kDiffFullScale), made);
             tr.difference = compareMasks(f->visibility, tf->visibility, 0.0);
             tr.image = twins::judgeImages(f->color, tf->color, f->visibility, tf->visibility);
             made["image"] = "colour difference, " + p.technique + " against its twin";
@@ -629,12 +627,8 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
         }
         break;
       }
-      case PanelKind::kLightView:
-        addImage(r.diagnostics(setup).lightView, p.label, false);
-        break;
-      case PanelKind::kShadowMap:
-        addImage(r.diagnostics(setup).shadowMap, p.label, false);
-        break;
+      case PanelKind::kLightView: addImage(r.diagnostics(setup).lightView, p.label, false); break;
+      case PanelKind::kShadowMap: addImage(r.diagnostics(setup).shadowMap, p.label, false); break;
       case PanelKind::kLightDistance:
         addImage(r.diagnostics(setup).lightDistance, p.label, false);
         break;
@@ -693,12 +687,12 @@ void writeComposite(Renderer& r, FigureResult& fig) {
   if (fig.spec.table) return;
   const Image composite = composeFigure(fig, r.outDir());
   if (!composite.empty())
-    fig.composite = r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite,
-                            {{"figure", fig.spec.id},
-                             {"source_figure", fig.spec.sourceId.empty() ? fig.spec.id
-                                                                         : fig.spec.sourceId},
-                             {"set", fig.spec.overrides},
-                             {"panels", fig.panels.size()}});
+    fig.composite =
+        r.write(fig.spec.id, "figure" + fig.spec.fileSuffix, composite,
+                {{"figure", fig.spec.id},
+                 {"source_figure", fig.spec.sourceId.empty() ? fig.spec.id : fig.spec.sourceId},
+                 {"set", fig.spec.overrides},
+                 {"panels", fig.panels.size()}});
 }
 
 // Step 5: charts.
@@ -783,12 +777,12 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
     return;
   }
   try {  // gnuplot drew it: the same tEXt chunks as our PNGs, added through libpng
-    addPngProvenance(png, {commandLine(), nlohmann::json{{"figure", fig.spec.id},
-                                                         {"chart", chart},
-                                                         {"panel", plot.spec.label},
-                                                         {"set", fig.spec.overrides}}
-                                              .dump(-1, ' ', true,
-                                                    nlohmann::json::error_handler_t::replace)});
+    addPngProvenance(
+        png, {commandLine(), nlohmann::json{{"figure", fig.spec.id},
+                                            {"chart", chart},
+                                            {"panel", plot.spec.label},
+                                            {"set", fig.spec.overrides}}
+                                 .dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)});
   } catch (const InputError& e) {
     plot.reason = std::string("failed: ") + e.what();
     return;
@@ -927,9 +921,9 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
                                      "lessons/");
   if (progress)
     std::cerr << "[lesson] " << lessonTechniques.size() << " lessons in "
-              << std::lround(std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                           lessonsStart)
-                                 .count())
+              << std::lround(
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - lessonsStart)
+                         .count())
               << " s" << std::endl;
   // The whole set: the course over those lessons (figures/course.h), linked from the report.
   if (only.empty()) info.lessonsHtml += writeCourseForReport(outDir, progress);
@@ -956,11 +950,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
   return 0;
 }
 
-int runBench(const cli::Args& args) {
-  return runBenchCommand(args);
-}  // measure/bench.cpp
-int runPlan(const cli::Args& args) {
-  return runPlanCommand(args);
-}  // figures/plan.cpp
+int runBench(const cli::Args& args) { return runBenchCommand(args); }  // measure/bench.cpp
+int runPlan(const cli::Args& args) { return runPlanCommand(args); }    // figures/plan.cpp
 
 }  // namespace sl::figures

@@ -27,7 +27,8 @@ constexpr int kCloseupFrame = 2;  // pixels: the red frame around the close-up's
 // pictures differ inside the close-up window.
 const std::vector<GalleryEntry>& galleryEntries() {
   static const std::vector<GalleryEntry> kEntries = {
-      {"acne", "Shadow acne",
+      {"acne",
+       "Shadow acne",
        "Without polygon offset every lit surface compares its own depth against the depth stored "
        "for it, rounded to the map's texels and depth steps: half the samples fall behind and "
        "shadow themselves, in moire stripes across the ground and the objects (Everitt et al., "
@@ -35,37 +36,65 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "polygon offset of the light pass: offset-factor and offset-units (0, 0)",
        "the technique's tuned offset (factor 2, units 4) pushes the stored depths just behind "
        "the lit surfaces",
-       "brabec", 400, 300, {}, "legacy.hw", "legacy.hw",
-       {{"param", "offset-factor=0"}, {"param", "offset-units=0"}}, {},
+       "brabec",
+       400,
+       300,
+       {},
+       "legacy.hw",
+       "legacy.hw",
+       {{"param", "offset-factor=0"}, {"param", "offset-units=0"}},
+       {},
        {140, 200, 100, 75, 4}},
-      {"peter-panning", "Peter-panning: light leaks under the caster",
+      {"peter-panning",
+       "Peter-panning: light leaks under the caster",
        "Too much offset pushes the stored depths so far behind the casters that the floor next "
        "to the box's base tests as lit: the shadow comes loose from the box and a lit gap opens "
        "at the contact (Chan 2004 Fig. 2-4b).",
        "offset-units of the light pass (1000000 depth steps)",
        "the tuned offset (units 4) keeps the shadow attached to the box",
-       "contact", 400, 300, {}, "legacy.hw", "legacy.hw",
-       {{"param", "offset-units=1000000"}}, {},
+       "contact",
+       400,
+       300,
+       {},
+       "legacy.hw",
+       "legacy.hw",
+       {{"param", "offset-units=1000000"}},
+       {},
        {95, 150, 120, 70, 3}},
-      {"perspective-aliasing", "Perspective aliasing: stair steps near the eye",
+      {"perspective-aliasing",
+       "Perspective aliasing: stair steps near the eye",
        "With the light facing the camera (dueling frusta), one shadow-map texel covers many "
        "pixels near the eye: with one nearest comparison per pixel the shadow edges become "
        "large stair steps (Everitt et al. Fig. 6; Chan 2004 Fig. 2-5).",
        "shadow-map resolution (128 x 128) with compare=nearest",
        "a 2048 x 2048 map shrinks the steps below a pixel here",
-       "dueling", 400, 300, {{"param", "compare=nearest"}}, "legacy.hw", "legacy.hw",
-       {{"shadow-map", "128"}}, {{"shadow-map", "2048"}},
+       "dueling",
+       400,
+       300,
+       {{"param", "compare=nearest"}},
+       "legacy.hw",
+       "legacy.hw",
+       {{"shadow-map", "128"}},
+       {{"shadow-map", "2048"}},
        {170, 170, 100, 75, 3}},
-      {"projective-aliasing", "Projective aliasing at grazing light",
+      {"projective-aliasing",
+       "Projective aliasing at grazing light",
        "With the light low over the scene, the sphere's surface near its terminator is almost "
        "parallel to the light's rays: one texel's footprint is stretched along the surface, and "
        "the lit/shadowed boundary on the sphere becomes a ragged line of long steps.",
        "shadow-map resolution (128 x 128) under a grazing light (light-position -7,1.6,3)",
        "a 2048 x 2048 map under the same light",
-       "brabec", 400, 300, {{"light-position", "-7,1.6,3"}, {"param", "compare=nearest"}},
-       "legacy.hw", "legacy.hw", {{"shadow-map", "128"}}, {{"shadow-map", "2048"}},
+       "brabec",
+       400,
+       300,
+       {{"light-position", "-7,1.6,3"}, {"param", "compare=nearest"}},
+       "legacy.hw",
+       "legacy.hw",
+       {{"shadow-map", "128"}},
+       {{"shadow-map", "2048"}},
        {225, 85, 75, 60, 5}},
-      {"ramp-banding", "8-bit depth banding in the ramp shadow map",
+      {"ramp-banding",
+       "8-bit depth banding in the ramp shadow map",
        "Brabec & Seidel §2 store depth as an 8-bit colour from a 1D ramp: 256 steps over the "
        "light's range. Without the depth bias a lit surface meets its own stored depth, rounded "
        "in the light's pass and again in the camera's: where the camera's rounding lands a step "
@@ -73,29 +102,51 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "contours of the 8-bit depth.",
        "depth-bias (0 steps) at 8-bit precision",
        "the paper's bias of 2 steps (the technique's default)",
-       "brabec", 400, 300, {{"precision", "8"}}, "legacy.ramp", "legacy.ramp",
-       {{"param", "depth-bias=0"}}, {},
+       "brabec",
+       400,
+       300,
+       {{"precision", "8"}},
+       "legacy.ramp",
+       "legacy.ramp",
+       {{"param", "depth-bias=0"}},
+       {},
        {120, 200, 100, 75, 4}},
-      {"vsm-light-bleeding", "VSM light bleeding",
+      {"vsm-light-bleeding",
+       "VSM light bleeding",
        "A variance shadow map keeps the mean and variance of the depths under its filter. Where "
        "the fence near the light and the low plank overlap in one kernel, the variance is large "
        "and Chebyshev's upper bound lets light into the plank's shadow: the fence's stripes "
        "show through it (Annen et al. 2007 Fig. 9).",
        "the Chebyshev bound itself (bleed-reduction 0)",
        "bleed-reduction=0.5 counts a bound below 0.5 as shadow",
-       "bleeding", 400, 300, {}, "modern.vsm", "modern.vsm", {},
-       {{"param", "bleed-reduction=0.5"}}, {150, 135, 120, 60, 3}},
-      {"csm-low-order", "CSM: a low-order shadow test fades at contacts",
+       "bleeding",
+       400,
+       300,
+       {},
+       "modern.vsm",
+       "modern.vsm",
+       {},
+       {{"param", "bleed-reduction=0.5"}},
+       {150, 135, 120, 60, 3}},
+      {"csm-low-order",
+       "CSM: a low-order shadow test fades at contacts",
        "Convolution shadow maps expand the step of the shadow test in M Fourier terms. With "
        "M = 2 the reconstructed step is so smooth that a receiver close behind its caster is "
        "lit: the slanted square's shadow fades to white towards its contact with the plane "
        "(Annen et al. 2007 Fig. 6; series not attenuated, alpha = 0).",
        "order M (2 Fourier terms)",
        "M = 16 keeps the shadow dark up to the contact",
-       "squares", 400, 300, {{"param", "alpha=0"}, {"param", "offset-rule=through-1"}},
-       "modern.csm", "modern.csm", {{"param", "order=2"}}, {{"param", "order=16"}},
+       "squares",
+       400,
+       300,
+       {{"param", "alpha=0"}, {"param", "offset-rule=through-1"}},
+       "modern.csm",
+       "modern.csm",
+       {{"param", "order=2"}},
+       {{"param", "order=16"}},
        {235, 75, 90, 75, 3}},
-      {"csm-ringing", "CSM ringing",
+      {"csm-ringing",
+       "CSM ringing",
        "The truncated Fourier series of the shadow test's step oscillates about it (Gibbs). "
        "Without attenuation (alpha = 0) the darkness of a shadow rises and falls with the "
        "receiver's distance behind the caster: a lighter band runs across the tilted square's "
@@ -104,29 +155,53 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "alpha = 0: no attenuation of the high Fourier terms",
        "alpha = 1 (the technique's default) damps them: the shadow darkens steadily away from the "
        "contact, softer next to it, the price §3.2.1 names",
-       "squares", 400, 300,
-       {{"param", "order=4"}, {"param", "offset-rule=through-1"}, {"param", "storage=float"},
+       "squares",
+       400,
+       300,
+       {{"param", "order=4"},
+        {"param", "offset-rule=through-1"},
+        {"param", "storage=float"},
         {"param", "blur=0"}},
-       "modern.csm", "modern.csm", {{"param", "alpha=0"}}, {{"param", "alpha=1"}},
+       "modern.csm",
+       "modern.csm",
+       {{"param", "alpha=0"}},
+       {{"param", "alpha=1"}},
        {245, 95, 70, 50, 5}},
-      {"hybrid-missed-silhouette", "Hybrid: a shadow the silhouette band missed",
+      {"hybrid-missed-silhouette",
+       "Hybrid: a shadow the silhouette band missed",
        "Chan's hybrid runs shadow volumes only at the silhouette pixels its shadow map finds. A "
        "bar thinner than a texel of a 64 x 64 map is missing from the map, so no silhouette "
        "pixel is found along its shadow and the volumes never run there: most of the bar's "
        "shadow is gone.",
        "shadow-map resolution of the classification (64 x 64)",
        "a 1024 x 1024 map sees the bar; the volumes draw its whole shadow",
-       "dragon", 400, 300, {}, "modern.hybrid", "modern.hybrid", {{"shadow-map", "64"}},
-       {{"shadow-map", "1024"}}, {290, 150, 100, 50, 4}},
-      {"smoothies-contact", "Smoothies: the contact error",
+       "dragon",
+       400,
+       300,
+       {},
+       "modern.hybrid",
+       "modern.hybrid",
+       {{"shadow-map", "64"}},
+       {{"shadow-map", "1024"}},
+       {290, 150, 100, 50, 4}},
+      {"smoothies-contact",
+       "Smoothies: the contact error",
        "Smoothies add a fixed-width soft edge (width t in the light's image) outside every "
        "silhouette. Without remapping, that edge darkens the lit floor in front of the box where "
        "box and floor meet: a shadow that does not come from the box (Chan 2004 Fig. 4-4b).",
        "remap=off: smoothie alpha not remapped by the depth ratio (width t = 0.06)",
        "remap=on (Chan Eq. 4.1) shrinks the penumbra to nothing at the contact",
-       "contact", 400, 300, {{"param", "width=0.06"}}, "modern.smoothies", "modern.smoothies",
-       {{"param", "remap=off"}}, {}, {88, 144, 144, 90, 3}},
-      {"woo-thin-caster", "Woo's midpoint fails on a thin caster",
+       "contact",
+       400,
+       300,
+       {{"param", "width=0.06"}},
+       "modern.smoothies",
+       "modern.smoothies",
+       {{"param", "remap=off"}},
+       {},
+       {88, 144, 144, 90, 3}},
+      {"woo-thin-caster",
+       "Woo's midpoint fails on a thin caster",
        "Woo's map stores the midpoint between the nearest and the second-nearest surface, "
        "which replaces the polygon offset where objects are thick. The squares are boxes 0.02 "
        "thick: the midpoint lies 0.01 under the lit top, less than the depth one 128 x 128 "
@@ -134,24 +209,40 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "as if there were no offset (the flat squares, facing the light, stay clean).",
        "the technique: legacy.woo (midpoint map, no polygon offset) on a 128 x 128 map",
        "legacy.hw with its polygon offset on the same map",
-       "squares", 400, 300, {{"shadow-map", "128"}}, "legacy.woo", "legacy.hw", {}, {},
+       "squares",
+       400,
+       300,
+       {{"shadow-map", "128"}},
+       "legacy.woo",
+       "legacy.hw",
+       {},
+       {},
        {240, 85, 80, 60, 4}},
-      {"gems-dither", "Dithered PCF: the 4-sample pattern",
+      {"gems-dither",
+       "Dithered PCF: the 4-sample pattern",
        "GPU Gems §11.4 takes 4 of the 16 lookups per pixel, chosen by the pixel's screen "
        "position: the penumbra becomes a regular 2 x 2 dither pattern instead of a smooth "
        "ramp (GPU Gems Figs. 11-7 and 11-8).",
        "samples=4 (dithered)",
        "samples=16 filters every pixel with the whole 4 x 4 footprint",
-       "cylinder", 400, 300, {{"shadow-map", "256"}}, "modern.gems16", "modern.gems16",
-       {{"param", "samples=4"}}, {}, {180, 165, 110, 70, 4}},
+       "cylinder",
+       400,
+       300,
+       {{"shadow-map", "256"}},
+       "modern.gems16",
+       "modern.gems16",
+       {{"param", "samples=4"}},
+       {},
+       {180, 165, 110, 70, 4}},
   };
   return kEntries;
 }
 
 std::vector<std::string> galleryRenderArguments(const GalleryEntry& e, bool wrongSide) {
-  std::vector<std::string> a = {"--scene", e.scene, "--technique",
-                                wrongSide ? e.wrongTechnique : e.rightTechnique, "--size",
-                                std::to_string(e.width) + "x" + std::to_string(e.height)};
+  std::vector<std::string> a = {
+      "--scene",     e.scene,
+      "--technique", wrongSide ? e.wrongTechnique : e.rightTechnique,
+      "--size",      std::to_string(e.width) + "x" + std::to_string(e.height)};
   for (const auto& [k, v] : e.common) a.insert(a.end(), {"--" + k, v});
   for (const auto& [k, v] : wrongSide ? e.wrong : e.right) a.insert(a.end(), {"--" + k, v});
   return a;
@@ -300,8 +391,8 @@ std::string pageHtml(const std::vector<GalleryEntry>& entries, const std::string
   h << "</ol>\n";
   for (const GalleryEntry& e : entries) {
     h << "<section class=artefact id=\"" << htmlEscape(e.id) << "\">\n<h2>" << htmlEscape(e.title)
-      << "</h2>\n<p>" << htmlEscape(e.shows) << "</p>\n<p><b>Cause:</b> "
-      << htmlEscape(e.parameter) << ". <b>Right:</b> " << htmlEscape(e.fix) << ". <a class=lab href=\""
+      << "</h2>\n<p>" << htmlEscape(e.shows) << "</p>\n<p><b>Cause:</b> " << htmlEscape(e.parameter)
+      << ". <b>Right:</b> " << htmlEscape(e.fix) << ". <a class=lab href=\""
       << htmlEscape(labUrl + "?" + galleryLabQuery(e)) << "\">open in the lab</a></p>\n"
       << "<div class=pair>\n";
     for (bool wrongSide : {true, false}) {
@@ -310,8 +401,9 @@ std::string pageHtml(const std::vector<GalleryEntry>& entries, const std::string
         << (wrongSide ? "wrong: " : "right: ") << htmlEscape(technique) << " "
         << htmlEscape(optionsText(wrongSide ? e.wrong : e.right)) << "</h4>\n<img src=\""
         << pictureName(e, wrongSide, false) << "\" width=" << e.width << " height=" << e.height
-        << " alt=\"" << htmlEscape(e.title + (wrongSide ? ", wrong" : ", right")) << "\">\n<img src=\""
-        << pictureName(e, wrongSide, true) << "\" width=" << e.closeup.width * e.closeup.magnify
+        << " alt=\"" << htmlEscape(e.title + (wrongSide ? ", wrong" : ", right"))
+        << "\">\n<img src=\"" << pictureName(e, wrongSide, true)
+        << "\" width=" << e.closeup.width * e.closeup.magnify
         << " height=" << e.closeup.height * e.closeup.magnify << " alt=\"close-up, "
         << e.closeup.magnify << "x\">\n<figcaption>close-up magnified " << e.closeup.magnify
         << "x. <code>" << htmlEscape(galleryRenderCommand(e, wrongSide))
@@ -392,7 +484,8 @@ int writeGallery(const std::string& dir, const std::string& labUrl) {
       json parameters = json::object();
       for (const auto& [key, values] : p.args.options) parameters[key] = values;
       const Provenance provenance{p.command, parameters.dump()};
-      files.push_back({pictureName(e, wrongSide, false), framedPicture(image, e.closeup), provenance});
+      files.push_back(
+          {pictureName(e, wrongSide, false), framedPicture(image, e.closeup), provenance});
       files.push_back({pictureName(e, wrongSide, true), closeupOf(image, e.closeup), provenance});
     }
   const std::string html = pageHtml(entries, labUrl, commandLine());

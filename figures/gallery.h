@@ -35,7 +35,8 @@ struct GalleryEntry {
   std::string id;         // file names and anchors: "acne"
   std::string title;      // "Shadow acne"
   std::string shows;      // what the wrong picture shows, and why
-  std::string parameter;  // the one parameter that causes it: "polygon offset (offset-factor, offset-units)"
+  std::string parameter;  // the one parameter that causes it: "polygon offset (offset-factor,
+                          // offset-units)"
   std::string fix;        // what the right picture changes
   std::string scene;
   int width = 400, height = 300;

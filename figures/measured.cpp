@@ -28,9 +28,7 @@ std::string fpsOf(double ms) {
   return fixed(fps, fps < 1.0 ? 3 : fps < 10.0 ? 2 : 1);
 }
 
-std::string percent(double share) {
-  return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%";
-}
+std::string percent(double share) { return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%"; }
 
 bool timedRender(const PanelResult& p) {
   return p.ok && p.spec.kind == PanelKind::kRender && p.milliseconds > 0 && p.timedFrames > 0;
@@ -43,9 +41,7 @@ int direction(double ratio) {
   return 0;
 }
 
-const char* directionWord(int d) {
-  return d > 0 ? "slower" : d < 0 ? "faster" : "the same";
-}
+const char* directionWord(int d) { return d > 0 ? "slower" : d < 0 ? "faster" : "the same"; }
 
 // Rounds (interleaved, so round r of two cells ran under the same load) in which a/b goes way d.
 int roundsGoing(const PanelResult& a, const PanelResult& b, int d, int* rounds) {
@@ -108,8 +104,8 @@ std::string passRole(const std::string& name) {
   std::string word, role;
   int taken = 0;
   while (taken < 2 && words >> word) {
-    const bool number = std::all_of(word.begin(), word.end(),
-                                    [](unsigned char c) { return std::isdigit(c) != 0; });
+    const bool number =
+        std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
     if (role.empty() && number) continue;
     if (word == "passes") word = "pass";  // "1 light passes: jittered ..." is a light pass
     role += (role.empty() ? "" : " ") + word;
@@ -156,8 +152,8 @@ std::string passBreakdown(const FigureResult& fig) {
                   "</td><td>" + fixed(pass.milliseconds, 1) + "</td></tr>\n";
       } else {
         addedMs += pass.milliseconds;
-        added += (added.empty() ? "" : "; ") + pass.name + " " + fixed(pass.milliseconds, 1) +
-                 " ms";
+        added +=
+            (added.empty() ? "" : "; ") + pass.name + " " + fixed(pass.milliseconds, 1) + " ms";
       }
     }
     std::string dropped;
@@ -182,8 +178,9 @@ std::string passBreakdown(const FigureResult& fig) {
       << htmlEscape(c.label) << " adds: " << htmlEscape(added.empty() ? std::string("none") : added)
       << ", together " << fixed(addedMs, 1) << " ms, " << percent(ownShare) << " of its frame";
     if (!dropped.empty())
-      h << "; the passes of " << htmlEscape(c.baseline) << " without a partner: "
-        << htmlEscape(dropped) << ", together " << fixed(droppedMs, 1) << " ms";
+      h << "; the passes of " << htmlEscape(c.baseline)
+        << " without a partner: " << htmlEscape(dropped) << ", together " << fixed(droppedMs, 1)
+        << " ms";
     h << ". The paired passes differ by " << signedMs(pairedDelta) << " ms in total";
     if (!mostChanged.empty())
       h << ", the most " << htmlEscape(mostChanged) << " (" << signedMs(mostDelta) << " ms)";
@@ -209,8 +206,10 @@ std::string passBreakdown(const FigureResult& fig) {
 // "rises 328 -> 4763 pixels": a counter from panel a to panel b.
 std::string change(const PanelResult& a, const PanelResult& b, const char* name) {
   const double from = *counter(a, name), to = *counter(b, name);
-  return std::string(to > from ? "rises " : to < from ? "falls " : "stays ") + fixed(from, 0) +
-         " -> " + fixed(to, 0) + " pixels";
+  return std::string(to > from   ? "rises "
+                     : to < from ? "falls "
+                                 : "stays ") +
+         fixed(from, 0) + " -> " + fixed(to, 0) + " pixels";
 }
 
 // Brabec Fig. 8: the 8-bit method's depth bias against 12-bit depth, in pixels (the panels'
@@ -231,8 +230,8 @@ std::string depthBiasCounts(const FigureResult& fig) {
       << ", acne " << fixed(*counter(*p, kAcnePixelsCounter), 0) << ". ";
   if (counted.size() > 1) {
     const PanelResult &a = *counted.front(), &b = *counted.back();
-    h << "From " << htmlEscape(a.spec.label) << " to " << htmlEscape(b.spec.label)
-      << " the leak " << htmlEscape(change(a, b, kLeakPixelsCounter)) << " and the acne "
+    h << "From " << htmlEscape(a.spec.label) << " to " << htmlEscape(b.spec.label) << " the leak "
+      << htmlEscape(change(a, b, kLeakPixelsCounter)) << " and the acne "
       << htmlEscape(change(a, b, kAcnePixelsCounter)) << ".";
   }
   h << "</p>\n";
@@ -257,15 +256,15 @@ std::optional<TableCell> parseTableLabel(const std::string& label) {
 // is inverted, whether every interleaved round inverts it (cost structure: the per-pass column
 // names the passes that differ) or the rounds disagree (noise).
 struct TableAxis {
-  const char* heading;            // "the convolution trend"
-  std::string TableCell::*field;  // what varies
+  const char* heading;             // "the convolution trend"
+  std::string TableCell::*field;   // what varies
   std::vector<std::string> steps;  // its values, in the paper's column order
-  const char* paperSays;          // the paper's trend, in words
-  const char* lowCell;            // "the cell without convolution"
-  const char* highCell;           // "the 7x7 cell"
-  const char* highShort;          // "7x7"
-  const char* lowShort;           // "none"
-  const char* rows;               // what a row is: "(M, S) pairs"
+  const char* paperSays;           // the paper's trend, in words
+  const char* lowCell;             // "the cell without convolution"
+  const char* highCell;            // "the 7x7 cell"
+  const char* highShort;           // "7x7"
+  const char* lowShort;            // "none"
+  const char* rows;                // what a row is: "(M, S) pairs"
 };
 
 std::string rowKey(const TableCell& c, std::string TableCell::*varying) {
@@ -338,16 +337,16 @@ std::string tableTrend(const FigureResult& fig, const TableAxis& axis) {
       if (bySteps.count(step))
         fps += (fps.empty() ? "" : " / ") + fpsOf(bySteps[step]->milliseconds);
     rows << "<tr><td>" << htmlEscape(key) << "</td><td>" << fps << "</td><td>" << samples
-         << "</td><td>" << htmlEscape(passes) << "</td><td class=" << (d > 0 ? "ok" : "bad")
-         << ">" << htmlEscape(verdict) << "</td></tr>\n";
+         << "</td><td>" << htmlEscape(passes) << "</td><td class=" << (d > 0 ? "ok" : "bad") << ">"
+         << htmlEscape(verdict) << "</td></tr>\n";
   }
   if (compared == 0) return "";
   std::string stepNames;
   for (const std::string& step : axis.steps) stepNames += (stepNames.empty() ? "" : " / ") + step;
   std::ostringstream h;
-  h << "<p><b>Measured: " << axis.heading << ".</b> " << axis.paperSays << " Ours: "
-    << axis.highCell << " is not slower than " << axis.lowCell << " in " << inverted << " of "
-    << compared << " " << axis.rows << "; " << invertedEveryRound
+  h << "<p><b>Measured: " << axis.heading << ".</b> " << axis.paperSays
+    << " Ours: " << axis.highCell << " is not slower than " << axis.lowCell << " in " << inverted
+    << " of " << compared << " " << axis.rows << "; " << invertedEveryRound
     << " of those invert in every interleaved round (cost structure), the other "
     << inverted - invertedEveryRound
     << " only in the median (noise). The per-pass column shows where the time goes ("
@@ -362,19 +361,37 @@ std::string tableTrend(const FigureResult& fig, const TableAxis& axis) {
 }
 
 const TableAxis kConvolutionAxis = {
-    "the convolution trend", &TableCell::blur, {"none", "3x3", "7x7"},
+    "the convolution trend",
+    &TableCell::blur,
+    {"none", "3x3", "7x7"},
     "The paper's frame rate falls as the kernel grows (none, 3x3, 7x7) in every cell.",
-    "the cell without convolution", "the 7x7 cell", "7x7", "none", "(M, S) pairs"};
+    "the cell without convolution",
+    "the 7x7 cell",
+    "7x7",
+    "none",
+    "(M, S) pairs"};
 const TableAxis kMapSizeAxis = {
-    "the map-size trend", &TableCell::size, {"256", "512", "1024", "2048"},
+    "the map-size trend",
+    &TableCell::size,
+    {"256", "512", "1024", "2048"},
     "The paper's frame rate falls as the shadow map grows (256² to 2048²) in every row, PCF's "
     "included.",
-    "the 256² cell", "the 2048² cell", "2048²", "256²", "(C, M) rows"};
+    "the 256² cell",
+    "the 2048² cell",
+    "2048²",
+    "256²",
+    "(C, M) rows"};
 const TableAxis kOrderAxis = {
-    "the order trend", &TableCell::order, {"M=4", "M=8", "M=16"},
+    "the order trend",
+    &TableCell::order,
+    {"M=4", "M=8", "M=16"},
     "The paper's frame rate falls as the order M grows (4, 8, 16: two, four and eight RGBA "
     "fetches per shaded pixel) in every cell.",
-    "the M=4 cell", "the M=16 cell", "M=16", "M=4", "(C, S) pairs"};
+    "the M=4 cell",
+    "the M=16 cell",
+    "M=16",
+    "M=4",
+    "(C, S) pairs"};
 
 // ---------------------------------------------------------------- Chan Figs. 3-10, 3-11
 // H/SV per scene: every hybrid panel against the volumes panel of its scene.
@@ -572,7 +589,8 @@ std::string chan48(const FigureResult& fig) {
        "16 comparisons (or the one) are made; the light pass is the same in both. The thesis's "
        "smoothies are faster than its bicubic filter at every map size (\"still much faster "
        "than using the bicubic filter\", §4.4); ours at "
-    << smoothieFaster << " of " << withSmoothie << ".</p>\n"
+    << smoothieFaster << " of " << withSmoothie
+    << ".</p>\n"
        "<table><tr><th>map</th><th>bicubic / one comparison (ms)</th><th>thesis</th>"
        "<th>camera pass: bicubic / one comparison (ms)</th><th>smoothie"
     << htmlEscape(smoothieWidth.empty() ? "" : " (width " + smoothieWidth + ")")

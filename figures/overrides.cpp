@@ -31,9 +31,7 @@ bool rendersTechnique(const PanelSpec& p) {
 }
 
 // Panels a scene or window override concerns: everything that renders the scene.
-bool rendersScene(const PanelSpec& p) {
-  return p.kind != PanelKind::kPlot;
-}
+bool rendersScene(const PanelSpec& p) { return p.kind != PanelKind::kPlot; }
 
 std::string join(const std::set<std::string>& values) {
   std::string out;
@@ -139,8 +137,9 @@ FigureOverrides parseOverrides(const cli::Args& args) {
   if (it == args.options.end() || it->second.empty()) return {};
   const auto only = args.options.find("only");
   if (only == args.options.end() || only->second.size() != 1)
-    throw InputError("--set needs exactly one --only ID: one figure is re-made with parameters "
-                     "changed");
+    throw InputError(
+        "--set needs exactly one --only ID: one figure is re-made with parameters "
+        "changed");
   return parseOverrideList(it->second);
 }
 

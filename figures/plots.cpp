@@ -23,10 +23,10 @@ constexpr double kAttenuationAlpha = 4.0;  // a strong attenuation for Fig. 3 (b
 
 // Stack segments' colours: the ten saturated colours of Tableau 20 first, then their ten light
 // partners, so that up to ten segments differ in hue and up to twenty differ at all.
-constexpr const char* kSegmentPalette[] = {
-    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-    "#7f7f7f", "#bcbd22", "#17becf", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
-    "#c5b0d5", "#c49c94", "#f7b6d2", "#c7c7c7", "#dbdb8d", "#9edae5"};
+constexpr const char* kSegmentPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf",
+                                           "#aec7e8", "#ffbb78", "#98df8a", "#ff9896", "#c5b0d5",
+                                           "#c49c94", "#f7b6d2", "#c7c7c7", "#dbdb8d", "#9edae5"};
 constexpr size_t kSegmentPaletteSize = sizeof(kSegmentPalette) / sizeof(kSegmentPalette[0]);
 constexpr double kSegmentSaturation = 0.65;  // hues spread evenly beyond the palette
 constexpr double kSegmentValue = 0.85;

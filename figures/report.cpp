@@ -94,8 +94,8 @@ nav li { margin: 2px 0; }
 
 void writePanelCell(std::ostream& h, const PanelResult& p) {
   if (!p.ok) {
-    h << "<div class=missing><b>missing: " << htmlEscape(p.spec.label) << "</b><br>" << htmlEscape(p.reason)
-      << "</div>\n";
+    h << "<div class=missing><b>missing: " << htmlEscape(p.spec.label) << "</b><br>"
+      << htmlEscape(p.reason) << "</div>\n";
     return;
   }
   if (p.spec.kind == PanelKind::kIntermediates) {
@@ -104,14 +104,15 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
     h << "<div class=buffers><b>" << htmlEscape(p.spec.label) << "</b> ("
       << htmlEscape(p.spec.technique) << ")<div class=inter>";
     for (const ImageFile& im : p.images)
-      h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file) << "\" alt=\""
-        << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(im.caption) << "</figcaption></figure>";
+      h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file)
+        << "\" alt=\"" << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(im.caption)
+        << "</figcaption></figure>";
     h << "</div></div>\n";
     return;
   }
   for (const ImageFile& im : p.images) {
-    h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file) << "\" alt=\""
-      << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(p.spec.label);
+    h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file)
+      << "\" alt=\"" << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(p.spec.label);
     if (!p.spec.technique.empty()) h << " — <code>" << htmlEscape(p.spec.technique) << "</code>";
     if (p.milliseconds > 0) h << "<br>" << frameTime(p.milliseconds, p.timedFrames);
     if (!p.spec.paperNumbers.empty())
@@ -200,9 +201,9 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
   for (const PanelResult& p : f.panels) {
     if (!p.twin) continue;
     const TwinResult& t = *p.twin;
-    h << "<figure><img src=\"" << htmlEscape(p.images.front().file) << "\" alt=\"" << htmlEscape(p.spec.technique)
-      << "\"><figcaption><code>" << htmlEscape(p.spec.technique) << "</code> "
-      << frameTime(p.milliseconds, p.timedFrames) << "</figcaption></figure>\n";
+    h << "<figure><img src=\"" << htmlEscape(p.images.front().file) << "\" alt=\""
+      << htmlEscape(p.spec.technique) << "\"><figcaption><code>" << htmlEscape(p.spec.technique)
+      << "</code> " << frameTime(p.milliseconds, p.timedFrames) << "</figcaption></figure>\n";
     h << "<figure><img src=\"" << htmlEscape(t.file) << "\" alt=\"" << htmlEscape(t.technique)
       << "\"><figcaption><code>" << htmlEscape(t.technique) << "</code> "
       << frameTime(t.milliseconds, t.timedFrames) << "</figcaption></figure>\n";
@@ -228,8 +229,7 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
 
 // The command that makes this figure again (with its --set overrides, figures/overrides.h).
 std::string regenerateCommand(const FigureSpec& s) {
-  std::string command =
-      "shadowlab figures --only " + (s.sourceId.empty() ? s.id : s.sourceId);
+  std::string command = "shadowlab figures --only " + (s.sourceId.empty() ? s.id : s.sourceId);
   for (const std::string& o : s.overrides) command += " --set " + o;
   return command;
 }
@@ -238,12 +238,12 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
   const FigureSpec& s = f.spec;
   int missing = 0;
   for (const PanelResult& p : f.panels) missing += p.ok ? 0 : 1;
-  h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — " << htmlEscape(s.title)
-    << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
+  h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — "
+    << htmlEscape(s.title) << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
   h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
   h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
-  h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height << ", "
-    << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
+  h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height
+    << ", " << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
     << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s)) << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
@@ -333,10 +333,11 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
     int ok = 0;
     for (const PanelResult& p : f.panels) ok += p.ok ? 1 : 0;
     const bool complete = ok == int(f.panels.size());
-    h << "<tr><td>" << htmlEscape(f.spec.paper) << "</td><td><a href=\"#" << htmlEscape(f.spec.id) << "\">"
-      << htmlEscape(f.spec.paperFigure) << " — " << htmlEscape(f.spec.title) << "</a></td><td><code>"
-      << htmlEscape(f.spec.id) << "</code></td><td class=" << (complete ? "ok" : "bad") << ">" << ok
-      << " / " << f.panels.size() << (complete ? "" : " (missing in red)") << "</td></tr>\n";
+    h << "<tr><td>" << htmlEscape(f.spec.paper) << "</td><td><a href=\"#" << htmlEscape(f.spec.id)
+      << "\">" << htmlEscape(f.spec.paperFigure) << " — " << htmlEscape(f.spec.title)
+      << "</a></td><td><code>" << htmlEscape(f.spec.id)
+      << "</code></td><td class=" << (complete ? "ok" : "bad") << ">" << ok << " / "
+      << f.panels.size() << (complete ? "" : " (missing in red)") << "</td></tr>\n";
   }
   h << "</table></nav>\n";
   h << info.lessonsHtml;

@@ -68,7 +68,7 @@ struct PanelResult {
   std::optional<MaskDifference> error;
   std::string errorMetric;
   std::optional<ErrorDetail> errorDetail;
-  std::string errorNote;                // why there is no error number
+  std::string errorNote;  // why there is no error number
   std::optional<TwinResult> twin;
 };
 
@@ -84,7 +84,7 @@ struct ReportInfo {
   std::string renderer;  // GL_RENDERER of the default back end
   std::string date;
   double totalSeconds = 0;
-  std::string benchHtml;  // the quick bench's section (measure/bench_report.cpp), if it ran
+  std::string benchHtml;    // the quick bench's section (measure/bench_report.cpp), if it ran
   std::string lessonsHtml;  // links to the lessons (teach/lesson.h lessonIndexHtml)
 };
 

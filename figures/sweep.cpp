@@ -17,8 +17,8 @@ using Json = nlohmann::json;
 // The spec's keys, in the order docs/python.md lists them.
 const std::vector<std::string>& specKeys() {
   static const std::vector<std::string> kKeys = {
-      "techniques", "scenes", "sizes",  "shadow_maps",    "filters",  "precisions",
-      "params",     "orbits", "backend", "warmup", "repeat", "soft_reference", "temporal"};
+      "techniques", "scenes",  "sizes",  "shadow_maps", "filters",        "precisions", "params",
+      "orbits",     "backend", "warmup", "repeat",      "soft_reference", "temporal"};
   return kKeys;
 }
 
@@ -42,7 +42,8 @@ std::vector<Json> axisValues(const Json& spec, const std::string& key) {
   const Json& v = spec.at(key);
   std::vector<Json> out;
   if (v.is_array()) {
-    if (v.empty()) throw InputError("sweep: \"" + key + "\" is an empty list (leave it out instead)");
+    if (v.empty())
+      throw InputError("sweep: \"" + key + "\" is an empty list (leave it out instead)");
     for (const Json& item : v) out.push_back(item);
   } else {
     out.push_back(v);
@@ -207,11 +208,11 @@ SweepPlan planSweep(const Json& spec) {
         std::set<std::string> keys;
         for (const Technique* t : techniques)
           for (const std::string& k : paramKeys(*t)) keys.insert(k);
-        throw InputError("sweep: \"params\": no technique of the sweep has a parameter '" + key +
-                         "' (theirs: " +
-                         (keys.empty() ? std::string("none")
-                                       : joined(std::vector<std::string>(keys.begin(), keys.end()))) +
-                         ")");
+        throw InputError(
+            "sweep: \"params\": no technique of the sweep has a parameter '" + key + "' (theirs: " +
+            (keys.empty() ? std::string("none")
+                          : joined(std::vector<std::string>(keys.begin(), keys.end()))) +
+            ")");
       }
       Axis axis{"param", key, {}};
       Json wrapped = Json::object();

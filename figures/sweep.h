@@ -36,8 +36,9 @@ struct SweepView {
 struct SweepRow {
   size_t view = 0;
   const Technique* technique = nullptr;
-  std::string variant;  // the swept options that apply to it ("shadow-map=256 order=8"), or "default"
-  cli::Args options;    // as render's command line would give them (registry/cli.h renderParams)
+  std::string
+      variant;        // the swept options that apply to it ("shadow-map=256 order=8"), or "default"
+  cli::Args options;  // as render's command line would give them (registry/cli.h renderParams)
 };
 
 struct SweepPlan {

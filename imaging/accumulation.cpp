@@ -233,12 +233,8 @@ void emAccum(GLenum op, GLfloat value) {
   const Box b = region(s);
   if (b.x1 <= b.x0 || b.y1 <= b.y0) return;
   switch (op) {
-    case GL_ACCUM:
-      accumulateColor(s, b, value, true);
-      return;
-    case GL_LOAD:
-      accumulateColor(s, b, value, false);
-      return;
+    case GL_ACCUM: accumulateColor(s, b, value, true); return;
+    case GL_LOAD: accumulateColor(s, b, value, false); return;
     case GL_MULT: {
       std::vector<int16_t> lut(65536);
       for (int k = kAccumMin; k <= kAccumMax; ++k)
@@ -253,11 +249,8 @@ void emAccum(GLenum op, GLfloat value) {
       });
       return;
     }
-    case GL_RETURN:
-      returnToColorBuffer(s, b, value);
-      return;
-    default:
-      return;
+    case GL_RETURN: returnToColorBuffer(s, b, value); return;
+    default: return;
   }
 }
 

@@ -325,9 +325,7 @@ size_t returnAccumBytes(float scale, const int16_t* accum, uint8_t* out, size_t 
   return 0;
 }
 
-bool vectorMapsAvailable() {
-  return haveAvx2();
-}
+bool vectorMapsAvailable() { return haveAvx2(); }
 
 #if defined(SL_HAVE_X86_VECTORS)
 namespace {
@@ -354,12 +352,8 @@ size_t applyClassMap(const ClassMap& map, uint8_t* p, size_t n) {
   return applyKernel(map, p, n, kKernels);
 }
 #else
-size_t applyStepMap(const StepMap&, uint8_t*, size_t) {
-  return 0;
-}
-size_t applyClassMap(const ClassMap&, uint8_t*, size_t) {
-  return 0;
-}
+size_t applyStepMap(const StepMap&, uint8_t*, size_t) { return 0; }
+size_t applyClassMap(const ClassMap&, uint8_t*, size_t) { return 0; }
 #endif
 
 }  // namespace sl::imaging::detail

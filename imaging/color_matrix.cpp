@@ -41,9 +41,7 @@ void applyColorMatrix(const Matrix4& mat, const Rgba& scale, const Rgba& bias, I
 
 namespace {
 
-Matrix4& top(State& s) {
-  return s.transfer.colorMatrixStack.back();
-}
+Matrix4& top(State& s) { return s.transfer.colorMatrixStack.back(); }
 
 Matrix4 multiply(const Matrix4& a, const Matrix4& b) {  // a * b, column-major
   Matrix4 r;
@@ -161,9 +159,7 @@ constexpr double kDegreesToRadians = 3.14159265358979323846 / 180.0;
 constexpr double kMinimumAxisLength = 1.0e-4;
 
 // The current (color) matrix times m: what every matrix command of 2.10.2 does.
-void multiplyTop(State& s, const Matrix4& m) {
-  top(s) = multiply(top(s), m);
-}
+void multiplyTop(State& s, const Matrix4& m) { top(s) = multiply(top(s), m); }
 
 Matrix4 fromRows(const double r[16]) {  // row-major values -> column-major matrix
   Matrix4 m;

@@ -11,32 +11,22 @@ namespace {
 // Index of a regular table target in TransferState::tables, or -1.
 int regularIndex(GLenum target) {
   switch (target) {
-    case GL_COLOR_TABLE:
-      return 0;
-    case GL_POST_CONVOLUTION_COLOR_TABLE:
-      return 1;
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
-      return 2;
-    default:
-      return -1;
+    case GL_COLOR_TABLE: return 0;
+    case GL_POST_CONVOLUTION_COLOR_TABLE: return 1;
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return 2;
+    default: return -1;
   }
 }
 int proxyIndex(GLenum target) {
   switch (target) {
-    case GL_PROXY_COLOR_TABLE:
-      return 0;
-    case GL_PROXY_POST_CONVOLUTION_COLOR_TABLE:
-      return 1;
-    case GL_PROXY_POST_COLOR_MATRIX_COLOR_TABLE:
-      return 2;
-    default:
-      return -1;
+    case GL_PROXY_COLOR_TABLE: return 0;
+    case GL_PROXY_POST_CONVOLUTION_COLOR_TABLE: return 1;
+    case GL_PROXY_POST_COLOR_MATRIX_COLOR_TABLE: return 2;
+    default: return -1;
   }
 }
 
-bool isPowerOfTwoOrZero(int w) {
-  return w >= 0 && (w & (w - 1)) == 0;
-}
+bool isPowerOfTwoOrZero(int w) { return w >= 0 && (w & (w - 1)) == 0; }
 
 // 3.6.3: scale, bias, clamp to [0,1], then select the components of the base internal format
 // (table 3.15: L and I from R, A from A).
@@ -280,33 +270,15 @@ bool queryTableParameter(State& s, GLenum target, GLenum pname, GLfloat* params)
   const FormatComponents f = componentsOf(width > 0 ? format : 0);
   auto bits = [](bool present) { return present ? float(kTableComponentBits) : 0.0f; };
   switch (pname) {
-    case GL_COLOR_TABLE_FORMAT:
-      params[0] = float(internalFormat);
-      return true;
-    case GL_COLOR_TABLE_WIDTH:
-      params[0] = float(width);
-      return true;
-    case GL_COLOR_TABLE_RED_SIZE:
-      params[0] = bits(f.r);
-      return true;
-    case GL_COLOR_TABLE_GREEN_SIZE:
-      params[0] = bits(f.g);
-      return true;
-    case GL_COLOR_TABLE_BLUE_SIZE:
-      params[0] = bits(f.b);
-      return true;
-    case GL_COLOR_TABLE_ALPHA_SIZE:
-      params[0] = bits(f.a);
-      return true;
-    case GL_COLOR_TABLE_LUMINANCE_SIZE:
-      params[0] = bits(f.l);
-      return true;
-    case GL_COLOR_TABLE_INTENSITY_SIZE:
-      params[0] = bits(f.i);
-      return true;
-    default:
-      recordError(s, GL_INVALID_ENUM);
-      return false;  // incl. scale/bias of a proxy
+    case GL_COLOR_TABLE_FORMAT: params[0] = float(internalFormat); return true;
+    case GL_COLOR_TABLE_WIDTH: params[0] = float(width); return true;
+    case GL_COLOR_TABLE_RED_SIZE: params[0] = bits(f.r); return true;
+    case GL_COLOR_TABLE_GREEN_SIZE: params[0] = bits(f.g); return true;
+    case GL_COLOR_TABLE_BLUE_SIZE: params[0] = bits(f.b); return true;
+    case GL_COLOR_TABLE_ALPHA_SIZE: params[0] = bits(f.a); return true;
+    case GL_COLOR_TABLE_LUMINANCE_SIZE: params[0] = bits(f.l); return true;
+    case GL_COLOR_TABLE_INTENSITY_SIZE: params[0] = bits(f.i); return true;
+    default: recordError(s, GL_INVALID_ENUM); return false;  // incl. scale/bias of a proxy
   }
 }
 }  // namespace

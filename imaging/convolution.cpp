@@ -13,14 +13,10 @@ namespace {
 
 ConvolutionFilter* filterFor(State& s, GLenum target) {
   switch (target) {
-    case GL_CONVOLUTION_1D:
-      return &s.transfer.conv1D;
-    case GL_CONVOLUTION_2D:
-      return &s.transfer.conv2D;
-    case GL_SEPARABLE_2D:
-      return &s.transfer.separable2D;
-    default:
-      return nullptr;
+    case GL_CONVOLUTION_1D: return &s.transfer.conv1D;
+    case GL_CONVOLUTION_2D: return &s.transfer.conv2D;
+    case GL_SEPARABLE_2D: return &s.transfer.separable2D;
+    default: return nullptr;
   }
 }
 
@@ -279,9 +275,7 @@ void emConvolutionParameterfv(GLenum target, GLenum pname, const GLfloat* params
       f->borderMode = mode;
       return;
     }
-    default:
-      recordError(s, GL_INVALID_ENUM);
-      return;
+    default: recordError(s, GL_INVALID_ENUM); return;
   }
 }
 
@@ -372,18 +366,10 @@ bool queryConvolutionParameter(State& s, GLenum target, GLenum pname, GLfloat* p
     case GL_CONVOLUTION_FILTER_BIAS:
       for (int c = 0; c < 4; ++c) params[c] = f->bias[c];
       return true;
-    case GL_CONVOLUTION_BORDER_MODE:
-      params[0] = float(f->borderMode);
-      return true;
-    case GL_CONVOLUTION_FORMAT:
-      params[0] = float(f->internalFormat);
-      return true;
-    case GL_CONVOLUTION_WIDTH:
-      params[0] = float(f->width);
-      return true;
-    case GL_MAX_CONVOLUTION_WIDTH:
-      params[0] = float(kMaxConvolutionWidth);
-      return true;
+    case GL_CONVOLUTION_BORDER_MODE: params[0] = float(f->borderMode); return true;
+    case GL_CONVOLUTION_FORMAT: params[0] = float(f->internalFormat); return true;
+    case GL_CONVOLUTION_WIDTH: params[0] = float(f->width); return true;
+    case GL_MAX_CONVOLUTION_WIDTH: params[0] = float(kMaxConvolutionWidth); return true;
     case GL_CONVOLUTION_HEIGHT:
       if (oneD) break;
       params[0] = float(f->height);
@@ -392,8 +378,7 @@ bool queryConvolutionParameter(State& s, GLenum target, GLenum pname, GLfloat* p
       if (oneD) break;
       params[0] = float(kMaxConvolutionHeight);
       return true;
-    default:
-      break;
+    default: break;
   }
   recordError(s, GL_INVALID_ENUM);
   return false;

@@ -26,7 +26,6 @@ constexpr int kMaxDyadicShift = 8;      // D: weights are multiples of 1/256 at 
 constexpr int kMaxPairNumerator = 128;  // 255 * 128 fits pmaddubsw's signed 16-bit result
 constexpr int kMaxTapPairs = (kMaxTaps + 1) / 2;
 
-
 bool haveAvx2ForDyadic() {
 #if defined(SL_CONVOLUTION_X86)
   return __builtin_cpu_supports("avx2");
@@ -34,7 +33,6 @@ bool haveAvx2ForDyadic() {
   return false;
 #endif
 }
-
 
 // Factors the numerators of each component as an outer product of integer vectors.
 bool planSeparable(const Convolution& cv, DyadicPlan& plan) {

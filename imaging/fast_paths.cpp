@@ -297,18 +297,10 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
             break;
           case RowPlan::kTable:
             switch (plan.count) {
-              case 1:
-                tableRow<1>(plan, in, q + r, m);
-                break;
-              case 2:
-                tableRow<2>(plan, in, q + r, m);
-                break;
-              case 3:
-                tableRow<3>(plan, in, q + r, m);
-                break;
-              default:
-                tableRow<4>(plan, in, q + r, m);
-                break;
+              case 1: tableRow<1>(plan, in, q + r, m); break;
+              case 2: tableRow<2>(plan, in, q + r, m); break;
+              case 3: tableRow<3>(plan, in, q + r, m); break;
+              default: tableRow<4>(plan, in, q + r, m); break;
             }
             break;
           case RowPlan::kFloat: {

@@ -162,19 +162,11 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
       int n = 0;
       switch (format) {
         case GL_RGBA:
-        case GL_BGRA:
-          n = 4;
-          break;
+        case GL_BGRA: n = 4; break;
         case GL_RGB:
-        case GL_BGR:
-          n = 3;
-          break;
-        case GL_LUMINANCE_ALPHA:
-          n = 2;
-          break;
-        default:
-          n = 1;
-          break;
+        case GL_BGR: n = 3; break;
+        case GL_LUMINANCE_ALPHA: n = 2; break;
+        default: n = 1; break;
       }
       const size_t size = (type == GL_UNSIGNED_BYTE || type == GL_BYTE)     ? 1
                           : (type == GL_UNSIGNED_SHORT || type == GL_SHORT) ? 2
@@ -183,26 +175,13 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
       for (int e = 0; e < h.width * n; ++e) {
         const double v = scratch[size_t(e)];
         switch (type) {
-          case GL_UNSIGNED_BYTE:
-            out[e] = uint8_t(v);
-            break;
-          case GL_BYTE:
-            reinterpret_cast<int8_t*>(out)[e] = int8_t(v);
-            break;
-          case GL_UNSIGNED_SHORT:
-            reinterpret_cast<uint16_t*>(out)[e] = uint16_t(v);
-            break;
-          case GL_SHORT:
-            reinterpret_cast<int16_t*>(out)[e] = int16_t(v);
-            break;
-          case GL_UNSIGNED_INT:
-            reinterpret_cast<uint32_t*>(out)[e] = uint32_t(v);
-            break;
-          case GL_INT:
-            reinterpret_cast<int32_t*>(out)[e] = int32_t(v);
-            break;
-          default:
-            break;
+          case GL_UNSIGNED_BYTE: out[e] = uint8_t(v); break;
+          case GL_BYTE: reinterpret_cast<int8_t*>(out)[e] = int8_t(v); break;
+          case GL_UNSIGNED_SHORT: reinterpret_cast<uint16_t*>(out)[e] = uint16_t(v); break;
+          case GL_SHORT: reinterpret_cast<int16_t*>(out)[e] = int16_t(v); break;
+          case GL_UNSIGNED_INT: reinterpret_cast<uint32_t*>(out)[e] = uint32_t(v); break;
+          case GL_INT: reinterpret_cast<int32_t*>(out)[e] = int32_t(v); break;
+          default: break;
         }
       }
     }
@@ -263,33 +242,18 @@ bool queryHistogram(State& s, GLenum target, GLenum pname, GLfloat* p) {
   const FormatComponents f = componentsOf(width > 0 ? base : 0);
   auto bits = [](bool b) { return b ? float(kHistogramComponentBits) : 0.0f; };
   switch (pname) {
-    case GL_HISTOGRAM_FORMAT:
-      p[0] = float(internalFormat);
-      return true;
-    case GL_HISTOGRAM_WIDTH:
-      p[0] = float(width);
-      return true;
-    case GL_HISTOGRAM_RED_SIZE:
-      p[0] = bits(f.r);
-      return true;
-    case GL_HISTOGRAM_GREEN_SIZE:
-      p[0] = bits(f.g);
-      return true;
-    case GL_HISTOGRAM_BLUE_SIZE:
-      p[0] = bits(f.b);
-      return true;
-    case GL_HISTOGRAM_ALPHA_SIZE:
-      p[0] = bits(f.a);
-      return true;
-    case GL_HISTOGRAM_LUMINANCE_SIZE:
-      p[0] = bits(f.l);
-      return true;
+    case GL_HISTOGRAM_FORMAT: p[0] = float(internalFormat); return true;
+    case GL_HISTOGRAM_WIDTH: p[0] = float(width); return true;
+    case GL_HISTOGRAM_RED_SIZE: p[0] = bits(f.r); return true;
+    case GL_HISTOGRAM_GREEN_SIZE: p[0] = bits(f.g); return true;
+    case GL_HISTOGRAM_BLUE_SIZE: p[0] = bits(f.b); return true;
+    case GL_HISTOGRAM_ALPHA_SIZE: p[0] = bits(f.a); return true;
+    case GL_HISTOGRAM_LUMINANCE_SIZE: p[0] = bits(f.l); return true;
     case GL_HISTOGRAM_SINK:
       if (proxy) break;  // "pname may be HISTOGRAM_SINK only for target HISTOGRAM"
       p[0] = h.sink ? 1.0f : 0.0f;
       return true;
-    default:
-      break;
+    default: break;
   }
   recordError(s, GL_INVALID_ENUM);
   return false;
@@ -300,15 +264,9 @@ bool queryMinmax(State& s, GLenum target, GLenum pname, GLfloat* p) {
     return false;
   }
   switch (pname) {
-    case GL_MINMAX_FORMAT:
-      p[0] = float(s.transfer.minmax.internalFormat);
-      return true;
-    case GL_MINMAX_SINK:
-      p[0] = s.transfer.minmax.sink ? 1.0f : 0.0f;
-      return true;
-    default:
-      recordError(s, GL_INVALID_ENUM);
-      return false;
+    case GL_MINMAX_FORMAT: p[0] = float(s.transfer.minmax.internalFormat); return true;
+    case GL_MINMAX_SINK: p[0] = s.transfer.minmax.sink ? 1.0f : 0.0f; return true;
+    default: recordError(s, GL_INVALID_ENUM); return false;
   }
 }
 }  // namespace

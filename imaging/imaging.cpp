@@ -138,8 +138,6 @@ Mode install(GlContext& context, Mode wanted) {
   return Mode::kEmulated;
 }
 
-Mode currentMode() {
-  return detail::currentState() != nullptr ? Mode::kEmulated : Mode::kNative;
-}
+Mode currentMode() { return detail::currentState() != nullptr ? Mode::kEmulated : Mode::kNative; }
 
 }  // namespace sl::imaging

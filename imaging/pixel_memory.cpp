@@ -19,35 +19,26 @@ int componentCount(GLenum format) {
     case GL_GREEN:
     case GL_BLUE:
     case GL_ALPHA:
-    case GL_LUMINANCE:
-      return 1;
-    case GL_LUMINANCE_ALPHA:
-      return 2;
+    case GL_LUMINANCE: return 1;
+    case GL_LUMINANCE_ALPHA: return 2;
     case GL_RGB:
-    case GL_BGR:
-      return 3;
+    case GL_BGR: return 3;
     case GL_RGBA:
-    case GL_BGRA:
-      return 4;
-    default:
-      return 0;
+    case GL_BGRA: return 4;
+    default: return 0;
   }
 }
 
 int typeSize(GLenum type) {
   switch (type) {
     case GL_UNSIGNED_BYTE:
-    case GL_BYTE:
-      return 1;
+    case GL_BYTE: return 1;
     case GL_UNSIGNED_SHORT:
-    case GL_SHORT:
-      return 2;
+    case GL_SHORT: return 2;
     case GL_UNSIGNED_INT:
     case GL_INT:
-    case GL_FLOAT:
-      return 4;
-    default:
-      return 0;
+    case GL_FLOAT: return 4;
+    default: return 0;
   }
 }
 
@@ -64,8 +55,7 @@ size_t rowStride(int width, GLenum format, GLenum type, const PixelStore& s) {
 // Table 2.6: an element of type `type` to float.
 float toFloat(const unsigned char* p, GLenum type) {
   switch (type) {
-    case GL_UNSIGNED_BYTE:
-      return float(*p) / 255.0f;
+    case GL_UNSIGNED_BYTE: return float(*p) / 255.0f;
     case GL_BYTE: {
       int8_t v;
       std::memcpy(&v, p, 1);
@@ -96,8 +86,7 @@ float toFloat(const unsigned char* p, GLenum type) {
       std::memcpy(&v, p, 4);
       return v;
     }
-    default:
-      return 0.0f;
+    default: return 0.0f;
   }
 }
 
@@ -137,29 +126,18 @@ void fromFloat(float f, unsigned char* p, GLenum type) {
       std::memcpy(p, &f, 4);
       return;
     }
-    default:
-      return;
+    default: return;
   }
 }
 
 // Where each element of a group of `format` goes in RGBA (-1: luminance, fills R, G, B).
 void elementSlots(GLenum format, int slots[4]) {
   switch (format) {
-    case GL_RED:
-      slots[0] = 0;
-      return;
-    case GL_GREEN:
-      slots[0] = 1;
-      return;
-    case GL_BLUE:
-      slots[0] = 2;
-      return;
-    case GL_ALPHA:
-      slots[0] = 3;
-      return;
-    case GL_LUMINANCE:
-      slots[0] = -1;
-      return;
+    case GL_RED: slots[0] = 0; return;
+    case GL_GREEN: slots[0] = 1; return;
+    case GL_BLUE: slots[0] = 2; return;
+    case GL_ALPHA: slots[0] = 3; return;
+    case GL_LUMINANCE: slots[0] = -1; return;
     case GL_LUMINANCE_ALPHA:
       slots[0] = -1;
       slots[1] = 3;
@@ -186,16 +164,13 @@ void elementSlots(GLenum format, int slots[4]) {
       slots[2] = 0;
       slots[3] = 3;
       return;
-    default:
-      return;
+    default: return;
   }
 }
 
 }  // namespace
 
-bool isColorFormat(GLenum format) {
-  return componentCount(format) != 0;
-}
+bool isColorFormat(GLenum format) { return componentCount(format) != 0; }
 
 GLenum checkColorFormat(GLenum format, GLenum type) {
   if (componentCount(format) == 0) return GL_INVALID_ENUM;
@@ -310,44 +285,25 @@ void packImage(const Image4& image, void* data, GLenum format, GLenum type, cons
 
 Rgba tableReturnValue(GLenum baseFormat, const Rgba& v) {
   switch (baseFormat) {
-    case GL_ALPHA:
-      return {0, 0, 0, v[3]};
-    case GL_LUMINANCE:
-      return {v[0], 0, 0, 1};
-    case GL_LUMINANCE_ALPHA:
-      return {v[0], 0, 0, v[3]};
-    case GL_INTENSITY:
-      return {v[0], 0, 0, 1};
-    case GL_RGB:
-      return {v[0], v[1], v[2], 1};
-    default:
-      return v;
+    case GL_ALPHA: return {0, 0, 0, v[3]};
+    case GL_LUMINANCE: return {v[0], 0, 0, 1};
+    case GL_LUMINANCE_ALPHA: return {v[0], 0, 0, v[3]};
+    case GL_INTENSITY: return {v[0], 0, 0, 1};
+    case GL_RGB: return {v[0], v[1], v[2], 1};
+    default: return v;
   }
 }
 
 FormatComponents componentsOf(GLenum base) {
   FormatComponents c;
   switch (base) {
-    case GL_ALPHA:
-      c.a = true;
-      break;
-    case GL_LUMINANCE:
-      c.l = true;
-      break;
-    case GL_LUMINANCE_ALPHA:
-      c.l = c.a = true;
-      break;
-    case GL_INTENSITY:
-      c.i = true;
-      break;
-    case GL_RGB:
-      c.r = c.g = c.b = true;
-      break;
-    case GL_RGBA:
-      c.r = c.g = c.b = c.a = true;
-      break;
-    default:
-      break;
+    case GL_ALPHA: c.a = true; break;
+    case GL_LUMINANCE: c.l = true; break;
+    case GL_LUMINANCE_ALPHA: c.l = c.a = true; break;
+    case GL_INTENSITY: c.i = true; break;
+    case GL_RGB: c.r = c.g = c.b = true; break;
+    case GL_RGBA: c.r = c.g = c.b = c.a = true; break;
+    default: break;
   }
   return c;
 }
@@ -358,15 +314,13 @@ GLenum baseInternalFormat(GLenum f) {
     case GL_ALPHA4:
     case GL_ALPHA8:
     case GL_ALPHA12:
-    case GL_ALPHA16:
-      return GL_ALPHA;
+    case GL_ALPHA16: return GL_ALPHA;
     case 1:
     case GL_LUMINANCE:
     case GL_LUMINANCE4:
     case GL_LUMINANCE8:
     case GL_LUMINANCE12:
-    case GL_LUMINANCE16:
-      return GL_LUMINANCE;
+    case GL_LUMINANCE16: return GL_LUMINANCE;
     case 2:
     case GL_LUMINANCE_ALPHA:
     case GL_LUMINANCE4_ALPHA4:
@@ -374,14 +328,12 @@ GLenum baseInternalFormat(GLenum f) {
     case GL_LUMINANCE8_ALPHA8:
     case GL_LUMINANCE12_ALPHA4:
     case GL_LUMINANCE12_ALPHA12:
-    case GL_LUMINANCE16_ALPHA16:
-      return GL_LUMINANCE_ALPHA;
+    case GL_LUMINANCE16_ALPHA16: return GL_LUMINANCE_ALPHA;
     case GL_INTENSITY:
     case GL_INTENSITY4:
     case GL_INTENSITY8:
     case GL_INTENSITY12:
-    case GL_INTENSITY16:
-      return GL_INTENSITY;
+    case GL_INTENSITY16: return GL_INTENSITY;
     case 3:
     case GL_RGB:
     case GL_R3_G3_B2:
@@ -390,8 +342,7 @@ GLenum baseInternalFormat(GLenum f) {
     case GL_RGB8:
     case GL_RGB10:
     case GL_RGB12:
-    case GL_RGB16:
-      return GL_RGB;
+    case GL_RGB16: return GL_RGB;
     case 4:
     case GL_RGBA:
     case GL_RGBA2:
@@ -400,10 +351,8 @@ GLenum baseInternalFormat(GLenum f) {
     case GL_RGBA8:
     case GL_RGB10_A2:
     case GL_RGBA12:
-    case GL_RGBA16:
-      return GL_RGBA;
-    default:
-      return 0;
+    case GL_RGBA16: return GL_RGBA;
+    default: return 0;
   }
 }
 

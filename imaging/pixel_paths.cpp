@@ -20,12 +20,9 @@ namespace sl::imaging::detail {
 // The client type that carries the destination's precision without loss.
 GLenum framebufferType(const State& s) {
   switch (s.context->spec().color) {
-    case ColorFormat::kRgba8:
-      return GL_UNSIGNED_BYTE;
-    case ColorFormat::kRgba16:
-      return GL_UNSIGNED_SHORT;
-    case ColorFormat::kRgba32f:
-      return GL_FLOAT;
+    case ColorFormat::kRgba8: return GL_UNSIGNED_BYTE;
+    case ColorFormat::kRgba16: return GL_UNSIGNED_SHORT;
+    case ColorFormat::kRgba32f: return GL_FLOAT;
   }
   return GL_FLOAT;
 }
@@ -72,10 +69,8 @@ bool eightBitTexture(GLenum internalformat) {
     case GL_LUMINANCE_ALPHA:
     case GL_LUMINANCE8_ALPHA8:
     case GL_INTENSITY:
-    case GL_INTENSITY8:
-      return true;
-    default:
-      return false;
+    case GL_INTENSITY8: return true;
+    default: return false;
   }
 }
 
@@ -90,10 +85,8 @@ bool depthTexture(GLenum internalformat) {
     case GL_DEPTH_COMPONENT32F:
     case GL_DEPTH_STENCIL:
     case GL_DEPTH24_STENCIL8:
-    case GL_DEPTH32F_STENCIL8:
-      return true;
-    default:
-      return false;
+    case GL_DEPTH32F_STENCIL8: return true;
+    default: return false;
   }
 }
 
@@ -188,9 +181,7 @@ void uploadTexture(State& s, Dimensionality dims, bool sub, GLenum target, GLint
 }
 
 // ---- the 8-bit path (fast_paths.cpp): bytes in, bytes out, no float images ----
-bool eightBitFramebuffer(const State& s) {
-  return framebufferType(s) == GL_UNSIGNED_BYTE;
-}
+bool eightBitFramebuffer(const State& s) { return framebufferType(s) == GL_UNSIGNED_BYTE; }
 
 // Reads into the state's reusable input buffer; valid until the next readBytes.
 std::vector<uint8_t>& readBytes(State& s, int x, int y, int w, int h) {

@@ -48,9 +48,7 @@ void mapColor(const std::array<std::vector<float>, 4>& maps, Image4& image) {
   }
 }
 
-bool tableActive(bool enabled, const ColorTable& t) {
-  return enabled && t.width > 0;
-}
+bool tableActive(bool enabled, const ColorTable& t) { return enabled && t.width > 0; }
 
 }  // namespace
 

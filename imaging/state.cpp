@@ -50,24 +50,15 @@ namespace {
 bool* enableFlag(State& s, GLenum cap) {
   TransferState& t = s.transfer;
   switch (cap) {
-    case GL_COLOR_TABLE:
-      return &t.colorTableEnabled;
-    case GL_POST_CONVOLUTION_COLOR_TABLE:
-      return &t.postConvolutionTableEnabled;
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
-      return &t.postColorMatrixTableEnabled;
-    case GL_CONVOLUTION_1D:
-      return &t.convolution1DEnabled;
-    case GL_CONVOLUTION_2D:
-      return &t.convolution2DEnabled;
-    case GL_SEPARABLE_2D:
-      return &t.separable2DEnabled;
-    case GL_HISTOGRAM:
-      return &t.histogramEnabled;
-    case GL_MINMAX:
-      return &t.minmaxEnabled;
-    default:
-      return nullptr;
+    case GL_COLOR_TABLE: return &t.colorTableEnabled;
+    case GL_POST_CONVOLUTION_COLOR_TABLE: return &t.postConvolutionTableEnabled;
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return &t.postColorMatrixTableEnabled;
+    case GL_CONVOLUTION_1D: return &t.convolution1DEnabled;
+    case GL_CONVOLUTION_2D: return &t.convolution2DEnabled;
+    case GL_SEPARABLE_2D: return &t.separable2DEnabled;
+    case GL_HISTOGRAM: return &t.histogramEnabled;
+    case GL_MINMAX: return &t.minmaxEnabled;
+    default: return nullptr;
   }
 }
 
@@ -75,56 +66,31 @@ bool* enableFlag(State& s, GLenum cap) {
 float* transferParameter(State& s, GLenum pname) {
   TransferState& t = s.transfer;
   switch (pname) {
-    case GL_RED_SCALE:
-      return &t.scale[0];
-    case GL_GREEN_SCALE:
-      return &t.scale[1];
-    case GL_BLUE_SCALE:
-      return &t.scale[2];
-    case GL_ALPHA_SCALE:
-      return &t.scale[3];
-    case GL_RED_BIAS:
-      return &t.bias[0];
-    case GL_GREEN_BIAS:
-      return &t.bias[1];
-    case GL_BLUE_BIAS:
-      return &t.bias[2];
-    case GL_ALPHA_BIAS:
-      return &t.bias[3];
-    case GL_POST_CONVOLUTION_RED_SCALE:
-      return &t.postConvolutionScale[0];
-    case GL_POST_CONVOLUTION_GREEN_SCALE:
-      return &t.postConvolutionScale[1];
-    case GL_POST_CONVOLUTION_BLUE_SCALE:
-      return &t.postConvolutionScale[2];
-    case GL_POST_CONVOLUTION_ALPHA_SCALE:
-      return &t.postConvolutionScale[3];
-    case GL_POST_CONVOLUTION_RED_BIAS:
-      return &t.postConvolutionBias[0];
-    case GL_POST_CONVOLUTION_GREEN_BIAS:
-      return &t.postConvolutionBias[1];
-    case GL_POST_CONVOLUTION_BLUE_BIAS:
-      return &t.postConvolutionBias[2];
-    case GL_POST_CONVOLUTION_ALPHA_BIAS:
-      return &t.postConvolutionBias[3];
-    case GL_POST_COLOR_MATRIX_RED_SCALE:
-      return &t.postColorMatrixScale[0];
-    case GL_POST_COLOR_MATRIX_GREEN_SCALE:
-      return &t.postColorMatrixScale[1];
-    case GL_POST_COLOR_MATRIX_BLUE_SCALE:
-      return &t.postColorMatrixScale[2];
-    case GL_POST_COLOR_MATRIX_ALPHA_SCALE:
-      return &t.postColorMatrixScale[3];
-    case GL_POST_COLOR_MATRIX_RED_BIAS:
-      return &t.postColorMatrixBias[0];
-    case GL_POST_COLOR_MATRIX_GREEN_BIAS:
-      return &t.postColorMatrixBias[1];
-    case GL_POST_COLOR_MATRIX_BLUE_BIAS:
-      return &t.postColorMatrixBias[2];
-    case GL_POST_COLOR_MATRIX_ALPHA_BIAS:
-      return &t.postColorMatrixBias[3];
-    default:
-      return nullptr;
+    case GL_RED_SCALE: return &t.scale[0];
+    case GL_GREEN_SCALE: return &t.scale[1];
+    case GL_BLUE_SCALE: return &t.scale[2];
+    case GL_ALPHA_SCALE: return &t.scale[3];
+    case GL_RED_BIAS: return &t.bias[0];
+    case GL_GREEN_BIAS: return &t.bias[1];
+    case GL_BLUE_BIAS: return &t.bias[2];
+    case GL_ALPHA_BIAS: return &t.bias[3];
+    case GL_POST_CONVOLUTION_RED_SCALE: return &t.postConvolutionScale[0];
+    case GL_POST_CONVOLUTION_GREEN_SCALE: return &t.postConvolutionScale[1];
+    case GL_POST_CONVOLUTION_BLUE_SCALE: return &t.postConvolutionScale[2];
+    case GL_POST_CONVOLUTION_ALPHA_SCALE: return &t.postConvolutionScale[3];
+    case GL_POST_CONVOLUTION_RED_BIAS: return &t.postConvolutionBias[0];
+    case GL_POST_CONVOLUTION_GREEN_BIAS: return &t.postConvolutionBias[1];
+    case GL_POST_CONVOLUTION_BLUE_BIAS: return &t.postConvolutionBias[2];
+    case GL_POST_CONVOLUTION_ALPHA_BIAS: return &t.postConvolutionBias[3];
+    case GL_POST_COLOR_MATRIX_RED_SCALE: return &t.postColorMatrixScale[0];
+    case GL_POST_COLOR_MATRIX_GREEN_SCALE: return &t.postColorMatrixScale[1];
+    case GL_POST_COLOR_MATRIX_BLUE_SCALE: return &t.postColorMatrixScale[2];
+    case GL_POST_COLOR_MATRIX_ALPHA_SCALE: return &t.postColorMatrixScale[3];
+    case GL_POST_COLOR_MATRIX_RED_BIAS: return &t.postColorMatrixBias[0];
+    case GL_POST_COLOR_MATRIX_GREEN_BIAS: return &t.postColorMatrixBias[1];
+    case GL_POST_COLOR_MATRIX_BLUE_BIAS: return &t.postColorMatrixBias[2];
+    case GL_POST_COLOR_MATRIX_ALPHA_BIAS: return &t.postColorMatrixBias[3];
+    default: return nullptr;
   }
 }
 
@@ -140,9 +106,7 @@ bool emulatedQuery(State& s, GLenum pname, double* v, int& n) {
     return true;
   }
   switch (pname) {
-    case GL_MAP_COLOR:
-      v[0] = s.transfer.mapColor ? 1.0 : 0.0;
-      return true;
+    case GL_MAP_COLOR: v[0] = s.transfer.mapColor ? 1.0 : 0.0; return true;
     case GL_COLOR_MATRIX:
       n = 16;
       for (int i = 0; i < 16; ++i) v[i] = s.transfer.colorMatrixStack.back().m[i];
@@ -155,15 +119,12 @@ bool emulatedQuery(State& s, GLenum pname, double* v, int& n) {
     case GL_COLOR_MATRIX_STACK_DEPTH:
       v[0] = double(s.transfer.colorMatrixStack.size());
       return true;
-    case GL_MAX_COLOR_MATRIX_STACK_DEPTH:
-      v[0] = kMaxColorMatrixStackDepth;
-      return true;
+    case GL_MAX_COLOR_MATRIX_STACK_DEPTH: v[0] = kMaxColorMatrixStackDepth; return true;
     case GL_MATRIX_MODE:
       if (!s.colorMatrixMode) return false;
       v[0] = GL_COLOR;
       return true;
-    default:
-      break;
+    default: break;
   }
   if (s.emulateAccum) {
     switch (pname) {
@@ -177,8 +138,7 @@ bool emulatedQuery(State& s, GLenum pname, double* v, int& n) {
         n = 4;
         for (int c = 0; c < 4; ++c) v[c] = s.clearAccum[c];
         return true;
-      default:
-        break;
+      default: break;
     }
   }
   return false;
@@ -265,9 +225,7 @@ void emPixelTransferf(GLenum pname, GLfloat value) {
   s.driver.PixelTransferf(pname, value);  // depth, index and stencil parameters stay native
 }
 
-void emPixelTransferi(GLenum pname, GLint value) {
-  emPixelTransferf(pname, float(value));
-}
+void emPixelTransferi(GLenum pname, GLint value) { emPixelTransferf(pname, float(value)); }
 
 namespace {
 

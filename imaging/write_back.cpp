@@ -30,9 +30,7 @@ namespace {
 
 constexpr GLint kTextureLevel = 0;
 
-bool enabled(const State& s, GLenum cap) {
-  return s.driver.IsEnabled(cap) != GL_FALSE;
-}
+bool enabled(const State& s, GLenum cap) { return s.driver.IsEnabled(cap) != GL_FALSE; }
 
 GLint integer(const State& s, GLenum pname) {
   GLint v = 0;

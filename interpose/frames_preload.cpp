@@ -82,9 +82,7 @@ Callbacks& callbacks() {
   return c;
 }
 
-bool active() {
-  return FrameSession::get().active();
-}
+bool active() { return FrameSession::get().active(); }
 
 // Reads the window's colour buffer `buffer` (GL_FRONT or GL_BACK) as shown: tight pixel
 // storage, no pack buffer; the program's state is restored.

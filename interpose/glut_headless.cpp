@@ -286,9 +286,7 @@ using sl::interpose::glut;
 
 // ---- initialisation and the window ----
 SL_EXPORT void glutInit(int*, char**) {}
-SL_EXPORT void glutInitDisplayMode(unsigned int mode) {
-  glut().displayMode = mode;
-}
+SL_EXPORT void glutInitDisplayMode(unsigned int mode) { glut().displayMode = mode; }
 SL_EXPORT void glutInitDisplayString(const char*) {}
 SL_EXPORT void glutInitWindowSize(int w, int h) {
   if (w > 0 && h > 0) {
@@ -326,9 +324,7 @@ SL_EXPORT int glutCreateSubWindow(int, int, int, int, int) {
 }
 SL_EXPORT void glutDestroyWindow(int) {}
 SL_EXPORT void glutSetWindow(int) {}
-SL_EXPORT int glutGetWindow() {
-  return glut().window;
-}
+SL_EXPORT int glutGetWindow() { return glut().window; }
 SL_EXPORT void glutSetWindowTitle(const char*) {}
 SL_EXPORT void glutSetIconTitle(const char*) {}
 SL_EXPORT void glutPositionWindow(int, int) {}
@@ -349,29 +345,15 @@ SL_EXPORT void glutReshapeWindow(int w, int h) {
   g.reshapePending = true;
   g.redisplay = true;
 }
-SL_EXPORT void glutPostRedisplay() {
-  glut().redisplay = true;
-}
-SL_EXPORT void glutPostWindowRedisplay(int) {
-  glut().redisplay = true;
-}
-SL_EXPORT void glutSwapBuffers() {
-  sl::interpose::frameShown();
-}
+SL_EXPORT void glutPostRedisplay() { glut().redisplay = true; }
+SL_EXPORT void glutPostWindowRedisplay(int) { glut().redisplay = true; }
+SL_EXPORT void glutSwapBuffers() { sl::interpose::frameShown(); }
 
 // ---- callbacks ----
-SL_EXPORT void glutDisplayFunc(void (*f)()) {
-  glut().display = f;
-}
-SL_EXPORT void glutReshapeFunc(void (*f)(int, int)) {
-  glut().reshape = f;
-}
-SL_EXPORT void glutKeyboardFunc(void (*f)(unsigned char, int, int)) {
-  glut().keyboard = f;
-}
-SL_EXPORT void glutIdleFunc(void (*f)()) {
-  glut().idle = f;
-}
+SL_EXPORT void glutDisplayFunc(void (*f)()) { glut().display = f; }
+SL_EXPORT void glutReshapeFunc(void (*f)(int, int)) { glut().reshape = f; }
+SL_EXPORT void glutKeyboardFunc(void (*f)(unsigned char, int, int)) { glut().keyboard = f; }
+SL_EXPORT void glutIdleFunc(void (*f)()) { glut().idle = f; }
 SL_EXPORT void glutTimerFunc(unsigned int ms, void (*f)(int), int value) {
   auto& g = glut();
   g.timers.push_back({g.clock + long(ms), g.timerOrder++, f, value});
@@ -386,9 +368,7 @@ SL_EXPORT void glutPassiveMotionFunc(void (*)(int, int)) {}
 SL_EXPORT void glutEntryFunc(void (*)(int)) {}
 SL_EXPORT void glutVisibilityFunc(void (*)(int)) {}
 SL_EXPORT void glutMenuStatusFunc(void (*)(int, int, int)) {}
-SL_EXPORT int glutCreateMenu(void (*)(int)) {
-  return glut().nextMenu++;
-}
+SL_EXPORT int glutCreateMenu(void (*)(int)) { return glut().nextMenu++; }
 SL_EXPORT void glutAddMenuEntry(const char*, int) {}
 SL_EXPORT void glutAddSubMenu(const char*, int) {}
 SL_EXPORT void glutAttachMenu(int) {}
@@ -398,57 +378,33 @@ SL_EXPORT void glutSetMenu(int) {}
 SL_EXPORT int glutGet(GLenum what) {
   const auto& g = glut();
   switch (what) {
-    case GLUT_WINDOW_WIDTH:
-      return g.width;
-    case GLUT_WINDOW_HEIGHT:
-      return g.height;
-    case GLUT_WINDOW_X:
-      return g.initX < 0 ? 0 : g.initX;
-    case GLUT_WINDOW_Y:
-      return g.initY < 0 ? 0 : g.initY;
-    case GLUT_WINDOW_DOUBLEBUFFER:
-      return 0;  // one OSMesa buffer
-    case GLUT_WINDOW_RGBA:
-      return 1;
+    case GLUT_WINDOW_WIDTH: return g.width;
+    case GLUT_WINDOW_HEIGHT: return g.height;
+    case GLUT_WINDOW_X: return g.initX < 0 ? 0 : g.initX;
+    case GLUT_WINDOW_Y: return g.initY < 0 ? 0 : g.initY;
+    case GLUT_WINDOW_DOUBLEBUFFER: return 0;  // one OSMesa buffer
+    case GLUT_WINDOW_RGBA: return 1;
     case GLUT_WINDOW_DEPTH_SIZE:
       return (g.displayMode & GLUT_DEPTH) ? sl::interpose::kDepthBits : 0;
     case GLUT_WINDOW_STENCIL_SIZE:
       return (g.displayMode & GLUT_STENCIL) ? sl::interpose::kStencilBits : 0;
-    case GLUT_SCREEN_WIDTH:
-      return sl::interpose::kScreenWidth;
-    case GLUT_SCREEN_HEIGHT:
-      return sl::interpose::kScreenHeight;
-    case GLUT_INIT_WINDOW_WIDTH:
-      return g.initWidth;
-    case GLUT_INIT_WINDOW_HEIGHT:
-      return g.initHeight;
-    case GLUT_INIT_WINDOW_X:
-      return g.initX;
-    case GLUT_INIT_WINDOW_Y:
-      return g.initY;
-    case GLUT_INIT_DISPLAY_MODE:
-      return int(g.displayMode);
-    case GLUT_ELAPSED_TIME:
-      return int(g.clock);
-    case GLUT_DISPLAY_MODE_POSSIBLE:
-      return 1;
-    case GLUT_WINDOW_PARENT:
-      return 0;
-    case GLUT_WINDOW_NUM_CHILDREN:
-      return 0;
-    default:
-      return 0;
+    case GLUT_SCREEN_WIDTH: return sl::interpose::kScreenWidth;
+    case GLUT_SCREEN_HEIGHT: return sl::interpose::kScreenHeight;
+    case GLUT_INIT_WINDOW_WIDTH: return g.initWidth;
+    case GLUT_INIT_WINDOW_HEIGHT: return g.initHeight;
+    case GLUT_INIT_WINDOW_X: return g.initX;
+    case GLUT_INIT_WINDOW_Y: return g.initY;
+    case GLUT_INIT_DISPLAY_MODE: return int(g.displayMode);
+    case GLUT_ELAPSED_TIME: return int(g.clock);
+    case GLUT_DISPLAY_MODE_POSSIBLE: return 1;
+    case GLUT_WINDOW_PARENT: return 0;
+    case GLUT_WINDOW_NUM_CHILDREN: return 0;
+    default: return 0;
   }
 }
-SL_EXPORT int glutGetModifiers() {
-  return 0;
-}
-SL_EXPORT int glutDeviceGet(GLenum) {
-  return 0;
-}
-SL_EXPORT int glutLayerGet(GLenum) {
-  return 0;
-}
+SL_EXPORT int glutGetModifiers() { return 0; }
+SL_EXPORT int glutDeviceGet(GLenum) { return 0; }
+SL_EXPORT int glutLayerGet(GLenum) { return 0; }
 
 // GLUT 3 spec 12.1: true when `name` is a whole word of GL_EXTENSIONS.
 SL_EXPORT int glutExtensionSupported(const char* name) {
@@ -463,9 +419,7 @@ SL_EXPORT int glutExtensionSupported(const char* name) {
 }
 
 // ---- the main loop ----
-SL_EXPORT void glutLeaveMainLoop() {
-  std::exit(0);
-}
+SL_EXPORT void glutLeaveMainLoop() { std::exit(0); }
 
 SL_EXPORT void glutMainLoop() {
   auto& g = glut();
@@ -509,12 +463,8 @@ SL_EXPORT void glutSolidSphere(double r, GLint slices, GLint stacks) {
 SL_EXPORT void glutWireSphere(double r, GLint slices, GLint stacks) {
   sl::interpose::sphere(r, slices, stacks, true);
 }
-SL_EXPORT void glutSolidCube(double side) {
-  sl::interpose::cube(side, false);
-}
-SL_EXPORT void glutWireCube(double side) {
-  sl::interpose::cube(side, true);
-}
+SL_EXPORT void glutSolidCube(double side) { sl::interpose::cube(side, false); }
+SL_EXPORT void glutWireCube(double side) { sl::interpose::cube(side, true); }
 SL_EXPORT void glutSolidTorus(double inner, double outer, GLint sides, GLint rings) {
   sl::interpose::torus(inner, outer, sides, rings, false);
 }
@@ -527,26 +477,14 @@ SL_EXPORT void glutSolidCone(double base, double height, GLint slices, GLint sta
 SL_EXPORT void glutWireCone(double base, double height, GLint slices, GLint stacks) {
   sl::interpose::cone(base, height, slices, stacks, true);
 }
-SL_EXPORT void glutSolidOctahedron() {
-  sl::interpose::octahedron(false);
-}
-SL_EXPORT void glutWireOctahedron() {
-  sl::interpose::octahedron(true);
-}
-SL_EXPORT void glutSolidTetrahedron() {
-  sl::interpose::tetrahedron(false);
-}
-SL_EXPORT void glutWireTetrahedron() {
-  sl::interpose::tetrahedron(true);
-}
+SL_EXPORT void glutSolidOctahedron() { sl::interpose::octahedron(false); }
+SL_EXPORT void glutWireOctahedron() { sl::interpose::octahedron(true); }
+SL_EXPORT void glutSolidTetrahedron() { sl::interpose::tetrahedron(false); }
+SL_EXPORT void glutWireTetrahedron() { sl::interpose::tetrahedron(true); }
 // Shapes and fonts whose data this GLUT does not carry: stop with a message rather than
 // draw nothing.
-SL_EXPORT void glutSolidTeapot(double) {
-  sl::interpose::fatal("glutSolidTeapot is not provided");
-}
-SL_EXPORT void glutWireTeapot(double) {
-  sl::interpose::fatal("glutWireTeapot is not provided");
-}
+SL_EXPORT void glutSolidTeapot(double) { sl::interpose::fatal("glutSolidTeapot is not provided"); }
+SL_EXPORT void glutWireTeapot(double) { sl::interpose::fatal("glutWireTeapot is not provided"); }
 SL_EXPORT void glutSolidDodecahedron() {
   sl::interpose::fatal("glutSolidDodecahedron is not provided");
 }

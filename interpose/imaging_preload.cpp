@@ -66,9 +66,7 @@ Policy policy() {
 }
 
 // The definition that follows this library in the program's lookup order.
-void* nextSymbol(const char* name) {
-  return dlsym(RTLD_NEXT, name);
-}
+void* nextSymbol(const char* name) { return dlsym(RTLD_NEXT, name); }
 
 template <class Fn>
 Fn nextFn(const char* name) {
@@ -240,8 +238,7 @@ void refreshDrawableSize(Adopted& a) {
       h = eh;
       break;
     }
-    case Api::kOsmesa:
-      return;  // OSMesaMakeCurrent gave the buffer's size
+    case Api::kOsmesa: return;  // OSMesaMakeCurrent gave the buffer's size
   }
   if (w > 0 && h > 0) a.context->setDrawableSize(w, h);
 }
@@ -251,9 +248,7 @@ inline GlDispatch* currentTable() {
   Adopted* a = tCurrent;
   return a != nullptr ? &a->context->dispatch() : nullptr;
 }
-inline bool currentEmulated() {
-  return tCurrent != nullptr && tCurrent->emulated;
-}
+inline bool currentEmulated() { return tCurrent != nullptr && tCurrent->emulated; }
 
 // The function to call for entry `Member`: the adopted context's, else the next library's.
 template <auto Member, class Fn>
@@ -276,19 +271,14 @@ int componentsOf(GLenum format) {
     case GL_GREEN:
     case GL_BLUE:
     case GL_ALPHA:
-    case GL_LUMINANCE:
-      return 1;
-    case GL_LUMINANCE_ALPHA:
-      return 2;
+    case GL_LUMINANCE: return 1;
+    case GL_LUMINANCE_ALPHA: return 2;
     case GL_RGB:
-    case GL_BGR:
-      return 3;
+    case GL_BGR: return 3;
     case GL_RGBA:
     case GL_BGRA:
-    case GL_ABGR_EXT:
-      return 4;
-    default:
-      return 0;
+    case GL_ABGR_EXT: return 4;
+    default: return 0;
   }
 }
 
@@ -324,9 +314,7 @@ void traceReadBack(const char* call, GLenum format, GLenum type, int groups, con
       case GL_FLOAT:
         std::snprintf(number, sizeof number, "%.9g", double(static_cast<const GLfloat*>(data)[i]));
         break;
-      default:
-        std::snprintf(number, sizeof number, "null");
-        break;
+      default: std::snprintf(number, sizeof number, "null"); break;
     }
     if (i > 0) line += ",";
     line += number;

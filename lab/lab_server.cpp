@@ -668,8 +668,7 @@ struct LabServer::Impl {
             std::rethrow_exception(ep);
           } catch (const std::exception& e) {
             what = e.what();
-          } catch (...) {
-          }
+          } catch (...) {}
           res.status = 500;
           res.set_content(oneLine(what), "text/plain");
         });
@@ -682,9 +681,7 @@ LabServer::LabServer(LabOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->routes();
 }
 
-LabServer::~LabServer() {
-  stop();
-}
+LabServer::~LabServer() { stop(); }
 
 int LabServer::start() {
   Impl& i = *impl_;

@@ -62,9 +62,7 @@ std::future<JobResult> Worker::submit(const std::string& lane, Job job) {
   return future;
 }
 
-JobResult Worker::runNow(Job job) {
-  return submit(kPriorityLane, std::move(job)).get();
-}
+JobResult Worker::runNow(Job job) { return submit(kPriorityLane, std::move(job)).get(); }
 
 void Worker::loop() {
   for (;;) {

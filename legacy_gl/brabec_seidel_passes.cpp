@@ -32,9 +32,7 @@ constexpr int kShadowTableWidth = 256;
 constexpr int kShadowTableLastIndex = kShadowTableWidth - 1;
 const float kFarDepth[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // map border and clear value: lit
 
-void setChannelMask(ChannelMask c) {
-  glColorMask(c[0], c[1], c[2], c[3]);
-}
+void setChannelMask(ChannelMask c) { glColorMask(c[0], c[1], c[2], c[3]); }
 
 // Texgen s, t, r, q = x, y, z, w of eye coordinates (§2: "use eye ... coordinates as texture
 // coordinates"): identity EYE_LINEAR planes, given while the modelview is the identity.
@@ -100,8 +98,7 @@ DepthEncoding depthEncoding(Precision precision) {
   DepthEncoding e;
   e.precision = precision;
   switch (precision) {
-    case Precision::k8:
-      break;  // the defaults are the paper's 8-bit channels
+    case Precision::k8: break;  // the defaults are the paper's 8-bit channels
     case Precision::k12:
       e.rampTexels = kRampTexels12;
       e.channelMax = double(kRampTexels12 - 1);
@@ -503,9 +500,7 @@ Image amplified(const Image& image, float gain) {
   return out;
 }
 
-Image alphaOf(const Image& rgba) {
-  return channel(rgba, 3);
-}
+Image alphaOf(const Image& rgba) { return channel(rgba, 3); }
 
 int footprintSide(const RenderParams& params, const std::string& technique) {
   constexpr int kLargestFootprint = 4;  // the paper's largest (§3, §4)

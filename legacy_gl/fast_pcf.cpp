@@ -72,8 +72,8 @@ PassTable fastPcfPasses() {
                   // channel's texel lies on.
                   {.name = "packed-neighbours-minus-lower-left{part}",
                    .caption = "Pass 2's packed map, lower right | upper left | upper right minus "
-                              "lower left (G | B | A minus R), amplified " + gain +
-                              "x, grey = equal: the one-texel shift of Fig. 5"}},
+                              "lower left (G | B | A minus R), amplified " +
+                              gain + "x, grey = equal: the one-texel shift of Fig. 5"}},
        .floor = F::kCopyToTexture},
       {.id = "3",
        .name = "camera pass: light depth in RGBA",
@@ -90,7 +90,9 @@ PassTable fastPcfPasses() {
                     "coordinates offset by (ds/2, dt/2), subtracted as in §3",
        .writes = {{.name = "mask-before-colour-table{part}-rgba-x" + gain,
                    .caption = "Pass 4: camera depth minus the four packed neighbours (R | G | B | "
-                              "A), amplified " + gain + "x: > 0 = that neighbour shadows the "
+                              "A), amplified " +
+                              gain +
+                              "x: > 0 = that neighbour shadows the "
                               "point"}},
        .floor = F::kProjectiveSubtract},
       {.id = "5",
@@ -119,7 +121,8 @@ PassTable fastPcfPasses() {
        .name = "lighting x shadow term",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
                     "(1 - shadow), ambient kept",
-       .writes = {{.name = "shaded", .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
+       .writes = {{.name = "shaded",
+                   .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting},
   };
 }
@@ -170,9 +173,7 @@ void packNeighboursByConvolution(Passes& passes, const RenderParams& params, Fas
                                  size_t phase, const Phase& p) {
   passes.run(
       "2",
-      [&] {
-        bs::copyLightPassToMapPacked(*s.maps[phase], params.shadowMapTexels, p.blockOffset);
-      },
+      [&] { bs::copyLightPassToMapPacked(*s.maps[phase], params.shadowMapTexels, p.blockOffset); },
       p.part);
 }
 
@@ -202,12 +203,14 @@ void subtractPackedMap(Passes& passes, const Scene& scene, const RenderParams& p
 // Pass 5 (Fig. 4): colour table + colour matrix -> alpha.
 void countShadowedSamples(Passes& passes, const RenderParams& params, FastPcfState& s,
                           const Phase& p) {
-  passes.run("5", [&] { bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples); }, p.part);
+  passes.run(
+      "5", [&] { bs::countShadowSamplesByCopy(params, s.enc, kPackedSamples); }, p.part);
 }
 
 // Pass 6a (§4, 4x4): one phase's share into the accumulation buffer, weight 1/4.
 void accumulatePhase(Passes& passes, size_t phase, size_t phases, const Phase& p) {
-  passes.run("6a", [&] { bs::accumulateGroup(1.0 / double(phases), phase == 0); }, p.part);
+  passes.run(
+      "6a", [&] { bs::accumulateGroup(1.0 / double(phases), phase == 0); }, p.part);
 }
 
 // Pass 6b (§4, 4x4): the sum of the four phases back into the colour buffer.
@@ -253,9 +256,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const std::string itself = phases.size() == 1 ? " = the texel itself" : "";
   for (size_t i = 0; i < phases.size(); ++i)
-    passes.capture(
-        "2", "packed-shadow-map{part}-rgba", [&] { return bs::readShadowMap(*s.maps[i], n); },
-        phases[i].part, {{"itself", itself}});
+    passes.capture("2", "packed-shadow-map{part}-rgba",
+                   [&] { return bs::readShadowMap(*s.maps[i], n); }, phases[i].part,
+                   {{"itself", itself}});
   for (size_t i = 0; i < phases.size(); ++i)
     passes.capture(
         "2", "packed-neighbours-minus-lower-left{part}",
@@ -265,10 +268,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
         },
         phases[i].part);
 
-  const std::string again =
-      phases.size() > 1 ? " (drawn again, identical, in each of the " +
-                              std::to_string(phases.size()) + " phases)"
-                        : "";
+  const std::string again = phases.size() > 1 ? " (drawn again, identical, in each of the " +
+                                                    std::to_string(phases.size()) + " phases)"
+                                              : "";
   for (size_t i = 0; i < phases.size(); ++i) {
     const Phase& p = phases[i];
     renderReplicatedCameraDepth(passes, camera, params, s, p);
@@ -277,15 +279,21 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
       passes.capture("3", "camera-pass-z-replicated",
                      [&] { return toRgb(bs::readWindowRgba(params)); }, {}, {{"again", again}});
     subtractPackedMap(passes, camera, params, s, i, p);
-    passes.capture("4", "mask-before-colour-table{part}-rgba-x32", [&] {
-      return bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain));
-    }, p.part);
-    passes.capture("5", "mask-after-colour-table{part}-rgba", [&] {
-      return bs::channelPanels(bs::readThroughColorTable(params, s.enc, kPackedSamples));
-    }, p.part);
+    passes.capture(
+        "4", "mask-before-colour-table{part}-rgba-x32",
+        [&] {
+          return bs::channelPanels(
+              bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain));
+        },
+        p.part);
+    passes.capture(
+        "5", "mask-after-colour-table{part}-rgba",
+        [&] { return bs::channelPanels(bs::readThroughColorTable(params, s.enc, kPackedSamples)); },
+        p.part);
     countShadowedSamples(passes, params, s, p);
-    passes.capture("5", "alpha-after-colour-matrix{part}",
-                   [&] { return bs::alphaOf(bs::readWindowRgba(params)); }, p.part);
+    passes.capture(
+        "5", "alpha-after-colour-matrix{part}",
+        [&] { return bs::alphaOf(bs::readWindowRgba(params)); }, p.part);
     if (phases.size() > 1) accumulatePhase(passes, i, phases.size(), p);
   }
   if (phases.size() > 1) {

@@ -38,7 +38,7 @@ namespace {
 
 constexpr float kDefaultOffsetFactor = 2.0f;  // glPolygonOffset slope factor (Everitt Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;   // glPolygonOffset constant, in depth units
-constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
+constexpr double kLargestOffsetUnits = 1e6;   // depth steps; far beyond any useful offset
 // Texgen scale of the negative-projection test, per light far distance: s = 0.5 + q / far
 // (q: light eye-space depth). Any q > 0 lands past the half-texel threshold of the 2-texel step
 // texture, and in-frustum fragments get s in (0.5, 1.5] at every scene scale.
@@ -149,10 +149,16 @@ class TexgenOffAfterCameraPasses {
 
 void enableShadowTexturing(bool on) {
   glActiveTexture(GL_TEXTURE0);
-  if (on) glEnable(GL_TEXTURE_2D); else glDisable(GL_TEXTURE_2D);
+  if (on)
+    glEnable(GL_TEXTURE_2D);
+  else
+    glDisable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glActiveTexture(GL_TEXTURE1);
-  if (on) glEnable(GL_TEXTURE_1D); else glDisable(GL_TEXTURE_1D);
+  if (on)
+    glEnable(GL_TEXTURE_1D);
+  else
+    glDisable(GL_TEXTURE_1D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glActiveTexture(GL_TEXTURE0);
 }
@@ -241,7 +247,8 @@ const PassTable& passTable() {
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
   (void)context;
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
-  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const float units =
+      float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const bool linear = params.text(compareParam()) == "linear";
   Frame frame;
   Passes passes(frame, params, passTable());

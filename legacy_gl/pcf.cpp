@@ -57,7 +57,9 @@ PassTable pcfPasses() {
                   // a sub-texel offset moves one across a depth edge or along a slope.
                   {.name = "jittered-samples-minus-mean{part}",
                    .caption = "The four jittered samples minus their mean (R | G | B | A), "
-                              "amplified " + gain + "x, grey = equal: the sub-texel jitter of "
+                              "amplified " +
+                              gain +
+                              "x, grey = equal: the sub-texel jitter of "
                               "Fig. 3"}},
        .floor = F::kJitteredLightGroup,
        .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
@@ -75,7 +77,9 @@ PassTable pcfPasses() {
                     "of §2 on four channels at once",
        .writes = {{.name = "mask-before-colour-table{part}-rgba-x" + gain,
                    .caption = "Pass 3: camera depth minus each of the four map samples (R | G | "
-                              "B | A), amplified " + gain + "x: > 0 = that sample shadows the "
+                              "B | A), amplified " +
+                              gain +
+                              "x: > 0 = that sample shadows the "
                               "point"}},
        .floor = F::kProjectiveSubtract},
       {.id = "4",
@@ -106,7 +110,8 @@ PassTable pcfPasses() {
        .name = "lighting x shadow term",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
                     "(1 - shadow), ambient kept",
-       .writes = {{.name = "shaded", .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
+       .writes = {{.name = "shaded",
+                   .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting},
   };
 }
@@ -193,12 +198,14 @@ void subtractPackedMap(Passes& passes, const Scene& scene, const RenderParams& p
 // Pass 4 (Fig. 4): colour table + colour matrix on a framebuffer-to-framebuffer copy.
 void countShadowedSamples(Passes& passes, const RenderParams& params, PcfState& s, int samples,
                           const PassPart& part) {
-  passes.run("4", [&] { bs::countShadowSamplesByCopy(params, s.enc, samples); }, part);
+  passes.run(
+      "4", [&] { bs::countShadowSamplesByCopy(params, s.enc, samples); }, part);
 }
 
 // Pass 5a (§3 "summed up using the accumulation buffer [3]").
 void accumulateGroup(Passes& passes, double weight, bool first, const PassPart& part) {
-  passes.run("5a", [&] { bs::accumulateGroup(weight, first); }, part);
+  passes.run(
+      "5a", [&] { bs::accumulateGroup(weight, first); }, part);
 }
 
 // Pass 5b (§3): the accumulation buffer's sum back into the colour buffer.
@@ -239,30 +246,39 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
           {{"channel", bs::channelName(c)},
            {"sample", std::to_string(g * kSamplesPerGroup + k + 1)}});
     }
-    passes.capture("1", "packed-shadow-map{part}-rgb", [&] {
-      return toRgb(bs::readShadowMap(*s.maps[g], params.shadowMapTexels));
-    }, part);
-    passes.capture("1", "jittered-samples-minus-mean{part}", [&] {
-      return bs::channelsMinusCentre(bs::readShadowMap(*s.maps[g], params.shadowMapTexels), -1,
-                                     kDifferenceDisplayGain);
-    }, part);
+    passes.capture(
+        "1", "packed-shadow-map{part}-rgb",
+        [&] { return toRgb(bs::readShadowMap(*s.maps[g], params.shadowMapTexels)); }, part);
+    passes.capture(
+        "1", "jittered-samples-minus-mean{part}",
+        [&] {
+          return bs::channelsMinusCentre(bs::readShadowMap(*s.maps[g], params.shadowMapTexels), -1,
+                                         kDifferenceDisplayGain);
+        },
+        part);
   }
   for (size_t g = 0; g < groups.size(); ++g) {
     const PassPart part = groupPart(g, groups.size());
     const int samples = int(groups[g].size());
     renderReplicatedCameraDepth(passes, camera, params, s, part);
-    passes.capture("2", "camera-pass-z-replicated{part}",
-                   [&] { return toRgb(bs::readWindowRgba(params)); }, part);
+    passes.capture(
+        "2", "camera-pass-z-replicated{part}", [&] { return toRgb(bs::readWindowRgba(params)); },
+        part);
     subtractPackedMap(passes, camera, params, s, g, part);
-    passes.capture("3", "mask-before-colour-table{part}-rgba-x32", [&] {
-      return bs::channelPanels(bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain));
-    }, part);
-    passes.capture("4", "mask-after-colour-table{part}-rgba", [&] {
-      return bs::channelPanels(bs::readThroughColorTable(params, s.enc, samples));
-    }, part);
+    passes.capture(
+        "3", "mask-before-colour-table{part}-rgba-x32",
+        [&] {
+          return bs::channelPanels(
+              bs::amplified(bs::readWindowRgba(params), kDifferenceDisplayGain));
+        },
+        part);
+    passes.capture(
+        "4", "mask-after-colour-table{part}-rgba",
+        [&] { return bs::channelPanels(bs::readThroughColorTable(params, s.enc, samples)); }, part);
     countShadowedSamples(passes, params, s, samples, part);
-    passes.capture("4", "alpha-after-colour-matrix{part}",
-                   [&] { return bs::alphaOf(bs::readWindowRgba(params)); }, part);
+    passes.capture(
+        "4", "alpha-after-colour-matrix{part}",
+        [&] { return bs::alphaOf(bs::readWindowRgba(params)); }, part);
     if (groups.size() > 1)
       accumulateGroup(passes, double(samples) / footprintSamples, g == 0, part);
   }

@@ -145,9 +145,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   bs::allocateShadowMap(s.map, s.enc, params.shadowMapTexels);
 
   renderDepthRampFromLight(passes, scene, params, s);
-  passes.capture("1", "light-pass-ramp-depth-alpha", [&] {
-    return bs::alphaOf(bs::readShadowMap(s.map, params.shadowMapTexels));
-  });
+  passes.capture("1", "light-pass-ramp-depth-alpha",
+                 [&] { return bs::alphaOf(bs::readShadowMap(s.map, params.shadowMapTexels)); });
   passes.capture("3", "projected-shadow-map-alpha", [&] {
     bs::renderProjectedMapOnly(camera, params, s.map, glm::vec2(0.0f));
     return bs::alphaOf(bs::readWindowRgba(params));

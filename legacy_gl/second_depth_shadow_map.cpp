@@ -41,9 +41,8 @@ constexpr char kOpenCasterDeviation[] =
 
 Scene castersOf(const Scene& scene, bool closed) {
   Scene subset = scene;
-  std::erase_if(subset.objects, [&](const Object& o) {
-    return !o.castsShadow || o.mesh->closed != closed;
-  });
+  std::erase_if(subset.objects,
+                [&](const Object& o) { return !o.castsShadow || o.mesh->closed != closed; });
   return subset;
 }
 

@@ -333,9 +333,10 @@ Scene splitForSpotlight(const Scene& scene, const RenderParams& params, Frame& f
 PassSpec meshFeedingPass() {
   return {.id = "mesh",
           .name = "mesh feeding: triangles split for per-vertex spotlight lighting",
-          .reference = "ours, not a paper's pass (run before the camera passes, listed first): "
-                       "fixed-function lighting is evaluated per vertex, so the receivers are split "
-                       "until it matches the modern twins' per-pixel lighting",
+          .reference =
+              "ours, not a paper's pass (run before the camera passes, listed first): "
+              "fixed-function lighting is evaluated per vertex, so the receivers are split "
+              "until it matches the modern twins' per-pixel lighting",
           .floor = PassFloor::kCpuOnly};
 }
 

@@ -208,15 +208,18 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     const Image first = depthImage(n, z1);
     return WindowDepthSpan{drawnDepthRange({&first}).lo, kClearDepth};
   };
-  passes.captureDepth("1", "first-depth-layer", [&] { return depthImage(n, z1); }, {}, {},
-                      oneScale);
-  passes.captureDepth("2", "second-depth-layer", [&] { return depthImage(n, z2); }, {}, {},
-                      oneScale);
-  passes.captureDepth("3", "midpoint-shadow-map", [&] {
-    std::vector<float> mid(z1.size());
-    for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
-    return depthImage(n, std::move(mid));
-  }, {}, {}, oneScale);
+  passes.captureDepth(
+      "1", "first-depth-layer", [&] { return depthImage(n, z1); }, {}, {}, oneScale);
+  passes.captureDepth(
+      "2", "second-depth-layer", [&] { return depthImage(n, z2); }, {}, {}, oneScale);
+  passes.captureDepth(
+      "3", "midpoint-shadow-map",
+      [&] {
+        std::vector<float> mid(z1.size());
+        for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (z1[i] + z2[i]);
+        return depthImage(n, std::move(mid));
+      },
+      {}, {}, oneScale);
   shadeWithShadowMap(passes, scene, params, midpointMap.id(), 4);
   checkGl("legacy.woo");
   return frame;

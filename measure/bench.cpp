@@ -80,16 +80,12 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
 bool isReference(const Technique& t) {  // ray traced: the truth
   return t.plan.shadowWork == PlanTraits::ShadowWork::kRays;
 }
-bool usesShadowMap(const Technique& t) {
-  return t.reads.shadowMap;
-}
+bool usesShadowMap(const Technique& t) { return t.reads.shadowMap; }
 bool usesFilterFootprint(const Technique& t) {  // Brabec–Seidel §3-4 and their GLSL twins
   return t.reads.filter;
 }
 // Techniques whose result approximates an area light (the soft reference is their truth).
-bool approximatesSoftShadows(const Technique& t) {
-  return t.light == Technique::Light::kArea;
-}
+bool approximatesSoftShadows(const Technique& t) { return t.light == Technique::Light::kArea; }
 
 // The values swept for each --param key a technique may declare (only declared keys are
 // swept; a value a technique rejects becomes a row with its InputError as the status).
@@ -957,7 +953,7 @@ std::vector<PlotPoint> placeFrontLabels(const std::vector<PlotPoint>& front,
                      c.x + kMarkerRadiusPixels, c.y + kMarkerRadiusPixels});
   }
   // Offsets of the label's centre from its point, in character heights.
-  const std::vector<PlotPoint> candidates = {{0, -1.2}, {0, 1.2},  {1.6, 0},  {-1.6, 0},
+  const std::vector<PlotPoint> candidates = {{0, -1.2},   {0, 1.2},    {1.6, 0},  {-1.6, 0},
                                              {1.4, -1.2}, {-1.4, 1.2}, {0, -2.3}, {0, 2.3}};
   std::vector<PlotPoint> placed;
   for (size_t i = 0; i < front.size(); ++i) {
@@ -968,7 +964,8 @@ std::vector<PlotPoint> placeFrontLabels(const std::vector<PlotPoint>& front,
     for (const PlotPoint& o : candidates) {
       const PlotPoint at{c.x + o.x * kLabelCharHeightPixels, c.y + o.y * kLabelCharHeightPixels};
       const Box box{at.x - halfW, at.y - halfH, at.x + halfW, at.y + halfH};
-      if (std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return overlaps(box, t); })) {
+      if (std::none_of(taken.begin(), taken.end(),
+                       [&](const Box& t) { return overlaps(box, t); })) {
         chosen = at;
         break;
       }
@@ -1070,8 +1067,8 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
         std::vector<PlotPoint> frontPoints, drawnPoints;
         std::vector<std::string> numbers;
         for (size_t k = 0; k < front.size(); ++k) {
-          frontPoints.push_back({result.rows[front[k]].frameMs,
-                                 result.rows[front[k]].primary().all.rmse});
+          frontPoints.push_back(
+              {result.rows[front[k]].frameMs, result.rows[front[k]].primary().all.rmse});
           numbers.push_back(std::to_string(k + 1));
         }
         for (const BenchRow* r : drawn)
@@ -1122,13 +1119,17 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result) {
         continue;
       }
       // The same tEXt chunks as our own PNGs (core/base/png_text.h), added after gnuplot drew it.
-      const nlohmann::json parameters = {
-          {"plot", "visibility error against frame time"}, {"scene", scene},
-          {"family", family}, {"techniques", techniques}, {"data", dat},
-          {"script", base.string() + ".gp"}, {"commit", buildCommit()}};
+      const nlohmann::json parameters = {{"plot", "visibility error against frame time"},
+                                         {"scene", scene},
+                                         {"family", family},
+                                         {"techniques", techniques},
+                                         {"data", dat},
+                                         {"script", base.string() + ".gp"},
+                                         {"commit", buildCommit()}};
       try {
-        addPngProvenance(png, {commandLine(), parameters.dump(-1, ' ', true,
-                                                              nlohmann::json::error_handler_t::replace)});
+        addPngProvenance(
+            png, {commandLine(),
+                  parameters.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace)});
       } catch (const InputError& e) {
         std::cerr << "bench: " << png << ": no provenance chunks (" << e.what() << ")\n";
       }
@@ -1220,8 +1221,8 @@ int runBenchSweep(const cli::Args& args) {
     BenchRow row = measureSweepRows(plan, {i}, cache).front();
     const SweepView& view = plan.views[plan.rows[i].view];
     groups.push_back(rankGroup(view.scene, view.width, view.height, view.orbit.value_or("")));
-    std::cerr << "bench: sweep row " << i + 1 << "/" << plan.rows.size() << " " << row.scene
-              << " " << row.technique << " " << row.variant << ": "
+    std::cerr << "bench: sweep row " << i + 1 << "/" << plan.rows.size() << " " << row.scene << " "
+              << row.technique << " " << row.variant << ": "
               << (row.status == "ok" ? std::to_string(row.frameMs) + " ms" : row.status) << "\n";
     rows.push_back(std::move(row));
   }

@@ -22,8 +22,8 @@ namespace sl::figures {
 
 struct BenchOptions {
   bool quick = false;
-  std::vector<std::string> scenes;       // empty: the fixed set (benchScenes)
-  std::vector<std::string> techniques;   // only these techniques (all variants); empty: every one
+  std::vector<std::string> scenes;      // empty: the fixed set (benchScenes)
+  std::vector<std::string> techniques;  // only these techniques (all variants); empty: every one
   std::optional<std::string> csvPath;
   std::string outDir = "out/bench";       // plots, gnuplot scripts and data
   int width = 0, height = 0;              // 0: the mode's default
@@ -99,7 +99,7 @@ std::string utcIsoNow();
 
 struct BenchRow {
   std::string scene, technique, variant;
-  std::string orbit;  // a sweep view's camera orbit ("AZ,EL,DIST"); "": the scene's camera
+  std::string orbit;          // a sweep view's camera orbit ("AZ,EL,DIST"); "": the scene's camera
   std::string status = "ok";  // "ok", or why the variant could not run
   RenderParams params;
   std::string primaryReference;   // kPrimaryHardReference or kPrimarySoftReference

@@ -40,8 +40,8 @@ struct Finder {
 // timed frames' interquartile ranges overlap (measure/bench.h timesWithinSpread).
 std::string spreadNote(const BenchRow& a, const BenchRow& b) {
   if (!timesWithinSpread(a, b)) return "";
-  return " (time ranking within the spread: interquartile ranges " + std::to_string(a.q1Ms) +
-         "-" + std::to_string(a.q3Ms) + " ms and " + std::to_string(b.q1Ms) + "-" +
+  return " (time ranking within the spread: interquartile ranges " + std::to_string(a.q1Ms) + "-" +
+         std::to_string(a.q3Ms) + " ms and " + std::to_string(b.q1Ms) + "-" +
          std::to_string(b.q3Ms) + " ms overlap)";
 }
 
@@ -112,12 +112,12 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
                   " over the scored pixels (docs/error.md); same quality = within 10% or 0.005";
         c.measured = summary(*pcf) + "; " + summary(*fast) + "; time ratio fast/pcf " +
                      fmt(fast->frameMs / pcf->frameMs, 3) + spreadNote(*fast, *pcf);
-        c.verdict = (same && cheaper
-                         ? std::string("agrees")
-                         : std::string("disagrees (") + (same ? "" : "quality differs") +
-                               (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") +
-                               ")") +
-                    spreadNote(*fast, *pcf);
+        c.verdict =
+            (same && cheaper
+                 ? std::string("agrees")
+                 : std::string("disagrees (") + (same ? "" : "quality differs") +
+                       (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") + ")") +
+            spreadNote(*fast, *pcf);
       }
       out.push_back(c);
     }
@@ -137,7 +137,8 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
       if (many && one) {
         c.setup = "modern.gems16 default (16 samples) vs samples=1, same 512 map, against " +
                   areaReference(*many) +
-                  " over the scored pixels (docs/error.md): the shadow-edge error is the band RMSE (within 2 "
+                  " over the scored pixels (docs/error.md): the shadow-edge error is the band RMSE "
+                  "(within 2 "
                   "pixels of the reference's edges), the verdict's measure; RMSE over the whole "
                   "region and the temporal change (what antialiasing is for: less flicker when "
                   "the light moves) beside it";
@@ -244,8 +245,9 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
         const bool cheaper = hybrid->frameMs < volumes->frameMs;
         c.setup =
             "scene fill-bound (assets/scenes/fill-bound.json: 24 stacked floors, volume overdraw "
-            "about 24) at " + std::to_string(kFillBoundWidth) + "x" +
-            std::to_string(kFillBoundHeight) + " with a " + std::to_string(kFillBoundMapTexels) +
+            "about 24) at " +
+            std::to_string(kFillBoundWidth) + "x" + std::to_string(kFillBoundHeight) + " with a " +
+            std::to_string(kFillBoundMapTexels) +
             "² map (Chan §3.1 step 1, Fig. 3-11), default variants; masks "
             "compared with each other within 2 pixels of the volumes' shadow edges "
             "(same = under 1% of those pixels differ by > 0.5); median frame times";
@@ -254,11 +256,10 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
             "% pixels differ > 0.5 (all pixels " + fmt(100 * all.shareAboveHalf, 3) + "%); " +
             fmt(hybrid->frameMs, 3) + " ms vs " + fmt(volumes->frameMs, 3) + " ms" +
             spreadNote(*hybrid, *volumes);
-        c.verdict = (same && cheaper
-                         ? std::string("agrees")
-                         : std::string("disagrees (") + (same ? "" : "masks differ") +
-                               (same || cheaper ? "" : ", ") + (cheaper ? "" : "not cheaper") +
-                               ")") +
+        c.verdict = (same && cheaper ? std::string("agrees")
+                                     : std::string("disagrees (") + (same ? "" : "masks differ") +
+                                           (same || cheaper ? "" : ", ") +
+                                           (cheaper ? "" : "not cheaper") + ")") +
                     spreadNote(*hybrid, *volumes);
       }
       out.push_back(c);

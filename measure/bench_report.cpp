@@ -144,7 +144,9 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   if (!before.madeBy.empty())
     h << "<p>Errors are scored by the one definition of <code>docs/error.md</code> (area "
          "metric, scored pixels only). The column <em>before</em> is the verdict of the last "
-         "run before it (" << htmlEscape(before.madeBy) << "); <b>changed</b> marks the "
+         "run before it ("
+      << htmlEscape(before.madeBy)
+      << "); <b>changed</b> marks the "
          "verdicts it changed. The error halves of a verdict repeat exactly from run to run; "
          "its time half (\"not cheaper\") moves with the load of a shared machine, so a time "
          "verdict that changed here may change back in the next run.</p>\n";
@@ -152,7 +154,8 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
     << (before.madeBy.empty() ? "" : "<th>before</th>") << "<th>setup</th><th>measured</th></tr>\n";
   for (const ClaimCheck& c : claims) {
     h << "<tr><td>" << htmlEscape(c.claim) << "</td><td>" << htmlEscape(c.source) << "</td><td>"
-      << htmlEscape(c.scene) << "</td><td class=" << (c.verdict.rfind("agrees", 0) == 0 ? "ok" : "bad") << ">"
+      << htmlEscape(c.scene)
+      << "</td><td class=" << (c.verdict.rfind("agrees", 0) == 0 ? "ok" : "bad") << ">"
       << htmlEscape(c.verdict) << "</td>";
     if (!before.madeBy.empty()) {
       const auto it = before.verdicts.find(c.id + "|" + c.scene);

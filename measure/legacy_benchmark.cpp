@@ -52,10 +52,8 @@ imaging::Mode installImaging(GlContext& context, ImagingChoice choice) {
                          " back end has no native ARB_imaging (only --backend reference has "
                          "one); use --imaging emulated");
       return imaging::install(context, imaging::Mode::kNative);
-    case ImagingChoice::kEmulated:
-      return imaging::install(context, imaging::Mode::kEmulated);
-    case ImagingChoice::kBackendDefault:
-      break;
+    case ImagingChoice::kEmulated: return imaging::install(context, imaging::Mode::kEmulated);
+    case ImagingChoice::kBackendDefault: break;
   }
   return imaging::install(context);
 }
@@ -246,7 +244,8 @@ std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {
   if (!results.empty())
     s << "Steady state: " << results.front().timing.warmupFrames
       << " warm-up frames, then the median of " << results.front().timing.timedFrames
-      << " frames (core/technique/frame_timing.h); ms/frame is the sum of the passes, render() adds the "
+      << " frames (core/technique/frame_timing.h); ms/frame is the sum of the passes, render() "
+         "adds the "
          "read-back of the colour image and the mask.\n\n";
   s << "| variant | GL | paper, Octane VPro/8 (fps) | ours (fps) | ours (ms/frame) | render() "
        "(ms) | floor (ms/frame) | time / floor |\n"

@@ -14,10 +14,10 @@ using namespace sl::gl;
 
 namespace {
 
-constexpr int kRampTexels = 256;       // the 8-bit ramp of §2
-constexpr int kRgbaBytes = 4;          // RGBA8 pixel rectangles
-constexpr float kNearWindowZ = -1.0f;  // glOrtho(-1, 1) z: window depth 0, passes LESS/LEQUAL
-constexpr int kSamplesPerGroup = 4;    // §3: four jittered samples per RGBA map
+constexpr int kRampTexels = 256;            // the 8-bit ramp of §2
+constexpr int kRgbaBytes = 4;               // RGBA8 pixel rectangles
+constexpr float kNearWindowZ = -1.0f;       // glOrtho(-1, 1) z: window depth 0, passes LESS/LEQUAL
+constexpr int kSamplesPerGroup = 4;         // §3: four jittered samples per RGBA map
 constexpr float kAccumulateWeight = 0.25f;  // §4 fast PCF 4x4: four phases of weight 1/4
 
 // Window coordinates in pixels, every matrix identity but the projection.
@@ -169,43 +169,28 @@ void drawIntoWindow(FloorResources& r, int width, int height) {
 
 void runFloor(FloorResources& r, const FloorTerm& t) {
   switch (t.work) {
-    case FloorWork::kClear:
-      return clearColorAndDepth(t.width, t.height);
-    case FloorWork::kRampTexturedFill:
-      return fillWithRampTexture(r, t.width, t.height);
+    case FloorWork::kClear: return clearColorAndDepth(t.width, t.height);
+    case FloorWork::kRampTexturedFill: return fillWithRampTexture(r, t.width, t.height);
     case FloorWork::kProjectiveSubtractFill:
       return fillSubtractingProjectiveMap(r, t.width, t.height);
-    case FloorWork::kLitBlendedFill:
-      return fillLitAndBlended(t.width, t.height);
-    case FloorWork::kCopyTexture:
-      return copyWindowToTexture(r, t.width, t.height);
-    case FloorWork::kCopyPixels:
-      return copyWindowOntoItself(t.width, t.height);
-    case FloorWork::kAccumulate:
-      return accumulateWindow(t.width, t.height);
-    case FloorWork::kDrawPixels:
-      return drawIntoWindow(r, t.width, t.height);
+    case FloorWork::kLitBlendedFill: return fillLitAndBlended(t.width, t.height);
+    case FloorWork::kCopyTexture: return copyWindowToTexture(r, t.width, t.height);
+    case FloorWork::kCopyPixels: return copyWindowOntoItself(t.width, t.height);
+    case FloorWork::kAccumulate: return accumulateWindow(t.width, t.height);
+    case FloorWork::kDrawPixels: return drawIntoWindow(r, t.width, t.height);
   }
 }
 
 const char* workName(FloorWork w) {
   switch (w) {
-    case FloorWork::kClear:
-      return "clear colour + depth";
-    case FloorWork::kRampTexturedFill:
-      return "ramp-textured depth-tested fill";
-    case FloorWork::kProjectiveSubtractFill:
-      return "projective-textured subtracting fill";
-    case FloorWork::kLitBlendedFill:
-      return "lit blended fill";
-    case FloorWork::kCopyTexture:
-      return "glCopyTexSubImage2D";
-    case FloorWork::kCopyPixels:
-      return "glCopyPixels";
-    case FloorWork::kAccumulate:
-      return "glAccum(GL_ACCUM)";
-    case FloorWork::kDrawPixels:
-      return "glDrawPixels";
+    case FloorWork::kClear: return "clear colour + depth";
+    case FloorWork::kRampTexturedFill: return "ramp-textured depth-tested fill";
+    case FloorWork::kProjectiveSubtractFill: return "projective-textured subtracting fill";
+    case FloorWork::kLitBlendedFill: return "lit blended fill";
+    case FloorWork::kCopyTexture: return "glCopyTexSubImage2D";
+    case FloorWork::kCopyPixels: return "glCopyPixels";
+    case FloorWork::kAccumulate: return "glAccum(GL_ACCUM)";
+    case FloorWork::kDrawPixels: return "glDrawPixels";
   }
   return "?";
 }
@@ -228,8 +213,7 @@ std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
   const int w = params.width, h = params.height, n = params.shadowMapTexels;
   using W = FloorWork;
   switch (floor) {
-    case PassFloor::kNone:
-      return std::nullopt;
+    case PassFloor::kNone: return std::nullopt;
     case PassFloor::kCpuOnly:  // the mesh feeding: no GL work
       return std::vector<FloorTerm>{};
     case PassFloor::kJitteredLightGroup: {  // §3 Fig. 3 (legacy.pcf): group part + 1
@@ -243,18 +227,14 @@ std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
     case PassFloor::kLightDepthAndCopy:  // §2: the light pass and its copy
       return std::vector<FloorTerm>{
           {W::kClear, n, n, 1}, {W::kRampTexturedFill, n, n, 1}, {W::kCopyTexture, n, n, 1}};
-    case PassFloor::kCopyToTexture:
-      return std::vector<FloorTerm>{{W::kCopyTexture, n, n, 1}};
+    case PassFloor::kCopyToTexture: return std::vector<FloorTerm>{{W::kCopyTexture, n, n, 1}};
     case PassFloor::kCameraDepth:
       return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kRampTexturedFill, w, h, 1}};
     case PassFloor::kProjectiveSubtract:
       return std::vector<FloorTerm>{{W::kProjectiveSubtractFill, w, h, 1}};
-    case PassFloor::kCopyPixels:
-      return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
-    case PassFloor::kAccumulationReturn:
-      return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
-    case PassFloor::kAccumulate:
-      return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
+    case PassFloor::kCopyPixels: return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
+    case PassFloor::kAccumulationReturn: return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
+    case PassFloor::kAccumulate: return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
     case PassFloor::kLighting:  // §5: direct light, then ambient: two layers
       return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
   }

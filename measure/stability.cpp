@@ -29,9 +29,7 @@ namespace sl::figures::stability {
 // in general; it must still not be garbage: wrong on at most half of the pixels outside the
 // band is "better than an inverted or random mask".
 
-std::shared_ptr<const Mesh> share(Mesh m) {
-  return std::make_shared<const Mesh>(std::move(m));
-}
+std::shared_ptr<const Mesh> share(Mesh m) { return std::make_shared<const Mesh>(std::move(m)); }
 
 Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool casts,
               bool receives) {
@@ -44,9 +42,7 @@ Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool c
   return o;
 }
 
-glm::mat4 at(float x, float y, float z) {
-  return glm::translate(glm::mat4(1), {x, y, z});
-}
+glm::mat4 at(float x, float y, float z) { return glm::translate(glm::mat4(1), {x, y, z}); }
 
 // The stage: a tessellated ground (receiver), a floating box and a sphere (closed casters),
 // large in the window so that their shadows are wide compared with the edge band.
@@ -210,12 +206,8 @@ Scene mirroringStage(bool mirrored) {
   return s;
 }
 
-bool declares(const Technique& t, const std::string& key) {
-  return findParam(t, key) != nullptr;
-}
-std::string always(const Technique&) {
-  return "";
-}
+bool declares(const Technique& t, const std::string& key) { return findParam(t, key) != nullptr; }
+std::string always(const Technique&) { return ""; }
 void noChange(RenderParams&) {}
 bool isReference(const Technique& t) {  // ray traced: renders no shadow map
   return t.plan.shadowWork == PlanTraits::ShadowWork::kRays;
@@ -386,8 +378,8 @@ MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
 // these floors, which sit under the least measured share of each angle by about a fifth
 // (rounding of the ramp on another driver moves a few rows of texels, not a fifth of the lit
 // ground).
-constexpr double kSelfShadowedAt80 = 0.10;  // least measured: 12.3% (ramp)
-constexpr double kSelfShadowedAt89 = 0.35;  // least measured: 43.6% (ramp)
+constexpr double kSelfShadowedAt80 = 0.10;     // least measured: 12.3% (ramp)
+constexpr double kSelfShadowedAt89 = 0.35;     // least measured: 43.6% (ramp)
 constexpr double kNothingShadowedIsLit = 0.0;  // measured 0 in all twelve; bias only darkens
 const char* const kConstantBias =
     "constant depth bias only (Brabec–Seidel §2, no slope-scaled offset): a grazing receiver "
@@ -437,8 +429,7 @@ Outcome evaluate(const Case& c, const Technique& t) {
   }
   out.bound = c.bound;
   out.why = c.why;
-  if (auto refusal = expectedRefusals().find({c.name, t.name});
-      refusal != expectedRefusals().end())
+  if (auto refusal = expectedRefusals().find({c.name, t.name}); refusal != expectedRefusals().end())
     out.expectedRefusal = refusal->second;
   auto issue = knownIssues().find({c.name, t.name});
   if (issue != knownIssues().end() && issue->second.bound < 0 &&
@@ -505,14 +496,19 @@ std::string summaryHtml(bool progress) {
   std::ostringstream h;
   h << "<h2 id=stability>Numerical stability on stiff and extreme cases</h2>\n"
     << "<p>Every technique on every case of the stability suite (tests/stability, "
-       "measure/stability.cpp), " << kWidth << "x" << kHeight << ": the share of pixels (%) "
+       "measure/stability.cpp), "
+    << kWidth << "x" << kHeight
+    << ": the share of pixels (%) "
        "whose visibility differs from the ray-traced reference by more than 0.5, counted "
-       "outside a " << kBandPixels << "-pixel band around the reference's shadow edges on "
+       "outside a "
+    << kBandPixels
+    << "-pixel band around the reference's shadow edges on "
        "surfaces the light reaches. Green: within the case's bound; red: above it or a NaN/Inf "
        "or a value outside [0, 1]; <em>refused</em>: a clear InputError (the expected answer "
        "for a configuration that cannot work); &ndash;: the case does not apply.</p>\n"
     << "<table><tr><th>technique</th>";
-  for (const Case& c : cases()) h << "<th>" << c.name << "<br>(bound " << 100 * c.bound << "%)</th>";
+  for (const Case& c : cases())
+    h << "<th>" << c.name << "<br>(bound " << 100 * c.bound << "%)</th>";
   h << "</tr>\n";
   for (const Technique& t : allTechniques()) {
     h << "<tr><td><code>" << t.name << "</code></td>";
@@ -532,13 +528,13 @@ std::string summaryHtml(bool progress) {
           break;
         case Outcome::Kind::kKnownBug: h << "<td class=bad>known bug</td>"; break;
         case Outcome::Kind::kMeasured: {
-          const bool good = o.finite && o.lowest >= 0.0f && o.highest <= 1.0f &&
-                            o.withinBound() && o.expectedRefusal.empty();
+          const bool good = o.finite && o.lowest >= 0.0f && o.highest <= 1.0f && o.withinBound() &&
+                            o.expectedRefusal.empty();
           std::ostringstream v;
           v << std::setprecision(2) << 100.0 * o.error.shareAboveHalf;
           const bool ownBound = o.bound != c.bound;  // a documented limitation of t
-          h << "<td class=" << (good ? "ok" : "bad") << ">" << v.str()
-            << (o.finite ? "" : " NaN") << (ownBound ? "*" : "") << "</td>";
+          h << "<td class=" << (good ? "ok" : "bad") << ">" << v.str() << (o.finite ? "" : " NaN")
+            << (ownBound ? "*" : "") << "</td>";
         }
       }
     }

@@ -67,10 +67,10 @@ struct Outcome {
   Kind kind = Kind::kMeasured;
   std::string note;  // why not applicable, the InputError, or the known bug
   Frame frame;
-  bool finite = true;     // no NaN/Inf in colour, visibility or any intermediate
-  float lowest = 0.0f;    // visibility range
+  bool finite = true;   // no NaN/Inf in colour, visibility or any intermediate
+  float lowest = 0.0f;  // visibility range
   float highest = 1.0f;
-  MaskDifference error;   // errorWhereItMatters (the better of the two references on fallback)
+  MaskDifference error;  // errorWhereItMatters (the better of the two references on fallback)
   // `error` split by direction, against `reference`: errorWhereItMatters of max(v, reference)
   // keeps only pixels lit where the reference is not, of min(v, reference) only pixels shadowed
   // where the reference is lit; referenceLit: the share of the counted pixels the reference

@@ -11,14 +11,11 @@ namespace sl::modern::bs {
 using namespace sl::gl;
 
 Arithmetic arithmeticOf(const RenderParams& params) {
-  return params.text(arithmeticParam()) == "float"
-             ? Arithmetic::kFloat
-             : Arithmetic::kFaithful;
+  return params.text(arithmeticParam()) == "float" ? Arithmetic::kFloat : Arithmetic::kFaithful;
 }
 
 int depthBits(const RenderParams& params) {
-  if (arithmeticOf(params) == Arithmetic::kFloat || params.precision == Precision::kFloat)
-    return 0;
+  if (arithmeticOf(params) == Arithmetic::kFloat || params.precision == Precision::kFloat) return 0;
   return params.precision == Precision::k12 ? 12 : 8;
 }
 
@@ -28,12 +25,9 @@ bool legacyFloatBuffer(const RenderParams& params) {
 
 GLenum encodedDepthFormat(const RenderParams& params) {
   switch (depthBits(params)) {
-    case 8:
-      return GL_RGBA8;
-    case 12:
-      return GL_RGBA16;  // 12-bit values in a 16-bit buffer (Octane VPro, §6)
-    default:
-      return GL_RGBA32F;
+    case 8: return GL_RGBA8;
+    case 12: return GL_RGBA16;  // 12-bit values in a 16-bit buffer (Octane VPro, §6)
+    default: return GL_RGBA32F;
   }
 }
 
@@ -100,14 +94,10 @@ glm::vec4 depthPlane(const Scene& scene) {
 
 namespace {
 // The bias in units of d, in double as legacy_gl computes it before building its matrix.
-double depthBiasD(const RenderParams& params) {
-  return params.number(depthBiasParam()) * kStep8;
-}
+double depthBiasD(const RenderParams& params) { return params.number(depthBiasParam()) * kStep8; }
 }  // namespace
 
-float depthBias(const RenderParams& params) {
-  return float(depthBiasD(params));
-}
+float depthBias(const RenderParams& params) { return float(depthBiasD(params)); }
 
 void setLegacyArithmeticUniforms(const Program& program, const RenderParams& params) {
   const bool twelve = depthBits(params) == 12;
@@ -283,8 +273,6 @@ ParamSpec depthBiasParam() {
                      "depth bias in 8-bit depth steps, added before the comparison (§2)");
 }
 
-std::vector<ParamSpec> params() {
-  return {arithmeticParam(), depthBiasParam()};
-}
+std::vector<ParamSpec> params() { return {arithmeticParam(), depthBiasParam()}; }
 
 }  // namespace sl::modern::bs

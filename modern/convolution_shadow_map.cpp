@@ -190,7 +190,7 @@ struct CsmSettings {
   bool encodeUnsigned = true;  // 8-bit: [-1, 1] stored as 0.5 + 0.5 v
   int blurTaps = kDefaultBlurTaps;
   MapFiltering filtering;
-  bool mipmapsSkipped = false;  // mipmaps=auto and the view does not minify the map
+  bool mipmapsSkipped = false;           // mipmaps=auto and the view does not minify the map
   double skipError = kDefaultSkipError;  // 0: Eq. 13 at every pixel
   int sinLayers() const { return (order + kChannelsPerLayer - 1) / kChannelsPerLayer; }
   int layers() const { return 2 * sinLayers(); }
@@ -201,8 +201,9 @@ struct CsmSettings {
 
 // The --params of modern.csm, declared once (Technique::params).
 ParamSpec orderParam() {
-  return integerParam("order", kDefaultOrder, 1, kMaxOrder,
-                      "M, the number of Fourier terms of the expansion (Eq. 10; Table 1: 4, 8, 16)");
+  return integerParam(
+      "order", kDefaultOrder, 1, kMaxOrder,
+      "M, the number of Fourier terms of the expansion (Eq. 10; Table 1: 4, 8, 16)");
 }
 ParamSpec alphaParam() {
   return numberParam("alpha", kDefaultAlpha, 0.0, kMaxAlpha,
@@ -524,8 +525,8 @@ void setCameraPassUniforms(const Program& program, const Scene& scene, const Ren
 // non-uniform branch).
 void classifyInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                           const Texture& linearDepth, const Texture& depthBounds,
-                          int depthBoundsLevels, const CsmSkipIntervals& skip,
-                          const CsmSettings& s, const DepthRange& range, float nearestCaster) {
+                          int depthBoundsLevels, const CsmSkipIntervals& skip, const CsmSettings& s,
+                          const DepthRange& range, float nearestCaster) {
   passes.run("5b", [&] {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -578,8 +579,8 @@ void reconstructInCameraPass(Passes& passes, const GpuScene& gpu, const RenderPa
   RenderTarget target =
       classified ? makeStencilCameraTarget(params, {}) : makeCameraTarget(params, true);
   if (classified) {
-    classifyInCameraPass(passes, gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip,
-                         s, range, nearestCaster);
+    classifyInCameraPass(passes, gpu, params, linearDepth, *depthBounds, depthBoundsLevels, skip, s,
+                         range, nearestCaster);
   } else {
     clearCameraTarget(target);
   }
@@ -636,12 +637,11 @@ void captureDepthAndBasis(Passes& passes, const RenderTarget& depth, const Layer
     return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
   };
   for (int layer = 0; layer < s.sinLayers(); ++layer)
-    passes.capture(
-        "2", "basis-sin-{range}", [&] { return readLayer(basis, layer, scale, bias); }, {},
-        {{"range", range(layer)}});
-  passes.capture(
-      "2", "basis-cos-{range}", [&] { return readLayer(basis, s.sinLayers(), scale, bias); }, {},
-      {{"range", range(0)}});
+    passes.capture("2", "basis-sin-{range}", [&] { return readLayer(basis, layer, scale, bias); },
+                   {}, {{"range", range(layer)}});
+  passes.capture("2", "basis-cos-{range}",
+                 [&] { return readLayer(basis, s.sinLayers(), scale, bias); }, {},
+                 {{"range", range(0)}});
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -676,8 +676,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   }
   const CsmSkipIntervals skip{work.skipIntervals[0], work.skipIntervals[1], work.skipIntervals[2],
                               work.skipIntervals[3]};
-  reconstructInCameraPass(passes, gpu, params, basis, s, range, work.nearestCaster,
-                          depth.color[0], bounds, work.depthBoundsLevels, skip);
+  reconstructInCameraPass(passes, gpu, params, basis, s, range, work.nearestCaster, depth.color[0],
+                          bounds, work.depthBoundsLevels, skip);
   captureCameraPass(passes, classify ? "5c" : "5");
   frame.counters["light near"] = range.nearPlane;
   frame.counters["light far"] = range.farPlane;

@@ -58,8 +58,8 @@ PassTable fastPcfPasses() {
        .name = "camera pass = legacy passes 3-7: depth, subtract, colour table, colour matrix, "
                "accumulate, shade (pcf_shadow.frag)",
        .reference = "Brabec & Seidel 2001 §3 Fig. 4, §4 Fig. 6, §5",
-       .writes = cameraPassBuffers(
-           "3", "pcf_shadow.frag: shadow test, colour table, colour matrix (§4)"),
+       .writes =
+           cameraPassBuffers("3", "pcf_shadow.frag: shadow test, colour table, colour matrix (§4)"),
        .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
        .replaces = {"3", "4", "5", "6a", "6b", "7"}},
   };
@@ -117,8 +117,7 @@ std::vector<RenderTarget> packNeighbours(Passes& passes, const RenderParams& par
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, encoded.color[0].id());
       program.set("uEncodedDepth", 0);
-      gl::glUniform2i(program.uniform("uRegionOrigin"), phase.regionOrigin.x,
-                      phase.regionOrigin.y);
+      gl::glUniform2i(program.uniform("uRegionOrigin"), phase.regionOrigin.x, phase.regionOrigin.y);
       triangle.draw();
       bs::setMapSampling(packed.back().color[0].id());
     }
@@ -150,9 +149,9 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   std::vector<bs::SampleGroup> groups;
   for (size_t q = 0; q < packed.size(); ++q) {
     groups.push_back({packed[q].color[0].id(), 4, phases[q].offsetTexels});
-    passes.capture(
-        "2", "packed-shadow-map{part}-rgba", [&] { return readAttachment(packed[q], 0); },
-        phases[q].part, {{"itself", packed.size() == 1 ? " = the texel itself" : ""}});
+    passes.capture("2", "packed-shadow-map{part}-rgba",
+                   [&] { return readAttachment(packed[q], 0); }, phases[q].part,
+                   {{"itself", packed.size() == 1 ? " = the texel itself" : ""}});
   }
   shadowTestAndShade(passes, gpu, params, ramp, groups);
   captureCameraPass(passes, "3");

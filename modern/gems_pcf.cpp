@@ -287,12 +287,11 @@ ParamSpec biasTexelsParam() {
 }
 
 Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defaultSamples) {
-  const std::string samples =
-      params.text(samplesParam(defaultSamples));
+  const std::string samples = params.text(samplesParam(defaultSamples));
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
-  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
-  const float biasTexels =
-      float(params.number(biasTexelsParam()));
+  const float units =
+      float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const float biasTexels = float(params.number(biasTexelsParam()));
   // Only modern.gems16 declares the kernel; modern.gems4 rejects the key as unknown.
   const bool bicubic =
       defaultSamples == 16 && params.text(kernelParam()) == std::string(kKernelBicubic);

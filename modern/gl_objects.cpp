@@ -42,8 +42,7 @@ const Program& cachedProgram(const std::string& vertexFile, const std::string& f
   for (const auto& [k, v] : defines) key += "|" + k + "=" + v;
   auto it = cache->programs.find(key);
   if (it == cache->programs.end())
-    it = cache->programs
-             .emplace(key, std::make_unique<Program>(vertexFile, fragmentFile, defines))
+    it = cache->programs.emplace(key, std::make_unique<Program>(vertexFile, fragmentFile, defines))
              .first;
   return *it->second;
 }

@@ -101,9 +101,10 @@ PassSpec cameraPassWithShadowTest(const std::string& id, const std::string& sour
                                   std::vector<std::string> replaces) {
   return {.id = id,
           .name = "camera pass with shadow test",
-          .reference = "Everitt, Rege & Cebenoyan 2001, Second Pass (Depth Map Comparison): the "
-                       "planes of Eq. 5 as one matrix, the comparison of How It Works (Fig. 5) by "
-                       "sampler2DShadow, direct light x result + ambient",
+          .reference =
+              "Everitt, Rege & Cebenoyan 2001, Second Pass (Depth Map Comparison): the "
+              "planes of Eq. 5 as one matrix, the comparison of How It Works (Fig. 5) by "
+              "sampler2DShadow, direct light x result + ambient",
           .writes = cameraPassBuffers(id, source),
           .shaders = {"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"},
           .replaces = std::move(replaces)};
@@ -137,7 +138,8 @@ namespace {
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
-  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const float units =
+      float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const bool linear = params.text(compareParam()) == "linear";
   const bool casterInFrustum = !params.flag(planParam()) || casterReachesLightFrustum(scene);
   Frame frame;

@@ -342,9 +342,7 @@ bool buildComputationMask(Passes& passes, const RenderTarget& target, const Prog
   });
   return scissored;
 }
-GLuint maskBitFor(MaskKind kind) {
-  return kind == MaskKind::kDepthBounds ? 0u : kStencilMaskBit;
-}
+GLuint maskBitFor(MaskKind kind) { return kind == MaskKind::kDepthBounds ? 0u : kStencilMaskBit; }
 
 // Pass 5 (§3.1 step 3): z-fail stencil updates only at silhouette pixels.
 void drawVolumesThroughMask(Passes& passes, const SceneVolumes& volumes,
@@ -403,9 +401,9 @@ ParamSpec maskPassParam() {
 
 Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
-  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
-  const std::string maskName =
-      params.text(maskParam());
+  const float units =
+      float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const std::string maskName = params.text(maskParam());
   const bool haveBounds = ctx.caps().depthBoundsTest();
   if (maskName == "depth-bounds" && !haveBounds)
     throw InputError(

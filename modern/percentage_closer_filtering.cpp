@@ -43,8 +43,8 @@ PassTable pcfPasses() {
        .name = "camera pass = legacy passes 2-6: depth, subtract, colour table, colour matrix, "
                "accumulate, shade (pcf_shadow.frag)",
        .reference = "Brabec & Seidel 2001 §3 Figs. 3-4, §5",
-       .writes = cameraPassBuffers(
-           "2", "pcf_shadow.frag: shadow test, colour table, colour matrix (§3)"),
+       .writes =
+           cameraPassBuffers("2", "pcf_shadow.frag: shadow test, colour table, colour matrix (§3)"),
        .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
        .replaces = {"2", "3", "4", "5a", "5b", "6"}},
   };
@@ -65,8 +65,8 @@ glm::vec2 jitterTexels(int i, int j, int n) {
 
 // Pass 1 (§3, Figure 3): n^2 jittered light passes packed four to a map, one channel each.
 std::vector<RenderTarget> renderJitteredLightPasses(Passes& passes, const GpuScene& gpu,
-                                                    const RenderParams& params,
-                                                    const Texture& ramp, int n) {
+                                                    const RenderParams& params, const Texture& ramp,
+                                                    int n) {
   const int samples = n * n;
   std::vector<RenderTarget> maps;
   passes.run(
@@ -104,9 +104,8 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   for (size_t g = 0; g < maps.size(); ++g) {
     const int samples = std::min(kSamplesPerMap, n * n - int(g) * kSamplesPerMap);
     groups.push_back({maps[g].color[0].id(), samples, glm::vec2(0.0f)});
-    passes.capture(
-        "1", "packed-jittered-map-{group}", [&] { return readAttachment(maps[g], 0); }, {},
-        {{"group", std::to_string(g)}});
+    passes.capture("1", "packed-jittered-map-{group}", [&] { return readAttachment(maps[g], 0); },
+                   {}, {{"group", std::to_string(g)}});
   }
   shadowTestAndShade(passes, gpu, params, ramp, groups);
   captureCameraPass(passes, "2");

@@ -140,8 +140,7 @@ MapFiltering parseFiltering(const GlContext& context, const RenderParams& params
   // tri-linear probes per lookup, and CSM makes M lookups per pixel: its camera pass cost
   // 240-830 ms against 40-110 ms tri-linear on the bench scenes (brabec and fence, 256x192
   // and 400x300, map 512, M = 16), where the paper's GPU pays 1.6-3x PCF for all of CSM.
-  const std::string mode =
-      params.text(filteringParam());
+  const std::string mode = params.text(filteringParam());
   f.mipmaps = mode == "anisotropic" || mode == "trilinear";
   f.linear = mode != "nearest";
   // "anisotropic" is Table 1's "16x anisotropic tri-linear"; an explicit --param anisotropy

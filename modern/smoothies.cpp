@@ -51,17 +51,15 @@ float smoothieAlpha(float a, float bOverR, bool remap) {
   return bOverR >= 1.0f ? 1.0f : a;
 }
 
-float smoothieFalloff(float v) {
-  return 0.5f - 0.5f * std::cos(glm::pi<float>() * v);
-}
+float smoothieFalloff(float v) { return 0.5f - 0.5f * std::cos(glm::pi<float>() * v); }
 
 namespace {
-constexpr double kMinWidth = 1e-4;  // light screen space: narrower than any map texel
-constexpr double kMaxWidth = 1.0;   // the whole map side
+constexpr double kMinWidth = 1e-4;            // light screen space: narrower than any map texel
+constexpr double kMaxWidth = 1.0;             // the whole map side
 constexpr double kDefaultWidth = 0.03;        // t, light screen space (map side = 1)
 constexpr float kDefaultOffsetFactor = 2.0f;  // as modern.hw (Everitt et al. Fig. 3)
 constexpr float kDefaultOffsetUnits = 4.0f;
-constexpr double kLargestOffsetUnits = 1e6;  // depth steps; far beyond any useful offset
+constexpr double kLargestOffsetUnits = 1e6;          // depth steps; far beyond any useful offset
 constexpr int kFalloffTexels = 256;                  // 1D falloff texture (§4.2.1)
 constexpr float kNoSurfaceDepth = 1.0e30f;           // linear depth where nothing is seen: b/r ~ 0
 constexpr float kMinClipW = 1.0e-6f;                 // vertices at or behind the light: no smoothie
@@ -341,9 +339,9 @@ RenderTarget renderSmoothieDepth(Passes& passes, const GpuSmoothies& smoothies,
 }
 
 // Pass 3 (§4.2.1, §4.3): alpha per smoothie pixel, Eq. 4.1, minimum blending into a = 1.
-void renderSmoothieAlpha(Passes& passes, const GpuSmoothies& smoothies,
-                         const RenderTarget& buffer, const RenderTarget& map,
-                         const Program& program, double width, bool remap) {
+void renderSmoothieAlpha(Passes& passes, const GpuSmoothies& smoothies, const RenderTarget& buffer,
+                         const RenderTarget& map, const Program& program, double width,
+                         bool remap) {
   passes.run("3", [&] {
     buffer.bind();
     const float one[4] = {1, 1, 1, 1};
@@ -456,7 +454,8 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   const double width = params.number(widthParam());
   const bool remap = params.flag(remapParam());
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
-  const float units = float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
+  const float units =
+      float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
   const int texels = params.shadowMapTexels;
   Frame frame;
   Passes passes(frame, params, passTable());
@@ -483,11 +482,11 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
   frame.counters["corners_with_more_than_two_edges"] = double(geometry.cornersWithManyEdges);
   frame.counters["corner_squares"] = double(geometry.cornerSquares);
   passes.capture("2", "smoothie-depth", [&] { return linearSmoothieDepth(smoothie, scene); });
-  passes.capture(
-      "3", "smoothie-alpha", [&] { return channel(readAttachment(smoothie, 0), 0); }, {},
-      {{"alpha", remap ? " after Eq. 4.1 and min blending (Fig. 4-1c)"
-                       : ", linear (not remapped), min blending (Fig. 4-10 left)"}});
-  passes.capture("1", "linear-depth", [&] { return scaledToItsMaximum(channel(readAttachment(map, 0), 0)); });
+  passes.capture("3", "smoothie-alpha", [&] { return channel(readAttachment(smoothie, 0), 0); }, {},
+                 {{"alpha", remap ? " after Eq. 4.1 and min blending (Fig. 4-1c)"
+                                  : ", linear (not remapped), min blending (Fig. 4-10 left)"}});
+  passes.capture("1", "linear-depth",
+                 [&] { return scaledToItsMaximum(channel(readAttachment(map, 0), 0)); });
   return frame;
 }
 }  // namespace

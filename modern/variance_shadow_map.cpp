@@ -83,7 +83,8 @@ ParamSpec bleedReductionParam() {
 }
 ParamSpec storageParam() {
   // 8-bit moments cannot hold d^2 - d^2 differences: VSM needs float storage.
-  return choiceParam("storage", "float", {"16", "float"}, "moment texture format: 16 or 32-bit float");
+  return choiceParam("storage", "float", {"16", "float"},
+                     "moment texture format: 16 or 32-bit float");
 }
 
 VsmSettings parseSettings(const GlContext& context, const RenderParams& params) {
@@ -175,7 +176,8 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   GpuScene gpu(scene);
   const LayeredMap moments = renderMomentsFromLight(passes, gpu, params, s);
   blurMoments(passes, moments, s);
-  passes.capture("1", "moments-mean", [&] { return channel(readLayer(moments, 0, 1.0f, 0.0f), 0); });
+  passes.capture("1", "moments-mean",
+                 [&] { return channel(readLayer(moments, 0, 1.0f, 0.0f), 0); });
   buildMomentMipmaps(passes, moments, s);
   chebyshevInCameraPass(passes, gpu, params, moments, s);
   captureCameraPass(passes, "4");
@@ -191,8 +193,8 @@ Technique varianceShadowMapTechnique() {
   t.summary = "moments (d, d^2) blurred and mip-mapped, Chebyshev upper bound; leaks light";
   t.status = "complete";
   t.needs.profile = Profile::kCore;
-  t.params = {minVarianceParam(), bleedReductionParam(), storageParam(),
-              blurParam(kDefaultBlurTaps), filteringParam(), anisotropyParam()};
+  t.params = {minVarianceParam(),          bleedReductionParam(), storageParam(),
+              blurParam(kDefaultBlurTaps), filteringParam(),      anisotropyParam()};
   t.reads = {.shadowMap = true};
   t.plan.prefilter = PlanTraits::Prefilter::kVariance;
   t.passes = passTable();

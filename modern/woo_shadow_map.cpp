@@ -161,12 +161,12 @@ Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
     const Image z1 = readDepth(first);
     return WindowDepthSpan{drawnDepthRange({&z1}).lo, kClearDepth};
   };
-  passes.captureDepth("1", "first-depth-layer", [&] { return readDepth(first); }, {}, {},
-                      layerScale);
-  passes.captureDepth("2", "second-depth-layer", [&] { return readDepth(second); }, {}, {},
-                      layerScale);
-  passes.captureDepth("3", "midpoint-shadow-map", [&] { return readDepth(midpoint); }, {}, {},
-                      layerScale);
+  passes.captureDepth(
+      "1", "first-depth-layer", [&] { return readDepth(first); }, {}, {}, layerScale);
+  passes.captureDepth(
+      "2", "second-depth-layer", [&] { return readDepth(second); }, {}, {}, layerScale);
+  passes.captureDepth(
+      "3", "midpoint-shadow-map", [&] { return readDepth(midpoint); }, {}, {}, layerScale);
   captureCameraPass(passes, "4");
   return frame;
 }

@@ -182,11 +182,13 @@ const std::vector<CommandSpec>& commandSpecs() {
       {"gallery",
        "the artefact gallery: wrong/right picture pairs, their render commands and lab links",
        {{"out", "DIR", "writes DIR/gallery/ (index.html and PNGs; replaced as a whole), required"},
-        {"lab", "URL", "address of `shadowlab serve` the lab links open [http://127.0.0.1:8080/]"}}},
+        {"lab", "URL",
+         "address of `shadowlab serve` the lab links open [http://127.0.0.1:8080/]"}}},
       {"course",
        "the lessons in a teaching order, with exercises, a teacher's page and the gallery",
-       {{"out", "DIR", "writes DIR/index.html, DIR/teacher.html, DIR/teacher/, DIR/gallery/ and "
-                       "DIR/lessons/, required"},
+       {{"out", "DIR",
+         "writes DIR/index.html, DIR/teacher.html, DIR/teacher/, DIR/gallery/ and "
+         "DIR/lessons/, required"},
         {"lab", "URL", "address of `shadowlab serve` the lab links open [http://127.0.0.1:8080/]"},
         {"no-progress", nullptr, "no progress lines on stderr"}}},
       {"serve",
@@ -360,7 +362,8 @@ SceneAdjustments sceneAdjustments(const Args& args) {
       throw InputError("--light-radius must lie in [0, 1e12] (world units), got " + *v);
     a.lightRadius = float(r);
   }
-  if (auto v = args.value("light-position")) a.lightPosition = parsePosition("--light-position", *v);
+  if (auto v = args.value("light-position"))
+    a.lightPosition = parsePosition("--light-position", *v);
   return a;
 }
 

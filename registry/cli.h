@@ -60,8 +60,9 @@ glm::vec3 parsePosition(const std::string& what, const std::string& text);  // "
 std::vector<CommonOption> givenCommonOptions(const Args& args);
 
 // --orbit AZ,EL,DIST (render, compare, plan and the lab's API; the light is moved by
-// --light-position, sceneAdjustments): the camera on a sphere around its target (azimuth about the camera's up axis,
-// 0 towards world +z; elevation above the plane normal to that axis; distance in world units).
+// --light-position, sceneAdjustments): the camera on a sphere around its target (azimuth about the
+// camera's up axis, 0 towards world +z; elevation above the plane normal to that axis; distance in
+// world units).
 struct ViewPose {
   double azimuthDegrees = 0.0;
   double elevationDegrees = 0.0;

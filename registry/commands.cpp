@@ -14,20 +14,14 @@ namespace {
 // The imaging subset a legacy technique's context got (--imaging; registry/registry.cpp).
 const char* imagingName(const RenderParams& p) {
   switch (p.imaging) {
-    case ImagingChoice::kNative:
-      return "native";
-    case ImagingChoice::kEmulated:
-      return "emulated";
-    case ImagingChoice::kBackendDefault:
-      break;
+    case ImagingChoice::kNative: return "native";
+    case ImagingChoice::kEmulated: return "emulated";
+    case ImagingChoice::kBackendDefault: break;
   }
   switch (p.backend) {
-    case Backend::kReference:
-      return "native";
-    case Backend::kOsmesa:
-      return "emulated";
-    case Backend::kEgl:
-      break;
+    case Backend::kReference: return "native";
+    case Backend::kOsmesa: return "emulated";
+    case Backend::kEgl: break;
   }
   return "native where the driver has it, else emulated";
 }
@@ -44,7 +38,8 @@ Scene viewedScene(const cli::Args& args, const std::string& sceneName) {
 void addSceneFile(nlohmann::json& made, const std::string& sceneName) {
   const std::string path = sceneFilePath(sceneName);
   made["scene_file"] = path.empty() ? nlohmann::json(nullptr) : nlohmann::json(path);
-  made["scene_sha256"] = path.empty() ? nlohmann::json(nullptr) : nlohmann::json(sha256OfFile(path));
+  made["scene_sha256"] =
+      path.empty() ? nlohmann::json(nullptr) : nlohmann::json(sha256OfFile(path));
 }
 
 // The scene knobs given, in the JSON line and the PNGs' provenance.
@@ -57,8 +52,7 @@ void addAdjustments(nlohmann::json& made, const SceneAdjustments& a) {
 
 // --a-param / --b-param KEY=VALUE: one side's --params (over --param, which goes to both). A key
 // the side's technique does not declare is an InputError naming its keys, as --param's is.
-void addSideParams(const cli::Args& args, const char* option, const Technique& t,
-                   RenderParams& p) {
+void addSideParams(const cli::Args& args, const char* option, const Technique& t, RenderParams& p) {
   const auto it = args.options.find(option);
   if (it == args.options.end()) return;
   for (const std::string& kv : it->second) {
@@ -69,9 +63,10 @@ void addSideParams(const cli::Args& args, const char* option, const Technique& t
     if (!findParam(t, key)) {
       std::string keys;
       for (const std::string& k : paramKeys(t)) keys += (keys.empty() ? "" : ", ") + k;
-      throw InputError(std::string("--") + option + " " + key + ": technique " + t.name +
-                       " has no parameter '" + key + "'" +
-                       (keys.empty() ? std::string(" (it takes none)") : " (it takes " + keys + ")"));
+      throw InputError(
+          std::string("--") + option + " " + key + ": technique " + t.name + " has no parameter '" +
+          key + "'" +
+          (keys.empty() ? std::string(" (it takes none)") : " (it takes " + keys + ")"));
     }
     p.extra[key] = kv.substr(eq + 1);
   }
@@ -93,9 +88,9 @@ CompareScore scorePair(const Scene& scene, const Technique& a, const Frame& fa,
   if (aIsTruth || bIsTruth) {
     const Technique& truthTechnique = bIsTruth ? b : a;
     const RenderParams& truthParams = bIsTruth ? paramsB : paramsA;
-    const bool area = truthParams.text(reference::kPixelParam, reference::kPixelCentre,
-                                       {reference::kPixelCentre, reference::kPixelArea}) ==
-                      reference::kPixelArea;
+    const bool area =
+        truthParams.text(reference::kPixelParam, reference::kPixelCentre,
+                         {reference::kPixelCentre, reference::kPixelArea}) == reference::kPixelArea;
     const ErrorMetric metric = area ? ErrorMetric::kArea : ErrorMetric::kPoint;
     const bool soft = truthTechnique.light == Technique::Light::kArea;
     std::string name = truthName(soft, metric);

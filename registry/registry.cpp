@@ -37,14 +37,10 @@ namespace {
 // What a technique that does not read the option is not doing, for the message.
 std::string doesNot(CommonOption o) {
   switch (o) {
-    case CommonOption::kShadowMap:
-      return "renders no shadow map";
-    case CommonOption::kFilter:
-      return "does not filter";
-    case CommonOption::kPrecision:
-      return "encodes no depth in colour";
-    case CommonOption::kImaging:
-      return "draws nothing through the OpenGL 1.2 imaging subset";
+    case CommonOption::kShadowMap: return "renders no shadow map";
+    case CommonOption::kFilter: return "does not filter";
+    case CommonOption::kPrecision: return "encodes no depth in colour";
+    case CommonOption::kImaging: return "draws nothing through the OpenGL 1.2 imaging subset";
   }
   return "ignores " + std::string(optionFlag(o));
 }
@@ -87,12 +83,8 @@ namespace {
 // Installs the imaging subset --imaging asks for on a legacy technique's context.
 void installImaging(GlContext& context, ImagingChoice choice) {
   switch (choice) {
-    case ImagingChoice::kBackendDefault:
-      imaging::install(context);
-      return;
-    case ImagingChoice::kEmulated:
-      imaging::install(context, imaging::Mode::kEmulated);
-      return;
+    case ImagingChoice::kBackendDefault: imaging::install(context); return;
+    case ImagingChoice::kEmulated: imaging::install(context, imaging::Mode::kEmulated); return;
     case ImagingChoice::kNative:
       if (!context.caps().nativeImaging())
         throw InputError(std::string("--imaging native: the ") +
@@ -145,7 +137,8 @@ std::vector<SteadyTiming> timeTechniquesInterleaved(const std::vector<TimingJob>
                                                     int rounds, std::vector<Frame>* lasts) {
   std::vector<std::unique_ptr<GlContext>> contexts;
   std::vector<std::function<Frame()>> sources;
-  for (const TimingJob& job : jobs) contexts.push_back(contextForRender(*job.technique, job.params));
+  for (const TimingJob& job : jobs)
+    contexts.push_back(contextForRender(*job.technique, job.params));
   for (size_t i = 0; i < jobs.size(); ++i)
     sources.push_back([&, i] {
       contexts[i]->makeCurrent();

@@ -53,6 +53,7 @@ struct TimingJob {
   RenderParams params;
 };
 std::vector<SteadyTiming> timeTechniquesInterleaved(const std::vector<TimingJob>& jobs, int warmup,
-                                                    int rounds, std::vector<Frame>* lasts = nullptr);
+                                                    int rounds,
+                                                    std::vector<Frame>* lasts = nullptr);
 
 }  // namespace sl

@@ -41,7 +41,8 @@ PixelCategories countCategories(const Image& categories) {
 std::string describeLeftOut(const PixelCategories& c) {
   auto share = [&](long long n) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.1f%%", c.total > 0 ? 100.0 * double(n) / double(c.total) : 0.0);
+    std::snprintf(text, sizeof text, "%.1f%%",
+                  c.total > 0 ? 100.0 * double(n) / double(c.total) : 0.0);
     return std::string(text);
   };
   return share(c.total - c.scored) + " of pixels left out (faces away " + share(c.facesAway) +
@@ -82,8 +83,9 @@ ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft, 
   for (const PassImage& i : frame.intermediates)
     if (i.name == reference::kPixelCategoriesPass) categories = &i.image;
   if (categories == nullptr)
-    throw InputError("the reference frame has no pixel categories (render it with the passes "
-                     "captured)");
+    throw InputError(
+        "the reference frame has no pixel categories (render it with the passes "
+        "captured)");
   ShadowTruth t;
   t.metric = metric;
   t.soft = soft;

@@ -72,8 +72,7 @@ ShadowTruth renderShadowTruth(const Scene& scene, const RenderParams& base, Erro
                               bool soft, int pixelSamplesPerSide = 0);
 // The truth from a reference frame already rendered with RenderParams::capturePasses
 // (its kPixelCategoriesPass intermediate); InputError when the frame has none.
-ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft,
-                                    std::string name);
+ShadowTruth truthFromReferenceFrame(Frame frame, ErrorMetric metric, bool soft, std::string name);
 // The scored pixels within kBandRadiusPixels of a place where `visibility` crosses 0.5: the
 // band a truth's band error is measured on (ShadowTruth::band).
 Image scoredBand(const Image& visibility, const Image& scored);

@@ -5,6 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake pkg-config
+  clang-format        # the sources' format, checked by ctest (style.clang_format)
   libosmesa6-dev      # Mesa OSMesa (llvmpipe): the embedded GL, no GPU or display needed
   libegl-dev libegl1-mesa-dev libgl1-mesa-dri  # EGL back end (Mesa llvmpipe here, NVIDIA on GPU machines)
   libglm-dev          # vector and matrix math

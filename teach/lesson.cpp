@@ -210,8 +210,8 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
     parameters["precision"] = precisionName(p.precision);
   side.passes =
       passesJson(*side.frame,
-                 PassDumpHeader{t.name, t.paper, scene.name, parameters, twins::legacyTwinOf(t.name),
-                                twins::legacyTwinPassesOf(t.name)},
+                 PassDumpHeader{t.name, t.paper, scene.name, parameters,
+                                twins::legacyTwinOf(t.name), twins::legacyTwinPassesOf(t.name)},
                  side.images);
   side.prefix = t.name + "_";
   side.renderCommand = renderCommandFor(t, p, s);
@@ -300,9 +300,7 @@ std::string percent(long long part, long long whole) {
   return whole > 0 ? fmt(100.0 * double(part) / double(whole), "%.3g%%") : "0%";
 }
 
-std::string code(const std::string& text) {
-  return "<code>" + htmlEscape(text) + "</code>";
-}
+std::string code(const std::string& text) { return "<code>" + htmlEscape(text) + "</code>"; }
 
 // The anchor of a pass on the page: its technique and its id in the pass table.
 std::string passAnchor(const std::string& technique, const std::string& id) {
@@ -386,8 +384,8 @@ std::string replacesLink(const std::string& text, const std::vector<Side>& sides
       if (s.technique->name != m[1].str()) continue;
       for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
         if (pass.value("id", "") == m[2].str())
-          return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" +
-                 htmlEscape(text) + "</a>";
+          return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" + htmlEscape(text) +
+                 "</a>";
     }
   return htmlEscape(text);
 }

@@ -156,8 +156,8 @@ ReplacedPass replacedPass(const PassDumpHeader& header, const std::string& id) {
   const PassTable& table = *header.twinPasses;
   for (size_t i = 0; i < table.size(); ++i)
     if (table[i].id == id) return {i, header.twin + " pass " + id + " " + table[i].name};
-  throw GlError("a shader's @replaces names " + header.twin + " pass " + id +
-                ", which is not in " + header.twin + "'s pass table");
+  throw GlError("a shader's @replaces names " + header.twin + " pass " + id + ", which is not in " +
+                header.twin + "'s pass table");
 }
 
 // The GLSL lines marked `// @pass id` (core/gl/shaders.h), added to a pass of passes.json once
@@ -222,7 +222,9 @@ std::string stateCard(const nlohmann::json& pass) {
        << " lines, in call order; grey: set before the pass's timer started)<table>\n";
   for (const nlohmann::json& l : state) {
     const std::string group = l["group"].get<std::string>();
-    const char* cls = group == "part" ? " class=\"part\"" : l.value("before_pass", false) ? " class=\"before\"" : "";
+    const char* cls = group == "part"                 ? " class=\"part\""
+                      : l.value("before_pass", false) ? " class=\"before\""
+                                                      : "";
     html << "<tr" << cls << "><td class=\"group\">" << htmlEscape(group) << "</td><td>"
          << htmlEscape(l["text"].get<std::string>()) << "</td></tr>\n";
   }
@@ -397,7 +399,8 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
       const std::string name = p["name"].get<std::string>();
       const std::string part = nameAfterId(t);
       const size_t open = name.rfind(" (");
-      if (open != std::string::npos && name != part && part.compare(0, open + 2, name, 0, open + 2) == 0)
+      if (open != std::string::npos && name != part &&
+          part.compare(0, open + 2, name, 0, open + 2) == 0)
         p["name"] = name.substr(0, open);
     }
     for (const GlStateLine& l : t.gl.setup)
@@ -414,14 +417,10 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   for (const PassDumpImage& i : images) {
     nlohmann::json& p = passes[i.passId.empty() ? std::to_string(i.pass) : i.passId];
     p["files"].push_back(i.file);
-    nlohmann::json image = {{"file", i.file},
-                            {"pass", i.pass},
-                            {"pass_id", i.passId},
-                            {"pass_name", p.value("name", "")},
-                            {"caption", i.caption},
-                            {"width", i.image.width},
-                            {"height", i.image.height},
-                            {"channels", i.image.channels}};
+    nlohmann::json image = {{"file", i.file},           {"pass", i.pass},
+                            {"pass_id", i.passId},      {"pass_name", p.value("name", "")},
+                            {"caption", i.caption},     {"width", i.image.width},
+                            {"height", i.image.height}, {"channels", i.image.channels}};
     if (!i.channel.empty()) {
       image["channel"] = i.channel;
       image["of"] = i.of;
@@ -439,8 +438,9 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     // The legacy passes a twin's pass replaces, in the order of the twin's table (the markers
     // list them in the shader's order).
     std::vector<ReplacedPass>& legacy = replaced[id];
-    std::stable_sort(legacy.begin(), legacy.end(),
-                     [](const ReplacedPass& a, const ReplacedPass& b) { return a.order < b.order; });
+    std::stable_sort(
+        legacy.begin(), legacy.end(),
+        [](const ReplacedPass& a, const ReplacedPass& b) { return a.order < b.order; });
     p["replaces"] = nlohmann::json::array();
     for (const ReplacedPass& r : legacy) p["replaces"].push_back(r.text);
     p["id"] = id;
@@ -523,7 +523,8 @@ std::string indexHtml(const nlohmann::json& passes) {
       for (const nlohmann::json& g : p["glsl"]) {
         html << (first ? "" : "; ") << "<code>" << htmlEscape(g["file"].get<std::string>())
              << "</code> lines " << g["first_line"].get<int>() << "&ndash;"
-             << g["last_line"].get<int>() << " (" << htmlEscape(g["title"].get<std::string>()) << ")";
+             << g["last_line"].get<int>() << " (" << htmlEscape(g["title"].get<std::string>())
+             << ")";
         first = false;
       }
       html << "</p>\n";

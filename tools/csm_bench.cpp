@@ -346,6 +346,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace sl
 
-int main(int argc, char** argv) {
-  return sl::runProgram("csm_bench", argc, argv, sl::run);
-}
+int main(int argc, char** argv) { return sl::runProgram("csm_bench", argc, argv, sl::run); }

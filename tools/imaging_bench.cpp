@@ -140,7 +140,7 @@ struct Operation {
   const char* name;
   std::function<void()> setup;
   std::function<void(int, int)> run;
-  bool noStage = false;  // no imaging/ transform of its own (accumulation buffer, floor rows)
+  bool noStage = false;     // no imaging/ transform of its own (accumulation buffer, floor rows)
   bool osmesaOnly = false;  // a write-back candidate of Debian's OSMesa: no reference call
   bool writesBack = true;   // ends in imaging/'s write-back (the glDrawPixels column applies)
 };
@@ -488,6 +488,4 @@ int run(int argc, char** argv) {
 
 }  // namespace sl::imaging::bench
 
-int main(int argc, char** argv) {
-  return sl::imaging::bench::run(argc, argv);
-}
+int main(int argc, char** argv) { return sl::imaging::bench::run(argc, argv); }

@@ -113,9 +113,10 @@ int run(int argc, char** argv) {
       httplib::Client c("127.0.0.1", port);
       c.set_read_timeout(300, 0);
       for (int i = 0; i < burst; ++i) {
-        const std::string path =
-            "/api/render?scene=" + scene + "&technique=" + t + "&size=" + size + "&light-position=-3," +
-            std::to_string(7.0 + kLightStep * (2 * i + offset)) + ",3&lane=drag";
+        const std::string path = "/api/render?scene=" + scene + "&technique=" + t +
+                                 "&size=" + size + "&light-position=-3," +
+                                 std::to_string(7.0 + kLightStep * (2 * i + offset)) +
+                                 ",3&lane=drag";
         auto r = c.Get(path.c_str());
         if (r && r->status == 200) ++rendered;
         if (r && r->status == 409) ++dropped;

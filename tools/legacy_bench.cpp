@@ -46,7 +46,8 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
       << sl::backendName(options.backend) << ", off and on interleaved: median of "
       << options.frames.timed << " rounds after " << options.frames.warmup
       << " warm-up frames each\n\n"
-      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' on "
+      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' "
+         "on "
          "/ off |\n|---|---|---|---|---|\n";
   for (const auto& v : variants) {
     sl::RenderParams p;
@@ -80,8 +81,7 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
         roundRatios.push_back(timings[1].frameSamples[r] / timings[0].frameSamples[r]);
     char row[200];
     std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f | %.3f |\n", v.label.c_str(), off, on,
-                  off > 0.0 ? on / off : 0.0,
-                  roundRatios.empty() ? 0.0 : sl::median(roundRatios));
+                  off > 0.0 ? on / off : 0.0, roundRatios.empty() ? 0.0 : sl::median(roundRatios));
     out << row;
   }
   out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
@@ -89,7 +89,7 @@ std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
          "checks the table is untouched).\n";
   return out.str();
 }
-}
+}  // namespace
 
 int main(int argc, char** argv) {
   sl::recordCommandLine(argc, argv);  // PNG text chunks name the command (core/base/provenance.h)
@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
         ->type_name("native|emulated");
     app.add_option("--frames", frames, "timed frames per variant, after the warm-up frames")
         ->type_name("N");
-    app.add_flag("--quick", quick, "the quick frame counts (core/technique/frame_timing.h kQuickFrames)");
+    app.add_flag("--quick", quick,
+                 "the quick frame counts (core/technique/frame_timing.h kQuickFrames)");
     app.add_option("--technique", only, "only legacy.ramp, legacy.pcf or legacy.fast-pcf")
         ->type_name("T");
     app.add_flag("--trace-overhead", traceOverhead,

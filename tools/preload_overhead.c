@@ -4,8 +4,8 @@
  * scripts/preload_overhead.sh runs it with and without LD_PRELOAD and prints the ratio.
  * Usage: preload_overhead FRAMES OBJECTS   Prints: "ms_per_frame X". */
 #define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
 #include <GL/gl.h>
+#include <GL/osmesa.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -26,7 +26,10 @@ static void draw_frame(int objects) {
     glPushMatrix();
     glTranslatef(x, y, 0.0f);
     glRotatef((float)(i * 7 % 360), 0.0f, 0.0f, 1.0f);
-    if (i % 2) glEnable(GL_BLEND); else glDisable(GL_BLEND);
+    if (i % 2)
+      glEnable(GL_BLEND);
+    else
+      glDisable(GL_BLEND);
     glBegin(GL_TRIANGLES);
     for (k = 0; k < kTrianglesPerObject; ++k) {
       glColor3f((float)k / kTrianglesPerObject, 0.5f, 1.0f - (float)k / kTrianglesPerObject);
@@ -40,17 +43,23 @@ static void draw_frame(int objects) {
   glFinish();
 }
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
   if (argc != 3 || atoi(argv[1]) <= 0 || atoi(argv[2]) <= 0) {
     fprintf(stderr, "usage: preload_overhead FRAMES OBJECTS\n");
     return 2;
   }
   const int frames = atoi(argv[1]), objects = atoi(argv[2]);
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, kDepthBits,
-                         OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         kDepthBits,
+                         OSMESA_PROFILE,
+                         OSMESA_COMPAT_PROFILE,
+                         0};
   OSMesaContext c = OSMesaCreateContextAttribs(attribs, NULL);
-  GLubyte *buffer = calloc(kSize * kSize, 4);
-  if (c == NULL || buffer == NULL || !OSMesaMakeCurrent(c, buffer, GL_UNSIGNED_BYTE, kSize, kSize)) {
+  GLubyte* buffer = calloc(kSize * kSize, 4);
+  if (c == NULL || buffer == NULL ||
+      !OSMesaMakeCurrent(c, buffer, GL_UNSIGNED_BYTE, kSize, kSize)) {
     fprintf(stderr, "preload_overhead: no OSMesa context\n");
     return 3;
   }

@@ -180,6 +180,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace sl
 
-int main(int argc, char** argv) {
-  return sl::runProgram("shadowlab-twins", argc, argv, sl::run);
-}
+int main(int argc, char** argv) { return sl::runProgram("shadowlab-twins", argc, argv, sl::run); }

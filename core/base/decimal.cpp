@@ -7,9 +7,7 @@
 namespace sl {
 namespace {
 
-bool isDigit(char c) {
-  return c >= '0' && c <= '9';
-}
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
 // Skips decimal digits from `i`; returns how many there were.
 size_t skipDigits(std::string_view text, size_t& i) {

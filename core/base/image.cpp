@@ -93,8 +93,8 @@ namespace {
 // zlib's default level for files; its fastest for in-memory PNGs: the live lab answers with
 // those while a slider moves, on loopback, where a few more bytes cost less than the time of
 // a denser deflate.
-constexpr int kFilePngCompression = -1;        // Z_DEFAULT_COMPRESSION
-constexpr int kInMemoryPngCompression = 1;     // Z_BEST_SPEED
+constexpr int kFilePngCompression = -1;     // Z_DEFAULT_COMPRESSION
+constexpr int kInMemoryPngCompression = 1;  // Z_BEST_SPEED
 
 // The PNG bytes of `image` with its provenance in tEXt chunks; `what` names it in errors.
 std::string pngBytes(const Image& image, int bitDepth, const Provenance& provenance,
@@ -244,7 +244,8 @@ Image magnifyNearest(const Image& image, int factor) {
   Image out(image.width * factor, image.height * factor, image.channels);
   for (int j = 0; j < out.height; ++j)
     for (int i = 0; i < out.width; ++i)
-      for (int c = 0; c < image.channels; ++c) out.at(i, j, c) = image.at(i / factor, j / factor, c);
+      for (int c = 0; c < image.channels; ++c)
+        out.at(i, j, c) = image.at(i / factor, j / factor, c);
   return out;
 }
 
@@ -320,7 +321,8 @@ Image sideBySide(const std::vector<Image>& images, int gap) {
 }
 
 bool allFinite(const Image& image) {
-  return std::all_of(image.data.begin(), image.data.end(), [](float v) { return std::isfinite(v); });
+  return std::all_of(image.data.begin(), image.data.end(),
+                     [](float v) { return std::isfinite(v); });
 }
 
 }  // namespace sl

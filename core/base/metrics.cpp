@@ -84,8 +84,10 @@ Image boundaryBand(const Image& mask, int radius) {
 }
 
 nlohmann::json toJson(const MaskDifference& d) {
-  return {{"pixels", d.pixels},   {"mismatching", d.mismatching},
-          {"max_abs", d.maxAbs},  {"rmse", d.rmse},
+  return {{"pixels", d.pixels},
+          {"mismatching", d.mismatching},
+          {"max_abs", d.maxAbs},
+          {"rmse", d.rmse},
           {"share_above_half", d.shareAboveHalf}};
 }
 

@@ -24,9 +24,7 @@ constexpr size_t kWriterSuffixReserve = 20;
 // The longest file name when the file system does not say (POSIX NAME_MAX of ext4, xfs, tmpfs).
 constexpr long kDefaultNameMax = 255;
 
-std::string errnoText() {
-  return std::strerror(errno);
-}
+std::string errnoText() { return std::strerror(errno); }
 
 // The longest file name `dir`'s file system allows.
 size_t nameMax(const fs::path& dir) {

@@ -27,9 +27,7 @@ const std::string& buildCommit() {
   return kCommit;
 }
 
-std::string softwareName() {
-  return "shadowlab " + buildCommit();
-}
+std::string softwareName() { return "shadowlab " + buildCommit(); }
 
 std::string shellQuote(const std::string& argument) {
   bool safe = !argument.empty(), printable = true;
@@ -76,12 +74,8 @@ void recordCommandLine(int argc, const char* const* argv) {
   storedCommandLine() = shellJoin(arguments);
 }
 
-void recordCommand(std::string command) {
-  storedCommandLine() = std::move(command);
-}
+void recordCommand(std::string command) { storedCommandLine() = std::move(command); }
 
-const std::string& commandLine() {
-  return storedCommandLine();
-}
+const std::string& commandLine() { return storedCommandLine(); }
 
 }  // namespace sl

@@ -72,7 +72,7 @@ struct GlContext::Impl {
   OSMesaContext osmesaContext = nullptr;
   std::vector<unsigned char> colorBuffer;  // the OSMesa "window"
   GLenum colorType = GL_UNSIGNED_BYTE;
-  bool bound = false;  // OSMesaMakeCurrent has been called once
+  bool bound = false;      // OSMesaMakeCurrent has been called once
   std::string adoptedApi;  // non-empty: the program's context, seen through GlContext::adopt
   std::map<std::string, std::shared_ptr<void>> layers;
 #ifdef SHADOWLAB_HAVE_EGL
@@ -182,13 +182,20 @@ void createDebianOsmesa(GlContext::Impl& impl, const ContextSpec& spec) {
   const int versions[][2] = {{4, 5}, {3, 3}, {2, 1}};
   for (const auto& v : versions) {
     if (core && v[0] < 3) break;
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                           OSMESA_DEPTH_BITS, kDepthBits,
-                           OSMESA_STENCIL_BITS, kStencilBits,
-                           OSMESA_ACCUM_BITS, spec.accumulation ? kAccumBits : 0,
-                           OSMESA_PROFILE, core ? OSMESA_CORE_PROFILE : OSMESA_COMPAT_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, v[0],
-                           OSMESA_CONTEXT_MINOR_VERSION, v[1],
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           kDepthBits,
+                           OSMESA_STENCIL_BITS,
+                           kStencilBits,
+                           OSMESA_ACCUM_BITS,
+                           spec.accumulation ? kAccumBits : 0,
+                           OSMESA_PROFILE,
+                           core ? OSMESA_CORE_PROFILE : OSMESA_COMPAT_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           v[0],
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           v[1],
                            0};
     impl.osmesaContext = impl.osmesa.createContextAttribs(attribs, nullptr);
     if (impl.osmesaContext != nullptr) return;
@@ -207,7 +214,8 @@ void createReferenceOsmesa(GlContext::Impl& impl, const ContextSpec& spec) {
     throw GlError("the reference GL renders 8-bit RGBA colour buffers only");
   // Private load (its README): both libraries export the same symbols.
   openOsmesa(impl, path.c_str(), kReferenceDlopenFlags);
-  if (impl.osmesa.createContextExt == nullptr) throw GlError(path + " has no OSMesaCreateContextExt");
+  if (impl.osmesa.createContextExt == nullptr)
+    throw GlError(path + " has no OSMesaCreateContextExt");
   impl.osmesaContext = impl.osmesa.createContextExt(OSMESA_RGBA, kDepthBits, kStencilBits,
                                                     spec.accumulation ? kAccumBits : 0, nullptr);
   if (impl.osmesaContext == nullptr) throw GlError("the reference GL could not create a context");
@@ -250,12 +258,25 @@ void createEgl(GlContext::Impl& impl, const ContextSpec& spec) {
   EGLint count = 0;
   if (!queryDevices(kMaxDevices, devices, &count) || count == 0)
     throw GlError("EGL found no device");
-  const int r = spec.color == ColorFormat::kRgba8 ? 8 : (spec.color == ColorFormat::kRgba16 ? 16 : 32);
-  const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,   EGL_RED_SIZE,   8,
-                                  EGL_GREEN_SIZE,   8,                 EGL_BLUE_SIZE,  8,
-                                  EGL_ALPHA_SIZE,   8,                 EGL_DEPTH_SIZE, kDepthBits,
-                                  EGL_STENCIL_SIZE, kStencilBits,      EGL_RENDERABLE_TYPE,
-                                  EGL_OPENGL_BIT,   EGL_NONE};
+  const int r =
+      spec.color == ColorFormat::kRgba8 ? 8 : (spec.color == ColorFormat::kRgba16 ? 16 : 32);
+  const EGLint configAttribs[] = {EGL_SURFACE_TYPE,
+                                  EGL_PBUFFER_BIT,
+                                  EGL_RED_SIZE,
+                                  8,
+                                  EGL_GREEN_SIZE,
+                                  8,
+                                  EGL_BLUE_SIZE,
+                                  8,
+                                  EGL_ALPHA_SIZE,
+                                  8,
+                                  EGL_DEPTH_SIZE,
+                                  kDepthBits,
+                                  EGL_STENCIL_SIZE,
+                                  kStencilBits,
+                                  EGL_RENDERABLE_TYPE,
+                                  EGL_OPENGL_BIT,
+                                  EGL_NONE};
   (void)r;  // DEVIATION (EGL): pbuffer configs are 8-bit; higher precision goes through FBOs.
   for (EGLint i = 0; i < count; ++i) {
     EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
@@ -266,11 +287,15 @@ void createEgl(GlContext::Impl& impl, const ContextSpec& spec) {
     EGLint nConfigs = 0;
     if (!chooseConfig(display, configAttribs, &config, 1, &nConfigs) || nConfigs == 0) continue;
     bindApi(EGL_OPENGL_API);
-    const EGLint contextAttribs[] = {
-        EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-        spec.profile == Profile::kCore ? EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT
-                                       : EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
-        EGL_NONE};
+    const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     spec.profile == Profile::kCore
+                                         ? EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT
+                                         : EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+                                     EGL_NONE};
     EGLContext context = createContext(display, config, EGL_NO_CONTEXT, contextAttribs);
     if (context == EGL_NO_CONTEXT) continue;
     const EGLint pbufferAttribs[] = {EGL_WIDTH, spec.width, EGL_HEIGHT, spec.height, EGL_NONE};
@@ -393,8 +418,9 @@ void GlContext::makeCurrent() {
       // aborts on its own assertion. The library keeps its own current context (it is loaded
       // privately), so a context that is still current there needs no call at all.
       if (!alreadyCurrent)
-        throw GlError("the reference GL (Mesa 7.8.2) cannot re-bind a context after another "
-                      "reference context was made current; use one reference context at a time");
+        throw GlError(
+            "the reference GL (Mesa 7.8.2) cannot re-bind a context after another "
+            "reference context was made current; use one reference context at a time");
       ok = true;
     } else {
       ok = impl.osmesa.makeCurrent(impl.osmesaContext, impl.colorBuffer.data(), impl.colorType,
@@ -407,8 +433,9 @@ void GlContext::makeCurrent() {
     ok = impl.eglMakeCurrent(impl.eglDisplay, impl.eglSurface, impl.eglSurface, impl.eglContext);
   }
 #endif
-  if (!ok) throw GlError(std::string("cannot make the ") + backendName(spec_.backend) +
-                         " context current");
+  if (!ok)
+    throw GlError(std::string("cannot make the ") + backendName(spec_.backend) +
+                  " context current");
   tCurrentContext = this;
   setCurrentGl(glFaultLayer(&dispatch_));  // the table itself, unless a fault is armed
 }
@@ -458,8 +485,7 @@ void GlContext::queryCapabilities() {
     caps_.depthBits = integer(GL_DEPTH_BITS);
     caps_.stencilBits = integer(GL_STENCIL_BITS);
   }
-  while (gl.GetError() != GL_NO_ERROR) {
-  }
+  while (gl.GetError() != GL_NO_ERROR) {}
 }
 
 }  // namespace sl

@@ -10,8 +10,7 @@ thread_local const GlDispatch* tCurrent = nullptr;
 }  // namespace
 
 void resolveGlDispatch(GlDispatch& table, GlResolver resolve, void* user) {
-#define SL_GL(name) \
-  table.name = reinterpret_cast<decltype(table.name)>(resolve("gl" #name, user));
+#define SL_GL(name) table.name = reinterpret_cast<decltype(table.name)>(resolve("gl" #name, user));
 #include "core/gl/gl_functions.inc"
 #undef SL_GL
 }

@@ -51,10 +51,10 @@ struct Forward<R (*)(Args...), Entry> {
 };
 
 namespace entry {
-#define SL_GL(name)                                                \
-  struct name {                                                    \
-    static constexpr auto kMember = &GlDispatch::name;             \
-    static constexpr const char* kName = "gl" #name;               \
+#define SL_GL(name)                                    \
+  struct name {                                        \
+    static constexpr auto kMember = &GlDispatch::name; \
+    static constexpr const char* kName = "gl" #name;   \
   };
 #include "core/gl/gl_functions.inc"
 #undef SL_GL

@@ -107,9 +107,8 @@ const GlDispatch& faultTable() {
 }
 
 long long positiveCount(const std::string& digits, const std::string& spelling) {
-  const bool allDigits =
-      !digits.empty() && digits.size() <= 18 &&
-      digits.find_first_not_of("0123456789") == std::string::npos;
+  const bool allDigits = !digits.empty() && digits.size() <= 18 &&
+                         digits.find_first_not_of("0123456789") == std::string::npos;
   const long long n = allDigits ? std::stoll(digits) : 0;
   if (n < 1)
     throw InputError(std::string(kGlFaultVariable) + ": the count after '#' must be a whole " +
@@ -120,8 +119,9 @@ long long positiveCount(const std::string& digits, const std::string& spelling) 
 }  // namespace
 
 GlFault parseGlFault(const std::string& text) {
-  const std::string forms = " (KIND@TRIGGER: KIND error or missing, TRIGGER pass=PREFIX, "
-                            "pass#N or call#N)";
+  const std::string forms =
+      " (KIND@TRIGGER: KIND error or missing, TRIGGER pass=PREFIX, "
+      "pass#N or call#N)";
   GlFault f;
   f.spelling = text;
   const size_t at = text.find('@');

@@ -78,9 +78,7 @@ ScopedPushMatrix::~ScopedPushMatrix() {
   }
 }
 
-ScopedClientState::ScopedClientState(GLenum array) : array_(array) {
-  glEnableClientState(array_);
-}
+ScopedClientState::ScopedClientState(GLenum array) : array_(array) { glEnableClientState(array_); }
 
 ScopedClientState::~ScopedClientState() {
   try {

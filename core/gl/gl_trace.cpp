@@ -23,15 +23,14 @@
 #pragma GCC diagnostic ignored "-Wrestrict"
 #endif
 
-
 namespace sl {
 
 using namespace gl_trace_detail;  // NOLINT: the trace's own helpers (gl_trace_internal.h)
 
 struct GlTrace::Impl {
   const GlDispatch* previous = nullptr;
-  GlDispatch inner;   // the table the calls go to
-  GlDispatch traced;  // the table current while tracing
+  GlDispatch inner;                         // the table the calls go to
+  GlDispatch traced;                        // the table current while tracing
   std::vector<std::vector<Line>> stack{1};  // [0]: outside passes; one more per open pass
   std::vector<std::vector<Line>> setups;    // setup lines of each open pass
   int paused = 0;
@@ -86,7 +85,8 @@ struct GlTrace::Impl {
   }
   std::string texture(GLuint id) const {
     auto it = textureShape.find(id);
-    return "texture " + std::to_string(id) + (it == textureShape.end() ? "" : " (" + it->second + ")");
+    return "texture " + std::to_string(id) +
+           (it == textureShape.end() ? "" : " (" + it->second + ")");
   }
   std::string boundName(GLenum target) const {
     return texture(boundTexture(target)) + " [" + glEnumName(target) + "]";
@@ -96,7 +96,8 @@ struct GlTrace::Impl {
     switch (matrixMode) {
       case GL_MODELVIEW: return "modelview";
       case GL_PROJECTION: return "projection";
-      case GL_TEXTURE: return "texture matrix (unit " + std::to_string(activeUnit - GL_TEXTURE0) + ")";
+      case GL_TEXTURE:
+        return "texture matrix (unit " + std::to_string(activeUnit - GL_TEXTURE0) + ")";
       case GL_COLOR: return "colour matrix";
       default: return glEnumName(matrixMode);
     }
@@ -153,9 +154,12 @@ void record(T& t, e::Color4fv, const GLfloat* v) {
 int lightValues(GLenum pname) {
   switch (pname) {
     case GL_SPOT_DIRECTION: return 3;
-    case GL_SHININESS: case GL_SPOT_EXPONENT: case GL_SPOT_CUTOFF: case GL_CONSTANT_ATTENUATION:
-    case GL_LINEAR_ATTENUATION: case GL_QUADRATIC_ATTENUATION:
-      return 1;
+    case GL_SHININESS:
+    case GL_SPOT_EXPONENT:
+    case GL_SPOT_CUTOFF:
+    case GL_CONSTANT_ATTENUATION:
+    case GL_LINEAR_ATTENUATION:
+    case GL_QUADRATIC_ATTENUATION: return 1;
     default: return 4;
   }
 }
@@ -242,11 +246,14 @@ void record(T& t, e::Frustum, GLdouble l, GLdouble r, GLdouble b, GLdouble tp, G
 // The caps of a texture unit (texgen, texture targets) name the unit.
 bool perUnitCap(GLenum cap) {
   switch (cap) {
-    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
-    case GL_TEXTURE_1D: case GL_TEXTURE_2D: case GL_TEXTURE_3D:
-      return true;
-    default:
-      return false;
+    case GL_TEXTURE_GEN_S:
+    case GL_TEXTURE_GEN_T:
+    case GL_TEXTURE_GEN_R:
+    case GL_TEXTURE_GEN_Q:
+    case GL_TEXTURE_1D:
+    case GL_TEXTURE_2D:
+    case GL_TEXTURE_3D: return true;
+    default: return false;
   }
 }
 void enableLine(T& t, const char* verb, GLenum cap) {
@@ -256,8 +263,8 @@ void record(T& t, e::Enable, GLenum cap) { enableLine(t, "enable ", cap); }
 void record(T& t, e::Disable, GLenum cap) { enableLine(t, "disable ", cap); }
 
 // ---- imaging subset ----
-void colorTable(T& t, const char* call, GLenum target, GLsizei first, GLsizei count,
-                GLenum format, GLenum type, const void* data, const std::string& internal) {
+void colorTable(T& t, const char* call, GLenum target, GLsizei first, GLsizei count, GLenum format,
+                GLenum type, const void* data, const std::string& internal) {
   std::string text = glEnumName(target) + internal + ": " + call + " " + std::to_string(count) +
                      " entries" + (first ? " from " + std::to_string(first) : "") + " (" +
                      glEnumName(format) + ", " + glEnumName(type) + ")";
@@ -279,19 +286,20 @@ void record(T& t, e::ColorTableParameterfv, GLenum target, GLenum pname, const G
 }
 void record(T& t, e::ConvolutionFilter2D, GLenum target, GLenum internal, GLsizei w, GLsizei h,
             GLenum format, GLenum type, const void* data) {
-  std::string text = glEnumName(target) + " [" + glEnumName(internal) + "]: " +
-                     std::to_string(w) + "x" + std::to_string(h) + " kernel (" +
-                     glEnumName(format) + ", " + glEnumName(type) + ")";
+  std::string text = glEnumName(target) + " [" + glEnumName(internal) + "]: " + std::to_string(w) +
+                     "x" + std::to_string(h) + " kernel (" + glEnumName(format) + ", " +
+                     glEnumName(type) + ")";
   const auto values = components(data, w * h, format, type);
   if (!values.empty())
-    text += ", rows top to bottom: " +
-            perComponent(values, format, [&](const std::vector<double>& v) { return grid(v, w, h); });
+    text +=
+        ", rows top to bottom: " +
+        perComponent(values, format, [&](const std::vector<double>& v) { return grid(v, w, h); });
   t.add("convolution", text);
 }
-void record(T& t, e::ConvolutionFilter1D, GLenum target, GLenum internal, GLsizei w,
-            GLenum format, GLenum type, const void* data) {
-  std::string text = glEnumName(target) + " [" + glEnumName(internal) + "]: " +
-                     std::to_string(w) + " taps";
+void record(T& t, e::ConvolutionFilter1D, GLenum target, GLenum internal, GLsizei w, GLenum format,
+            GLenum type, const void* data) {
+  std::string text =
+      glEnumName(target) + " [" + glEnumName(internal) + "]: " + std::to_string(w) + " taps";
   const auto values = components(data, w, format, type);
   if (!values.empty())
     text += ", " + perComponent(values, format,
@@ -312,12 +320,13 @@ void record(T& t, e::ConvolutionParameteri, GLenum target, GLenum pname, GLint v
   t.add("convolution", glEnumName(target) + ": " + glEnumName(pname) + " = " + enumOrNumber(v));
 }
 void record(T& t, e::ConvolutionParameteriv, GLenum target, GLenum pname, const GLint* v) {
-  t.add("convolution", glEnumName(target) + ": " + glEnumName(pname) + " = " +
-                           (v ? enumOrNumber(v[0]) : "null"));
+  t.add("convolution",
+        glEnumName(target) + ": " + glEnumName(pname) + " = " + (v ? enumOrNumber(v[0]) : "null"));
 }
 void record(T& t, e::ConvolutionParameterfv, GLenum target, GLenum pname, const GLfloat* v) {
   const bool one = pname == GL_CONVOLUTION_BORDER_MODE;
-  t.add("convolution", glEnumName(target) + ": " + glEnumName(pname) + " = " + tuple(v, one ? 1 : 4));
+  t.add("convolution",
+        glEnumName(target) + ": " + glEnumName(pname) + " = " + tuple(v, one ? 1 : 4));
 }
 
 // ---- blend, stencil ----
@@ -329,7 +338,8 @@ void record(T& t, e::BlendFuncSeparate, GLenum s, GLenum d, GLenum sa, GLenum da
                      factorName(sa) + ", " + factorName(da) + ")");
 }
 void record(T& t, e::StencilOp, GLenum f, GLenum zf, GLenum zp) {
-  t.add("stencil", "glStencilOp(" + factorName(f) + ", " + factorName(zf) + ", " + factorName(zp) + ")");
+  t.add("stencil",
+        "glStencilOp(" + factorName(f) + ", " + factorName(zf) + ", " + factorName(zp) + ")");
 }
 void record(T& t, e::StencilOpSeparate, GLenum face, GLenum f, GLenum zf, GLenum zp) {
   t.add("stencil", "glStencilOpSeparate(" + glEnumName(face) + ", " + factorName(f) + ", " +
@@ -338,7 +348,9 @@ void record(T& t, e::StencilOpSeparate, GLenum face, GLenum f, GLenum zf, GLenum
 
 // ---- pixels ----
 std::string size(GLsizei w, GLsizei h) { return std::to_string(w) + "x" + std::to_string(h); }
-std::string at(GLint x, GLint y) { return "(" + std::to_string(x) + ", " + std::to_string(y) + ")"; }
+std::string at(GLint x, GLint y) {
+  return "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
 void record(T& t, e::CopyPixels, GLint x, GLint y, GLsizei w, GLsizei h, GLenum type) {
   t.add("pixels", "glCopyPixels " + size(w, h) + " " + glEnumName(type) + " from " + at(x, y) +
                       " to the raster position (through the pixel transfer path)");
@@ -346,19 +358,19 @@ void record(T& t, e::CopyPixels, GLint x, GLint y, GLsizei w, GLsizei h, GLenum 
 void record(T& t, e::DrawPixels, GLsizei w, GLsizei h, GLenum format, GLenum type, const void*) {
   t.add("pixels", "glDrawPixels " + size(w, h) + " " + glEnumName(format) + " " + glEnumName(type));
 }
-void record(T& t, e::ReadPixels, GLint x, GLint y, GLsizei w, GLsizei h, GLenum format,
-            GLenum type, void*) {
+void record(T& t, e::ReadPixels, GLint x, GLint y, GLsizei w, GLsizei h, GLenum format, GLenum type,
+            void*) {
   t.add("pixels", "glReadPixels " + size(w, h) + " at " + at(x, y) + " " + glEnumName(format) +
                       " " + glEnumName(type));
 }
 void record(T& t, e::CopyTexSubImage2D, GLenum target, GLint level, GLint xo, GLint yo, GLint x,
             GLint y, GLsizei w, GLsizei h) {
   t.add("pixels", "glCopyTexSubImage2D " + size(w, h) + " from the framebuffer at " + at(x, y) +
-                      " into " + t.boundName(target) + " level " + std::to_string(level) +
-                      " at " + at(xo, yo));
+                      " into " + t.boundName(target) + " level " + std::to_string(level) + " at " +
+                      at(xo, yo));
 }
-void record(T& t, e::CopyTexImage2D, GLenum target, GLint level, GLenum internal, GLint x,
-            GLint y, GLsizei w, GLsizei h, GLint) {
+void record(T& t, e::CopyTexImage2D, GLenum target, GLint level, GLenum internal, GLint x, GLint y,
+            GLsizei w, GLsizei h, GLint) {
   t.setShape(target, size(w, h) + " " + glEnumName(internal));
   t.add("pixels", "glCopyTexImage2D " + size(w, h) + " from the framebuffer at " + at(x, y) +
                       " into " + t.boundName(target) + " level " + std::to_string(level));
@@ -366,16 +378,16 @@ void record(T& t, e::CopyTexImage2D, GLenum target, GLint level, GLenum internal
 void record(T& t, e::CopyTexSubImage1D, GLenum target, GLint level, GLint xo, GLint x, GLint y,
             GLsizei w) {
   t.add("pixels", "glCopyTexSubImage1D " + std::to_string(w) + " texels from " + at(x, y) +
-                      " into " + t.boundName(target) + " level " + std::to_string(level) +
-                      " at " + std::to_string(xo));
+                      " into " + t.boundName(target) + " level " + std::to_string(level) + " at " +
+                      std::to_string(xo));
 }
 
 // ---- textures ----
 void record(T& t, e::ActiveTexture, GLenum unit) { t.activeUnit = unit; }
 void record(T& t, e::BindTexture, GLenum target, GLuint id) {
   t.bound[{t.activeUnit, target}] = id;
-  t.add("texture", "unit " + std::to_string(t.activeUnit - GL_TEXTURE0) + " " +
-                       glEnumName(target) + " = " + t.texture(id));
+  t.add("texture", "unit " + std::to_string(t.activeUnit - GL_TEXTURE0) + " " + glEnumName(target) +
+                       " = " + t.texture(id));
 }
 void record(T& t, e::TexParameteri, GLenum target, GLenum pname, GLint v) {
   t.add("texture", t.boundName(target) + ": " + glEnumName(pname) + " = " + enumOrNumber(v));
@@ -392,8 +404,8 @@ void record(T& t, e::TexParameterfv, GLenum target, GLenum pname, const GLfloat*
 void record(T& t, e::TexEnvi, GLenum target, GLenum pname, GLint v) {
   t.add("texture", glEnumName(target) + ": " + glEnumName(pname) + " = " + enumOrNumber(v));
 }
-void record(T& t, e::TexImage2D, GLenum target, GLint level, GLint internal, GLsizei w,
-            GLsizei h, GLint, GLenum format, GLenum type, const void* data) {
+void record(T& t, e::TexImage2D, GLenum target, GLint level, GLint internal, GLsizei w, GLsizei h,
+            GLint, GLenum format, GLenum type, const void* data) {
   if (level == 0) t.setShape(target, size(w, h) + " " + enumOrNumber(internal));
   t.add("texture", t.boundName(target) + ": level " + std::to_string(level) + " " + size(w, h) +
                        " " + enumOrNumber(internal) +
@@ -457,13 +469,23 @@ void uniformArray(T& t, GLint l, GLsizei count, int n, const GLfloat* v) {
   for (GLsizei i = 0; i < count; ++i) text += (i ? " " : "") + tuple(v + i * n, n);
   uniform(t, l, count > 1 ? "[" + text + "]" : text);
 }
-void record(T& t, e::Uniform1fv, GLint l, GLsizei c, const GLfloat* v) { uniformArray(t, l, c, 1, v); }
-void record(T& t, e::Uniform2fv, GLint l, GLsizei c, const GLfloat* v) { uniformArray(t, l, c, 2, v); }
-void record(T& t, e::Uniform3fv, GLint l, GLsizei c, const GLfloat* v) { uniformArray(t, l, c, 3, v); }
-void record(T& t, e::Uniform4fv, GLint l, GLsizei c, const GLfloat* v) { uniformArray(t, l, c, 4, v); }
+void record(T& t, e::Uniform1fv, GLint l, GLsizei c, const GLfloat* v) {
+  uniformArray(t, l, c, 1, v);
+}
+void record(T& t, e::Uniform2fv, GLint l, GLsizei c, const GLfloat* v) {
+  uniformArray(t, l, c, 2, v);
+}
+void record(T& t, e::Uniform3fv, GLint l, GLsizei c, const GLfloat* v) {
+  uniformArray(t, l, c, 3, v);
+}
+void record(T& t, e::Uniform4fv, GLint l, GLsizei c, const GLfloat* v) {
+  uniformArray(t, l, c, 4, v);
+}
 void record(T& t, e::UniformMatrix4fv, GLint l, GLsizei c, GLboolean transpose, const GLfloat* v) {
-  if (c == 1 && v != nullptr) uniform(t, l, "mat4 " + (transpose ? transposedRows(v) : matrixRows(v)));
-  else uniform(t, l, std::to_string(c) + " mat4");
+  if (c == 1 && v != nullptr)
+    uniform(t, l, "mat4 " + (transpose ? transposedRows(v) : matrixRows(v)));
+  else
+    uniform(t, l, std::to_string(c) + " mat4");
 }
 
 // ---- render targets ----
@@ -480,8 +502,7 @@ void record(T& t, e::BindFramebuffer, GLenum target, GLuint fb) {
   }
   t.add("target", text);
 }
-void record(T& t, e::FramebufferTexture2D, GLenum, GLenum point, GLenum, GLuint tex,
-            GLint level) {
+void record(T& t, e::FramebufferTexture2D, GLenum, GLenum point, GLenum, GLuint tex, GLint level) {
   const std::string what = t.texture(tex) + (level ? " level " + std::to_string(level) : "");
   t.attachments[t.drawFramebuffer][point] = what;
   t.add("target", "framebuffer " + std::to_string(t.drawFramebuffer) + ": " + glEnumName(point) +
@@ -489,7 +510,8 @@ void record(T& t, e::FramebufferTexture2D, GLenum, GLenum point, GLenum, GLuint 
 }
 void record(T& t, e::FramebufferTextureLayer, GLenum, GLenum point, GLuint tex, GLint level,
             GLint layer) {
-  t.add("target", "framebuffer " + std::to_string(t.drawFramebuffer) + ": " + glEnumName(point) + " = " + t.texture(tex) + " layer " + std::to_string(layer) +
+  t.add("target", "framebuffer " + std::to_string(t.drawFramebuffer) + ": " + glEnumName(point) +
+                      " = " + t.texture(tex) + " layer " + std::to_string(layer) +
                       (level ? " level " + std::to_string(level) : ""));
 }
 void record(T& t, e::DrawBuffers, GLsizei n, const GLenum* bufs) {
@@ -519,8 +541,7 @@ void record(T& t, e::DrawElements, GLenum mode, GLsizei count, GLenum, const voi
   t.addDraw("glDrawElements(" + primitiveName(mode) + ")", count, "indices");
 }
 void record(T& t, e::DrawArraysInstanced, GLenum mode, GLint, GLsizei count, GLsizei n) {
-  t.addDraw("glDrawArraysInstanced(" + primitiveName(mode) + ")", (long long)count * n,
-            "vertices");
+  t.addDraw("glDrawArraysInstanced(" + primitiveName(mode) + ")", (long long)count * n, "vertices");
 }
 void record(T& t, e::DrawElementsInstanced, GLenum mode, GLsizei count, GLenum, const void*,
             GLsizei n) {
@@ -539,7 +560,8 @@ template <class R, class... Args, class Entry>
 struct Traced<R (*)(Args...), Entry> {
   static R call(Args... args) {
     T* t = tTracer;
-    if (t == nullptr) throw GlError("a traced GL entry point was called on a thread that is not tracing");
+    if (t == nullptr)
+      throw GlError("a traced GL entry point was called on a thread that is not tracing");
     auto fn = t->inner.*Entry::kMember;
     if (fn == nullptr) gl::throwMissingEntryPoint(Entry::kName);
     record(*t, Entry{}, args...);
@@ -560,10 +582,9 @@ GlTrace::GlTrace() : impl_(std::make_unique<Impl>()) {
   Impl& t = *impl_;
   t.previous = &currentGl();
   t.inner = *t.previous;
-#define SL_GL(name)                                                                         \
-  t.traced.name = t.inner.name == nullptr                                                   \
-                      ? nullptr                                                             \
-                      : &Traced<decltype(&::gl##name), gl::entry::name>::call;
+#define SL_GL(name) \
+  t.traced.name =   \
+      t.inner.name == nullptr ? nullptr : &Traced<decltype(&::gl##name), gl::entry::name>::call;
 #include "core/gl/gl_functions.inc"
 #undef SL_GL
   tTracer = &t;

@@ -18,7 +18,8 @@ namespace sl::gl_trace_detail {
 namespace {
 
 std::string finished(const Line& l) {
-  if (l.drawKey.empty()) return l.repeat > 1 ? l.text + " (x" + std::to_string(l.repeat) + ")" : l.text;
+  if (l.drawKey.empty())
+    return l.repeat > 1 ? l.text + " (x" + std::to_string(l.repeat) + ")" : l.text;
   const bool begin = l.drawKey.rfind("glBegin", 0) == 0;
   std::string out = l.drawKey;
   if (l.calls > 1)
@@ -37,8 +38,8 @@ bool perObject(const Line& l) {
          (l.group == "matrix" && (starts("modelview: push") || starts("modelview: pop") ||
                                   starts("modelview: multiply by"))) ||
          (l.group == "vertex arrays" &&
-          (starts("glVertexPointer") || starts("glNormalPointer") ||
-           starts("glTexCoordPointer") || starts("glBindVertexArray")));
+          (starts("glVertexPointer") || starts("glNormalPointer") || starts("glTexCoordPointer") ||
+           starts("glBindVertexArray")));
 }
 
 // What a per-object line sets, without the value: "uModel", "modelview: multiply by".

@@ -28,9 +28,8 @@ constexpr int kMatrixSide = 4;
 const std::unordered_map<GLenum, std::string>& enumNames() {
   static const std::unordered_map<GLenum, std::string> names = [] {
     std::unordered_map<GLenum, std::string> m;
-#define SL_GL_ENUM(name)                                          \
-  if (auto [it, added] = m.emplace(GLenum(name), #name); !added) \
-    it->second += " = " #name;
+#define SL_GL_ENUM(name) \
+  if (auto [it, added] = m.emplace(GLenum(name), #name); !added) it->second += " = " #name;
 #include "core/gl/gl_enum_names.inc"
 #undef SL_GL_ENUM
     return m;
@@ -60,10 +59,9 @@ std::string enumOrNumber(long long v) {
 }
 
 std::string primitiveName(GLenum mode) {
-  static const char* const kModes[] = {"GL_POINTS",     "GL_LINES",          "GL_LINE_LOOP",
-                                       "GL_LINE_STRIP", "GL_TRIANGLES",      "GL_TRIANGLE_STRIP",
-                                       "GL_TRIANGLE_FAN", "GL_QUADS",        "GL_QUAD_STRIP",
-                                       "GL_POLYGON"};
+  static const char* const kModes[] = {
+      "GL_POINTS",         "GL_LINES",        "GL_LINE_LOOP", "GL_LINE_STRIP", "GL_TRIANGLES",
+      "GL_TRIANGLE_STRIP", "GL_TRIANGLE_FAN", "GL_QUADS",     "GL_QUAD_STRIP", "GL_POLYGON"};
   return mode < std::size(kModes) ? kModes[mode] : glEnumName(mode);
 }
 
@@ -75,11 +73,10 @@ std::string factorName(GLenum f) {
 }
 
 std::string clearMask(GLbitfield mask) {
-  static const std::pair<GLbitfield, const char*> kBits[] = {
-      {GL_COLOR_BUFFER_BIT, "colour"},
-      {GL_DEPTH_BUFFER_BIT, "depth"},
-      {GL_STENCIL_BUFFER_BIT, "stencil"},
-      {GL_ACCUM_BUFFER_BIT, "accumulation"}};
+  static const std::pair<GLbitfield, const char*> kBits[] = {{GL_COLOR_BUFFER_BIT, "colour"},
+                                                             {GL_DEPTH_BUFFER_BIT, "depth"},
+                                                             {GL_STENCIL_BUFFER_BIT, "stencil"},
+                                                             {GL_ACCUM_BUFFER_BIT, "accumulation"}};
   std::string out;
   for (const auto& [bit, word] : kBits)
     if (mask & bit) out += (out.empty() ? "" : " + ") + std::string(word);
@@ -103,8 +100,7 @@ std::string matrixRows(const float* m) {
   if (m == nullptr) return "(null)";
   std::string out = "[";
   for (int r = 0; r < kMatrixSide; ++r) {
-    for (int c = 0; c < kMatrixSide; ++c)
-      out += (c ? " " : "") + num(m[c * kMatrixSide + r]);
+    for (int c = 0; c < kMatrixSide; ++c) out += (c ? " " : "") + num(m[c * kMatrixSide + r]);
     out += r + 1 < kMatrixSide ? "; " : "]";
   }
   return out;
@@ -174,8 +170,10 @@ std::string numWithCode(double v) {
 std::string runs(const std::vector<double>& v) {
   std::vector<std::pair<size_t, size_t>> r;  // [first, last] of equal values
   for (size_t i = 0; i < v.size(); ++i) {
-    if (!r.empty() && v[i] == v[r.back().second]) r.back().second = i;
-    else r.push_back({i, i});
+    if (!r.empty() && v[i] == v[r.back().second])
+      r.back().second = i;
+    else
+      r.push_back({i, i});
   }
   std::string out;
   if (r.size() > kMaxListedRuns) {
@@ -197,7 +195,8 @@ std::string runs(const std::vector<double>& v) {
 std::string grid(const std::vector<double>& v, int width, int height) {
   std::string out = "[";
   for (int row = height - 1; row >= 0; --row) {
-    for (int col = 0; col < width; ++col) out += (col ? " " : "") + num(v[size_t(row * width + col)]);
+    for (int col = 0; col < width; ++col)
+      out += (col ? " " : "") + num(v[size_t(row * width + col)]);
     out += row > 0 ? " / " : "]";
   }
   return out;
@@ -206,22 +205,31 @@ std::string grid(const std::vector<double>& v, int width, int height) {
 // Which group an enable/disable of `cap` belongs to.
 const char* capGroup(GLenum cap) {
   switch (cap) {
-    case GL_TEXTURE_GEN_S: case GL_TEXTURE_GEN_T: case GL_TEXTURE_GEN_R: case GL_TEXTURE_GEN_Q:
-      return "texgen";
-    case GL_COLOR_TABLE: case GL_POST_CONVOLUTION_COLOR_TABLE:
-    case GL_POST_COLOR_MATRIX_COLOR_TABLE:
-      return "colour table";
-    case GL_CONVOLUTION_1D: case GL_CONVOLUTION_2D: case GL_SEPARABLE_2D:
-      return "convolution";
-    case GL_HISTOGRAM: case GL_MINMAX: return "histogram";
+    case GL_TEXTURE_GEN_S:
+    case GL_TEXTURE_GEN_T:
+    case GL_TEXTURE_GEN_R:
+    case GL_TEXTURE_GEN_Q: return "texgen";
+    case GL_COLOR_TABLE:
+    case GL_POST_CONVOLUTION_COLOR_TABLE:
+    case GL_POST_COLOR_MATRIX_COLOR_TABLE: return "colour table";
+    case GL_CONVOLUTION_1D:
+    case GL_CONVOLUTION_2D:
+    case GL_SEPARABLE_2D: return "convolution";
+    case GL_HISTOGRAM:
+    case GL_MINMAX: return "histogram";
     case GL_BLEND: return "blend";
     case GL_DEPTH_TEST: return "depth";
     case GL_ALPHA_TEST: return "alpha";
     case GL_STENCIL_TEST: return "stencil";
-    case GL_POLYGON_OFFSET_FILL: case GL_POLYGON_OFFSET_LINE: case GL_POLYGON_OFFSET_POINT:
-      return "polygon offset";
-    case GL_TEXTURE_1D: case GL_TEXTURE_2D: case GL_TEXTURE_3D: return "texture";
-    case GL_LIGHTING: case GL_COLOR_MATERIAL: case GL_NORMALIZE: return "lighting";
+    case GL_POLYGON_OFFSET_FILL:
+    case GL_POLYGON_OFFSET_LINE:
+    case GL_POLYGON_OFFSET_POINT: return "polygon offset";
+    case GL_TEXTURE_1D:
+    case GL_TEXTURE_2D:
+    case GL_TEXTURE_3D: return "texture";
+    case GL_LIGHTING:
+    case GL_COLOR_MATERIAL:
+    case GL_NORMALIZE: return "lighting";
     default:
       if (cap >= GL_LIGHT0 && cap <= GL_LIGHT7) return "lighting";
       return "enable";
@@ -233,10 +241,9 @@ const char* capGroup(GLenum cap) {
 const char* groupOf(std::string_view n) {
   auto starts = [&](std::string_view p) { return n.substr(0, p.size()) == p; };
   if (starts("Get") || starts("Is") || starts("Gen") || starts("Create") || starts("Delete") ||
-      n == "CompileShader" || n == "ShaderSource" || n == "AttachShader" ||
-      n == "LinkProgram" || n == "BindAttribLocation" || n == "BindFragDataLocation" ||
-      n == "CheckFramebufferStatus" || n == "Finish" || n == "Flush" || n == "BeginQuery" ||
-      n == "EndQuery")
+      n == "CompileShader" || n == "ShaderSource" || n == "AttachShader" || n == "LinkProgram" ||
+      n == "BindAttribLocation" || n == "BindFragDataLocation" || n == "CheckFramebufferStatus" ||
+      n == "Finish" || n == "Flush" || n == "BeginQuery" || n == "EndQuery")
     return nullptr;
   if (starts("TexGen")) return "texgen";
   if (starts("Blend")) return "blend";
@@ -258,8 +265,8 @@ const char* groupOf(std::string_view n) {
   if (n == "UseProgram") return "program";
   if (starts("Uniform")) return "uniforms";
   if (starts("BindFramebuffer") || starts("Framebuffer") || starts("BindRenderbuffer") ||
-      starts("RenderbufferStorage") || n == "DrawBuffer" || n == "DrawBuffers" ||
-      n == "Viewport" || n == "BlitFramebuffer")
+      starts("RenderbufferStorage") || n == "DrawBuffer" || n == "DrawBuffers" || n == "Viewport" ||
+      n == "BlitFramebuffer")
     return "target";
   if (starts("Clear")) return "clear";
   if (starts("Light") || starts("Material") || n == "ColorMaterial" || n == "ShadeModel")

@@ -102,8 +102,10 @@ std::vector<ShaderPassMarker> shaderPassMarkers() {
           ++ids;
         }
         if (!legacyName || ids == 0)
-          throw GlError(where + ": @replaces takes a legacy technique and its pass ids "
-                        "(\"legacy.fast-pcf 6a 6b\"), got \"" + line + "\"");
+          throw GlError(where +
+                        ": @replaces takes a legacy technique and its pass ids "
+                        "(\"legacy.fast-pcf 6a 6b\"), got \"" +
+                        line + "\"");
         open.back().firstLine = number + 1;
       } else if (line.rfind(kEnd, 0) == 0) {
         const std::string id = trimmed(line.substr(kEnd.size()));

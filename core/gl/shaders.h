@@ -49,10 +49,10 @@ struct ShaderReplaces {
 };
 struct ShaderPassMarker {
   std::string id;
-  std::string file;    // "fast_pcf_pack.frag.glsl"
-  int firstLine = 0;   // the marked code, 1-based, without the marker lines
+  std::string file;   // "fast_pcf_pack.frag.glsl"
+  int firstLine = 0;  // the marked code, 1-based, without the marker lines
   int lastLine = 0;
-  std::string title;   // the text after "@pass ID:"
+  std::string title;                     // the text after "@pass ID:"
   std::vector<ShaderReplaces> replaces;  // in the order of the @replaces lines
 };
 // Every marker of every embedded shader, by file then line. Throws GlError naming the file and

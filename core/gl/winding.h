@@ -18,9 +18,7 @@
 namespace sl {
 
 // True when `model` mirrors space (reverses the orientation of every triangle).
-inline bool mirrors(const glm::mat4& model) {
-  return glm::determinant(glm::mat3(model)) < 0.0f;
-}
+inline bool mirrors(const glm::mat4& model) { return glm::determinant(glm::mat3(model)) < 0.0f; }
 
 // While alive: the front face is the caller's, turned over when `model` mirrors. Objects that
 // do not mirror issue no GL call (their traces and pass dumps are unchanged).

@@ -180,9 +180,7 @@ int plyTypeBytes(const std::string& type, bool* isInteger, bool* isSigned) {
 }
 
 // Spaces and tabs separate the words of a PLY line; a '\r' before the '\n' ends it.
-bool isWordSeparator(char c) {
-  return c == ' ' || c == '\t' || c == '\r';
-}
+bool isWordSeparator(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 // The next word of `line` at or after `*at`, and `*at` moved past it; empty at the end.
 std::string_view nextWord(std::string_view line, std::size_t* at) {
@@ -340,9 +338,7 @@ class TriangleTally {
   std::uint64_t triangles_ = 0;
 };
 
-bool isFaceElement(const PlyElement& e) {
-  return e.name == "face" || e.name == "tristrips";
-}
+bool isFaceElement(const PlyElement& e) { return e.name == "face" || e.name == "tristrips"; }
 
 std::string declaredInstance(const PlyElement& e, std::uint64_t i) {
   return e.name + " " + std::to_string(i) + " of " + std::to_string(e.count);

@@ -48,8 +48,8 @@ Mesh makePlane(float sizeX, float sizeZ, int divisions) {
   Mesh m;
   for (int j = 0; j <= divisions; ++j)
     for (int i = 0; i <= divisions; ++i) {
-      m.positions.push_back({sizeX * (float(i) / divisions - 0.5f), 0.0f,
-                             sizeZ * (float(j) / divisions - 0.5f)});
+      m.positions.push_back(
+          {sizeX * (float(i) / divisions - 0.5f), 0.0f, sizeZ * (float(j) / divisions - 0.5f)});
       m.normals.push_back({0, 1, 0});
     }
   const unsigned row = unsigned(divisions + 1);
@@ -138,20 +138,21 @@ Mesh makeCylinder(float radius, float height, int slices) {
     const float t1 = 2.0f * glm::pi<float>() * float((i + 1) % slices) / slices;
     const glm::vec3 n0(std::cos(t0), 0, -std::sin(t0)), n1(std::cos(t1), 0, -std::sin(t1));
     const unsigned base = unsigned(m.positions.size());
-    m.positions.insert(m.positions.end(), {radius * n0 + glm::vec3(0, -h, 0),
-                                           radius * n1 + glm::vec3(0, -h, 0),
-                                           radius * n1 + glm::vec3(0, h, 0),
-                                           radius * n0 + glm::vec3(0, h, 0)});
+    m.positions.insert(m.positions.end(),
+                       {radius * n0 + glm::vec3(0, -h, 0), radius * n1 + glm::vec3(0, -h, 0),
+                        radius * n1 + glm::vec3(0, h, 0), radius * n0 + glm::vec3(0, h, 0)});
     m.normals.insert(m.normals.end(), {n0, n1, n1, n0});
     m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     // caps as fans around centre vertices
     const unsigned c = unsigned(m.positions.size());
-    m.positions.insert(m.positions.end(), {{0, h, 0}, radius * n0 + glm::vec3(0, h, 0),
-                                           radius * n1 + glm::vec3(0, h, 0), {0, -h, 0},
+    m.positions.insert(m.positions.end(), {{0, h, 0},
+                                           radius * n0 + glm::vec3(0, h, 0),
+                                           radius * n1 + glm::vec3(0, h, 0),
+                                           {0, -h, 0},
                                            radius * n0 + glm::vec3(0, -h, 0),
                                            radius * n1 + glm::vec3(0, -h, 0)});
-    m.normals.insert(m.normals.end(), {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, -1, 0}, {0, -1, 0},
-                                       {0, -1, 0}});
+    m.normals.insert(m.normals.end(),
+                     {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, -1, 0}, {0, -1, 0}, {0, -1, 0}});
     m.indices.insert(m.indices.end(), {c, c + 1, c + 2, c + 3, c + 5, c + 4});
   }
   m.closed = true;
@@ -226,8 +227,10 @@ Mesh makeTree(float height) {
   const struct {
     glm::vec3 c;
     float r;
-  } blobs[] = {{{0, 0.62f, 0}, 0.22f},        {{0.14f, 0.78f, 0.05f}, 0.16f},
-               {{-0.13f, 0.76f, -0.06f}, 0.17f}, {{0.02f, 0.9f, 0.08f}, 0.12f}};
+  } blobs[] = {{{0, 0.62f, 0}, 0.22f},
+               {{0.14f, 0.78f, 0.05f}, 0.16f},
+               {{-0.13f, 0.76f, -0.06f}, 0.17f},
+               {{0.02f, 0.9f, 0.08f}, 0.12f}};
   for (const auto& b : blobs)
     appendMesh(m, makeSphere(b.r * height, 16, 8), glm::translate(glm::mat4(1), b.c * height));
   return m;

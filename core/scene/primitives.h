@@ -24,12 +24,12 @@ constexpr int kMaxTreeLevels = 7;          // 4 * 3^(levels - 1) tips: 2916 at t
 // beyond it a float position has less than a millimetre-per-kilometre of precision left.
 constexpr float kMaxPrimitiveLength = 1e6f;
 
-Mesh makePlane(float sizeX, float sizeZ, int divisions = 1);       // y = 0, normal +y, open
-Mesh makeBox(const glm::vec3& size);                                 // centred, closed
-Mesh makeSphere(float radius, int slices = 32, int stacks = 16);     // closed
-Mesh makeCylinder(float radius, float height, int slices = 32);      // capped, closed, y up
+Mesh makePlane(float sizeX, float sizeZ, int divisions = 1);               // y = 0, normal +y, open
+Mesh makeBox(const glm::vec3& size);                                       // centred, closed
+Mesh makeSphere(float radius, int slices = 32, int stacks = 16);           // closed
+Mesh makeCylinder(float radius, float height, int slices = 32);            // capped, closed, y up
 Mesh makeTorus(float major, float minor, int rings = 32, int sides = 16);  // closed
-Mesh makeQuad(float sizeX, float sizeY);                             // z = 0, normal +z, open
+Mesh makeQuad(float sizeX, float sizeY);                                   // z = 0, normal +z, open
 // A picket fence along x (Annen et al. Fig. 9): `pickets` closed boxes on two closed rails.
 Mesh makeFence(float length, float height, int pickets);
 // A stylised tree: cylinder trunk and a few spheres of foliage (closed pieces).

@@ -5,12 +5,11 @@
 // (core/scene/mesh_io.cpp) or from the primitive generators in core/scene/primitives.h.
 #pragma once
 
+#include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace sl {
 

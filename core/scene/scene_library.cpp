@@ -51,10 +51,13 @@ constexpr int kBrabecGroundDivisions = 32;  // keeps the scene near its 7000 pol
 Scene analyticScene() {
   Scene s;
   s.name = "analytic";
-  s.description = "unit square occluder 1 unit above a plane, light 4 units above (exact shadow known)";
-  s.objects.push_back(object("ground", makePlane(6, 6, kGroundDivisions), glm::mat4(1), kGround, false, true));
+  s.description =
+      "unit square occluder 1 unit above a plane, light 4 units above (exact shadow known)";
+  s.objects.push_back(
+      object("ground", makePlane(6, 6, kGroundDivisions), glm::mat4(1), kGround, false, true));
   Mesh square = makeBox({1.0f, 0.02f, 1.0f});
-  s.objects.push_back(object("occluder", square, at({0, 1.0f, 0}), {0.8f, 0.3f, 0.2f}, true, false));
+  s.objects.push_back(
+      object("occluder", square, at({0, 1.0f, 0}), {0.8f, 0.3f, 0.2f}, true, false));
   s.camera.position = {0, 6.5f, 3.2f};
   s.camera.target = {0, 0, 0.3f};
   s.camera.fovyDegrees = 40;
@@ -72,15 +75,17 @@ Scene analyticScene() {
 Scene brabecScene() {
   Scene s;
   s.name = "brabec";
-  s.description = "torus, spheres, boxes and a cylinder on a ground plane, ~7000 triangles (Brabec–Seidel §5)";
-  s.objects.push_back(object("ground", makePlane(12, 12, kBrabecGroundDivisions), glm::mat4(1), kGround, true, true));
+  s.description =
+      "torus, spheres, boxes and a cylinder on a ground plane, ~7000 triangles (Brabec–Seidel §5)";
+  s.objects.push_back(object("ground", makePlane(12, 12, kBrabecGroundDivisions), glm::mat4(1),
+                             kGround, true, true));
   s.objects.push_back(object("torus", makeTorus(0.8f, 0.25f, 48, 24),
                              glm::rotate(at({-1.3f, 1.1f, 0.2f}), glm::radians(60.0f), {1, 0, 0}),
                              {0.85f, 0.35f, 0.25f}));
-  s.objects.push_back(object("sphere", makeSphere(0.6f, 48, 24), at({1.3f, 0.9f, -0.6f}),
-                             {0.3f, 0.5f, 0.85f}));
-  s.objects.push_back(object("small sphere", makeSphere(0.3f, 32, 16), at({0.4f, 0.3f, 1.3f}),
-                             {0.9f, 0.8f, 0.3f}));
+  s.objects.push_back(
+      object("sphere", makeSphere(0.6f, 48, 24), at({1.3f, 0.9f, -0.6f}), {0.3f, 0.5f, 0.85f}));
+  s.objects.push_back(
+      object("small sphere", makeSphere(0.3f, 32, 16), at({0.4f, 0.3f, 1.3f}), {0.9f, 0.8f, 0.3f}));
   s.objects.push_back(object("box", makeBox({0.8f, 0.8f, 0.8f}),
                              glm::rotate(at({0.2f, 0.4f, -1.8f}), glm::radians(30.0f), {0, 1, 0}),
                              {0.4f, 0.75f, 0.4f}));
@@ -103,13 +108,14 @@ Scene fenceScene() {
   Scene s;
   s.name = "fence";
   s.description = "a picket fence casting onto objects and ground (Annen et al. Fig. 9)";
-  s.objects.push_back(object("ground", makePlane(12, 12, kGroundDivisions), glm::mat4(1), kGround, false, true));
-  s.objects.push_back(object("fence", makeFence(4.0f, 1.2f, 12), at({0, 0, 0.8f}),
-                             {0.65f, 0.5f, 0.35f}));
-  s.objects.push_back(object("box", makeBox({0.7f, 0.7f, 0.7f}), at({-0.8f, 0.35f, -0.6f}),
-                             {0.4f, 0.6f, 0.8f}));
-  s.objects.push_back(object("sphere", makeSphere(0.45f), at({0.9f, 0.45f, -0.5f}),
-                             {0.8f, 0.4f, 0.4f}));
+  s.objects.push_back(
+      object("ground", makePlane(12, 12, kGroundDivisions), glm::mat4(1), kGround, false, true));
+  s.objects.push_back(
+      object("fence", makeFence(4.0f, 1.2f, 12), at({0, 0, 0.8f}), {0.65f, 0.5f, 0.35f}));
+  s.objects.push_back(
+      object("box", makeBox({0.7f, 0.7f, 0.7f}), at({-0.8f, 0.35f, -0.6f}), {0.4f, 0.6f, 0.8f}));
+  s.objects.push_back(
+      object("sphere", makeSphere(0.45f), at({0.9f, 0.45f, -0.5f}), {0.8f, 0.4f, 0.4f}));
   s.camera.position = {0.0f, 3.0f, -5.0f};
   s.camera.target = {0, 0.3f, 0.2f};
   s.camera.fovyDegrees = 45;
@@ -127,11 +133,13 @@ Scene fenceScene() {
 Scene treesScene() {
   Scene s;
   s.name = "trees";
-  s.description = "procedural trees on a large ground plane (stand-in for the trees of Annen et al.)";
-  s.objects.push_back(object("ground", makePlane(30, 30, kGroundDivisions), glm::mat4(1), kGround, false, true));
-  const glm::vec3 spots[] = {{0, 0, 0}, {2.5f, 0, -1.5f}, {-2.2f, 0, -2.5f}, {-3, 0, 1.8f},
-                             {3.2f, 0, 2.0f}, {0.5f, 0, -5}, {-5, 0, -5}, {5, 0, -6}};
-  constexpr float kTreeHeight = 2.5f;     // world units
+  s.description =
+      "procedural trees on a large ground plane (stand-in for the trees of Annen et al.)";
+  s.objects.push_back(
+      object("ground", makePlane(30, 30, kGroundDivisions), glm::mat4(1), kGround, false, true));
+  const glm::vec3 spots[] = {{0, 0, 0},       {2.5f, 0, -1.5f}, {-2.2f, 0, -2.5f}, {-3, 0, 1.8f},
+                             {3.2f, 0, 2.0f}, {0.5f, 0, -5},    {-5, 0, -5},       {5, 0, -6}};
+  constexpr float kTreeHeight = 2.5f;  // world units
   constexpr float kHeightVariation = 0.3f;
   constexpr int kBranchLevels = 3;  // trunk, then three generations of branches
   for (size_t i = 0; i < std::size(spots); ++i)
@@ -155,7 +163,8 @@ Scene treesScene() {
 Scene duelingScene() {
   Scene s = brabecScene();
   s.name = "dueling";
-  s.description = "the brabec scene with the light facing the camera (dueling frusta, Everitt Fig. 6)";
+  s.description =
+      "the brabec scene with the light facing the camera (dueling frusta, Everitt Fig. 6)";
   s.light.position = {0.0f, 3.5f, -6.0f};
   s.light.target = {0, 0, 0.5f};
   s.light.coneDegrees = 60;
@@ -163,8 +172,7 @@ Scene duelingScene() {
 }
 
 glm::vec3 vec3(const json& j, const std::string& what) {
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
-      !j[2].is_number())
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw InputError(what + " must be an array of three numbers");
   // Read as double first: a value beyond float's range must not silently become Inf.
   const glm::dvec3 d(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
@@ -311,12 +319,18 @@ std::vector<std::string> builtinSceneNames() {
 
 Scene builtinScene(const std::string& name) {
   Scene s;
-  if (name == "analytic") s = analyticScene();
-  else if (name == "brabec") s = brabecScene();
-  else if (name == "fence") s = fenceScene();
-  else if (name == "trees") s = treesScene();
-  else if (name == "dueling") s = duelingScene();
-  else throw InputError("unknown scene '" + name + "'");
+  if (name == "analytic")
+    s = analyticScene();
+  else if (name == "brabec")
+    s = brabecScene();
+  else if (name == "fence")
+    s = fenceScene();
+  else if (name == "trees")
+    s = treesScene();
+  else if (name == "dueling")
+    s = duelingScene();
+  else
+    throw InputError("unknown scene '" + name + "'");
   validateScene(s);
   return s;
 }
@@ -389,7 +403,8 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
       obj.name = o.contains("name") ? stringValue(o["name"], where + ".name") : where;
       obj.mesh = share(meshFromJson(o["mesh"], where, baseDir));
       glm::mat4 m(1.0f);
-      if (o.contains("translate")) m = glm::translate(m, vec3(o["translate"], where + ".translate"));
+      if (o.contains("translate"))
+        m = glm::translate(m, vec3(o["translate"], where + ".translate"));
       if (o.contains("rotate")) {  // [x, y, z] Euler angles in degrees, applied z, y, x
         const glm::vec3 r = vec3(o["rotate"], where + ".rotate");
         m = glm::rotate(m, glm::radians(r.x), {1, 0, 0});
@@ -397,8 +412,9 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
         m = glm::rotate(m, glm::radians(r.z), {0, 0, 1});
       }
       if (o.contains("scale")) {
-        const glm::vec3 sc = o["scale"].is_number() ? glm::vec3(number(o["scale"], where + ".scale"))
-                                                    : vec3(o["scale"], where + ".scale");
+        const glm::vec3 sc = o["scale"].is_number()
+                                 ? glm::vec3(number(o["scale"], where + ".scale"))
+                                 : vec3(o["scale"], where + ".scale");
         if (sc.x == 0 || sc.y == 0 || sc.z == 0) throw InputError(where + ".scale must not be 0");
         m = glm::scale(m, sc);
       }
@@ -423,8 +439,8 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
 std::string sceneFilePath(const std::string& nameOrPath) {
   const auto builtins = builtinSceneNames();
   if (std::find(builtins.begin(), builtins.end(), nameOrPath) != builtins.end()) return "";
-  const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
-                          nameOrPath.find('/') != std::string::npos;
+  const bool namesAFile =
+      fs::path(nameOrPath).extension() == ".json" || nameOrPath.find('/') != std::string::npos;
   return namesAFile ? nameOrPath
                     : (fs::path(assetDirectory()) / "scenes" / (nameOrPath + ".json")).string();
 }
@@ -435,8 +451,8 @@ Scene loadScene(const std::string& nameOrPath) {
     return builtinScene(nameOrPath);
   // A name that ends in .json or holds a folder is a file the user named: when it is not
   // there, the message names that file (not the list of scene names).
-  const bool namesAFile = fs::path(nameOrPath).extension() == ".json" ||
-                          nameOrPath.find('/') != std::string::npos;
+  const bool namesAFile =
+      fs::path(nameOrPath).extension() == ".json" || nameOrPath.find('/') != std::string::npos;
   const fs::path path = sceneFilePath(nameOrPath);
   std::error_code ec;
   if (!fs::exists(path, ec)) {

@@ -41,7 +41,8 @@ std::vector<std::string> passTableProblems(const PassTable& table) {
     std::set<std::string> buffers;
     for (const PassBuffer& b : p.writes)
       if (b.name.empty() || !buffers.insert(b.name).second)
-        problems.push_back("pass \"" + p.id + "\" declares buffer \"" + b.name + "\" twice or empty");
+        problems.push_back("pass \"" + p.id + "\" declares buffer \"" + b.name +
+                           "\" twice or empty");
   }
   return problems;
 }

@@ -26,7 +26,8 @@ std::string displayName(const PassSpec& spec, const PassPart& part, const std::s
 
 std::string replaced(std::string text, const std::string& key, const std::string& value) {
   const std::string mark = "{" + key + "}";
-  for (size_t at = text.find(mark); at != std::string::npos; at = text.find(mark, at + value.size()))
+  for (size_t at = text.find(mark); at != std::string::npos;
+       at = text.find(mark, at + value.size()))
     text.replace(at, mark.size(), value);
   return text;
 }
@@ -107,7 +108,8 @@ void Passes::resume(const std::string& id, const std::function<void()>& body) {
 void Passes::capture(const std::string& id, const std::string& buffer,
                      const std::function<Image()>& read, const PassPart& part,
                      const std::map<std::string, std::string>& words) {
-  add(id, buffer, [&](const std::string& caption) { return std::pair(read(), caption); }, part,
+  add(
+      id, buffer, [&](const std::string& caption) { return std::pair(read(), caption); }, part,
       words);
 }
 
@@ -115,11 +117,12 @@ void Passes::captureDepth(const std::string& id, const std::string& buffer,
                           const std::function<Image()>& readDepth, const PassPart& part,
                           const std::map<std::string, std::string>& words,
                           const std::function<WindowDepthSpan()>& span) {
-  add(id, buffer,
+  add(
+      id, buffer,
       [&](const std::string& caption) {
         const Image depth = readDepth();
-        PassImage grey = span ? greyDepth("", caption, depth, span())
-                              : greyDepth("", caption, depth);
+        PassImage grey =
+            span ? greyDepth("", caption, depth, span()) : greyDepth("", caption, depth);
         return std::pair(std::move(grey.image), std::move(grey.caption));
       },
       part, words);

@@ -43,9 +43,7 @@ const char* shadowWorkName(PlanTraits::ShadowWork work) {
 }
 
 // Clip-space position of a model-space vertex.
-glm::vec4 clip(const glm::mat4& m, const glm::vec3& p) {
-  return m * glm::vec4(p, 1.0f);
-}
+glm::vec4 clip(const glm::mat4& m, const glm::vec3& p) { return m * glm::vec4(p, 1.0f); }
 
 // True when the triangle is certainly outside the frustum: all three vertices beyond the same
 // lateral plane or behind the near plane (w <= 0 counts as behind the light).

@@ -51,8 +51,8 @@ double RenderParams::number(const std::string& key, double fallback, double lo, 
   if (it == extra.end()) return fallback;
   const double v = parseNumber(key, it->second);
   if (v < lo || v > hi)
-    throw InputError("--param " + key + "=" + it->second + ": must lie in [" +
-                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw InputError("--param " + key + "=" + it->second + ": must lie in [" + std::to_string(lo) +
+                     ", " + std::to_string(hi) + "]");
   return v;
 }
 
@@ -120,8 +120,7 @@ bool ParamSpec::isDefault(const std::string& value) const {
   return false;
 }
 
-ParamSpec numberParam(std::string key, double fallback, double lo, double hi,
-                      std::string meaning) {
+ParamSpec numberParam(std::string key, double fallback, double lo, double hi, std::string meaning) {
   ParamSpec s;
   s.key = std::move(key);
   s.kind = ParamSpec::Kind::kNumber;
@@ -222,9 +221,7 @@ std::string RenderParams::text(const ParamSpec& spec) const {
   return text(spec.key, spec.choiceFallback, spec.choices);
 }
 
-bool RenderParams::flag(const ParamSpec& spec) const {
-  return flag(spec.key, spec.flagFallback);
-}
+bool RenderParams::flag(const ParamSpec& spec) const { return flag(spec.key, spec.flagFallback); }
 
 std::optional<double> RenderParams::numberOrAuto(const ParamSpec& spec) const {
   if (readLog) noteRead(*this, spec.key, kAutoValue);
@@ -311,9 +308,8 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
     throw InputError("window size " + std::to_string(p.width) + "x" + std::to_string(p.height) +
                      " is impossible (1.." + std::to_string(kMaxWindowSide) + " per side)");
   if (p.shadowMapTexels <= 0 || (maxTextureSize > 0 && p.shadowMapTexels > maxTextureSize))
-    throw InputError("shadow map size " + std::to_string(p.shadowMapTexels) +
-                     " is outside 1.." + std::to_string(maxTextureSize) +
-                     " (GL_MAX_TEXTURE_SIZE of this GL)");
+    throw InputError("shadow map size " + std::to_string(p.shadowMapTexels) + " is outside 1.." +
+                     std::to_string(maxTextureSize) + " (GL_MAX_TEXTURE_SIZE of this GL)");
   if (p.filter < 1 || p.filter > 16)
     throw InputError("filter footprint " + std::to_string(p.filter) + " is outside 1..16");
   const std::vector<int>& sides = t.reads.filterSides;
@@ -329,8 +325,9 @@ void checkParams(const Technique& t, const RenderParams& p, int maxTextureSize) 
     if (!spec) {
       std::string list;
       for (const auto& k : paramKeys(t)) list += (list.empty() ? "" : ", ") + k;
-      throw InputError("technique " + t.name + " has no parameter '" + key + "'" +
-                       (list.empty() ? std::string(" (it takes none)") : " (it takes " + list + ")"));
+      throw InputError(
+          "technique " + t.name + " has no parameter '" + key + "'" +
+          (list.empty() ? std::string(" (it takes none)") : " (it takes " + list + ")"));
     }
     // A flag's word is checked here, before rendering, even where this frame does not read it.
     if (spec->kind == ParamSpec::Kind::kFlag) parseFlagValue(key, value);

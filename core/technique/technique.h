@@ -69,7 +69,8 @@ std::string describeParam(const ParamSpec& p);
 
 // Declarations several techniques share (each technique still lists them in its own params).
 ParamSpec compareParam();  // compare=linear|nearest: GL_LINEAR (2x2 PCF) or GL_NEAREST lookups
-ParamSpec planParam();     // plan=on|off: the pass planner may leave out passes (core/technique/plan.h)
+ParamSpec
+planParam();  // plan=on|off: the pass planner may leave out passes (core/technique/plan.h)
 ParamSpec offsetFactorParam(double fallback);  // glPolygonOffset factor of the light pass
 ParamSpec offsetUnitsParam(double fallback, double largest);  // its units, in [-largest, largest]
 
@@ -79,14 +80,14 @@ ParamSpec offsetUnitsParam(double fallback, double largest);  // its units, in [
 enum class ImagingChoice { kBackendDefault, kNative, kEmulated };
 
 struct RenderParams {
-  int width = 800;             // window, pixels (Brabec–Seidel §5)
+  int width = 800;  // window, pixels (Brabec–Seidel §5)
   int height = 600;
-  int shadowMapTexels = 512;   // side of the square shadow map (Brabec–Seidel §5)
-  int filter = 2;              // PCF footprint side: 1 = unfiltered, 2, 3, 4
+  int shadowMapTexels = 512;  // side of the square shadow map (Brabec–Seidel §5)
+  int filter = 2;             // PCF footprint side: 1 = unfiltered, 2, 3, 4
   Precision precision = Precision::k8;
   Backend backend = Backend::kOsmesa;
   ImagingChoice imaging = ImagingChoice::kBackendDefault;  // --imaging (legacy techniques)
-  bool capturePasses = false;  // fill Frame::intermediates (--dump-passes)
+  bool capturePasses = false;                // fill Frame::intermediates (--dump-passes)
   std::map<std::string, std::string> extra;  // --param key=value, technique specific
   // When set, number/integer/text/flag note every key they are asked for with the value they
   // return, the technique's default included where the key was not given: the effective
@@ -226,15 +227,15 @@ class RenderFunction {
 };
 
 struct Technique {
-  std::string name;      // "legacy.pcf"
-  std::string paper;     // "Brabec & Seidel 2001, §3"
-  std::string summary;   // one line
-  std::string status;    // "complete", or what is missing
+  std::string name;     // "legacy.pcf"
+  std::string paper;    // "Brabec & Seidel 2001, §3"
+  std::string summary;  // one line
+  std::string status;   // "complete", or what is missing
   ContextNeeds needs;
-  std::vector<ParamSpec> params;        // the --param keys it understands, declared once
-  CommonOptions reads;                 // the common options its render reads
-  PlanTraits plan;                     // what the pass planner asks of it
-  PassTable passes;                    // its passes, declared once (core/technique/pass_table.h)
+  std::vector<ParamSpec> params;  // the --param keys it understands, declared once
+  CommonOptions reads;            // the common options its render reads
+  PlanTraits plan;                // what the pass planner asks of it
+  PassTable passes;               // its passes, declared once (core/technique/pass_table.h)
   // What its visibility approximates: the point light's hard shadow (shadow maps, volumes,
   // reference.hard) or the spherical light's soft one (smoothies, reference.soft). The bench
   // and the figures score it against the matching ray-traced truth.

@@ -131,22 +131,22 @@ void expectPlotsCarryProvenance(const fs::path& out) {
 constexpr const char* kTiny = " --quick --size 48x36 --out ";
 
 TEST(BenchCli, RepeatedAndListedTechniquesAndScenesAllRun) {
-  const std::set<std::pair<std::string, std::string>> expected = {
-      {"brabec", "modern.pcf"},
-      {"brabec", "modern.gems16"},
-      {"analytic", "modern.pcf"},
-      {"analytic", "modern.gems16"}};
-  const CommandResult repeated =
-      shadowlab("bench --scene brabec --scene analytic --technique modern.pcf --technique "
-                "modern.gems16" +
-                std::string(kTiny) + (dir() / "repeated").string());
+  const std::set<std::pair<std::string, std::string>> expected = {{"brabec", "modern.pcf"},
+                                                                  {"brabec", "modern.gems16"},
+                                                                  {"analytic", "modern.pcf"},
+                                                                  {"analytic", "modern.gems16"}};
+  const CommandResult repeated = shadowlab(
+      "bench --scene brabec --scene analytic --technique modern.pcf --technique "
+      "modern.gems16" +
+      std::string(kTiny) + (dir() / "repeated").string());
   ASSERT_EQ(repeated.status, 0) << repeated.err;
   EXPECT_EQ(rowsOf(repeated.out), expected);
   expectRowsSayWhatMadeThem(repeated.out);
   expectPlotsCarryProvenance(dir() / "repeated");
-  const CommandResult listed = shadowlab("bench --scene brabec,analytic --technique "
-                                         "modern.pcf,modern.gems16" +
-                                         std::string(kTiny) + (dir() / "listed").string());
+  const CommandResult listed = shadowlab(
+      "bench --scene brabec,analytic --technique "
+      "modern.pcf,modern.gems16" +
+      std::string(kTiny) + (dir() / "listed").string());
   ASSERT_EQ(listed.status, 0) << listed.err;
   EXPECT_EQ(rowsOf(listed.out), expected);
 
@@ -154,9 +154,8 @@ TEST(BenchCli, RepeatedAndListedTechniquesAndScenesAllRun) {
   // window (a row of one run can push a row of the other off the front).
   std::ofstream(dir() / "repeated.jsonl") << repeated.out;
   std::ofstream(dir() / "listed.jsonl") << listed.out;
-  const CommandResult merged =
-      shadowlab("bench --merge " + (dir() / "repeated.jsonl").string() + " --merge " +
-                (dir() / "listed.jsonl").string());
+  const CommandResult merged = shadowlab("bench --merge " + (dir() / "repeated.jsonl").string() +
+                                         " --merge " + (dir() / "listed.jsonl").string());
   ASSERT_EQ(merged.status, 0) << merged.err;
   std::vector<json> rows;
   std::istringstream lines(merged.out);
@@ -164,7 +163,8 @@ TEST(BenchCli, RepeatedAndListedTechniquesAndScenesAllRun) {
   size_t inputRows = 0;
   for (const std::string* out : {&repeated.out, &listed.out}) {
     std::istringstream in(*out);
-    for (std::string line; std::getline(in, line);) inputRows += json::parse(line).contains("claim") ? 0 : 1;
+    for (std::string line; std::getline(in, line);)
+      inputRows += json::parse(line).contains("claim") ? 0 : 1;
   }
   EXPECT_EQ(rows.size(), inputRows) << "every row of both runs, no claim lines";
   expectRanksArePareto(rows);
@@ -184,8 +184,7 @@ TEST(BenchCli, ASweepFileRunsItsRowsInOrderWithTheirViews) {
       "sizes": ["48x36"], "filters": [1, 3], "params": {"samples": [1, 16]},
       "orbits": [null, "30,25,9"], "repeat": 2, "soft_reference": false, "temporal": false})";
   const fs::path csv = dir() / "sweep.csv";
-  const CommandResult r =
-      shadowlab("bench --sweep " + spec.string() + " --csv " + csv.string());
+  const CommandResult r = shadowlab("bench --sweep " + spec.string() + " --csv " + csv.string());
   ASSERT_EQ(r.status, 0) << r.err;
   std::vector<json> rows;
   std::istringstream lines(r.out);

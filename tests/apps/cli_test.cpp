@@ -30,9 +30,7 @@ CommandResult runBinary(const std::string& binary, const std::string& args) {
   return test::runBinary(binary, args, dir());
 }
 
-CommandResult shadowlab(const std::string& args) {
-  return runBinary(SHADOWLAB_BINARY, args);
-}
+CommandResult shadowlab(const std::string& args) { return runBinary(SHADOWLAB_BINARY, args); }
 
 // Input files are written while the test list is built (before any test runs), into a
 // directory per process, since every ctest process builds the list anew.
@@ -98,8 +96,9 @@ TEST(Cli, VersionPrintsTheBuildCommit) {
 TEST(Cli, EveryCommandHasHelp) {
   const std::map<std::string, std::vector<std::string>> expected = {
       {"list", {}},
-      {"render", {"--technique", "--out", "--mask", "--dump-passes", "--param", "--backend",
-                  "--light-position", "--orbit"}},
+      {"render",
+       {"--technique", "--out", "--mask", "--dump-passes", "--param", "--backend",
+        "--light-position", "--orbit"}},
       {"compare", {"--a", "--b", "--diff", "--threshold", "--size"}},
       {"bench", {"--quick", "--scene", "--technique", "--csv", "--repeat", "--out"}},
       {"plan", {"--technique", "--shadow-map", "--param"}},
@@ -268,9 +267,8 @@ std::vector<BadInput> badInputs() {
   };
 }
 
-INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()), [](const auto& info) {
-  return testName(info.param.what);
-});
+INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()),
+                         [](const auto& info) { return testName(info.param.what); });
 
 // The developer tools parse their command lines with CLI11 as the shadowlab command does (issue
 // 14 item 7): --help lists every option, and bad input is one line on stderr with exit status
@@ -391,9 +389,7 @@ std::vector<BadToolInput> badToolInputs() {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, ToolBadInput, ::testing::ValuesIn(badToolInputs()),
-                         [](const auto& info) {
-                           return testName(info.param.what);
-                         });
+                         [](const auto& info) { return testName(info.param.what); });
 
 // csm_bench --part ratio measures the --size and --scene it is given (issue 17 item 5), not
 // the bench sizes and scenes.
@@ -479,9 +475,7 @@ INSTANTIATE_TEST_SUITE_P(
         {"shadow map above GL max",
          "--mask @DIR/mask.png --dump-passes @DIR/dump --shadow-map 60000"},
     }),
-    [](const auto& info) {
-      return testName(info.param.what);
-    });
+    [](const auto& info) { return testName(info.param.what); });
 
 // A rejected scene leaves no dump directory (issue 17 item 5).
 TEST(Cli, RejectedSceneCreatesNoDumpDirectory) {

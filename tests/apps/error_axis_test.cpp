@@ -127,9 +127,9 @@ TEST(ErrorAxis, SideParamsNamingAnUndeclaredKeyAreInputErrors) {
   EXPECT_NE(r.err.find("depth-bias"), std::string::npos) << "names A's keys: " << r.err;
   EXPECT_TRUE(r.out.empty());
 
-  const CommandResult malformed = shadowlab(std::string("compare --scene brabec --size ") +
-                                            kSize + " --a modern.pcf --b reference.hard "
-                                                    "--b-param pixel");
+  const CommandResult malformed = shadowlab(std::string("compare --scene brabec --size ") + kSize +
+                                            " --a modern.pcf --b reference.hard "
+                                            "--b-param pixel");
   EXPECT_EQ(malformed.status, 2) << malformed.err;
   EXPECT_NE(malformed.err.find("--b-param must look like key=value"), std::string::npos)
       << malformed.err;

@@ -98,9 +98,7 @@ INSTANTIATE_TEST_SUITE_P(
         FaultCase{"legacy.hw", kSmall, "error@pass#3", kAnyPass},
         FaultCase{"legacy.hw", kSmall, "error@call#40", kAnyPass},
         FaultCase{"modern.gems16", kSmall, "missing@call#60", kAnyPass}),
-    [](const auto& info) {
-      return testName(info.param.technique + "_" + info.param.fault);
-    });
+    [](const auto& info) { return testName(info.param.technique + "_" + info.param.fault); });
 
 // The same commands without the variable succeed and write every output: the cases above
 // fail because of the fault, not because of their options.

@@ -156,7 +156,8 @@ TEST(Lesson, ShowsTheGlStateOfEveryPass) {
 // `// @pass` markers of the shaders, which every modern technique's shaders carry since issue 18).
 TEST(Lesson, TwinPassesShowTheirGlslLinesAndTheLegacyPassTheyReplace) {
   bool markers = false;
-  for (const auto& [name, text] : embeddedShaders()) markers = markers || text.find("@pass") != std::string::npos;
+  for (const auto& [name, text] : embeddedShaders())
+    markers = markers || text.find("@pass") != std::string::npos;
   ASSERT_TRUE(markers) << "no embedded shader carries a // @pass marker";
   const fs::path dir = test::testDir("lesson", true) / "fast-pcf";
   const test::CommandResult r =

@@ -23,9 +23,7 @@ using test::slurp;
 fs::path freshDir() { return test::testDir("output_files", true); }
 
 // A fresh directory per test (ctest runs the cases as parallel processes).
-void put(const fs::path& p, const std::string& text) {
-  std::ofstream(p) << text;
-}
+void put(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
 
 // The names in `d`, sorted.
 std::set<std::string> names(const fs::path& d) {

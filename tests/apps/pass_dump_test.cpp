@@ -244,9 +244,7 @@ std::vector<std::string> techniqueNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, EveryTechnique, ::testing::ValuesIn(techniqueNames()),
-                         [](const auto& info) {
-                           return testName(info.param);
-                         });
+                         [](const auto& info) { return testName(info.param); });
 
 }  // namespace
 }  // namespace sl

@@ -31,9 +31,7 @@ CommandResult shadowlab(const std::string& args) {
   return test::runBinary(SHADOWLAB_BINARY, args, dir());
 }
 
-int lines(const std::string& text) {
-  return int(std::count(text.begin(), text.end(), '\n'));
-}
+int lines(const std::string& text) { return int(std::count(text.begin(), text.end(), '\n')); }
 
 // ------------------------------------------------------------ item 2: what made an output
 
@@ -84,7 +82,8 @@ TEST(Provenance, RenderJsonLineAndPngsNameEveryParameterAndTheCommit) {
 // A scene from a file: the JSON line names the file and the SHA-256 of its bytes (checked
 // against coreutils' sha256sum, another implementation).
 TEST(Provenance, RenderNamesTheSceneFileAndItsContentHash) {
-  const fs::path scene = fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "minimal-scene.json";
+  const fs::path scene =
+      fs::path(SHADOWLAB_SOURCE_DIR) / "docs" / "examples" / "minimal-scene.json";
   const fs::path png = dir() / "minimal.png";
   const CommandResult r = shadowlab("render --scene " + scene.string() +
                                     " --technique modern.hw --size 32x24 --out " + png.string());
@@ -251,9 +250,7 @@ std::vector<std::string> techniqueNames() {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, Declarations, ::testing::ValuesIn(techniqueNames()),
-                         [](const auto& info) {
-                           return testName(info.param);
-                         });
+                         [](const auto& info) { return testName(info.param); });
 
 }  // namespace
 }  // namespace sl

@@ -14,9 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::CommandResult;
 
-fs::path dir() {
-  return test::testDir("scene_knobs");
-}
+fs::path dir() { return test::testDir("scene_knobs"); }
 
 CommandResult shadowlab(const std::string& args) {
   return test::runBinary(SHADOWLAB_BINARY, args, dir());

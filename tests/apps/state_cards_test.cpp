@@ -26,12 +26,12 @@ using test::slurp;
 nlohmann::json dumpOf(const std::string& technique, const std::string& extra = "",
                       const std::string& tag = "") {
   const fs::path d = test::testDir("state_cards_" + tag + technique, true);
-  const test::CommandResult r = test::runBinary(
-      SHADOWLAB_BINARY,
-      "render --scene brabec --technique " + technique + " --size 160x120 --shadow-map 128 " +
-          extra + " --out " + (d / "image.png").string() + " --dump-passes " +
-          (d / "dump").string(),
-      d);
+  const test::CommandResult r =
+      test::runBinary(SHADOWLAB_BINARY,
+                      "render --scene brabec --technique " + technique +
+                          " --size 160x120 --shadow-map 128 " + extra + " --out " +
+                          (d / "image.png").string() + " --dump-passes " + (d / "dump").string(),
+                      d);
   EXPECT_EQ(r.status, 0) << r.err;
   return nlohmann::json::parse(slurp(d / "dump" / "passes.json"));
 }
@@ -78,8 +78,10 @@ TEST(StateCards, HardwareShadowMapShowsEyeLinearPlanesAndCompareMode) {
   EXPECT_TRUE(hasLine(depth, "polygon offset", {"glPolygonOffset("})) << lines(depth);
   const nlohmann::json& planes = pass(d, 2);
   for (const char* coord : {"GL_S", "GL_T", "GL_R", "GL_Q"}) {
-    EXPECT_TRUE(hasLine(planes, "texgen", {std::string(coord) + ": GL_TEXTURE_GEN_MODE = GL_EYE_LINEAR"}))
-        << coord << "\n" << lines(planes);
+    EXPECT_TRUE(
+        hasLine(planes, "texgen", {std::string(coord) + ": GL_TEXTURE_GEN_MODE = GL_EYE_LINEAR"}))
+        << coord << "\n"
+        << lines(planes);
     EXPECT_TRUE(hasLine(planes, "texgen", {std::string(coord) + ": GL_EYE_PLANE = ("})) << coord;
   }
 }
@@ -149,7 +151,8 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
   const nlohmann::json legacy = dumpOf("legacy.fast-pcf");
   const nlohmann::json& pack = pass(modern, 2);
   ASSERT_EQ(pack["replaces"].size(), 1u) << pack.dump();
-  EXPECT_EQ(pack["replaces"][0], "legacy.fast-pcf pass 2 " + pass(legacy, 2)["name"].get<std::string>())
+  EXPECT_EQ(pack["replaces"][0],
+            "legacy.fast-pcf pass 2 " + pass(legacy, 2)["name"].get<std::string>())
       << "the replaced pass is named as the legacy dump names it";
   ASSERT_EQ(pack["glsl"].size(), 1u);
   const nlohmann::json& where = pack["glsl"][0];
@@ -158,7 +161,8 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
                    where["file"].get<std::string>());
   std::string line, code;
   for (int n = 1; std::getline(in, line); ++n)
-    if (n >= where["first_line"].get<int>() && n <= where["last_line"].get<int>()) code += line + "\n";
+    if (n >= where["first_line"].get<int>() && n <= where["last_line"].get<int>())
+      code += line + "\n";
   EXPECT_NE(code.find("texelFetch(uEncodedDepth"), std::string::npos) << code;
   EXPECT_NE(code.find("oPacked = vec4(sampleAt(o, 0)"), std::string::npos) << code;
   EXPECT_EQ(code.find("@pass"), std::string::npos) << "the marker lines are not the code";
@@ -223,9 +227,7 @@ TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
 INSTANTIATE_TEST_SUITE_P(Twins, TwinLinks,
                          ::testing::Values("modern.hw", "modern.woo", "modern.second-depth",
                                            "modern.ramp", "modern.pcf", "modern.fast-pcf"),
-                         [](const auto& info) {
-                           return testName(info.param);
-                         });
+                         [](const auto& info) { return testName(info.param); });
 
 }  // namespace
 }  // namespace sl

@@ -28,17 +28,13 @@ struct Script {
   }
 };
 
-TEST(Median, OddCountIsTheMiddleValue) {
-  EXPECT_EQ(median({9.0, 1.0, 5.0}), 5.0);
-}
+TEST(Median, OddCountIsTheMiddleValue) { EXPECT_EQ(median({9.0, 1.0, 5.0}), 5.0); }
 
 TEST(Median, EvenCountIsTheMeanOfTheTwoMiddleValues) {
   EXPECT_EQ(median({4.0, 1.0, 3.0, 100.0}), 3.5);
 }
 
-TEST(Median, NoValuesIsAnError) {
-  EXPECT_THROW(median({}), std::invalid_argument);
-}
+TEST(Median, NoValuesIsAnError) { EXPECT_THROW(median({}), std::invalid_argument); }
 
 // The first frames of a fresh context are slow (compilation, first use): they must not count.
 TEST(SteadyState, DiscardsTheWarmupFramesAndTakesTheMedianOfTheRest) {

@@ -126,8 +126,9 @@ TEST_F(GlFaultTest, ErrorIsReportedByTheFirstErrorCheckInsideThePass) {
     PassTimer timer(frame, "1 read back");
     readColorBuffer(0, 0, 4, 4);  // checkGl("read colour buffer") inside the pass
   });
-  EXPECT_EQ(what, "read colour buffer: GL_INVALID_OPERATION (injected GL fault error@pass#1, in "
-                  "pass '1 read back')");
+  EXPECT_EQ(what,
+            "read colour buffer: GL_INVALID_OPERATION (injected GL fault error@pass#1, in "
+            "pass '1 read back')");
 }
 
 TEST_F(GlFaultTest, MissingEntryPointAtTheNthPassIsTheDispatchsOwnError) {
@@ -216,8 +217,7 @@ TEST_F(GlFaultTest, PassTimerNotesARealErrorAndTheRenderThrowsIt) {
     seen = frame;
     return frame;
   };
-  EXPECT_EQ(glErrorOf([&] { render(*context_, scene_, params_); }),
-            "1 bad enum: GL_INVALID_ENUM");
+  EXPECT_EQ(glErrorOf([&] { render(*context_, scene_, params_); }), "1 bad enum: GL_INVALID_ENUM");
   ASSERT_EQ(seen.passes.size(), 1u);
   EXPECT_EQ(seen.passes[0].name, "1 bad enum");
   EXPECT_FALSE(glErrorNoted());

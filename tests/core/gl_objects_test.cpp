@@ -64,8 +64,7 @@ TEST(GlObjects, ScopedEnableIsOffAfterAnException) {
     const ScopedEnable blend(GL_BLEND);
     EXPECT_EQ(glIsEnabled(GL_BLEND), GL_TRUE);
     throw std::runtime_error("a pass fails");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   EXPECT_EQ(glIsEnabled(GL_BLEND), GL_FALSE);
 }
 
@@ -80,8 +79,7 @@ TEST(GlObjects, ScopedClientStateAndPushMatrixRestoreAfterAnException) {
     glTranslatef(1.0f, 2.0f, 3.0f);
     EXPECT_EQ(glIsEnabled(GL_VERTEX_ARRAY), GL_TRUE);
     throw std::runtime_error("a draw fails");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   EXPECT_EQ(glIsEnabled(GL_VERTEX_ARRAY), GL_FALSE);
   GLfloat modelview[16];
   glGetFloatv(GL_MODELVIEW_MATRIX, modelview);
@@ -100,8 +98,7 @@ TEST(GlObjects, ScopedAttribAndMatricesRestoreAfterAnException) {
     glMatrixMode(GL_MODELVIEW);
     glTranslatef(1.0f, 2.0f, 3.0f);
     throw std::runtime_error("a pass fails");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   GLint depthFunc = 0, mode = 0;
   glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
   glGetIntegerv(GL_MATRIX_MODE, &mode);

@@ -171,8 +171,9 @@ TEST(GlTrace, MatricesAreNamedByModeAndPrintedAsRows) {
     glLoadIdentity();
   }
   const std::string state = joined(frame.passes.at(0).gl.state);
-  EXPECT_NE(state.find("matrix: texture matrix (unit 0): load [1 0 0 5; 0 1 0 6; 0 0 1 7; 0 0 0 1]"),
-            std::string::npos)
+  EXPECT_NE(
+      state.find("matrix: texture matrix (unit 0): load [1 0 0 5; 0 1 0 6; 0 0 1 7; 0 0 0 1]"),
+      std::string::npos)
       << state;
   EXPECT_NE(state.find("matrix: modelview: identity"), std::string::npos) << state;
 }

@@ -159,8 +159,7 @@ class Fuzzer {
       case Mutation::kDropLastNewline:
         while (!d.empty() && d.back() == '\n') d.pop_back();
         return "no final newline";
-      case Mutation::kCount:
-        break;
+      case Mutation::kCount: break;
     }
     return "none";
   }

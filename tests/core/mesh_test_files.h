@@ -129,8 +129,6 @@ inline std::string gzipWithZeros(const std::string& prefix, std::size_t zeros) {
   return out;
 }
 
-inline std::string gzip(const std::string& bytes) {
-  return gzipWithZeros(bytes, 0);
-}
+inline std::string gzip(const std::string& bytes) { return gzipWithZeros(bytes, 0); }
 
 }  // namespace sl::testing_meshes

@@ -24,9 +24,7 @@ Object object(const std::string& name, Mesh mesh, const glm::mat4& model, bool c
   return o;
 }
 
-glm::mat4 at(float x, float y, float z) {
-  return glm::translate(glm::mat4(1), {x, y, z});
-}
+glm::mat4 at(float x, float y, float z) { return glm::translate(glm::mat4(1), {x, y, z}); }
 
 constexpr float kLightHeight = 10.0f;
 constexpr float kCasterTop = 5.0f;  // the box's top face: the caster nearest the light
@@ -179,9 +177,9 @@ TEST(Plan, ImagingStagesThatAreIdentityLeftOut) {
 TEST(Plan, BlurPassLeftOutWithoutKernel) {
   RenderParams p;
   // Without --param blur the technique's declared default (3 taps) is planned.
-  EXPECT_TRUE(item(planFrame(column(), convolutionPrefiltered(), p).resources,
-                   "separable blur pass")
-                  ->kept);
+  EXPECT_TRUE(
+      item(planFrame(column(), convolutionPrefiltered(), p).resources, "separable blur pass")
+          ->kept);
   p.extra["blur"] = "0";
   FramePlan plan = planFrame(column(), convolutionPrefiltered(), p);
   EXPECT_FALSE(item(plan.resources, "separable blur pass")->kept);
@@ -227,7 +225,8 @@ TEST(Plan, MipChainOnlyWhenTheViewMinifies) {
         << "map " << n;
     RenderParams bilinear = p;
     bilinear.extra["filtering"] = "bilinear";
-    EXPECT_FALSE(item(planFrame(s, convolutionPrefiltered(), bilinear).resources, "mip chain")->kept);
+    EXPECT_FALSE(
+        item(planFrame(s, convolutionPrefiltered(), bilinear).resources, "mip chain")->kept);
     RenderParams always = p;
     always.extra["mipmaps"] = "always";
     EXPECT_TRUE(item(planFrame(s, convolutionPrefiltered(), always).resources, "mip chain")->kept);

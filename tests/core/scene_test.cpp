@@ -121,11 +121,11 @@ TEST(SceneFiles, ParsesPrimitivesTransformsAndFlags) {
 
 TEST(SceneFiles, MalformedDocumentsAreInputErrors) {
   const char* bad[] = {
-      "{",                                                    // truncated JSON
-      "[]",                                                   // not an object
-      R"({"objects": 3})",                                     // objects not an array
-      R"({"objects": []})",                                    // nothing to render
-      R"({"objects": [{"mesh": {"primitive": "blob"}}]})",    // unknown primitive
+      "{",                                                  // truncated JSON
+      "[]",                                                 // not an object
+      R"({"objects": 3})",                                  // objects not an array
+      R"({"objects": []})",                                 // nothing to render
+      R"({"objects": [{"mesh": {"primitive": "blob"}}]})",  // unknown primitive
       R"({"objects": [{"mesh": {"primitive": "box"}, "translate": [1, 2]}]})",
       R"({"objects": [{"mesh": {"primitive": "box"}}], "camera": {"fovy": 0}})",
       R"({"objects": [{"mesh": {"primitive": "box"}}], "light": {"position": [0,0,0], "target": [0,0,0]}})",

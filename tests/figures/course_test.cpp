@@ -45,17 +45,18 @@ cli::Args parseCommand(const std::string& command) {
 }
 
 // The query keys lab/web/lab.js readUrlState knows (docs/lab.md "Links").
-const std::set<std::string> kLabKeys = {
-    "scene",          "size",        "view",          "a",           "b",
-    "light-position", "orbit",       "zoom",          "center",      "wipe",
-    "a-shadow-map",   "a-filter",    "a-precision",   "a-param",     "b-shadow-map",
-    "b-filter",       "b-precision", "b-param"};
+const std::set<std::string> kLabKeys = {"scene",       "size",           "view",         "a",
+                                        "b",           "light-position", "orbit",        "zoom",
+                                        "center",      "wipe",           "a-shadow-map", "a-filter",
+                                        "a-precision", "a-param",        "b-shadow-map", "b-filter",
+                                        "b-precision", "b-param"};
 
 std::vector<std::string> queryKeys(const std::string& link) {
   const std::string query = link.substr(link.find('?') + 1);
   std::vector<std::string> keys;
   std::istringstream in(query);
-  for (std::string item; std::getline(in, item, '&');) keys.push_back(item.substr(0, item.find('=')));
+  for (std::string item; std::getline(in, item, '&');)
+    keys.push_back(item.substr(0, item.find('=')));
   return keys;
 }
 
@@ -68,7 +69,8 @@ std::string slurp(const fs::path& p) {
 
 std::vector<std::string> matches(const std::string& html, const std::regex& re) {
   std::vector<std::string> out;
-  for (auto it = std::sregex_iterator(html.begin(), html.end(), re); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), re); it != std::sregex_iterator();
+       ++it)
     out.push_back((*it)[1]);
   return out;
 }
@@ -150,7 +152,8 @@ TEST(Course, EveryExerciseCommandParsesAndNamesOptionsItsTechniqueReads) {
       if (e.lab) {
         const std::string link = exerciseLabLink(e, kDefaultLabUrl);
         EXPECT_EQ(link.rfind(kDefaultLabUrl, 0), 0u) << link;
-        for (const std::string& k : queryKeys(link)) EXPECT_TRUE(kLabKeys.count(k)) << e.id << ": " << k;
+        for (const std::string& k : queryKeys(link))
+          EXPECT_TRUE(kLabKeys.count(k)) << e.id << ": " << k;
       } else {
         // No lab link only because an option has no key in the lab's URL.
         EXPECT_THROW(exerciseLabLink(e, kDefaultLabUrl), InputError);
@@ -178,7 +181,8 @@ TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
                                           LessonSettings{"brabec", 160, 120, 128}, false))
     EXPECT_TRUE(l.error.empty()) << l.technique << ": " << l.error;
   const std::string section = writeCourseForReport(out.string(), false);
-  for (const char* href : {"course/index.html", "course/teacher.html", "course/gallery/index.html"}) {
+  for (const char* href :
+       {"course/index.html", "course/teacher.html", "course/gallery/index.html"}) {
     EXPECT_NE(section.find(std::string("href=\"") + href + "\""), std::string::npos) << section;
     EXPECT_TRUE(fs::is_regular_file(out / href)) << href;
   }

@@ -73,8 +73,10 @@ std::multiset<std::string> linkSide(const std::string& query, const std::string&
   std::multiset<std::string> out;
   for (const auto& [k, v] : queryPairs(query)) {
     if (k == "zoom" || k == "center" || k == "wipe" || k == "view") continue;
-    if (k == lane) out.insert("--technique " + v);
-    else if (k.rfind(lane + "-", 0) == 0) out.insert("--" + k.substr(lane.size() + 1) + " " + v);
+    if (k == lane)
+      out.insert("--technique " + v);
+    else if (k.rfind(lane + "-", 0) == 0)
+      out.insert("--" + k.substr(lane.size() + 1) + " " + v);
     else if (k != "a" && k != "b" && k.rfind("a-", 0) != 0 && k.rfind("b-", 0) != 0)
       out.insert("--" + k + " " + v);
   }

@@ -114,10 +114,12 @@ TEST(Measured, ChanFourEightComparesBicubicWithOneComparisonAndSmoothies) {
   FigureResult fig;
   fig.spec.id = "chan-4-8";
   fig.panels.push_back(timed("256² shadow map", "modern.hw", {40, 40, 40}, "16 ms", 256));
-  fig.panels.back().passes = {{"1 depth from light", 5.0}, {"2 camera pass with shadow test", 30.0}};
+  fig.panels.back().passes = {{"1 depth from light", 5.0},
+                              {"2 camera pass with shadow test", 30.0}};
   fig.panels.push_back(timed("256² bicubic", "modern.gems16", {90, 100, 110}, "129 ms", 256));
   fig.panels.back().spec.params = {{"kernel", "bicubic"}};
-  fig.panels.back().passes = {{"1 depth from light", 5.0}, {"2 camera pass, 16-sample bicubic PCF", 90.0}};
+  fig.panels.back().passes = {{"1 depth from light", 5.0},
+                              {"2 camera pass, 16-sample bicubic PCF", 90.0}};
   fig.panels.push_back(timed("256² smoothie", "modern.smoothies", {50, 50, 50}, "19 ms", 256));
   fig.panels.back().spec.params = {{"width", "0.025"}};
   const std::string html = measuredHtml(fig);
@@ -127,7 +129,8 @@ TEST(Measured, ChanFourEightComparesBicubicWithOneComparisonAndSmoothies) {
   EXPECT_NE(html.find("<td>0.50</td>"), std::string::npos) << "smoothie / bicubic: " << html;
   EXPECT_NE(html.find("0.15"), std::string::npos) << "thesis 19 / 129: " << html;
   EXPECT_NE(html.find("width 0.025"), std::string::npos) << html;
-  EXPECT_NE(html.find("ours at 1 of 1."), std::string::npos) << "50 ms is faster than 100: " << html;
+  EXPECT_NE(html.find("ours at 1 of 1."), std::string::npos)
+      << "50 ms is faster than 100: " << html;
 }
 
 // Chan Fig. 3-7: the wrong-pixel counts of the overlay panels, with their shares.
@@ -141,7 +144,8 @@ TEST(Measured, ChanThreeSevenCountsWrongPixelsPerScene) {
   p.spec.technique = "modern.volumes";
   p.spec.scene = "dragon";
   p.spec.errorsOf = {"modern.hw", "modern.hybrid"};
-  p.counters = {{"wrong_pixels modern.hw", 250}, {"wrong_pixels modern.hybrid", 20},
+  p.counters = {{"wrong_pixels modern.hw", 250},
+                {"wrong_pixels modern.hybrid", 20},
                 {"wrong_pixels of both", 10}};
   fig.panels.push_back(p);
   const std::string html = measuredHtml(fig);

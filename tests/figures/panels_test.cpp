@@ -274,9 +274,9 @@ TEST(FigureComposite, CloseupsSitUnderTheirPanels) {
                                            &closeA, &closeB,  &closeR0, &closeR1};
   ASSERT_EQ(layout.tiles.size(), tiles.size());
   for (size_t k = 0; k < tiles.size(); ++k)
-    EXPECT_EQ(mismatches(composite, *tiles[k], layout.tiles[k].x,
-                         bottomOf(composite, layout.tiles[k])),
-              0)
+    EXPECT_EQ(
+        mismatches(composite, *tiles[k], layout.tiles[k].x, bottomOf(composite, layout.tiles[k])),
+        0)
         << "tile " << k;
   // The first close-up row: under tiles 1, 2 and 3, each at its panel's left edge.
   EXPECT_EQ(layout.tiles[4].x, layout.tiles[1].x) << "a's close-up";
@@ -536,10 +536,10 @@ TEST(Disagreement, ColoursAndCountsEachTechniquesWrongPixels) {
   const float grey = kOverlayBackgroundShare;  // white under the share (luma weights sum to 1)
   constexpr float kLumaRoundoff = 1e-6f;       // three float products summed
   for (float c : rgb(0)) EXPECT_NEAR(c, grey, kLumaRoundoff);
-  EXPECT_EQ(rgb(1), (std::array<float, 3>{kFirstOnlyWrong[0], kFirstOnlyWrong[1],
-                                          kFirstOnlyWrong[2]}));
-  EXPECT_EQ(rgb(2), (std::array<float, 3>{kSecondOnlyWrong[0], kSecondOnlyWrong[1],
-                                          kSecondOnlyWrong[2]}));
+  EXPECT_EQ(rgb(1),
+            (std::array<float, 3>{kFirstOnlyWrong[0], kFirstOnlyWrong[1], kFirstOnlyWrong[2]}));
+  EXPECT_EQ(rgb(2),
+            (std::array<float, 3>{kSecondOnlyWrong[0], kSecondOnlyWrong[1], kSecondOnlyWrong[2]}));
   EXPECT_EQ(rgb(3), (std::array<float, 3>{kBothWrong[0], kBothWrong[1], kBothWrong[2]}));
   EXPECT_THROW(disagreementOverlay(colour, exact, Image(4, 1, 1), second), InputError);
 }
@@ -552,8 +552,7 @@ TEST(Plots, StackSegmentsHaveOneColourEach) {
     const std::vector<std::string> colours = segmentColours(n);
     ASSERT_EQ(colours.size(), n);
     for (const std::string& c : colours) EXPECT_TRUE(std::regex_match(c, hex)) << c;
-    EXPECT_EQ(std::set<std::string>(colours.begin(), colours.end()).size(), n)
-        << n << " segments";
+    EXPECT_EQ(std::set<std::string>(colours.begin(), colours.end()).size(), n) << n << " segments";
   }
   // The chart's script (kept beside the PNG) gives each of twelve segments its colour.
   std::string why;

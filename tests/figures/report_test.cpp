@@ -17,10 +17,10 @@
 #include <sstream>
 #include <string>
 
-#include "registry/registry.h"
 #include "figures/diagnostics.h"
 #include "figures/figure_spec.h"
 #include "figures/plots.h"
+#include "registry/registry.h"
 
 namespace fs = std::filesystem;
 using namespace sl;

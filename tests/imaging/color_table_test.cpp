@@ -48,9 +48,7 @@ TEST_P(ColorTableFormats, LookupFollowsTable313) {
     for (int c = 0; c < 4; ++c) want[c] = in[c];
     auto entry = [&](int c, int comp) { return t[size_t(tableIndex(in[c], width)) * 4 + comp]; };
     switch (format) {
-      case GL_ALPHA:
-        want[3] = entry(3, 3);
-        break;
+      case GL_ALPHA: want[3] = entry(3, 3); break;
       case GL_LUMINANCE:
         for (int c = 0; c < 3; ++c) want[c] = entry(c, 0);
         break;
@@ -237,9 +235,7 @@ INSTANTIATE_TEST_SUITE_P(
                     glGetColorTableParameteriv(GL_COLOR_TABLE, GL_TEXTURE_WIDTH, &v);
                   },
                   GL_INVALID_ENUM}),
-    [](const auto& info) {
-      return testName(info.param.name);
-    });
+    [](const auto& info) { return testName(info.param.name); });
 
 // GL's error model (2.5): one sticky flag per error; GetError returns and clears one.
 TEST(ColorTable, ErrorFlagsAreStickyOncePerCode) {

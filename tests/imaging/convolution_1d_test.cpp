@@ -19,9 +19,7 @@ constexpr int kFilter = 3;           // filter width Wf
 constexpr float kTolerance = 1e-6f;  // float sums of three products of values in [0, 1]
 
 // Source group i, component c: distinct values per group and component.
-float sourceValue(int i, int c) {
-  return float((i * 29 + c * 53) % 97) / 96.0f;
-}
+float sourceValue(int i, int c) { return float((i * 29 + c * 53) % 97) / 96.0f; }
 std::vector<float> sourceImage(int w = kWidth) {
   std::vector<float> px(size_t(w) * 4);
   for (int i = 0; i < w; ++i)

@@ -140,24 +140,15 @@ TEST_P(ConvolutionFormats, ComponentsFollowTable314) {
   for (size_t t = 0; t < 9; ++t) {
     double* p = &stored.rgba[t * 4];
     switch (format) {
-      case GL_ALPHA:
-        filtered[0] = filtered[1] = filtered[2] = false;
-        break;
+      case GL_ALPHA: filtered[0] = filtered[1] = filtered[2] = false; break;
       case GL_LUMINANCE:
         p[1] = p[2] = p[0];
         filtered[3] = false;
         break;
-      case GL_LUMINANCE_ALPHA:
-        p[1] = p[2] = p[0];
-        break;
-      case GL_INTENSITY:
-        p[1] = p[2] = p[3] = p[0];
-        break;
-      case GL_RGB:
-        filtered[3] = false;
-        break;
-      default:
-        break;
+      case GL_LUMINANCE_ALPHA: p[1] = p[2] = p[0]; break;
+      case GL_INTENSITY: p[1] = p[2] = p[3] = p[0]; break;
+      case GL_RGB: filtered[3] = false; break;
+      default: break;
     }
   }
   std::vector<float> kf(k.rgba.begin(), k.rgba.end());
@@ -186,12 +177,8 @@ TEST_P(ConvolutionFormats, ComponentsFollowTable314) {
       EXPECT_EQ(back[0], 0.0f);
       EXPECT_FLOAT_EQ(a0, float(k.rgba[3]));
       break;
-    case GL_RGB:
-      EXPECT_EQ(a0, 1.0f);
-      break;
-    default:
-      EXPECT_FLOAT_EQ(a0, float(k.rgba[3]));
-      break;
+    case GL_RGB: EXPECT_EQ(a0, 1.0f); break;
+    default: EXPECT_FLOAT_EQ(a0, float(k.rgba[3])); break;
   }
   EXPECT_TRUE(drainErrors().empty());
 }

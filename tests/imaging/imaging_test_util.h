@@ -79,16 +79,12 @@ inline std::vector<uint8_t> patternImage(int w, int h, unsigned seed = 1) {
 }
 
 // ---- the specification's formulas, as a reader would apply them by hand ----
-inline float clamp01(float v) {
-  return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-}
+inline float clamp01(float v) { return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); }
 // 3.6.5 Color Table Lookup: index = round(clamp(c) * (width - 1)).
 inline int tableIndex(float c, int width) {
   return int(std::floor(clamp01(c) * float(width - 1) + 0.5f));
 }
 // 4.3.2 final conversion of a component to an unsigned byte.
-inline uint8_t toByte(float v) {
-  return uint8_t(std::floor(clamp01(v) * 255.0f + 0.5f));
-}
+inline uint8_t toByte(float v) { return uint8_t(std::floor(clamp01(v) * 255.0f + 0.5f)); }
 
 }  // namespace sl::imaging::testing

@@ -35,15 +35,9 @@ using test::testDir;
 
 constexpr float kByteMax = 255.0f;
 
-fs::path sourceDir() {
-  return fs::path(SHADOWLAB_SOURCE_DIR);
-}
-fs::path clientsDir() {
-  return sourceDir() / ".." / "shared" / "legacy-clients" / "redbook";
-}
-fs::path libraryDir() {
-  return fs::path(SHADOWLAB_BINARY).parent_path() / ".." / "lib";
-}
+fs::path sourceDir() { return fs::path(SHADOWLAB_SOURCE_DIR); }
+fs::path clientsDir() { return sourceDir() / ".." / "shared" / "legacy-clients" / "redbook"; }
+fs::path libraryDir() { return fs::path(SHADOWLAB_BINARY).parent_path() / ".." / "lib"; }
 
 bool onPath(const std::string& tool) {
   return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
@@ -221,9 +215,7 @@ int laplacianEighths(const Leeds& l, int x, int y, int c) {
   return 8 * at(x, y) - sum;
 }
 
-bool referenceHere() {
-  return !referenceGlPath().empty() && fs::exists(referenceGlPath());
-}
+bool referenceHere() { return !referenceGlPath().empty() && fs::exists(referenceGlPath()); }
 
 #define SL_REQUIRE_REFERENCE() \
   if (!referenceHere())        \

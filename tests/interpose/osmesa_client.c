@@ -3,9 +3,9 @@
  * by legacy_clients_test.cpp, with libshadowlab-imaging.so preloaded and without.
  * Prints one "ok ..." line per check; exits 1 at the first check that fails. */
 #define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
+#include <GL/osmesa.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,14 +13,19 @@
 
 enum { kSize = 16, kDepthBits = 24, kColorTableSizeA = 4, kColorTableSizeB = 8 };
 
-static int fail(const char *what) {
+static int fail(const char* what) {
   printf("FAIL %s\n", what);
   exit(1);
 }
 
-static OSMesaContext makeContext(GLubyte *buffer) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, kDepthBits,
-                         OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+static OSMesaContext makeContext(GLubyte* buffer) {
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         kDepthBits,
+                         OSMESA_PROFILE,
+                         OSMESA_COMPAT_PROFILE,
+                         0};
   OSMesaContext c = OSMesaCreateContextAttribs(attribs, NULL);
   if (c == NULL) fail("OSMesaCreateContextAttribs");
   if (!OSMesaMakeCurrent(c, buffer, GL_UNSIGNED_BYTE, kSize, kSize)) fail("OSMesaMakeCurrent");
@@ -33,9 +38,9 @@ struct ThreadCheck {
   int seen;
 };
 
-static void *threadBody(void *arg) {
-  struct ThreadCheck *t = (struct ThreadCheck *)arg;
-  GLubyte *buffer = calloc(kSize * kSize, 4);
+static void* threadBody(void* arg) {
+  struct ThreadCheck* t = (struct ThreadCheck*)arg;
+  GLubyte* buffer = calloc(kSize * kSize, 4);
   OSMesaContext c = makeContext(buffer);
   GLubyte table[kColorTableSizeB * 4];
   memset(table, 128, sizeof table);
@@ -50,26 +55,27 @@ static void *threadBody(void *arg) {
 }
 
 int main(void) {
-  GLubyte *buffer = calloc(kSize * kSize, 4);
+  GLubyte* buffer = calloc(kSize * kSize, 4);
   OSMesaContext c = makeContext(buffer);
 
-  const char *ext = (const char *)glGetString(GL_EXTENSIONS);
-  if (ext == NULL || strstr(ext, "GL_ARB_imaging") == NULL) fail("no GL_ARB_imaging in GL_EXTENSIONS");
+  const char* ext = (const char*)glGetString(GL_EXTENSIONS);
+  if (ext == NULL || strstr(ext, "GL_ARB_imaging") == NULL)
+    fail("no GL_ARB_imaging in GL_EXTENSIONS");
   printf("ok GL_ARB_imaging in glGetString(GL_EXTENSIONS)\n");
 
   GLint n = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &n);
-  const char *last = (const char *)glGetStringi(GL_EXTENSIONS, (GLuint)(n - 1));
-  if (last == NULL || strcmp(last, "GL_ARB_imaging") != 0) fail("glGetStringi's last is not GL_ARB_imaging");
+  const char* last = (const char*)glGetStringi(GL_EXTENSIONS, (GLuint)(n - 1));
+  if (last == NULL || strcmp(last, "GL_ARB_imaging") != 0)
+    fail("glGetStringi's last is not GL_ARB_imaging");
   printf("ok glGetStringi(GL_EXTENSIONS, %d) = GL_ARB_imaging\n", n - 1);
 
-  if ((void *)OSMesaGetProcAddress("glConvolutionFilter2D") != (void *)&glConvolutionFilter2D)
+  if ((void*)OSMesaGetProcAddress("glConvolutionFilter2D") != (void*)&glConvolutionFilter2D)
     fail("OSMesaGetProcAddress(glConvolutionFilter2D) is not the linked symbol");
   printf("ok OSMesaGetProcAddress gives the same glConvolutionFilter2D as the link\n");
 
   /* Errors of the emulation and of the driver, merged: 2.5 sticky flags. */
-  while (glGetError() != GL_NO_ERROR) {
-  }
+  while (glGetError() != GL_NO_ERROR) {}
   GLfloat kernel[9] = {0};
   glConvolutionFilter2D(GL_TEXTURE_2D, GL_LUMINANCE, 3, 3, GL_LUMINANCE, GL_FLOAT, kernel);
   glColorTable(GL_COLOR_TABLE, GL_RGBA, 3, GL_RGBA, GL_UNSIGNED_BYTE, kernel); /* not 2^n */
@@ -120,8 +126,8 @@ int main(void) {
   GLint mine = -1;
   glGetColorTableParameteriv(GL_COLOR_TABLE, GL_COLOR_TABLE_WIDTH, &mine);
   if (mine != 0) fail("this context's colour table changed with the others'");
-  printf("ok contexts on two threads keep their own tables (%d, %d; this one %d)\n", a.seen,
-         b.seen, mine);
+  printf("ok contexts on two threads keep their own tables (%d, %d; this one %d)\n", a.seen, b.seen,
+         mine);
 
   OSMesaDestroyContext(c);
   free(buffer);

@@ -88,7 +88,8 @@ std::vector<Case> malformedRequests() {
     for (const std::string& v : badNumbers)
       cases.push_back({get(base + "&" + std::string(key) + "=" + v)});
   for (const std::string& v : badNumbers) cases.push_back({get(base + "&size=" + v + "x48")});
-  for (const std::string& v : badNumbers) cases.push_back({get(base + "&light-position=" + v + ",1,1")});
+  for (const std::string& v : badNumbers)
+    cases.push_back({get(base + "&light-position=" + v + ",1,1")});
   for (const std::string& v : badNumbers) cases.push_back({get(base + "&orbit=10," + v + ",5")});
   for (const std::string& v : badNumbers)
     cases.push_back({get(base + "&param=offset-factor=" + v)});
@@ -203,17 +204,17 @@ TEST(LabFuzz, BodilessRequestsOfOtherMethodsGet405) {
   auto server = startLab(kTestRequestsPerSecond, kTestBurst, &port);
   for (const std::string method : {"POST", "PUT", "DELETE", "PATCH", "OPTIONS"})
     for (const std::string path : {"/api/render?technique=legacy.hw", "/"}) {
-      const std::string reply = exchange(
-          port, method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", false);
+      const std::string reply =
+          exchange(port, method + " " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n", false);
       EXPECT_EQ(statusOf(reply), 405) << method << " " << path << "\n" << reply.substr(0, 300);
       EXPECT_NE(reply.find("Allow: GET"), std::string::npos) << method << " " << path;
     }
   // With a body the answer is the same.
-  const std::string withBody = exchange(
-      port,
-      "POST /api/render HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 3\r\nConnection: "
-      "close\r\n\r\nabc",
-      false);
+  const std::string withBody =
+      exchange(port,
+               "POST /api/render HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 3\r\nConnection: "
+               "close\r\n\r\nabc",
+               false);
   EXPECT_EQ(statusOf(withBody), 405) << withBody.substr(0, 300);
 }
 

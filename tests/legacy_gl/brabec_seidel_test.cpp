@@ -43,9 +43,7 @@ Frame render(const std::string& technique, const std::string& scene, const Rende
 }
 
 // 8-bit alpha shadow term back from the visibility (visibility = 1 - A / 255, exact in float).
-int alphaOf(float visibility) {
-  return int(std::lround((1.0f - visibility) * 255.0f));
-}
+int alphaOf(float visibility) { return int(std::lround((1.0f - visibility) * 255.0f)); }
 
 // ------------------------------------------------------------------ matrices
 

@@ -209,9 +209,7 @@ RenderParams smallParams() {
   return p;
 }
 
-Image everywhere() {
-  return Image(kSmallWidth, kSmallHeight, 1, 1.0f);
-}
+Image everywhere() { return Image(kSmallWidth, kSmallHeight, 1, 1.0f); }
 
 TEST(BenchTemporal, LightShiftIsAFifthOfATexelSideways) {
   const Scene scene = builtinScene("brabec");
@@ -667,11 +665,13 @@ TEST(BenchMerge, RanksAreRecomputedOverEveryFileWithinSceneAndWindow) {
   ASSERT_EQ(one[1].paretoRank, 1);
   std::ofstream(dir / "one.jsonl") << benchRowJsonLine(one[0]) << "\n"
                                    << benchRowJsonLine(one[1]) << "\n"
-                                   << R"({"claim": "x", "verdict": "agrees"})" << "\n";
+                                   << R"({"claim": "x", "verdict": "agrees"})"
+                                   << "\n";
   BenchRow d = withWindow(row("d", 9, 0.9), 128, 96);
   d.paretoRank = 7;  // whatever its run said
-  std::ofstream(dir / "two.jsonl") << benchRowJsonLine(withWindow(row("c", 1, 0.1), 64, 48))
-                                   << "\n\n" << benchRowJsonLine(d) << "\n";
+  std::ofstream(dir / "two.jsonl")
+      << benchRowJsonLine(withWindow(row("c", 1, 0.1), 64, 48)) << "\n\n"
+      << benchRowJsonLine(d) << "\n";
   const std::vector<nlohmann::json> merged =
       mergeBenchRows({(dir / "one.jsonl").string(), (dir / "two.jsonl").string()});
   ASSERT_EQ(merged.size(), 4u) << "the claim and the blank line are skipped";

@@ -94,8 +94,8 @@ TEST(Roofline, AccumulateFloorIsGlAccumAndLeavesTheFramesUnchanged) {
   const BenchmarkVariant v = paperVariants()[3];
   ASSERT_EQ(v.technique, "legacy.fast-pcf");
   ASSERT_EQ(v.filter, 4);
-  const auto terms =
-      passFloor(findPassSpec(findTechnique("legacy.fast-pcf").passes, "6a").floor, 1, smallParams(v));
+  const auto terms = passFloor(findPassSpec(findTechnique("legacy.fast-pcf").passes, "6a").floor, 1,
+                               smallParams(v));
   ASSERT_TRUE(terms.has_value());
   ASSERT_EQ(terms->size(), 1u);
   EXPECT_EQ(terms->front().work, FloorWork::kAccumulate);

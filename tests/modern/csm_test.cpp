@@ -809,7 +809,7 @@ bool segmentMeetsBox(const glm::vec3& a, const glm::vec3& b, const Bounds& box, 
 //   pixels whose ray from the camera passes within kSilhouetteMargin of a square's box are left
 //   out: a square's edge is where the two programs' depth tests may pick different faces.
 TEST(Csm, DecidedPixelsEqualTheReconstructionSoLitGroundShowsNoTiles) {
-  constexpr double kGreyLevel = 1.0 / 255.0;  // one step of an 8-bit grey image of the mask
+  constexpr double kGreyLevel = 1.0 / 255.0;     // one step of an 8-bit grey image of the mask
   constexpr double kSmoothInFull = 0.5 / 255.0;  // neighbours that skip-error=0 shades alike
   constexpr double kLit = 0.95;                  // visibility of lit ground (0.992 at M = 16)
   constexpr double kFaceTieFraction = 0.01;      // pixels where different faces win (above)
@@ -842,8 +842,10 @@ TEST(Csm, DecidedPixelsEqualTheReconstructionSoLitGroundShowsNoTiles) {
   Bounds ground;
   std::vector<Bounds> squares;
   for (const Object& o : scene.objects) {
-    if (o.name == "ground") ground = worldBounds(o);
-    else squares.push_back(worldBounds(o));
+    if (o.name == "ground")
+      ground = worldBounds(o);
+    else
+      squares.push_back(worldBounds(o));
   }
   std::vector<char> open(da.data.size(), 0);
   for (int y = 0; y < skip.height; ++y)

@@ -111,13 +111,9 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
 }  // namespace
 
 // Readable test parameters in gtest's messages.
-void PrintTo(Backend backend, std::ostream* os) {
-  *os << backendName(backend);
-}
+void PrintTo(Backend backend, std::ostream* os) { *os << backendName(backend); }
 namespace twins {
-void PrintTo(const TwinPair& pair, std::ostream* os) {
-  *os << pair.label;
-}
+void PrintTo(const TwinPair& pair, std::ostream* os) { *os << pair.label; }
 }  // namespace twins
 
 namespace {

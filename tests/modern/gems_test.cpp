@@ -26,12 +26,8 @@ Scene zoomedAnalytic() {
   return scene;
 }
 
-float minOf(const Image& m) {
-  return *std::min_element(m.data.begin(), m.data.end());
-}
-float maxOf(const Image& m) {
-  return *std::max_element(m.data.begin(), m.data.end());
-}
+float minOf(const Image& m) { return *std::min_element(m.data.begin(), m.data.end()); }
+float maxOf(const Image& m) { return *std::max_element(m.data.begin(), m.data.end()); }
 
 // Horizontal and vertical neighbour pairs whose visibility jumps by more than half.
 int hardEdges(const Image& m) {
@@ -197,9 +193,8 @@ TEST(Gems, BicubicKernelNeedsSixteenSamples) {
   EXPECT_THROW(renderByName("modern.gems16", scene,
                             smallParams(32, 32, 32, {{"kernel", "bicubic"}, {"samples", "4"}})),
                InputError);
-  EXPECT_THROW(
-      renderByName("modern.gems16", scene, smallParams(32, 32, 32, {{"kernel", "cubic"}})),
-      InputError);
+  EXPECT_THROW(renderByName("modern.gems16", scene, smallParams(32, 32, 32, {{"kernel", "cubic"}})),
+               InputError);
 }
 
 // Chan 2004 Fig. 4-8's "bicubic (16 samples)": each pixel's visibility is the B-spline-weighted
@@ -253,8 +248,8 @@ TEST(Gems, BicubicVisibilityIsTheBSplineWeightedSumOfSixteenComparisons) {
       const float got = f.visibility.at(x, y);
       penumbra += expected > 0.02 && expected < 0.98;
       worst = std::max(worst, std::abs(got - float(expected)));
-      EXPECT_NEAR(got, expected, kTolerance) << "pixel " << x << "," << y << ", lookup point "
-                                             << t.x << "," << t.y << " texels";
+      EXPECT_NEAR(got, expected, kTolerance)
+          << "pixel " << x << "," << y << ", lookup point " << t.x << "," << t.y << " texels";
       if (::testing::Test::HasFailure()) return;  // one message, not thousands
     }
   EXPECT_GT(checked, p.width * p.height / 2) << "most pixels must be checked";

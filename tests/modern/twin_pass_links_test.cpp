@@ -74,8 +74,8 @@ TEST(TwinPassLinks, EveryTwinPassTableAndItsShadersNameTheLegacyPassesTheyReplac
         fromShaders.insert(ids.begin(), ids.end());
       }
       for (const std::string& id : spec.replaces) {
-        EXPECT_TRUE(legacy.count(id)) << "replaces " << pair.legacy << " pass " << id
-                                      << ", which " << pair.legacy << " does not have";
+        EXPECT_TRUE(legacy.count(id)) << "replaces " << pair.legacy << " pass " << id << ", which "
+                                      << pair.legacy << " does not have";
         replaced.insert(id);
       }
       EXPECT_EQ(std::set<std::string>(spec.replaces.begin(), spec.replaces.end()), fromShaders)

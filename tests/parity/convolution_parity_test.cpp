@@ -33,24 +33,15 @@ std::vector<float> compatibleFilter(GLenum format, int w, int h, unsigned seed) 
     float* p = &f[size_t(k) * 4];
     const float delta = k == centre ? 1.0f : 0.0f;
     switch (format) {
-      case GL_ALPHA:
-        p[0] = p[1] = p[2] = delta;
-        break;
+      case GL_ALPHA: p[0] = p[1] = p[2] = delta; break;
       case GL_LUMINANCE:
         p[1] = p[2] = p[0];
         p[3] = delta;
         break;
-      case GL_LUMINANCE_ALPHA:
-        p[1] = p[2] = p[0];
-        break;
-      case GL_INTENSITY:
-        p[1] = p[2] = p[3] = p[0];
-        break;
-      case GL_RGB:
-        p[3] = delta;
-        break;
-      default:
-        break;
+      case GL_LUMINANCE_ALPHA: p[1] = p[2] = p[0]; break;
+      case GL_INTENSITY: p[1] = p[2] = p[3] = p[0]; break;
+      case GL_RGB: p[3] = delta; break;
+      default: break;
     }
   }
   return f;
@@ -92,18 +83,12 @@ std::string borderName(GLenum b) {
 }
 std::string formatName(GLenum f) {
   switch (f) {
-    case GL_ALPHA:
-      return "Alpha";
-    case GL_LUMINANCE:
-      return "Luminance";
-    case GL_LUMINANCE_ALPHA:
-      return "LuminanceAlpha";
-    case GL_INTENSITY:
-      return "Intensity";
-    case GL_RGB:
-      return "Rgb";
-    default:
-      return "Rgba";
+    case GL_ALPHA: return "Alpha";
+    case GL_LUMINANCE: return "Luminance";
+    case GL_LUMINANCE_ALPHA: return "LuminanceAlpha";
+    case GL_INTENSITY: return "Intensity";
+    case GL_RGB: return "Rgb";
+    default: return "Rgba";
   }
 }
 

@@ -80,18 +80,10 @@ TEST_P(ColorMatrixCommandParity, CommandQueryAndCopy) {
     const float rows[16] = {0.6f, 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0.2f, 0.4f, 0, 0.4f};
     const double swap[16] = {0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     switch (k) {
-      case 0:
-        glRotatef(90.0f, 0.0f, 0.0f, 1.0f);
-        break;
-      case 1:
-        glRotated(180.0, 1.0, 0.0, 0.0);
-        break;
-      case 2:
-        glOrtho(0.0, 2.0, 0.0, 2.0, -1.0, 1.0);
-        break;
-      case 3:
-        glFrustum(-1.0, 1.0, -1.0, 1.0, 1.0, 3.0);
-        break;
+      case 0: glRotatef(90.0f, 0.0f, 0.0f, 1.0f); break;
+      case 1: glRotated(180.0, 1.0, 0.0, 0.0); break;
+      case 2: glOrtho(0.0, 2.0, 0.0, 2.0, -1.0, 1.0); break;
+      case 3: glFrustum(-1.0, 1.0, -1.0, 1.0, 1.0, 3.0); break;
       case 4:
         glScaled(0.4, 0.8, 1.0);  // results stay below 0.8: clear of departure F's band
         glTranslated(1.0, -1.0, 0.0);
@@ -105,8 +97,7 @@ TEST_P(ColorMatrixCommandParity, CommandQueryAndCopy) {
         glFrustum(-1.0, 1.0, -1.0, 1.0, 0.0, 1.0);
         glFrustum(-1.0, 1.0, -1.0, 1.0, 2.0, 2.0);
         break;
-      default:
-        break;
+      default: break;
     }
     const auto e = drainErrors();
     o.errors.insert(o.errors.end(), e.begin(), e.end());
@@ -205,21 +196,14 @@ INSTANTIATE_TEST_SUITE_P(ThreeSettings, TransferScaleBiasParity, ::testing::Rang
 // table 6.1 gives the constants 0 and 1: departures_test.cpp).
 std::vector<GLenum> storedParts(GLenum format) {
   switch (format) {
-    case GL_RGB:
-      return {GL_RGB};
-    case GL_ALPHA:
-      return {GL_ALPHA};
-    case GL_LUMINANCE:
-      return {GL_RED};
-    case GL_LUMINANCE_ALPHA:
-      return {GL_RED, GL_ALPHA};
-    default:
-      return {GL_RGBA};
+    case GL_RGB: return {GL_RGB};
+    case GL_ALPHA: return {GL_ALPHA};
+    case GL_LUMINANCE: return {GL_RED};
+    case GL_LUMINANCE_ALPHA: return {GL_RED, GL_ALPHA};
+    default: return {GL_RGBA};
   }
 }
-int partSize(GLenum part) {
-  return part == GL_RGBA ? 4 : part == GL_RGB ? 3 : 1;
-}
+int partSize(GLenum part) { return part == GL_RGBA ? 4 : part == GL_RGB ? 3 : 1; }
 
 struct HistogramCase {
   GLenum format;

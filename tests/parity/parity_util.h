@@ -45,9 +45,7 @@ struct Outcome {
 // Mesa 7.8 converts floats to unsigned bytes with a shortcut that maps every value from
 // 0x3f7f0000 (0.99609375) up to 255, where rounding to nearest gives 254 below 254.5/255.
 constexpr float kMesaSaturationStart = 0.99609375f;
-inline bool inSaturationBand(float v) {
-  return v >= kMesaSaturationStart && v < 254.5f / 255.0f;
-}
+inline bool inSaturationBand(float v) { return v >= kMesaSaturationStart && v < 254.5f / 255.0f; }
 
 using Scenario = std::function<void(Outcome&)>;
 

@@ -114,9 +114,7 @@ TEST_P(AllStagesParity, Path) {
     const bool copyToTexture = p.path == Path::kCopyTexImage || p.path == Path::kCopyTexSubImage;
     enableEverything(p.border, !copyToTexture);
     switch (p.path) {
-      case Path::kReadPixels:
-        appendFloats(o, readRgbaF(0, 0, w, h));
-        break;
+      case Path::kReadPixels: appendFloats(o, readRgbaF(0, 0, w, h)); break;
       case Path::kDrawPixels:
         glWindowPos2i(w, 0);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -126,12 +124,8 @@ TEST_P(AllStagesParity, Path) {
         glWindowPos2i(w, 0);
         glCopyPixels(0, 0, w, h, GL_COLOR);
         break;
-      case Path::kCopyTexImage:
-        glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 0, 0, 8, 8, 0);
-        break;
-      case Path::kCopyTexSubImage:
-        glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 3, 2, 0, 0, w, h);
-        break;
+      case Path::kCopyTexImage: glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 0, 0, 8, 8, 0); break;
+      case Path::kCopyTexSubImage: glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 3, 2, 0, 0, w, h); break;
       case Path::kTexImage:
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 8, 8, 0, GL_RGBA, GL_UNSIGNED_BYTE, src.data());
@@ -185,9 +179,7 @@ struct AccumCase {
   void (*ops)();
 };
 
-void drawSecond() {
-  putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 162));
-}
+void drawSecond() { putImage(kParityW, kParityH, patternImage(kParityW, kParityH, 162)); }
 
 class AccumulationParity : public ::testing::TestWithParam<AccumCase> {};
 TEST_P(AccumulationParity, Operations) {

@@ -37,8 +37,8 @@ TEST(ParamDeclarations, EveryKeyReadIsDeclaredWithItsDefault) {
       ASSERT_NE(spec, nullptr) << t.name << " reads --param " << key << " without declaring it";
       if (p.extra.count(key) == 0) {
         EXPECT_TRUE(spec->isDefault(value))
-            << t.name << " --param " << key << ": read with default " << value
-            << ", declared " << spec->defaultText();
+            << t.name << " --param " << key << ": read with default " << value << ", declared "
+            << spec->defaultText();
       }
     }
     // Keys declared but not read at all are allowed only where they apply to other settings
@@ -50,8 +50,7 @@ TEST(ParamDeclarations, EveryKeyReadIsDeclaredWithItsDefault) {
       given.readLog.reset();
       given.extra[spec.key] = spec.defaultText();
       EXPECT_NO_THROW(renderTechnique(t, scene, given))
-          << t.name << " refuses its own default --param " << spec.key << "="
-          << spec.defaultText();
+          << t.name << " refuses its own default --param " << spec.key << "=" << spec.defaultText();
     }
   }
 }

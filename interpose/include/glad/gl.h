@@ -11,7 +11,7 @@
 
 /* The context's version as glad reports it: major * 10000 + minor, 0 without a context. */
 static inline int gladLoaderLoadGL(void) {
-  const char *version = (const char *)glGetString(GL_VERSION);
+  const char* version = (const char*)glGetString(GL_VERSION);
   int major = 0, minor = 0;
   if (version == NULL || sscanf(version, "%d.%d", &major, &minor) != 2) return 0;
   return major * 10000 + minor;

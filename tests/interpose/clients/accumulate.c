@@ -6,16 +6,17 @@
  * copying the window onto itself through a colour matrix (glCopyPixels with
  * glMatrixMode(GL_COLOR)). Keys: 'a' toggles 1 and 8 passes, 'g' toggles the grey matrix.
  * Built like the Red Book programs (scripts/build_legacy_client.sh) and run by run-legacy. */
-#include "glad/gl.h"
-#include "glut_wrap.h"
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "glad/gl.h"
+#include "glut_wrap.h"
 
 enum { kWidth = 160, kHeight = 120, kManyPasses = 8 };
 
 /* Sub-pixel offsets of the passes, in pixels: a regular 8-sample pattern in [-0.5, 0.5). */
 static const float kJitter[kManyPasses][2] = {
-    {-0.375f, -0.125f}, {-0.125f, 0.375f}, {0.125f, -0.375f}, {0.375f, 0.125f},
+    {-0.375f, -0.125f}, {-0.125f, 0.375f},  {0.125f, -0.375f}, {0.375f, 0.125f},
     {-0.375f, 0.375f},  {-0.125f, -0.375f}, {0.125f, 0.125f},  {0.375f, -0.125f}};
 
 /* Luminance weights (ITU-R BT.601) in every row: R' = G' = B' = 0.299 R + 0.587 G + 0.114 B. */
@@ -110,7 +111,7 @@ static void keyboard(unsigned char key, int x, int y) {
   glutPostRedisplay();
 }
 
-int main(int argc, char **argv) {
+int main(int argc, char** argv) {
   glutInit(&argc, argv);
   glutInitDisplayMode(GLUT_SINGLE | GLUT_RGB | GLUT_ACCUM | GLUT_DEPTH);
   glutInitWindowSize(kWidth, kHeight);
