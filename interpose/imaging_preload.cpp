@@ -109,7 +109,9 @@ std::map<std::pair<int, const void*>, std::unique_ptr<Adopted>>& registry() {
   static std::map<std::pair<int, const void*>, std::unique_ptr<Adopted>> r;
   return r;
 }
-thread_local Adopted* tCurrent = nullptr;
+// Read on every wrapped call. initial-exec: the library is loaded at start-up (LD_PRELOAD), so
+// its thread-local block is static and read without a call to __tls_get_addr.
+__attribute__((tls_model("initial-exec"))) thread_local Adopted* tCurrent = nullptr;
 
 struct ResolverInput {
   Api api;
