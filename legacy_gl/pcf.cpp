@@ -27,6 +27,7 @@
 #include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/projected_spotlight.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
@@ -112,7 +113,8 @@ PassTable pcfPasses() {
                     "(1 - shadow), ambient kept",
        .writes = {{.name = "shaded",
                    .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
-       .floor = F::kLighting},
+       .floor = F::kLighting,
+       .deviations = {kProjectedConeDeviation}},
   };
 }
 

@@ -18,6 +18,7 @@
 #include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/projected_spotlight.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
@@ -77,7 +78,8 @@ PassTable rampPasses() {
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
                     "(1 - mask), ambient kept",
        .writes = {{.name = "shaded", .caption = "Pass 5: OpenGL lighting x (1 - mask) + ambient"}},
-       .floor = F::kLighting},
+       .floor = F::kLighting,
+       .deviations = {kProjectedConeDeviation}},
   };
 }
 
