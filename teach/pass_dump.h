@@ -1,4 +1,4 @@
-// teach/pass_dump.h — what `shadowlab render --dump-passes DIR` writes (issue 18 item 1):
+// teach/pass_dump.h — what `shadowlab render --dump-passes DIR` writes:
 //
 //   DIR/01-light-depth.png, 02-..., 03a-..., 03b-...   every intermediate buffer, in pipeline order
 //   DIR/passes.json                                    what each file shows, pass by pass

@@ -1,4 +1,4 @@
-// legacy_gl/spotlight_tessellation.h (issue 18 item 5): the meshes the legacy camera passes draw
+// legacy_gl/spotlight_tessellation.h: the meshes the legacy camera passes draw
 // are split along the spotlight cone's edge down to a pixel, keep their geometry (area, closed
 // surfaces stay closed: no T-junction cracks), and are not split where the cone's edge is not.
 #include "legacy_gl/spotlight_tessellation.h"
@@ -144,7 +144,7 @@ Scene splitThroughPasses(const Scene& scene, const RenderParams& params, Frame& 
   return cameraPassScene(scene, params, passes);
 }
 
-// Issue 20 item 2: cameraPassScene keeps the split meshes in the current context. A second call
+// cameraPassScene keeps the split meshes in the current context. A second call
 // with the same scene, camera, light and window draws the very meshes of the first, which are
 // those a fresh split makes; a moved camera is split anew.
 TEST(SpotlightTessellation, CachedSplitEqualsAFreshOneAndFollowsTheCamera) {
