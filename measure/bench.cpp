@@ -41,8 +41,8 @@
 #include "core/scene/scene_library.h"
 #include "core/technique/frame_timing.h"
 #include "core/technique/plan.h"
-#include "figures/sweep.h"
 #include "imaging/imaging.h"
+#include "measure/sweep.h"
 #include "reference/reference.h"
 #include "registry/commands.h"  // optionsJson: the common options a technique reads
 #include "registry/registry.h"
@@ -1199,7 +1199,7 @@ int runBenchMerge(const cli::Args& args) {
   return 0;
 }
 
-// `bench --sweep FILE.json`: the rows of a sweep spec (figures/sweep.h), one JSON line each
+// `bench --sweep FILE.json`: the rows of a sweep spec (measure/sweep.h), one JSON line each
 // in the spec's order, with Pareto ranks within each view; --csv as the bench's.
 int runBenchSweep(const cli::Args& args) {
   rejectWith(args, "--sweep",

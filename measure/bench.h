@@ -268,7 +268,7 @@ BenchPlots writePlots(const std::string& outDir, const BenchResult& result);
 BenchOptions parseBenchOptions(const cli::Args& args);
 int runBenchCommand(const cli::Args& args);
 
-// One row at a time, as runBenchmark measures each (figures/sweep.h): the references of one
+// One row at a time, as runBenchmark measures each (measure/sweep.h): the references of one
 // view (scene, window, back end) rendered once, then any variant measured against them.
 struct BenchReferences;
 std::shared_ptr<const BenchReferences> renderBenchReferences(const Scene& scene,

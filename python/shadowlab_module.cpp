@@ -2,7 +2,7 @@
 // (docs/python.md; the Python half: python/shadowlab/__init__.py). Every call goes through the
 // command line's own code: its parser (registry/cli.h parse) reads the options the Python side
 // spells as render's, compare's and bench's arguments, and registry/commands.h, measure/bench.h
-// and figures/sweep.h do the work, so a row from Python equals the CLI's for the same options.
+// and measure/sweep.h do the work, so a row from Python equals the CLI's for the same options.
 //
 // Threads: the GIL is released while C++ works, and one lock (glLock) makes the process's GL
 // work one call at a time, so Python threads (a Dask worker's) may call in freely.
@@ -19,8 +19,8 @@
 #include "core/base/image.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
-#include "figures/sweep.h"
 #include "measure/bench.h"
+#include "measure/sweep.h"
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
@@ -223,7 +223,7 @@ std::string sweepMeasure(const std::string& specJson, const std::vector<size_t>&
   });
 }
 
-// The Pareto ranks of a sweep's rows (figures/sweep.h assignSweepParetoRanks) from its columns.
+// The Pareto ranks of a sweep's rows (measure/sweep.h assignSweepParetoRanks) from its columns.
 std::vector<int> paretoRanks(const std::vector<std::string>& groups,
                              const std::vector<std::string>& techniques,
                              const std::vector<std::string>& statuses,

@@ -135,7 +135,7 @@ def move_stems(folder, rule, target, rename=lambda n: n):
 move_stems("legacy_gl", re.compile(r"^benchmark$"), "measure", lambda n: "legacy_" + n)
 move_stems("legacy_gl", re.compile(r"^roofline(_.*)?$"), "measure")
 move_stems("modern", re.compile(r"^volumes_bench(_.*)?$"), "measure")
-move_stems("figures", re.compile(r"^(bench|bench_.*|stability|stability_.*)$"), "measure")
+move_stems("figures", re.compile(r"^(bench|bench_.*|stability|stability_.*|sweep)$"), "measure")
 move_stems("figures", re.compile(r"^(lesson|lesson_.*)$"), "teach")
 for old, new in [("tests/legacy_gl/roofline_test.cpp", "tests/measure/roofline_test.cpp"),
                  ("tests/figures/bench_test.cpp", "tests/measure/bench_test.cpp")]:
@@ -155,7 +155,7 @@ if mentions_only:
             (r"^measure/legacy_(benchmark[^/]*)$", r"legacy_gl/\1"),
             (r"^measure/(roofline[^/]*)$", r"legacy_gl/\1"),
             (r"^measure/(volumes_bench[^/]*)$", r"modern/\1"),
-            (r"^measure/((bench|stability)[^/]*)$", r"figures/\1"),
+            (r"^measure/((bench|stability|sweep)[^/]*)$", r"figures/\1"),
             (r"^tests/measure/(roofline_test\.cpp)$", r"tests/legacy_gl/\1"),
             (r"^tests/measure/(bench_test\.cpp)$", r"tests/figures/\1")]
     for folder in ["core", "teach", "measure", "tests/measure"]:

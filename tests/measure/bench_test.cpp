@@ -18,7 +18,7 @@
 #include "core/base/errors.h"
 #include "core/scene/scene_library.h"
 #include "core/technique/plan.h"
-#include "figures/sweep.h"
+#include "measure/sweep.h"
 #include "reference/reference.h"
 #include "registry/registry.h"
 

@@ -1,4 +1,4 @@
-// figures/sweep.h — a sweep: techniques x scenes x window sizes x shadow-map sides x filter
+// measure/sweep.h — a sweep: techniques x scenes x window sizes x shadow-map sides x filter
 // footprints x precisions x --param values x camera orbits, each row measured as `shadowlab
 // bench` measures a variant (measure/bench.h measureBenchRow) against the ray-traced references
 // of its view. The spec is one JSON object (docs/python.md "Sweeps"); the Python module's

@@ -1,6 +1,6 @@
-// figures/sweep.cpp — a sweep spec expanded into rows, each measured as the bench measures a
-// variant (figures/sweep.h; the spec's keys: docs/python.md "Sweeps").
-#include "figures/sweep.h"
+// measure/sweep.cpp — a sweep spec expanded into rows, each measured as the bench measures a
+// variant (measure/sweep.h; the spec's keys: docs/python.md "Sweeps").
+#include "measure/sweep.h"
 
 #include <algorithm>
 #include <set>
