@@ -75,7 +75,7 @@ struct PassDumpImage {
   std::string of;       // the file this is a channel of
   std::string view;     // "channel", "minus centre" (channel minus the centre channel), or ""
   std::optional<ValueLegend> legend;
-  std::string passId;  // the id of its pass in the technique's pass table ("5c")
+  std::string passId{};  // the id of its pass in the technique's pass table ("5c")
 };
 
 // The pass number a buffer or pass name starts with ("3a-projected..." -> 3, "1 depth" -> 1),
