@@ -1,6 +1,6 @@
 // figures/figure_list.cpp — the reproduced figures and tables of the five papers, as data.
 //
-// Every figure of issue 7 is listed, whether or not its techniques exist yet: the
+// Every figure of the papers is listed, whether or not its techniques exist yet: the
 // report shows a panel whose technique (or parameter, or intermediate buffer) is missing in
 // red with the reason, so nothing is skipped silently. Sizes are the paper's where the size is
 // the point (Brabec–Seidel 800x600, Table 1 1024x768) and 512x384 elsewhere so that the whole

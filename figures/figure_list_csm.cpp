@@ -41,7 +41,7 @@ constexpr float kFig10CloseupSide = 1.0f / float(kFig10CloseupMagnify);  // of t
 constexpr Closeup kFig10Closeup{0.5f - 0.5f * kFig10CloseupSide, 0.5f - 0.5f * kFig10CloseupSide,
                                 kFig10CloseupSide, kFig10CloseupSide, kFig10CloseupMagnify};
 
-// CSM Table 1's interleaved rounds (issue 27 item 6: at least 7, so that a trend's verdict
+// CSM Table 1's interleaved rounds (at least 7, so that a trend's verdict
 // "every round" or "the rounds disagree" rests on more than three frames per cell).
 constexpr int kTable1Rounds = 7;
 

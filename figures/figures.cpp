@@ -130,7 +130,7 @@ Setup setupFor(const FigureSpec& fig, const PanelSpec& p) {
   return s;
 }
 
-// Timing (issue 21 item 6). A panel whose time is set beside a paper's number is timed as the
+// A panel whose time is set beside a paper's number is timed as the
 // benches time a technique (core/technique/frame_timing.h: warm-up frames on one context, then the
 // median of timed frames), and all such panels of a figure (with their twins) are measured
 // interleaved: every context warmed up, then kFigureRounds rounds of one frame of each, so

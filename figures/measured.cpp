@@ -114,8 +114,8 @@ std::string passRole(const std::string& name) {
   return role;
 }
 
-// Where a timed cell's frame differs from the frame the paper compares it with, pass by pass
-// (issue 27 item 6): the passes paired by role, and those without a partner, which the cell
+// Where a timed cell's frame differs from the frame the paper compares it with, pass by pass:
+// the passes paired by role, and those without a partner, which the cell
 // adds; then the share of the cell's frame the paper's ratio needs the added work to cost,
 // against the share it costs here.
 // Added work costing less than this share of what the paper's ratio needs cannot make that

@@ -1,4 +1,4 @@
-// figures/measured.h — what a figure's run measured, in words (issue 21 item 5): the sentences
+// figures/measured.h — what a figure's run measured, in words: the sentences
 // and tables report.html sets under a caption. Every number in them is computed here from the
 // FigureResult (frame times, their interleaved rounds, counters, errors); the captions in
 // figure_list.cpp carry configuration and the papers' quoted numbers only.

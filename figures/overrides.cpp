@@ -220,7 +220,7 @@ FigureSpec applyOverrides(const FigureSpec& figure, const FigureOverrides& o) {
     }
   }
   // A key that changes nothing in this figure is an input error (as `render` refuses options
-  // its technique ignores, issue 21 item 3).
+  // its technique ignores).
   for (const auto& [key, value] : o.given) {
     if (concerned[key] > 0) continue;
     const bool known =

@@ -1,4 +1,4 @@
-// figures/overrides.h — `shadowlab figures --only ID --set key=value ...` (issue 21 item 1): one
+// figures/overrides.h — `shadowlab figures --only ID --set key=value ...`: one
 // figure re-made with parameters changed in every panel, written into its own folder with the
 // overrides in the caption and the file names.
 #pragma once

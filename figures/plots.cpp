@@ -53,7 +53,7 @@ std::string terminalLine(int width, int height) {
 
 // Runs a script whose `set output` names `pngPath`: gnuplot draws into a temporary beside it,
 // renamed over `pngPath` only when gnuplot succeeded, so a failed plot never replaces the
-// previous one with a half-drawn file (issue 17 item 4).
+// previous one with a half-drawn file.
 void runScript(const std::string& script, const std::string& pngPath) {
   const fs::path png(pngPath);
   const fs::path drawing = temporaryName(png, "plot");

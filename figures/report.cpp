@@ -100,7 +100,7 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
   }
   if (p.spec.kind == PanelKind::kIntermediates) {
     // A buffer strip spans the whole row of its grid and wraps its buffers there, each at its
-    // own aspect ratio (issue 18 item 6).
+    // own aspect ratio.
     h << "<div class=buffers><b>" << htmlEscape(p.spec.label) << "</b> ("
       << htmlEscape(p.spec.technique) << ")<div class=inter>";
     for (const ImageFile& im : p.images)
@@ -212,7 +212,7 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
       << fixed(t.difference.maxAbs, 3) << ", RMSE " << fixed(t.difference.rmse, 4)
       << "</figcaption></figure>\n";
-    // The images, not only the masks (issue 18 item 5), against registry/twins.h's bound.
+    // The images, not only the masks, against registry/twins.h's bound.
     h << "<figure><img src=\"" << htmlEscape(t.imageDiffFile)
       << "\" alt=\"image difference\"><figcaption>|image difference| (largest channel; black "
          "= within "
@@ -321,7 +321,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
        "mask against the ray-traced "
        "reference (RMSE, and the share of pixels off by more than 0.5). Missing panels are in "
        "red with the reason.</p>\n";
-  // What made this report (issue 21 item 2): the source, the command, the machine and its load.
+  // What made this report: the source, the command, the machine and its load.
   h << "<p class=provenance><small>Made by shadowlab <code>" << htmlEscape(buildCommit())
     << "</code>, command <code>" << htmlEscape(commandLine().empty() ? "unknown" : commandLine())
     << "</code>; CPU " << htmlEscape(cpuModel()) << "; GL " << htmlEscape(info.renderer)

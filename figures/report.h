@@ -25,7 +25,7 @@ struct TwinResult {
   double milliseconds = 0;
   int timedFrames = 0;  // as PanelResult::timedFrames
   MaskDifference difference;
-  // The images too (issue 18 item 5): a heat map of the largest channel difference, and the
+  // The images too: a heat map of the largest channel difference, and the
   // agreement against registry/twins.h's image bound.
   std::string imageDiffFile;
   twins::ImageAgreement image;

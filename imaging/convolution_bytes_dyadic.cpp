@@ -187,7 +187,7 @@ uint8_t exactByteAt(const Convolution& cv, const uint8_t* const* rows, int x, in
 }
 
 // The binomial 3x3 blur: row and column numerators (1, 2, 1) for every component, D = 4 —
-// the kernel of issue 20's blur stage. Its sums need only adds (x + 2y + z), no multiplies.
+// the kernel of the imaging blur stage. Its sums need only adds (x + 2y + z), no multiplies.
 bool isBinomial3x3(const Convolution& cv, const DyadicPlan& plan) {
   if (!plan.separable || cv.wf != 3 || cv.hf != 3 || plan.shift != kBinomialShift) return false;
   for (int k = 0; k < 3; ++k)

@@ -194,7 +194,7 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
 // Queries": the groups take their components from table 6.1 and "are then packed and placed in
 // client memory. No pixel transfer operations are performed on this image, but pixel storage
 // modes that are applicable to ReadPixels are applied."
-// What the user reads (the choice of issue 14 item 6, docs/imaging.md "Minmax"):
+// What the user reads (our choice, docs/imaging.md "Minmax"):
 //  - type FLOAT: the table's values as they are (table 4.7: c = f). 6.1.4 takes ReadPixels'
 //    storage modes, not its "Final Conversion" clamp to [0,1] (4.3.2), and 3.6.5 gives the
 //    table "at least the same representable range as a floating point number used to represent

@@ -267,7 +267,7 @@ bool convolveBytesStrips(TransferState& t, const std::vector<uint8_t>& src, int 
 bool convolveBytesApplies(const TransferState& t);
 
 // The 3x3 binomial blur: the outer product of kBinomialRow with itself, over 2^kBinomialShift
-// (issue 20's blur stage; convolution_bytes.cpp sums it with adds only).
+// (the imaging blur stage; convolution_bytes.cpp sums it with adds only).
 constexpr uint16_t kBinomialRow[3] = {1, 2, 1};
 constexpr int kBinomialShift = 4;  // the weights are multiples of 1/16
 // Its dense weights as glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA,

@@ -1,4 +1,4 @@
-// lab/lab_server.h — `shadowlab serve` (issue 19): the live lab. An HTTP server (cpp-httplib)
+// lab/lab_server.h — `shadowlab serve`: the live lab. An HTTP server (cpp-httplib)
 // that serves the page (lab/web/, embedded at build time) and a small API:
 //
 //   GET /api/techniques   names, papers, summaries, the common options each reads, and every
@@ -27,7 +27,7 @@
 
 namespace sl::lab {
 
-// Caps of the served API (issue 19 item 5); the CLI's own limits are wider.
+// Caps of the served API; the CLI's own limits are wider.
 constexpr int kMaxServedWidth = 1600;               // pixels
 constexpr int kMaxServedHeight = 1200;              // pixels
 constexpr int kMaxServedShadowMap = 4096;           // texels per side

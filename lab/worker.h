@@ -1,4 +1,4 @@
-// lab/worker.h — the live lab's render thread (issue 19 item 4): one thread runs every GL job,
+// lab/worker.h — the live lab's render thread: one thread runs every GL job,
 // one at a time, on contexts it alone makes current. Jobs arrive in lanes (the page's panels:
 // "a", "b", ...); a lane holds at most one waiting job, so a new job in a lane drops the one
 // waiting there (latest request wins: while a slider moves, stale frames are never rendered).

@@ -37,7 +37,8 @@ void setChannelMask(ChannelMask c) { glColorMask(c[0], c[1], c[2], c[3]); }
 
 // Texgen s, t, r, q = x, y, z, w of eye coordinates (§2: "use eye ... coordinates as texture
 // coordinates"): identity EYE_LINEAR planes, given while the modelview is the identity.
-void enableEyeCoordinateTexgen() {
+// On texture unit 0, in `texgen`'s scope (off again when it ends).
+void enableEyeCoordinateTexgen(ScopedTexgen& texgen) {
   glMatrixMode(GL_MODELVIEW);
   const ScopedPushMatrix eyeSpace;
   glLoadIdentity();
@@ -49,17 +50,24 @@ void enableEyeCoordinateTexgen() {
     plane[i] = 1.0f;
     glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
     glTexGenfv(coords[i], GL_EYE_PLANE, plane);
-    glEnable(enables[i]);
+    texgen.enable(enables[i]);
   }
 }
 
+// The texture matrix back to the identity once a texgen scope has ended.
+void resetTextureMatrix() {
+  loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
+  glMatrixMode(GL_MODELVIEW);
+}
+
+// Texgen off and the texture matrix reset, whatever the previous pass left (the state reset of
+// a pixel-copy pass).
 void disableTexgen() {
   glDisable(GL_TEXTURE_GEN_S);
   glDisable(GL_TEXTURE_GEN_T);
   glDisable(GL_TEXTURE_GEN_R);
   glDisable(GL_TEXTURE_GEN_Q);
-  loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
-  glMatrixMode(GL_MODELVIEW);
+  resetTextureMatrix();
 }
 
 // Pixel rectangles (glCopyPixels) in window coordinates: raster position (0, 0), and every
@@ -188,10 +196,11 @@ void renderLightDepth(const Scene& scene, const DepthEncoding& enc, const RampTe
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   loadMatrix(GL_PROJECTION, jitter * lightProjection(scene));
-  enableEyeCoordinateTexgen();
-  loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, 0.0));
-  loadMatrix(GL_MODELVIEW, lightView(scene.light));
   {
+    ScopedTexgen texgen(GL_TEXTURE0);
+    enableEyeCoordinateTexgen(texgen);
+    loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, 0.0));
+    loadMatrix(GL_MODELVIEW, lightView(scene.light));
     const ScopedEnable rampTexture(GL_TEXTURE_1D);
     glBindTexture(GL_TEXTURE_1D, ramp.name.id());
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
@@ -199,7 +208,7 @@ void renderLightDepth(const Scene& scene, const DepthEncoding& enc, const RampTe
     drawScene(scene, Draw::kCasters, Colors::kWhite);
     setChannelMask(kAllChannels);
   }
-  disableTexgen();
+  resetTextureMatrix();
 }
 
 void copyLightPassToMap(const ShadowMapTexture& map, int texels) {
@@ -230,15 +239,17 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
   copyLightPassToMap(map, texels);
 }
 
-void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias) {
-  enableEyeCoordinateTexgen();
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias,
+                            ScopedTexgen& texgen) {
+  enableEyeCoordinateTexgen(texgen);
   const glm::mat4 cameraToLight = lightView(scene.light) * glm::inverse(cameraView(scene.camera));
   loadMatrix(GL_TEXTURE, lightEyeToRamp(scene, enc.rampTexels, bias) * cameraToLight);
   glMatrixMode(GL_MODELVIEW);
 }
 
-void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels) {
-  enableEyeCoordinateTexgen();
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels,
+                          ScopedTexgen& texgen) {
+  enableEyeCoordinateTexgen(texgen);
   loadMatrix(GL_TEXTURE, cameraEyeToShadowMap(scene, params.shadowMapTexels, offsetTexels));
   glMatrixMode(GL_MODELVIEW);
 }
@@ -259,14 +270,15 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
   drawScene(scene, Draw::kNonReceivers, Colors::kBlack);
   // §2: "an additional 4x4 texture matrix ... transforms points from camera to light source
   // space", then onto the ramp.
-  loadCameraToRampTexgen(scene, enc, bias);
   {
+    ScopedTexgen texgen(GL_TEXTURE0);
+    loadCameraToRampTexgen(scene, enc, bias, texgen);
     const ScopedEnable rampTexture(GL_TEXTURE_1D);
     glBindTexture(GL_TEXTURE_1D, ramp.name.id());
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
     drawScene(scene, Draw::kReceivers, Colors::kWhite);
   }
-  disableTexgen();
+  resetTextureMatrix();
   setChannelMask(kAllChannels);
 }
 
@@ -314,14 +326,15 @@ void restoreCameraPass(const SavedCameraPass& saved, const RenderParams& params)
 namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params, const ShadowMapTexture& map,
                       glm::vec2 offsetTexels) {
-  loadProjectiveTexgen(scene, params, offsetTexels);
   {
+    ScopedTexgen texgen(GL_TEXTURE0);
+    loadProjectiveTexgen(scene, params, offsetTexels, texgen);
     const ScopedEnable mapTexture(GL_TEXTURE_2D);
     glBindTexture(GL_TEXTURE_2D, map.name.id());
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
     drawScene(scene, Draw::kReceivers, Colors::kWhite);
   }
-  disableTexgen();
+  resetTextureMatrix();
 }
 }  // namespace
 

@@ -101,9 +101,12 @@ std::array<float, 36> packingKernel(glm::ivec2 blockOffset);
 
 // Texgen + texture matrix of the camera passes (identity EYE_LINEAR planes, so the texture
 // matrix receives camera eye coordinates): camera eye -> light eye -> ramp (minus bias), and
-// camera eye -> shadow-map coordinates (+ offset). Exposed for the texgen-matrix test.
-void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias);
-void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels);
+// camera eye -> shadow-map coordinates (+ offset). The texgen is on texture unit 0 in
+// `texgen`'s scope. Exposed for the texgen-matrix test.
+void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias,
+                            ScopedTexgen& texgen);
+void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::vec2 offsetTexels,
+                          ScopedTexgen& texgen);
 
 // §2 second pass / §3 "z replicated over all four channels": the scene from the camera with
 // the ramp on the light depth of every point (texture matrix camera eye -> light -> ramp),

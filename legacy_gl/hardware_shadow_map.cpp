@@ -45,7 +45,7 @@ constexpr double kLargestOffsetUnits = 1e6;   // depth steps; far beyond any use
 // texture, and in-frustum fragments get s in (0.5, 1.5] at every scene scale.
 // It was once 1e4 per world unit: at a scene scale of 1e5 (q ~ 4e5) s*2 reached 8e9, beyond
 // the 32-bit integer texel coordinate llvmpipe converts s to, so the texel index wrapped to
-// the "behind" texel and every receiver came out in umbra (issue 17 item 8).
+// the "behind" texel and every receiver came out in umbra.
 constexpr float kBehindLightSharpness = 1.0f;
 
 struct HwState {
@@ -94,7 +94,8 @@ void renderDepthFromLight(Passes& passes, const Scene& scene, const RenderParams
 // eye coordinates back through (modelview_po)^-1. Texture unit 0 gets (s,t,r,q) for the map;
 // unit 1 gets q alone, scaled, for the behind-the-light step texture.
 void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, GLuint shadowMap,
-                               const Texture& behindLightStep) {
+                               const Texture& behindLightStep, ScopedTexgen& mapTexgen,
+                               ScopedTexgen& stepTexgen) {
   setCameraMatrices(scene, params.width, params.height);  // modelview = V^-1 (Everitt)
   const glm::mat4 planes = glm::transpose(worldToShadowMapTexture(scene));  // rows as columns
   const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
@@ -104,7 +105,7 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   for (int i = 0; i < 4; ++i) {
     glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
     glTexGenfv(coords[i], GL_EYE_PLANE, glm::value_ptr(planes[i]));
-    glEnable(enables[i]);
+    mapTexgen.enable(enables[i]);
   }
   loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
   glMatrixMode(GL_MODELVIEW);
@@ -119,7 +120,7 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   stepPlane.w += 0.5f;
   glTexGeni(GL_S, GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
   glTexGenfv(GL_S, GL_EYE_PLANE, glm::value_ptr(stepPlane));
-  glEnable(GL_TEXTURE_GEN_S);
+  stepTexgen.enable(GL_TEXTURE_GEN_S);
   glBindTexture(GL_TEXTURE_1D, behindLightStep.id());
   const GLubyte step[2] = {0, 255};
   glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, 2, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE, step);
@@ -128,25 +129,6 @@ void loadEyeLinearTexgenPlanes(const Scene& scene, const RenderParams& params, G
   glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glActiveTexture(GL_TEXTURE0);
 }
-
-// The texgen pass 2 turns on (unit 0: s, t, r, q; unit 1: s), off again when the camera passes
-// end, however they end: the caller gets the texturing state it had.
-class TexgenOffAfterCameraPasses {
- public:
-  TexgenOffAfterCameraPasses() = default;
-  ~TexgenOffAfterCameraPasses() {
-    try {
-      glActiveTexture(GL_TEXTURE1);
-      glDisable(GL_TEXTURE_GEN_S);
-      glActiveTexture(GL_TEXTURE0);
-      for (GLenum e : {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R, GL_TEXTURE_GEN_Q})
-        glDisable(e);
-    } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
-    }
-  }
-  TexgenOffAfterCameraPasses(const TexgenOffAfterCameraPasses&) = delete;
-  TexgenOffAfterCameraPasses& operator=(const TexgenOffAfterCameraPasses&) = delete;
-};
 
 void enableShadowTexturing(bool on) {
   glActiveTexture(GL_TEXTURE0);
@@ -327,9 +309,13 @@ void shadeWithShadowMap(Passes& passes, const Scene& lightScene, const RenderPar
   // The camera passes draw the scene split for per-vertex spotlight lighting (same geometry).
   const Scene scene = cameraPassScene(lightScene, params, passes);
   const Texture behindLightStep = makeTexture();
-  const TexgenOffAfterCameraPasses texgenOff;
+  // The texgen pass 2 turns on (unit 0: s, t, r, q; unit 1: s), off again when the camera
+  // passes end, however they end: the caller gets the texturing state it had.
+  ScopedTexgen mapTexgen(GL_TEXTURE0), stepTexgen(GL_TEXTURE1);
   // Pass 2 (Everitt Eq. 5, Appendix A): timed here, loadEyeLinearTexgenPlanes does it.
-  passes.run(texgen, [&] { loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep); });
+  passes.run(texgen, [&] {
+    loadEyeLinearTexgenPlanes(scene, params, shadowMap, behindLightStep, mapTexgen, stepTexgen);
+  });
   renderAmbientPass(passes, scene, params, ambient);
   passes.capture(ambient, "ambient", [&] { return readRgb(params.width, params.height); });
   addShadowedDirectLight(passes, scene, params, direct);

@@ -21,12 +21,6 @@ glm::mat4 worldToShadowMapTexture(const Scene& scene);
 // LEQUAL, NEAREST or LINEAR compare as in Fig. 5, far-plane border) on the bound 2D texture.
 void setDepthCompareParameters(bool linearCompare);
 
-// The DEVIATION of core/scene/scene.h lightDepthRoundoffScale, for the pass tables of the passes
-// whose polygon offset or peeling epsilon it scales.
-inline const std::string kDepthRoundoffScaleDeviation =
-    "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "
-    "scene; without the factor a flat ground under a light 20 units up was all umbra (issue 17).";
-
 // Passes 2-5 of legacy.hw, which legacy.woo and legacy.second-depth share (they differ from
 // legacy.hw only in how the map is made), declared with ids from `firstPass` on: texgen planes,
 // ambient, direct light x shadow test, and the visibility mask. Each of the three techniques

@@ -82,31 +82,33 @@ std::vector<float> peelSecondDepthLayer(Passes& passes, const Scene& scene, int 
     const GLenum enables[4] = {GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R,
                                GL_TEXTURE_GEN_Q};
     glActiveTexture(GL_TEXTURE0);
-    for (int i = 0; i < 4; ++i) {
-      glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
-      glTexGenfv(coords[i], GL_EYE_PLANE, glm::value_ptr(planes[i]));
-      glEnable(enables[i]);
+    {  // texgen on for the peel, off again before the texture matrix is reset
+      ScopedTexgen texgen(GL_TEXTURE0);
+      for (int i = 0; i < 4; ++i) {
+        glTexGeni(coords[i], GL_TEXTURE_GEN_MODE, GL_EYE_LINEAR);
+        glTexGenfv(coords[i], GL_EYE_PLANE, glm::value_ptr(planes[i]));
+        texgen.enable(enables[i]);
+      }
+      // r' = r - kPeelEpsilon * q: the texture matrix moves the reference depth, not the map.
+      const float epsilon = kPeelEpsilon * lightDepthRoundoffScale(scene);
+      loadMatrix(GL_TEXTURE, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -epsilon)));
+      glMatrixMode(GL_MODELVIEW);
+      glBindTexture(GL_TEXTURE_2D, firstLayer);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+      glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_ALPHA);
+      glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+      {
+        const ScopedEnable firstLayerTexture(GL_TEXTURE_2D);
+        const ScopedEnable alphaTest(GL_ALPHA_TEST);
+        glAlphaFunc(GL_GREATER, kAlphaTestThreshold);
+        drawScene(scene, Draw::kCasters, Colors::kWhite);
+      }
     }
-    // r' = r - kPeelEpsilon * q: the texture matrix moves the reference depth, not the map.
-    const float epsilon = kPeelEpsilon * lightDepthRoundoffScale(scene);
-    loadMatrix(GL_TEXTURE, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -epsilon)));
-    glMatrixMode(GL_MODELVIEW);
-    glBindTexture(GL_TEXTURE_2D, firstLayer);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
-    glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_ALPHA);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-    {
-      const ScopedEnable firstLayerTexture(GL_TEXTURE_2D);
-      const ScopedEnable alphaTest(GL_ALPHA_TEST);
-      glAlphaFunc(GL_GREATER, kAlphaTestThreshold);
-      drawScene(scene, Draw::kCasters, Colors::kWhite);
-    }
-    for (GLenum e : enables) glDisable(e);
     loadMatrix(GL_TEXTURE, glm::mat4(1.0f));
     glMatrixMode(GL_MODELVIEW);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

@@ -1,4 +1,4 @@
-// measure/bench.cpp — `shadowlab bench`: error against run time (issue 8 items 1 and 2).
+// measure/bench.cpp — `shadowlab bench`: error against run time.
 //
 // For each benchmark scene (and the claim scenes derived in code, benchSceneSpecs):
 //   1. renderReferences  — reference.hard and reference.soft at the bench's window size in
@@ -532,7 +532,7 @@ std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
     runs.push_back(name == kBleedingScene ? bleedingRun()
                                           : SceneRun{loadScene(name), {}, true, true, false});
   if (options.scenes.empty() || contains(options.scenes, kDefaultScene)) {
-    // What the planner's omissions save (issue 8 item 4): a purpose-built scene where no
+    // What the planner's omissions save: a purpose-built scene where no
     // caster reaches the light frustum, measured with the planner on and off for every
     // technique that consults it (declares --param plan).
     Scene away = loadScene(kDefaultScene);
@@ -554,7 +554,7 @@ std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
     runs.push_back(bleedingRun());
   if (options.scenes.empty()) {
     // Chan §3.3: the hybrid pays off where shadow volumes are fill bound. The scene file is
-    // another part of issue 14; without it the claim says so.
+    // another part of the bench; without it the claim says so.
     const std::vector<std::string> files = sceneFileNames();
     if (contains(files, kFillBoundScene)) {
       Scene fill = loadScene(kFillBoundScene);

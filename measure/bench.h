@@ -1,6 +1,6 @@
 // measure/bench.h — `shadowlab bench`: error against run time for every technique and a sweep
 // of its parameters, on a fixed set of benchmark scenes, measured against the ray-traced
-// references (issue 8 items 1 and 2).
+// references.
 #pragma once
 
 #include <iosfwd>
@@ -45,7 +45,7 @@ struct BenchVariant {
 };
 // The sweep of `t` around `base`: the default, then one axis at a time (shadow map side,
 // filter footprint, precision, and the --param keys the technique declares), plus the CSM
-// Table 1 grid (side x order x blur) in the full mode. Not swept (issue 21 item 4): values the
+// Table 1 grid (side x order x blur) in the full mode. Not swept: values the
 // technique rejects (fast PCF's footprints 1 and 3, modern.vsm storage=8) and variants that
 // repeat another one (a --param set to the technique's own default, e.g. modern.vsm
 // storage=float, or a Table 1 cell equal to a one-axis variant).
@@ -59,7 +59,7 @@ using ErrorSet = ShadowError;
 ErrorSet measureErrors(const Image& mask, const Image& reference, const Image& region,
                        const Image& band);
 
-// The references every row is measured against (issue 14 item 1). Primary: the
+// The references every row is measured against. Primary: the
 // pixel-integrated forms (--param pixel=area), the truth of a displayed pixel, for every
 // technique (one truth per scene, so that every row of a plot is measured on the same axis);
 // the soft one for smoothies (they approximate an area light), the hard one otherwise. The
@@ -73,7 +73,7 @@ constexpr const char* kPrimarySoftReference = "reference.soft pixel=area";
 // uses 4 x 4 anyway.
 constexpr int kFigureReferencePixelSamplesPerSide = 4;
 
-// Temporal stability (issue 14 item 1): the light and its target move sideways (along the
+// Temporal stability: the light and its target move sideways (along the
 // light's view x axis) by this fraction of one shadow-map texel of the default 512 map at the
 // light's target: texel = 2 d tan(cone / 2) / 512, d = |target - position|. The same motion for
 // every row of a scene (so every row has the same truth to follow); it is sub-texel for every
@@ -141,7 +141,7 @@ struct BenchResult {
   std::map<std::string, std::string> sceneNotes;  // scene -> why a claim scene was not measured
 };
 
-// The scenes derived in code for the claims (issue 14 item 1), measured after the bench
+// The scenes derived in code for the claims, measured after the bench
 // scenes with the few techniques each claim compares (default variants):
 //   trees-far    the trees scene (thin branches) with the camera kFarCameraFactor times
 //                farther from its target (same field of view), every technique with the
@@ -182,7 +182,7 @@ constexpr const char* kSmoothieWidthFromLightVariant = "width-from-light";
 // Runs the sweep; each row is also printed as one JSON object per line on `json`.
 BenchResult runBenchmark(const BenchOptions& options, std::ostream& json);
 
-// The papers' comparative claims (issue 8 item 2) as checks on the measurements.
+// The papers' comparative claims as checks on the measurements.
 struct ClaimCheck {
   std::string id;
   std::string source;  // paper and section
@@ -225,7 +225,7 @@ std::string rankGroup(const std::string& scene, int width, int height, const std
 // line that is not a bench row.
 std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths);
 
-// --budget-ms (issue 21 item 4): one scene's answer to "which technique at this budget".
+// --budget-ms: one scene's answer to "which technique at this budget".
 struct BudgetRanking {
   std::string scene;
   std::vector<size_t> within;  // indices into rows: frameMs <= budget, by RMSE, then time
@@ -245,7 +245,7 @@ void writeCsv(const std::string& path, const std::vector<BenchRow>& rows);
 // The same CSV on a stream (the Python module reads it at the stream's precision).
 void writeCsvRows(std::ostream& out, const std::vector<BenchRow>& rows);
 // Error-against-time plots (gnuplot run as a subprocess), per scene one PNG per technique
-// family, so that no plot carries more than a handful of series (issue 18 item 6). References
+// family, so that no plot carries more than a handful of series. References
 // are the truth, never plotted as competitors. Each plot's x and y ranges are fitted to the
 // scene's competitors (the same on the scene's plots, so they compare); the scene's Pareto
 // front is drawn on each as a grey staircase with numbered points, the numbers listed in

@@ -1,5 +1,5 @@
 // measure/bench_claims.cpp — the papers' comparative claims as checks on the bench's
-// measurements (issue 8 item 2). Each check prints the measured numbers and a verdict; where
+// measurements. Each check prints the measured numbers and a verdict; where
 // our measurement disagrees with a paper, the verdict says so (nothing is tuned to agree).
 #include <algorithm>
 #include <cmath>
@@ -143,7 +143,7 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
                   "region and the temporal change (what antialiasing is for: less flicker when "
                   "the light moves) beside it";
         c.measured = summary(*many) + "; " + summary(*one);
-        // What antialiasing is for, measure by measure (issue 21 item 5).
+        // What antialiasing is for, measure by measure.
         const bool lowerBand = many->hard.band.rmse < one->hard.band.rmse;
         const bool lowerAll = many->hard.all.rmse < one->hard.all.rmse;
         const bool temporal = many->temporalChange >= 0 && one->temporalChange >= 0;

@@ -65,7 +65,7 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
   options.csvPath = (fs::path(options.outDir) / "bench.csv").string();
   options.progress = progress;
   fs::create_directories(options.outDir);
-  std::ostringstream json;  // bench.jsonl appears whole, after the bench (issue 17 item 4)
+  std::ostringstream json;  // bench.jsonl appears whole, after the bench
   const BenchResult result = runBenchmark(options, json);
   writeFileAtomically((fs::path(options.outDir) / "bench.jsonl").string(),
                       [&](std::ostream& out) { out << json.str(); });

@@ -1,5 +1,5 @@
-// measure/bench_report.h — the quick bench as a section of report.html (issue 8 item 1: "a
-// table in the report, and a plot of error against time"; item 2: the claims' verdicts).
+// measure/bench_report.h — the quick bench as a section of report.html: a table in the report,
+// a plot of error against time, and the claims' verdicts.
 #pragma once
 
 #include <string>

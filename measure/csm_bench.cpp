@@ -18,7 +18,7 @@ namespace {
 const std::vector<int> kMapSizes = {256, 512, 1024, 2048};
 const std::vector<int> kOrders = {4, 8, 16};
 const std::vector<int> kBlurs = {0, 3, 7};
-constexpr double kWithinFactor = 1.5;  // issue 20's goal: our CSM / PCF within 1.5x the paper's
+constexpr double kWithinFactor = 1.5;  // the goal: our CSM / PCF within 1.5x the paper's
 
 // Annen et al. 2007, Table 1 (fps, GeForce 8800 GTX, 365k faces, 1024x768), indexed
 // [blur][row][map size]; row 0 of "no blur" is PCF, then M = 4, 8, 16.

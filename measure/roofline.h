@@ -1,4 +1,4 @@
-// measure/roofline.h — the llvmpipe floor of each Brabec & Seidel pass (issue 20 item 2):
+// measure/roofline.h — the llvmpipe floor of each Brabec & Seidel pass:
 // the least GL work of the same kind that the pass cannot do without, measured in the same
 // context as the frames (legacy_bench interleaves them, so load hits both alike). A pass's
 // floor is a sum of terms, each one named piece of real GL work at the pass's size: a clear, a

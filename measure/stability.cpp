@@ -192,7 +192,7 @@ Scene flatDepth() {
 
 // The stage with a slab between the light and the sphere, so that the two casters' shadow
 // volumes overlap. `mirrored`: the ground, the box and the slab mirrored by their model
-// matrices (a negative determinant reverses every triangle's winding; issue 17 item 9), the
+// matrices (a negative determinant reverses every triangle's winding), the
 // sphere not, so mirrored and unmirrored volumes overlap. The meshes are mirror-symmetric about
 // their own origins: the geometry does not depend on `mirrored`.
 Scene mirroringStage(bool mirrored) {
@@ -413,7 +413,7 @@ const std::map<std::pair<std::string, std::string>, KnownIssue>& knownIssues() {
 }
 
 // No case is refused today: every technique renders every case that applies to it (the whole
-// suite run, issue 28 item 4). A case that must be refused goes here with a part of its
+// suite run). A case that must be refused goes here with a part of its
 // message, e.g. {{"open_caster", "modern.x"}, "needs closed casters"}.
 const std::map<std::pair<std::string, std::string>, std::string>& expectedRefusals() {
   static const std::map<std::pair<std::string, std::string>, std::string> kRefusals = {};

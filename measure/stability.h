@@ -1,4 +1,4 @@
-// measure/stability.h — the stability suite's stiff and extreme cases (issue 8 item 3) as a
+// measure/stability.h — the stability suite's stiff and extreme cases as a
 // library: tests/stability asserts on them, and the report (`shadowlab figures`) summarises
 // every technique's behaviour on them in a table.
 #pragma once

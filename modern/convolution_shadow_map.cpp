@@ -786,6 +786,9 @@ Technique convolutionShadowMapTechnique() {
   t.reads = {.shadowMap = true};
   t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
   t.passes = passTable(true);
+  // Without a mip chain (a filtering that does not mip-map; with mipmaps=auto also a view that
+  // does not minify the map) pass 4 sets the sampling state only.
+  t.passVariants = {{{{filteringParam().key, "bilinear"}}, passTable(false)}};
   t.render = render;
   return t;
 }

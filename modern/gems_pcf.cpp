@@ -106,12 +106,12 @@ constexpr const char* kBicubicShaderBiasDeviation =  // bicubic_pcf.frag
     "along the light ray by uRelativeBias of its distance, as modern.gems16 (gems_pcf.cpp says "
     "why; the 4x4 region reaches 2 texels from the lookup point here too).";
 
-// The passes of one variant (lookups per pixel, kernel), declared once: names, the paper's text,
-// the buffers a dump shows, shaders and deviations. The variants' passes are the same two, but
-// their names and sources follow the lookups and the kernel.
-PassTable gemsPasses(int samples, Kernel kernel) {
+// The passes, each declared once: pass 1 of each kernel (the map is compared with GL_LINEAR or
+// GL_NEAREST) and pass 2 of each lookup count and kernel, with the paper's text, the buffers a
+// dump shows, shaders and deviations. A variant's table (gemsPasses) is one of each.
+PassSpec depthFromLightPass(Kernel kernel) {
   const bool bicubic = kernel == Kernel::kBicubic;
-  PassSpec light{
+  return {
       .id = "1",
       .name = "depth from light",
       .reference = bicubic ? "Chan 2004 §4.4, Fig. 4-8 (the bicubic PCF's map: a depth texture "
@@ -131,44 +131,54 @@ PassTable gemsPasses(int samples, Kernel kernel) {
                                                    "(hardware 2x2 PCF)") +
                              "{range}"}},
       .shaders = {"depth-only"}};
-  if (bicubic)
-    return {
-        light,
-        {.id = "2",
-         .name = "camera pass, 16-sample bicubic PCF",
-         .reference = "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a "
-                      "bicubic filter, 16 samples (cubic B-spline weights over 4x4 texels; "
-                      "bicubic_pcf.frag)",
-         .writes = cameraPassBuffers("2",
-                                     "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
-                                     "B-spline, Chan 2004 Fig. 4-8"),
-         .shaders = {"bicubic-weights", "bicubic-region"},
-         .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation}}};
-  const std::string n = std::to_string(samples);
-  return {
-      light,
-      {.id = "2",
-       .name = "camera pass, " + n + "-sample PCF",
-       .reference = samples == 16  ? "Bunnell & Pellacini 2004, GPU Gems §11.3: 16 "
-                                     "offset_lookup calls over the 4x4-texel region (Figs. "
-                                     "11-2, 11-3)"
-                    : samples == 4 ? "Bunnell & Pellacini 2004, GPU Gems §11.4, Fig. 11-4: "
-                                     "four of the sixteen lookups, dithered by pixel position"
-                                   : "Bunnell & Pellacini 2004, GPU Gems §11.3: one hardware "
-                                     "2x2 lookup (Fig. 11-6)",
-       .writes = cameraPassBuffers("2", "gems_pcf.frag, " + n + " offset lookups, " +
-                                            (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3")),
-       .shaders = {"offset-lookup", "dither", "gems-region"},
-       .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation}}};
 }
 
-// --param samples takes 1, 4 or 16 (samplesParam); the bicubic kernel takes 16 only.
+PassSpec filterInCameraPassSpec(int samples, Kernel kernel) {
+  if (kernel == Kernel::kBicubic)
+    return {
+        .id = "2",
+        .name = "camera pass, 16-sample bicubic PCF",
+        .reference =
+            "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a "
+            "bicubic filter, 16 samples (cubic B-spline weights over 4x4 texels; "
+            "bicubic_pcf.frag)",
+        .writes = cameraPassBuffers("2",
+                                    "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
+                                    "B-spline, Chan 2004 Fig. 4-8"),
+        .shaders = {"bicubic-weights", "bicubic-region"},
+        .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation}};
+  const std::string n = std::to_string(samples);
+  return {.id = "2",
+          .name = "camera pass, " + n + "-sample PCF",
+          .reference = samples == 16  ? "Bunnell & Pellacini 2004, GPU Gems §11.3: 16 "
+                                        "offset_lookup calls over the 4x4-texel region (Figs. "
+                                        "11-2, 11-3)"
+                       : samples == 4 ? "Bunnell & Pellacini 2004, GPU Gems §11.4, Fig. 11-4: "
+                                        "four of the sixteen lookups, dithered by pixel position"
+                                      : "Bunnell & Pellacini 2004, GPU Gems §11.3: one hardware "
+                                        "2x2 lookup (Fig. 11-6)",
+          .writes = cameraPassBuffers("2", "gems_pcf.frag, " + n + " offset lookups, " +
+                                               (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3")),
+          .shaders = {"offset-lookup", "dither", "gems-region"},
+          .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation}};
+}
+
+PassTable gemsPasses(int samples, Kernel kernel) {
+  return {depthFromLightPass(kernel), filterInCameraPassSpec(samples, kernel)};
+}
+
+// The lookups --param samples takes (samplesParam); the bicubic kernel takes 16 only.
+constexpr int kSampleCounts[] = {1, 4, 16};
+constexpr int kBicubicSamples = 16;
+
+// The table of each variant, made once for both techniques.
 const PassTable& passTable(int samples, Kernel kernel) {
-  static const std::map<std::pair<int, Kernel>, PassTable> tables = {
-      {{1, Kernel::kBox}, gemsPasses(1, Kernel::kBox)},
-      {{4, Kernel::kBox}, gemsPasses(4, Kernel::kBox)},
-      {{16, Kernel::kBox}, gemsPasses(16, Kernel::kBox)},
-      {{16, Kernel::kBicubic}, gemsPasses(16, Kernel::kBicubic)}};
+  static const std::map<std::pair<int, Kernel>, PassTable> tables = [] {
+    std::map<std::pair<int, Kernel>, PassTable> out;
+    for (const int n : kSampleCounts) out[{n, Kernel::kBox}] = gemsPasses(n, Kernel::kBox);
+    out[{kBicubicSamples, Kernel::kBicubic}] = gemsPasses(kBicubicSamples, Kernel::kBicubic);
+    return out;
+  }();
   return tables.at({samples, kernel});
 }
 
@@ -185,14 +195,15 @@ RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const Ren
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-    Program program("scene.vert.glsl", "depth_only.frag.glsl");
-    program.use();
-    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-    gpu.draw([](const Object& o) { return o.castsShadow; },
-             [&](const Object& o) { program.set("uModel", o.model); });
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    {
+      const ScopedEnable polygonOffset(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+      Program program("scene.vert.glsl", "depth_only.frag.glsl");
+      program.use();
+      program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+      gpu.draw([](const Object& o) { return o.castsShadow; },
+               [&](const Object& o) { program.set("uModel", o.model); });
+    }
     // The hardware 2x2 compare for the box kernel; one comparison per lookup for the bicubic.
     setDepthCompareParameters(map.depth.id(), /*linear=*/kernel == Kernel::kBox);
     glBindTexture(GL_TEXTURE_2D, 0);
@@ -326,8 +337,16 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
   // The default variant's passes (samples = the technique's own, box kernel); a render with
-  // other --params runs the table of its variant (passTable).
+  // other --params runs the table of its variant (passTable): the other lookup counts and, for
+  // modern.gems16, the bicubic kernel.
   t.passes = passTable(samples, Kernel::kBox);
+  for (const int n : kSampleCounts)
+    if (n != samples)
+      t.passVariants.push_back(
+          {{{samplesParam(samples).key, std::to_string(n)}}, passTable(n, Kernel::kBox)});
+  if (samples == kBicubicSamples)
+    t.passVariants.push_back(
+        {{{kernelParam().key, kKernelBicubic}}, passTable(kBicubicSamples, Kernel::kBicubic)});
   t.render = [samples](GlContext&, const Scene& scene, const RenderParams& params) {
     return renderWithSamples(scene, params, samples);
   };

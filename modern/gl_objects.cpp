@@ -68,26 +68,22 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
   for (const Object& o : scene.objects) {
     GpuObject g;
     g.object = &o;
-    GLuint ids[3] = {0, 0, 0};
-    GLuint vao = 0;
-    glGenVertexArrays(1, &vao);
-    g.vao = VertexArray(vao);
-    glGenBuffers(3, ids);
-    g.positions = Buffer(ids[0]);
-    g.normals = Buffer(ids[1]);
-    g.indices = Buffer(ids[2]);
-    glBindVertexArray(vao);
-    glBindBuffer(GL_ARRAY_BUFFER, ids[0]);
+    g.vao = makeVertexArray();
+    g.positions = makeBuffer();
+    g.normals = makeBuffer();
+    g.indices = makeBuffer();
+    glBindVertexArray(g.vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, g.positions.id());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(o.mesh->positions.size() * sizeof(glm::vec3)),
                  o.mesh->positions.data(), GL_STATIC_DRAW);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
     glEnableVertexAttribArray(0);
-    glBindBuffer(GL_ARRAY_BUFFER, ids[1]);
+    glBindBuffer(GL_ARRAY_BUFFER, g.normals.id());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(o.mesh->normals.size() * sizeof(glm::vec3)),
                  o.mesh->normals.data(), GL_STATIC_DRAW);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
     glEnableVertexAttribArray(1);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ids[2]);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.indices.id());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(o.mesh->indices.size() * sizeof(unsigned)),
                  o.mesh->indices.data(), GL_STATIC_DRAW);
     g.indexCount = GLsizei(o.mesh->indices.size());
@@ -149,11 +145,7 @@ RenderTarget makeRenderTarget(int width, int height, const std::vector<GLenum>& 
   return t;
 }
 
-FullScreenTriangle::FullScreenTriangle() {
-  GLuint vao = 0;
-  glGenVertexArrays(1, &vao);
-  vao_ = VertexArray(vao);
-}
+FullScreenTriangle::FullScreenTriangle() : vao_(makeVertexArray()) {}
 
 void FullScreenTriangle::draw() const {
   glBindVertexArray(vao_.id());

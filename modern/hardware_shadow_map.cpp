@@ -62,14 +62,16 @@ RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const Ren
         glClear(GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-        const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
-        program.use();
-        program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-        gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
-                 [&](const Object& o) { program.set("uModel", o.model); });
-        glDisable(GL_POLYGON_OFFSET_FILL);
+        {
+          const ScopedEnable polygonOffset(GL_POLYGON_OFFSET_FILL);
+          glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+          const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
+          program.use();
+          program.set("uViewProjection",
+                      lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+          gpu.draw([&](const Object& o) { return casterInFrustum && o.castsShadow; },
+                   [&](const Object& o) { program.set("uModel", o.model); });
+        }
         setDepthCompareParameters(map.depth.id(), linear);
       },
       {}, casterInFrustum ? "" : " left out (planner: no caster in frustum)");

@@ -12,12 +12,6 @@
 namespace sl::modern {
 Technique hardwareShadowMapTechnique();
 
-// The DEVIATION of core/scene/scene.h lightDepthRoundoffScale, for the pass tables of the passes
-// whose polygon offset or peeling epsilon it scales.
-inline constexpr char kDepthRoundoffScaleDeviation[] =
-    "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "
-    "scene; without the factor a flat ground under a light 20 units up was all umbra (issue 17).";
-
 // S · P_light · L^-1: world to shadow-map texture coordinates (Everitt Eq. 2 and 5), the
 // uniform that replaces legacy.hw's EYE_LINEAR texgen planes.
 glm::mat4 worldToShadowMap(const Scene& scene);

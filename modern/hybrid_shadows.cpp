@@ -176,12 +176,11 @@ void forEachScissorBox(const std::vector<TileRect>* rects, const Draws& draws) {
     draws();
     return;
   }
-  glEnable(GL_SCISSOR_TEST);
+  const ScopedEnable scissor(GL_SCISSOR_TEST);
   for (const TileRect& r : *rects) {
     glScissor(r.x, r.y, r.width, r.height);
     draws();
   }
-  glDisable(GL_SCISSOR_TEST);
 }
 
 // Pass 1 (§3.1 step 1): an ordinary shadow map, read with the hardware 2x2 compare.
@@ -195,15 +194,16 @@ RenderTarget renderShadowMap(Passes& passes, const GpuScene& gpu, const RenderPa
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
-    program.use();
-    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
-    // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the
-    // hybrid see the same blockers.
-    gpu.draw([](const Object& o) { return o.castsShadow; },
-             [&](const Object& o) { program.set("uModel", o.model); });
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    {
+      const ScopedEnable polygonOffset(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(factor, units * lightDepthRoundoffScale(gpu.scene()));
+      program.use();
+      program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+      // Every caster: each one has a shadow volume (open ones two-sided), so both halves of the
+      // hybrid see the same blockers.
+      gpu.draw([](const Object& o) { return o.castsShadow; },
+               [&](const Object& o) { program.set("uModel", o.model); });
+    }
     // GL_LINEAR with compare mode = the 2x2 percentage-closer filter of Figure 3-3.
     setDepthCompareParameters(map.depth.id(), /*linear=*/true);  // hardware 2x2 compare
     glBindTexture(GL_TEXTURE_2D, 0);

@@ -66,20 +66,22 @@ RenderTarget renderBackFacesFromLight(Passes& passes, const GpuScene& gpu, int n
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glFrontFace(GL_CCW);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_FRONT);
     const Program& program = cachedProgram("scene.vert.glsl", "depth_only.frag.glsl");
-    program.use();
-    program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
     auto setModel = [&](const Object& o) { program.set("uModel", o.model); };
-    gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; }, setModel);
-    glDisable(GL_CULL_FACE);
+    {
+      const ScopedEnable cullFace(GL_CULL_FACE);
+      glCullFace(GL_FRONT);
+      program.use();
+      program.set("uViewProjection", lightProjection(gpu.scene()) * lightView(gpu.scene().light));
+      gpu.draw([](const Object& o) { return o.castsShadow && o.mesh->closed; }, setModel);
+    }
     glCullFace(GL_BACK);
-    glEnable(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback (DEVIATION above)
-    glPolygonOffset(kOpenCasterOffsetFactor,
-                    kOpenCasterOffsetUnits * lightDepthRoundoffScale(gpu.scene()));
-    gpu.draw([](const Object& o) { return o.castsShadow && !o.mesh->closed; }, setModel);
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    {
+      const ScopedEnable polygonOffset(GL_POLYGON_OFFSET_FILL);  // the open-caster fallback
+      glPolygonOffset(kOpenCasterOffsetFactor,
+                      kOpenCasterOffsetUnits * lightDepthRoundoffScale(gpu.scene()));
+      gpu.draw([](const Object& o) { return o.castsShadow && !o.mesh->closed; }, setModel);
+    }
     setDepthCompareParameters(map.depth.id(), linear);
   });
   return map;

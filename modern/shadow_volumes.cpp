@@ -89,13 +89,10 @@ SceneVolumes buildSceneVolumes(const SceneCasters& casters, const glm::vec3& lig
     const Silhouette silhouette = findSilhouette(c.adjacency, light);
     const std::vector<glm::vec4> vertices = buildShadowVolume(c.adjacency, silhouette, light);
     GpuVolume g;
-    GLuint vao = 0, buffer = 0;
-    glGenVertexArrays(1, &vao);
-    g.vao = VertexArray(vao);
-    glGenBuffers(1, &buffer);
-    g.vertices = Buffer(buffer);
-    glBindVertexArray(vao);
-    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    g.vao = makeVertexArray();
+    g.vertices = makeBuffer();
+    glBindVertexArray(g.vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, g.vertices.id());
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec4)), vertices.data(),
                  GL_STREAM_DRAW);
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
@@ -227,14 +224,12 @@ double countFragmentInvocations(const std::function<void()>& draws) {
     draws();
     return -1;
   }
-  GLuint query = 0;
-  glGenQueries(1, &query);
-  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query);
+  const Query query = makeQuery();
+  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query.id());
   draws();
   glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
   GLuint invocations = 0;
-  glGetQueryObjectuiv(query, GL_QUERY_RESULT, &invocations);
-  glDeleteQueries(1, &query);
+  glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &invocations);
   checkGl("fragment-shader invocation query");
   return double(invocations);
 }

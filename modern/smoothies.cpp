@@ -292,13 +292,10 @@ struct GpuSmoothies {
 };
 GpuSmoothies uploadSmoothies(const SmoothieGeometry& g) {
   GpuSmoothies s;
-  GLuint vao = 0, buffer = 0;
-  glGenVertexArrays(1, &vao);
-  s.vao = VertexArray(vao);
-  glGenBuffers(1, &buffer);
-  s.buffer = Buffer(buffer);
-  glBindVertexArray(vao);
-  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  s.vao = makeVertexArray();
+  s.buffer = makeBuffer();
+  glBindVertexArray(s.vao.id());
+  glBindBuffer(GL_ARRAY_BUFFER, s.buffer.id());
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(g.vertices.size() * sizeof(SmoothieVertex)),
                g.vertices.data(), GL_STREAM_DRAW);
   const GLsizei stride = sizeof(SmoothieVertex);

@@ -106,13 +106,10 @@ LayeredMap renderMomentsFromLight(Passes& passes, const GpuScene& gpu, const Ren
     moments = makeLayeredMap(n, 1, s.format, s.filtering.mipmaps);
     const Framebuffer fbo = makeFramebuffer();
     attachLayers(fbo, moments, 0, 1);
-    Renderbuffer depth;
-    GLuint id = 0;
-    glGenRenderbuffers(1, &id);
-    depth = Renderbuffer(id);
-    glBindRenderbuffer(GL_RENDERBUFFER, id);
+    const Renderbuffer depth = makeRenderbuffer();
+    glBindRenderbuffer(GL_RENDERBUFFER, depth.id());
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, n, n);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, id);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
     const float far[4] = {1, 1, 0, 1};  // no blocker: depth 1, depth^2 1
     glClearBufferfv(GL_COLOR, 0, far);
     glClear(GL_DEPTH_BUFFER_BIT);

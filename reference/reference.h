@@ -6,8 +6,7 @@
 // Each comes in two forms (--param pixel=...):
 //   centre (default)  the visibility at the pixel centre's surface point: a point sample,
 //                     itself aliased at shadow edges (what every test and figure panel that
-//                     shows "the reference" uses; bit-identical to the references before
-//                     issue 14)
+//                     shows "the reference" uses)
 //   area              the visibility integrated over the part of the pixel's area that shows
 //                     the surface its centre sees (box filter): N x N stratified sub-pixel
 //                     surface points (--param pixel-samples=N per side), each rasterised at
@@ -71,7 +70,7 @@ constexpr float kCategoryNoReceiver = 0.0f;
 // offset is a bias: it moves every shadow edge on a receiver by about offset / tan(elevation of
 // the light) and lights a band offset / sin(angle) wide on a caster's faces that turn away from
 // the light at a grazing angle. Measured against modern.volumes (exact at pixel centres) on the
-// 14 closed-caster scenes at 400x300 (issue 27): 1e-4 moved whole pixel rows (bleeding: 0.36% of
+// 14 closed-caster scenes at 400x300: 1e-4 moved whole pixel rows (bleeding: 0.36% of
 // the scored pixels; trees 0.22%) and lit terminator bands (all pixels: up to 0.7%); 1e-5 left
 // at most 17 scored pixels apart (0.02%); 1e-6 at most 5; at 1e-7 the surface starts to shadow
 // itself (6-12 lit pixels shadowed on brabec, dueling, bunny): the GL-rasterised point lies off

@@ -3,14 +3,16 @@
 //
 // The vertex transform is the one of modern/shaders/scene.vert.glsl (uModel, then
 // uViewProjection from the same glm matrices), so GL rasterises the same fragments here as in
-// every technique's camera pass. The module keeps its own GL owners and its shaders in
-// reference/shaders/: the reference does not depend on modern/ (docs/design.md, layering).
+// every technique's camera pass. Its GL names are held by core's owners (core/gl/gl_objects.h)
+// and its shaders are its own, in reference/shaders/: the reference does not depend on modern/
+// (docs/design.md, layering).
 #include "reference/surface_buffer.h"
 
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/gl/gl_objects.h"
 #include "core/gl/shaders.h"
 #include "core/gl/winding.h"
 
@@ -19,23 +21,13 @@ using namespace sl::gl;
 
 constexpr int kSurfaceAttachments = 3;
 
-// RAII owners of the few GL names this pass creates.
+// The GL names this pass creates, each in its owner (core/gl/gl_objects.h).
 struct SurfaceGlObjects {
-  GLuint program = 0;
-  GLuint framebuffer = 0;
-  GLuint textures[kSurfaceAttachments + 1] = {0, 0, 0, 0};  // + depth
-  std::vector<GLuint> vertexArrays, buffers;
-  SurfaceGlObjects() = default;
-  SurfaceGlObjects(const SurfaceGlObjects&) = delete;
-  SurfaceGlObjects& operator=(const SurfaceGlObjects&) = delete;
-  ~SurfaceGlObjects() {
-    if (program) glDeleteProgram(program);
-    if (framebuffer) glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(kSurfaceAttachments + 1, textures);
-    if (!vertexArrays.empty())
-      glDeleteVertexArrays(GLsizei(vertexArrays.size()), vertexArrays.data());
-    if (!buffers.empty()) glDeleteBuffers(GLsizei(buffers.size()), buffers.data());
-  }
+  ProgramName program;
+  Framebuffer framebuffer;
+  Texture textures[kSurfaceAttachments + 1];  // + depth
+  std::vector<VertexArray> vertexArrays;
+  std::vector<Buffer> buffers;  // three per object: positions, normals, indices
 };
 
 namespace {
@@ -44,24 +36,25 @@ constexpr int kAttachments = kSurfaceAttachments;
 
 // reference/shaders/surface_points.{vert,frag}.glsl (embedded, core/gl/shaders.h).
 void buildProgram(SurfaceGlObjects& gl) {
-  gl.program = compileShaderProgram("surface_points.vert.glsl", "surface_points.frag.glsl");
+  gl.program =
+      ProgramName(compileShaderProgram("surface_points.vert.glsl", "surface_points.frag.glsl"));
 }
 
 void buildTarget(SurfaceGlObjects& gl, int width, int height) {
-  glGenFramebuffers(1, &gl.framebuffer);
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
-  glGenTextures(kAttachments + 1, gl.textures);
+  gl.framebuffer = makeFramebuffer();
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer.id());
+  for (Texture& texture : gl.textures) texture = makeTexture();
   GLenum drawBuffers[kAttachments];
   for (int i = 0; i <= kAttachments; ++i) {
     const bool depth = i == kAttachments;
-    glBindTexture(GL_TEXTURE_2D, gl.textures[i]);
+    glBindTexture(GL_TEXTURE_2D, gl.textures[i].id());
     glTexImage2D(GL_TEXTURE_2D, 0, depth ? GL_DEPTH_COMPONENT24 : GL_RGBA32F, width, height, 0,
                  depth ? GL_DEPTH_COMPONENT : GL_RGBA, GL_FLOAT, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glFramebufferTexture2D(GL_FRAMEBUFFER,
                            depth ? GL_DEPTH_ATTACHMENT : GLenum(GL_COLOR_ATTACHMENT0 + i),
-                           GL_TEXTURE_2D, gl.textures[i], 0);
+                           GL_TEXTURE_2D, gl.textures[i].id(), 0);
     if (!depth) drawBuffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
   }
   glDrawBuffers(kAttachments, drawBuffers);
@@ -73,11 +66,9 @@ void buildTarget(SurfaceGlObjects& gl, int width, int height) {
 void upload(SurfaceGlObjects& gl, const Scene& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const Mesh& mesh = *scene.objects[i].mesh;
-    GLuint vao = 0, vbo[3] = {0, 0, 0};
-    glGenVertexArrays(1, &vao);
-    gl.vertexArrays.push_back(vao);
-    glGenBuffers(3, vbo);
-    gl.buffers.insert(gl.buffers.end(), vbo, vbo + 3);
+    const GLuint vao = gl.vertexArrays.emplace_back(makeVertexArray()).id();
+    GLuint vbo[3];
+    for (GLuint& name : vbo) name = gl.buffers.emplace_back(makeBuffer()).id();
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo[0]);
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
@@ -99,10 +90,10 @@ void upload(SurfaceGlObjects& gl, const Scene& scene) {
 }
 
 void draw(const SurfaceGlObjects& gl, const Scene& scene) {
-  const GLint model = glGetUniformLocation(gl.program, "uModel");
-  const GLint objectId = glGetUniformLocation(gl.program, "uObjectId");
+  const GLint model = glGetUniformLocation(gl.program.id(), "uModel");
+  const GLint objectId = glGetUniformLocation(gl.program.id(), "uObjectId");
   for (size_t i = 0; i < scene.objects.size(); ++i) {
-    glBindVertexArray(gl.vertexArrays[i]);
+    glBindVertexArray(gl.vertexArrays[i].id());
     glUniformMatrix4fv(model, 1, GL_FALSE, glm::value_ptr(scene.objects[i].model));
     glUniform1f(objectId, float(i + 1));
     // The fragment shader turns the normals by gl_FrontFacing: a mirrored object's outside
@@ -140,7 +131,7 @@ SurfaceRasteriser::~SurfaceRasteriser() = default;
 std::vector<SurfacePoint> SurfaceRasteriser::rasterise(glm::vec2 offsetPixels) {
   const int w = width_, h = height_;
   const SurfaceGlObjects& gl = gl_->objects;
-  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, gl.framebuffer.id());
   glViewport(0, 0, w, h);
   const float none[4] = {0, 0, 0, 0};
   for (int i = 0; i < kAttachments; ++i) glClearBufferfv(GL_COLOR, i, none);
@@ -148,7 +139,7 @@ std::vector<SurfacePoint> SurfaceRasteriser::rasterise(glm::vec2 offsetPixels) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
-  glUseProgram(gl.program);
+  glUseProgram(gl.program.id());
   // The same matrix as modern/camera_pass.cpp cameraViewProjection().
   glm::mat4 viewProjection =
       cameraProjection(scene_.camera, float(w) / float(h)) * cameraView(scene_.camera);
@@ -161,7 +152,7 @@ std::vector<SurfacePoint> SurfaceRasteriser::rasterise(glm::vec2 offsetPixels) {
     shift[3][1] = -2.0f * offsetPixels.y / float(h);
     viewProjection = shift * viewProjection;
   }
-  glUniformMatrix4fv(glGetUniformLocation(gl.program, "uViewProjection"), 1, GL_FALSE,
+  glUniformMatrix4fv(glGetUniformLocation(gl.program.id(), "uViewProjection"), 1, GL_FALSE,
                      glm::value_ptr(viewProjection));
   draw(gl, scene_);
   const std::vector<float> position = readAttachment(0, w, h);

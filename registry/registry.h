@@ -12,7 +12,7 @@ namespace sl {
 const std::vector<Technique>& allTechniques();
 const Technique& findTechnique(const std::string& name);  // throws InputError if unknown
 
-// Options a technique ignores are input errors (issue 21 item 3). `given` are the common
+// Options a technique ignores are input errors. `given` are the common
 // options (core/technique/technique.h CommonOption) given explicitly on the command line; throws
 // InputError for the first one `technique` does not read: "legacy.ramp does not filter:
 // --filter has no effect on it (techniques that read --filter: ...)".

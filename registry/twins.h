@@ -1,4 +1,4 @@
-// registry/twins.h — the legacy/modern twins (issue 5): which technique pairs exist, the bound
+// registry/twins.h — the legacy/modern twins: which technique pairs exist, the bound
 // each pair must meet, how two visibility masks are judged against it, and the timing of a
 // pair. Shared by tests/modern/equivalence_test.cpp and the shadowlab-twins program.
 #pragma once
@@ -42,7 +42,7 @@ const PassTable* legacyTwinPassesOf(const std::string& modern);
 // at grazing angles).
 const std::vector<std::string>& equivalenceScenes();
 
-// The 'not bit-exact' bound (issue 5): |legacy - modern| <= one 8-bit step on at least
+// The 'not bit-exact' bound: |legacy - modern| <= one 8-bit step on at least
 // 99.9% of pixels, and every larger difference inside the shadow-boundary band of the legacy
 // mask (core/base/metrics.h boundaryBand with kBandRadius).
 constexpr double kOneStep = 1.0 / 255.0;
@@ -72,7 +72,7 @@ struct Agreement {
 
 Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& modernMask);
 
-// The images agree too, not only the masks (issue 18 item 5). What may differ:
+// The images agree too, not only the masks. What may differ:
 //  - the spotlight cone's edge: legacy cuts it with a texture projected from the light
 //    (legacy_gl/projected_spotlight.h), modern per pixel in the shader, so the pixels within one
 //    pixel on either side of the cone's edge may be lit in one and not in the other: a band

@@ -128,15 +128,16 @@ struct Departure {
   std::string text;
 };
 
-// Every departure the pass tables of `techniques` declare, pass by pass; a text shared by
-// several passes (a helper they all call) is listed once, under the first.
+// Every departure the pass tables of `techniques` declare (each variant's too), pass by pass; a
+// text shared by several passes (a helper they all call) is listed once, under the first.
 std::vector<Departure> departuresOf(const std::vector<const Technique*>& techniques) {
   std::vector<Departure> out;
   for (const Technique* t : techniques)
-    for (const PassSpec& p : t->passes)
-      for (const std::string& d : p.deviations)
-        if (std::none_of(out.begin(), out.end(), [&](const Departure& o) { return o.text == d; }))
-          out.push_back({t->name, p.id, p.name, d});
+    for (const PassTable* table : allPassTables(*t))
+      for (const PassSpec& p : *table)
+        for (const std::string& d : p.deviations)
+          if (std::none_of(out.begin(), out.end(), [&](const Departure& o) { return o.text == d; }))
+            out.push_back({t->name, p.id, p.name, d});
   return out;
 }
 

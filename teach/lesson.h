@@ -1,4 +1,4 @@
-// teach/lesson.h — `shadowlab lesson TECHNIQUE --out DIR` (issue 18 item 4): one
+// teach/lesson.h — `shadowlab lesson TECHNIQUE --out DIR`: one
 // self-contained HTML page that teaches a technique pass by pass.
 //
 //   DIR/index.html                     the lesson (no network; every link relative)

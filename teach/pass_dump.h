@@ -1,4 +1,4 @@
-// teach/pass_dump.h — what `shadowlab render --dump-passes DIR` writes (issue 18 item 1):
+// teach/pass_dump.h — what `shadowlab render --dump-passes DIR` writes:
 //
 //   DIR/01-light-depth.png, 02-..., 03a-..., 03b-...   every intermediate buffer, in pipeline order
 //   DIR/passes.json                                    what each file shows, pass by pass
@@ -75,7 +75,7 @@ struct PassDumpImage {
   std::string of;       // the file this is a channel of
   std::string view;     // "channel", "minus centre" (channel minus the centre channel), or ""
   std::optional<ValueLegend> legend;
-  std::string passId;  // the id of its pass in the technique's pass table ("5c")
+  std::string passId{};  // the id of its pass in the technique's pass table ("5c")
 };
 
 // The pass number a buffer or pass name starts with ("3a-projected..." -> 3, "1 depth" -> 1),

@@ -1,4 +1,4 @@
-// imaging_bench — speed of the imaging emulation (issue 3 item 6, issue 10 item 4).
+// imaging_bench — speed of the imaging emulation.
 //
 // Every operation on 512x512, 800x600 and 1024x1024 RGBA8, timed (best of 5 after one warm-up;
 // the stage and the memcpy best of 20) as a ratio to a memcpy of the same w*h*4 bytes

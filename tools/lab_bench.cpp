@@ -1,4 +1,4 @@
-// lab_bench — request latency of the live lab (issue 19 item 4): a bounded load generator on
+// lab_bench — request latency of the live lab: a bounded load generator on
 // loopback against an in-process `shadowlab serve` (lab/lab_server.h).
 //
 // Per technique: --warmup requests, then --requests timed ones, each from a client that keeps

@@ -1,4 +1,4 @@
-// core/base/output_files.h — a run writes all its outputs or none (issue 17 item 4).
+// core/base/output_files.h — a run writes all its outputs or none.
 //
 // A command names every destination to one OutputSet before it renders anything:
 //

@@ -1,5 +1,5 @@
 // core/base/provenance.h — what made an output: the commit of the source tree the binary was built
-// from, the command line of the run, and the effective parameters (issue 21 item 2). The JSON
+// from, the command line of the run, and the effective parameters. The JSON
 // lines of `render`/`compare`, the tEXt chunks of every PNG (core/base/image.h writePng) and
 // report.html carry them.
 #pragma once

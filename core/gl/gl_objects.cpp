@@ -1,6 +1,8 @@
 // core/gl/gl_objects.cpp — see gl_objects.h.
 #include "core/gl/gl_objects.h"
 
+#include <stdexcept>
+
 namespace sl {
 using namespace sl::gl;
 
@@ -11,6 +13,7 @@ void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
 void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
 void deleteShader(GLuint id) { glDeleteShader(id); }
 void deleteProgram(GLuint id) { glDeleteProgram(id); }
+void deleteQuery(GLuint id) { glDeleteQueries(1, &id); }
 
 Texture makeTexture() {
   GLuint id = 0;
@@ -40,6 +43,12 @@ VertexArray makeVertexArray() {
   GLuint id = 0;
   glGenVertexArrays(1, &id);
   return VertexArray(id);
+}
+
+Query makeQuery() {
+  GLuint id = 0;
+  glGenQueries(1, &id);
+  return Query(id);
 }
 
 ScopedEnable::ScopedEnable(GLenum cap) : cap_(cap) { glEnable(cap_); }
@@ -100,6 +109,32 @@ ScopedMatrices::~ScopedMatrices() {
       glMatrixMode(mode);
       glPopMatrix();
     }
+  } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
+  }
+}
+
+void ScopedTexgen::enable(GLenum gen) {
+  for (int i = 0; i < count_; ++i)
+    if (enabled_[i] == gen) return;
+  if (count_ == kCoordinates)
+    throw std::logic_error("ScopedTexgen: more than four texture-coordinate generations");
+  GLint active = GL_TEXTURE0;
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  if (GLenum(active) != unit_)
+    throw std::logic_error("ScopedTexgen: enable() while another texture unit is active");
+  glEnable(gen);
+  enabled_[count_++] = gen;
+}
+
+ScopedTexgen::~ScopedTexgen() {
+  if (count_ == 0) return;
+  try {
+    GLint active = GL_TEXTURE0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    const bool switchUnit = GLenum(active) != unit_;
+    if (switchUnit) glActiveTexture(unit_);
+    for (int i = 0; i < count_; ++i) glDisable(enabled_[i]);
+    if (switchUnit) glActiveTexture(GLenum(active));
   } catch (...) {  // the context is beyond repair (core/gl/gl_objects.h)
   }
 }

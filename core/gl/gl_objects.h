@@ -8,6 +8,8 @@
 //   ScopedMatrices  — the projection, modelview and texture matrices pushed for a scope;
 //                     ScopedPushMatrix the current matrix alone.
 //   ScopedClientState — a client-side array (glEnableClientState) on for a scope.
+//   ScopedTexgen    — texture-coordinate generation (GL_TEXTURE_GEN_S..Q) of one texture unit
+//                     on for a scope, coordinate by coordinate, off again after it.
 //
 // The restoring destructors run also when a pass throws (a GL error, bad input), so a context
 // the lab or the benchmark reuses is left as the code found it. They never throw: when the GL
@@ -60,6 +62,7 @@ void deleteBuffer(GLuint id);
 void deleteVertexArray(GLuint id);
 void deleteShader(GLuint id);
 void deleteProgram(GLuint id);
+void deleteQuery(GLuint id);
 
 using Texture = GlName<deleteTexture>;
 using Framebuffer = GlName<deleteFramebuffer>;
@@ -68,6 +71,7 @@ using Buffer = GlName<deleteBuffer>;
 using VertexArray = GlName<deleteVertexArray>;
 using ShaderName = GlName<deleteShader>;
 using ProgramName = GlName<deleteProgram>;
+using Query = GlName<deleteQuery>;
 
 // A new name of each kind (glGen*), owned.
 Texture makeTexture();
@@ -75,6 +79,7 @@ Framebuffer makeFramebuffer();
 Renderbuffer makeRenderbuffer();
 Buffer makeBuffer();
 VertexArray makeVertexArray();
+Query makeQuery();
 
 // glEnable(cap) now, glDisable(cap) at the end of the scope: the hand-written pair, also when
 // the scope is left by an exception. For capabilities a pass switches on for some of its draws
@@ -140,6 +145,28 @@ class ScopedMatrices {
   ~ScopedMatrices();
   ScopedMatrices(const ScopedMatrices&) = delete;
   ScopedMatrices& operator=(const ScopedMatrices&) = delete;
+};
+
+// Texture-coordinate generation on texture unit `unit` (GL_TEXTURE0 + i) for a scope: enable()
+// switches one coordinate on (glEnable(GL_TEXTURE_GEN_S..Q)) where the caller sets its plane;
+// the destructor switches each off again, in the order they were switched on, on that unit,
+// and leaves the active texture unit as it found it. The constructor makes no GL call.
+class ScopedTexgen {
+ public:
+  explicit ScopedTexgen(GLenum unit) : unit_(unit) {}
+  ~ScopedTexgen();
+  ScopedTexgen(const ScopedTexgen&) = delete;
+  ScopedTexgen& operator=(const ScopedTexgen&) = delete;
+
+  // glEnable(gen) on the scope's unit, which must be the active one (the caller sets the
+  // coordinate's mode and plane there); a coordinate already on is not switched on twice.
+  void enable(GLenum gen);
+
+ private:
+  static constexpr int kCoordinates = 4;  // s, t, r, q
+  GLenum unit_;
+  GLenum enabled_[kCoordinates] = {0, 0, 0, 0};
+  int count_ = 0;
 };
 
 }  // namespace sl

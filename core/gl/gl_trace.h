@@ -1,5 +1,5 @@
-// core/gl/gl_trace.h — a tracing layer on the GL dispatch table (core/gl/gl.h) for --dump-passes
-// (issue 18 item 2): the GL state behind every pass, as readable lines a student can follow.
+// core/gl/gl_trace.h — a tracing layer on the GL dispatch table (core/gl/gl.h) for --dump-passes:
+// the GL state behind every pass, as readable lines a student can follow.
 //
 // While a GlTrace lives, the current thread's GL calls go through a second GlDispatch whose
 // entries record the call and forward to the table that was current when the trace began (the

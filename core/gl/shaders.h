@@ -30,7 +30,7 @@ GLuint compileShaderProgram(const std::string& vertexFile, const std::string& fr
                             const ShaderDefines& defines = {},
                             const std::string& geometryFile = "");
 
-// A pass of a modern technique marked in the shader source that does it (issue 18 item 3):
+// A pass of a modern technique marked in the shader source that does it:
 //   // @pass ID: what the lines do (paper section)
 //   // @replaces legacy.fast-pcf 2
 //   // @replaces legacy.pcf 5a 5b

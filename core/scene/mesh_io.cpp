@@ -21,7 +21,7 @@
 #include "core/base/errors.h"
 #include "core/scene/primitives.h"
 
-// Why the checks below exist (issue 17): Assimp 5.2's PLY reader walks its 1 MiB line cache
+// Why the checks below exist: Assimp 5.2's PLY reader walks its 1 MiB line cache
 // (IOStreamBuffer::getNextLine) with an end-of-data test of `pos == size` and skips a line
 // end with `while (cache[pos] != '\n') ++pos`, although '\0' and '\r' also count as line
 // ends; its header parser (PLY::DOM::ParseHeader) keeps asking for lines until it meets

@@ -6,7 +6,7 @@
 
 namespace sl {
 
-// Tessellation caps (issue 17): every generator checks its parameters against these before it
+// Tessellation caps: every generator checks its parameters against these before it
 // allocates anything and throws InputError naming the parameter and the cap. At the largest
 // caps a primitive has a few million triangles, which every technique still renders here.
 constexpr int kMaxPlaneDivisions = 1024;  // 2 divisions^2 triangles: 2.1 M at the cap

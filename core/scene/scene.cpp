@@ -94,8 +94,8 @@ DepthRange lightDepthRange(const Scene& scene) {
     r.farPlane = light.farPlane.value_or(f.farPlane);
   }
   // A given range with near/far below kMinNearOverFar (near 8e-7, far 8, say) leaves a 24-bit
-  // depth buffer no steps between the objects: hw and GPU Gems PCF drew every receiver lit
-  // (issue 17 item 7). Such a range is narrowed to the part of it that holds geometry: nothing
+  // depth buffer no steps between the objects: hw and GPU Gems PCF drew every receiver lit.
+  // Such a range is narrowed to the part of it that holds geometry: nothing
   // lies between the given and the fitted planes, so no fragment changes side, and the fitted
   // range keeps near/far >= kMinNearOverFar. Where the given range holds no geometry at all,
   // it stays as given (nothing is drawn either way).
@@ -222,7 +222,7 @@ void validateScene(const Scene& scene) {
                      formatNumber(r.nearPlane) + ", far " + formatNumber(r.farPlane) +
                      "): give both light.near and light.far, or neither");
   }
-  // Stiff light/camera ranges (issue 17 items 7, 8, 10) -------------------------------------
+  // Stiff light/camera ranges -------------------------------------
   // A spotlight cone near 180 degrees: one perspective shadow map spreads its texels over
   // 2 tan(cone/2) at unit distance, so at the centre of the map a texel spans tan(cone/2) times
   // what it spans under a 90-degree cone (5.7x at 160 degrees, 1146x at 179.9, where every

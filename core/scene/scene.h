@@ -13,7 +13,7 @@
 
 namespace sl {
 
-// Scene caps (issue 17), checked by validateScene before anything is drawn; a scene beyond
+// Scene caps, checked by validateScene before anything is drawn; a scene beyond
 // them is an InputError that names the cap. Primitive and mesh-file caps live beside their
 // generators (core/scene/primitives.h, core/scene/mesh_io.h).
 constexpr int kMaxSceneObjects = 4096;             // draw calls per pass stay bounded
@@ -112,11 +112,16 @@ glm::mat4 lightProjection(const Scene& scene);
 // a wide range. Polygon-offset constants and peeling epsilons, which exist to cover that
 // round-off, are multiplied by this factor (at least 1, so wide ranges are unchanged).
 // DEVIATION (Everitt et al. 2001, "Polygon offset"): the paper tunes one constant per scene;
-// without the factor a flat ground under a light 20 units up was all umbra (issue 17).
+// without the factor a flat ground under a light 20 units up was all umbra.
 float lightDepthRoundoffScale(const Scene& scene);
+// That DEVIATION as the pass tables declare it, for the passes whose polygon offset or peeling
+// epsilon the factor scales (legacy and modern hw, woo and second-depth).
+inline constexpr char kDepthRoundoffScaleDeviation[] =
+    "DEVIATION (Everitt et al. 2001, \"Polygon offset\"): the paper tunes one constant per "
+    "scene; without the factor a flat ground under a light 20 units up was all umbra.";
 
 // The scene-level knobs a figure turns and `render`/`compare`/`plan` expose (--camera-distance,
-// --light-radius, --light-position) and `figures --set` overrides (issue 21 item 1).
+// --light-radius, --light-position) and `figures --set` overrides.
 struct SceneAdjustments {
   // Times the camera's distance from its target, moving it along its view direction (> 1:
   // farther, minification as in Annen et al. Figs. 1 and 10); the far plane grows with it.

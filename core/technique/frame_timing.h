@@ -75,7 +75,7 @@ double median(std::vector<double> values);
 SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const FrameCounts& counts,
                              Frame* last = nullptr);
 
-// Interleaved timing (issue 21 item 6): several configurations measured round-robin, so that a
+// Interleaved timing: several configurations measured round-robin, so that a
 // change of machine load during the measurement hits every configuration alike instead of the
 // ones that happened to run during it. Each source is warmed up (`warmup` frames each, in
 // turn), then `rounds` rounds render one timed frame of every source in turn; each source's

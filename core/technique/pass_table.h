@@ -41,27 +41,29 @@ const char* passFloorName(PassFloor floor);
 struct PassBuffer {
   // The file name after the pass id: "packed-shadow-map{part}-rgba". "{part}" is replaced by
   // the part's file tag ("-upper-left"; empty for a pass run once).
-  std::string name;
+  std::string name{};
   // Under the picture; "{key}" is replaced by the words given to Passes::capture.
-  std::string caption;
+  std::string caption{};
   // A packed map (several depth samples per texel, Brabec–Seidel §4 Fig. 5): the channel that
   // holds the texel's own sample, and what each channel holds.
   int centreChannel = -1;
-  std::vector<std::string> channelMeaning;
+  std::vector<std::string> channelMeaning{};
 };
 
+// Every member has a default, so that a table names only the members a pass has (designated
+// initializers leave the others at their defaults).
 struct PassSpec {
-  std::string id;         // stable: "1", "5c", "mesh"
-  std::string name;       // "light pass: depth ramp in RGBA"
-  std::string reference;  // "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5", or "ours: ..."
-  std::vector<PassBuffer> writes;
+  std::string id{};         // stable: "1", "5c", "mesh"
+  std::string name{};       // "light pass: depth ramp in RGBA"
+  std::string reference{};  // "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5", or "ours: ..."
+  std::vector<PassBuffer> writes{};
   PassFloor floor = PassFloor::kNone;
   // The `// @pass ID` markers of the GLSL this pass runs (core/gl/shaders.h).
-  std::vector<std::string> shaders;
+  std::vector<std::string> shaders{};
   // A modern twin's pass: the ids of the legacy twin's passes it does ("3", "4", "5").
-  std::vector<std::string> replaces;
+  std::vector<std::string> replaces{};
   // Its departures from the paper: "DEVIATION (source, section): why", as in the code.
-  std::vector<std::string> deviations;
+  std::vector<std::string> deviations{};
 };
 
 using PassTable = std::vector<PassSpec>;

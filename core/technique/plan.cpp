@@ -1,6 +1,6 @@
 // core/technique/plan.cpp — the pass planner (core/technique/plan.h).
 //
-// Rules (issue 8 item 4), each an item with its reason:
+// Rules, each an item with its reason:
 //   1. shadow passes    — left out when no caster has a triangle inside the light frustum, or
 //                         no receiver does (nothing can be shadowed)
 //   2. light objects    — non-casters and casters wholly outside the frustum are left out

@@ -1,5 +1,5 @@
 // core/technique/plan.h — the pass planner: for a scene, a technique and its parameters, which
-// passes, objects and resources a frame needs, and what can be left out and why (issue 8 item 4).
+// passes, objects and resources a frame needs, and what can be left out and why.
 //
 // Pure computation on the scene's data (no GL): techniques may consult it cheaply, e.g.
 // legacy.hw and modern.hw skip the light pass when no caster reaches the light frustum.

@@ -81,7 +81,7 @@ std::string RenderParams::text(const std::string& key, const std::string& fallba
 }
 
 namespace {
-// The one vocabulary of a flag --param (issue 30): these two words and no others (no
+// The one vocabulary of a flag --param: these two words and no others (no
 // true/false/1/0), as `shadowlab list`, the live lab's checkboxes and the figures spell them.
 constexpr const char* kFlagOn = "on";
 constexpr const char* kFlagOff = "off";
@@ -269,6 +269,12 @@ const char* optionFlag(CommonOption o) {
     case CommonOption::kImaging: return "--imaging";
   }
   return "?";
+}
+
+std::vector<const PassTable*> allPassTables(const Technique& t) {
+  std::vector<const PassTable*> out = {&t.passes};
+  for (const PassVariant& v : t.passVariants) out.push_back(&v.passes);
+  return out;
 }
 
 bool readsOption(const Technique& t, CommonOption o) {

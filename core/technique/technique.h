@@ -185,13 +185,12 @@ struct CommonOptions {
   bool filter = false;     // RenderParams::filter
   // The --filter sides it accepts when it reads --filter (fast PCF: 2 and 4, the footprints of
   // Brabec & Seidel §4); empty = every side checkParams allows. checkParams refuses the others.
-  std::vector<int> filterSides;
+  std::vector<int> filterSides{};
   bool precision = false;  // RenderParams::precision
 };
 
 // What the pass planner (core/technique/plan.h) needs to know of a technique, declared by the
-// technique where it is defined, so that the planner asks instead of matching names (issue 21 item
-// 8).
+// technique where it is defined, so that the planner asks instead of matching names.
 struct PlanTraits {
   // The work of the light-side passes.
   enum class ShadowWork { kShadowMap, kShadowVolumes, kSmoothies, kRays };
@@ -226,16 +225,24 @@ class RenderFunction {
   Function function_;
 };
 
+// A pass table that other --params select in place of a technique's default one (modern.gems16's
+// kernel=bicubic, modern.csm without its mip chain): the --params that select it, and its table.
+struct PassVariant {
+  std::map<std::string, std::string> params;  // --param key=value, as RenderParams::extra
+  PassTable passes;
+};
+
 struct Technique {
   std::string name;     // "legacy.pcf"
   std::string paper;    // "Brabec & Seidel 2001, §3"
   std::string summary;  // one line
   std::string status;   // "complete", or what is missing
   ContextNeeds needs;
-  std::vector<ParamSpec> params;  // the --param keys it understands, declared once
-  CommonOptions reads;            // the common options its render reads
-  PlanTraits plan;                // what the pass planner asks of it
-  PassTable passes;               // its passes, declared once (core/technique/pass_table.h)
+  std::vector<ParamSpec> params;          // the --param keys it understands, declared once
+  CommonOptions reads;                    // the common options its render reads
+  PlanTraits plan;                        // what the pass planner asks of it
+  PassTable passes;                       // its passes, declared once (core/technique/pass_table.h)
+  std::vector<PassVariant> passVariants;  // the tables other --params select instead
   // What its visibility approximates: the point light's hard shadow (shadow maps, volumes,
   // reference.hard) or the spherical light's soft one (smoothies, reference.soft). The bench
   // and the figures score it against the matching ray-traced truth.
@@ -245,6 +252,8 @@ struct Technique {
 };
 
 bool readsOption(const Technique& t, CommonOption o);
+// Its default pass table, then each variant's (Technique::passVariants).
+std::vector<const PassTable*> allPassTables(const Technique& t);
 std::vector<std::string> paramKeys(const Technique& t);  // its --param keys, in declared order
 // Its declaration of `key`, or nullptr when it has no such --param.
 const ParamSpec* findParam(const Technique& t, const std::string& key);

@@ -103,9 +103,10 @@ void expectRanksArePareto(const std::vector<json>& rows) {
       const double ta = a["frame_ms"], tb = b["frame_ms"];
       const double ea = a["error"]["rmse"], eb = b["error"]["rmse"];
       const bool bDominatesA = tb <= ta && eb <= ea && (tb < ta || eb < ea);
-      if (bDominatesA)
+      if (bDominatesA) {
         EXPECT_LT(b["pareto_rank"].get<int>(), a["pareto_rank"].get<int>())
             << b.dump() << " dominates " << a.dump();
+      }
     }
   }
   EXPECT_GT(ranks, 0);

@@ -91,8 +91,8 @@ TEST(Cli, VersionPrintsTheBuildCommit) {
   EXPECT_TRUE(extra.out.empty()) << extra.out;
 }
 
-// Every command answers --help with its own options on stdout and exit status 0 (issue 14
-// item 7), and runs nothing: no output file appears.
+// Every command answers --help with its own options on stdout and exit status 0, and
+// runs nothing: no output file appears.
 TEST(Cli, EveryCommandHasHelp) {
   const std::map<std::string, std::vector<std::string>> expected = {
       {"list", {}},
@@ -241,7 +241,7 @@ std::vector<BadInput> badInputs() {
       {"option without its value", "render --scene analytic --technique legacy.hw --out"},
       {"bench option on render",
        "render --scene analytic --technique legacy.hw --out @OUT --quick"},
-      // Strict decimal numbers (issue 17 item 5): no trailing characters, hex, inf or spaces.
+      // Strict decimal numbers: no trailing characters, hex, inf or spaces.
       {"threshold with trailing junk",
        "compare --scene analytic --a legacy.hw --b modern.hw --size 64x48 --threshold 0.5abc"},
       {"hexadecimal threshold",
@@ -270,8 +270,8 @@ std::vector<BadInput> badInputs() {
 INSTANTIATE_TEST_SUITE_P(All, CliBadInput, ::testing::ValuesIn(badInputs()),
                          [](const auto& info) { return testName(info.param.what); });
 
-// The developer tools parse their command lines with CLI11 as the shadowlab command does (issue
-// 14 item 7): --help lists every option, and bad input is one line on stderr with exit status
+// The developer tools parse their command lines with CLI11 as the shadowlab command does:
+// --help lists every option, and bad input is one line on stderr with exit status
 // 2, found before any benchmark runs (these cases take milliseconds, not the benchmark's minutes).
 struct Tool {
   const char* name;
@@ -373,7 +373,7 @@ std::vector<BadToolInput> badToolInputs() {
       {"imaging unknown option", IMAGING_BENCH_BINARY, "--fast"},
       {"imaging stray argument", IMAGING_BENCH_BINARY, "--quick extra"},
       {"imaging missing value", IMAGING_BENCH_BINARY, "--only"},
-      // issue 17 item 5: found before any work, exit 2, nothing on stdout.
+      // Found before any work, exit 2, nothing on stdout.
       {"csm csv in /proc", CSM_BENCH_BINARY, "--csv /proc/x.csv"},
       {"csm csv with the ratio part", CSM_BENCH_BINARY, "--part ratio --csv /tmp/ratio.csv"},
       {"csm param with the techniques part", CSM_BENCH_BINARY, "--part techniques --param order=4"},
@@ -391,7 +391,7 @@ std::vector<BadToolInput> badToolInputs() {
 INSTANTIATE_TEST_SUITE_P(All, ToolBadInput, ::testing::ValuesIn(badToolInputs()),
                          [](const auto& info) { return testName(info.param.what); });
 
-// csm_bench --part ratio measures the --size and --scene it is given (issue 17 item 5), not
+// csm_bench --part ratio measures the --size and --scene it is given, not
 // the bench sizes and scenes.
 TEST(ToolCli, CsmRatioTakesSizeAndScene) {
   const CommandResult r =
@@ -402,7 +402,7 @@ TEST(ToolCli, CsmRatioTakesSizeAndScene) {
   EXPECT_EQ(r.out.find("| brabec |"), std::string::npos) << r.out;
 }
 
-// ... and the --shadow-map it is given (issue 20 item 4: the per-pass costs at Table 1's sizes).
+// ... and the --shadow-map it is given (the per-pass costs at Table 1's sizes).
 TEST(ToolCli, CsmRatioTakesShadowMap) {
   const CommandResult r =
       runBinary(CSM_BENCH_BINARY,
@@ -425,7 +425,7 @@ TEST(Cli, StrictDecimalNumbers) {
     EXPECT_THROW(cli::parsePositiveInt("--n", bad, 100), InputError) << "'" << bad << "'";
 }
 
-// A run writes all its outputs or none (issue 17 item 4): every destination is checked before
+// A run writes all its outputs or none: every destination is checked before
 // rendering, and an existing --out survives a run that fails.
 struct FailingRun {
   const char* what;
@@ -477,7 +477,7 @@ INSTANTIATE_TEST_SUITE_P(
     }),
     [](const auto& info) { return testName(info.param.what); });
 
-// A rejected scene leaves no dump directory (issue 17 item 5).
+// A rejected scene leaves no dump directory.
 TEST(Cli, RejectedSceneCreatesNoDumpDirectory) {
   const fs::path dump = dir() / "dump";
   fs::remove_all(dump);
@@ -523,7 +523,7 @@ TEST(Cli, DumpPassesDirectoryIsReplacedAsAWhole) {
 }
 
 // A scene file named in bytes that are not UTF-8, without a "name" key: the JSON line is
-// built before any file is committed and prints the name with U+FFFD (issue 17 item 4).
+// built before any file is committed and prints the name with U+FFFD.
 TEST(Cli, NonUtf8SceneNameStillGivesOneJsonLine) {
   const fs::path d = dir();
   const fs::path scene = d / "sc\xff\xfe.json";

@@ -1,4 +1,4 @@
-// Bad input the shadowlab command used to take (issue 30): a .jpg --out, a true/false flag, a
+// Bad input the shadowlab command used to take: a .jpg --out, a true/false flag, a
 // missing scene file reported as an unknown scene, a user's mesh looked up in assets/. Each is
 // one line on stderr naming the problem, exit status 2 and no file; the good cases run.
 #include <gtest/gtest.h>

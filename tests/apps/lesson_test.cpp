@@ -1,4 +1,4 @@
-// `shadowlab lesson TECHNIQUE --out DIR` (teach/lesson.h, issue 18 item 4): one self-contained
+// `shadowlab lesson TECHNIQUE --out DIR` (teach/lesson.h): one self-contained
 // page per technique with the paper's idea, every pass, the twin, legacy against modern and the
 // known departures; bad input is one line and exit 2 with nothing written.
 #include "teach/lesson.h"
@@ -153,7 +153,7 @@ TEST(Lesson, ShowsTheGlStateOfEveryPass) {
 
 // The modern twin's passes show the GLSL lines they run, exactly as the embedded shader has
 // them, and link the legacy pass they replace (passes.json "glsl" and "replaces", from the
-// `// @pass` markers of the shaders, which every modern technique's shaders carry since issue 18).
+// `// @pass` markers of the shaders, which every modern technique's shaders carry).
 TEST(Lesson, TwinPassesShowTheirGlslLinesAndTheLegacyPassTheyReplace) {
   bool markers = false;
   for (const auto& [name, text] : embeddedShaders())

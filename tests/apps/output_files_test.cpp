@@ -1,4 +1,4 @@
-// core/base/output_files.h as the commands use it (issue 17 item 4): every destination checked up
+// core/base/output_files.h as the commands use it: every destination checked up
 // front, written through temporaries, renamed together at the end, or none at all. The
 // commands' own cases are in cli_test.cpp; these drive OutputSet directly, including a commit
 // that fails half-way.

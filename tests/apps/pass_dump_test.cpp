@@ -1,4 +1,4 @@
-// `shadowlab render --dump-passes DIR` (teach/pass_dump.h, issue 18 item 1): every technique in
+// `shadowlab render --dump-passes DIR` (teach/pass_dump.h): every technique in
 // the registry dumps its buffers in pipeline order with passes.json and index.html; a frame
 // with nothing to dump is an input error, never an empty folder.
 #include "teach/pass_dump.h"

@@ -1,5 +1,5 @@
-// Outputs say what made them, and options a technique ignores are input errors (issue 21 items
-// 2 and 3): the JSON lines of `render` and `compare`, the text chunks of the PNGs they write,
+// Outputs say what made them, and options a technique ignores are input errors: the
+// JSON lines of `render` and `compare`, the text chunks of the PNGs they write,
 // and the refusal of --shadow-map, --filter and --precision where the technique does not read
 // them, checked against what the techniques actually do.
 #include "core/base/provenance.h"

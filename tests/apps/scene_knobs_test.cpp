@@ -1,4 +1,4 @@
-// Issue 21 item 1: `render` has every scene-level knob a figure turns (--camera-distance for
+// `render` has every scene-level knob a figure turns (--camera-distance for
 // csm-fig1/csm-fig10, --light-radius for chan-4-9, --light-position), so that a figure's panel
 // can be reproduced from the command line; bad values exit 2 with one line.
 #include <gtest/gtest.h>

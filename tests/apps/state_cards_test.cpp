@@ -1,4 +1,4 @@
-// The GL state cards and twin links of `render --dump-passes` (issue 18 items 2 and 3), as the
+// The GL state cards and twin links of `render --dump-passes`, as the
 // issue's done-when names them: legacy.hw shows its EYE_LINEAR planes and compare mode,
 // legacy.fast-pcf the Eq. (1) kernel, the colour table and the colour matrix, and modern.fast-pcf
 // links its packing pass to the GLSL lines that do it.

@@ -1,6 +1,5 @@
 // tests/browser/check_pages.mjs — loads shadowlab's pages in headless Chromium (Debian's
-// /usr/bin/chromium, driven by puppeteer-core) and fails on what a reader would see broken
-// (issue 18 item 7):
+// /usr/bin/chromium, driven by puppeteer-core) and fails on what a reader would see broken:
 //   every page:  an image that did not load (naturalWidth 0), a console error, an uncaught
 //                script error, a failed request, a relative link to a file that does not exist;
 //   a dump (index.html beside passes.json) and a lesson (index.html with <section class=pass>):

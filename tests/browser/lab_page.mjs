@@ -1,4 +1,4 @@
-// tests/browser/lab_page.mjs — the live lab end to end (issue 19 item 6): `shadowlab serve` on a
+// tests/browser/lab_page.mjs — the live lab end to end: `shadowlab serve` on a
 // free loopback port, its page in Debian's headless Chromium (puppeteer-core, no browser
 // download). Loads the page, waits for both frames, changes technique A and a slider, and
 // checks that a new image arrived for each change (the canvas changed, the reproducing command

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/browser/run_browser_test.sh SHADOWLAB OUT — the ctest `browser.pages` (issue 18 item 7):
+# tests/browser/run_browser_test.sh SHADOWLAB OUT — the ctest `browser.pages`:
 # makes the pages a reader opens, then loads every one in headless Chromium
 # (tests/browser/check_pages.mjs, puppeteer-core from npm, /usr/bin/chromium):
 #   OUT/dumps/<technique>/index.html    render --dump-passes of every technique in `shadowlab list`

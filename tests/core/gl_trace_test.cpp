@@ -1,4 +1,4 @@
-// core/gl/gl_trace.h: the tracing layer on the dispatch table (issue 18 item 2). Off, the context's
+// core/gl/gl_trace.h: the tracing layer on the dispatch table. Off, the context's
 // own table is current and untouched; on, calls go through a second table that records them per
 // pass and forwards to the first; afterwards the first is current again, unchanged.
 #include "core/gl/gl_trace.h"

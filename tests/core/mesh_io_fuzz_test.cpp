@@ -1,4 +1,4 @@
-// A deterministic fuzz test of the mesh loader (core/scene/mesh_io.h, issue 17): small valid OBJ
+// A deterministic fuzz test of the mesh loader (core/scene/mesh_io.h): small valid OBJ
 // and PLY files (ascii and binary, plain and gzipped) mutated by a seeded PRNG — bit flips,
 // truncations, inserted and repeated bytes, edited header counts and numbers, removed or
 // replaced line ends, gzip wrapping and damaged gzip streams. Every case must either load into

@@ -1,4 +1,4 @@
-// Mesh loading against the malformed files of issue 17 (core/scene/mesh_io.h): each is refused with
+// Mesh loading against malformed files (core/scene/mesh_io.h): each is refused with
 // an InputError that names the file (and the cap where one is exceeded), never a crash, a hang or
 // an allocation of what the file merely declares.
 #include "core/scene/mesh_io.h"

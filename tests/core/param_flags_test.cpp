@@ -1,4 +1,4 @@
-// One vocabulary for flag --params (issue 30): `shadowlab list` says on|off, so on and off are
+// One vocabulary for flag --params: `shadowlab list` says on|off, so on and off are
 // the only words a flag takes; true/false/1/0 are refused with a message naming the two.
 #include <gtest/gtest.h>
 

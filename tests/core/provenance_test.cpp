@@ -1,4 +1,4 @@
-// What made an output (issue 21 item 2): the PNG text chunks written by writePng and read back
+// What made an output: the PNG text chunks written by writePng and read back
 // through libpng, the shell quoting of the recorded command line, and the effective --params
 // a render reads (core/base/provenance.h, core/base/image.h, core/technique/technique.h).
 #include "core/base/provenance.h"

@@ -1,4 +1,4 @@
-// Where a scene file's names lead (issue 30): a relative mesh path is read beside the scene
+// Where a scene file's names lead: a relative mesh path is read beside the scene
 // file, a missing scene file is named as such, the scene files of assets/scenes/ and the two
 // examples of docs/scene-files.md load.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Scene validation (issue 17): primitive parameters and caps, strict scene files, mesh index
+// Scene validation: primitive parameters and caps, strict scene files, mesh index
 // ranges, impossible cameras and lights. Each bad input is an InputError whose one line names
 // the field; the command line turns it into exit status 2 with nothing written.
 #include <gtest/gtest.h>
@@ -38,7 +38,7 @@ std::string doc(const std::string& objects, const std::string& extra = "") {
 const std::string kGround = R"({"mesh": {"primitive": "plane"}})";
 
 TEST(PrimitiveCaps, EveryGeneratorRefusesCountsOutsideItsCaps) {
-  // Below the minimum the index formulas read outside the vertex array (issue 17 item 1);
+  // Below the minimum the index formulas read outside the vertex array;
   // above the maximum the allocation is unbounded (item 3). Both refused before allocating.
   EXPECT_THROW(makeSphere(1.0f, 32, 1), InputError);
   EXPECT_THROW(makeSphere(1.0f, 32, 0), InputError);
@@ -107,7 +107,7 @@ TEST(SceneFileStrictness, WrongTypesAndUnknownKeysNameTheField) {
 }
 
 TEST(SceneFileStrictness, NamesThatAreNotUtf8BecomeReadable) {
-  // A name with invalid UTF-8 must not throw later in a JSON writer (issue 17 item 4): inside
+  // A name with invalid UTF-8 must not throw later in a JSON writer: inside
   // the document the JSON parser refuses it; a file name becomes U+FFFD where it is not UTF-8.
   EXPECT_THROW(parseSceneJson(doc(kGround, "\"name\": \"caf\xe9\""), "t.json", "."), InputError);
   const Scene t = parseSceneJson(doc(kGround), "/tmp/sc\xff\xfe.json", ".");

@@ -1,4 +1,4 @@
-// tests/figures/entries_test.cpp — issue 27 item 6: the entries of csm-fig1, csm-fig10,
+// tests/figures/entries_test.cpp — the entries of csm-fig1, csm-fig10,
 // csm-table1, everitt-fig6 and brabec-fig8 as the review asked for them (panel order, the
 // paper's kernel, close-ups under strong minification, rounds, the timing disclaimer, the
 // 12-bit panel and its counts), and the light's view of Everitt Fig. 6 colour-coded where the
@@ -87,7 +87,7 @@ TEST(FigureEntries, CsmFig1BlursWithThePapersSevenBySeven) {
   EXPECT_EQ(f.caption.find("5x5"), std::string::npos) << "the caption still names the old kernel";
 }
 
-// Table 1: at least 7 interleaved rounds per cell (issue 27 item 6), and the caption opens by
+// Table 1: at least 7 interleaved rounds per cell, and the caption opens by
 // saying a CPU rasteriser cannot reproduce the paper's GPU frame rates.
 TEST(FigureEntries, CsmTable1TimesSevenRoundsAndSaysWhatACpuCannotReproduce) {
   const FigureSpec& f = listed("csm-table1");

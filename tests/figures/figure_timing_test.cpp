@@ -1,4 +1,4 @@
-// Issue 14 item 2: a time that `shadowlab figures` sets beside a paper's number is the
+// A time that `shadowlab figures` sets beside a paper's number is the
 // steady-state median of core/technique/frame_timing.h, not a first frame in a fresh context. The
 // real program renders a cheap figure (chan-4-1: one render panel with the thesis's 39 fps, beside
 // three buffer and view panels) and the report must say how each time was measured. Speed
@@ -59,7 +59,7 @@ TEST(FigureTiming, TimeBesideThePapersNumberIsTheSteadyMedian) {
   ASSERT_TRUE(std::regex_search(html, m, caption))
       << "the smoothies panel's time is not marked as a steady median beside the paper's 39 fps";
   const int timed = std::stoi(m[3]);
-  // Issue 21 item 6: three interleaved rounds, whatever the machine's load; never a median of
+  // Three interleaved rounds, whatever the machine's load; never a median of
   // one frame, never the first frame.
   EXPECT_EQ(timed, 3) << "figures.cpp kFigureRounds";
   const double ms = std::stod(m[1]), fps = std::stod(m[2]);

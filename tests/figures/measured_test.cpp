@@ -1,4 +1,4 @@
-// Issue 21 items 5 and 6: captions state measured numbers, never typed ones. The sentences
+// Captions state measured numbers, never typed ones. The sentences
 // under a caption (figures/measured.h) are computed from the run; the captions themselves
 // carry only configuration and the papers' quoted numbers.
 #include "figures/measured.h"
@@ -216,7 +216,7 @@ TEST(Measured, CaptionsCarryNoUnmeasuredNumbers) {
   }
 }
 
-// Issue 27 item 6: Table 1's map-size and order trends, with verdicts, as the convolution's.
+// Table 1's map-size and order trends, with verdicts, as the convolution's.
 TEST(Measured, MapSizeAndOrderTrendsHaveVerdicts) {
   FigureResult fig;
   fig.spec.id = "csm-table1";
@@ -261,7 +261,7 @@ TEST(Measured, MapSizeAndOrderTrendsHaveVerdicts) {
       << "PCF is in the size trend once and nowhere else";
 }
 
-// Issue 27 item 6: Brabec Fig. 8 explains its timing pass by pass, as Fig. 7, from the run's
+// Brabec Fig. 8 explains its timing pass by pass, as Fig. 7, from the run's
 // pass times; and its 12-bit claim is the run's counts.
 TEST(Measured, BrabecFig8ExplainsItsTimingPassByPassAndCountsTheBiasTrade) {
   FigureResult fig;

@@ -1,4 +1,4 @@
-// Issue 21 item 1: `shadowlab figures --only ID --set key=value` re-makes one figure with
+// `shadowlab figures --only ID --set key=value` re-makes one figure with
 // parameters changed, into its own folder, with the overrides in the caption and file names.
 #include "figures/overrides.h"
 
@@ -116,7 +116,7 @@ TEST(FigureOverrides, KeysTheFigureDoesNotReadAreInputErrors) {
   for (const PanelSpec& p : f.panels) EXPECT_FLOAT_EQ(p.lightRadius.value(), 0.3f);
 }
 
-// The done-when of issue 21 item 1 on a cheap figure: the real program re-makes everitt-fig5
+// On a cheap figure: the real program re-makes everitt-fig5
 // (32² map) with a 64² map into its own folder; every file name and the caption say so; bad
 // input exits 2 with one line.
 TEST(FigureOverrides, FiguresCommandRemakesIntoItsOwnFolder) {

@@ -1,7 +1,7 @@
-// tests/figures/panels_test.cpp — the figures' panels (issue 14 item 3): every panel of
+// tests/figures/panels_test.cpp — the figures' panels: every panel of
 // figure_list.cpp names a technique, parameters and buffers that exist; figure.png holds every
 // panel, buffer panels, charts and the red blocks of panels that could not be made included,
-// each under its label drawn as text (issue 18 item 6);
+// each under its label drawn as text;
 // the stencil buffer the Chan 3-1c / 3-9c panels show is the one the techniques shade from.
 #include <gtest/gtest.h>
 
@@ -230,7 +230,7 @@ TEST(FigureComposite, HoldsRendersBuffersChartsCloseupsAndRedBlocks) {
   EXPECT_GT(layout.tiles[5].y, layout.tiles[3].y + 30) << "the close-ups come last";
 }
 
-// Close-ups sit under the panel they magnify (issue 21: Chan Fig. 3-1's close-ups of panels b-d
+// Close-ups sit under the panel they magnify (Chan Fig. 3-1's close-ups of panels b-d
 // were packed from column 0, one column left of their panels). Four panels in a row, the first
 // without close-ups (the shadow-map view), the second a buffer panel of two images with one
 // close-up each, the last a render with two close-ups: each close-up's left edge is its
@@ -452,7 +452,7 @@ std::string firstSentence(const std::string& caption) {
 }
 }  // namespace
 
-// Issue 27 item 6: Chan Fig. 4-8 times a real 16-sample bicubic PCF (modern.gems16
+// Chan Fig. 4-8 times a real 16-sample bicubic PCF (modern.gems16
 // --param kernel=bicubic) at every map size, beside the thesis's times, on the thesis's GPU.
 TEST(ChanFigures, FourEightTimesABicubicSixteenSamplePcfAtEveryMapSize) {
   const FigureSpec& f = figureById("chan-4-8");

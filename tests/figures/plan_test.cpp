@@ -60,7 +60,7 @@ TEST(PlanConsulted, NormalScenesKeepTheLightPass) {
   EXPECT_FALSE(hasPassContaining(f, "left out"));
 }
 
-// The planner asks what each registered technique declares (issue 21 item 8). The name-matching
+// The planner asks what each registered technique declares. The name-matching
 // planner it replaced planned no blur for modern.vsm, whose module blurs with 3 taps by default.
 const PlanItem* planned(const FramePlan& plan, const std::string& prefix) {
   for (const PlanItem& i : plan.resources)

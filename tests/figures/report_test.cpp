@@ -1,5 +1,5 @@
 // tests/figures/report_test.cpp — `shadowlab figures` and report.html, checked in a real
-// browser (issue 7 item 3): headless Chromium loads the report, every image must load and the
+// browser: headless Chromium loads the report, every image must load and the
 // console must stay free of errors; a screenshot is saved for people to look at.
 //
 // Only cheap figures are rendered (--only), so the suite stays fast. Without Chromium the
@@ -113,8 +113,8 @@ std::vector<std::string> consoleErrors(const std::string& log) {
 
 }  // namespace
 
-// Every figure issue 7 asks for has an entry (the list is the issue's, typed in here).
-TEST(FigureList, HoldsEveryFigureOfIssue7) {
+// Every figure of the papers that the report reproduces has an entry (the list typed in here).
+TEST(FigureList, HoldsEveryFigureOfThePapers) {
   const std::set<std::string> required = {"brabec-fig7",
                                           "brabec-fig8",
                                           "brabec-fig3-packing",
@@ -228,7 +228,7 @@ TEST(FiguresCommand, UnknownFigureIsAnInputError) {
   EXPECT_NE(r.output.find("unknown figure 'no-such-figure'"), std::string::npos) << r.output;
 }
 
-// The browser check of issue 7 item 3.
+// The report in a browser: every image loads, no console error.
 TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
   const std::string exe = chromium();
   if (exe.empty())
@@ -253,7 +253,7 @@ TEST(ReportInBrowser, LoadsEveryImageWithoutConsoleErrors) {
   ASSERT_EQ(dom.status, 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-broken"), 0) << dom.output;
   EXPECT_EQ(bodyCount(dom.output, "data-images-ok"), int(images));
-  // Every image at its own aspect ratio (issue 18 item 6: buffer strips were squashed).
+  // Every image at its own aspect ratio (buffer strips were squashed).
   EXPECT_EQ(bodyCount(dom.output, "data-images-distorted"), 0) << dom.output;
   const auto errors = consoleErrors(dom.output);
   EXPECT_TRUE(errors.empty()) << "console: " << (errors.empty() ? "" : errors.front());

@@ -1,6 +1,6 @@
 // glGetMinmax (glspec121 6.1.10 "Minmax Query", packed as GetTexImage packs, 6.1.4): what the
 // user reads from a reset table and from a table that has seen values outside [0,1], for
-// GL_FLOAT and for the normalised integer types (the choice of issue 14 item 6, stated at
+// GL_FLOAT and for the normalised integer types (our choice, stated at
 // imaging/histogram.cpp emGetMinmax and in docs/imaging.md "Minmax").
 #include <cfloat>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The live lab's API (issue 19 items 2, 4, 5) against a server on an ephemeral loopback port:
+// The live lab's API against a server on an ephemeral loopback port:
 // the JSON listings, frames that match `shadowlab render` pixel for pixel, the same one-line
 // refusals as the CLI, the error against the reference, caps, rate limit and latest-wins.
 #include <gtest/gtest.h>

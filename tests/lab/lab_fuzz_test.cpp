@@ -1,4 +1,4 @@
-// The live lab under malformed requests (issue 19 item 5): at least 200 of them, sent over raw
+// The live lab under malformed requests: at least 200 of them, sent over raw
 // loopback sockets (bad numbers, NaN, huge sizes, unknown and repeated keys, long URLs, wrong
 // methods, bytes that are not HTTP, truncated requests). Each gets an answer (or, for a broken
 // or truncated request, a closed connection), never a 5xx or a hang; the bad numbers include
@@ -19,7 +19,7 @@
 namespace sl::test {
 namespace {
 
-constexpr int kMinimumCases = 200;         // issue 19 item 5
+constexpr int kMinimumCases = 200;
 constexpr int kSocketTimeoutSeconds = 30;  // a reply slower than this is a hang
 
 // Sends `bytes` on a fresh connection, closes the sending side when `halfClose`, and returns

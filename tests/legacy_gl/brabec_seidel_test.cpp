@@ -69,7 +69,8 @@ TEST(BrabecSeidel, ProjectiveTexgenEqualsSPLinvV) {
     auto ctx = GlContext::create(spec);
     RenderParams p = params(Backend::kOsmesa, 2);
     legacy::setCameraMatrices(scene, p.width, p.height);
-    legacy::bs::loadProjectiveTexgen(scene, p, offset);
+    ScopedTexgen texgen(GL_TEXTURE0);
+    legacy::bs::loadProjectiveTexgen(scene, p, offset, texgen);
     glm::mat4 planes(0.0f);
     const GLenum coords[4] = {GL_S, GL_T, GL_R, GL_Q};
     for (int i = 0; i < 4; ++i) {
@@ -102,7 +103,8 @@ TEST(BrabecSeidel, CameraRampCoordinateIsBiasedLinearLightDepth) {
   auto ctx = GlContext::create(spec);
   legacy::setCameraMatrices(scene, 16, 16);
   legacy::bs::DepthEncoding enc = legacy::bs::depthEncoding(Precision::k8);
-  legacy::bs::loadCameraToRampTexgen(scene, enc, kBias);
+  ScopedTexgen texgen(GL_TEXTURE0);
+  legacy::bs::loadCameraToRampTexgen(scene, enc, kBias, texgen);
   glm::mat4 texture;
   glGetFloatv(GL_TEXTURE_MATRIX, glm::value_ptr(texture));
   const glm::mat4 view = glm::lookAt(scene.camera.position, scene.camera.target, scene.camera.up);
@@ -606,7 +608,7 @@ TEST(BrabecSeidel, DumpPassesNamesEveryIntermediate) {
 namespace sl {
 namespace {
 
-// Issue 21: the packing figure (brabec-fig5-packing) shows Fig. 5's one-texel shift as the
+// The packing figure (brabec-fig5-packing) shows Fig. 5's one-texel shift as the
 // packed map's G, B and A channels minus its R channel, the lower left of each texel's 2x2 block
 // (the texel's own depth is A). With one light pass in all four channels, the lower-right
 // channel of texel (x, y) is the lower-left depth of texel (x + 1, y), the upper-left that of
@@ -651,7 +653,7 @@ TEST(BrabecSeidel, ShiftViewIsTheOneTexelShiftOfFigureFive) {
 namespace sl {
 namespace {
 
-// Issue 21: brabec-fig8 (a) shows light under the teapot's base. The cause is the depth bias of
+// The figure brabec-fig8 (a) shows light under the teapot's base. The cause is the depth bias of
 // the 8-bit method, not a bug: receivers within two 8-bit steps (1/255 of the light's fitted
 // depth range each) below a caster count as lit, and next to the base the teapot's lowest body
 // is that close to the ground. The same 12-bit frame with the bias in 12-bit steps (2 steps =

@@ -20,9 +20,9 @@ namespace {
 constexpr int kWidth = 320;  // small window (team rule); the 256 map fits in it
 constexpr int kHeight = 240;
 constexpr int kMapTexels = 256;
-// Two map texels (projected onto the ground) on each side of the outline, as issue 4 item 8
-// asks: nearest sampling puts the stored sample up to half a texel from the point, and the
-// rasterised occluder edge in the light view is itself up to half a texel off.
+// Two map texels (projected onto the ground) on each side of the outline: nearest sampling puts the
+// stored sample up to half a texel from the point, and the rasterised occluder edge in the light
+// view is itself up to half a texel off.
 constexpr double kBandTexels = 2.0;
 
 enum class Truth { kNotGround, kLit, kShadow, kNearBoundary };

@@ -164,7 +164,7 @@ Scene splitThroughPasses(const Scene& scene, const RenderParams& params, Frame& 
   return cameraPassScene(scene, params, passes);
 }
 
-// Issue 20 item 2: cameraPassScene keeps the split meshes in the current context. A second call
+// cameraPassScene keeps the split meshes in the current context. A second call
 // with the same scene, camera, light and window draws the very meshes of the first, which are
 // those a fresh split makes; a moved camera is split anew.
 TEST(SpotlightTessellation, CachedSplitEqualsAFreshOneAndFollowsTheCamera) {

@@ -77,7 +77,7 @@ TEST(BenchErrors, LeakCountsLitUmbraOutsideTheBand) {
   EXPECT_EQ(e.band.pixels, 1);
 }
 
-// The plots' families (issue 18 item 6): the 2001 pipelines, their GLSL twins (as registry/twins.h
+// The plots' families: the 2001 pipelines, their GLSL twins (as registry/twins.h
 // pairs them), the later papers; references are the truth and go on no plot.
 TEST(BenchPlots, FamiliesSplitLegacyTwinsAndLaterPapers) {
   EXPECT_EQ(plotFamily("legacy.hw"), "legacy");
@@ -150,7 +150,7 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   ASSERT_TRUE(plots.notes.count("brabec-light-away"));
   EXPECT_NE(plots.notes.at("brabec-light-away").find("RMSE is 0"), std::string::npos);
   EXPECT_TRUE(r.sceneNotes.count("brabec-light-away"));
-  // Readable plots (issue 18 item 6): no reference among the plotted points, at most a handful
+  // Readable plots: no reference among the plotted points, at most a handful
   // of series per plot, and x and y ranges fitted to the plot's family and the scene's Pareto
   // front (every point inside, within a factor 1.5 of the extremes).
   for (const BenchPlot& plot : plots.plots) {
@@ -215,7 +215,7 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
   EXPECT_FALSE(plots.pareto.at("brabec").empty());
 }
 
-// ---- Issue 14: temporal stability, the claim scenes, the fair claims -------------------------
+// ---- Temporal stability, the claim scenes, the fair claims -------------------------
 
 constexpr int kSmallWidth = 256, kSmallHeight = 192;  // the quick bench's window
 
@@ -357,7 +357,7 @@ const ClaimCheck* claim(const std::vector<ClaimCheck>& claims, const std::string
 TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   BenchResult r;
   // gems16: better than samples=1 against the pixel area, worse against the pixel centre.
-  // Issue 21 item 5: the verdict rests on the edge band; RMSE and the temporal change beside
+  // The verdict rests on the edge band; RMSE and the temporal change beside
   // (the fence's quick-bench numbers: 16 samples lose on RMSE but flicker less).
   r.rows.push_back(claimRow("brabec", "modern.gems16", "default", 0.080, 0.038));
   r.rows.back().hard.band.rmse = 0.20;
@@ -458,7 +458,7 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   }
 }
 
-// ---- Issue 21 item 4: which technique at this budget ------------------------------------------
+// ---- Which technique at this budget ------------------------------------------
 
 BenchRow sceneRow(const std::string& scene, const std::string& technique,
                   const std::string& variant, double ms, double rmse) {
@@ -621,7 +621,7 @@ TEST(BenchCommand, HelpListsDefaultsScenesAndFiles) {
     EXPECT_NE(help.find(text), std::string::npos) << text << " missing from: " << help;
 }
 
-// Issue 21 item 5: the light-bleeding scene makes the Fig. 9 claim testable. VSM must leak on
+// The light-bleeding scene makes the Fig. 9 claim testable. VSM must leak on
 // it (the scene is built for that), so the verdict is "agrees" or "disagrees", never "not
 // exercised"; the real bench renders it (two techniques and the reference, quick window).
 TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {

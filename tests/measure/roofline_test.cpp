@@ -1,4 +1,4 @@
-// measure/roofline.h (issue 20 item 2): every pass of every Brabec & Seidel variant of
+// measure/roofline.h: every pass of every Brabec & Seidel variant of
 // legacy_bench has a floor rule, the floors measure real GL work, and running them between two
 // frames in one context leaves the frames unchanged (the floors restore the state they touch).
 #include "measure/roofline.h"

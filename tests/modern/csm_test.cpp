@@ -83,8 +83,8 @@ struct Case {
 };
 
 // Eq. 11 itself: rendered with skip-error=0 (Eq. 13 at every pixel). With the default
-// classification, a pixel the depth bounds decide gets the series at the depths around it
-// (issue 20, 27), within the skip error of the filtered reconstruction wherever the footprint's
+// classification, a pixel the depth bounds decide gets the series at the depths around it,
+// within the skip error of the filtered reconstruction wherever the footprint's
 // depth varies, so `skipped` is also checked against the same value within the skip error
 // (0.025, the default; docs/csm.md).
 void expectMatchesEq11(const Case& c) {
@@ -177,7 +177,7 @@ TEST(Csm, OffsetThroughOneIsWhereTheStepFirstReachesOne) {
   EXPECT_EQ(modern::csmOffsetThroughOne(4, 1.0), modern::csmDefaultOffset(4, 1.0));
 }
 
-// Issue 21: csm-fig6 (c), M = 4 on the squares scene, showed the slanted square's shadow light
+// The figure csm-fig6 (c), M = 4 on the squares scene, showed the slanted square's shadow light
 // over half its length, where Annen et al. §5 say that "even the slanted plane in Figure 6(c)
 // which touches the receiver plane achieves good shadowing quality using only 4 terms". Along
 // the slanted square's centre line, the ground point behind each square point must match Eq. 11
@@ -353,7 +353,7 @@ TEST(Csm, MipMapsAntialiasMinifiedShadows) {
   // (1.5x) CSM's own reconstruction error near contact (§3.2.2) outweighs the aliasing it
   // removes (measured RMSE with the earlier foliage trees: hard 0.056, CSM 0.067); at 2x they
   // are close (0.054 / 0.049); at 3x: hard 0.042, CSM tri-linear 0.027, CSM without mip-maps
-  // 0.036. (The branched trees of issue 14 pass the same two comparisons.)
+  // 0.036. (The branched trees pass the same two comparisons.)
   constexpr float kDistance = 3.0f;
   scene.camera.position =
       scene.camera.target + kDistance * (scene.camera.position - scene.camera.target);
@@ -389,7 +389,7 @@ namespace sl {
 namespace {
 using namespace sl::testing_filtered;
 
-// Issue 14: M = 4 "yields satisfactory shadows" (Annen §5, Fig. 6) "when using a tightly
+// M = 4 "yields satisfactory shadows" (Annen §5, Fig. 6) "when using a tightly
 // fitted light frustum". A caster outside the light frustum, beside the light, used to pull
 // the near end of the depth range to the light: the occluder-to-ground distance then covered
 // a quarter of the range and M = 4 reconstructed the umbra as 0.27 (grey). modern.csm now fits the
@@ -431,7 +431,7 @@ TEST(Csm, OrderFourUmbraIsDarkWithTheFittedRange) {
   EXPECT_LE(frame.visibility.at(umbra.x, umbra.y), bound);
 }
 
-// Issue 14: csm-fig7 (c)-(f) showed a row of isolated white specks inside a tree's shadow with
+// The figure csm-fig7 (c)-(f) showed a row of isolated white specks inside a tree's shadow with
 // 16x anisotropic filtering (Mesa llvmpipe's anisotropic path with explicit gradients,
 // textureGrad; csm_shadow.frag now samples with implicit derivatives in uniform control flow).
 // An isolated lit pixel: visibility > 0.5 with at most one 2x2 quad of such pixels in its 5x5
@@ -484,7 +484,7 @@ TEST(Csm, NoIsolatedLitPixelsInTheUmbra) {
   if (isolated > 0) writePng(outputPath("csm-isolated-lit-pixels.png"), sideBySide({hard, csm}));
 }
 
-// The faster path (issue 14): GL objects and programs kept in the context from one frame to
+// The faster path: GL objects and programs kept in the context from one frame to
 // the next, and the mip chain left out where the view does not minify the map.
 TEST(Csm, SecondFrameInTheSameContextEqualsTheFirst) {
   const Scene scene = builtinScene("fence");
@@ -500,8 +500,8 @@ TEST(Csm, SecondFrameInTheSameContextEqualsTheFirst) {
   }
 }
 
-// The basis pass (sin and cos by rotation, issue 14) and the blur (compile-time taps and
-// layers, issue 14) against Eq. 14 and the binomial kernel evaluated here from the captured
+// The basis pass (sin and cos by rotation) and the blur (compile-time taps and
+// layers) against Eq. 14 and the binomial kernel evaluated here from the captured
 // linear depth: B_k = 0.5 + 0.5 sin(c_k z), stored in 8 bits, blurred horizontally then
 // vertically with clamped borders, stored in 8 bits again. The first path computed the same
 // numbers with 2M sin/cos calls and uniform loop bounds.
@@ -669,7 +669,7 @@ TEST(Csm, ClassifiedCameraPassRunsAsPasses5aTo5c) {
                                       "4: 4 mip-maps", "5: 5 camera pass, Eq. 13 reconstruction"}));
 }
 
-// The mip chain drawn with layered_downsample.frag (issue 14, instead of glGenerateMipmap):
+// The mip chain drawn with layered_downsample.frag (instead of glGenerateMipmap):
 // every texel of level L is the 2x2 box mean of level L - 1, for every layer, in 8-bit and
 // float storage (Annen §4.1's mip-map, glGenerateMipmap's filter on power-of-two maps).
 TEST(Csm, DrawnMipChainIsTheBoxFilterOfEachLevel) {
@@ -736,7 +736,7 @@ TEST(Csm, DrawnMipChainIsTheBoxFilterOfEachLevel) {
   }
 }
 
-// Issue 20: the classification (skip-error > 0, the default) decides pixels whose footprint's
+// The classification (skip-error > 0, the default) decides pixels whose footprint's
 // depth bounds put every z - d in an interval where the clamped series is within skip-error of
 // 1 or 0 (csmSkipIntervals), and reconstructs Eq. 13 at the others only. Against skip-error=0
 // (Eq. 13 at every pixel), float storage (no 8-bit rounding in either) on brabec and fence,
@@ -792,7 +792,7 @@ bool segmentMeetsBox(const glm::vec3& a, const glm::vec3& b, const Bounds& box, 
   return true;
 }
 
-// Issue 27: a pixel the classification decided got exactly 1 or 0, where Eq. 13 gives the
+// A pixel the classification decided got exactly 1 or 0, where Eq. 13 gives the
 // series' ringing around them (the lit ground of squares at M = 16: 0.992), so decided and
 // reconstructed pixels drew tiles around every shadow (63% of the mask more than 1/255 from
 // skip-error=0, lit ground brighter where decided). Now a decided pixel gets the series at the

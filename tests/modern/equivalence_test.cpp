@@ -1,4 +1,4 @@
-// Legacy/modern equivalence (issue 5 item 3): every legacy_gl technique and its modern/ twin
+// Legacy/modern equivalence: every legacy_gl technique and its modern/ twin
 // render the same scene with the same parameters; their visibility masks are compared pixel by
 // pixel against the bound the pair states in registry/twins.cpp (bit-exact for 'faithful'
 // arithmetic; otherwise <= 1/255 on 99.9% of pixels and every larger difference on the
@@ -98,7 +98,7 @@ TEST_P(Equivalence, VisibilityMasksAgreeWithinTheStatedBound) {
   EXPECT_TRUE(a.withinBound) << pair.legacy << " vs " << pair.modern << " on " << sceneName << ": "
                              << a.verdict << "\nwhy this bound: " << pair.why;
 
-  // The images agree too (issue 18 item 5): the bound registry/twins.h states for judgeImages.
+  // The images agree too: the bound registry/twins.h states for judgeImages.
   const twins::ImageAgreement im =
       twins::judgeImages(legacy.color, modern.color, legacy.visibility, modern.visibility);
   if (!im.withinBound)
@@ -132,7 +132,7 @@ INSTANTIATE_TEST_SUITE_P(Twins, Equivalence,
 // Every planned pair is tested: twinPairs() leaves out a pair whose legacy or modern side is not
 // registered, so a missing or renamed technique would silently shrink the Twins suite above.
 // Every technique is built unconditionally (no build option removes one), so a missing pair is
-// a defect, named here, never a skip (issue 28 item 4).
+// a defect, named here, never a skip.
 TEST(Equivalence, EveryPlannedPairIsPresent) {
   const auto missing = twins::missingPairs();
   std::string list;

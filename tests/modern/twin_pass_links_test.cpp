@@ -93,10 +93,11 @@ TEST(TwinPassLinks, EveryTwinPassTableAndItsShadersNameTheLegacyPassesTheyReplac
             << m.file << " @pass " << m.id << " replaces " << pair.legacy << " " << r.passId
             << ", but no pass of " << modernName << " runs that marker";
       }
-    for (const std::string& id : legacyIds)
-      if (id != kMeshFeeding)
-        EXPECT_TRUE(replaced.count(id))
-            << pair.legacy << " pass " << id << " is replaced by no pass of " << modernName;
+    for (const std::string& id : legacyIds) {
+      if (id == kMeshFeeding) continue;
+      EXPECT_TRUE(replaced.count(id))
+          << pair.legacy << " pass " << id << " is replaced by no pass of " << modernName;
+    }
   }
 }
 

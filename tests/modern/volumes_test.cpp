@@ -306,7 +306,7 @@ TEST(ShadowVolumes, CubesSceneFileIsTheFillHeavyScene) {
 
 // Everitt–Kilgard z-fail volumes answer the point-light question exactly at the surface point
 // each pixel centre sees, which is what reference.hard pixel=centre answers with one Embree ray
-// from the same GL-rasterised point (the point metric, issue 27). Scored pixels are the
+// from the same GL-rasterised point (the point metric). Scored pixels are the
 // reference's direct-light region (reference::kDirectLightRegionPass: a receiver's point inside
 // the light's frustum whose geometric normal faces the light); pixels whose surface faces away
 // from the light are a category of their own, counted in `all` only.
@@ -356,7 +356,7 @@ constexpr double kMaxScoredShare = 0.001;
 constexpr double kMaxAllPixelShare = 0.001;
 
 TEST(ShadowVolumes, PointVisibilityEqualsTheRayTracedReference) {
-  // On main before issue 27 the reference's rays started 1e-4 scene diagonals off the surface,
+  // The reference's rays once started 1e-4 scene diagonals off the surface,
   // which moved every shadow edge and lit terminator bands: bleeding 0.36% of its scored pixels
   // (two pixel rows where the shadow edges of a fence rail and of the picket tops run within
   // 0.035 and 0.07 pixel of the row centres), trees 0.22%, bunny 0.14%, dueling 0.12% at 400x300;
@@ -380,7 +380,7 @@ TEST(ShadowVolumes, LightFacingFacesMeetTheirFrontCapAtExactlyTheirDepth) {
   // rasterising at exactly the depth of the surface it was copied from: z-fail then counts a
   // lit face's own cap as behind it (GL_LESS fails on equality) and the face stays lit. Here
   // the scene and the volumes share one vertex shader with `invariant gl_Position` (their
-  // ARB_position_invariant). Issue 27 suspected z-fighting of these caps on cubes; what differed
+  // ARB_position_invariant). Z-fighting of these caps on cubes was once suspected; what differed
   // there was the reference's ray offset (PointVisibilityEqualsTheRayTracedReference). This pins
   // the invariance itself, on the cubes without their ground so that every visible pixel is a
   // cube: every pixel whose surface faces the light (the reference's direct-light region) must

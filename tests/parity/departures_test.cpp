@@ -210,7 +210,7 @@ TEST(Departures, AdditionalC_MinmaxClampsExtremes) {
   EXPECT_EQ(r.floats[4], 1.0f);
 }
 
-// C, on a reset table (issue 14 item 6; the choice is stated at imaging/histogram.cpp
+// C, on a reset table (our choice, stated at imaging/histogram.cpp
 //    emGetMinmax): a GL_FLOAT query returns the reset state, "the maximum representable value"
 //    as each minimum and "the minimum representable value" as each maximum (3.6.3, 6.1.10),
 //    which the emulation's IEEE single table holds as +-FLT_MAX; a luminance pack saturates

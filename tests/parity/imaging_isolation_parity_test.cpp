@@ -1,4 +1,4 @@
-// Imaging isolated from the rasteriser (issue 20 item 1): every legacy technique renders twice
+// Imaging isolated from the rasteriser: every legacy technique renders twice
 // on the SAME reference Mesa 7.8.2 context kind, once with its native ARB_imaging and once with
 // imaging/'s software emulation installed into the context's dispatch table over it
 // (--imaging emulated). The rasteriser, texturing, depth test and accumulation buffer are the

@@ -1,4 +1,4 @@
-// Parity of the legacy techniques (issue 10 item 3): the same OpenGL 1.x code on the reference
+// Parity of the legacy techniques: the same OpenGL 1.x code on the reference
 // Mesa 7.8.2 (native ARB_imaging and accumulation buffer) and on Debian's Mesa 22 OSMesa
 // (imaging subset emulated by imaging/). The visibility masks must agree on at least 99.9 % of
 // the pixels, and every pixel where they differ must lie on an edge band computed here:
@@ -30,7 +30,7 @@ namespace {
 constexpr int kWidth = 400;  // small window; the 256 map fits (the literal window-copy path)
 constexpr int kHeight = 300;
 constexpr int kMapTexels = 256;
-constexpr double kMinAgreement = 0.999;  // issue 10 item 3
+constexpr double kMinAgreement = 0.999;
 // KNOWN DEPARTURE for the 4x4 footprints (16 samples): every occluder edge is rasterised at
 // 16 sub-texel offsets (PCF: 16 jittered light passes; fast PCF: 16 neighbours), so far more
 // map samples sit within rasteriser precision of an edge. Mesa 7.8's swrast and Mesa 22's

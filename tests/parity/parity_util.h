@@ -1,4 +1,4 @@
-// The parity harness (issue 10): every case runs once through the emulation on Debian's
+// The parity harness: every case runs once through the emulation on Debian's
 // OSMesa (imaging/ installed) and once natively on the reference Mesa 7.8.2
 // (../shared/reference-gl), and the outcomes are compared: 8-bit data bit for bit, float data
 // within 1e-6, and the GL errors raised.
@@ -21,7 +21,7 @@ namespace sl::imaging::testing {
 
 constexpr int kParityW = 16, kParityH = 12;  // small: every case is cheap
 // Float comparisons: both sides compute in single precision from the same inputs; 1e-6 is a
-// few ulps at 1.0, the bound issue 10 sets for float paths.
+// few ulps at 1.0, the bound for float paths.
 constexpr float kFloatTolerance = 1e-6f;
 
 inline bool referenceAvailable() {

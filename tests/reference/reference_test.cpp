@@ -236,7 +236,7 @@ TEST(ReferenceSoft, NoiseEstimateBelowStatedBound) {
   for (float v : f.visibility.data) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
 }
 
-// ---- The pixel-integrated forms (--param pixel=area, issue 14) ----------------------------
+// ---- The pixel-integrated forms (--param pixel=area) ----------------------------
 
 namespace area {
 
@@ -398,7 +398,7 @@ TEST(ReferenceArea, SoftJitteredMatchesDiskSegmentProfile) {
             1.0 / (2.0 * std::pow(reference::kDefaultSoftStrataPerSide, 1.5)));
 }
 
-// Issue 17 item 9: a model matrix with a negative determinant reverses every triangle's winding,
+// A model matrix with a negative determinant reverses every triangle's winding,
 // so gl_FrontFacing took a mirrored object's outside for its back, turned its normals inward
 // and started the shadow rays inside it (its lit faces came out shadowed). The same geometry
 // must give the same answer however it is mirrored.

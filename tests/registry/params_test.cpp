@@ -62,7 +62,7 @@ TEST(ParamDeclarations, DefaultsCompareAsNumbers) {
   EXPECT_FALSE(alpha.isDefault("1.5"));
   const ParamSpec remap = flagParam("remap", true, "test");
   EXPECT_TRUE(remap.isDefault("on"));
-  EXPECT_FALSE(remap.isDefault("true"));  // a flag takes on|off only (issue 30)
+  EXPECT_FALSE(remap.isDefault("true"));  // a flag takes on|off only
   EXPECT_FALSE(remap.isDefault("off"));
   const ParamSpec offset = autoNumberParam("offset", 0.0, 0.5, "test");
   EXPECT_EQ(offset.defaultText(), "auto");

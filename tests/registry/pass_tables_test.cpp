@@ -6,8 +6,10 @@
 // pass 4, so the comment is matched against every table).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -27,38 +29,76 @@ constexpr int kSmallWidth = 96;  // a render small enough to run every technique
 constexpr int kSmallHeight = 72;
 constexpr int kSmallMapTexels = 128;
 
+// A technique's tables with the --params that select each: the default table with none, each
+// variant (Technique::passVariants) with its own.
+struct SelectedTable {
+  std::map<std::string, std::string> params;
+  const PassTable* table = nullptr;
+  std::string label;  // "modern.gems16 kernel=bicubic"
+};
+std::vector<SelectedTable> selectedTables(const Technique& t) {
+  std::vector<SelectedTable> out = {{{}, &t.passes, t.name}};
+  for (const PassVariant& v : t.passVariants) {
+    SelectedTable s{v.params, &v.passes, t.name};
+    for (const auto& [key, value] : v.params) s.label += " " + key + "=" + value;
+    out.push_back(s);
+  }
+  return out;
+}
+
 TEST(PassTables, EveryTechniqueDeclaresAWellFormedTable) {
-  for (const Technique& t : allTechniques()) {
-    EXPECT_FALSE(t.passes.empty()) << t.name << " declares no passes";
-    for (const std::string& problem : passTableProblems(t.passes))
-      ADD_FAILURE() << t.name << ": " << problem;
+  for (const Technique& t : allTechniques())
+    for (const SelectedTable& s : selectedTables(t)) {
+      EXPECT_FALSE(s.table->empty()) << s.label << " declares no passes";
+      for (const std::string& problem : passTableProblems(*s.table))
+        ADD_FAILURE() << s.label << ": " << problem;
+    }
+}
+
+// The variants are reachable: modern.gems16's bicubic kernel and modern.csm's table without
+// the mip chain each have a table of their own, with the passes their renders run.
+TEST(PassTables, VariantTablesAreDeclared) {
+  struct Expected {
+    std::string technique, key, value;
+  };
+  for (const Expected& e : {Expected{"modern.gems16", "kernel", "bicubic"},
+                            Expected{"modern.csm", "filtering", "bilinear"}}) {
+    const Technique& t = findTechnique(e.technique);
+    EXPECT_TRUE(std::any_of(t.passVariants.begin(), t.passVariants.end(),
+                            [&](const PassVariant& v) {
+                              const auto at = v.params.find(e.key);
+                              return at != v.params.end() && at->second == e.value;
+                            }))
+        << e.technique << " declares no table for --param " << e.key << "=" << e.value;
   }
 }
 
-// Each pass a frame ran, and each buffer it captured, names a pass of the table; the frame's
-// pass carries the table's reference and floor.
+// Each pass a frame ran, and each buffer it captured, names a pass of the table its --params
+// select; the frame's pass carries that table's reference and floor.
 TEST(PassTables, EveryPassAndBufferOfARenderIsDeclared) {
   const Scene scene = builtinScene("brabec");
-  for (const Technique& t : allTechniques()) {
-    RenderParams p;
-    p.width = kSmallWidth;
-    p.height = kSmallHeight;
-    p.shadowMapTexels = kSmallMapTexels;
-    p.capturePasses = true;
-    if (t.name == "reference.soft") p.extra["rays"] = "4";  // the dump, not the noise
-    const Frame frame = renderTechnique(t, scene, p);
-    ASSERT_FALSE(frame.passes.empty()) << t.name;
-    for (const PassTime& pass : frame.passes) {
-      ASSERT_FALSE(pass.id.empty()) << t.name << ": pass '" << pass.name << "' has no id";
-      const PassSpec& spec = findPassSpec(t.passes, pass.id);
-      EXPECT_EQ(pass.section, spec.reference) << t.name << " " << pass.id;
-      EXPECT_EQ(pass.floor, spec.floor) << t.name << " " << pass.id;
+  for (const Technique& t : allTechniques())
+    for (const SelectedTable& s : selectedTables(t)) {
+      RenderParams p;
+      p.width = kSmallWidth;
+      p.height = kSmallHeight;
+      p.shadowMapTexels = kSmallMapTexels;
+      p.capturePasses = true;
+      if (t.name == "reference.soft") p.extra["rays"] = "4";  // the dump, not the noise
+      for (const auto& [key, value] : s.params) p.extra[key] = value;
+      const Frame frame = renderTechnique(t, scene, p);
+      ASSERT_FALSE(frame.passes.empty()) << s.label;
+      for (const PassTime& pass : frame.passes) {
+        ASSERT_FALSE(pass.id.empty()) << s.label << ": pass '" << pass.name << "' has no id";
+        const PassSpec& spec = findPassSpec(*s.table, pass.id);
+        EXPECT_EQ(pass.section, spec.reference) << s.label << " " << pass.id;
+        EXPECT_EQ(pass.floor, spec.floor) << s.label << " " << pass.id;
+      }
+      for (const PassImage& image : frame.intermediates) {
+        ASSERT_FALSE(image.passId.empty()) << s.label << ": buffer " << image.name;
+        EXPECT_NO_THROW(findPassSpec(*s.table, image.passId)) << s.label << " " << image.name;
+      }
     }
-    for (const PassImage& image : frame.intermediates) {
-      ASSERT_FALSE(image.passId.empty()) << t.name << ": buffer " << image.name;
-      EXPECT_NO_THROW(findPassSpec(t.passes, image.passId)) << t.name << " " << image.name;
-    }
-  }
 }
 
 // The text of every `DEVIATION (source, section): why` comment of a file: from "DEVIATION (" to
@@ -99,8 +139,9 @@ TEST(PassTables, EveryDeviationCommentOfALessonsSourcesIsDeclaredByAPass) {
   const fs::path root = assets.parent_path();
   std::vector<std::string> declared;
   for (const Technique& t : allTechniques())
-    for (const PassSpec& p : t.passes)
-      declared.insert(declared.end(), p.deviations.begin(), p.deviations.end());
+    for (const PassTable* table : allPassTables(t))
+      for (const PassSpec& p : *table)
+        declared.insert(declared.end(), p.deviations.begin(), p.deviations.end());
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(assets / "lessons")) {
     std::ifstream in(entry.path());

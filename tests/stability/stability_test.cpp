@@ -1,4 +1,4 @@
-// Stability suite (issue 8 item 3): stiff and extreme cases, each run over allTechniques() so
+// Stability suite: stiff and extreme cases, each run over allTechniques() so
 // that every technique a colleague adds is covered without touching this file.
 //
 // Every (case, technique) test asserts:
@@ -134,7 +134,7 @@ std::vector<std::string> techniqueNames() {
   return out;
 }
 
-// Issue 17 item 9: mirroring by the model matrix must change no technique's mask. The mirrored
+// Mirroring by the model matrix must change no technique's mask. The mirrored
 // stage is the same geometry with three objects' windings reversed; front faces (gl_FrontFacing,
 // the second-depth map's culling, hybrid's back-face test), the volumes' two-sided stencil counts
 // and the smoothies' silhouette orientation all depend on the winding.
@@ -163,8 +163,8 @@ INSTANTIATE_TEST_SUITE_P(Techniques, StabilityMirroring, ::testing::ValuesIn(tec
                            return testName(info.param);
                          });
 
-// Issue 17 items 7 and 10 through the command line, as a user meets them: a light cone or a
-// camera depth range that no technique can render right is refused with exit 2 and one line
+// Stiff light cones and depth ranges through the command line, as a user meets them: a light cone
+// or a camera depth range that no technique can render right is refused with exit 2 and one line
 // naming the field, and no output file; the bound itself still renders.
 struct CommandResult {
   int status = -1;
@@ -212,7 +212,7 @@ constexpr double kStageCone = 70;
 
 TEST(StabilityStiffRanges, LightConeNear180IsRefusedNamingTheField) {
   const std::filesystem::path image = outputDir() / "stiff-cone.png";
-  // 179.9 degrees (issue 17 item 7: every shadow-map technique drew an all-lit mask) and 170.
+  // 179.9 degrees (every shadow-map technique drew an all-lit mask) and 170.
   for (double cone : {179.9, 170.0})
     expectRefusedNaming(renderSceneFile("cone", kStageCameraNear, cone, image), "light.cone",
                         image);
@@ -223,7 +223,7 @@ TEST(StabilityStiffRanges, LightConeNear180IsRefusedNamingTheField) {
 
 TEST(StabilityStiffRanges, CameraNearFarBelowBoundIsRefusedNamingTheField) {
   const std::filesystem::path image = outputDir() / "stiff-camera.png";
-  // near 1e-12 (issue 17 item 10: modern.volumes streaked) and 1e-6, far 20.
+  // near 1e-12 (modern.volumes streaked) and 1e-6, far 20.
   for (double cameraNear : {1e-12, 1e-6})
     expectRefusedNaming(renderSceneFile("camera", cameraNear, kStageCone, image), "camera.near/far",
                         image);
@@ -232,7 +232,7 @@ TEST(StabilityStiffRanges, CameraNearFarBelowBoundIsRefusedNamingTheField) {
   EXPECT_TRUE(std::filesystem::exists(image));
 }
 
-// Issue 17 item 8, beyond the scale 1e6 it reports (fixed): world coordinates beyond 1e12 are
+// Beyond the scale 1e6 it reports (fixed): world coordinates beyond 1e12 are
 // refused (products of coordinates overflow float in ray and shadow-volume tests from ~2e13).
 TEST(StabilityStiffRanges, WorldCoordinatesBeyondBoundAreRefusedNamingTheObject) {
   const std::filesystem::path image = outputDir() / "stiff-coordinates.png";
@@ -240,7 +240,7 @@ TEST(StabilityStiffRanges, WorldCoordinatesBeyondBoundAreRefusedNamingTheObject)
                       "objects[1].translate", image);
 }
 
-// Issue 17 item 7: a given light range with near/far below 1e-4 is narrowed to the geometry
+// A given light range with near/far below 1e-4 is narrowed to the geometry
 // (core/scene/scene.cpp lightDepthRange); a range that clips geometry keeps its clipping plane.
 TEST(StabilityStiffRanges, StiffLightRangeIsNarrowedToTheGeometry) {
   Scene fitted = stage();
