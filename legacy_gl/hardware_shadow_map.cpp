@@ -288,7 +288,7 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .name = "eye-linear texgen planes",
        .reference = "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
                     "Second Pass (Depth Map Comparison); Appendix A",
-       .keyState = {"GL_EYE_PLANE", "GL_TEXTURE_COMPARE_MODE", "GL_TEXTURE_COMPARE_FUNC"}},
+       .keyState = {"GL_EYE_PLANE"}},
       {.id = ambient,
        .name = "ambient",
        .reference = "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "

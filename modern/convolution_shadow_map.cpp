@@ -158,8 +158,8 @@ PassTable csmPasses(bool mipmaps) {
                               "the basis over {texels} texels, what trilinear filtering reads "
                               "where the view minifies the map (Fig. 7)"}},
        .shaders = {"downsample"},
-       .keyState = {"GL_TEXTURE_MIN_FILTER", "GL_TEXTURE_BASE_LEVEL", "glViewport"},
-       .deviations = {kMipmapsAutoDeviation, kDrawnMipChainDeviation}},
+       .deviations = {kMipmapsAutoDeviation, kDrawnMipChainDeviation},
+       .keyState = {"GL_TEXTURE_MIN_FILTER", "GL_TEXTURE_BASE_LEVEL", "glViewport"}},
       {.id = "5a",
        .name = "depth bounds (min/max pyramid of z)",
        .reference = "not in Annen et al. 2007: bounds of z under each footprint, so that the "

@@ -109,7 +109,7 @@ PassSpec cameraPassWithShadowTest(const std::string& id, const std::string& sour
           .writes = cameraPassBuffers(id, source),
           .shaders = {"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"},
           .replaces = std::move(replaces),
-          .keyState = {"uWorldToShadowMap", "GL_TEXTURE_COMPARE_MODE", "GL_TEXTURE_COMPARE_FUNC"}};
+          .keyState = {"uWorldToShadowMap"}};
 }
 
 // Everitt Eq. 5: shading with the comparison result modulating direct light.

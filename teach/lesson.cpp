@@ -955,9 +955,8 @@ std::string tilingFigure(const std::vector<Side>& sides) {
   if (packing == nullptr) return "";
   const int size = 4 * kCell + 2 * kMargin;
   std::ostringstream svg;
-  svg << "<svg class=\"tiling\" width=\"" << size << "\" height=\"" << size + 24
-      << "\" viewBox=\"0 0 " << size << " " << size + 24
-      << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
+  svg << "<svg class=\"tiling\" width=\"" << size << "\" height=\"" << size << "\" viewBox=\"0 0 "
+      << size << " " << size << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) {
       const int phase = (row / 2) * 2 + col / 2;
@@ -974,12 +973,13 @@ std::string tilingFigure(const std::vector<Side>& sides) {
         << phases[phase] << " phase</title></rect>\n";
   }
   svg << "<circle cx=\"" << kMargin + 2 * kCell << "\" cy=\"" << kMargin + 2 * kCell
-      << "\" r=\"5\" fill=\"#000\"/>\n<text x=\"" << size / 2 << "\" y=\"" << size + 16
-      << "\" text-anchor=\"middle\">pass " << htmlEscape(packing->id)
-      << ": one packed map per phase</text>\n</svg>";
+      << "\" r=\"5\" fill=\"#000\"/>\n</svg>";
   std::ostringstream html;
   html << "<figure class=\"picture\">" << svg.str()
-       << "<figcaption>The 4x4 footprint of one lookup as four 2x2 phases (upper-left red, "
+       << "<figcaption>The 4x4 footprint of one lookup as four 2x2 phases, one packed map each "
+          "(pass "
+       << htmlEscape(packing->id)
+       << "; upper-left red, "
           "upper-right blue, lower-left green, lower-right yellow); the letter in each texel is "
           "the channel of that phase's packed map that holds it ("
        << htmlEscape(packing->writes.front().channelMeaning[0]) << " R, "
@@ -1009,8 +1009,8 @@ std::vector<WhyBlock> whyBlocks(const LessonText& text, const std::vector<Side>&
         const Technique& t = findTechnique(render.at("technique").get<std::string>());
         RenderParams p = paramsForSettings(s);
         p.filter = render.value("filter", p.filter);
-        for (const auto& [k, v] : render.value("params", json::object()).items())
-          p.extra[k] = v.get<std::string>();
+        const json params = render.value("params", json::object());
+        for (const auto& [k, v] : params.items()) p.extra[k] = v.get<std::string>();
         const Frame frame = renderTechnique(t, scene, p);
         WhyPicture pic;
         pic.file = "why-" + std::to_string(b + 1) + "-" + std::to_string(r + 1) + ".png";
