@@ -1,4 +1,4 @@
-// figures/figures.cpp — `shadowlab figures`: renders every entry of figure_list.cpp into one
+// figures/figures.cpp — `shadowlab figures`: renders every entry of the figure list into one
 // folder and writes report.html.
 //
 // Steps per figure:

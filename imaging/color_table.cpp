@@ -151,9 +151,11 @@ void emColorTable(GLenum target, GLenum internalformat, GLsizei width, GLenum fo
   int regular = -1, proxy = -1;
   // Format and type are checked with the other enums, before the width (SGI_color_table).
   if ((regularIndex(target) >= 0 || proxyIndex(target) >= 0) &&
-      baseInternalFormat(internalformat) != 0 && checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
-    return;
+      baseInternalFormat(internalformat) != 0) {
+    if (const GLenum e = checkColorFormat(format, type); e != GL_NO_ERROR) {
+      recordError(s, e);
+      return;
+    }
   }
   if (!checkTableDefinition(s, target, internalformat, width, regular, proxy)) return;
   // "taken from memory and processed just as if DrawPixels were called, stopping after the
@@ -177,8 +179,8 @@ void emColorSubTable(GLenum target, GLsizei start, GLsizei count, GLenum format,
                      const void* data) {
   State& s = *currentState();
   const int index = regularIndex(target);
-  if (index < 0 || checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(index >= 0, format, type); e != GL_NO_ERROR) {
+    recordError(s, e);
     return;
   }
   const ColorTable& t = s.transfer.tables[index];
@@ -232,8 +234,8 @@ void emColorTableParameteriv(GLenum target, GLenum pname, const GLint* params) {
 void emGetColorTable(GLenum target, GLenum format, GLenum type, void* data) {
   State& s = *currentState();
   const int index = regularIndex(target);  // proxies have no image: INVALID_ENUM (3.6.3)
-  if (index < 0 || checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(index >= 0, format, type); e != GL_NO_ERROR) {
+    recordError(s, e);
     return;
   }
   const ColorTable& t = s.transfer.tables[index];

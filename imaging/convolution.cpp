@@ -59,8 +59,9 @@ bool checkFilter(State& s, GLenum target, GLenum expected, GLenum internalformat
     recordError(s, GL_INVALID_VALUE);
     return false;
   }
-  if (checkFormat && checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = checkFormat ? checkColorFormat(format, type) : GLenum(GL_NO_ERROR);
+      e != GL_NO_ERROR) {
+    recordError(s, e);
     return false;
   }
   return true;
@@ -327,9 +328,10 @@ void packFilter(State& s, const std::vector<Rgba>& values, GLenum baseFormat, in
 
 void emGetConvolutionFilter(GLenum target, GLenum format, GLenum type, void* data) {
   State& s = *currentState();
-  if ((target != GL_CONVOLUTION_1D && target != GL_CONVOLUTION_2D) ||
-      checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(target == GL_CONVOLUTION_1D || target == GL_CONVOLUTION_2D,
+                                         format, type);
+      e != GL_NO_ERROR) {
+    recordError(s, e);
     return;
   }
   const ConvolutionFilter& f = *filterFor(s, target);
@@ -339,8 +341,9 @@ void emGetConvolutionFilter(GLenum target, GLenum format, GLenum type, void* dat
 void emGetSeparableFilter(GLenum target, GLenum format, GLenum type, void* row, void* column,
                           void*) {
   State& s = *currentState();
-  if (target != GL_SEPARABLE_2D || checkColorFormat(format, type) != GL_NO_ERROR) {
-    recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(target == GL_SEPARABLE_2D, format, type);
+      e != GL_NO_ERROR) {
+    recordError(s, e);
     return;
   }
   const ConvolutionFilter& f = s.transfer.separable2D;

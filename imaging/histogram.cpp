@@ -133,8 +133,8 @@ void emResetMinmax(GLenum target) {
 
 void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
   State& s = *currentState();
-  if (target != GL_HISTOGRAM || checkColorFormat(format, type) != GL_NO_ERROR)
-    return recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(target == GL_HISTOGRAM, format, type); e != GL_NO_ERROR)
+    return recordError(s, e);
   Histogram& h = s.transfer.histogram;
   // Counters are returned as counts for every type (EXT_histogram: "the histogram table
   // contains counts"; a normalised conversion would saturate every count above 1); the
@@ -214,8 +214,8 @@ void emGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type, 
 // FLOAT results to [0,1] as well, so its reset table reads (1, 1, 1, 1) and (0, 0, 0, 0).
 void emGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum type, void* values) {
   State& s = *currentState();
-  if (target != GL_MINMAX || checkColorFormat(format, type) != GL_NO_ERROR)
-    return recordError(s, GL_INVALID_ENUM);
+  if (const GLenum e = targetFormatError(target == GL_MINMAX, format, type); e != GL_NO_ERROR)
+    return recordError(s, e);
   Minmax& m = s.transfer.minmax;
   // Table 6.1 maps the format's components; absent ones read 0 (R, G, B) or 1 (A).
   const Rgba lo = tableReturnValue(m.format, m.min), hi = tableReturnValue(m.format, m.max);

@@ -15,6 +15,8 @@
 //   state.cpp           enables, queries, pixel-transfer parameters, errors
 #include "imaging/imaging.h"
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 
 #include "core/base/errors.h"
@@ -24,6 +26,33 @@ namespace sl::imaging {
 
 namespace {
 constexpr const char* kLayerKey = "imaging";
+
+// Bumped whenever an emulation state is installed on a context or dropped with it, so that a
+// lookup cached before (detail::currentState) is never taken for a context whose state has
+// changed or gone, not even for a new context made at a freed one's address.
+std::atomic<uint64_t> gStateGeneration{0};
+
+// The current context's state as last looked up on this thread.
+struct CachedLookup {
+  const GlContext* context = nullptr;
+  uint64_t generation = 0;
+  detail::State* state = nullptr;
+};
+thread_local CachedLookup tLookup;
+}  // namespace
+
+// Every emulated call asks for the state; the context keeps it by name (a map lookup that was
+// most of the drop-in library's cost on calls it passes through, docs/legacy-programs.md
+// "Cost"), so the answer is kept per thread until the current context or the generation
+// changes.
+detail::State* detail::currentState() {
+  GlContext* c = GlContext::current();
+  const uint64_t generation = gStateGeneration.load(std::memory_order_acquire);
+  CachedLookup& k = tLookup;
+  if (c == k.context && generation == k.generation) return k.state;
+  State* s = c == nullptr ? nullptr : static_cast<State*>(c->layerState(kLayerKey));
+  k = CachedLookup{c, generation, s};
+  return s;
 }
 
 Mode install(GlContext& context) {
@@ -42,7 +71,10 @@ Mode install(GlContext& context, Mode wanted) {
     return Mode::kNative;  // the driver's own entries stay
   }
   if (context.layerState(kLayerKey) != nullptr) return Mode::kEmulated;  // already installed
-  auto state = std::make_shared<detail::State>();
+  std::shared_ptr<detail::State> state(new detail::State, [](detail::State* dropped) {
+    delete dropped;
+    gStateGeneration.fetch_add(1, std::memory_order_acq_rel);
+  });
   detail::State& s = *state;
   GlDispatch& d = context.dispatch();
   s.driver = d;
@@ -135,6 +167,7 @@ Mode install(GlContext& context, Mode wanted) {
     d.Clear = emClear;
   }
   context.setLayerState(kLayerKey, std::move(state));
+  gStateGeneration.fetch_add(1, std::memory_order_acq_rel);
   return Mode::kEmulated;
 }
 

@@ -308,7 +308,14 @@ PixelStore packStore(const GlDispatch& gl);
 // GL_NO_ERROR when format/type are a supported color format for the emulation, else the error
 // GL would raise (INVALID_ENUM), or GL_INVALID_OPERATION for a packed type/format mismatch.
 GLenum checkColorFormat(GLenum format, GLenum type);
+// The error of a command taking a target and a format/type pair: INVALID_ENUM when the target
+// is not valid, else checkColorFormat's answer (GL_NO_ERROR when both are accepted).
+inline GLenum targetFormatError(bool targetValid, GLenum format, GLenum type) {
+  return targetValid ? checkColorFormat(format, type) : GLenum(GL_INVALID_ENUM);
+}
 bool isColorFormat(GLenum format);
+// Components per group of a color format the emulation takes (table 3.5), 0 for any other.
+int componentCount(GLenum format);
 // Unpacks w x h groups to RGBA floats ("Unpacking", "Conversion to floating-point",
 // "Conversion to RGB", "Final Expansion to RGBA" of 3.6.4).
 Image4 unpackImage(const void* data, int w, int h, GLenum format, GLenum type,

@@ -11,7 +11,6 @@
 #include "imaging/internal.h"
 
 namespace sl::imaging::detail {
-namespace {
 
 int componentCount(GLenum format) {
   switch (format) {
@@ -28,6 +27,8 @@ int componentCount(GLenum format) {
     default: return 0;
   }
 }
+
+namespace {
 
 int typeSize(GLenum type) {
   switch (type) {
@@ -172,8 +173,37 @@ void elementSlots(GLenum format, int slots[4]) {
 
 bool isColorFormat(GLenum format) { return componentCount(format) != 0; }
 
+namespace {
+// The packed types of table 3.5 (OpenGL 1.2) with three components (RGB only) and four
+// (RGBA, BGRA), 3.6.4 "Packed Pixels", table 3.8; 0 for any other type.
+int packedComponents(GLenum type) {
+  switch (type) {
+    case GL_UNSIGNED_BYTE_3_3_2:
+    case GL_UNSIGNED_BYTE_2_3_3_REV:
+    case GL_UNSIGNED_SHORT_5_6_5:
+    case GL_UNSIGNED_SHORT_5_6_5_REV: return 3;
+    case GL_UNSIGNED_SHORT_4_4_4_4:
+    case GL_UNSIGNED_SHORT_4_4_4_4_REV:
+    case GL_UNSIGNED_SHORT_5_5_5_1:
+    case GL_UNSIGNED_SHORT_1_5_5_5_REV:
+    case GL_UNSIGNED_INT_8_8_8_8:
+    case GL_UNSIGNED_INT_8_8_8_8_REV:
+    case GL_UNSIGNED_INT_10_10_10_2:
+    case GL_UNSIGNED_INT_2_10_10_10_REV: return 4;
+    default: return 0;
+  }
+}
+}  // namespace
+
 GLenum checkColorFormat(GLenum format, GLenum type) {
   if (componentCount(format) == 0) return GL_INVALID_ENUM;
+  if (const int packed = packedComponents(type); packed != 0) {
+    const bool matches = packed == 3 ? format == GL_RGB : (format == GL_RGBA || format == GL_BGRA);
+    if (!matches) return GL_INVALID_OPERATION;  // 3.6.4 "Packed Pixels"
+    // DEVIATION (glspec121 3.6.4, table 3.8): the emulation does not unpack packed pixel
+    // types; a packed type with a format it fits is refused with INVALID_ENUM.
+    return GL_INVALID_ENUM;
+  }
   if (typeSize(type) == 0) return GL_INVALID_ENUM;
   return GL_NO_ERROR;
 }

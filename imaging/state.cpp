@@ -7,11 +7,6 @@
 
 namespace sl::imaging::detail {
 
-State* currentState() {
-  GlContext* c = GlContext::current();
-  return c == nullptr ? nullptr : static_cast<State*>(c->layerState("imaging"));
-}
-
 // 2.5: one sticky flag per error code; a flag already set is not set again. The emulation and
 // the driver share the flags: the driver's pending errors are taken in first, so that
 // glGetError returns the codes in the order the calls raised them, each code once.

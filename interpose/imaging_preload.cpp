@@ -34,6 +34,7 @@
 #include "core/base/errors.h"
 #include "core/gl/context.h"
 #include "imaging/imaging.h"
+#include "imaging/internal.h"
 
 // Window-system headers last: Xlib defines macros (None, Bool, Status) the others must not see.
 #include <EGL/egl.h>
@@ -108,7 +109,9 @@ std::map<std::pair<int, const void*>, std::unique_ptr<Adopted>>& registry() {
   static std::map<std::pair<int, const void*>, std::unique_ptr<Adopted>> r;
   return r;
 }
-thread_local Adopted* tCurrent = nullptr;
+// Read on every wrapped call. initial-exec: the library is loaded at start-up (LD_PRELOAD), so
+// its thread-local block is static and read without a call to __tls_get_addr.
+__attribute__((tls_model("initial-exec"))) thread_local Adopted* tCurrent = nullptr;
 
 struct ResolverInput {
   Api api;
@@ -250,12 +253,25 @@ inline GlDispatch* currentTable() {
 }
 inline bool currentEmulated() { return tCurrent != nullptr && tCurrent->emulated; }
 
+// Stands in for an entry point that neither the context nor the next library has (a GL
+// without the imaging names, a call before any context): does nothing, returns zero, as GL
+// does for calls without a current context.
+template <class Fn>
+struct Absent;
+template <class R, class... Args>
+struct Absent<R (*)(Args...)> {
+  static R call(Args...) { return R(); }
+};
+
 // The function to call for entry `Member`: the adopted context's, else the next library's.
 template <auto Member, class Fn>
 Fn route(const char* name) {
   if (GlDispatch* d = currentTable())
     if (Fn fn = d->*Member) return fn;
-  static const Fn next = nextFn<Fn>(name);
+  static const Fn next = [name] {
+    const Fn fn = nextFn<Fn>(name);
+    return fn != nullptr ? fn : &Absent<Fn>::call;
+  }();
   return next;
 }
 
@@ -265,21 +281,10 @@ inline void beforePixels() {
 }
 
 // ---- trace of the values the program reads back --------------------------------------
+// Components per group: the emulation's formats (imaging/pixel_memory.cpp), and GL_ABGR_EXT,
+// which a native ARB_imaging driver may also return (EXT_abgr); the emulation refuses it.
 int componentsOf(GLenum format) {
-  switch (format) {
-    case GL_RED:
-    case GL_GREEN:
-    case GL_BLUE:
-    case GL_ALPHA:
-    case GL_LUMINANCE: return 1;
-    case GL_LUMINANCE_ALPHA: return 2;
-    case GL_RGB:
-    case GL_BGR: return 3;
-    case GL_RGBA:
-    case GL_BGRA:
-    case GL_ABGR_EXT: return 4;
-    default: return 0;
-  }
+  return format == GL_ABGR_EXT ? 4 : imaging::detail::componentCount(format);
 }
 
 void traceReadBack(const char* call, GLenum format, GLenum type, int groups, const void* data) {
@@ -400,7 +405,9 @@ SL_ROUTE(void, GetMinmaxParameteriv, (GLenum t, GLenum p, GLint* v), (t, p, v))
 SL_EXPORT void glGetHistogram(GLenum target, GLboolean reset, GLenum format, GLenum type,
                               void* values) {
   GLint width = 0;
-  const bool tracing = std::getenv("SHADOWLAB_IMAGING_TRACE") != nullptr;
+  // Only a call that can succeed is traced: the width query must raise no error of its own,
+  // and a failed call leaves `values` unwritten.
+  const bool tracing = std::getenv("SHADOWLAB_IMAGING_TRACE") != nullptr && target == GL_HISTOGRAM;
   if (tracing)  // before a reset: the width the returned table has
     route<&GlDispatch::GetHistogramParameteriv, decltype(GlDispatch::GetHistogramParameteriv)>(
         "glGetHistogramParameteriv")(target, GL_HISTOGRAM_WIDTH, &width);
@@ -415,7 +422,8 @@ SL_EXPORT void glGetMinmax(GLenum target, GLboolean reset, GLenum format, GLenum
   route<&GlDispatch::GetMinmax, decltype(GlDispatch::GetMinmax)>("glGetMinmax")(
       target, reset, format, type, values);
   constexpr int kMinmaxGroups = 2;  // minimum then maximum (glspec121 6.1.10)
-  sl::interpose::traceReadBack("glGetMinmax", format, type, kMinmaxGroups, values);
+  if (target == GL_MINMAX)
+    sl::interpose::traceReadBack("glGetMinmax", format, type, kMinmaxGroups, values);
 }
 static sl::interpose::Registration sRegisterGetMinmax("glGetMinmax",
                                                       reinterpret_cast<void*>(&glGetMinmax));
@@ -684,13 +692,18 @@ bool callerIsOurs(const void* returnAddress) {
 }  // namespace
 }  // namespace sl::interpose
 
+// Ours is answered only where the handle's own definition is the one our wrapper forwards to
+// (the library the program's GL calls reach): a second GL opened privately beside it (a
+// program comparing two implementations, as shadowlab's parity tests load Mesa 7.8.2) keeps
+// its own entry points, which our wrappers could not forward to.
 SL_EXPORT __attribute__((no_sanitize("address", "undefined"))) void* dlsym(void* handle,
                                                                            const char* name) {
   const sl::interpose::DlsymFn real = sl::interpose::realDlsym();
   if (handle == RTLD_NEXT || handle == RTLD_DEFAULT) return real(handle, name);
-  if (handle != RTLD_NEXT && handle != RTLD_DEFAULT &&
-      sl::interpose::policy() != sl::interpose::Policy::kOff &&
-      !sl::interpose::callerIsOurs(__builtin_return_address(0)))
-    if (void* own = sl::interpose::ownExport(name)) return own;
-  return real(handle, name);
+  void* theirs = real(handle, name);
+  if (theirs == nullptr || sl::interpose::policy() == sl::interpose::Policy::kOff ||
+      sl::interpose::callerIsOurs(__builtin_return_address(0)))
+    return theirs;
+  void* own = sl::interpose::ownExport(name);
+  return own != nullptr && theirs == real(RTLD_NEXT, name) ? own : theirs;
 }

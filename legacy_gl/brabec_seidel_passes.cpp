@@ -11,6 +11,7 @@
 #include "core/base/errors.h"
 #include "core/gl/gl_objects.h"
 #include "legacy_gl/brabec_seidel.h"
+#include "legacy_gl/projected_spotlight.h"
 
 namespace sl::legacy::bs {
 using namespace sl::gl;
@@ -269,6 +270,47 @@ void renderCameraDepth(const Scene& scene, const RenderParams& params, const Dep
   setChannelMask(kAllChannels);
 }
 
+void allocateSavedCameraPass(SavedCameraPass& saved, const RenderParams& params,
+                             const DepthEncoding& enc) {
+  glBindTexture(GL_TEXTURE_2D, saved.name.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GLint(enc.mapFormat), params.width, params.height, 0, GL_RGBA,
+               GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  checkGl("allocate saved camera pass");
+}
+
+void saveCameraPass(const SavedCameraPass& saved, const RenderParams& params) {
+  glBindTexture(GL_TEXTURE_2D, saved.name.id());
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, params.width, params.height);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void restoreCameraPass(const SavedCameraPass& saved, const RenderParams& params) {
+  prepareWindowCopy(params);
+  const float w = float(params.width), h = float(params.height);
+  {
+    const ScopedEnable savedTexture(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, saved.name.id());
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    glBegin(GL_QUADS);
+    glTexCoord2f(0.0f, 0.0f);
+    glVertex2f(0.0f, 0.0f);
+    glTexCoord2f(1.0f, 0.0f);
+    glVertex2f(w, 0.0f);
+    glTexCoord2f(1.0f, 1.0f);
+    glVertex2f(w, h);
+    glTexCoord2f(0.0f, 1.0f);
+    glVertex2f(0.0f, h);
+    glEnd();
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glEnable(GL_DEPTH_TEST);
+}
+
 namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params, const ShadowMapTexture& map,
                       glm::vec2 offsetTexels) {
@@ -425,7 +467,12 @@ void shadeWithShadowTerm(const Scene& scene, const RenderParams& params) {
     glBlendEquation(GL_FUNC_ADD);
     enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
     glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ZERO);  // direct light x (1 - shadow)
-    drawScene(scene, Draw::kAll);
+    {
+      // The cone per pixel (Segal et al. 1992): outside it the fragment is discarded, black.
+      const SpotlightConeTexture coneTexture;
+      const ProjectedSpotlightCone cone(scene, coneTexture, GL_TEXTURE0);
+      drawScene(scene, Draw::kAll);
+    }
     enableSpotlight(scene, LightTerms::kAmbientOnly);
     glBlendFunc(GL_ONE, GL_ONE);  // + ambient, unshadowed
     drawScene(scene, Draw::kAll);

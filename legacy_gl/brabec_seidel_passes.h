@@ -111,6 +111,29 @@ void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::v
 void renderCameraDepth(const Scene& scene, const RenderParams& params, const DepthEncoding& enc,
                        const RampTexture& ramp, double bias, ChannelMask channels);
 
+// The camera pass kept for the phases of fast PCF 4x4 (§4): a window-sized texture of the
+// encoding's map format (the window's values, exactly, at every precision).
+// DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each of the four
+// subtractions of a 4x4 footprint; we copy it to a texture once and restore it with one textured
+// full-window quad (measured faster, docs/legacy.md).
+// §3 counts "another eight passes ... to perform the subtraction" for 4x4 (the camera pass
+// before each of the four subtractions, which overwrite it in place), and §4's "four shadow
+// mapping phases" read alike; neither text requires the redraw.
+inline const std::string kCameraPassCopyDeviation =
+    "DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each of "
+    "the four subtractions of a 4x4 footprint; we copy it to a texture once and restore it with "
+    "one textured full-window quad (measured faster, docs/legacy.md).";
+struct SavedCameraPass {
+  Texture name = makeTexture();
+};
+void allocateSavedCameraPass(SavedCameraPass& saved, const RenderParams& params,
+                             const DepthEncoding& enc);
+// glCopyTexSubImage2D of the window into the saved texture.
+void saveCameraPass(const SavedCameraPass& saved, const RenderParams& params);
+// The saved texture drawn over the window (GL_REPLACE, NEAREST, texel centres on pixel centres;
+// no depth test, the depth buffer is the camera pass's own and stays).
+void restoreCameraPass(const SavedCameraPass& saved, const RenderParams& params);
+
 // §2 third pass: the shadow map as a projective texture (texture matrix from camera eye to
 // shadow-map coordinates) subtracted from the camera pass by the blending unit
 // (GL_FUNC_REVERSE_SUBTRACT: framebuffer - fragment, clamped at 0). > 0 = shadowed sample.

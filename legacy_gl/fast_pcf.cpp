@@ -11,6 +11,9 @@
 //                                  once per phase with the kernel moved to the phase's 2x2
 //                                  region
 //   3. renderReplicatedCameraDepth — the camera pass with the light depth in all four channels
+//   3s. saveCameraPassForPhases   — 4x4 only: the camera pass copied to a texture once
+//   3r. restoreCameraPassForPhase — 4x4 phases 2-4: the copy drawn back (the subtraction of
+//                                  pass 4 overwrites the camera pass; DEVIATION in the table)
 //   4. subtractPackedMap           — the packed map projected with texture coordinates offset
 //                                  by (ds/2, dt/2) (Fig. 6) and subtracted
 //   5. countShadowedSamples        — glCopyPixels through the colour table and the colour matrix
@@ -31,6 +34,7 @@
 #include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/projected_spotlight.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
@@ -87,6 +91,19 @@ PassTable fastPcfPasses() {
        .floor = F::kCameraDepth,
        .deviations = {bs::kDepthBiasDeviation},
        .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
+      {.id = "3s",
+       .name = "camera pass saved: copy to texture",
+       .reference = "ours, 4x4 only: the camera pass copied once (glCopyTexSubImage2D) for "
+                    "phases 2-4, instead of drawing it again in each (Brabec & Seidel 2001 §3 "
+                    "counts the redraws, §4 does not require them)",
+       .floor = F::kCopyWindowToTexture,
+       .deviations = {bs::kCameraPassCopyDeviation}},
+      {.id = "3r",
+       .name = "camera pass restored from its copy",
+       .reference = "ours, 4x4 phases 2-4: the saved camera pass drawn back as one textured "
+                    "full-window quad, where §3/§4 draw the camera pass again",
+       .floor = F::kTexturedWindowQuad,
+       .deviations = {bs::kCameraPassCopyDeviation}},
       {.id = "4",
        .name = "projective pass: subtract packed map, offset texture coordinates",
        .reference = "Brabec & Seidel 2001 §4, Fig. 6: the packed map projected with its texture "
@@ -135,6 +152,7 @@ PassTable fastPcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
+       .deviations = {kProjectedConeDeviation},
        .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };
 }
@@ -169,6 +187,7 @@ struct FastPcfState {
   bs::DepthEncoding enc;
   bs::RampTexture ramp;
   std::vector<std::unique_ptr<bs::ShadowMapTexture>> maps;  // one packed map per phase
+  bs::SavedCameraPass savedCamera;                          // 4x4: pass 3 for phases 2-4
 };
 
 // Pass 1 (§4): "we store the encoded depth values in all four channels".
@@ -199,6 +218,21 @@ void renderReplicatedCameraDepth(Passes& passes, const Scene& scene, const Rende
                               bs::kAllChannels);
       },
       p.part);
+}
+
+// Pass 3s (4x4, phase 1): the camera pass kept in a texture for phases 2-4.
+void saveCameraPassForPhases(Passes& passes, const RenderParams& params, FastPcfState& s) {
+  passes.run("3s", [&] {
+    bs::allocateSavedCameraPass(s.savedCamera, params, s.enc);
+    bs::saveCameraPass(s.savedCamera, params);
+  });
+}
+
+// Pass 3r (4x4, phases 2-4): the camera pass back from its copy (the subtraction overwrote it).
+void restoreCameraPassForPhase(Passes& passes, const RenderParams& params, FastPcfState& s,
+                               const Phase& p) {
+  passes.run(
+      "3r", [&] { bs::restoreCameraPass(s.savedCamera, params); }, p.part);
 }
 
 // Pass 4 (Fig. 6): projective packed map, coordinates offset by (ds/2, dt/2), subtracted.
@@ -280,16 +314,24 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
         },
         phases[i].part);
 
-  const std::string again = phases.size() > 1 ? " (drawn again, identical, in each of the " +
-                                                    std::to_string(phases.size()) + " phases)"
-                                              : "";
+  const std::string again = phases.size() > 1
+                                ? " (the same in each of the " + std::to_string(phases.size()) +
+                                      " phases: copied once, restored before "
+                                      "phases 2-" +
+                                      std::to_string(phases.size()) + ")"
+                                : "";
   for (size_t i = 0; i < phases.size(); ++i) {
     const Phase& p = phases[i];
-    renderReplicatedCameraDepth(passes, camera, params, s, p);
-    // The camera pass is the same in every phase (only passes 2, 4 and 5 depend on it): one file.
-    if (i == 0)
+    // The camera pass is the same in every phase (only passes 2, 4 and 5 depend on it): drawn
+    // in the first, copied, and restored from the copy in the others; one file.
+    if (i == 0) {
+      renderReplicatedCameraDepth(passes, camera, params, s, p);
       passes.capture("3", "camera-pass-z-replicated",
                      [&] { return toRgb(bs::readWindowRgba(params)); }, {}, {{"again", again}});
+      if (phases.size() > 1) saveCameraPassForPhases(passes, params, s);
+    } else {
+      restoreCameraPassForPhase(passes, params, s, p);
+    }
     subtractPackedMap(passes, camera, params, s, i, p);
     passes.capture(
         "4", "mask-before-colour-table{part}-rgba-x32",

@@ -40,6 +40,11 @@ void drawScene(const Scene& scene, Draw which, Colors colors) {
   }
 }
 
+namespace {
+// GL_SPOT_CUTOFF's special value: no cone (glspec121 §2.13.1).
+constexpr float kNoSpotCutoffDegrees = 180.0f;
+}  // namespace
+
 void enableSpotlight(const Scene& scene, LightTerms terms) {
   const SpotLight& l = scene.light;
   const glm::vec4 zero(0, 0, 0, 1);
@@ -62,9 +67,11 @@ void enableSpotlight(const Scene& scene, LightTerms terms) {
   const glm::vec3 direction = glm::normalize(l.target - l.position);
   glLightfv(GL_LIGHT0, GL_POSITION, glm::value_ptr(position));
   glLightfv(GL_LIGHT0, GL_SPOT_DIRECTION, glm::value_ptr(direction));
-  // The spotlight cone is the circle inscribed in the light frustum (GL_SPOT_CUTOFF is the
-  // half angle): outside it there is no direct light, so the map's border never shows.
-  glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, 0.5f * l.coneDegrees);
+  // The spotlight cone is the circle inscribed in the light frustum: outside it there is no
+  // direct light, so the map's border never shows. GL_SPOT_CUTOFF would test it per vertex; the
+  // passes that add direct light test it per pixel with the projected cone texture instead
+  // (legacy_gl/projected_spotlight.h), and GL lights every vertex as a point light.
+  glLightf(GL_LIGHT0, GL_SPOT_CUTOFF, kNoSpotCutoffDegrees);
   glLightf(GL_LIGHT0, GL_SPOT_EXPONENT, 0.0f);
 }
 

@@ -27,9 +27,11 @@ void drawScene(const Scene& scene, Draw which, Colors colors = Colors::kMaterial
 // Which terms of OpenGL lighting a pass wants (Everitt §4, Kilgard's note: the shadow term
 // darkens diffuse and specular and keeps the ambient).
 enum class LightTerms { kAmbientOnly, kDiffuseSpecularOnly, kAll };
-// Enables GL_LIGHTING with GL_LIGHT0 as the scene's spotlight. Must be called while the
-// modelview matrix holds the camera's view matrix (the light position is specified in world
-// coordinates and transformed by it, glspec121 §2.13.1).
+// Enables GL_LIGHTING with GL_LIGHT0 at the scene's spotlight, without GL_SPOT_CUTOFF: the cone
+// is the projected texture of legacy_gl/projected_spotlight.h, which every pass adding direct
+// light enables beside it. Must be called while the modelview matrix holds the camera's view
+// matrix (the light position is specified in world coordinates and transformed by it,
+// glspec121 §2.13.1).
 void enableSpotlight(const Scene& scene, LightTerms terms);
 void disableLighting();
 

@@ -29,6 +29,7 @@
 #include "core/technique/passes.h"
 #include "core/technique/plan.h"
 #include "legacy_gl/fixed_function.h"
+#include "legacy_gl/projected_spotlight.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
@@ -189,6 +190,9 @@ void addShadowedDirectLight(Passes& passes, const Scene& scene, const RenderPara
     {
       const ScopedEnable blend(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
+      // The cone per pixel (Segal et al. 1992) on the unit after the shadow map's two.
+      const SpotlightConeTexture coneTexture;
+      const ProjectedSpotlightCone cone(scene, coneTexture, GL_TEXTURE2);
       enableShadowTexturing(true);
       drawScene(scene, Draw::kReceivers);
       enableShadowTexturing(false);
@@ -304,7 +308,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .writes = {{.name = "shaded",
                    .caption = "pass " + direct +
                               ": + diffuse and specular x the ARB_shadow comparison (Everitt "
-                              "Eq. 5, Fig. 5): the final image"}}},
+                              "Eq. 5, Fig. 5): the final image"}},
+       .deviations = {kProjectedConeDeviation}},
       {.id = mask,
        .name = "visibility mask",
        .reference = "ours, not a paper's pass: the comparison alone on white surfaces, for --mask "

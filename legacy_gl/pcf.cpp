@@ -27,6 +27,7 @@
 #include "core/technique/passes.h"
 #include "legacy_gl/brabec_seidel.h"
 #include "legacy_gl/brabec_seidel_passes.h"
+#include "legacy_gl/projected_spotlight.h"
 #include "legacy_gl/spotlight_tessellation.h"
 
 namespace sl::legacy {
@@ -120,6 +121,7 @@ PassTable pcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
+       .deviations = {kProjectedConeDeviation},
        .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };
 }

@@ -71,29 +71,28 @@ class EdgeJudge {
   }
 
  private:
-  // The most pixels the edge may cover: kSpotEdgePixels where the spotlight cone's edge
-  // (GL_SPOT_CUTOFF, glspec121 §2.13.1) may pass through the edge's bounding sphere;
-  // kLitInteriorPixels inside the cone where the edge subtends more than
+  // The most pixels the edge may cover: kLitInteriorPixels where the edge's bounding sphere
+  // reaches into the spotlight cone (GL lighting's cone, glspec121 §2.13.1, now the projected
+  // cone texture of projected_spotlight.h) and the edge subtends more than
   // kMaxDiffuseEdgeRadians (kMaxSpecularEdgeRadians on a specular object) at the light; else 0,
-  // never split. The
-  // sphere test is conservative: it splits every edge near the cone's edge into four (well-
-  // shaped children); a test on the end points alone leaves slivers whose long edges keep
-  // crossing the cone and multiply.
+  // never split. The cone's edge itself needs no vertices: the projected texture cuts it per
+  // pixel.
   double pixelLimit(const glm::vec3& center, double radius, bool specular) const {
     const glm::dvec3 v = glm::dvec3(center) - glm::dvec3(apex_);
     const double distance = glm::length(v);
-    if (distance <= radius) return kSpotEdgePixels;  // the apex is inside the sphere
+    if (distance <= radius) return kLitInteriorPixels;  // the apex is inside the sphere
     // alpha: the centre's angle off the axis; beta: the sphere's angular radius; theta: the
-    // cutoff. The sphere meets the cone's surface when |alpha - theta| <= beta, i.e.
-    // cos(alpha - theta) >= cos(beta).
+    // cutoff. The sphere reaches into the cone when alpha - beta <= theta, i.e. the centre is
+    // inside or cos(alpha - theta) >= cos(beta).
     const double cosAlpha = std::clamp(glm::dot(v, glm::dvec3(axis_)) / distance, -1.0, 1.0);
     const double sinAlpha = std::sqrt(1.0 - cosAlpha * cosAlpha);
     const double sinBeta = radius / distance;
     const double cosBeta = std::sqrt(1.0 - sinBeta * sinBeta);
-    if (cosAlpha * cosHalfAngle_ + sinAlpha * sinHalfAngle_ >= cosBeta) return kSpotEdgePixels;
-    if (cosAlpha <= cosHalfAngle_) return 0.0;  // outside the cone: ambient only, constant
-    // Inside: the angle the edge subtends at the light bounds how far the diffuse (and
-    // specular) term departs from its linear interpolation between the edge's ends.
+    const bool centreInside = cosAlpha > cosHalfAngle_;
+    const bool meetsSurface = cosAlpha * cosHalfAngle_ + sinAlpha * sinHalfAngle_ >= cosBeta;
+    if (!centreInside && !meetsSurface) return 0.0;  // outside the cone: ambient only, constant
+    // The angle the edge subtends at the light bounds how far the diffuse (and specular) term
+    // departs from its linear interpolation between the edge's ends.
     const double subtended = 2.0 * radius / (distance - radius);
     return subtended > (specular ? kMaxSpecularEdgeRadians : kMaxDiffuseEdgeRadians)
                ? kLitInteriorPixels

@@ -1,9 +1,10 @@
 // legacy_gl/spotlight_tessellation.h — the meshes the legacy camera passes draw: OpenGL 1.x
-// lights per vertex (glspec121 §2.13), so a spotlight cone whose edge crosses a coarse
-// triangle shows as a staircase along the triangle edges. The camera-view passes draw the scene
-// with its triangles split where the cone's edge crosses them, down to a pixel on screen, and
-// inside the cone where a triangle is large as seen from the light (the diffuse and specular
-// terms bend across it); the passes' GL calls stay those of the papers (module-internal header).
+// lights per vertex (glspec121 §2.13), so the diffuse and specular terms of a triangle that is
+// large as seen from the light are interpolated linearly between its vertices where the modern
+// twins evaluate them per pixel. The camera-view passes draw the scene with the triangles inside
+// the spotlight cone split where they subtend a large angle at the light. The cone's edge needs
+// no splitting: the projected cone texture (projected_spotlight.h) cuts it per pixel. The
+// passes' GL calls stay those of the papers (module-internal header).
 #pragma once
 
 #include <cstddef>
@@ -14,10 +15,6 @@
 
 namespace sl::legacy {
 
-// Triangles whose edges straddle the spotlight cone are split until each edge covers at most
-// this many pixels: the per-vertex cone test then steps within a pixel, as the per-pixel test of
-// modern/shaders/lighting.glsl does.
-constexpr double kSpotEdgePixels = 1.0;
 // Inside the cone an edge is split (down to kLitInteriorPixels on screen) while it subtends more
 // than these angles at the light. A cosine interpolated linearly over an angle t departs from
 // itself by at most t^2/8: 0.25 rad keeps the diffuse term within 0.008 (2 8-bit steps), which

@@ -10,11 +10,15 @@
 #include "core/base/errors.h"
 #include "core/gl/gl.h"
 #include "core/gl/gl_objects.h"
+#include "core/gl/gl_trace.h"
+#include "core/scene/scene_library.h"
+#include "core/technique/frame_timing.h"
 #include "imaging/imaging.h"
 #include "legacy_gl/fixed_function.h"
 #include "legacy_gl/legacy.h"
 #include "legacy_gl/spotlight_tessellation.h"
 #include "measure/roofline.h"
+#include "registry/registry.h"
 
 namespace sl::legacy {
 namespace {
@@ -277,6 +281,62 @@ std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {
         << " |\n";
   }
   return s.str();
+}
+
+// The cost of the GL trace (core/gl/gl_trace.h): off, every call goes through the context's own
+// table (the trace is not there at all); on, through the recording table. The two are timed
+// interleaved (core/technique/frame_timing.h timeInterleavedSteadyState), each on its own context,
+// so that a change of the machine's load hits both alike; the ratio is of the two medians.
+std::string traceOverheadMarkdown(const BenchmarkOptions& options,
+                                  const std::vector<BenchmarkVariant>& variants) {
+  std::ostringstream out;
+  out << "GL trace of --dump-passes (core/gl/gl_trace.h), brabec scene " << options.width << "x"
+      << options.height << ", shadow map " << options.shadowMapTexels << ", "
+      << backendName(options.backend) << ", off and on interleaved: median of "
+      << options.frames.timed << " rounds after " << options.frames.warmup
+      << " warm-up frames each\n\n"
+      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' "
+         "on "
+         "/ off |\n|---|---|---|---|---|\n";
+  for (const auto& v : variants) {
+    RenderParams p;
+    p.width = options.width;
+    p.height = options.height;
+    p.shadowMapTexels = options.shadowMapTexels;
+    p.filter = v.filter;
+    p.backend = options.backend;
+    p.imaging = options.imaging;
+    const Technique& t = findTechnique(v.technique);
+    const Scene scene = builtinScene("brabec");
+    const auto offContext = makeRenderContext(t, p);
+    const auto onContext = makeRenderContext(t, p);
+    const std::vector<std::function<Frame()>> sources = {
+        [&] {
+          offContext->makeCurrent();
+          return t.render(*offContext, scene, p);
+        },
+        [&] {
+          onContext->makeCurrent();
+          const GlTrace trace;  // as render --dump-passes runs it
+          return t.render(*onContext, scene, p);
+        }};
+    const auto timings =
+        timeInterleavedSteadyState(sources, options.frames.warmup, options.frames.timed);
+    const double off = timings[0].frameMs, on = timings[1].frameMs;
+    // Round by round (the two frames of a round ran back to back, under nearly the same load).
+    std::vector<double> roundRatios;
+    for (size_t r = 0; r < timings[0].frameSamples.size(); ++r)
+      if (timings[0].frameSamples[r] > 0.0)
+        roundRatios.push_back(timings[1].frameSamples[r] / timings[0].frameSamples[r]);
+    char row[200];
+    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f | %.3f |\n", v.label.c_str(), off, on,
+                  off > 0.0 ? on / off : 0.0, roundRatios.empty() ? 0.0 : median(roundRatios));
+    out << row;
+  }
+  out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
+         "and each call is the one indirect call it always is (tests/core/gl_trace_test.cpp "
+         "checks the table is untouched).\n";
+  return out.str();
 }
 
 }  // namespace sl::legacy

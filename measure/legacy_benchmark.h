@@ -71,4 +71,10 @@ std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& option
 // per-pass table (ms, floor ms, time / floor) and the floors measured.
 std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results);
 
+// The cost of the GL trace of --dump-passes (core/gl/gl_trace.h) on each variant: frame times
+// with the trace off and on, interleaved round by round on two contexts, as a markdown table
+// (legacy_bench --trace-overhead).
+std::string traceOverheadMarkdown(const BenchmarkOptions& options,
+                                  const std::vector<BenchmarkVariant>& variants);
+
 }  // namespace sl::legacy

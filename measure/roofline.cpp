@@ -54,7 +54,8 @@ void fullWindowQuad(int width, int height) {
 class FloorResources {
  public:
   FloorResources(int mapTexels, int width, int height)
-      : pixels_(size_t(std::max(mapTexels * mapTexels, width * height)) * kRgbaBytes, 0x80) {
+      : mapTexels_(mapTexels),
+        pixels_(size_t(std::max(mapTexels * mapTexels, width * height)) * kRgbaBytes, 0x80) {
     std::vector<float> ramp(kRampTexels);
     for (int i = 0; i < kRampTexels; ++i) ramp[size_t(i)] = float(i) / float(kRampTexels - 1);
     glBindTexture(GL_TEXTURE_1D, ramp_.id());
@@ -67,6 +68,11 @@ class FloorResources {
                  pixels_.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, window_.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 pixels_.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindTexture(GL_TEXTURE_1D, 0);
     checkGl("floor resources");
@@ -74,11 +80,19 @@ class FloorResources {
 
   unsigned ramp() const { return ramp_.id(); }
   unsigned map() const { return map_.id(); }
+  // A texture that holds width x height: the map where it is large enough, else the
+  // window-sized one (fast PCF 4x4's copy of its camera pass).
+  unsigned textureFor(int width, int height) const {
+    return width <= mapTexels_ && height <= mapTexels_ ? map_.id() : window_.id();
+  }
+  unsigned window() const { return window_.id(); }
   std::uint8_t* pixels() { return pixels_.data(); }
 
  private:
   Texture ramp_ = makeTexture();
   Texture map_ = makeTexture();
+  Texture window_ = makeTexture();
+  int mapTexels_;
   std::vector<std::uint8_t> pixels_;
 };
 
@@ -140,8 +154,16 @@ void fillLitAndBlended(int width, int height) {
 
 // §2: the framebuffer copy into the shadow map.
 void copyWindowToTexture(FloorResources& r, int width, int height) {
-  glBindTexture(GL_TEXTURE_2D, r.map());
+  glBindTexture(GL_TEXTURE_2D, r.textureFor(width, height));
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, width, height);
+}
+
+// Fast PCF 4x4's restore of its camera pass: one window-sized texture drawn over the window.
+void fillWithWindowTexture(FloorResources& r, int width, int height) {
+  glEnable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, r.window());
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  fullWindowQuad(width, height);
 }
 
 // §2 footnote 1, §3 Fig. 4: the window copied onto itself, no pixel transfer.
@@ -178,6 +200,7 @@ void runFloor(FloorResources& r, const FloorTerm& t) {
     case FloorWork::kCopyPixels: return copyWindowOntoItself(t.width, t.height);
     case FloorWork::kAccumulate: return accumulateWindow(t.width, t.height);
     case FloorWork::kDrawPixels: return drawIntoWindow(r, t.width, t.height);
+    case FloorWork::kTexturedFill: return fillWithWindowTexture(r, t.width, t.height);
   }
 }
 
@@ -191,6 +214,7 @@ const char* workName(FloorWork w) {
     case FloorWork::kCopyPixels: return "glCopyPixels";
     case FloorWork::kAccumulate: return "glAccum(GL_ACCUM)";
     case FloorWork::kDrawPixels: return "glDrawPixels";
+    case FloorWork::kTexturedFill: return "textured fill";
   }
   return "?";
 }
@@ -237,6 +261,8 @@ std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
     case PassFloor::kAccumulate: return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
     case PassFloor::kLighting:  // §5: direct light, then ambient: two layers
       return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
+    case PassFloor::kCopyWindowToTexture: return std::vector<FloorTerm>{{W::kCopyTexture, w, h, 1}};
+    case PassFloor::kTexturedWindowQuad: return std::vector<FloorTerm>{{W::kTexturedFill, w, h, 1}};
   }
   return std::nullopt;
 }

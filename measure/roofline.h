@@ -28,6 +28,7 @@ enum class FloorWork {
   kCopyPixels,              // glCopyPixels(GL_COLOR), no colour table or matrix
   kAccumulate,              // glAccum(GL_ACCUM, 1/4) of the window (Mesa's main/accum.c)
   kDrawPixels,              // glDrawPixels RGBA8 (what GL_RETURN must write)
+  kTexturedFill,            // 2D texture (GL_REPLACE, NEAREST), no depth test (a restored copy)
 };
 
 struct FloorTerm {

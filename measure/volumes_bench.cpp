@@ -1,10 +1,16 @@
 #include "measure/volumes_bench.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <map>
 
 #include "core/base/errors.h"
+#include "core/base/image.h"
+#include "core/base/output_files.h"
+#include "core/scene/scene_library.h"
 #include "core/technique/frame_timing.h"
 #include "modern/modern.h"
+#include "registry/registry.h"
 
 namespace sl::modern {
 
@@ -50,6 +56,57 @@ nlohmann::json toJson(const VolumesBenchRow& r) {
           {"frames", r.frames},       {"median_ms", r.medianMs},
           {"min_ms", r.minMs},        {"passes_median_ms", r.passMedianMs},
           {"counters", r.counters}};
+}
+
+namespace fs = std::filesystem;
+
+// docs/images: close-ups of the brabec sphere's shadow (hw 256^2, hybrid 256^2, volumes,
+// smoothies) and the cubes and fill-bound scenes with their volume overdraw (Chan Fig. 3-9a)
+// and the hybrid's classification (Fig. 3-5b).
+// The three files are checked before rendering and renamed into place together at the end
+// (core/base/output_files.h): all three or none.
+void writeVolumesDocImages(const std::string& dir) {
+  const std::string crops = "volumes-brabec-crops-hw256-hybrid256-volumes-smoothies.png";
+  const std::string cubes = "volumes-cubes-image-overdraw-classification.png";
+  const std::string fillBound = "volumes-fill-bound-image-overdraw-classification.png";
+  OutputSet outputs;
+  std::map<std::string, std::string> temporary;
+  for (const std::string& file : {crops, cubes, fillBound})
+    temporary[file] = outputs.addFile("--doc-images", (fs::path(dir) / file).string());
+  constexpr int kWidth = 640, kHeight = 480, kCropX = 380, kCropTop = 190, kCropW = 160,
+                kCropH = 90, kMagnify = 3;
+  RenderParams p;
+  p.width = kWidth;
+  p.height = kHeight;
+  p.shadowMapTexels = 256;
+  std::vector<Image> cropped;
+  for (const char* t : {"modern.hw", "modern.hybrid", "modern.volumes", "modern.smoothies"}) {
+    const Frame f = renderTechnique(findTechnique(t), builtinScene("brabec"), p);
+    cropped.push_back(magnifyNearest(
+        crop(f.color, kCropX, kHeight - kCropTop - kCropH, kCropW, kCropH), kMagnify));
+  }
+  std::map<std::string, Image> images;
+  images[crops] = sideBySide(cropped);
+  p.shadowMapTexels = 1024;
+  p.capturePasses = true;
+  // A scene's image, its volume overdraw and the hybrid's classification, side by side.
+  const auto imageOverdrawClassification = [&](const std::string& sceneName,
+                                               const std::string& file) {
+    const Scene scene = loadScene(sceneName);
+    const Frame v = renderTechnique(findTechnique("modern.volumes"), scene, p);
+    const Frame h = renderTechnique(findTechnique("modern.hybrid"), scene, p);
+    std::vector<Image> panels = {v.color};
+    for (const PassImage& i : v.intermediates)
+      if (i.name == "3-volume-overdraw") panels.push_back(i.image);
+    for (const PassImage& i : h.intermediates)
+      if (i.name == "6-classification") panels.push_back(i.image);
+    images[file] = sideBySide(panels);
+  };
+  imageOverdrawClassification("cubes", cubes);
+  // fill-bound (Chan's setting).
+  imageOverdrawClassification("fill-bound", fillBound);
+  for (const auto& [file, image] : images) writePng(temporary.at(file), image);
+  outputs.commit();
 }
 
 }  // namespace sl::modern

@@ -37,4 +37,10 @@ std::vector<VolumesBenchRow> benchmarkShadowVolumes(const Scene& scene, const Re
 
 nlohmann::json toJson(const VolumesBenchRow& row);
 
+// The images of docs/volumes.md in `dir` (volumes_bench --doc-images): close-ups of the brabec
+// sphere's shadow (hw 256^2, hybrid 256^2, volumes, smoothies), and the cubes and fill-bound
+// scenes with their volume overdraw (Chan Fig. 3-9a) and the hybrid's classification (Fig.
+// 3-5b). All three files or none (core/base/output_files.h); InputError for a bad destination.
+void writeVolumesDocImages(const std::string& dir);
+
 }  // namespace sl::modern

@@ -61,7 +61,7 @@ PassTable fastPcfPasses() {
        .writes =
            cameraPassBuffers("3", "pcf_shadow.frag: shadow test, colour table, colour matrix (§4)"),
        .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
-       .replaces = {"3", "4", "5", "6a", "6b", "7"}},
+       .replaces = {"3", "3s", "3r", "4", "5", "6a", "6b", "7"}},
   };
 }
 

@@ -1,5 +1,5 @@
 // registry/commands.h — the work of `shadowlab render` and `shadowlab compare` without their
-// files: what they check, render and print as their JSON line. apps/shadowlab.cpp adds the
+// files: what they check, render and print as their JSON line. apps/cmd_render.cpp adds the
 // output files (--out, --mask, --dump-passes, --diff); the Python module (python/) returns the
 // same JSON fields with the buffers as arrays. One code path, so a render from Python and one
 // from the command line with the same options agree field for field.

@@ -73,8 +73,8 @@ struct Agreement {
 Agreement judge(const TwinPair& pair, const Image& legacyMask, const Image& modernMask);
 
 // The images agree too, not only the masks (issue 18 item 5). What may differ:
-//  - the spotlight cone's edge: legacy lights per vertex on triangles split to one pixel
-//    there (legacy_gl/spotlight_tessellation.h), modern per pixel, so the pixels within one
+//  - the spotlight cone's edge: legacy cuts it with a texture projected from the light
+//    (legacy_gl/projected_spotlight.h), modern per pixel in the shader, so the pixels within one
 //    pixel on either side of the cone's edge may be lit in one and not in the other: a band
 //    two pixels wide along a convex curve inside the window, shorter than the window's
 //    perimeter, so at most kConeEdgeBandPixelsPerPerimeterPixel * 2 (W + H) pixels;

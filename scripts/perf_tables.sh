@@ -30,8 +30,10 @@ TABLES=(
   "csm-table1|docs/csm.md|build/bin/csm_bench --part table1 --quick"
   "volumes|docs/volumes.md|build/bin/volumes_bench --scene fill-bound --shadow-map 256"
   "lab-latency|docs/performance.md|build/bin/lab_bench --requests 20 --burst 8"
+  "preload-overhead|docs/legacy-programs.md|scripts/preload_overhead.sh"
 )
-TOOLS=(shadowlab legacy_bench imaging_bench csm_bench volumes_bench shadowlab-twins lab_bench)
+TOOLS=(shadowlab legacy_bench imaging_bench csm_bench volumes_bench shadowlab-twins lab_bench
+  shadowlab-imaging)
 
 die() { echo "perf_tables.sh: $*" >&2; exit 2; }
 field() { local IFS='|'; read -r -a parts <<<"$1"; echo "${parts[$2]}"; }

@@ -10,6 +10,10 @@
 //     driver's read-back and the write-back.
 //   * emulated, glDrawPixels write-back: the same call with imaging/'s write-back forced to
 //     the driver's glDrawPixels (what every emulated call used before write_back.cpp).
+//   * preloaded: the same GL call made the way an unchanged program makes it, through
+//     libshadowlab-imaging.so by LD_PRELOAD (interpose/preloaded_context.h): this tool runs
+//     itself once per size with the library preloaded (--preloaded-run WxH) and reads its
+//     ratios; the last column divides its time by the emulated call's.
 // The "write-back:" rows time the candidate ways of putting a w x h RGBA8 image into the
 // window (imaging/write_back.cpp explains the choice).
 // Prints one markdown table. Usage: build/bin/imaging_bench [--quick] [--cpu] [--only TEXT]
@@ -22,13 +26,17 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/base/errors.h"
 #include "core/gl/context.h"
 #include "imaging/imaging.h"
 #include "imaging/internal.h"
+#include "interpose/preloaded_context.h"
 
 // After core/gl/gl.h, which includes GL/gl.h with the extension prototypes it needs.
 #include <GL/osmesa.h>
@@ -310,16 +318,26 @@ std::vector<Operation> allOperations() {
 }
 
 // Ratios of every operation on one back end; the context is made once per size.
+// `preloaded`: the context is made through the drop-in library (this process was started
+// with it preloaded); the rows that call imaging/ or OSMesa directly are left out.
 std::vector<double> measure(Backend backend, int w, int h, int reps, double& memcpyRatioBase,
-                            detail::WriteBackPath path = detail::WriteBackPath::kFastest) {
+                            detail::WriteBackPath path = detail::WriteBackPath::kFastest,
+                            bool preloaded = false) {
   std::vector<double> ratios;
   ContextSpec spec;
   spec.backend = backend;
   spec.width = w;
   spec.height = h;
   spec.accumulation = backend == Backend::kReference;  // Debian: the emulated buffer
-  auto ctx = GlContext::create(spec);
-  imaging::install(*ctx);
+  std::unique_ptr<GlContext> ctx;
+  std::unique_ptr<interpose::PreloadedOsmesaContext> throughLibrary;
+  if (preloaded) {
+    throughLibrary = std::make_unique<interpose::PreloadedOsmesaContext>(w, h, spec.accumulation);
+    imaging::install(throughLibrary->context());  // native: the library's GL_ARB_imaging
+  } else {
+    ctx = GlContext::create(spec);
+    imaging::install(*ctx);
+  }
   if (detail::currentState() != nullptr) detail::currentState()->writeBack.forced = path;
   gUploadTarget = UploadTarget{};
   std::vector<uint8_t> img(size_t(w) * h * 4);
@@ -335,7 +353,7 @@ std::vector<double> measure(Backend backend, int w, int h, int reps, double& mem
   const double base = memcpyMs(size_t(w) * h * 4, reps);
   memcpyRatioBase = base;
   for (const Operation& op : operations()) {
-    if ((op.osmesaOnly && backend != Backend::kOsmesa) ||
+    if ((op.osmesaOnly && (backend != Backend::kOsmesa || preloaded)) ||
         (path == detail::WriteBackPath::kDrawPixels && !op.writesBack)) {
       ratios.push_back(-1.0);
       continue;
@@ -408,6 +426,33 @@ std::vector<double> measureStages(int w, int h, int repetitions, double base) {
   return ratios;
 }
 
+// The preloaded column for one size: this tool again, with the drop-in library and Debian's
+// OSMesa preloaded, measuring with --preloaded-run; its ratios (to its own memcpy) and memcpy
+// time. Empty when the library was not built next to this tool or the run failed.
+struct PreloadedRun {
+  std::vector<double> ratios;
+  double base = 0;
+};
+PreloadedRun runPreloaded(int w, int h, int reps) {
+  namespace fs = std::filesystem;
+  const fs::path self = fs::read_symlink("/proc/self/exe");
+  const fs::path library = self.parent_path() / ".." / "lib" / "libshadowlab-imaging.so";
+  PreloadedRun run;
+  if (!fs::exists(library)) return run;
+  std::string cmd = "LD_PRELOAD='" + fs::canonical(library).string() + " libOSMesa.so.8' '" +
+                    self.string() + "' --preloaded-run " + std::to_string(w) + "x" +
+                    std::to_string(h) + (reps < kRepetitions ? " --quick" : "") +
+                    (gCpuClock ? " --cpu" : "");
+  if (!gOnly.empty()) cmd += " --only '" + gOnly + "'";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return run;
+  double value = 0;
+  if (std::fscanf(pipe, "base %lf", &run.base) == 1)
+    while (std::fscanf(pipe, " %lf", &value) == 1) run.ratios.push_back(value);
+  if (pclose(pipe) != 0 || run.ratios.size() != operations().size()) run = PreloadedRun{};
+  return run;
+}
+
 }  // namespace
 
 // Exit status for bad command-line input (the project's contract: one line on stderr, 2).
@@ -422,6 +467,9 @@ int run(int argc, char** argv) {
   app.add_option("--only", gOnly, "only the operations whose name contains TEXT")
       ->type_name("TEXT")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  // The preloaded column's measurement (runPreloaded runs it); not for people: no help line.
+  std::string preloadedSize;
+  app.add_option("--preloaded-run", preloadedSize)->group("");
   app.set_help_flag("-h,--help", "print this help and exit");  // listed last, as in the others
   try {
     app.parse(argc, argv);
@@ -443,6 +491,27 @@ int run(int argc, char** argv) {
     return kBadInputStatus;
   }
   const int reps = quick ? 2 : kRepetitions;
+  if (!preloadedSize.empty()) {
+    int w = 0, h = 0;
+    if (std::sscanf(preloadedSize.c_str(), "%dx%d", &w, &h) != 2 || w <= 0 || h <= 0) {
+      std::fprintf(stderr, "imaging_bench: --preloaded-run wants WxH, not '%s'\n",
+                   preloadedSize.c_str());
+      return kBadInputStatus;
+    }
+    double base = 0;
+    std::vector<double> ratios;
+    try {
+      ratios = measure(Backend::kOsmesa, w, h, reps, base, detail::WriteBackPath::kFastest,
+                       /*preloaded=*/true);
+    } catch (const GlError& e) {
+      constexpr int kGlFailureStatus = 3;  // the project's contract for a GL failure
+      std::fprintf(stderr, "imaging_bench: --preloaded-run: %s\n", e.what());
+      return kGlFailureStatus;
+    }
+    std::printf("base %.9g\n", base);
+    for (double r : ratios) std::printf("%.9g\n", r);
+    return 0;
+  }
   const int sizes[][2] = {{512, 512}, {800, 600}, {1024, 1024}};
   const std::string refPath = referenceGlPath();
   const bool haveReference = !refPath.empty() && std::fopen(refPath.c_str(), "r") != nullptr;
@@ -451,17 +520,20 @@ int run(int argc, char** argv) {
       "stages and memcpy best of %d, %s time\n",
       reps, reps * kSamplesPerRepetition, gCpuClock ? "process CPU" : "wall");
   std::printf(
-      "(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s)\n\n",
+      "(emulated = imaging/ on Debian OSMesa llvmpipe; reference = Mesa 7.8.2 native%s; "
+      "preloaded = the same call by an unchanged program through libshadowlab-imaging.so)\n\n",
       haveReference ? "" : ": NOT FOUND, column empty");
   std::printf(
       "| operation | size | stage (imaging/ transform) | emulated call | emulated call, "
-      "glDrawPixels write-back | reference call | emulated / reference |\n"
-      "| --- | --- | --- | --- | --- | --- | --- |\n");
+      "glDrawPixels write-back | reference call | emulated / reference | preloaded call | "
+      "preloaded / emulated |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const auto ops = operations();
   for (const auto& sz : sizes) {
     double base = 0, refBase = 0;
     double drawBase = 0;
     const auto emulated = measure(Backend::kOsmesa, sz[0], sz[1], reps, base);
+    const PreloadedRun preloaded = runPreloaded(sz[0], sz[1], reps);
     const auto drawn =
         measure(Backend::kOsmesa, sz[0], sz[1], reps, drawBase, detail::WriteBackPath::kDrawPixels);
     const auto stages = measureStages(sz[0], sz[1], reps, base);
@@ -479,8 +551,15 @@ int run(int argc, char** argv) {
                       (emulated[i] * base) / (reference[i] * refBase),
                       (reference[i] * refBase) / (emulated[i] * base));
       }
-      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s |\n", ops[i].name, sz[0], sz[1], stage,
-                  emulated[i], old, ref, speed);
+      char pre[32] = "-", preRatio[32] = "-";
+      if (!preloaded.ratios.empty() && preloaded.ratios[i] >= 0) {
+        std::snprintf(pre, sizeof pre, "%.1fx", preloaded.ratios[i]);
+        // Each ratio is to its own process's memcpy: the quotient compares the two times.
+        std::snprintf(preRatio, sizeof preRatio, "%.2f",
+                      (preloaded.ratios[i] * preloaded.base) / (emulated[i] * base));
+      }
+      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s | %s | %s |\n", ops[i].name, sz[0],
+                  sz[1], stage, emulated[i], old, ref, speed, pre, preRatio);
     }
   }
   return 0;

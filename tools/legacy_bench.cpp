@@ -15,16 +15,12 @@
 // the camera passes draw (spotlight_tessellation.h), beside the pass's floor (docs/legacy.md
 // "Feeding the passes").
 #include <CLI/CLI.hpp>
-#include <cstdio>
-#include <functional>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/base/errors.h"
 #include "core/base/provenance.h"
-#include "core/gl/gl_trace.h"
 #include "core/scene/scene_library.h"
 #include "core/technique/frame_timing.h"
 #include "measure/legacy_benchmark.h"
@@ -33,62 +29,6 @@
 
 namespace {
 constexpr int kMaxTimedFrames = 1000;  // --frames: more would take hours at 800x600
-
-// The cost of the GL trace (core/gl/gl_trace.h): off, every call goes through the context's own
-// table (the trace is not there at all); on, through the recording table. The two are timed
-// interleaved (core/technique/frame_timing.h timeInterleavedSteadyState), each on its own context,
-// so that a change of the machine's load hits both alike; the ratio is of the two medians.
-std::string traceOverheadMarkdown(const sl::legacy::BenchmarkOptions& options,
-                                  const std::vector<sl::legacy::BenchmarkVariant>& variants) {
-  std::ostringstream out;
-  out << "GL trace of --dump-passes (core/gl/gl_trace.h), brabec scene " << options.width << "x"
-      << options.height << ", shadow map " << options.shadowMapTexels << ", "
-      << sl::backendName(options.backend) << ", off and on interleaved: median of "
-      << options.frames.timed << " rounds after " << options.frames.warmup
-      << " warm-up frames each\n\n"
-      << "| variant | trace off: frame ms | trace on: frame ms | on / off | median of the rounds' "
-         "on "
-         "/ off |\n|---|---|---|---|---|\n";
-  for (const auto& v : variants) {
-    sl::RenderParams p;
-    p.width = options.width;
-    p.height = options.height;
-    p.shadowMapTexels = options.shadowMapTexels;
-    p.filter = v.filter;
-    p.backend = options.backend;
-    p.imaging = options.imaging;
-    const sl::Technique& t = sl::findTechnique(v.technique);
-    const sl::Scene scene = sl::builtinScene("brabec");
-    const auto offContext = sl::makeRenderContext(t, p);
-    const auto onContext = sl::makeRenderContext(t, p);
-    const std::vector<std::function<sl::Frame()>> sources = {
-        [&] {
-          offContext->makeCurrent();
-          return t.render(*offContext, scene, p);
-        },
-        [&] {
-          onContext->makeCurrent();
-          const sl::GlTrace trace;  // as render --dump-passes runs it
-          return t.render(*onContext, scene, p);
-        }};
-    const auto timings =
-        sl::timeInterleavedSteadyState(sources, options.frames.warmup, options.frames.timed);
-    const double off = timings[0].frameMs, on = timings[1].frameMs;
-    // Round by round (the two frames of a round ran back to back, under nearly the same load).
-    std::vector<double> roundRatios;
-    for (size_t r = 0; r < timings[0].frameSamples.size(); ++r)
-      if (timings[0].frameSamples[r] > 0.0)
-        roundRatios.push_back(timings[1].frameSamples[r] / timings[0].frameSamples[r]);
-    char row[200];
-    std::snprintf(row, sizeof row, "| %s | %.2f | %.2f | %.3f | %.3f |\n", v.label.c_str(), off, on,
-                  off > 0.0 ? on / off : 0.0, roundRatios.empty() ? 0.0 : sl::median(roundRatios));
-    out << row;
-  }
-  out << "\nOff, the trace costs nothing: no GlTrace exists, the context's own table is current "
-         "and each call is the one indirect call it always is (tests/core/gl_trace_test.cpp "
-         "checks the table is untouched).\n";
-  return out.str();
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -136,7 +76,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (traceOverhead) {
-      std::cout << traceOverheadMarkdown(options, variants);
+      std::cout << sl::legacy::traceOverheadMarkdown(options, variants);
       return 0;
     }
     const auto results =

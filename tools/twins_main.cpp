@@ -18,23 +18,16 @@
 #include "core/base/errors.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
+#include "measure/twin_tables.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
 #include "registry/twins.h"
 
 namespace sl {
 namespace {
-
-struct Options {
-  int width = 320, height = 240, shadowMap = 256;  // as tests/modern/equivalence_test.cpp
-  int benchWidth = 800, benchHeight = 600, benchShadowMap = 512;  // Brabec–Seidel §5
-  std::string benchScene = "brabec";
-  int frames = 5;
-  Backend backend = Backend::kOsmesa;
-  std::vector<std::string> scenes = twins::equivalenceScenes();
-  bool agreement = true;
-  bool bench = true;
-};
+using measure::twin_tables::agreementTable;
+using measure::twin_tables::benchTable;
+using measure::twin_tables::Options;
 
 std::vector<std::string> splitCommas(const std::string& s) {
   std::vector<std::string> out;
@@ -86,81 +79,6 @@ std::optional<Options> parse(int argc, char** argv) {
   o.agreement = !noAgreement;
   o.bench = !noBench;
   return o;
-}
-
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-void agreementTable(const Options& o) {
-  std::cout << "### Agreement (" << backendName(o.backend) << ", " << o.width << "x" << o.height
-            << ", " << o.shadowMap << "^2 map)\n\n"
-            << "| pair | scene | bound | max difference | differing pixels | > 1/255 | "
-               "> 1/255 off band | within bound | image: > 3/255 (where masks agree) | image: "
-               "bound (cone-edge band) | image: max, RMSE | image within bound |\n"
-            << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-  for (const twins::TwinPair& pair : twins::twinPairs())
-    for (const std::string& name : o.scenes) {
-      const Scene scene = loadScene(name);
-      const RenderParams pl =
-          twins::paramsFor(pair, true, o.width, o.height, o.shadowMap, o.backend);
-      const RenderParams pm =
-          twins::paramsFor(pair, false, o.width, o.height, o.shadowMap, o.backend);
-      std::cout << "| " << pair.label << " | " << name << " | "
-                << (pair.faithful ? "faithful (ties only)" : "1/255, band") << " | ";
-      try {
-        if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
-          throw InputError(why);
-        const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
-        const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
-        const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
-        std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1) << "/255) | "
-                  << a.differing << " of " << a.all.pixels << " | " << a.beyondOneStep << " | "
-                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " | ";
-        const twins::ImageAgreement im =
-            twins::judgeImages(legacy.color, modern.color, legacy.visibility, modern.visibility);
-        std::cout << im.beyondSteps << " (" << im.beyondWhereMasksAgree << ") | " << im.boundPixels
-                  << " | " << fixed(im.maxAbs, 3) << ", " << fixed(im.rmse, 4) << " | "
-                  << (im.withinBound ? "yes" : "**no**") << " |\n";
-      } catch (const std::exception& e) {
-        std::cout << "not run: " << e.what() << " | | | | | | | | |\n";
-      }
-    }
-  for (const std::string& m : twins::missingPairs()) std::cout << "\nnot in this build: " << m;
-  std::cout << "\n";
-}
-
-void benchTable(const Options& o) {
-  std::cout << "### Frame time (" << backendName(o.backend) << ", " << o.benchScene << ", "
-            << o.benchWidth << "x" << o.benchHeight << ", " << o.benchShadowMap << "^2 map, "
-            << o.frames << " frames each after " << kWarmupFrames << " warm-up)\n\n"
-            << "| pair | legacy ms (median / min) | modern ms (median / min) | legacy / modern "
-               "(medians) | legacy / modern (minima) |\n| --- | --- | --- | --- | --- |\n";
-  const Scene scene = loadScene(o.benchScene);
-  for (const twins::TwinPair& pair : twins::twinPairs()) {
-    std::cout << "| " << pair.label << " | ";
-    try {
-      const RenderParams pl =
-          twins::paramsFor(pair, true, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend);
-      if (const std::string why = twins::unavailablePrecision(pair, pl); !why.empty())
-        throw InputError(why);
-      const twins::FrameTimes legacy =
-          twins::frameMilliseconds(findTechnique(pair.legacy), scene, pl, o.frames);
-      const twins::FrameTimes modern = twins::frameMilliseconds(
-          findTechnique(pair.modern), scene,
-          twins::paramsFor(pair, false, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
-          o.frames);
-      std::cout << fixed(legacy.median, 1) << " / " << fixed(legacy.minimum, 1) << " | "
-                << fixed(modern.median, 1) << " / " << fixed(modern.minimum, 1) << " | "
-                << fixed(legacy.median / modern.median, 2) << " | "
-                << fixed(legacy.minimum / modern.minimum, 2) << " |\n";
-    } catch (const std::exception& e) {
-      std::cout << "not run: " << e.what() << " | | |\n";
-    }
-    std::cout.flush();
-  }
 }
 
 int run(int argc, char** argv) {

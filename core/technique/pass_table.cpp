@@ -20,6 +20,8 @@ const char* passFloorName(PassFloor floor) {
     case PassFloor::kAccumulate: return "accumulate";
     case PassFloor::kAccumulationReturn: return "accumulation-return";
     case PassFloor::kLighting: return "lighting";
+    case PassFloor::kCopyWindowToTexture: return "copy-window-to-texture";
+    case PassFloor::kTexturedWindowQuad: return "textured-window-quad";
   }
   return "?";
 }

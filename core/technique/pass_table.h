@@ -22,16 +22,18 @@ namespace sl {
 enum class PassFloor {
   kNone,
   kCpuOnly,
-  kLightDepth,          // one ramp-textured light pass (Brabec & Seidel §2, §4)
-  kLightDepthAndCopy,   // the same and its copy into the map texture (§2)
-  kJitteredLightGroup,  // up to four jittered light passes and one copy (§3, Fig. 3)
-  kCopyToTexture,       // a framebuffer copy into the map texture (§4, Eq. (1))
-  kCameraDepth,         // the camera pass drawing ramp depth (§2, §3)
-  kProjectiveSubtract,  // the projected map subtracted by blending (§2, Fig. 6)
-  kCopyPixels,          // glCopyPixels through colour table and matrix (§3, Fig. 4)
-  kAccumulate,          // one accumulation-buffer step (§3)
-  kAccumulationReturn,  // the accumulation buffer returned to colour (§3)
-  kLighting,            // lighting x shadow term, direct then ambient (§5)
+  kLightDepth,           // one ramp-textured light pass (Brabec & Seidel §2, §4)
+  kLightDepthAndCopy,    // the same and its copy into the map texture (§2)
+  kJitteredLightGroup,   // up to four jittered light passes and one copy (§3, Fig. 3)
+  kCopyToTexture,        // a framebuffer copy into the map texture (§4, Eq. (1))
+  kCameraDepth,          // the camera pass drawing ramp depth (§2, §3)
+  kProjectiveSubtract,   // the projected map subtracted by blending (§2, Fig. 6)
+  kCopyPixels,           // glCopyPixels through colour table and matrix (§3, Fig. 4)
+  kAccumulate,           // one accumulation-buffer step (§3)
+  kAccumulationReturn,   // the accumulation buffer returned to colour (§3)
+  kLighting,             // lighting x shadow term, direct then ambient (§5)
+  kCopyWindowToTexture,  // the window copied into a texture (fast PCF 4x4 saves its camera pass)
+  kTexturedWindowQuad,   // one textured full-window quad (fast PCF 4x4 restores it)
 };
 const char* passFloorName(PassFloor floor);
 

@@ -85,7 +85,7 @@ float groupAlphaCode(int g, float fragmentCode) {
 // @end subtract-and-count
 
 // @pass camera-depth: the fragment's light depth through the ramp, replicated over the channels (§3)
-// @replaces legacy.fast-pcf 3
+// @replaces legacy.fast-pcf 3 3s 3r
 // @replaces legacy.pcf 2
 float faithfulShadow() {
   float fragment = textureProj(uRamp, vRampCoord).r;

@@ -422,27 +422,64 @@ TEST(LegacyClients, AccumulationProgramOnAllThreeBackends) {
   }
 }
 
+// Builds tests/interpose/NAME.c against Debian's OSMesa into dir/NAME.
+fs::path osmesaClient(const std::string& name, const fs::path& dir) {
+  const fs::path exe = dir / name;
+  const std::string build = "cc -O1 -o " + exe.string() + " " +
+                            (sourceDir() / "tests" / "interpose" / (name + ".c")).string() +
+                            " $(pkg-config --cflags --libs osmesa) -lpthread";
+  EXPECT_EQ(std::system(build.c_str()), 0) << build;
+  return exe;
+}
+
+// LD_PRELOAD for a client: the library, after the AddressSanitizer runtime in a sanitizer
+// build (scripts/sanitize.sh), which must come first in the process.
+std::string preloadImagingLibrary() {
+  const std::string runtime = SHADOWLAB_SANITIZER_RUNTIME;
+  return "LD_PRELOAD='" + (runtime.empty() ? "" : runtime + " ") +
+         (libraryDir() / "libshadowlab-imaging.so").string() + "'";
+}
+
+int okLines(const std::string& out) {
+  int ok = out.rfind("ok ", 0) == 0 ? 1 : 0;
+  for (size_t p = out.find("\nok "); p != std::string::npos; p = out.find("\nok ", p + 1)) ++ok;
+  return ok;
+}
+
 // A C program on OSMesa: extension strings, GetProcAddress, merged errors, enables and
 // queries, the colour matrix on glDrawPixels, contexts on two threads (osmesa_client.c).
 TEST(DropIn, OsmesaClientSeesTheImagingSubset) {
   if (std::system("pkg-config --exists osmesa") != 0) GTEST_SKIP() << "skipped: no OSMesa headers";
   const fs::path dir = testDir("interpose", true);
-  const fs::path exe = dir / "osmesa_client";
-  const std::string build = "cc -O1 -o " + exe.string() + " " +
-                            (sourceDir() / "tests" / "interpose" / "osmesa_client.c").string() +
-                            " $(pkg-config --cflags --libs osmesa) -lpthread";
-  ASSERT_EQ(std::system(build.c_str()), 0) << build;
+  const fs::path exe = osmesaClient("osmesa_client", dir);
+  ASSERT_TRUE(fs::exists(exe));
   const CommandResult without = runBinary(exe.string(), "", dir);
   EXPECT_EQ(without.status, 1) << "Debian's OSMesa alone has no GL_ARB_imaging";
   EXPECT_NE(without.out.find("FAIL no GL_ARB_imaging"), std::string::npos) << without.out;
-  const std::string library = (libraryDir() / "libshadowlab-imaging.so").string();
-  const CommandResult with = runBinary("LD_PRELOAD=" + library + " " + exe.string(), "", dir);
+  const CommandResult with = runBinary(preloadImagingLibrary() + " " + exe.string(), "", dir);
   EXPECT_EQ(with.status, 0) << with.out << with.err;
   constexpr int kChecks = 7;  // the "ok" lines osmesa_client.c prints
-  int ok = 0;
-  for (size_t p = with.out.find("ok "); p != std::string::npos; p = with.out.find("\nok ", p + 1))
-    ++ok;
-  EXPECT_EQ(ok, kChecks) << with.out;
+  EXPECT_EQ(okLines(with.out), kChecks) << with.out;
+}
+
+// Wrong enums and sizes through the preloaded library (bad_input_client.c): each call raises
+// the specification's error, read through glGetError, and the program ends normally (a crash
+// or a sanitizer report is a status other than 0).
+TEST(DropIn, BadInputGivesTheSpecsErrorsNeverACrash) {
+  if (std::system("pkg-config --exists osmesa") != 0) GTEST_SKIP() << "skipped: no OSMesa headers";
+  const fs::path dir = testDir("interpose", true);
+  const fs::path exe = osmesaClient("bad_input_client", dir);
+  ASSERT_TRUE(fs::exists(exe));
+  // With the read-back trace on, so that its reads of the program's buffers are checked too.
+  const CommandResult r = runBinary("SHADOWLAB_IMAGING_TRACE=" + (dir / "trace.jsonl").string() +
+                                        " " + preloadImagingLibrary() + " " + exe.string(),
+                                    "", dir);
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  constexpr int kCases = 44;  // the expect() calls and the ordered pair in bad_input_client.c
+  EXPECT_EQ(okLines(r.out), kCases) << r.out;
+  EXPECT_NE(r.out.find("\n0 failed"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("Sanitizer"), std::string::npos) << "a sanitizer report: " << r.err;
+  EXPECT_EQ(r.err.find("runtime error"), std::string::npos) << "a sanitizer report: " << r.err;
 }
 
 TEST(RunLegacy, BadInputIsRefusedWithStatus2) {

@@ -1,6 +1,7 @@
-// legacy_gl/spotlight_tessellation.h (issue 18 item 5): the meshes the legacy camera passes draw
-// are split along the spotlight cone's edge down to a pixel, keep their geometry (area, closed
-// surfaces stay closed: no T-junction cracks), and are not split where the cone's edge is not.
+// legacy_gl/spotlight_tessellation.h: the meshes the legacy camera passes draw are split inside
+// the spotlight cone where the lighting bends across a triangle (not along the cone's edge,
+// which the projected cone texture cuts per pixel), keep their geometry (area, closed surfaces
+// stay closed: no T-junction cracks), and are not split where the cone does not reach.
 #include "legacy_gl/spotlight_tessellation.h"
 
 #include <gtest/gtest.h>
@@ -61,31 +62,50 @@ glm::vec2 pixel(const Scene& s, const glm::vec3& p) {
   return {(clip.x / clip.w * 0.5f + 0.5f) * kWidth, (clip.y / clip.w * 0.5f + 0.5f) * kHeight};
 }
 
-TEST(SpotlightTessellation, SplitsAlongTheConeEdgeDownToAPixel) {
+// The angle an edge subtends at the light (as pixelLimit measures it: its bounding sphere).
+double subtendedAtLight(const Scene& s, const glm::vec3& a, const glm::vec3& b) {
+  const double radius = 0.5 * double(glm::length(a - b));
+  const double distance = double(glm::length(0.5f * (a + b) - s.light.position));
+  return 2.0 * radius / (distance - radius);
+}
+
+// Inside the cone every on-screen edge is split until it subtends at most the diffuse (specular)
+// angle at the light or covers at most kLitInteriorPixels; the cone's edge itself is not split
+// down to a pixel any more (the projected cone texture cuts it per pixel), so brabec's camera
+// passes draw far fewer triangles than the 24 653 of a one-pixel split along the edge.
+TEST(SpotlightTessellation, SplitsInsideTheConeOnlyWhereTheLightingBends) {
   const Scene scene = builtinScene("brabec");
   TessellationStats stats;
   const Scene split = tessellateForSpotlight(scene, kWidth, kHeight, &stats);
   ASSERT_EQ(split.objects.size(), scene.objects.size());
-  EXPECT_GT(stats.trianglesOut, stats.trianglesIn) << "the cone's edge crosses brabec's ground";
-  // Every on-screen edge whose ends the per-vertex cone test lights differently spans at most
-  // kSpotEdgePixels (plus float rounding of the projection, 1e-3 pixel).
-  constexpr double kProjectionRounding = 1e-3;
-  int crossing = 0;
+  EXPECT_GT(stats.trianglesOut, stats.trianglesIn) << "brabec's lit receivers need some splits";
+  // A one-pixel split along the cone's edge made 24 653 of 7 724 (docs/legacy.md); the interior
+  // criterion alone adds a few hundred (measured 7 916): a tenth more is a generous ceiling that
+  // an edge split would break by far.
+  constexpr double kMostGrowth = 1.1;
+  EXPECT_LT(double(stats.trianglesOut), kMostGrowth * double(stats.trianglesIn));
+  // Float rounding of the projection and of the sphere test: 1e-3 pixel, 1e-6 rad.
+  constexpr double kProjectionRounding = 1e-3, kAngleRounding = 1e-6;
+  int inside = 0;
   for (const Object& o : split.objects) {
+    const double limit = o.specular > 0.0f ? kMaxSpecularEdgeRadians : kMaxDiffuseEdgeRadians;
     const auto& idx = o.mesh->indices;
     for (size_t t = 0; t + 2 < idx.size(); t += 3)
       for (int e = 0; e < 3; ++e) {
         const glm::vec3 a = world(o, idx[t + e]), b = world(o, idx[t + (e + 1) % 3]);
-        if (lit(scene, a) == lit(scene, b)) continue;
+        if (!lit(scene, a) || !lit(scene, b)) continue;
         const glm::vec2 pa = pixel(scene, a), pb = pixel(scene, b);
-        const bool onScreen = pa.x >= 0 && pa.x <= kWidth && pa.y >= 0 && pa.y <= kHeight;
+        const bool onScreen = pa.x >= 0 && pa.x <= kWidth && pa.y >= 0 && pa.y <= kHeight &&
+                              pb.x >= 0 && pb.x <= kWidth && pb.y >= 0 && pb.y <= kHeight;
         if (!onScreen) continue;
-        ++crossing;
-        EXPECT_LE(glm::length(pa - pb), kSpotEdgePixels + kProjectionRounding)
-            << o.name << " edge across the cone at pixel (" << pa.x << ", " << pa.y << ")";
+        ++inside;
+        const bool small = subtendedAtLight(scene, a, b) <= limit + kAngleRounding ||
+                           glm::length(pa - pb) <= kLitInteriorPixels + kProjectionRounding;
+        EXPECT_TRUE(small) << o.name << " edge inside the cone at pixel (" << pa.x << ", " << pa.y
+                           << ") subtends " << subtendedAtLight(scene, a, b) << " rad";
       }
   }
-  EXPECT_GT(crossing, 100) << "the test saw no edge across the cone";
+  EXPECT_GT(inside, 100) << "the test saw no edge inside the cone";
 }
 
 TEST(SpotlightTessellation, KeepsGeometryAndLeavesNoCracks) {
@@ -116,8 +136,8 @@ TEST(SpotlightTessellation, KeepsGeometryAndLeavesNoCracks) {
   }
 }
 
-// No cone edge on screen, nothing split: the light looks up, away from everything.
-TEST(SpotlightTessellation, SplitsNothingWhereTheConeEdgeIsNot) {
+// No cone on screen, nothing split: the light looks up, away from everything.
+TEST(SpotlightTessellation, SplitsNothingWhereTheConeIsNot) {
   Scene scene = builtinScene("brabec");
   scene.light.target = scene.light.position + glm::vec3(0, 5, 0);
   scene.light.up = {0, 0, -1};

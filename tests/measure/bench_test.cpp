@@ -194,6 +194,23 @@ TEST(BenchRun, TinyRunWritesCsvJsonAndPlot) {
     EXPECT_GT(yHi, dataYHi) << plot.path;
     EXPECT_GT(yLo, dataYLo / 1.5) << plot.path;
     EXPECT_LT(yHi, dataYHi * 1.5) << plot.path;
+    // At least three labelled ticks on each log axis, inside its range, whatever its width
+    // (gnuplot's own ticks sit at powers of ten only: a range within a decade would get one).
+    auto ticksIn = [&](const std::string& axis, double lo, double hi) {
+      const std::string key = "set " + axis + "tics (";
+      const size_t at = script.find(key);
+      if (at == std::string::npos) return size_t(0);
+      const size_t first = at + key.size();
+      std::istringstream list(script.substr(first, script.find(')', first) - first));
+      size_t inside = 0;
+      for (std::string value; std::getline(list, value, ',');) {
+        const double v = std::stod(value);
+        inside += v >= lo && v <= hi;
+      }
+      return inside;
+    };
+    EXPECT_GE(ticksIn("x", xLo, xHi), 3u) << script;
+    EXPECT_GE(ticksIn("y", yLo, yHi), 3u) << script;
   }
   EXPECT_FALSE(plots.pareto.at("brabec").empty());
 }
@@ -720,6 +737,60 @@ TEST(BenchRowJson, ParamsAreTheTechniquesFullEffectiveSetAndUnreadOptionsNull) {
   EXPECT_NE(line.find(",\"\"," + std::to_string(gems.params.shadowMapTexels) + ",,,\"{"),
             std::string::npos)
       << line;
+}
+
+// The CSV's cells of one row by column name.
+std::map<std::string, std::string> csvCells(const std::vector<BenchRow>& rows) {
+  std::ostringstream csv;
+  writeCsvRows(csv, rows);
+  std::istringstream in(csv.str());
+  std::string header, line;
+  std::getline(in, header);
+  std::getline(in, line);
+  // The cells this test reads hold no quotes or commas; skip the quoted ones whole.
+  auto split = [](const std::string& text) {
+    std::vector<std::string> cells{""};
+    bool quoted = false;
+    for (char c : text) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted)
+        cells.emplace_back();
+      else
+        cells.back() += c;
+    }
+    return cells;
+  };
+  const std::vector<std::string> names = split(header), values = split(line);
+  EXPECT_EQ(names.size(), values.size()) << line;
+  std::map<std::string, std::string> out;
+  for (size_t i = 0; i < names.size() && i < values.size(); ++i) out[names[i]] = values[i];
+  return out;
+}
+
+TEST(BenchCsv, UnmeasuredCellsAreEmptyNotZero) {
+  // A scene measured without reference.soft: the soft columns are empty, the hard ones numbers.
+  BenchRow hardOnly = row("modern.hw", 2.0, 0.25);
+  hardOnly.framesTimed = 1;
+  hardOnly.softMeasured = false;
+  std::map<std::string, std::string> cells = csvCells({hardOnly});
+  EXPECT_EQ(cells.at("hard_rmse"), "0.25");
+  EXPECT_EQ(cells.at("hard_point_leak_share"), "0");
+  for (const char* column : {"soft_rmse", "soft_band_max_abs", "soft_leak_share", "soft_point_rmse",
+                             "soft_point_leak_share"})
+    EXPECT_EQ(cells.at(column), "") << column;
+  // Measured against reference.soft: its columns are numbers, 0 included.
+  hardOnly.softMeasured = true;
+  cells = csvCells({hardOnly});
+  EXPECT_EQ(cells.at("soft_rmse"), "0");
+  EXPECT_EQ(cells.at("soft_point_leak_share"), "0");
+  // A variant that did not run: no time and no error.
+  BenchRow refused = row("modern.vsm", 0.0, 0.0);
+  refused.status = "--param storage: not one of ...";
+  refused.softMeasured = true;
+  cells = csvCells({refused});
+  for (const char* column : {"frame_ms", "wall_ms", "hard_rmse", "soft_rmse", "hard_point_rmse",
+                             "metric", "scored_pixels", "left_out_share", "frames_timed"})
+    EXPECT_EQ(cells.at(column), "") << column;
 }
 
 TEST(SweepFiles, TheGuidesExamplesLoad) {

@@ -9,10 +9,13 @@
 
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "imaging/imaging_test_util.h"
+#include "interpose/preloaded_context.h"
 
 namespace sl::imaging::testing {
 
@@ -49,6 +52,16 @@ inline bool inSaturationBand(float v) { return v >= kMesaSaturationStart && v < 
 
 using Scenario = std::function<void(Outcome&)>;
 
+// SHADOWLAB_PARITY_PATH=preloaded (ctest parity.preloaded_path, with LD_PRELOAD=
+// "libshadowlab-imaging.so libOSMesa.so.8"): the Debian side runs on a context made through
+// the process's global symbols, so every call of the scenario goes through the drop-in
+// library's exports and its emulation, as an unchanged program's calls do
+// (interpose/preloaded_context.h); the reference side is unchanged.
+inline bool preloadedPath() {
+  const char* v = std::getenv("SHADOWLAB_PARITY_PATH");
+  return v != nullptr && std::string(v) == "preloaded";
+}
+
 // Runs `scenario` on a fresh context of `backend`; the emulation is installed on Debian's
 // OSMesa (the reference keeps its native imaging). `accumulation` false makes the Debian
 // context without an accumulation buffer, so the emulated one is used.
@@ -59,9 +72,17 @@ inline Outcome runOn(Backend backend, const Scenario& scenario, bool accumulatio
   spec.width = w;
   spec.height = h;
   spec.accumulation = backend == Backend::kReference ? true : accumulation;
-  auto ctx = GlContext::create(spec);
-  const Mode mode = install(*ctx);
-  EXPECT_EQ(mode, backend == Backend::kReference ? Mode::kNative : Mode::kEmulated);
+  std::unique_ptr<interpose::PreloadedOsmesaContext> preloaded;
+  std::unique_ptr<GlContext> ctx;
+  const bool throughLibrary = backend == Backend::kOsmesa && preloadedPath();
+  if (throughLibrary)
+    preloaded = std::make_unique<interpose::PreloadedOsmesaContext>(w, h, spec.accumulation);
+  else
+    ctx = GlContext::create(spec);
+  // Through the library, the context already names GL_ARB_imaging (the library's), so this
+  // process's own imaging/ stays out and the library's emulation answers.
+  const Mode mode = install(throughLibrary ? preloaded->context() : *ctx);
+  EXPECT_EQ(mode, backend == Backend::kOsmesa && !throughLibrary ? Mode::kEmulated : Mode::kNative);
   Outcome o;
   scenario(o);
   const auto tail = drainErrors();

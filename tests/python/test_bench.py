@@ -112,6 +112,21 @@ def test_a_value_one_technique_refuses_is_that_rows_status(cli, tmp_path):
     assert pd.isna(rows["pareto_rank"].iloc[1])
 
 
+def test_unmeasured_cells_are_empty_not_zero():
+    # A view measured without reference.soft: its soft columns are NaN (empty cells of the CSV),
+    # not 0; a row that did not run (fast PCF refuses --filter 3) has no time and no error.
+    spec = {"techniques": ["modern.fast-pcf"], "scenes": ["fence"], "sizes": ["64x48"],
+            "filters": [2, 3], "repeat": 1, "soft_reference": False, "temporal": False}
+    rows = shadowlab.sweep(spec)
+    ran, refused = rows.iloc[0], rows.iloc[1]
+    assert ran["status"] == "ok" and ran["hard_rmse"] > 0
+    for column in ("soft_rmse", "soft_band_rmse", "soft_point_rmse", "soft_point_leak_share"):
+        assert pd.isna(ran[column]), column
+    assert refused["status"] != "ok"
+    for column in ("frame_ms", "wall_ms", "hard_rmse", "hard_point_rmse", "scored_pixels"):
+        assert pd.isna(refused[column]), column
+
+
 def test_sweep_orbits_and_params():
     spec = {"techniques": ["modern.csm"], "scenes": ["fence"], "sizes": [[64, 48]],
             "params": {"order": [4, 8]}, "orbits": [None, "20,25,9"], "repeat": 1,
