@@ -61,7 +61,8 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 1: one light pass, encoded depth in all four channels (one "
                               "shown)"}},
        .floor = F::kLightDepth,
-       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
+       .keyState = {"rising in 256 steps", "texture matrix (unit 0): load", "GL_EYE_PLANE"}},
       {.id = "2",
        .name = "copy to texture through the 3x3 packing convolution",
        .reference = "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5",
@@ -78,7 +79,8 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 2's packed map, lower right | upper left | upper right minus "
                               "lower left (G | B | A minus R), amplified " +
                               gain + "x, grey = equal: the one-texel shift of Fig. 5"}},
-       .floor = F::kCopyToTexture},
+       .floor = F::kCopyToTexture,
+       .keyState = {"GL_CONVOLUTION_2D [", "GL_CONVOLUTION_BORDER", "glCopyTexSubImage2D"}},
       {.id = "3",
        .name = "camera pass: light depth in RGBA",
        .reference = "Brabec & Seidel 2001 §4 (\"very similar to ... Section 3\"): §3's camera "
@@ -87,7 +89,8 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 3: light depth of each visible point in all four "
                               "channels{again}"}},
        .floor = F::kCameraDepth,
-       .deviations = {bs::kDepthBiasDeviation}},
+       .deviations = {bs::kDepthBiasDeviation},
+       .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       {.id = "3s",
        .name = "camera pass saved: copy to texture",
        .reference = "ours, 4x4 only: the camera pass copied once (glCopyTexSubImage2D) for "
@@ -111,7 +114,10 @@ PassTable fastPcfPasses() {
                               gain +
                               "x: > 0 = that neighbour shadows the "
                               "point"}},
-       .floor = F::kProjectiveSubtract},
+       .floor = F::kProjectiveSubtract,
+       .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
+                    "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)",
+                    "texture matrix (unit 0): load"}},
       {.id = "5",
        .name = "copy: colour table + colour matrix -> alpha",
        .reference = "Brabec & Seidel 2001 §3, Fig. 4 (as §4 says): colour table 0 / 64 (63 in "
@@ -122,18 +128,23 @@ PassTable fastPcfPasses() {
                   {.name = "alpha-after-colour-matrix{part}",
                    .caption = "Pass 5: alpha = share of the four neighbours that shadow the "
                               "point"}},
-       .floor = F::kCopyPixels},
+       .floor = F::kCopyPixels,
+       .keyState = {"GL_COLOR_TABLE [", "colour matrix: load [0 0 0 0", "glCopyPixels"}},
       {.id = "6a",
        .name = "accumulate",
        .reference = "Brabec & Seidel 2001 §4 (4x4 footprints)",
-       .floor = F::kAccumulate},
+       .floor = F::kAccumulate,
+       .keyState = {"glAccum"}},
       {.id = "6b",
        .name = "accumulation return",
        .reference = "Brabec & Seidel 2001 §4 (4x4 footprints)",
        .writes = {{.name = "accumulation-result-alpha",
-                   .caption = "Pass 6: the four phases summed in the accumulation buffer (4 x 5 "
-                              "levels)"}},
-       .floor = F::kAccumulationReturn},
+                   .caption = "Pass 6: the four phases summed in the accumulation buffer, weight "
+                              "1/4 each: 17 levels, 0/16 .. 16/16 of the 16 samples shadowed "
+                              "(the paper counts 4 x 5 = 20; sums of four 5-level phases "
+                              "coincide)"}},
+       .floor = F::kAccumulationReturn,
+       .keyState = {"glAccum(GL_RETURN"}},
       {.id = "7",
        .name = "lighting x shadow term",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
@@ -141,7 +152,8 @@ PassTable fastPcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
-       .deviations = {kProjectedConeDeviation}},
+       .deviations = {kProjectedConeDeviation},
+       .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };
 }
 

@@ -219,7 +219,8 @@ PassTable hardwareShadowMapPasses() {
        .writes = {{.name = "light-depth",
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
                               "offset"}},
-       .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation}},
+       .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation},
+       .keyState = {"GL_POLYGON_OFFSET_FILL", "glPolygonOffset", "glColorMask"}},
   };
   for (PassSpec& spec : shadowMapCameraPasses(2)) table.push_back(std::move(spec));
   return table;
@@ -272,7 +273,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
       {.id = texgen,
        .name = "eye-linear texgen planes",
        .reference = "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
-                    "Second Pass (Depth Map Comparison); Appendix A"},
+                    "Second Pass (Depth Map Comparison); Appendix A",
+       .keyState = {"GL_EYE_PLANE"}},
       {.id = ambient,
        .name = "ambient",
        .reference = "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "

@@ -63,7 +63,8 @@ PassTable pcfPasses() {
                               "x, grey = equal: the sub-texel jitter of "
                               "Fig. 3"}},
        .floor = F::kJitteredLightGroup,
-       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
+       .keyState = {"projection: load", "glColorMask", "glCopyTexSubImage2D"}},
       {.id = "2",
        .name = "camera pass: light depth in RGBA",
        .reference = "Brabec & Seidel 2001 §3: \"we replicate the z values over all four color "
@@ -71,7 +72,8 @@ PassTable pcfPasses() {
        .writes = {{.name = "camera-pass-z-replicated{part}",
                    .caption = "Pass 2: light depth of each visible point in all four channels"}},
        .floor = F::kCameraDepth,
-       .deviations = {bs::kDepthBiasDeviation}},
+       .deviations = {bs::kDepthBiasDeviation},
+       .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       {.id = "3",
        .name = "projective pass: subtract packed map",
        .reference = "Brabec & Seidel 2001 §3 (Reeves' comparison step, Fig. 2): the subtraction "
@@ -82,7 +84,9 @@ PassTable pcfPasses() {
                               gain +
                               "x: > 0 = that sample shadows the "
                               "point"}},
-       .floor = F::kProjectiveSubtract},
+       .floor = F::kProjectiveSubtract,
+       .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
+                    "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)"}},
       {.id = "4",
        .name = "copy: colour table + colour matrix -> alpha",
        .reference = "Brabec & Seidel 2001 §3, Fig. 4: colour table 0 / 64 (63 in alpha), colour "
@@ -93,12 +97,14 @@ PassTable pcfPasses() {
                   {.name = "alpha-after-colour-matrix{part}",
                    .caption = "Pass 4: alpha after the colour matrix summed the channels: share "
                               "of shadowed samples (white = all)"}},
-       .floor = F::kCopyPixels},
+       .floor = F::kCopyPixels,
+       .keyState = {"GL_COLOR_TABLE [", "colour matrix: load [0 0 0 0", "glCopyPixels"}},
       {.id = "5a",
        .name = "accumulate",
        .reference = "Brabec & Seidel 2001 §3: larger footprints in parts of four, \"summed up "
                     "using the accumulation buffer [3]\"",
-       .floor = F::kAccumulate},
+       .floor = F::kAccumulate,
+       .keyState = {"glAccum"}},
       {.id = "5b",
        .name = "accumulation return",
        .reference = "Brabec & Seidel 2001 §3: the accumulation buffer's sum returned to the "
@@ -106,7 +112,8 @@ PassTable pcfPasses() {
        .writes = {{.name = "accumulation-result-alpha",
                    .caption = "Pass 5: the groups summed in the accumulation buffer (white = all "
                               "shadowed)"}},
-       .floor = F::kAccumulationReturn},
+       .floor = F::kAccumulationReturn,
+       .keyState = {"glAccum(GL_RETURN"}},
       {.id = "6",
        .name = "lighting x shadow term",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
@@ -114,7 +121,8 @@ PassTable pcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
-       .deviations = {kProjectedConeDeviation}},
+       .deviations = {kProjectedConeDeviation},
+       .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };
 }
 

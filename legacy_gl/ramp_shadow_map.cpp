@@ -42,7 +42,8 @@ PassTable rampPasses() {
                    .caption = "Pass 1: light-space depth through the 1D ramp, alpha channel of "
                               "the shadow map (black = near, white = far or empty)"}},
        .floor = F::kLightDepthAndCopy,
-       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation}},
+       .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
+       .keyState = {"rising in 256 steps", "texture matrix (unit 0): load", "glCopyTexSubImage2D"}},
       {.id = "2",
        .name = "camera pass: light depth ramp into alpha",
        .reference = "Brabec & Seidel 2001 §2: the same ramp from the camera, a 4x4 texture "
@@ -51,7 +52,8 @@ PassTable rampPasses() {
                    .caption = "Pass 2: each visible point's own depth from the light, same ramp "
                               "(minus bias)"}},
        .floor = F::kCameraDepth,
-       .deviations = {bs::kDepthBiasDeviation}},
+       .deviations = {bs::kDepthBiasDeviation},
+       .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       {.id = "3",
        .name = "projective pass: subtract shadow map",
        .reference = "Brabec & Seidel 2001 §2: the map as a projective texture, subtracted by the "
@@ -64,7 +66,9 @@ PassTable rampPasses() {
                               "shadow (raw)"},
                   {.name = "difference-alpha-x" + gain,
                    .caption = "Pass 3 difference amplified " + gain + "x for display"}},
-       .floor = F::kProjectiveSubtract},
+       .floor = F::kProjectiveSubtract,
+       .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
+                    "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)"}},
       {.id = "4",
        .name = "copy: shadow mask to 0 / 1",
        .reference = "Brabec & Seidel 2001 §2, footnote 1: an additional frame buffer copy brings "
@@ -72,14 +76,16 @@ PassTable rampPasses() {
        .writes = {{.name = "shadow-mask-alpha",
                    .caption = "Pass 4 (footnote 1): the mask after the extra copy, 1 = shadow"}},
        .floor = F::kCopyPixels,
-       .deviations = {bs::kFloatClampDeviation}},
+       .deviations = {bs::kFloatClampDeviation},
+       .keyState = {"glPixelTransferf", "glCopyPixels"}},
       {.id = "5",
        .name = "lighting x shadow mask",
        .reference = "Brabec & Seidel 2001 §5 (\"normal OpenGL lighting\"): direct light x "
                     "(1 - mask), ambient kept",
        .writes = {{.name = "shaded", .caption = "Pass 5: OpenGL lighting x (1 - mask) + ambient"}},
        .floor = F::kLighting,
-       .deviations = {kProjectedConeDeviation}},
+       .deviations = {kProjectedConeDeviation},
+       .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };
 }
 

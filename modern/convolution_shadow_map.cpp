@@ -132,22 +132,34 @@ PassTable csmPasses(bool mipmaps) {
        .name = "basis textures",  // + " + horizontal Gaussian (MRT)" or " (MRT)"
        .reference = "Annen et al. 2007 §4.1: the basis B_i(z) = sin(c_k z), cos(c_k z) of Eq. 14 "
                     "(Eq. 7) into textures (Fig. 5); the Gaussian's first direction (DEVIATION)",
-       // Fig. 5: every sine basis texture (four k per RGBA layer) and the first cosine one.
-       .writes = {{.name = "basis-sin-{range}",
-                   .caption = "sin(c_k z), {range}, after blur (Fig. 5)"},
-                  {.name = "basis-cos-{range}", .caption = "cos(c_k z), {range}, after blur"}},
+       // Fig. 5: every basis layer (four k per RGBA layer: M/4 sine and M/4 cosine layers) as
+       // this pass leaves it: unblurred, or after the horizontal Gaussian only (then pass 3
+       // shows them after the whole blur).
+       .writes = {{.name = "basis-sin-{range}", .caption = "sin(c_k z), {range}, {stage} (Fig. 5)"},
+                  {.name = "basis-cos-{range}", .caption = "cos(c_k z), {range}, {stage}"}},
        .shaders = {"basis"},
-       .deviations = {kBasisWithBlurDeviation}},
+       .deviations = {kBasisWithBlurDeviation},
+       .keyState = {"draw buffers", "uOrder", "uWeights"}},
       {.id = "3",
        .name = "vertical Gaussian",  // + " NxN"
        .reference = "Annen et al. 2007 §4.1: the separable Gaussian's second direction",
-       .shaders = {"gaussian"}},
+       .writes = {{.name = "basis-sin-{range}",
+                   .caption = "sin(c_k z), {range}, after the whole Gaussian (Fig. 5)"},
+                  {.name = "basis-cos-{range}",
+                   .caption = "cos(c_k z), {range}, after the whole Gaussian"}},
+       .shaders = {"gaussian"},
+       .keyState = {"uWeights", "uStep"}},
       {.id = "4",
        .name = mipmaps ? "mip-maps" : "sampling state (no mip-maps)",
        .reference = "Annen et al. 2007 §4.1: \"build a mip-map\" of the basis, trilinear or "
                     "anisotropic filtering (Figs. 7, 10)",
+       .writes = {{.name = "basis-sin-k1-4-level{level}",
+                   .caption = "sin(c_k z), k1-4, mip level {level} ({size}x{size}): the mean of "
+                              "the basis over {texels} texels, what trilinear filtering reads "
+                              "where the view minifies the map (Fig. 7)"}},
        .shaders = {"downsample"},
-       .deviations = {kMipmapsAutoDeviation, kDrawnMipChainDeviation}},
+       .deviations = {kMipmapsAutoDeviation, kDrawnMipChainDeviation},
+       .keyState = {"GL_TEXTURE_MIN_FILTER", "GL_TEXTURE_BASE_LEVEL", "glViewport"}},
       {.id = "5a",
        .name = "depth bounds (min/max pyramid of z)",
        .reference = "not in Annen et al. 2007: bounds of z under each footprint, so that the "
@@ -624,24 +636,56 @@ void reconstructInCameraPass(Passes& passes, const GpuScene& gpu, const RenderPa
   });
 }
 
-// --dump-passes: the linear depth of pass 1 and, as Fig. 5, every sine basis texture (four k
-// per RGBA layer) and the first cosine one of pass 2 after the blur, the stored values with
-// [-1, 1] shown as [0, 1].
-void captureDepthAndBasis(Passes& passes, const RenderTarget& depth, const LayeredMap& basis,
-                          const CsmSettings& s) {
-  passes.capture("1", "linear-depth", [&] { return channel(readAttachment(depth, 0), 0); });
+// --dump-passes, as Fig. 5: all 2M basis values (M/4 sine and M/4 cosine RGBA layers, four k
+// each) of `map` as pass `id` leaves them, the stored values with [-1, 1] shown as [0, 1].
+void captureBasisLayers(Passes& passes, const std::string& id, const LayeredMap& map,
+                        const CsmSettings& s, const std::string& stage) {
   const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
   const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
   auto range = [&](int layer) {
     const int first = kChannelsPerLayer * layer + 1;
-    return "k" + std::to_string(first) + "-" + std::to_string(first + kChannelsPerLayer - 1);
+    return "k" + std::to_string(first) + "-" +
+           std::to_string(std::min(first + kChannelsPerLayer - 1, s.order));
   };
-  for (int layer = 0; layer < s.sinLayers(); ++layer)
-    passes.capture("2", "basis-sin-{range}", [&] { return readLayer(basis, layer, scale, bias); },
-                   {}, {{"range", range(layer)}});
-  passes.capture("2", "basis-cos-{range}",
-                 [&] { return readLayer(basis, s.sinLayers(), scale, bias); }, {},
-                 {{"range", range(0)}});
+  for (const char* function : {"sin", "cos"})
+    for (int layer = 0; layer < s.sinLayers(); ++layer) {
+      const int stored = function[0] == 's' ? layer : s.sinLayers() + layer;
+      passes.capture(id, std::string("basis-") + function + "-{range}",
+                     [&] { return readLayer(map, stored, scale, bias); }, {},
+                     {{"range", range(layer)}, {"stage", stage}});
+    }
+}
+
+// --dump-passes: the linear depth of pass 1 and the basis layers of passes 2 and 3: pass 2's
+// output (the horizontal Gaussian's, in the scratch map, when there is a blur) and pass 3's.
+void captureDepthAndBasis(Passes& passes, const RenderTarget& depth, const LayeredMap& basis,
+                          const CsmSettings& s, const LayeredMap& horizontal) {
+  if (!passes.capturing()) return;
+  passes.capture("1", "linear-depth", [&] { return channel(readAttachment(depth, 0), 0); });
+  if (s.blurTaps == 0) {
+    captureBasisLayers(passes, "2", basis, s, "unblurred");
+    return;
+  }
+  captureBasisLayers(passes, "2", horizontal, s, "after the horizontal Gaussian only");
+  captureBasisLayers(passes, "3", basis, s, "");
+}
+
+// --dump-passes: the first sine layer at the first mip levels pass 4 built (none when the
+// mip chain is left out).
+void captureBasisMipLevels(Passes& passes, const LayeredMap& basis, const CsmSettings& s) {
+  constexpr int kShownMipLevels = 3;  // levels 1-3: 2x2, 4x4 and 8x8 texel means
+  if (!passes.capturing() || !s.filtering.mipmaps) return;
+  const float scale = s.encodeUnsigned ? 1.0f : 0.5f;
+  const float bias = s.encodeUnsigned ? 0.0f : 0.5f;
+  for (int level = 1; level <= std::min(kShownMipLevels, basis.levels - 1); ++level) {
+    const int size = std::max(basis.size >> level, 1);
+    const int side = 1 << level;
+    passes.capture("4", "basis-sin-k1-4-level{level}",
+                   [&] { return readLayer(basis, 0, scale, bias, level); }, {},
+                   {{"level", std::to_string(level)},
+                    {"size", std::to_string(size)},
+                    {"texels", std::to_string(side) + "x" + std::to_string(side)}});
+  }
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
@@ -662,8 +706,9 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
   const RenderTarget& depth = renderLinearDepthFromLight(passes, gpu, params, s, range, work);
   const LayeredMap& basis = computeBasisTextures(passes, depth, s, work);
   blurBasisTextures(passes, basis, s, work);
-  captureDepthAndBasis(passes, depth, basis, s);
+  captureDepthAndBasis(passes, depth, basis, s, work.scratch);
   buildBasisMipmaps(passes, basis, s);
+  captureBasisMipLevels(passes, basis, s);
   // The pyramid starts at level 1 (computeDepthBounds): a 1-texel map is not classified.
   const bool classify = s.skipError > 0.0 && params.shadowMapTexels >= kSmallestClassifiedMap;
   const Texture* bounds = classify ? &computeDepthBounds(passes, depth, s, work) : nullptr;

@@ -36,7 +36,8 @@ PassTable hardwareShadowMapPasses() {
                               "offset"}},
        .shaders = {"depth-only"},
        .replaces = {"1"},
-       .deviations = {kDepthRoundoffScaleDeviation}},
+       .deviations = {kDepthRoundoffScaleDeviation},
+       .keyState = {"GL_POLYGON_OFFSET_FILL", "glPolygonOffset"}},
       cameraPassWithShadowTest("2", "hw_shadow.frag, Everitt Eq. 5: textureProj on sampler2DShadow",
                                {"2", "3", "4", "5"}),
   };
@@ -109,7 +110,8 @@ PassSpec cameraPassWithShadowTest(const std::string& id, const std::string& sour
               "sampler2DShadow, direct light x result + ambient",
           .writes = cameraPassBuffers(id, source),
           .shaders = {"texgen-planes", "shadow-test", "hw-shade", "hw-visibility"},
-          .replaces = std::move(replaces)};
+          .replaces = std::move(replaces),
+          .keyState = {"uWorldToShadowMap"}};
 }
 
 // Everitt Eq. 5: shading with the comparison result modulating direct light.

@@ -377,14 +377,16 @@ void buildMipmapsAndSetFiltering(const LayeredMap& map, const MapFiltering& filt
   checkGl("mip-maps and filtering of the shadow map");
 }
 
-Image readLayer(const LayeredMap& map, int layer, float scale, float bias) {
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias, int level) {
   const Framebuffer fbo = makeFramebuffer();
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.id());
-  glFramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.texture.id(), 0, layer);
+  glFramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, map.texture.id(), level,
+                            layer);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  Image rgba(map.size, map.size, 4);
+  const int size = std::max(map.size >> level, 1);
+  Image rgba(size, size, 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, map.size, map.size, GL_RGBA, GL_FLOAT, rgba.data.data());
+  glReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, rgba.data.data());
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   checkGl("read shadow map layer");
   for (float& v : rgba.data) v = std::clamp(v * scale + bias, 0.0f, 1.0f);

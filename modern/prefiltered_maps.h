@@ -140,7 +140,8 @@ extern const char* const kDrawnMipChainDeviation;
 // worldToShadowMap (S * P_light * V_light, Everitt Eq. 5) lives in modern/hardware_shadow_map.h.
 
 // One layer of a layered map as a 4-channel float image (for --dump-passes), each value
-// mapped to value * scale + bias and clamped to [0, 1].
-Image readLayer(const LayeredMap& map, int layer, float scale, float bias);
+// mapped to value * scale + bias and clamped to [0, 1]; `level` is the mip level read
+// (its size is the map's halved `level` times, at least 1).
+Image readLayer(const LayeredMap& map, int layer, float scale, float bias, int level = 0);
 
 }  // namespace sl::modern

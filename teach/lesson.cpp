@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "core/base/errors.h"
@@ -40,9 +41,13 @@ constexpr float kImageDiffFullScale = 0.25f;
 constexpr int kMinShownWidth = 200;
 constexpr int kMaxShownWidth = 560;
 constexpr int kChannelShownWidth = 150;
-// Frames kept by the lesson renderer: a lesson shows at most two (technique and twin), and the
-// main job writes legacy.X then modern.X, which reuse the same two frames.
-constexpr size_t kCachedFrames = 2;
+// Frames kept by the lesson renderer: a lesson shows at most four (technique and twin, at the
+// 2x2 and the 4x4 footprint), and the main job writes legacy.X then modern.X, which reuse them.
+constexpr size_t kCachedFrames = 4;
+// The footprints a PCF lesson shows when the twin table has both (Brabec & Seidel §3-4): 2x2,
+// the paper's fast case, and 4x4, which needs the accumulation buffer (four groups or phases).
+constexpr int kSmallFootprint = 2;
+constexpr int kLargeFootprint = 4;
 
 // ---------------------------------------------------------------- the lesson text
 
@@ -147,6 +152,9 @@ std::vector<Departure> departuresOf(const std::vector<const Technique*>& techniq
 // that re-makes the dump.
 struct Side {
   const Technique* technique = nullptr;
+  std::string role;    // "legacy", "modern" (a twin's two sides) or "own" (no twin)
+  std::string tag;     // "" for the lesson's first footprint, "4x4" for the second one
+  std::string anchor;  // the side's id on the page: "legacy.pcf", "legacy.pcf-4x4"
   RenderParams params;
   std::shared_ptr<const Frame> frame;
   std::vector<PassDumpImage> images;
@@ -176,7 +184,8 @@ class FrameCache {
 };
 
 // `shadowlab render` re-making a side's pictures: the options its technique reads, its --params.
-std::string renderCommandFor(const Technique& t, const RenderParams& p, const LessonSettings& s) {
+std::string renderCommandFor(const Technique& t, const RenderParams& p, const LessonSettings& s,
+                             const std::string& outName, bool dump = true) {
   std::vector<std::string> a = {
       "shadowlab",   "render", "--scene", s.scene,
       "--technique", t.name,   "--size",  std::to_string(p.width) + "x" + std::to_string(p.height)};
@@ -187,15 +196,20 @@ std::string renderCommandFor(const Technique& t, const RenderParams& p, const Le
   if (readsOption(t, CommonOption::kPrecision) && p.precision != Precision::k8)
     a.insert(a.end(), {"--precision", precisionName(p.precision)});
   for (const auto& [k, v] : p.extra) a.insert(a.end(), {"--param", k + "=" + v});
-  a.insert(a.end(), {"--out", t.name + ".png", "--mask", t.name + "-mask.png", "--dump-passes",
-                     t.name + "-passes"});
+  a.insert(a.end(), {"--out", outName + ".png"});
+  if (dump)
+    a.insert(a.end(), {"--mask", outName + "-mask.png", "--dump-passes", outName + "-passes"});
   return shellJoin(a);
 }
 
 Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
-                const LessonSettings& s, FrameCache& cache) {
+                const LessonSettings& s, FrameCache& cache, const std::string& role,
+                const std::string& tag) {
   Side side;
   side.technique = &t;
+  side.role = role;
+  side.tag = tag;
+  side.anchor = tag.empty() ? t.name : t.name + "-" + tag;
   side.params = p;
   side.params.capturePasses = true;
   side.frame = cache.render(t, scene, side.params, s.scene);
@@ -214,15 +228,40 @@ Side renderSide(const Technique& t, const RenderParams& p, const Scene& scene,
                  PassDumpHeader{t.name, t.paper, scene.name, parameters,
                                 twins::legacyTwinOf(t.name), twins::legacyTwinPassesOf(t.name)},
                  side.images);
-  side.prefix = t.name + "_";
-  side.renderCommand = renderCommandFor(t, p, s);
+  side.prefix = side.anchor + "_";
+  side.renderCommand = renderCommandFor(t, p, s, side.anchor);
   return side;
 }
 
 // ---------------------------------------------------------------- legacy against modern
 
+// ---------------------------------------------------------------- why: pictures made at lesson
+// time
+
+// One picture of a "why" block: rendered by the lesson with the parameters the lesson text
+// names, captioned with those words and what the run measured.
+struct WhyPicture {
+  std::string file;      // "why-1-2.png"
+  std::string caption;   // the lesson text's words
+  std::string measured;  // from the run: the share of the image in shadow
+  std::string command;   // the `shadowlab render` command that makes the same image
+  Image image;
+};
+
+// A "why" block of the lesson text: a question a student asks about a pass, the answer, and the
+// pictures (or the traced numbers) that make it visible.
+struct WhyBlock {
+  std::string title;
+  std::vector<std::string> text;
+  std::vector<WhyPicture> pictures;
+  std::string tableHtml;   // numbers from the page's own GL traces ("planes", "parts")
+  std::string figureHtml;  // a diagram drawn from the pass table ("tiling")
+};
+
 struct Comparison {
   twins::TwinPair pair;
+  size_t legacy = 0, modern = 0;  // the two sides of LessonPage::sides
+  std::string tag;                // the sides' tag: "" or "4x4"
   twins::Agreement mask;
   long long imagePixels = 0;
   long long imageDiffering = 0;          // max over RGB of |legacy - modern| > one 8-bit step
@@ -270,12 +309,25 @@ Comparison compareSides(const twins::TwinPair& pair, const Side& legacy, const S
   return c;
 }
 
-// The twin pair of a technique: the first of registry/twins.h whose legacy or modern side it
-// is (the 8-bit faithful pair for the Brabec–Seidel techniques, linear compare for hw).
-std::optional<twins::TwinPair> pairOf(const std::string& technique) {
-  for (const twins::TwinPair& p : twins::twinPairs())
-    if ((p.legacy == technique || p.modern == technique) && p.precision == Precision::k8) return p;
-  return std::nullopt;
+// The twin pairs a lesson shows: the first of registry/twins.h whose legacy or modern side the
+// technique is (the 8-bit faithful pair for the Brabec–Seidel techniques, linear compare for hw)
+// and, when that one has the 2x2 footprint and the table has the same 8-bit pair at 4x4, that
+// one too: PCF's 4x4 footprint is where the accumulation buffer and fast PCF's four phases
+// appear (Brabec & Seidel §3, §4). Empty for a technique without a twin.
+std::vector<twins::TwinPair> pairsOf(const std::string& technique) {
+  std::vector<twins::TwinPair> out;
+  for (const twins::TwinPair& p : twins::twinPairs()) {
+    if ((p.legacy != technique && p.modern != technique) || p.precision != Precision::k8) continue;
+    if (out.empty() ||
+        (out.size() == 1 && out[0].filter == kSmallFootprint && p.filter == kLargeFootprint &&
+         p.legacyExtra == out[0].legacyExtra && p.modernExtra == out[0].modernExtra))
+      out.push_back(p);
+  }
+  return out;
+}
+
+std::string footprintTag(int filter) {
+  return std::to_string(filter) + "x" + std::to_string(filter);
 }
 
 // ---------------------------------------------------------------- the page
@@ -284,8 +336,10 @@ struct LessonPage {
   const Technique* technique = nullptr;
   LessonText text;
   LessonSettings settings;
-  std::vector<Side> sides;  // legacy first, then modern; or the technique alone
-  std::optional<Comparison> comparison;
+  // Per twin pair legacy, then modern (the 2x2 pair first); or the technique alone.
+  std::vector<Side> sides;
+  std::vector<Comparison> comparisons;
+  std::vector<WhyBlock> why;  // the lesson text's "why" blocks with their pictures
   std::vector<Departure> departures;
   std::string lessonCommand;
   std::string commit;
@@ -303,6 +357,15 @@ std::string percent(long long part, long long whole) {
 
 std::string code(const std::string& text) { return "<code>" + htmlEscape(text) + "</code>"; }
 
+// The files and anchor of a comparison: "diff-mask.png" for the first pair, "diff-mask-4x4.png"
+// for the second footprint.
+std::string diffFile(const std::string& stem, const std::string& tag) {
+  return stem + (tag.empty() ? "" : "-" + tag) + ".png";
+}
+std::string compareAnchor(const std::string& tag) {
+  return tag.empty() ? "compare" : "compare-" + tag;
+}
+
 // The anchor of a pass on the page: its technique and its id in the pass table.
 std::string passAnchor(const std::string& technique, const std::string& id) {
   return htmlEscape(technique) + "-pass-" + htmlEscape(id);
@@ -311,7 +374,11 @@ std::string passAnchor(const std::string& technique, const std::string& id) {
 // The GL state card of a pass (passes.json "state": [{"group", "text", "before_pass"}] in call
 // order; a "part" line names a part of a pass timed in several parts), or the visible note
 // that none was recorded. An empty list is a record: the pass made no GL call (ray tracing).
+// For slides: a line holding a word of the pass's "key_state" (declared by the technique,
+// core/technique/pass_table.h PassSpec::keyState) is highlighted; runs of other lines that were
+// set before the pass's timer or repeat a line shown above are folded into one line.
 void writeStateCard(std::ostream& html, const json& pass) {
+  constexpr size_t kShortestFoldedRun = 3;  // a fold of one or two lines saves nothing
   const json state = pass.value("state", json());
   if (!state.is_array()) {
     html << "<div class=\"state-card missing\">state card: not recorded</div>\n";
@@ -322,20 +389,61 @@ void writeStateCard(std::ostream& html, const json& pass) {
     html << "</div><i>no GL call that changes state or draws was made in this pass</i></div>\n";
     return;
   }
-  html << " <span class=\"hint\">(" << state.size()
-       << " lines in call order; grey: set before the pass's timer started)</span></div><table>\n";
-  std::string lastGroup;
+  std::vector<std::string> keys;
+  for (const json& k : pass.value("key_state", json::array()))
+    if (k.is_string()) keys.push_back(k.get<std::string>());
+  struct Line {
+    std::string group, text;
+    bool before = false, key = false, foldable = false;
+  };
+  std::vector<Line> lines;
+  std::set<std::pair<std::string, std::string>> seen;
   for (const json& line : state) {
-    const std::string group = line.is_object() ? line.value("group", "") : "";
-    const std::string text = line.is_object() ? line.value("text", "") : line.dump();
-    const bool before = line.is_object() && line.value("before_pass", false);
+    Line l;
+    l.group = line.is_object() ? line.value("group", "") : "";
+    l.text = line.is_object() ? line.value("text", "") : line.dump();
+    l.before = line.is_object() && line.value("before_pass", false);
+    l.key = std::any_of(keys.begin(), keys.end(),
+                        [&](const std::string& k) { return l.text.find(k) != std::string::npos; });
+    const bool repeated = !seen.insert({l.group, l.text}).second;
+    l.foldable = !l.key && l.group != "part" && (l.before || repeated);
+    lines.push_back(std::move(l));
+  }
+  html << " <span class=\"hint\">(" << state.size() << " lines in call order"
+       << (keys.empty() ? ""
+                        : "; highlighted: the lines that matter for this pass, as its "
+                          "technique declares them")
+       << "; grey: set before the pass's timer started; folded: runs of setup and of lines "
+          "repeated from above)</span></div><table>\n";
+  std::string lastGroup;
+  auto row = [&](const Line& l) {
     html << "<tr"
-         << (group == "part" ? " class=\"part\""
-             : before        ? " class=\"before\""
-                             : "")
-         << "><td class=\"group\">" << (group == lastGroup ? "" : htmlEscape(group)) << "</td><td>"
-         << code(text) << "</td></tr>\n";
-    lastGroup = group;
+         << (l.group == "part" ? " class=\"part\""
+             : l.key           ? " class=\"key\""
+             : l.before        ? " class=\"before\""
+                               : "")
+         << "><td class=\"group\">" << (l.group == lastGroup ? "" : htmlEscape(l.group))
+         << "</td><td>" << code(l.text) << "</td></tr>\n";
+    lastGroup = l.group;
+  };
+  for (size_t i = 0; i < lines.size();) {
+    size_t end = i;
+    while (end < lines.size() && lines[end].foldable) ++end;
+    if (end - i < kShortestFoldedRun) {
+      row(lines[i]);
+      ++i;
+      continue;
+    }
+    const bool allBefore = std::all_of(lines.begin() + long(i), lines.begin() + long(end),
+                                       [](const Line& l) { return l.before; });
+    html << "<tr class=\"folded\"><td></td><td><details><summary>" << (end - i) << " lines "
+         << (allBefore ? "of setup before the pass" : "of setup and repeated state")
+         << "</summary><table>\n";
+    lastGroup.clear();
+    for (size_t k = i; k < end; ++k) row(lines[k]);
+    html << "</table></details></td></tr>\n";
+    lastGroup.clear();
+    i = end;
   }
   html << "</table></div>\n";
 }
@@ -376,16 +484,19 @@ void writeGlsl(std::ostream& html, const json& pass) {
   }
 }
 
-// "legacy.fast-pcf pass 6a accumulate" -> a link to that pass when this page shows it.
-std::string replacesLink(const std::string& text, const std::vector<Side>& sides) {
+// "legacy.fast-pcf pass 6a accumulate" -> a link to that pass of the legacy side with the same
+// footprint as `from` (the 4x4 twin's accumulation on the 4x4 legacy strip), when this page
+// shows it.
+std::string replacesLink(const std::string& text, const std::vector<Side>& sides,
+                         const Side& from) {
   static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass ([0-9a-z]+)\b.*)");
   std::smatch m;
   if (std::regex_match(text, m, kPass))
     for (const Side& s : sides) {
-      if (s.technique->name != m[1].str()) continue;
+      if (s.technique->name != m[1].str() || s.tag != from.tag) continue;
       for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
         if (pass.value("id", "") == m[2].str())
-          return "<a href=\"#" + passAnchor(m[1].str(), m[2].str()) + "\">" + htmlEscape(text) +
+          return "<a href=\"#" + passAnchor(s.anchor, m[2].str()) + "\">" + htmlEscape(text) +
                  "</a>";
     }
   return htmlEscape(text);
@@ -418,17 +529,16 @@ std::string legendHtml(const json& legend) {
 }
 
 void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
-  const std::string& name = side.technique->name;
   std::map<std::string, const json*> images;
   for (const json& i : side.passes["images"]) images[i["file"].get<std::string>()] = &i;
   html << "<p>" << htmlEscape(side.technique->paper) << ": " << htmlEscape(side.technique->summary)
        << ".<br>Every picture of this strip is a file of <span class=\"cmd\">"
        << code(side.renderCommand) << "</span> (named under each picture, in the folder "
-       << code(name + "-passes") << "). Times are of this one render.</p>\n";
+       << code(side.anchor + "-passes") << "). Times are of this one render.</p>\n";
   for (const json& pass : side.passes["passes"]) {
     const int number = pass.value("number", -1);
     const std::string id = pass.value("id", std::to_string(number));
-    html << "<section class=\"pass\" id=\"" << passAnchor(name, id) << "\">\n<h3>"
+    html << "<section class=\"pass\" id=\"" << passAnchor(side.anchor, id) << "\">\n<h3>"
          << (number >= 0 ? "Pass " + id + ": " : std::string())
          << htmlEscape(pass.value("name", ""));
     if (pass["milliseconds"].is_number())
@@ -448,7 +558,7 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
       bool first = true;
       for (const json& r : replaces) {
         html << (first ? "" : ", ")
-             << replacesLink(r.is_string() ? r.get<std::string>() : "", page.sides);
+             << replacesLink(r.is_string() ? r.get<std::string>() : "", page.sides, side);
         first = false;
       }
       html << "</p>\n";
@@ -485,14 +595,15 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
   }
 }
 
-void writeComparison(std::ostream& html, const LessonPage& page) {
-  const Comparison& c = *page.comparison;
-  const Side& legacy = page.sides[0];
-  const Side& modern = page.sides[1];
-  html << "<h2 id=\"compare\">Legacy against modern</h2>\n<p>The pair <b>"
-       << htmlEscape(c.pair.label) << "</b> of the twin table (registry/twins.cpp), on "
-       << htmlEscape(page.settings.scene) << " at " << page.settings.width << "x"
-       << page.settings.height << ". The masks against the pair's " << htmlEscape(c.mask.verdict)
+void writeComparison(std::ostream& html, const LessonPage& page, const Comparison& c) {
+  const Side& legacy = page.sides[c.legacy];
+  const Side& modern = page.sides[c.modern];
+  html << "<h2 id=\"" << compareAnchor(c.tag) << "\">Legacy against modern"
+       << (page.comparisons.size() > 1 ? ", " + footprintTag(c.pair.filter) + " footprint" : "")
+       << "</h2>\n<p>The pair <b>" << htmlEscape(c.pair.label)
+       << "</b> of the twin table (registry/twins.cpp), on " << htmlEscape(page.settings.scene)
+       << " at " << page.settings.width << "x" << page.settings.height
+       << ". The masks against the pair's " << htmlEscape(c.mask.verdict)
        << (c.mask.withinBound ? " — <b>within the bound</b>."
                               : " — <b class=\"bad\">outside the bound</b>.")
        << " Why this bound: " << htmlEscape(c.pair.why) << ".</p>\n";
@@ -530,14 +641,48 @@ void writeComparison(std::ostream& html, const LessonPage& page) {
   };
   figure(legacy.prefix + "image.png", "legacy: " + htmlEscape(legacy.technique->name));
   figure(modern.prefix + "image.png", "modern: " + htmlEscape(modern.technique->name));
-  figure("diff-mask.png",
+  figure(diffFile("diff-mask", c.tag),
          "|legacy mask - modern mask|: black = equal, dark blue = tiny, red, "
          "yellow, white = a whole visibility step");
-  figure("diff-image.png",
+  figure(diffFile("diff-image", c.tag),
          "max over R, G, B of |legacy image - modern image|: black = equal, white = " +
              fmt(kImageDiffFullScale, "%.2g") + " or more");
   html << "</div>\n<p>Re-made by this page's command (below); the two images and masks alone by "
        << code(legacy.renderCommand) << " and " << code(modern.renderCommand) << ".</p>\n";
+}
+
+// "legacy.pcf", or "legacy.pcf, 4x4 footprint" on a page that shows two footprints.
+std::string sideLabel(const Side& s, const LessonPage& page) {
+  if (page.comparisons.size() < 2) return s.technique->name;
+  return s.technique->name + ", " + footprintTag(s.params.filter) + " footprint";
+}
+
+// The "why" blocks (WhyBlock): the answer, then the pictures rendered for it with their
+// captions, what the run measured and the command that makes each.
+void writeWhy(std::ostream& html, const LessonPage& page) {
+  if (page.why.empty()) return;
+  html << "<h2 id=\"why\">Why each step</h2>\n<p>The questions a student asks about the passes "
+          "below, answered with pictures this page's run rendered (on "
+       << htmlEscape(page.settings.scene) << " at " << page.settings.width << "x"
+       << page.settings.height << ") and numbers from its own GL traces.</p>\n";
+  for (size_t i = 0; i < page.why.size(); ++i) {
+    const WhyBlock& w = page.why[i];
+    html << "<div class=\"why\" id=\"why-" << i + 1 << "\"><h3>" << htmlEscape(w.title)
+         << "</h3>\n";
+    for (const std::string& p : w.text) html << "<p>" << htmlEscape(p) << "</p>\n";
+    if (!w.pictures.empty()) {
+      html << "<div class=\"images\">\n";
+      for (const WhyPicture& p : w.pictures)
+        html << "<figure class=\"picture\"><img src=\"" << htmlEscape(p.file) << "\" alt=\""
+             << htmlEscape(p.caption)
+             << "\" style=\"width: " << std::min(p.image.width, kMaxShownWidth)
+             << "px\"><figcaption><b>" << htmlEscape(p.caption)
+             << "</b><br><span class=\"measured\">" << htmlEscape(p.measured) << "</span><br>"
+             << code(p.command) << "</figcaption></figure>\n";
+      html << "</div>\n";
+    }
+    html << w.figureHtml << w.tableHtml << "</div>\n";
+  }
 }
 
 std::string pageHtml(const LessonPage& page) {
@@ -579,14 +724,28 @@ std::string pageHtml(const LessonPage& page) {
        << ".legend { font-size: 0.9em; color: #444; }\n"
        << ".legend .bar { display: inline-block; width: 70px; height: 0.7em; "
           "border: 1px solid #999; vertical-align: middle; }\n"
-       << ".glsl-title { color: #444; margin-bottom: 0.2em; }\n</style>\n</head>\n<body>\n";
+       << ".glsl-title { color: #444; margin-bottom: 0.2em; }\n"
+       << ".state-card tr.key td { background: #ffe9a8; font-weight: bold; }\n"
+       << ".state-card details summary { color: #555; cursor: pointer; }\n"
+       << ".why { border-left: 3px solid #9bd; padding-left: 0.8em; margin: 1em 0; }\n"
+       << ".why figure { max-width: 420px; }\n.measured { color: #333; font-size: 0.9em; }\n"
+       << "@media print {\n  body { max-width: none; margin: 0; font-size: 11pt; }\n"
+       << "  .pass, h2, .why { break-before: page; page-break-before: always; }\n"
+       << "  .pass { break-inside: avoid-page; }\n"
+       << "  .state-card { max-height: none; overflow: visible; }\n"
+       << "  .state-card tr.key td { background: none; text-decoration: underline; }\n"
+       << "  a { color: inherit; text-decoration: none; }\n}\n"
+       << "</style>\n</head>\n<body>\n";
   html << "<h1>" << htmlEscape(field(text, "title")) << "</h1>\n<p><b>" << htmlEscape(t.name)
        << "</b> — " << htmlEscape(text.paper) << ", " << htmlEscape(field(text, "sections"))
        << ".</p>\n<p>Contents: <a href=\"#idea\">the idea</a>";
+  if (!page.why.empty()) html << " · <a href=\"#why\">why each step</a>";
   for (const Side& s : page.sides)
-    html << " · <a href=\"#" << htmlEscape(s.technique->name) << "\">"
-         << htmlEscape(s.technique->name) << " pass by pass</a>";
-  if (page.comparison) html << " · <a href=\"#compare\">legacy against modern</a>";
+    html << " · <a href=\"#" << htmlEscape(s.anchor) << "\">" << htmlEscape(sideLabel(s, page))
+         << " pass by pass</a>";
+  for (const Comparison& c : page.comparisons)
+    html << " · <a href=\"#" << compareAnchor(c.tag) << "\">legacy against modern"
+         << (page.comparisons.size() > 1 ? " (" + footprintTag(c.pair.filter) + ")" : "") << "</a>";
   html << " · <a href=\"#departures\">known departures</a> · <a href=\"#made\">how this page was "
           "made</a></p>\n";
 
@@ -607,15 +766,16 @@ std::string pageHtml(const LessonPage& page) {
     html << "</ul>\n";
   }
 
+  writeWhy(html, page);
   for (const Side& s : page.sides) {
-    const bool isTwin = page.sides.size() > 1;
-    const bool isLegacy = isTwin && &s == &page.sides.front();  // legacy first (LessonPage)
-    html << "<h2 id=\"" << htmlEscape(s.technique->name) << "\">"
-         << (isTwin ? (isLegacy ? "The 2001 pipeline: " : "The shader twin: ") : "Pass by pass: ")
-         << htmlEscape(s.technique->name) << "</h2>\n";
+    html << "<h2 id=\"" << htmlEscape(s.anchor) << "\">"
+         << (s.role == "legacy"   ? "The 2001 pipeline: "
+             : s.role == "modern" ? "The shader twin: "
+                                  : "Pass by pass: ")
+         << htmlEscape(sideLabel(s, page)) << "</h2>\n";
     writeSide(html, s, page);
   }
-  if (page.comparison) writeComparison(html, page);
+  for (const Comparison& c : page.comparisons) writeComparison(html, page, c);
 
   html << "<h2 id=\"departures\">Known departures</h2>\n<p>Where this implementation departs from "
           "the paper or the specification, the pass that departs declares it in its "
@@ -652,6 +812,233 @@ std::string pageHtml(const LessonPage& page) {
 
 // ---------------------------------------------------------------- assembling a lesson
 
+RenderParams paramsForSettings(const LessonSettings& s);
+
+// A part of an image, seen from the top ([x, y from the top, w, h] in pixels), enlarged `zoom`
+// times with nearest-neighbour sampling so that single pixels stay visible.
+Image croppedAndZoomed(const Image& image, const json& crop, int zoom) {
+  int x = 0, top = 0, w = image.width, h = image.height;
+  if (crop.is_array() && crop.size() == 4) {
+    x = std::clamp(crop[0].get<int>(), 0, image.width - 1);
+    top = std::clamp(crop[1].get<int>(), 0, image.height - 1);
+    w = std::clamp(crop[2].get<int>(), 1, image.width - x);
+    h = std::clamp(crop[3].get<int>(), 1, image.height - top);
+  }
+  zoom = std::max(zoom, 1);
+  Image out(w * zoom, h * zoom, image.channels);
+  const int bottom = image.height - top - h;  // rows are stored bottom-up
+  for (int y = 0; y < out.height; ++y)
+    for (int xx = 0; xx < out.width; ++xx)
+      for (int c = 0; c < image.channels; ++c)
+        out.at(xx, y, c) = image.at(x + xx / zoom, bottom + y / zoom, c);
+  return out;
+}
+
+// The numbers of a traced line: "GL_S: GL_EYE_PLANE = (0.862, -0.43, ...)" -> {0.862, -0.43, ...}
+// (those after the first '(' or '[').
+std::vector<double> numbersOf(const std::string& text) {
+  static const std::regex kNumber(R"([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)");
+  const size_t open = text.find_first_of("([");
+  std::vector<double> out;
+  if (open == std::string::npos) return out;
+  const std::string tail = text.substr(open);
+  for (auto it = std::sregex_iterator(tail.begin(), tail.end(), kNumber);
+       it != std::sregex_iterator(); ++it)
+    out.push_back(std::stod(it->str()));
+  return out;
+}
+
+// Everitt Eq. 5 on both twins: the four EYE_LINEAR planes the legacy camera pass gives (unit 0)
+// beside the rows of the matrix the shader twin loads (uWorldToShadowMap), as traced on this
+// page's cards, with their largest difference. Empty when the page has no such pair of lines.
+std::string planesTable(const std::vector<Side>& sides) {
+  std::vector<std::vector<double>> planes(4), rows;
+  std::string legacyName, modernName;
+  const char* coords[] = {"GL_S", "GL_T", "GL_R", "GL_Q"};
+  for (const Side& side : sides) {
+    if (!side.tag.empty()) continue;
+    for (const json& pass : side.passes["passes"])
+      for (const json& line : pass.value("state", json::array())) {
+        const std::string text = line.value("text", "");
+        for (int i = 0; i < 4; ++i)
+          if (text.rfind(std::string(coords[i]) + ": GL_EYE_PLANE = (", 0) == 0 &&
+              text.find("(unit 0;") != std::string::npos && planes[size_t(i)].empty()) {
+            planes[size_t(i)] = numbersOf(text);
+            legacyName = side.technique->name;
+          }
+        if (text.rfind("uWorldToShadowMap = mat4 [", 0) == 0 && rows.empty()) {
+          const std::vector<double> m = numbersOf(text);
+          for (size_t r = 0; r + 1 < 5 && m.size() == 16; ++r)
+            rows.emplace_back(m.begin() + long(4 * r), m.begin() + long(4 * r + 4));
+          modernName = side.technique->name;
+        }
+      }
+  }
+  if (rows.size() != 4 ||
+      std::any_of(planes.begin(), planes.end(), [](const auto& p) { return p.size() < 4; }))
+    return "";
+  std::ostringstream html;
+  double largest = 0.0;
+  html << "<table class=\"numbers\"><tr><th>row</th><th>" << htmlEscape(legacyName)
+       << ": glTexGenfv(…, GL_EYE_PLANE) (pass card)</th><th>" << htmlEscape(modernName)
+       << ": uWorldToShadowMap row (pass card)</th><th>largest |difference|</th></tr>\n";
+  for (int i = 0; i < 4; ++i) {
+    double d = 0.0;
+    std::string a, b;
+    for (int k = 0; k < 4; ++k) {
+      d = std::max(d, std::fabs(planes[size_t(i)][size_t(k)] - rows[size_t(i)][size_t(k)]));
+      a += (k ? ", " : "") + fmt(planes[size_t(i)][size_t(k)], "%.6g");
+      b += (k ? ", " : "") + fmt(rows[size_t(i)][size_t(k)], "%.6g");
+    }
+    largest = std::max(largest, d);
+    html << "<tr><td>" << coords[i] << "</td><td><code>(" << a << ")</code></td><td><code>(" << b
+         << ")</code></td><td>" << fmt(d, "%.2g") << "</td></tr>\n";
+  }
+  html << "</table>\n<p class=\"measured\">Largest difference over the sixteen numbers: "
+       << fmt(largest, "%.2g")
+       << " (both printed with 6 significant digits; the two programs compute the same product "
+          "in float).</p>\n";
+  return html.str();
+}
+
+// The parts of a pass repeated per phase or group (the 4x4 footprint), with the traced lines
+// of each part that hold one of `match` (the kernels of the packing copy, the texture matrix
+// of the projective pass): a table of what changes from part to part.
+std::string partsTable(const std::vector<Side>& sides, const json& block) {
+  const std::string tag = footprintTag(kLargeFootprint);
+  std::ostringstream html;
+  for (const Side& side : sides) {
+    if (side.tag != tag || side.role != "legacy") continue;
+    for (const json& id : block.value("passes", json::array()))
+      for (const json& pass : side.passes["passes"]) {
+        if (pass.value("id", "") != id.get<std::string>()) continue;
+        html << "<table class=\"numbers parts\"><tr><th colspan=2>"
+             << htmlEscape(side.technique->name) << " at 4x4, pass "
+             << htmlEscape(pass.value("id", "")) << " (" << htmlEscape(pass.value("name", ""))
+             << "), as traced</th></tr>\n";
+        std::string part;
+        for (const json& line : pass.value("state", json::array())) {
+          const std::string text = line.value("text", "");
+          if (line.value("group", "") == "part") {
+            const size_t open = text.rfind(" (");
+            part = open == std::string::npos ? text : text.substr(open + 1);
+            continue;
+          }
+          for (const json& m : block.value("match", json::array()))
+            if (text.find(m.get<std::string>()) != std::string::npos &&
+                text.find("load [1 0 0 0; 0 1 0 0; 0 0 1 0; 0 0 0 1]") == std::string::npos) {
+              html << "<tr><td>" << htmlEscape(part) << "</td><td>" << code(text) << "</td></tr>\n";
+              break;
+            }
+        }
+        html << "</table>\n";
+      }
+  }
+  return html.str();
+}
+
+// Brabec & Seidel §4's 4x4 footprint as four 2x2 phases: the 16 texels around the lookup point
+// (the texel corner nearest to it, the dot), each phase's block in its colour with the channel
+// that holds each texel (the packing's channel meaning, PassBuffer::channelMeaning: R lower left,
+// G lower right, B upper left, A upper right). Drawn as SVG from the legacy 4x4 pass table.
+std::string tilingFigure(const std::vector<Side>& sides) {
+  constexpr int kCell = 44;  // pixels per texel in the drawing
+  constexpr int kMargin = 10;
+  const char* colours[] = {"#fbb", "#bdf", "#bfb", "#fe9"};
+  const char* phases[] = {"upper-left", "upper-right", "lower-left", "lower-right"};
+  const char* letters[2][2] = {{"B", "A"}, {"R", "G"}};  // [row from the top][column]
+  const PassSpec* packing = nullptr;
+  for (const Side& side : sides)
+    if (side.tag == footprintTag(kLargeFootprint) && side.role == "legacy")
+      for (const PassSpec& spec : side.technique->passes)
+        for (const PassBuffer& b : spec.writes)
+          if (b.centreChannel >= 0 && b.channelMeaning.size() == 4) packing = &spec;
+  if (packing == nullptr) return "";
+  const int size = 4 * kCell + 2 * kMargin;
+  std::ostringstream svg;
+  svg << "<svg class=\"tiling\" width=\"" << size << "\" height=\"" << size << "\" viewBox=\"0 0 "
+      << size << " " << size << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) {
+      const int phase = (row / 2) * 2 + col / 2;
+      const int x = kMargin + col * kCell, y = kMargin + row * kCell;
+      svg << "<rect x=\"" << x << "\" y=\"" << y << "\" width=\"" << kCell << "\" height=\""
+          << kCell << "\" fill=\"" << colours[phase] << "\" stroke=\"#888\"/>"
+          << "<text x=\"" << x + kCell / 2 << "\" y=\"" << y + kCell / 2 + 5
+          << "\" text-anchor=\"middle\">" << letters[row % 2][col % 2] << "</text>\n";
+    }
+  for (int phase = 0; phase < 4; ++phase) {
+    const int x = kMargin + (phase % 2) * 2 * kCell, y = kMargin + (phase / 2) * 2 * kCell;
+    svg << "<rect x=\"" << x << "\" y=\"" << y << "\" width=\"" << 2 * kCell << "\" height=\""
+        << 2 * kCell << "\" fill=\"none\" stroke=\"#000\" stroke-width=\"2\"><title>"
+        << phases[phase] << " phase</title></rect>\n";
+  }
+  svg << "<circle cx=\"" << kMargin + 2 * kCell << "\" cy=\"" << kMargin + 2 * kCell
+      << "\" r=\"5\" fill=\"#000\"/>\n</svg>";
+  std::ostringstream html;
+  html << "<figure class=\"picture\">" << svg.str()
+       << "<figcaption>The 4x4 footprint of one lookup as four 2x2 phases, one packed map each "
+          "(pass "
+       << htmlEscape(packing->id)
+       << "; upper-left red, "
+          "upper-right blue, lower-left green, lower-right yellow); the letter in each texel is "
+          "the channel of that phase's packed map that holds it ("
+       << htmlEscape(packing->writes.front().channelMeaning[0]) << " R, "
+       << htmlEscape(packing->writes.front().channelMeaning[1]) << " G, "
+       << htmlEscape(packing->writes.front().channelMeaning[2])
+       << " B, upper right A); the dot "
+          "is the texel corner nearest to the point.</figcaption></figure>\n";
+  return html.str();
+}
+
+// The "why" blocks of the lesson text: [{"title", "text": [...], "renders": [{"technique",
+// "params", "filter", "caption", "crop", "zoom"}], "table": "planes" | "parts", "passes",
+// "match", "figure": "tiling"}]; each render is made here, on the lesson's scene and size.
+std::vector<WhyBlock> whyBlocks(const LessonText& text, const std::vector<Side>& sides,
+                                const LessonSettings& s, const Scene& scene) {
+  std::vector<WhyBlock> out;
+  const json blocks = text.entry.value("why", json::array());
+  try {
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      const json& block = blocks[b];
+      WhyBlock w;
+      w.title = block.at("title").get<std::string>();
+      w.text = block.value("text", json::array()).get<std::vector<std::string>>();
+      const json renders = block.value("renders", json::array());
+      for (size_t r = 0; r < renders.size(); ++r) {
+        const json& render = renders[r];
+        const Technique& t = findTechnique(render.at("technique").get<std::string>());
+        RenderParams p = paramsForSettings(s);
+        p.filter = render.value("filter", p.filter);
+        const json params = render.value("params", json::object());
+        for (const auto& [k, v] : params.items()) p.extra[k] = v.get<std::string>();
+        const Frame frame = renderTechnique(t, scene, p);
+        WhyPicture pic;
+        pic.file = "why-" + std::to_string(b + 1) + "-" + std::to_string(r + 1) + ".png";
+        pic.caption = render.at("caption").get<std::string>();
+        long long shadowed = 0;  // visibility below one half
+        for (float v : frame.visibility.data) shadowed += v < 0.5f;
+        const double share = frame.visibility.data.empty()
+                                 ? 0.0
+                                 : double(shadowed) / double(frame.visibility.data.size());
+        pic.measured = fmt(100.0 * share, "%.1f") + "% of the image in shadow (visibility < 1/2)";
+        pic.command = renderCommandFor(t, p, s, pic.file.substr(0, pic.file.size() - 4), false);
+        pic.image =
+            croppedAndZoomed(frame.color, render.value("crop", json()), render.value("zoom", 1));
+        w.pictures.push_back(std::move(pic));
+      }
+      const std::string table = block.value("table", "");
+      if (table == "planes") w.tableHtml = planesTable(sides);
+      if (table == "parts") w.tableHtml = partsTable(sides, block);
+      if (block.value("figure", "") == "tiling") w.figureHtml = tilingFigure(sides);
+      out.push_back(std::move(w));
+    }
+  } catch (const json::exception& e) {
+    throw InputError("lesson text " + text.file + ": why: " + e.what());
+  }
+  return out;
+}
+
 RenderParams paramsForSettings(const LessonSettings& s) {
   RenderParams p;
   p.width = s.width;
@@ -676,22 +1063,31 @@ LessonPage prepareLesson(const Technique& t, const LessonSettings& s, const std:
   page.lessonCommand = lessonCommandFor(t.name, s, out);
   page.commit = buildCommit();
   const Scene scene = loadScene(s.scene);
-  if (const auto pair = pairOf(t.name)) {
-    const int filter = pair->filter;
-    (void)filter;
+  const std::vector<twins::TwinPair> pairs = pairsOf(t.name);
+  for (const twins::TwinPair& pair : pairs) {
     const RenderParams lp =
-        twins::paramsFor(*pair, true, s.width, s.height, s.shadowMapTexels, Backend::kOsmesa);
+        twins::paramsFor(pair, true, s.width, s.height, s.shadowMapTexels, Backend::kOsmesa);
     const RenderParams mp =
-        twins::paramsFor(*pair, false, s.width, s.height, s.shadowMapTexels, Backend::kOsmesa);
-    page.sides.push_back(renderSide(findTechnique(pair->legacy), lp, scene, s, cache));
-    page.sides.push_back(renderSide(findTechnique(pair->modern), mp, scene, s, cache));
-    page.comparison = compareSides(*pair, page.sides[0], page.sides[1]);
-  } else {
-    page.sides.push_back(renderSide(t, paramsForSettings(s), scene, s, cache));
+        twins::paramsFor(pair, false, s.width, s.height, s.shadowMapTexels, Backend::kOsmesa);
+    const std::string tag = &pair == &pairs.front() ? "" : footprintTag(pair.filter);
+    page.sides.push_back(
+        renderSide(findTechnique(pair.legacy), lp, scene, s, cache, "legacy", tag));
+    page.sides.push_back(
+        renderSide(findTechnique(pair.modern), mp, scene, s, cache, "modern", tag));
+    const size_t l = page.sides.size() - 2, m = page.sides.size() - 1;
+    page.comparisons.push_back(compareSides(pair, page.sides[l], page.sides[m]));
+    page.comparisons.back().legacy = l;
+    page.comparisons.back().modern = m;
+    page.comparisons.back().tag = tag;
   }
-  // Departures: what the pass tables of the page's techniques declare.
+  if (pairs.empty())
+    page.sides.push_back(renderSide(t, paramsForSettings(s), scene, s, cache, "own", ""));
+  page.why = whyBlocks(page.text, page.sides, s, scene);
+  // Departures: what the pass tables of the page's techniques declare (each technique once).
   std::vector<const Technique*> shown;
-  for (const Side& side : page.sides) shown.push_back(side.technique);
+  for (const Side& side : page.sides)
+    if (std::find(shown.begin(), shown.end(), side.technique) == shown.end())
+      shown.push_back(side.technique);
   page.departures = departuresOf(shown);
   return page;
 }
@@ -709,13 +1105,18 @@ void writeLessonFiles(const LessonPage& page, const std::string& directory) {
   for (const Side& s : page.sides) {
     for (const PassDumpImage& i : s.images)
       writePng((dir / (s.prefix + i.file)).string(), i.image, 8, provenance);
-    if (page.comparison)
+    if (s.role != "own")
       writePng((dir / (s.prefix + "image.png")).string(), s.frame->color, 8, provenance);
   }
-  if (page.comparison) {
-    writePng((dir / "diff-mask.png").string(), page.comparison->maskHeat, 8, provenance);
-    writePng((dir / "diff-image.png").string(), page.comparison->imageHeat, 8, provenance);
+  for (const Comparison& c : page.comparisons) {
+    writePng((dir / diffFile("diff-mask", c.tag)).string(), c.maskHeat, 8, provenance);
+    writePng((dir / diffFile("diff-image", c.tag)).string(), c.imageHeat, 8, provenance);
   }
+  for (const WhyBlock& w : page.why)
+    for (const WhyPicture& p : w.pictures) {
+      const Provenance made{p.command, provenance.parameters};
+      writePng((dir / p.file).string(), p.image, 8, made);
+    }
   writeFileAtomically((dir / kDumpIndexFiles[1]).string(),
                       [&](std::ostream& out) { out << pageHtml(page); });
 }

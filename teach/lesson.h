@@ -4,6 +4,8 @@
 //   DIR/index.html                     the lesson (no network; every link relative)
 //   DIR/<technique>_<dump file>.png    the pass images of each technique shown (teach/pass_dump.h)
 //   DIR/diff-mask.png, diff-image.png  legacy against modern, where the technique has a twin
+//                                      (-4x4 for the second footprint of PCF and fast PCF)
+//   DIR/why-<block>-<n>.png            the pictures of the "why" blocks, rendered for the page
 //
 // The page holds: the paper's idea in our words with its section, equation and figure numbers
 // (assets/lessons/*.json, read with nlohmann-json); the legacy pass strip with captions and GL
@@ -12,6 +14,11 @@
 // the image, with counts, difference images and the reason for image differences
 // (registry/twins.h gives the pair and its bound); the command that re-makes each picture; and
 // the known departures (every `DEVIATION (...)` comment of the technique's source files).
+// The "why" blocks of the lesson text answer a student's questions with pictures rendered at
+// lesson time and numbers read from the page's own GL traces (the texgen planes beside the
+// twin's matrix rows; each 4x4 phase's kernel and texture matrix). PCF and fast PCF show the
+// 2x2 and the 4x4 pair of the twin table. State cards highlight the lines the pass table
+// declares (PassSpec::keyState) and fold setup and repeated lines; printed, one pass per page.
 // A pass whose passes.json entry has no "state" shows "state card: not recorded".
 // A technique without a twin (the later papers, the references) shows its own passes.
 #pragma once

@@ -385,6 +385,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
       p["section"] = t.section;  // a timed pass declares its own (an empty one is a bug)
       p["source"] = {{"file", t.sourceFile}, {"function", t.sourceFunction}};
       p["state"] = nlohmann::json::array();
+      p["key_state"] = t.keyState;
     }
     p["milliseconds"] = p.value("milliseconds", 0.0) + t.milliseconds;
     p["timings"].push_back({{"name", t.name}, {"milliseconds", t.milliseconds}});
@@ -449,6 +450,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     if (!p.contains("section")) p["section"] = header.paper;
     if (!p.contains("source")) p["source"] = {{"file", ""}, {"function", ""}};
     if (!p.contains("state")) p["state"] = nlohmann::json::array();
+    if (!p.contains("key_state")) p["key_state"] = nlohmann::json::array();
     if (!p.contains("glsl")) p["glsl"] = nlohmann::json::array();
     if (!p.contains("replaces")) p["replaces"] = nlohmann::json::array();
     if (!p.contains("milliseconds")) p["milliseconds"] = nullptr;

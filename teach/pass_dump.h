@@ -18,6 +18,7 @@
 //   "passes": [{"id", "number", "name", "milliseconds", "timings": [{"name", "milliseconds"}],
 //               "section", "source": {"file", "function"},
 //               "state": [{"group", "text", "before_pass" (true when set before the timer)}],
+//               "key_state": [words of the lines that matter (PassSpec::keyState)],
 //               "glsl": [{"file", "first_line", "last_line", "marker", "title"}],
 //               "replaces": ["legacy.X pass ID name"], "files": [...]}],
 //   "images": [{"file", "pass", "pass_id", "pass_name", "caption", "width", "height", "channels",

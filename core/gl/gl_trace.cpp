@@ -193,8 +193,8 @@ void record(T& t, e::TexGeni, GLenum coord, GLenum pname, GLint param) {
 }
 void record(T& t, e::TexGenfv, GLenum coord, GLenum pname, const GLfloat* p) {
   const bool plane = pname == GL_EYE_PLANE || pname == GL_OBJECT_PLANE;
-  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " + tuple(p, plane ? 4 : 1) +
-                      " (" + unitTag(t) +
+  t.add("texgen", glEnumName(coord) + ": " + glEnumName(pname) + " = " +
+                      (plane ? planeTuple(p) : tuple(p, 1)) + " (" + unitTag(t) +
                       (pname == GL_EYE_PLANE ? "; given in object space, GL stores it times "
                                                "the inverse modelview of this moment)"
                                              : ")"));

@@ -22,12 +22,16 @@ constexpr GLenum kFirstUnambiguousEnum = 0x0100;
 const std::unordered_map<GLenum, std::string>& enumNames();
 std::string hex(unsigned v);
 std::string num(double v);
+// A plane's or a matrix element's value: 6 significant digits.
+std::string preciseNum(double v);
 // An int argument that holds an enum (glTexParameteri's param, glTexGeni's mode).
 std::string enumOrNumber(long long v);
 std::string primitiveName(GLenum mode);
 std::string factorName(GLenum f);
 std::string clearMask(GLbitfield mask);
 std::string tuple(const float* v, int n);
+// A plane (a, b, c, d) with 6 significant digits.
+std::string planeTuple(const float* v);
 std::string tuple(const double* v, int n);
 std::string matrixRows(const float* m);
 std::string matrixRows(const double* m);

@@ -22,6 +22,10 @@ namespace sl::gl_trace_detail {
 // first and last values instead of listing every run (a ramp of 256 entries is 256 runs).
 constexpr size_t kMaxListedRuns = 6;
 constexpr int kMatrixSide = 4;
+// Planes and matrices are printed with this many significant digits: enough to check a
+// product of matrices on the card (Everitt's planes against bias x projection x view) to
+// float precision, as a slide shows them.
+constexpr int kPreciseDigits = 6;
 
 // Enum names by value; two names of one value are both given ("GL_COMPARE_REF_TO_TEXTURE =
 // GL_COMPARE_R_TO_TEXTURE": OpenGL 3.0 renamed ARB_shadow's).
@@ -46,6 +50,12 @@ std::string hex(unsigned v) {
 std::string num(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+std::string preciseNum(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*g", kPreciseDigits, v);
   return text;
 }
 
@@ -89,6 +99,12 @@ std::string tuple(const float* v, int n) {
   for (int i = 0; i < n; ++i) out += (i ? ", " : "") + num(v[i]);
   return out + ")";
 }
+std::string planeTuple(const float* v) {
+  if (v == nullptr) return "(null)";
+  std::string out = "(";
+  for (int i = 0; i < kMatrixSide; ++i) out += (i ? ", " : "") + preciseNum(v[i]);
+  return out + ")";
+}
 std::string tuple(const double* v, int n) {
   float f[16];
   for (int i = 0; i < n; ++i) f[i] = float(v[i]);
@@ -100,7 +116,8 @@ std::string matrixRows(const float* m) {
   if (m == nullptr) return "(null)";
   std::string out = "[";
   for (int r = 0; r < kMatrixSide; ++r) {
-    for (int c = 0; c < kMatrixSide; ++c) out += (c ? " " : "") + num(m[c * kMatrixSide + r]);
+    for (int c = 0; c < kMatrixSide; ++c)
+      out += (c ? " " : "") + preciseNum(m[c * kMatrixSide + r]);
     out += r + 1 < kMatrixSide ? "; " : "]";
   }
   return out;

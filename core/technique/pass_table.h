@@ -64,6 +64,10 @@ struct PassSpec {
   std::vector<std::string> replaces{};
   // Its departures from the paper: "DEVIATION (source, section): why", as in the code.
   std::vector<std::string> deviations{};
+  // The GL state that matters for this pass, as the technique declares it: words of the traced
+  // lines (core/gl/gl_trace.h) that the lesson's state card highlights ("GL_POLYGON_OFFSET_FILL",
+  // "colour matrix", "GL_EYE_PLANE"); a line holding any of them is a key line.
+  std::vector<std::string> keyState{};
 };
 
 using PassTable = std::vector<PassSpec>;

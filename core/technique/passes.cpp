@@ -71,6 +71,7 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   pass.part = part.index;
   pass.section = spec.reference;
   pass.glsl = spec.shaders;
+  pass.keyState = spec.keyState;
   pass.sourceFile = sourceRelativePath(file);
   pass.sourceFunction = function;
   throwNotedGlError();  // a timed pass's failure (PassTimer) ends the render before this one

@@ -136,6 +136,8 @@ struct PassTime {
   // The shader passes it runs: IDs of `// @pass ID` markers in the GLSL (core/gl/shaders.h
   // shaderPassMarkers), which name the legacy passes they replace.
   std::vector<std::string> glsl;
+  // The words of the GL state lines that matter for the pass (PassSpec::keyState).
+  std::vector<std::string> keyState;
   // While a GlTrace runs (--dump-passes): the GL state it set (core/gl/gl_trace.h).
   TracedPass gl;
 };

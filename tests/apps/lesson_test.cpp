@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -189,6 +190,144 @@ TEST(Lesson, TwinPassesShowTheirGlslLinesAndTheLegacyPassTheyReplace) {
         << file << ":" << first;
   }
   EXPECT_GT(excerpts, 0u) << "the modern passes show no GLSL";
+}
+
+// The text of one pass's section of a lesson: from its id to its end.
+std::string passSection(const std::string& html, const std::string& anchor) {
+  const size_t at = html.find("<section class=\"pass\" id=\"" + anchor + "\"");
+  if (at == std::string::npos) return "";
+  return html.substr(at, html.find("</section>", at) - at);
+}
+
+size_t countMatches(const std::string& text, const std::regex& re) {
+  return size_t(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), re), std::sregex_iterator()));
+}
+
+// Annen et al. §4.1 pass by pass: all 2M basis values (M = 16: four sine and four cosine RGBA
+// layers) under the pass that leaves them, the pictures after the whole blur under the
+// vertical Gaussian (pass 3), the mip levels under pass 4, and no dump readback on any card.
+TEST(Lesson, CsmShowsEveryBasisLayerUnderItsPass) {
+  const fs::path dir = test::testDir("lesson", true) / "csm";
+  const test::CommandResult r =
+      test::runBinary(SHADOWLAB_BINARY, lessonArgs("modern.csm", dir), dir.parent_path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = slurp(dir / "index.html");
+  static const std::regex kLayer(
+      R"re(<img src="modern\.csm_0(\d)[a-z]?-basis-(sin|cos)-k\d+-\d+\.png")re");
+  std::map<std::string, std::set<std::string>> layersByPass;  // pass number -> sin/cos layers
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), kLayer);
+       it != std::sregex_iterator(); ++it)
+    layersByPass[(*it)[1].str()].insert(it->str());
+  const std::string pass2 = passSection(html, "modern.csm-pass-2");
+  const std::string pass3 = passSection(html, "modern.csm-pass-3");
+  const std::string pass4 = passSection(html, "modern.csm-pass-4");
+  ASSERT_FALSE(pass3.empty()) << "no vertical Gaussian pass";
+  // M = 16: 2M = 32 values, four per RGBA layer, sine and cosine.
+  constexpr size_t kLayers = 8;
+  EXPECT_EQ(countMatches(pass3, kLayer), kLayers) << "pass 3 shows the blurred basis";
+  EXPECT_EQ(countMatches(pass2, kLayer), kLayers) << "pass 2 shows its own output";
+  EXPECT_EQ(pass2.find("after the whole Gaussian"), std::string::npos)
+      << "after-blur pictures filed under pass 2";
+  EXPECT_NE(pass3.find("after the whole Gaussian"), std::string::npos);
+  EXPECT_NE(pass4.find("basis-sin-k1-4-level1"), std::string::npos) << "pass 4 has no picture";
+  for (const std::string* pass : {&pass2, &pass3, &pass4})
+    EXPECT_EQ(pass->find("glReadPixels"), std::string::npos) << "a dump readback on a card";
+  EXPECT_NE(html.find("id=\"modern.csm-pass-5c\""), std::string::npos);
+}
+
+// Brabec & Seidel §3-4 at both footprints: the 4x4 strips with the accumulation passes, the
+// four phases' kernels and offsets as traced, how they tile the footprint, 17 levels, merged
+// pass titles without a part's name, the twin's 4x4 pass linked to the legacy 4x4 pass.
+TEST(Lesson, FastPcfShowsTwoByTwoAndFourByFour) {
+  const fs::path dir = test::testDir("lesson", true) / "fast-pcf-both";
+  const test::CommandResult r =
+      test::runBinary(SHADOWLAB_BINARY, lessonArgs("legacy.fast-pcf", dir), dir.parent_path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = slurp(dir / "index.html");
+  for (const char* id : {"legacy.fast-pcf", "modern.fast-pcf", "legacy.fast-pcf-4x4",
+                         "modern.fast-pcf-4x4", "compare", "compare-4x4"})
+    EXPECT_NE(html.find("id=\"" + std::string(id) + "\""), std::string::npos) << id;
+  const std::string accumulate = passSection(html, "legacy.fast-pcf-4x4-pass-6a");
+  const std::string back = passSection(html, "legacy.fast-pcf-4x4-pass-6b");
+  EXPECT_NE(accumulate.find("glAccum(GL_ACCUM, 0.25)"), std::string::npos);
+  EXPECT_NE(back.find("accumulation-result-alpha"), std::string::npos);
+  EXPECT_NE(back.find("17 levels"), std::string::npos);
+  EXPECT_EQ(html.find("(4 x 5 levels)"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"#legacy.fast-pcf-4x4-pass-6a\">legacy.fast-pcf pass 6a"),
+            std::string::npos)
+      << "the 4x4 twin does not link the accumulation pass";
+  // Merged titles name the pass, not its first part.
+  static const std::regex kTitle(R"re(<h3>[^<]*\((upper|lower)-(left|right)\))re");
+  EXPECT_EQ(countMatches(html, kTitle), 0u);
+  // The four kernels and the four projective texture matrices, one per phase, and the tiling.
+  EXPECT_NE(html.find("<svg class=\"tiling\""), std::string::npos);
+  const size_t why = html.find("id=\"why\"");
+  ASSERT_NE(why, std::string::npos);
+  const std::string answers = html.substr(why, html.find("id=\"legacy.fast-pcf\"") - why);
+  EXPECT_EQ(count(answers, "3x3 kernel"), 4u);
+  for (const char* phase : {"(upper-left)", "(upper-right)", "(lower-left)", "(lower-right)"})
+    EXPECT_NE(answers.find(phase), std::string::npos) << phase;
+  EXPECT_NE(answers.find("colour matrix"), std::string::npos);
+  EXPECT_EQ(html.find("The two part most"), std::string::npos);
+  // 2x2 against 4x4, rendered for the page.
+  EXPECT_TRUE(fs::exists(dir / "why-3-1.png"));
+  EXPECT_TRUE(fs::exists(dir / "why-3-2.png"));
+  EXPECT_TRUE(fs::exists(dir / "diff-mask-4x4.png"));
+}
+
+TEST(Lesson, PcfShowsTheAccumulationPassAtFourByFour) {
+  const fs::path dir = test::testDir("lesson", true) / "pcf-both";
+  const test::CommandResult r =
+      test::runBinary(SHADOWLAB_BINARY, lessonArgs("modern.pcf", dir), dir.parent_path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = slurp(dir / "index.html");
+  EXPECT_NE(passSection(html, "legacy.pcf-4x4-pass-5a").find("glAccum"), std::string::npos);
+  EXPECT_NE(passSection(html, "legacy.pcf-4x4-pass-5b").find("accumulation-result-alpha"),
+            std::string::npos);
+  EXPECT_EQ(passSection(html, "legacy.pcf-pass-5a"), "") << "the 2x2 strip has no accumulation";
+  EXPECT_NE(html.find("<a href=\"#legacy.pcf-4x4-pass-5a\">legacy.pcf pass 5a"), std::string::npos)
+      << "the 4x4 twin does not link the accumulation pass";
+}
+
+// Everitt: the texgen planes beside the twin's matrix rows (the same numbers, 6 significant
+// digits), polygon offset as three pictures of this run, the cards with their key lines
+// highlighted and their setup folded, and a print layout of one pass per page.
+TEST(Lesson, HardwareShadowMapAnswersWhyWithPicturesAndNumbers) {
+  const fs::path dir = test::testDir("lesson", true) / "hw";
+  const test::CommandResult r =
+      test::runBinary(SHADOWLAB_BINARY, lessonArgs("legacy.hw", dir), dir.parent_path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string html = slurp(dir / "index.html");
+  static const std::regex kLargest(R"(Largest difference over the sixteen numbers: ([0-9.e+-]+))");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(html, m, kLargest)) << "no planes against matrix rows";
+  // Both print float products with 6 significant digits: they agree to the last digit shown
+  // of numbers below 10 (a unit in the 6th digit is 1e-5).
+  EXPECT_LE(std::stod(m[1].str()), 1e-5);
+  static const std::regex kPlane(R"(GL_S: GL_EYE_PLANE = \((-?[0-9.]+), )");
+  ASSERT_TRUE(std::regex_search(html, m, kPlane));
+  const std::string first = m[1].str();
+  EXPECT_GE(std::count_if(first.begin(), first.end(), ::isdigit), 5) << first;
+  for (int i = 1; i <= 3; ++i)
+    EXPECT_TRUE(fs::exists(dir / ("why-3-" + std::to_string(i) + ".png"))) << i;
+  for (const char* caption : {"no offset", "tuned offset", "too much offset",
+                              "% of the image in shadow", "--param offset-factor=0"})
+    EXPECT_NE(html.find(caption), std::string::npos) << caption;
+  // Declared key lines: polygon offset on pass 1's card, the planes on pass 2's.
+  static const std::regex kKey(
+      R"re(<tr class="key"><td class="group">[^<]*</td><td><code>([^<]*)</code>)re");
+  bool offset = false, plane = false;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), kKey); it != std::sregex_iterator();
+       ++it) {
+    offset = offset || (*it)[1].str().find("glPolygonOffset") != std::string::npos;
+    plane = plane || (*it)[1].str().find("GL_EYE_PLANE") != std::string::npos;
+  }
+  EXPECT_TRUE(offset);
+  EXPECT_TRUE(plane);
+  EXPECT_NE(html.find("<details><summary>"), std::string::npos) << "no setup folded";
+  EXPECT_NE(html.find("@media print"), std::string::npos);
+  EXPECT_NE(html.find("break-before: page"), std::string::npos);
 }
 
 }  // namespace

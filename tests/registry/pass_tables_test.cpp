@@ -101,6 +101,46 @@ TEST(PassTables, EveryPassAndBufferOfARenderIsDeclared) {
     }
 }
 
+// The lines a pass table declares as key (PassSpec::keyState, highlighted on the lessons' state
+// cards) are there: each word is in some traced line of its pass at the 2x2 and at the 4x4
+// footprint, so a renamed call or a moved state change cannot leave a card without its
+// highlight unnoticed.
+TEST(PassTables, EveryDeclaredKeyStateWordIsInItsPassesTrace) {
+  const Scene scene = builtinScene("brabec");
+  size_t checked = 0;
+  for (const Technique& t : allTechniques()) {
+    std::map<std::string, std::set<std::string>> found;  // pass id -> key words seen
+    std::set<std::string> ran;
+    for (const int filter : {2, 4}) {
+      RenderParams p;
+      p.width = kSmallWidth;
+      p.height = kSmallHeight;
+      p.shadowMapTexels = kSmallMapTexels;
+      p.filter = filter;
+      p.capturePasses = true;
+      if (t.name == "reference.soft") p.extra["rays"] = "4";
+      const Frame frame = renderTechnique(t, scene, p);
+      for (const PassTime& pass : frame.passes) {
+        ran.insert(pass.id);
+        for (const std::string& key : pass.keyState)
+          for (const auto* lines : {&pass.gl.setup, &pass.gl.state})
+            for (const GlStateLine& l : *lines)
+              if (l.text.find(key) != std::string::npos) found[pass.id].insert(key);
+      }
+    }
+    for (const PassSpec& spec : t.passes) {
+      if (!ran.count(spec.id)) continue;  // a pass of another configuration (csm's "5")
+      for (const std::string& key : spec.keyState) {
+        EXPECT_TRUE(found[spec.id].count(key))
+            << t.name << " pass " << spec.id << " declares the key state \"" << key
+            << "\", which none of its traced lines holds";
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 20u) << "the pass tables declare hardly any key state";
+}
+
 // The text of every `DEVIATION (source, section): why` comment of a file: from "DEVIATION (" to
 // the end of its comment block (a blank comment line or code ends it), spaces normalised.
 std::vector<std::string> deviationComments(const fs::path& file) {
