@@ -208,16 +208,14 @@ void packNeighboursByConvolution(Passes& passes, const RenderParams& params, Fas
       p.part);
 }
 
-// Pass 3 (§3/§4): the light depth of every visible point in all four channels.
+// Pass 3 (§3/§4): the light depth of every visible point in all four channels. One pass for
+// all phases (it does not depend on the phase), so it names no phase.
 void renderReplicatedCameraDepth(Passes& passes, const Scene& scene, const RenderParams& params,
-                                 FastPcfState& s, const Phase& p) {
-  passes.run(
-      "3",
-      [&] {
-        bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
-                              bs::kAllChannels);
-      },
-      p.part);
+                                 FastPcfState& s) {
+  passes.run("3", [&] {
+    bs::renderCameraDepth(scene, params, s.enc, s.ramp, bs::depthBias(params, s.enc),
+                          bs::kAllChannels);
+  });
 }
 
 // Pass 3s (4x4, phase 1): the camera pass kept in a texture for phases 2-4.
@@ -325,7 +323,7 @@ Frame render(GlContext& context, const Scene& scene, const RenderParams& params)
     // The camera pass is the same in every phase (only passes 2, 4 and 5 depend on it): drawn
     // in the first, copied, and restored from the copy in the others; one file.
     if (i == 0) {
-      renderReplicatedCameraDepth(passes, camera, params, s, p);
+      renderReplicatedCameraDepth(passes, camera, params, s);
       passes.capture("3", "camera-pass-z-replicated",
                      [&] { return toRgb(bs::readWindowRgba(params)); }, {}, {{"again", again}});
       if (phases.size() > 1) saveCameraPassForPhases(passes, params, s);
