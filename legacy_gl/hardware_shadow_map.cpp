@@ -237,6 +237,7 @@ PassTable hardwareShadowMapPasses() {
        .writes = {{.name = "light-depth",
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
                               "offset"}},
+       .floor = PassFloor::kDepthFromLight,
        .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation}},
   };
   for (PassSpec& spec : shadowMapCameraPasses(2)) table.push_back(std::move(spec));
@@ -290,14 +291,16 @@ PassTable shadowMapCameraPasses(int firstPass) {
       {.id = texgen,
        .name = "eye-linear texgen planes",
        .reference = "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
-                    "Second Pass (Depth Map Comparison); Appendix A"},
+                    "Second Pass (Depth Map Comparison); Appendix A",
+       .floor = PassFloor::kStateOnly},
       {.id = ambient,
        .name = "ambient",
        .reference = "Everitt, Rege & Cebenoyan 2001, the shading step after Fig. 4 (Kilgard [3]: "
                     "keep some light in the shadow); the ambient term unshadowed",
        .writes = {{.name = "ambient",
                    .caption = "pass " + ambient +
-                              ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}}},
+                              ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}},
+       .floor = PassFloor::kAmbientCamera},
       {.id = direct,
        .name = "direct light x shadow test",
        .reference = "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
@@ -307,6 +310,7 @@ PassTable shadowMapCameraPasses(int firstPass) {
                    .caption = "pass " + direct +
                               ": + diffuse and specular x the ARB_shadow comparison (Everitt "
                               "Eq. 5, Fig. 5): the final image"}},
+       .floor = PassFloor::kShadowedDirectLight,
        .deviations = {kProjectedConeDeviation}},
       {.id = mask,
        .name = "visibility mask",
@@ -315,7 +319,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .writes = {{.name = "visibility",
                    .caption = "pass " + mask +
                               ": the comparison alone on white surfaces, white = lit, black = "
-                              "shadow (what --mask writes)"}}},
+                              "shadow (what --mask writes)"}},
+       .floor = PassFloor::kVisibilityMask},
   };
 }
 
