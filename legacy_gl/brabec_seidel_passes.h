@@ -114,18 +114,21 @@ void loadProjectiveTexgen(const Scene& scene, const RenderParams& params, glm::v
 void renderCameraDepth(const Scene& scene, const RenderParams& params, const DepthEncoding& enc,
                        const RampTexture& ramp, double bias, ChannelMask channels);
 
-// The camera pass kept for the phases of fast PCF 4x4 (§4): a window-sized texture of the
-// encoding's map format (the window's values, exactly, at every precision).
-// DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each of the four
-// subtractions of a 4x4 footprint; we copy it to a texture once and restore it with one textured
-// full-window quad (measured faster, docs/legacy.md).
+// The camera pass kept for the groups of PCF 3x3/4x4 (§3) and the phases of fast PCF 4x4 (§4):
+// a window-sized texture of the encoding's map format (the window's values, exactly, at every
+// precision).
+// DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each
+// subtraction of a footprint larger than 2x2 (each group of four samples, each 4x4 phase); we
+// copy it to a texture once and restore it with one textured full-window quad (measured faster,
+// docs/legacy.md).
 // §3 counts "another eight passes ... to perform the subtraction" for 4x4 (the camera pass
 // before each of the four subtractions, which overwrite it in place), and §4's "four shadow
 // mapping phases" read alike; neither text requires the redraw.
 inline const std::string kCameraPassCopyDeviation =
-    "DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each of "
-    "the four subtractions of a 4x4 footprint; we copy it to a texture once and restore it with "
-    "one textured full-window quad (measured faster, docs/legacy.md).";
+    "DEVIATION (Brabec–Seidel §3, §4): the paper draws the camera pass again before each "
+    "subtraction of a footprint larger than 2x2 (each group of four samples, each 4x4 phase); we "
+    "copy it to a texture once and restore it with one textured full-window quad (measured "
+    "faster, docs/legacy.md).";
 struct SavedCameraPass {
   Texture name = makeTexture();
 };

@@ -219,6 +219,7 @@ PassTable hardwareShadowMapPasses() {
        .writes = {{.name = "light-depth",
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
                               "offset"}},
+       .floor = PassFloor::kDepthFromLight,
        .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation},
        .keyState = {"GL_POLYGON_OFFSET_FILL", "glPolygonOffset", "glColorMask"}},
   };
@@ -274,6 +275,7 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .name = "eye-linear texgen planes",
        .reference = "Everitt, Rege & Cebenoyan 2001, Setting Up the Transformations, Eq. 5; "
                     "Second Pass (Depth Map Comparison); Appendix A",
+       .floor = PassFloor::kStateOnly,
        .keyState = {"GL_EYE_PLANE"}},
       {.id = ambient,
        .name = "ambient",
@@ -281,7 +283,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
                     "keep some light in the shadow); the ambient term unshadowed",
        .writes = {{.name = "ambient",
                    .caption = "pass " + ambient +
-                              ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}}},
+                              ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}},
+       .floor = PassFloor::kAmbientCamera},
       {.id = direct,
        .name = "direct light x shadow test",
        .reference = "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
@@ -291,6 +294,7 @@ PassTable shadowMapCameraPasses(int firstPass) {
                    .caption = "pass " + direct +
                               ": + diffuse and specular x the ARB_shadow comparison (Everitt "
                               "Eq. 5, Fig. 5): the final image"}},
+       .floor = PassFloor::kShadowedDirectLight,
        .deviations = {kProjectedConeDeviation}},
       {.id = mask,
        .name = "visibility mask",
@@ -299,7 +303,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .writes = {{.name = "visibility",
                    .caption = "pass " + mask +
                               ": the comparison alone on white surfaces, white = lit, black = "
-                              "shadow (what --mask writes)"}}},
+                              "shadow (what --mask writes)"}},
+       .floor = PassFloor::kVisibilityMask},
   };
 }
 

@@ -23,7 +23,9 @@ struct BenchmarkVariant {
   std::string paperFps;  // the paper's Octane VPro/8 figure (§5), "" when not reported
 };
 
-// The variants of Figure 7 (+ PCF 4x4, which §3 calls impractical and reports no rate for).
+// The variants of Figure 7 (+ PCF 4x4, which §3 calls impractical and reports no rate for), and
+// legacy.hw (Everitt, Rege & Cebenoyan 2001, no rate reported), timed against the same kind of
+// floors.
 std::vector<BenchmarkVariant> paperVariants();
 
 struct BenchmarkOptions {

@@ -8,6 +8,7 @@
 #include "core/gl/gl.h"
 #include "core/gl/gl_objects.h"
 #include "legacy_gl/fixed_function.h"
+#include "legacy_gl/projected_spotlight.h"
 
 namespace sl::legacy {
 using namespace sl::gl;
@@ -19,6 +20,13 @@ constexpr int kRgbaBytes = 4;               // RGBA8 pixel rectangles
 constexpr float kNearWindowZ = -1.0f;       // glOrtho(-1, 1) z: window depth 0, passes LESS/LEQUAL
 constexpr int kSamplesPerGroup = 4;         // §3: four jittered samples per RGBA map
 constexpr float kAccumulateWeight = 0.25f;  // §4 fast PCF 4x4: four phases of weight 1/4
+// The cone texture's alpha in the floors: above kConeEdgeAlpha, so every fragment is looked up,
+// tested and kept (which fragments the pass discards is the scene's; the floor keeps all).
+constexpr float kConeFloorAlpha = 0.75f;
+// Everitt Fig. 3's light pass: legacy.hw's default glPolygonOffset(factor, units).
+constexpr float kOffsetFactor = 2.0f;
+constexpr float kOffsetUnits = 4.0f;
+constexpr int kStepTexels = 2;  // legacy.hw's behind-the-light step texture (0 behind, 1 front)
 
 // Window coordinates in pixels, every matrix identity but the projection.
 void loadPixelMatrices(int width, int height) {
@@ -33,19 +41,18 @@ void loadPixelMatrices(int width, int height) {
 }
 
 // One quad covering width x height pixels at window depth 0; texture coordinates span [0, 1]
-// with q = 1 (projective lookups divide by it, as texgen's q does).
-void fullWindowQuad(int width, int height) {
+// with q = 1 (projective lookups divide by it, as texgen's q does) on the first `units` texture
+// units, so that each unit the pass samples interpolates its own coordinates.
+void fullWindowQuad(int width, int height, int units = 1) {
   const float w = float(width), h = float(height);
+  const float corners[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
   glBegin(GL_QUADS);
   glNormal3f(0.0f, 0.0f, 1.0f);
-  glTexCoord4f(0.0f, 0.0f, 0.0f, 1.0f);
-  glVertex3f(0.0f, 0.0f, -kNearWindowZ);
-  glTexCoord4f(1.0f, 0.0f, 0.0f, 1.0f);
-  glVertex3f(w, 0.0f, -kNearWindowZ);
-  glTexCoord4f(1.0f, 1.0f, 0.0f, 1.0f);
-  glVertex3f(w, h, -kNearWindowZ);
-  glTexCoord4f(0.0f, 1.0f, 0.0f, 1.0f);
-  glVertex3f(0.0f, h, -kNearWindowZ);
+  for (const auto& c : corners) {
+    for (int u = 0; u < units; ++u)
+      glMultiTexCoord2f(GLenum(GL_TEXTURE0 + u), c[0], c[1]);  // r = 0, q = 1
+    glVertex3f(c[0] * w, c[1] * h, -kNearWindowZ);
+  }
   glEnd();
 }
 
@@ -73,6 +80,33 @@ class FloorResources {
                  pixels_.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    // legacy.hw's shadow map: DEPTH_COMPONENT24 with the comparison it samples with.
+    glBindTexture(GL_TEXTURE_2D, depthMap_.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, mapTexels, mapTexels, 0,
+                 GL_DEPTH_COMPONENT, GL_UNSIGNED_BYTE, pixels_.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_R_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glTexParameteri(GL_TEXTURE_2D, GL_DEPTH_TEXTURE_MODE, GL_LUMINANCE);
+    // The spotlight cone's size, format and filter (legacy_gl/projected_spotlight.h), every
+    // texel kConeFloorAlpha.
+    const std::vector<float> cone(size_t(kConeTextureTexels) * kConeTextureTexels, kConeFloorAlpha);
+    glBindTexture(GL_TEXTURE_2D, cone_.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA16, kConeTextureTexels, kConeTextureTexels, 0, GL_ALPHA,
+                 GL_FLOAT, cone.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const GLubyte step[kStepTexels] = {0, 255};
+    glBindTexture(GL_TEXTURE_1D, step_.id());
+    glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, kStepTexels, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE,
+                 step);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glBindTexture(GL_TEXTURE_2D, 0);
     glBindTexture(GL_TEXTURE_1D, 0);
     checkGl("floor resources");
@@ -86,12 +120,18 @@ class FloorResources {
     return width <= mapTexels_ && height <= mapTexels_ ? map_.id() : window_.id();
   }
   unsigned window() const { return window_.id(); }
+  unsigned depthMap() const { return depthMap_.id(); }
+  unsigned cone() const { return cone_.id(); }
+  unsigned step() const { return step_.id(); }
   std::uint8_t* pixels() { return pixels_.data(); }
 
  private:
   Texture ramp_ = makeTexture();
   Texture map_ = makeTexture();
   Texture window_ = makeTexture();
+  Texture depthMap_ = makeTexture();
+  Texture cone_ = makeTexture();
+  Texture step_ = makeTexture();
   int mapTexels_;
   std::vector<std::uint8_t> pixels_;
 };
@@ -166,6 +206,114 @@ void fillWithWindowTexture(FloorResources& r, int width, int height) {
   fullWindowQuad(width, height);
 }
 
+// §5's lighting pass: the colour cleared, the shadow term kept in alpha.
+void clearColourKeepingAlpha(int width, int height) {
+  glViewport(0, 0, width, height);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
+// The cone per pixel (legacy_gl/projected_spotlight.h) on the active unit: its texture,
+// GL_MODULATE, and the alpha test at the cone's edge.
+void enableConeLookup(FloorResources& r) {
+  glEnable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, r.cone());
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glAlphaFunc(GL_GEQUAL, kConeEdgeAlpha);
+  glEnable(GL_ALPHA_TEST);
+}
+
+// §5's direct-light layer as it is drawn now: lit and blended with the destination alpha, the
+// cone texture looked up and alpha-tested per fragment.
+void fillLitBlendedThroughCone(FloorResources& r, int width, int height) {
+  enableConeLookup(r);
+  fillLitAndBlended(width, height);
+}
+
+// Everitt Fig. 2: the light pass's clear (depth only).
+void clearDepth(int width, int height) {
+  glViewport(0, 0, width, height);
+  glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+// Everitt Figs. 2-3: depth only, with polygon offset, depth test LESS and write.
+void fillDepthOnlyWithOffset(int width, int height) {
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(kOffsetFactor, kOffsetUnits);
+  fullWindowQuad(width, height);
+}
+
+// Everitt Fig. 2 (ARB_depth_texture): the depth buffer copied into the depth texture.
+void copyDepthToTexture(FloorResources& r, int width, int height) {
+  glBindTexture(GL_TEXTURE_2D, r.depthMap());
+  glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, width, height);
+}
+
+// Everitt (Kilgard's note): the ambient camera pass, lit, depth test LESS and write.
+void fillLitWritingDepth(int width, int height) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  fullWindowQuad(width, height);
+}
+
+// Everitt Figs. 4-5: unit 0 the depth texture with ARB_shadow's comparison, unit 1 the
+// behind-the-light step, both GL_MODULATE; unit 0 stays active.
+void enableShadowComparison(FloorResources& r) {
+  glActiveTexture(GL_TEXTURE1);
+  glEnable(GL_TEXTURE_1D);
+  glBindTexture(GL_TEXTURE_1D, r.step());
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glActiveTexture(GL_TEXTURE0);
+  glEnable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, r.depthMap());
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+}
+
+// Everitt's direct-light pass: lit, x the comparison (unit 0) x the behind-light step (unit 1)
+// x the cone with its alpha test (unit 2), added (GL_ONE, GL_ONE). The pass tests depth EQUAL
+// against its ambient pass; the floor tests LEQUAL against the cleared buffer, the same
+// per-fragment test, passed by every fragment.
+void fillLitShadowComparedAdded(FloorResources& r, int width, int height) {
+  constexpr int kUnits = 3;  // shadow map, behind-light step, cone
+  enableShadowComparison(r);
+  glActiveTexture(GL_TEXTURE2);
+  enableConeLookup(r);
+  glActiveTexture(GL_TEXTURE0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glEnable(GL_LIGHTING);
+  glEnable(GL_LIGHT0);
+  fullWindowQuad(width, height, kUnits);
+}
+
+// The visibility mask's layer: white, unlit, x the comparison x the behind-light step, depth
+// test LESS and write.
+void fillShadowCompared(FloorResources& r, int width, int height) {
+  constexpr int kUnits = 2;  // shadow map, behind-light step
+  enableShadowComparison(r);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColor4f(1.0f, 1.0f, 1.0f, 1.0f);
+  fullWindowQuad(width, height, kUnits);
+}
+
+// The mask read back: the red channel as floats.
+void readRedChannel(FloorResources& r, int width, int height) {
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, r.pixels());
+}
+
 // §2 footnote 1, §3 Fig. 4: the window copied onto itself, no pixel transfer.
 void copyWindowOntoItself(int width, int height) {
   glRasterPos2i(0, 0);
@@ -201,6 +349,16 @@ void runFloor(FloorResources& r, const FloorTerm& t) {
     case FloorWork::kAccumulate: return accumulateWindow(t.width, t.height);
     case FloorWork::kDrawPixels: return drawIntoWindow(r, t.width, t.height);
     case FloorWork::kTexturedFill: return fillWithWindowTexture(r, t.width, t.height);
+    case FloorWork::kClearColourKeepAlpha: return clearColourKeepingAlpha(t.width, t.height);
+    case FloorWork::kLitBlendedConeFill: return fillLitBlendedThroughCone(r, t.width, t.height);
+    case FloorWork::kClearDepth: return clearDepth(t.width, t.height);
+    case FloorWork::kDepthOnlyOffsetFill: return fillDepthOnlyWithOffset(t.width, t.height);
+    case FloorWork::kCopyDepthToTexture: return copyDepthToTexture(r, t.width, t.height);
+    case FloorWork::kLitDepthFill: return fillLitWritingDepth(t.width, t.height);
+    case FloorWork::kShadowComparedLitAddFill:
+      return fillLitShadowComparedAdded(r, t.width, t.height);
+    case FloorWork::kShadowComparedFill: return fillShadowCompared(r, t.width, t.height);
+    case FloorWork::kReadRedChannel: return readRedChannel(r, t.width, t.height);
   }
 }
 
@@ -215,6 +373,16 @@ const char* workName(FloorWork w) {
     case FloorWork::kAccumulate: return "glAccum(GL_ACCUM)";
     case FloorWork::kDrawPixels: return "glDrawPixels";
     case FloorWork::kTexturedFill: return "textured fill";
+    case FloorWork::kClearColourKeepAlpha: return "clear colour, alpha kept";
+    case FloorWork::kLitBlendedConeFill: return "lit blended fill through the cone texture";
+    case FloorWork::kClearDepth: return "clear depth";
+    case FloorWork::kDepthOnlyOffsetFill: return "depth-only offset fill";
+    case FloorWork::kCopyDepthToTexture: return "glCopyTexSubImage2D of depth";
+    case FloorWork::kLitDepthFill: return "lit depth-writing fill";
+    case FloorWork::kShadowComparedLitAddFill:
+      return "lit added fill x shadow comparison x cone texture";
+    case FloorWork::kShadowComparedFill: return "shadow-compared fill";
+    case FloorWork::kReadRedChannel: return "glReadPixels(GL_RED)";
   }
   return "?";
 }
@@ -259,10 +427,26 @@ std::optional<std::vector<FloorTerm>> passFloor(PassFloor floor, int part,
     case PassFloor::kCopyPixels: return std::vector<FloorTerm>{{W::kCopyPixels, w, h, 1}};
     case PassFloor::kAccumulationReturn: return std::vector<FloorTerm>{{W::kDrawPixels, w, h, 1}};
     case PassFloor::kAccumulate: return std::vector<FloorTerm>{{W::kAccumulate, w, h, 1}};
-    case PassFloor::kLighting:  // §5: direct light, then ambient: two layers
-      return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitBlendedFill, w, h, 2}};
+    case PassFloor::kLighting:  // §5: colour cleared (alpha kept), direct light in the cone,
+                                // ambient
+      return std::vector<FloorTerm>{{W::kClearColourKeepAlpha, w, h, 1},
+                                    {W::kLitBlendedConeFill, w, h, 1},
+                                    {W::kLitBlendedFill, w, h, 1}};
     case PassFloor::kCopyWindowToTexture: return std::vector<FloorTerm>{{W::kCopyTexture, w, h, 1}};
     case PassFloor::kTexturedWindowQuad: return std::vector<FloorTerm>{{W::kTexturedFill, w, h, 1}};
+    case PassFloor::kStateOnly:  // Everitt's texgen planes: nothing drawn or copied
+      return std::vector<FloorTerm>{};
+    case PassFloor::kDepthFromLight:  // Everitt Figs. 2-3: depth only, offset, copied
+      return std::vector<FloorTerm>{{W::kClearDepth, n, n, 1},
+                                    {W::kDepthOnlyOffsetFill, n, n, 1},
+                                    {W::kCopyDepthToTexture, n, n, 1}};
+    case PassFloor::kAmbientCamera:  // Everitt, Kilgard's note: the ambient term, depth written
+      return std::vector<FloorTerm>{{W::kClear, w, h, 1}, {W::kLitDepthFill, w, h, 1}};
+    case PassFloor::kShadowedDirectLight:  // Everitt Figs. 4-5, the cone per pixel
+      return std::vector<FloorTerm>{{W::kShadowComparedLitAddFill, w, h, 1}};
+    case PassFloor::kVisibilityMask:  // the comparison alone, read back as the mask
+      return std::vector<FloorTerm>{
+          {W::kClear, w, h, 1}, {W::kShadowComparedFill, w, h, 1}, {W::kReadRedChannel, w, h, 1}};
   }
   return std::nullopt;
 }

@@ -46,7 +46,7 @@ PassTable pcfPasses() {
        .writes =
            cameraPassBuffers("2", "pcf_shadow.frag: shadow test, colour table, colour matrix (§3)"),
        .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
-       .replaces = {"2", "3", "4", "5a", "5b", "6"}},
+       .replaces = {"2", "2s", "2r", "3", "4", "5a", "5b", "6"}},
   };
 }
 

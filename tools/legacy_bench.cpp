@@ -1,6 +1,7 @@
 // legacy_bench — Brabec & Seidel 2001 §5 in the paper's configuration, per pass, beside the
-// paper's Octane VPro/8 frame rates and beside each pass's llvmpipe floor. Prints markdown
-// tables (docs/legacy.md).
+// paper's Octane VPro/8 frame rates and beside each pass's llvmpipe floor; legacy.hw (Everitt et
+// al. 2001) in the same configuration against its floors. Prints markdown tables
+// (docs/legacy.md).
 // Roofline (always printed): in the same context as the frames, and interleaved with them
 // round by round so that load hits both alike, each pass's floor is measured: the least GL work
 // of its kind at its size (measure/roofline.h: a clear, one full-window quad with the pass's
@@ -53,7 +54,8 @@ int main(int argc, char** argv) {
         ->type_name("N");
     app.add_flag("--quick", quick,
                  "the quick frame counts (core/technique/frame_timing.h kQuickFrames)");
-    app.add_option("--technique", only, "only legacy.ramp, legacy.pcf or legacy.fast-pcf")
+    app.add_option("--technique", only,
+                   "only legacy.ramp, legacy.pcf, legacy.fast-pcf or legacy.hw")
         ->type_name("T");
     app.add_flag("--trace-overhead", traceOverhead,
                  "frame time with the --dump-passes GL trace off and on (core/gl/gl_trace.h)");

@@ -22,6 +22,11 @@ const char* passFloorName(PassFloor floor) {
     case PassFloor::kLighting: return "lighting";
     case PassFloor::kCopyWindowToTexture: return "copy-window-to-texture";
     case PassFloor::kTexturedWindowQuad: return "textured-window-quad";
+    case PassFloor::kStateOnly: return "state-only";
+    case PassFloor::kDepthFromLight: return "depth-from-light";
+    case PassFloor::kAmbientCamera: return "ambient-camera";
+    case PassFloor::kShadowedDirectLight: return "shadowed-direct-light";
+    case PassFloor::kVisibilityMask: return "visibility-mask";
   }
   return "?";
 }

@@ -31,9 +31,14 @@ enum class PassFloor {
   kCopyPixels,           // glCopyPixels through colour table and matrix (§3, Fig. 4)
   kAccumulate,           // one accumulation-buffer step (§3)
   kAccumulationReturn,   // the accumulation buffer returned to colour (§3)
-  kLighting,             // lighting x shadow term, direct then ambient (§5)
+  kLighting,             // lighting x shadow term x cone texture, direct then ambient (§5)
   kCopyWindowToTexture,  // the window copied into a texture (fast PCF 4x4 saves its camera pass)
-  kTexturedWindowQuad,   // one textured full-window quad (fast PCF 4x4 restores it)
+  kTexturedWindowQuad,   // one textured full-window quad (PCF 3x3/4x4, fast PCF 4x4 restore it)
+  kStateOnly,            // GL state set, nothing drawn or copied (Everitt's texgen planes)
+  kDepthFromLight,       // a depth-only light pass with polygon offset, copied to a depth texture
+  kAmbientCamera,        // the camera pass lit by the ambient term, depth written (Everitt)
+  kShadowedDirectLight,  // direct light x shadow comparison x cone, added (Everitt Figs. 4-5)
+  kVisibilityMask,       // the comparison alone on white surfaces, read back (legacy.hw --mask)
 };
 const char* passFloorName(PassFloor floor);
 

@@ -86,7 +86,7 @@ float groupAlphaCode(int g, float fragmentCode) {
 
 // @pass camera-depth: the fragment's light depth through the ramp, replicated over the channels (§3)
 // @replaces legacy.fast-pcf 3 3s 3r
-// @replaces legacy.pcf 2
+// @replaces legacy.pcf 2 2s 2r
 float faithfulShadow() {
   float fragment = textureProj(uRamp, vRampCoord).r;
   float fragmentCode = code(fragment);

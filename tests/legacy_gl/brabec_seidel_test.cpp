@@ -238,6 +238,35 @@ TEST(BrabecSeidel, AccumulationSumsTheGroupsWithTheirWeights) {
     }
 }
 
+// PCF 3x3/4x4 (§3) and fast PCF 4x4 (§4) draw the camera pass once and restore it from a copy
+// before each later subtraction (kCameraPassCopyDeviation): the restored window holds the drawn
+// camera pass's values exactly, at every precision (the copy has the map's format).
+TEST(BrabecSeidel, RestoredCameraPassEqualsTheDrawnOne) {
+  const Scene scene = builtinScene("brabec");
+  for (Precision precision : {Precision::k8, Precision::k12, Precision::kFloat}) {
+    const RenderParams p = params(Backend::kOsmesa, 4, precision);
+    auto context = makeRenderContext(findTechnique("legacy.pcf"), p);
+    const legacy::bs::DepthEncoding enc = legacy::bs::depthEncoding(precision);
+    legacy::bs::RampTexture ramp;
+    legacy::bs::createRampTexture(ramp, enc);
+    legacy::bs::renderCameraDepth(scene, p, enc, ramp, legacy::bs::depthBias(p, enc),
+                                  legacy::bs::kAllChannels);
+    const Image drawn = readColorBuffer(0, 0, p.width, p.height);
+    legacy::bs::SavedCameraPass saved;
+    legacy::bs::allocateSavedCameraPass(saved, p, enc);
+    legacy::bs::saveCameraPass(saved, p);
+    glClearColor(0.5f, 0.25f, 1.0f, 0.75f);  // what a subtraction would leave: anything else
+    glClear(GL_COLOR_BUFFER_BIT);
+    legacy::bs::restoreCameraPass(saved, p);
+    const Image restored = readColorBuffer(0, 0, p.width, p.height);
+    long nonZero = 0;
+    for (float v : drawn.data) nonZero += v > 0.0f;
+    EXPECT_GT(nonZero, 1000) << "the camera pass drew receivers";
+    EXPECT_EQ(restored.data, drawn.data) << "precision " << int(precision);
+    checkGl("restored camera pass test");
+  }
+}
+
 // ------------------------------------------------------------------ analytic scene
 
 struct Geometry {

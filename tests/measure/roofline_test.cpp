@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <regex>
 
 #include "core/scene/scene_library.h"
@@ -35,8 +36,9 @@ TEST(Roofline, EveryPassOfEveryPaperVariantHasAFloor) {
       const auto terms = passFloor(pass, p);
       ASSERT_TRUE(terms.has_value()) << v.label << ": pass '" << pass.name
                                      << "' declares no floor in its technique's pass table";
-      const bool cpuOnly = pass.id == "mesh";
-      EXPECT_EQ(terms->empty(), cpuOnly) << v.label << ": " << pass.name;
+      // No GL work: the mesh feeding; legacy.hw's texgen planes (state only, nothing drawn).
+      const bool noGlWork = pass.id == "mesh" || (v.technique == "legacy.hw" && pass.id == "2");
+      EXPECT_EQ(terms->empty(), noGlWork) << v.label << ": " << pass.name;
       for (const FloorTerm& t : *terms) {
         EXPECT_GT(t.count, 0) << pass.name;
         EXPECT_TRUE((t.width == kWidth && t.height == kHeight) ||
@@ -86,6 +88,32 @@ void expectFloorsLeaveFramesUnchanged(const BenchmarkVariant& v) {
 
 TEST(Roofline, FloorsBetweenFramesLeaveTheFramesUnchanged) {
   expectFloorsLeaveFramesUnchanged(paperVariants()[2]);  // fast PCF 2x2: table, matrix, convolution
+}
+
+// legacy_bench times legacy.hw: its floors touch three texture units, the alpha test, polygon
+// offset and the depth texture's comparison, and leave its frames unchanged.
+TEST(Roofline, HardwareShadowMapIsBenchedAndItsFloorsLeaveTheFramesUnchanged) {
+  const std::vector<BenchmarkVariant> variants = paperVariants();
+  const auto hw = std::find_if(variants.begin(), variants.end(), [](const BenchmarkVariant& v) {
+    return v.technique == "legacy.hw";
+  });
+  ASSERT_NE(hw, variants.end()) << "legacy_bench does not time legacy.hw";
+  const PassTable& table = findTechnique("legacy.hw").passes;
+  EXPECT_EQ(findPassSpec(table, "1").floor, PassFloor::kDepthFromLight);
+  EXPECT_EQ(findPassSpec(table, "4").floor, PassFloor::kShadowedDirectLight);
+  expectFloorsLeaveFramesUnchanged(*hw);
+}
+
+// The lighting pass draws its direct layer through the projected cone (texture + alpha test,
+// legacy_gl/projected_spotlight.h) after clearing the colour with alpha kept: so does its floor.
+TEST(Roofline, LightingFloorLooksUpTheConeAndKeepsAlpha) {
+  const auto terms = passFloor(PassFloor::kLighting, 0, smallParams(paperVariants().front()));
+  ASSERT_TRUE(terms.has_value());
+  std::vector<FloorWork> works;
+  for (const FloorTerm& t : *terms) works.push_back(t.work);
+  EXPECT_EQ(works,
+            (std::vector<FloorWork>{FloorWork::kClearColourKeepAlpha,
+                                    FloorWork::kLitBlendedConeFill, FloorWork::kLitBlendedFill}));
 }
 
 // fast PCF 4x4: its accumulate floor is glAccum(GL_ACCUM) into the frame's own accumulation
