@@ -218,22 +218,6 @@ void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuin
   drawWhereStencil(gpu, shadeProgram, GL_EQUAL, maskBit, kStencilCountBits | maskBit, 1.0f);
 }
 
-double countFragmentInvocations(const std::function<void()>& draws) {
-  const GlContext* ctx = GlContext::current();
-  if (ctx == nullptr || !ctx->caps().hasExtension("GL_ARB_pipeline_statistics_query")) {
-    draws();
-    return -1;
-  }
-  const Query query = makeQuery();
-  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query.id());
-  draws();
-  glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
-  GLuint invocations = 0;
-  glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &invocations);
-  checkGl("fragment-shader invocation query");
-  return double(invocations);
-}
-
 VolumeFill measureVolumeFill(const RenderTarget& cameraTarget, const SceneVolumes& volumes,
                              const glm::mat4& viewProjection, GLuint maskBit,
                              bool depthBoundsMask) {

@@ -61,12 +61,6 @@ void shadeFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint m
 // shadowed pixels keep what an earlier pass wrote. Depth test LEQUAL, no depth writes.
 void shadeLitFromStencil(const GpuScene& gpu, const Program& shadeProgram, GLuint maskBit);
 
-// GL_ARB_pipeline_statistics_query (core in GL 4.6): how many fragment-shader invocations the
-// draws issued by `draws` cost — the fragments the rasteriser hands to the fragment stage,
-// whether or not the stencil test then lets them update. -1 where the driver has no such query
-// (`draws` still runs).
-double countFragmentInvocations(const std::function<void()>& draws);
-
 // Chan §3.3.2 / Figure 3-10: how many shadow-polygon fragments are rasterised. Draws every
 // volume with depth test and stencil test off (`maskBit` 0) or restricted to the mask bit,
 // additive into a float buffer; returns the per-pixel overdraw image.

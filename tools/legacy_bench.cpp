@@ -13,8 +13,9 @@
 // --trace-overhead: instead, each technique's frame time with the GL trace of --dump-passes off
 // (the context's own dispatch table, as every render runs) and on (core/gl/gl_trace.h), as a ratio.
 // --split-cost: instead, the camera pass's draw of brabec's own meshes and of the split meshes
-// the camera passes draw (spotlight_tessellation.h), beside the pass's floor (docs/legacy.md
-// "Feeding the passes").
+// the camera passes draw (spotlight_tessellation.h), beside the pass's floor, with the fragments
+// each shades and the split meshes' vertex-and-setup cost alone (docs/legacy.md "Feeding the
+// passes").
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
                  "frame time with the --dump-passes GL trace off and on (core/gl/gl_trace.h)");
     app.add_flag("--split-cost", splitCost,
                  "the camera pass's draw of the scene's own and of its spotlight-split meshes, "
-                 "beside the pass's floor");
+                 "beside the pass's floor, with the fragments each shades");
     if (!sl::cli::parseTool(app, argc, argv)) return 0;
     if (!backend.empty()) options.backend = sl::parseBackend(backend);
     if (!imaging.empty()) options.imaging = sl::cli::parseImaging(imaging);

@@ -3,6 +3,9 @@
 
 #include <stdexcept>
 
+#include "core/base/errors.h"
+#include "core/gl/context.h"
+
 namespace sl {
 using namespace sl::gl;
 
@@ -43,6 +46,22 @@ VertexArray makeVertexArray() {
   GLuint id = 0;
   glGenVertexArrays(1, &id);
   return VertexArray(id);
+}
+
+double countFragmentInvocations(const std::function<void()>& draws) {
+  const GlContext* ctx = GlContext::current();
+  if (ctx == nullptr || !ctx->caps().hasExtension("GL_ARB_pipeline_statistics_query")) {
+    draws();
+    return -1;
+  }
+  const Query query = makeQuery();
+  glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query.id());
+  draws();
+  glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+  GLuint invocations = 0;
+  glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &invocations);
+  checkGl("fragment-shader invocation query");
+  return double(invocations);
 }
 
 Query makeQuery() {

@@ -17,6 +17,7 @@
 // and the error that is already on its way says why.
 #pragma once
 
+#include <functional>
 #include <utility>
 
 #include "core/gl/gl.h"
@@ -80,6 +81,12 @@ Renderbuffer makeRenderbuffer();
 Buffer makeBuffer();
 VertexArray makeVertexArray();
 Query makeQuery();
+
+// GL_ARB_pipeline_statistics_query (core in GL 4.6): how many fragment-shader invocations the
+// draws issued by `draws` cost — the fragments the rasteriser hands to the fragment stage,
+// whether or not a later test then lets them update (llvmpipe counts whole 4x4 blocks). -1
+// where the driver has no such query (`draws` still runs).
+double countFragmentInvocations(const std::function<void()>& draws);
 
 // glEnable(cap) now, glDisable(cap) at the end of the scope: the hand-written pair, also when
 // the scope is left by an exception. For capabilities a pass switches on for some of its draws
