@@ -35,8 +35,16 @@ void drawScene(const Scene& scene, Draw which, Colors colors) {
     glVertexPointer(3, GL_FLOAT, 0, o.mesh->positions.data());
     glNormalPointer(GL_FLOAT, 0, o.mesh->normals.data());
     const FrontFaceForModel frontFace(o.model);  // culling keeps seeing a mirrored outside as front
+    // Hidden back faces (Object::backFacesHidden) are culled: fragments saved, no pixel changed.
+    // A pass that culls by itself (second-depth) keeps its own setting.
+    const bool cull = o.backFacesHidden && !glIsEnabled(GL_CULL_FACE);
+    if (cull) {
+      glCullFace(GL_BACK);
+      glEnable(GL_CULL_FACE);
+    }
     glDrawElements(GL_TRIANGLES, GLsizei(o.mesh->indices.size()), GL_UNSIGNED_INT,
                    o.mesh->indices.data());
+    if (cull) glDisable(GL_CULL_FACE);
   }
 }
 

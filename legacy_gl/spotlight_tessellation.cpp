@@ -339,9 +339,33 @@ PassSpec meshFeedingPass() {
           .floor = PassFloor::kCpuOnly};
 }
 
+bool backFacesHiddenFrom(const Object& object, const Camera& camera) {
+  if (!object.mesh || !object.mesh->closed) return false;
+  const Mesh& m = *object.mesh;
+  double volume6 = 0.0;  // six times the signed volume (divergence theorem)
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]),
+        c(m.positions[m.indices[t + 2]]);
+    volume6 += glm::dot(a, glm::cross(b, c));
+  }
+  if (!(volume6 > 0.0)) return false;  // wound inward (or flat): its "back" faces face out
+  const Bounds b = worldBounds(object);
+  const glm::vec3 grow(camera.nearPlane);
+  const glm::vec3 lo = b.lo - grow, hi = b.hi + grow;
+  const glm::vec3& e = camera.position;
+  const bool inside =
+      e.x >= lo.x && e.x <= hi.x && e.y >= lo.y && e.y <= hi.y && e.z >= lo.z && e.z <= hi.z;
+  return !inside;
+}
+
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes) {
   Scene split;
-  passes.run("mesh", [&] { split = splitForSpotlight(scene, params, passes.frame()); });
+  passes.run("mesh", [&] {
+    split = splitForSpotlight(scene, params, passes.frame());
+    // Judged on the scene's own meshes: the split keeps their geometry.
+    for (size_t i = 0; i < split.objects.size() && i < scene.objects.size(); ++i)
+      split.objects[i].backFacesHidden = backFacesHiddenFrom(scene.objects[i], scene.camera);
+  });
   return split;
 }
 

@@ -51,7 +51,16 @@ Scene tessellateForSpotlight(const Scene& scene, int width, int height,
 // draws the same meshes again instead of splitting anew. Without a current context it splits.
 constexpr std::size_t kCachedTessellations = 4;
 // Runs as the pass "mesh" of the technique's table (meshFeedingPass(), which every legacy
-// technique that lights per vertex lists first).
+// technique that lights per vertex lists first). It also marks the objects whose back faces the
+// camera cannot see (Object::backFacesHidden, backFacesHiddenFrom): drawScene culls those, as
+// their back faces cost the camera passes fragments and change no pixel (legacy_bench
+// --split-cost counts the fragments).
+Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes);
+// A closed mesh wound outward (positive signed volume, glspec121 §2.6.1's counter-clockwise
+// front faces) whose world bounds, grown by the near-plane distance, leave the camera outside:
+// every back face lies behind a front face of the same mesh and none is cut open by the near
+// plane.
+bool backFacesHiddenFrom(const Object& object, const Camera& camera);
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes);
 PassSpec meshFeedingPass();
 

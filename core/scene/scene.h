@@ -56,6 +56,12 @@ struct Object {
   float specular = 0.0f;  // specular reflectance (Phong), 0 = matte
   bool castsShadow = true;
   bool receivesShadow = true;
+  // Set by a view that checked it (legacy_gl/spotlight_tessellation.h cameraPassScene): the mesh
+  // is closed and wound outward and the camera sees it only from outside, so its back faces are
+  // hidden behind its own front faces and drawing them costs fragments, not pixels (but for a
+  // pixel centre exactly on a silhouette edge, which the rasteriser's tie rule may give to the
+  // back face).
+  bool backFacesHidden = false;
 };
 
 struct Camera {
