@@ -22,7 +22,7 @@ cd "$(dirname "$0")/.."
 # ID | files | command (run from the repository root). A file written as FILE:first receives
 # only the command's first paragraph and first table (the summary); other files get it all.
 TABLES=(
-  "legacy|docs/performance.md:first docs/legacy.md|build/bin/legacy_bench"
+  "legacy|docs/performance.md:first docs/legacy.md|build/bin/legacy_bench --frames 9"
   "legacy-split|docs/legacy.md|build/bin/legacy_bench --split-cost --frames 9"
   "twins-time|docs/performance.md|build/bin/shadowlab-twins --no-agreement --frames 7"
   "imaging|docs/imaging.md|build/bin/imaging_bench"
