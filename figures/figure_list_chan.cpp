@@ -3,6 +3,7 @@
 // smoothies.
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "figures/figure_list_parts.h"
@@ -15,17 +16,8 @@ constexpr float kSmoothieWidthPerRadius = 0.5f;  // smoothie width (map side = 1
 
 FigureSpec chanFigure(std::string id, std::string figure, std::string title, std::string caption,
                       std::string scene, int columns, std::vector<PanelSpec> panels) {
-  FigureSpec f;
-  f.id = std::move(id);
-  f.paper = kChan;
-  f.paperFigure = std::move(figure);
-  f.title = std::move(title);
-  f.caption = std::move(caption);
-  f.scene = std::move(scene);
-  f.columns = columns;
-  f.panels = std::move(panels);
-  f.twins = false;
-  return f;
+  return paperFigure(kChan, std::move(id), std::move(figure), std::move(title), std::move(caption),
+                     std::move(scene), columns, std::move(panels));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // (figure_list_parts.h): Convolution Shadow Maps' figures and Table 1.
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "figures/figure_list_parts.h"
@@ -13,17 +14,8 @@ constexpr const char* kCsm = "Annen et al. 2007 (Convolution Shadow Maps)";
 
 FigureSpec csmFigure(std::string id, std::string figure, std::string title, std::string caption,
                      std::string scene, int columns, std::vector<PanelSpec> panels) {
-  FigureSpec f;
-  f.id = std::move(id);
-  f.paper = kCsm;
-  f.paperFigure = std::move(figure);
-  f.title = std::move(title);
-  f.caption = std::move(caption);
-  f.scene = std::move(scene);
-  f.columns = columns;
-  f.panels = std::move(panels);
-  f.twins = false;
-  return f;
+  return paperFigure(kCsm, std::move(id), std::move(figure), std::move(title), std::move(caption),
+                     std::move(scene), columns, std::move(panels));
 }
 
 PanelSpec far(PanelSpec p, float distance) {

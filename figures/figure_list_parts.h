@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "figures/figure_spec.h"
@@ -65,6 +66,24 @@ inline PanelSpec plot(std::string label, std::string chart) {
   p.plot = std::move(chart);
   p.closeups = false;
   return p;
+}
+
+// One figure of `paper`, numbered `figure` there, with its panels in `columns` columns; no twin
+// panels (a paper's figure compares its techniques, not our legacy and modern twins).
+inline FigureSpec paperFigure(std::string paper, std::string id, std::string figure,
+                              std::string title, std::string caption, std::string scene,
+                              int columns, std::vector<PanelSpec> panels) {
+  FigureSpec f;
+  f.id = std::move(id);
+  f.paper = std::move(paper);
+  f.paperFigure = std::move(figure);
+  f.title = std::move(title);
+  f.caption = std::move(caption);
+  f.scene = std::move(scene);
+  f.columns = columns;
+  f.panels = std::move(panels);
+  f.twins = false;
+  return f;
 }
 
 // The entries of each paper (figure_list_PAPER.cpp), in the report's order.
