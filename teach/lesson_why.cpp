@@ -96,8 +96,9 @@ std::string planesTable(const std::vector<Side>& sides) {
     std::string a, b;
     for (int k = 0; k < 4; ++k) {
       d = std::max(d, std::fabs(planes[size_t(i)][size_t(k)] - rows[size_t(i)][size_t(k)]));
-      a += (k ? ", " : "") + fmt(planes[size_t(i)][size_t(k)], "%.6g");
-      b += (k ? ", " : "") + fmt(rows[size_t(i)][size_t(k)], "%.6g");
+      const char* separator = k ? ", " : "";
+      a.append(separator).append(fmt(planes[size_t(i)][size_t(k)], "%.6g"));
+      b.append(separator).append(fmt(rows[size_t(i)][size_t(k)], "%.6g"));
     }
     largest = std::max(largest, d);
     html << "<tr><td>" << coords[i] << "</td><td><code>(" << a << ")</code></td><td><code>(" << b

@@ -208,7 +208,13 @@ TEST(BenchCli, ASweepFileRunsItsRowsInOrderWithTheirViews) {
   const size_t open = first.find("\"{"), close = first.find("}\"");
   ASSERT_NE(open, std::string::npos) << first;
   std::string text = first.substr(open + 1, close - open);
-  for (size_t at; (at = text.find("\"\"")) != std::string::npos;) text.replace(at, 2, "\"");
+  // CSV doubles a quote inside a quoted field (RFC 4180 §2.7): undo it.
+  std::string unquoted;
+  for (size_t i = 0; i < text.size(); ++i) {
+    unquoted += text[i];
+    if (text[i] == '"' && i + 1 < text.size() && text[i + 1] == '"') ++i;
+  }
+  text = unquoted;
   EXPECT_EQ(json::parse(text), rows[0]["params"]) << first;
   EXPECT_NE(header.find("frame_iqr_ms"), std::string::npos);
   EXPECT_NE(header.find("gl_renderer"), std::string::npos);
