@@ -5,10 +5,13 @@
 #       build/bin/legacy_bench --technique legacy.fast-pcf --frames 8
 #   perf script -i perf.data -F comm,tid,time,ip,sym,dso | scripts/legacy_profile.py 2 8
 # Arguments: warm-up frames and timed frames of the first variant (only those are counted).
-# Main-thread samples belong to the call below the technique's render() (a pass function, the
-# tessellation, a read-back); llvmpipe worker samples to the latest main-thread pass before
-# them (PassTimer's glFinish keeps the workers' work inside its pass). A frame starts where the
-# main thread enters cameraPassScene. cpu-clock samples at 4 kHz: 0.25 ms each.
+# Main-thread samples belong to the pass they run in: the function whose body Passes::run runs
+# (a pass's lambda is named for the pass function that holds it), else the call below the
+# technique's render() (a read-back); llvmpipe worker samples to the latest main-thread pass
+# before them (Passes::run ends each pass in glFinish, so the workers' work stays inside it).
+# The floors legacy_bench times between the frames (measure/roofline.h renderFloors) are left
+# out, worker samples included. A frame ends where the main thread leaves render()'s read-backs.
+# cpu-clock samples at 4 kHz: 0.25 ms each.
 import sys, re, collections
 WARM=int(sys.argv[1]); FRAMES=int(sys.argv[2]); MS=0.25  # ms per cpu-clock sample (4 kHz)
 def parse(f):
@@ -25,12 +28,16 @@ def parse(f):
             m=re.match(r'\s*[0-9a-f]+\s+(.*) \((.*)\)$',line)
             if m: chain.append((m.group(1),m.group(2).split('/')[-1]))
     if head: yield head, chain
+FLOORS='(floors)'
+# render() ends in its read-backs (readRgb, readVisibilityFromAlpha: milliseconds each, so
+# always sampled): a frame ends where the main thread leaves them.
+def isReadBack(name): return re.search(r'(^|::)read[A-Z]', name) is not None
 RENDER=re.compile(r'sl::legacy::\(anonymous namespace\)::render')
-cur='(setup)'; frame=[0]; llvm_t=[]; all_t=[]; tab=collections.defaultdict(collections.Counter); total=0
+cur='(setup)'; frame=[1]; llvm_t=[]; all_t=[]; tab=collections.defaultdict(collections.Counter); total=0
 for (comm,tid,t),chain in parse(sys.stdin):
     steady = WARM < frame[0] <= WARM+FRAMES
     if comm.startswith('llvmpipe'):
-        if not steady: continue
+        if not steady or cur==FLOORS: continue
         total+=1
         tab[cur]['llvmpipe threads (raster+fragment JIT)']+=1; continue
     if comm!='legacy_bench' and not steady: continue
@@ -39,18 +46,31 @@ for (comm,tid,t),chain in parse(sys.stdin):
         tab[cur]['other thread: '+comm]+=1; continue
     syms=[s for s,_ in chain]
     idx=[i for i,s in enumerate(syms) if RENDER.match(s)]
-    if not any(x in ('main','_start') or 'timeSteadyState' in x for x in syms):
+    run=[i for i,s in enumerate(syms) if s=='sl::Passes::run']
+    if any('renderFloors' in x for x in syms):
+        if isReadBack(cur): frame[0]+=1
+        cur=FLOORS; continue
+    if not any(x in ('main','_start') or 'SteadyState' in x for x in syms):
         pass  # unwinding stopped in JIT code: the sample stays with the current pass
-    elif idx and idx[-1]>0 and 'PassTimer' in syms[idx[-1]-1]:
-        pass  # PassTimer's glFinish: the pass that just ended
+    elif run and run[0]>0 and (syms[run[0]-1].startswith('std::_Function_handler<void ()')
+                               or (syms[run[0]-1].startswith('sl::')
+                                   and not syms[run[0]-1].startswith('sl::nowMilliseconds'))):
+        p=syms[run[0]-1]
+        m=re.search(r'<void \(\), (.*?)::\{lambda',p)
+        if m: p=m.group(1)
+        p=re.sub(r'\(.*','',p.replace('sl::legacy::','').replace('(anonymous namespace)::',''))
+        if isReadBack(cur) and not isReadBack(p): frame[0]+=1
+        cur=p
+    elif run:
+        pass  # Passes::run's own timing and glFinish (Mesa): the pass that is ending
     elif idx and idx[-1]>0:
         p=syms[idx[-1]-1]
         p=re.sub(r'\(.*','',p.replace('sl::legacy::','').replace('(anonymous namespace)::',''))
-        if p=='cameraPassScene' and cur!=p: frame[0]+=1
+        if isReadBack(cur) and not isReadBack(p): frame[0]+=1
         cur=p
     elif idx: cur='render (itself)'
     else:
-        cur='(outside render: context, warm-up bookkeeping)' if not any('timeSteadyState' in s for s in syms) else 'timing'
+        cur='(outside render: context, warm-up bookkeeping)' if not any('SteadyState' in s for s in syms) else 'timing'
     leafsym,leafdso=chain[0] if chain else ('?','?')
     if any('MeshSplitter' in s or 'tessellate' in s for s in syms): cat='tessellation (our code)'
     elif 'PassTimer' in ' '.join(syms) and leafdso!='legacy_bench': cat='main thread in Mesa (vbo/draw/vertex/setup/pixel paths)'
