@@ -10,7 +10,9 @@
 # technique's render() (a read-back); llvmpipe worker samples to the latest main-thread pass
 # before them (Passes::run ends each pass in glFinish, so the workers' work stays inside it).
 # The floors legacy_bench times between the frames (measure/roofline.h renderFloors) are left
-# out, worker samples included. A frame ends where the main thread leaves render()'s read-backs.
+# out, worker samples included. A frame ends where the main thread leaves render()'s read-backs;
+# legacy_bench renders a variant's WARM warm-up frames first, then its timed frames (each after
+# a round of floors, core/technique/frame_timing.h timeInterleavedSteadyState).
 # cpu-clock samples at 4 kHz: 0.25 ms each.
 import sys, re, collections
 WARM=int(sys.argv[1]); FRAMES=int(sys.argv[2]); MS=0.25  # ms per cpu-clock sample (4 kHz)
@@ -45,6 +47,7 @@ for (comm,tid,t),chain in parse(sys.stdin):
     if comm!='legacy_bench':
         tab[cur]['other thread: '+comm]+=1; continue
     syms=[s for s,_ in chain]
+    prev=cur
     idx=[i for i,s in enumerate(syms) if RENDER.match(s)]
     run=[i for i,s in enumerate(syms) if s=='sl::Passes::run']
     if any('renderFloors' in x for x in syms):
@@ -59,18 +62,17 @@ for (comm,tid,t),chain in parse(sys.stdin):
         m=re.search(r'<void \(\), (.*?)::\{lambda',p)
         if m: p=m.group(1)
         p=re.sub(r'\(.*','',p.replace('sl::legacy::','').replace('(anonymous namespace)::',''))
-        if isReadBack(cur) and not isReadBack(p): frame[0]+=1
         cur=p
     elif run:
         pass  # Passes::run's own timing and glFinish (Mesa): the pass that is ending
     elif idx and idx[-1]>0:
         p=syms[idx[-1]-1]
         p=re.sub(r'\(.*','',p.replace('sl::legacy::','').replace('(anonymous namespace)::',''))
-        if isReadBack(cur) and not isReadBack(p): frame[0]+=1
         cur=p
     elif idx: cur='render (itself)'
     else:
         cur='(outside render: context, warm-up bookkeeping)' if not any('SteadyState' in s for s in syms) else 'timing'
+    if isReadBack(prev) and not isReadBack(cur): frame[0]+=1
     leafsym,leafdso=chain[0] if chain else ('?','?')
     if any('MeshSplitter' in s or 'tessellate' in s for s in syms): cat='tessellation (our code)'
     elif 'PassTimer' in ' '.join(syms) and leafdso!='legacy_bench': cat='main thread in Mesa (vbo/draw/vertex/setup/pixel paths)'
