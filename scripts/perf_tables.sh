@@ -25,6 +25,7 @@ TABLES=(
   "legacy|docs/performance.md:first docs/legacy.md|build/bin/legacy_bench --frames 9"
   "legacy-split|docs/legacy.md|build/bin/legacy_bench --split-cost --frames 9"
   "legacy-profile|docs/legacy.md|scripts/legacy_profile.sh"
+  "legacy-reference|docs/legacy.md:first|build/bin/legacy_bench --backend reference --frames 9"
   "twins-time|docs/performance.md|build/bin/shadowlab-twins --no-agreement --frames 7"
   "imaging|docs/imaging.md|build/bin/imaging_bench"
   "csm-ratio|docs/csm.md|build/bin/csm_bench --part ratio"
