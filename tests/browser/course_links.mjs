@@ -10,14 +10,11 @@
 //      answered by the test (HTTP 204) instead of the server: what is checked is the state the
 //      link sets, not the frames (browser.lab_links renders the gallery's).
 // usage: SHADOWLAB_BINARY=... node course_links.mjs COURSE_DIR
-import { spawn } from 'node:child_process';
-import { existsSync, readFileSync } from 'node:fs';
+import { existsSync } from 'node:fs';
 import path from 'node:path';
 import url from 'node:url';
-import puppeteer from 'puppeteer-core';
+import { commandPairs, embeddedJson, launchChromium, pairsOf, sameList, startLab } from './harness.mjs';
 
-const kChromium = process.env.SHADOWLAB_CHROMIUM || '/usr/bin/chromium';
-const kStartTimeoutMs = 60000;   // the server prints its URL
 const kStateTimeoutMs = 60000;   // the page has read its URL and asked for both frames
 const binary = process.env.SHADOWLAB_BINARY;
 const dir = path.resolve(process.argv[2]);
@@ -29,31 +26,9 @@ function fail(message) {
   process.exitCode = 1;
 }
 
-function courseData() {
-  const html = readFileSync(path.join(dir, 'index.html'), 'utf8');
-  const m = html.match(/<script type="application\/json" id=course-data>([\s\S]*?)<\/script>/);
-  if (!m) throw new Error('no course-data in ' + dir + '/index.html');
-  return JSON.parse(m[1]);
-}
+const courseData = () => embeddedJson(dir, 'course-data');
 
-function pairsOf(search, skip = []) {
-  const out = [];
-  for (const [k, v] of new URLSearchParams(search)) if (!skip.includes(k)) out.push(k + '=' + v);
-  return out.sort();
-}
-function commandPairs(args) {
-  const out = [];
-  for (let i = 0; i + 1 < args.length; i += 2) out.push(args[i].replace(/^--/, '') + '=' + args[i + 1]);
-  return out.sort();
-}
-const sameList = (x, y) => JSON.stringify(x) === JSON.stringify(y);
-
-const browser = await puppeteer.launch({
-  executablePath: kChromium,
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const browser = await launchChromium();
 let server = null;
 try {
   // ---------------------------------------------------------------- 1. links and anchors
@@ -90,18 +65,9 @@ try {
   if (links < 20) fail('the course pages have only ' + links + ' relative links');
 
   // ---------------------------------------------------------------- 2. lab links
-  server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-  const base = await new Promise((resolve, reject) => {
-    let out = '';
-    const timer = setTimeout(() => reject(new Error('no URL from shadowlab serve')), kStartTimeoutMs);
-    server.stdout.on('data', (chunk) => {
-      out += chunk;
-      const m = out.match(/the lab is at (http:\/\/127\.0\.0\.1:\d+\/)/);
-      if (m) { clearTimeout(timer); resolve(m[1]); }
-    });
-    server.on('error', reject);
-    server.on('exit', (code) => reject(new Error('shadowlab serve exited with ' + code)));
-  });
+  const lab = await startLab(binary);
+  server = lab.server;
+  const base = lab.url;
   const exercises = courseData();
   let opened = 0;
   for (const e of exercises.filter((x) => x.lab)) {

@@ -13,14 +13,10 @@
 //   4. A bodiless POST gets 405 (README: "a method other than GET 405"), over a raw socket.
 // usage: SHADOWLAB_BINARY=... node lab_links.mjs GALLERY_DIR
 // Screenshots go to $SHADOWLAB_SCREENSHOT_DIR.
-import { spawn } from 'node:child_process';
-import { mkdirSync, readFileSync } from 'node:fs';
+import { mkdirSync } from 'node:fs';
 import net from 'node:net';
-import path from 'node:path';
-import puppeteer from 'puppeteer-core';
+import { commandPairs, embeddedJson, launchChromium, pairsOf, sameList, startLab } from './harness.mjs';
 
-const kChromium = '/usr/bin/chromium';
-const kStartTimeoutMs = 60000;   // the server prints its URL
 // The first frames wait for /api/scenes (it loads every scene) and, behind them on the one
 // worker, for the error requests of the previous link (a ray-traced reference each).
 const kFrameTimeoutMs = Number(process.env.SHADOWLAB_FRAME_TIMEOUT_MS || 240000);
@@ -38,40 +34,9 @@ function fail(message) {
 }
 
 // The gallery's entries, from the JSON its page carries.
-function galleryEntries(dir) {
-  const html = readFileSync(path.join(dir, 'index.html'), 'utf8');
-  const m = html.match(/<script type="application\/json" id=gallery-data>([\s\S]*?)<\/script>/);
-  if (!m) throw new Error('no gallery-data in ' + dir + '/index.html');
-  return JSON.parse(m[1]);
-}
+const galleryEntries = (dir) => embeddedJson(dir, 'gallery-data');
 
-// key=value pairs of a query as sorted "key=value" strings, without the keys in `skip`.
-function pairsOf(search, skip = []) {
-  const out = [];
-  for (const [k, v] of new URLSearchParams(search)) if (!skip.includes(k)) out.push(k + '=' + v);
-  return out.sort();
-}
-
-// A render command's options as sorted "key=value" strings, as the API spells them.
-function commandPairs(args) {
-  const out = [];
-  for (let i = 0; i + 1 < args.length; i += 2) out.push(args[i].replace(/^--/, '') + '=' + args[i + 1]);
-  return out.sort();
-}
-
-const sameList = (x, y) => JSON.stringify(x) === JSON.stringify(y);
-
-const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const base = await new Promise((resolve, reject) => {
-  let out = '';
-  const timer = setTimeout(() => reject(new Error('no URL from shadowlab serve')), kStartTimeoutMs);
-  server.stdout.on('data', (chunk) => {
-    out += chunk;
-    const m = out.match(/the lab is at (http:\/\/127\.0\.0\.1:(\d+)\/)/);
-    if (m) { clearTimeout(timer); resolve({ url: m[1], port: Number(m[2]) }); }
-  });
-  server.on('exit', (code) => reject(new Error('shadowlab serve exited with ' + code)));
-});
+const { server, ...base } = await startLab(binary);  // base: { url, port }
 console.log('lab at ' + base.url);
 
 // One raw request, the reply's status line.
@@ -88,12 +53,7 @@ function rawStatus(bytes) {
   });
 }
 
-const browser = await puppeteer.launch({
-  executablePath: kChromium,
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const browser = await launchChromium();
 
 // Opens `url` in a new page and records the /api/render requests of lanes a and b (their
 // queries) and the reproducing command each answer names.

@@ -4,13 +4,10 @@
 // checks that a new image arrived for each change (the canvas changed, the reproducing command
 // names the new setting) and that the console showed no error. Screenshots go to
 // $SHADOWLAB_SCREENSHOT_DIR for a person to look at.
-import { spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { mkdirSync } from 'node:fs';
-import puppeteer from 'puppeteer-core';
+import { launchChromium, startLab } from './harness.mjs';
 
-const kChromium = '/usr/bin/chromium';
-const kStartTimeoutMs = 60000;   // the server prints its URL
 const kFrameTimeoutMs = Number(process.env.SHADOWLAB_FRAME_TIMEOUT_MS || 180000);  // first frames: /api/scenes loads every scene
 const binary = process.env.SHADOWLAB_BINARY;
 const shots = process.env.SHADOWLAB_SCREENSHOT_DIR || 'out/browser';
@@ -21,25 +18,10 @@ function fail(message) {
   process.exitCode = 1;
 }
 
-const server = spawn(binary, ['serve', '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const url = await new Promise((resolve, reject) => {
-  let out = '';
-  const timer = setTimeout(() => reject(new Error('no URL from shadowlab serve')), kStartTimeoutMs);
-  server.stdout.on('data', (chunk) => {
-    out += chunk;
-    const m = out.match(/the lab is at (http:\/\/127\.0\.0\.1:\d+\/)/);
-    if (m) { clearTimeout(timer); resolve(m[1]); }
-  });
-  server.on('exit', (code) => reject(new Error('shadowlab serve exited with ' + code)));
-});
+const { server, url } = await startLab(binary);
 console.log('lab at ' + url);
 
-const browser = await puppeteer.launch({
-  executablePath: kChromium,
-  headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--no-first-run'],
-});
+const browser = await launchChromium();
 const consoleErrors = [];
 try {
   const page = await browser.newPage();
