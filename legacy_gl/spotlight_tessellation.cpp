@@ -358,13 +358,17 @@ bool backFacesHiddenFrom(const Object& object, const Camera& camera) {
   return !inside;
 }
 
+void markHiddenBackFaces(Scene& split, const Scene& scene) {
+  // Judged on the scene's own meshes: the split keeps their geometry.
+  for (size_t i = 0; i < split.objects.size() && i < scene.objects.size(); ++i)
+    split.objects[i].backFacesHidden = backFacesHiddenFrom(scene.objects[i], scene.camera);
+}
+
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes) {
   Scene split;
   passes.run("mesh", [&] {
     split = splitForSpotlight(scene, params, passes.frame());
-    // Judged on the scene's own meshes: the split keeps their geometry.
-    for (size_t i = 0; i < split.objects.size() && i < scene.objects.size(); ++i)
-      split.objects[i].backFacesHidden = backFacesHiddenFrom(scene.objects[i], scene.camera);
+    markHiddenBackFaces(split, scene);
   });
   return split;
 }

@@ -61,6 +61,9 @@ Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& pa
 // every back face lies behind a front face of the same mesh and none is cut open by the near
 // plane.
 bool backFacesHiddenFrom(const Object& object, const Camera& camera);
+// Sets Object::backFacesHidden on every object of `split` (tessellateForSpotlight of `scene`,
+// object for object) as backFacesHiddenFrom judges the scene's own object from its camera.
+void markHiddenBackFaces(Scene& split, const Scene& scene);
 Scene cameraPassScene(const Scene& scene, const RenderParams& params, Passes& passes);
 PassSpec meshFeedingPass();
 

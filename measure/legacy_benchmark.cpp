@@ -205,8 +205,7 @@ std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& option
   auto context = GlContext::create(contextFor(t, p));
   const Scene split = tessellateForSpotlight(scene, p.width, p.height);
   Scene culled = split;  // as the camera passes draw it (cameraPassScene)
-  for (size_t i = 0; i < culled.objects.size() && i < scene.objects.size(); ++i)
-    culled.objects[i].backFacesHidden = backFacesHiddenFrom(scene.objects[i], scene.camera);
+  markHiddenBackFaces(culled, scene);
   const Texture ramp = makeTexture();
   {
     using namespace sl::gl;

@@ -277,12 +277,10 @@ TEST(SpotlightTessellation, CullingHiddenBackFacesChangesNoPixelAndSavesFragment
   for (const char* name : {"brabec", "fence", "trees", "dueling"}) {
     const Scene scene = builtinScene(name);
     Scene culled = tessellateForSpotlight(scene, kWidth, kHeight);
-    Scene drawnWhole = culled;
+    const Scene drawnWhole = culled;
+    markHiddenBackFaces(culled, scene);
     size_t hidden = 0;
-    for (size_t i = 0; i < culled.objects.size(); ++i) {
-      culled.objects[i].backFacesHidden = backFacesHiddenFrom(scene.objects[i], scene.camera);
-      hidden += culled.objects[i].backFacesHidden ? 1 : 0;
-    }
+    for (const Object& o : culled.objects) hidden += o.backFacesHidden ? 1 : 0;
     EXPECT_GT(hidden, 0u) << name << ": no closed mesh seen from outside";
     const auto draw = [&](const Scene& s, Image& colour, std::vector<float>& depth) {
       using namespace sl::gl;
