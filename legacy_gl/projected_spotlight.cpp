@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <stdexcept>
 #include <vector>
 
 #include "core/base/errors.h"
@@ -37,17 +38,13 @@ glm::mat4 worldToConeTexture(const Scene& scene) {
   return S * lightProjection(scene) * lightView(scene.light);
 }
 
-SpotlightConeTexture::SpotlightConeTexture() : texture_(makeTexture()) {
-  std::vector<float> alpha(size_t(kConeTextureTexels) * kConeTextureTexels);
-  const double w = texelWidth();
-  for (int j = 0; j < kConeTextureTexels; ++j)
-    for (int i = 0; i < kConeTextureTexels; ++i)  // texel centres
-      alpha[size_t(j * kConeTextureTexels + i)] = coneTextureAlpha(
-          -kConeTextureExtent + (i + 0.5) * w, -kConeTextureExtent + (j + 0.5) * w);
+void uploadConeTexture(GLuint texture, const std::vector<float>& alpha) {
+  if (alpha.size() != size_t(kConeTextureTexels) * kConeTextureTexels)
+    throw std::invalid_argument("uploadConeTexture: kConeTextureTexels^2 alphas expected");
   // The active unit's binding is the caller's (legacy.hw's shadow map on unit 0): kept.
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  glBindTexture(GL_TEXTURE_2D, texture_.id());
+  glBindTexture(GL_TEXTURE_2D, texture);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   // ALPHA16: the edge (alpha 0.5) stays where the distance puts it; 8 bits would move it by up
   // to half a step, 1/255 of the ramp's width.
@@ -58,6 +55,16 @@ SpotlightConeTexture::SpotlightConeTexture() : texture_(makeTexture()) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_2D, GLuint(bound));
+}
+
+SpotlightConeTexture::SpotlightConeTexture() : texture_(makeTexture()) {
+  std::vector<float> alpha(size_t(kConeTextureTexels) * kConeTextureTexels);
+  const double w = texelWidth();
+  for (int j = 0; j < kConeTextureTexels; ++j)
+    for (int i = 0; i < kConeTextureTexels; ++i)  // texel centres
+      alpha[size_t(j * kConeTextureTexels + i)] = coneTextureAlpha(
+          -kConeTextureExtent + (i + 0.5) * w, -kConeTextureExtent + (j + 0.5) * w);
+  uploadConeTexture(texture_.id(), alpha);
   checkGl("spotlight cone texture");
 }
 

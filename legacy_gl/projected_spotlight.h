@@ -17,6 +17,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/gl/gl.h"
 #include "core/gl/gl_objects.h"
@@ -49,6 +50,11 @@ constexpr float kConeEdgeAlpha = 0.5f;
 // The cone's alpha at a point (x, y) of the light's normalised image plane (what the texel
 // there holds): 0.5 + (1 - |(x, y)|) / (2 w), clamped to [0, 1], w the ramp's half width.
 float coneTextureAlpha(double x, double y);
+// Fills the 2D texture `texture` with kConeTextureTexels^2 alphas (row by row) in the cone
+// texture's format, filter and wrap (GL_ALPHA16, GL_LINEAR, GL_CLAMP_TO_EDGE); the active
+// unit's 2D binding is restored. SpotlightConeTexture and the lighting pass's floor
+// (measure/roofline.h) both make theirs with it, so the floor samples what the pass samples.
+void uploadConeTexture(GLuint texture, const std::vector<float>& alpha);
 
 // The world-to-texture planes of the cone (rows s, t, -, q of the matrix): s/q, t/q in [0, 1]
 // over the texture's square; q is the light eye-space depth scaled by tan(cone / 2) (q > 0 in

@@ -92,14 +92,7 @@ class FloorResources {
     // The spotlight cone's size, format and filter (legacy_gl/projected_spotlight.h), every
     // texel kConeFloorAlpha.
     const std::vector<float> cone(size_t(kConeTextureTexels) * kConeTextureTexels, kConeFloorAlpha);
-    glBindTexture(GL_TEXTURE_2D, cone_.id());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA16, kConeTextureTexels, kConeTextureTexels, 0, GL_ALPHA,
-                 GL_FLOAT, cone.data());
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    uploadConeTexture(cone_.id(), cone);
     const GLubyte step[kStepTexels] = {0, 255};
     glBindTexture(GL_TEXTURE_1D, step_.id());
     glTexImage1D(GL_TEXTURE_1D, 0, GL_LUMINANCE8, kStepTexels, 0, GL_LUMINANCE, GL_UNSIGNED_BYTE,
