@@ -1,5 +1,6 @@
 #include "figures/course.h"
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "core/base/output_files.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
+#include "registry/commands.h"
 #include "registry/registry.h"
 
 namespace sl::figures {
@@ -33,6 +35,8 @@ constexpr int kMinExercises = 2;  // per step (the course's contract: 2-3 exerci
 constexpr int kMaxExercises = 3;
 
 const char* kTeacherDir = "teacher";
+const char* kScopePage = "scope.html";
+const char* kMeasureCompare = "compare";  // course.json "measure": run `shadowlab compare`
 
 std::string courseFile() {
   return (fs::path(assetDirectory()) / "course" / "course.json").string();
@@ -57,6 +61,10 @@ CourseExercise exerciseFrom(const json& j, const std::string& defaultSize) {
   e.answer = j.at("answer").get<std::string>();
   e.lab = j.at("lab").get<bool>();
   e.gallery = j.value("gallery", std::string());
+  e.measure = j.value("measure", std::string());
+  if (!e.measure.empty() && e.measure != kMeasureCompare)
+    throw InputError("course " + courseFile() + ": exercise " + e.id + " has measure '" +
+                     e.measure + "'; the only measure is '" + kMeasureCompare + "'");
   GalleryEntry& p = e.pair;
   p.id = e.id;
   p.title = e.question;
@@ -79,8 +87,9 @@ std::string lessonHref(const CourseSettings& s, const std::string& technique) {
   return s.lessonsHref + technique + "/index.html";
 }
 
-// The page's style: screen and print (one step, or one exercise of the teacher's page, never
-// split across pages; links print their text only; commands wrap).
+// The page's style: screen and print (each step on a page of its own, its pictures small enough
+// that a step's exercises fit on it: the teacher's page prints on about one page a step; links
+// print their text only; commands wrap).
 const char* kStyle =
     "body{font:15px/1.45 system-ui,sans-serif;max-width:1050px;margin:1em auto;padding:0 1em;"
     "color:#222}\n"
@@ -95,11 +104,18 @@ const char* kStyle =
     "figcaption{font-size:.85em;color:#444}\n"
     ".error{color:#b00}\n"
     ".answer{background:#eef7ee;padding:.3em .6em}\n"
+    ".measured{background:#f3f0e6;padding:.3em .6em;font-size:.9em}\n"
+    "table.scope{border-collapse:collapse}table.scope td,table.scope th{border:1px solid #ccc;"
+    "padding:.3em .5em;vertical-align:top;text-align:left}\n"
     "footer{border-top:1px solid #ccc;margin-top:2em;font-size:.85em;color:#555}\n"
-    "@media print{body{max-width:none;font-size:11pt}a{color:inherit;text-decoration:none}"
-    "nav.toc{break-after:page}section.step{break-inside:avoid-page}"
-    "div.exercise{break-inside:avoid}.pair{flex-wrap:nowrap}.pair figure{flex:1 1 50%}"
-    ".pair img{width:100%}pre,code{background:none}}\n";
+    "@page{margin:1.2cm}\n"
+    "@media print{body{max-width:none;font-size:9pt;line-height:1.25}"
+    "a{color:inherit;text-decoration:none}nav.toc{break-after:page}"
+    "section.step{break-inside:avoid-page;border:0;padding:0}"
+    "section.step+section.step{break-before:page}"
+    "div.exercise{break-inside:avoid;margin:.4em 0}.pair{flex-wrap:nowrap}"
+    ".pair figure{flex:0 1 auto}.pair img{width:auto;max-height:3cm}"
+    "pre{font-size:.72em}pre,code{background:none}p{margin:.3em 0}}\n";
 
 // A text of course.json as HTML: escaped, and `...` (a command or an option) as <code>.
 std::string prose(const std::string& text) {
@@ -152,10 +168,75 @@ std::string commandsHtml(const CourseExercise& e, const std::string& labUrl) {
   return h;
 }
 
+// An exercise's `shadowlab compare` run (measure "compare"): its command and its JSON line.
+struct MeasuredCompare {
+  std::string command;
+  nlohmann::json line;
+};
+using MeasuredLines = std::map<std::string, MeasuredCompare>;  // by exercise id
+
+MeasuredCompare runExerciseCompare(const CourseExercise& e) {
+  std::vector<std::string> argv = {"shadowlab", "compare"};
+  for (const std::string& a : exerciseCompareArguments(e)) argv.push_back(a);
+  std::vector<char*> pointers;
+  for (std::string& a : argv) pointers.push_back(a.data());
+  const cli::Args args = cli::parse(int(pointers.size()), pointers.data());
+  return {shellJoin(argv), runCompare(prepareCompare(args)).line};
+}
+
+// The numbers of a measured line that an answer may cite, as one sentence.
+std::string measuredHtml(const MeasuredCompare& m) {
+  const nlohmann::json& j = m.line;
+  std::ostringstream h;
+  h << "<p class=measured><b>Measured</b> when this page was written: <code>"
+    << htmlEscape(m.command) << "</code> reports " << j.at("mismatching").get<long long>() << " of "
+    << j.at("scored_pixels").get<long long>() << " scored pixels disagreeing ("
+    << htmlEscape(j.at("metric").get<std::string>()) << " metric, RMSE "
+    << j.at("rmse").get<double>() << "), and "
+    << j.at("all_pixels").at("mismatching").get<long long>() << " of "
+    << j.at("all_pixels").at("pixels").get<long long>()
+    << " over all pixels; left out of the score: "
+    << j.at("left_out").at("faces_away").get<long long>() << " facing away from the light, "
+    << j.at("left_out").at("outside_light").get<long long>() << " outside its cone, "
+    << j.at("left_out").at("no_receiver").get<long long>() << " with no receiver.</p>\n";
+  return h.str();
+}
+
+// "Cascaded and parallel-split shadow maps" -> "cascaded-and-parallel-split-shadow-maps".
+std::string anchorId(const std::string& text) {
+  std::string id;
+  for (unsigned char c : text) {
+    if (std::isalnum(c))
+      id += char(std::tolower(c));
+    else if (!id.empty() && id.back() != '-')
+      id += '-';
+  }
+  while (!id.empty() && id.back() == '-') id.pop_back();
+  return id;
+}
+
+std::string scopeHtml(const Course& c, const std::string& command) {
+  std::ostringstream h;
+  h << head("shadowlab — " + c.title + ": what the course leaves out") << "<h1>"
+    << htmlEscape(c.title) << ": what it leaves out</h1>\n<p>Back to <a href=\"index.html\">the "
+    << "course</a>.</p>\n<p>" << prose(c.naming)
+    << "</p>\n<p>The course follows five papers of "
+       "2001-2007 and stops where they stop. These later or neighbouring topics are not "
+       "covered; each line says what it is and where to read it.</p>\n<table class=scope>\n"
+       "<tr><th>not covered</th><th>what it is</th><th>where to read it</th></tr>\n";
+  for (const CourseScopeTopic& t : c.scope)
+    h << "<tr id=\"scope-" << htmlEscape(anchorId(t.topic)) << "\"><td>" << htmlEscape(t.topic)
+      << "</td><td>" << prose(t.what) << "</td><td>" << prose(t.read) << "</td></tr>\n";
+  h << "</table>\n" << footer(command) << "</body>\n</html>\n";
+  return h.str();
+}
+
 std::string indexHtml(const Course& c, const CourseSettings& s, const std::string& command) {
   std::ostringstream h;
   h << head("shadowlab — " + c.title) << "<h1>" << htmlEscape(c.title) << "</h1>\n<p>"
-    << prose(c.intro) << "</p>\n<p>The <a href=\"gallery/index.html\">artefact gallery</a> "
+    << prose(c.intro) << "</p>\n<p>" << prose(c.order) << "</p>\n<p>" << prose(c.naming)
+    << " <a href=\"" << kScopePage << "\">What the course leaves out, and where to read "
+    << "it</a>.</p>\n<p>The <a href=\"gallery/index.html\">artefact gallery</a> "
     << "shows each classic artefact as a wrong/right pair; the exercises refer to it.</p>\n"
     << "<nav class=toc><h2>The order</h2>\n<ol>\n";
   for (const CourseStep& st : c.steps)
@@ -202,7 +283,8 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
   return h.str();
 }
 
-std::string teacherHtml(const Course& c, const CourseSettings& s, const std::string& command) {
+std::string teacherHtml(const Course& c, const CourseSettings& s, const MeasuredLines& measured,
+                        const std::string& command) {
   std::ostringstream h;
   h << head("shadowlab — " + c.title + ": answers") << "<h1>" << htmlEscape(c.title)
     << ": the teacher's page</h1>\n<p>The answers to the exercises of <a href=\"index.html\">the "
@@ -218,8 +300,9 @@ std::string teacherHtml(const Course& c, const CourseSettings& s, const std::str
       h << "<div class=exercise id=\"ex-" << htmlEscape(e.id) << "\">\n<h3><a href=\"index.html#ex-"
         << htmlEscape(e.id) << "\">Exercise " << n << "." << ++k
         << "</a></h3>\n<p><b>Question:</b> " << htmlEscape(e.question)
-        << "</p>\n<p class=answer><b>Answer:</b> " << htmlEscape(e.answer)
-        << "</p>\n<div class=pair>\n";
+        << "</p>\n<p class=answer><b>Answer:</b> " << htmlEscape(e.answer) << "</p>\n";
+      if (const auto m = measured.find(e.id); m != measured.end()) h << measuredHtml(m->second);
+      h << "<div class=pair>\n";
       for (bool a : {true, false}) {
         const std::vector<RenderOption>& own = a ? e.pair.wrong : e.pair.right;
         std::string label =
@@ -249,6 +332,11 @@ Course loadCourse() {
     Course c;
     c.title = doc.at("title").get<std::string>();
     c.intro = doc.at("intro").get<std::string>();
+    c.order = doc.at("order").get<std::string>();
+    c.naming = doc.at("naming").get<std::string>();
+    for (const json& t : doc.at("scope"))
+      c.scope.push_back({t.at("topic").get<std::string>(), t.at("what").get<std::string>(),
+                         t.at("read").get<std::string>()});
     const std::string size = doc.at("size").get<std::string>();
     for (const json& s : doc.at("steps")) {
       CourseStep st;
@@ -278,6 +366,24 @@ std::string exerciseRenderCommand(const CourseExercise& e, bool sideA) {
   for (const std::string& a : exerciseRenderArguments(e, sideA)) argv.push_back(a);
   argv.insert(argv.end(), {"--out", pictureName(e, sideA)});
   return shellJoin(argv);
+}
+
+std::vector<std::string> exerciseCompareArguments(const CourseExercise& e) {
+  const GalleryEntry& p = e.pair;
+  std::vector<std::string> a = {"--scene", p.scene, "--size",
+                                std::to_string(p.width) + "x" + std::to_string(p.height)};
+  for (const auto& [k, v] : p.common) a.insert(a.end(), {"--" + k, v});
+  a.insert(a.end(), {"--a", p.wrongTechnique, "--b", p.rightTechnique});
+  for (bool sideA : {true, false})
+    for (const auto& [k, v] : sideA ? p.wrong : p.right) {
+      if (k != "param")
+        throw InputError("course " + courseFile() + ": exercise " + e.id +
+                         " measures with "
+                         "compare, which cannot set --" +
+                         k + " for one side only");
+      a.insert(a.end(), {sideA ? "--a-param" : "--b-param", v});
+    }
+  return a;
 }
 
 std::string exerciseLabLink(const CourseExercise& e, const std::string& labUrl) {
@@ -327,6 +433,13 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
         pictures.push_back({pictureName(e, a), toRgb(renderGalleryPicture(e.pair, a)), provenance});
       }
   summary.pictures = int(pictures.size());
+  MeasuredLines measured;
+  for (const CourseStep& st : course.steps)
+    for (const CourseExercise& e : st.exercises)
+      if (e.measure == kMeasureCompare) {
+        if (settings.progress) std::cerr << "[course] " << e.id << " compare" << std::endl;
+        measured[e.id] = runExerciseCompare(e);
+      }
   // DIR itself is made now: an OutputSet whose destination's parent is missing renames its
   // temporary over the first missing folder, which would replace the gallery and the lessons.
   std::error_code ec;
@@ -347,9 +460,12 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
   outputs.commit();
   const std::string command = commandLine();
   const std::string index = indexHtml(course, settings, command);
-  const std::string teacher = teacherHtml(course, settings, command);
+  const std::string teacher = teacherHtml(course, settings, measured, command);
+  const std::string scope = scopeHtml(course, command);
   writeFileAtomically((fs::path(dir) / "teacher.html").string(),
                       [&](std::ostream& out) { out << teacher; });
+  writeFileAtomically((fs::path(dir) / kScopePage).string(),
+                      [&](std::ostream& out) { out << scope; });
   writeFileAtomically((fs::path(dir) / "index.html").string(),
                       [&](std::ostream& out) { out << index; });
   return summary;

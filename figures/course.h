@@ -38,6 +38,9 @@ struct CourseExercise {
   std::string answer;    // for the teacher's page: checked against the rendered pictures
   bool lab = false;      // every option is one the lab's URL names (docs/lab.md)
   std::string gallery;   // the id of the artefact gallery's entry it shows, or empty
+  // "compare": the teacher's page runs `shadowlab compare` of A against B when it is written
+  // and prints its numbers, so that an answer cites a run, not a typed number; empty: none.
+  std::string measure;
   GalleryEntry pair;
 };
 
@@ -48,9 +51,17 @@ struct CourseStep {
   std::vector<CourseExercise> exercises;
 };
 
+// A topic the course leaves out, what it is and where to read it (the scope page).
+struct CourseScopeTopic {
+  std::string topic, what, read;
+};
+
 struct Course {
   std::string title;
   std::string intro;
+  std::string order;   // why the steps come in this order
+  std::string naming;  // a name that means another thing elsewhere ("CSM")
+  std::vector<CourseScopeTopic> scope;
   std::vector<CourseStep> steps;
 };
 
@@ -64,6 +75,10 @@ std::string exerciseRenderCommand(const CourseExercise& e, bool sideA);
 // The lab link (labUrl + "?" + the gallery's query): A and B as the two sides. InputError
 // when the exercise is not a lab exercise.
 std::string exerciseLabLink(const CourseExercise& e, const std::string& labUrl);
+// The arguments of `shadowlab compare` of an exercise's A (--a) against its B (--b): the scene,
+// size and common options once, each side's params as --a-param / --b-param. InputError when a
+// side has an option compare cannot set per side.
+std::vector<std::string> exerciseCompareArguments(const CourseExercise& e);
 
 struct CourseSettings {
   LessonSettings lessons;                // how writeCourse renders the lessons

@@ -79,9 +79,12 @@ const std::vector<GalleryEntry>& galleryEntries() {
        {170, 170, 100, 75, 3}},
       {"projective-aliasing",
        "Projective aliasing at grazing light",
-       "With the light low over the scene, the sphere's surface near its terminator is almost "
-       "parallel to the light's rays: one texel's footprint is stretched along the surface, and "
-       "the lit/shadowed boundary on the sphere becomes a ragged line of long steps.",
+       "With the light low over the scene, the ground is almost parallel to the light's rays: "
+       "one map texel's footprint is stretched over many pixels along the ground, and the "
+       "edges of the shadows cast on it (the yellow ball's, magnified) become long, uneven "
+       "steps. GPU Gems §11.1: a higher resolution \"does not work when the light is traveling "
+       "nearly parallel to the shadowed surface, because the magnification approaches "
+       "infinity\".",
        "shadow-map resolution (128 x 128) under a grazing light (light-position -7,1.6,3)",
        "a 2048 x 2048 map under the same light",
        "brabec",
@@ -92,7 +95,7 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "legacy.hw",
        {{"shadow-map", "128"}},
        {{"shadow-map", "2048"}},
-       {225, 85, 75, 60, 5}},
+       {200, 90, 120, 60, 4}},
       {"ramp-banding",
        "8-bit depth banding in the ramp shadow map",
        "Brabec & Seidel §2 store depth as an 8-bit colour from a 1D ramp: 256 steps over the "
@@ -151,7 +154,7 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "Without attenuation (alpha = 0) the darkness of a shadow rises and falls with the "
        "receiver's distance behind the caster: a lighter band runs across the tilted square's "
        "shadow, darker again beyond it (M = 4, unblurred float basis, so that nothing else "
-       "smooths it; Annen et al. 2007 §3.2.1 and Fig. 3a).",
+       "smooths it; Annen et al. 2007 §3.2.1 and Fig. 3(b)).",
        "alpha = 0: no attenuation of the high Fourier terms",
        "alpha = 1 (the technique's default) damps them: the shadow darkens steadily away from the "
        "contact, softer next to it, the price §3.2.1 names",
@@ -375,7 +378,12 @@ std::string pageHtml(const std::vector<GalleryEntry>& entries, const std::string
        "figcaption{font-size:.9em;color:#444}\n"
        "code{font-size:.85em;background:#f2f2ec;padding:.1em .25em;word-break:break-all}\n"
        ".wrong h4{color:#b00}.right h4{color:#070}h4{margin:.2em 0;min-height:2.9em}\n"
-       "@media print{section.artefact{break-inside:avoid}}\n"
+       // Print: one artefact a page at most, its four pictures small enough to share it.
+       "@page{margin:1.2cm}\n"
+       "@media print{body{max-width:none;font-size:9pt;line-height:1.25}"
+       "section.artefact{break-inside:avoid;padding:.3em 0}.pair{flex-wrap:nowrap}"
+       ".pair figure{flex:1 1 50%}.pair img{max-height:4cm;width:auto}h4{min-height:0}"
+       "p{margin:.3em 0}a{color:inherit;text-decoration:none}}\n"
        "</style>\n</head>\n<body>\n<h1>Shadow-mapping artefacts</h1>\n"
        "<p>Each artefact as a pair of pictures rendered by shadowlab (OSMesa): the wrong one, "
        "and the same frame with the one parameter that causes it changed. The red frame marks "

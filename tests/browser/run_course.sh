@@ -3,7 +3,8 @@
 # (shadowlab course --out OUT/course), loads its pages, the gallery's and every lesson's
 # (check_pages.mjs: every picture loads, no console error, every relative link names a file),
 # then checks every link's anchor and opens every lab link against `shadowlab serve`
-# (course_links.mjs). Screenshots: OUT/shots/.
+# (course_links.mjs), and prints the course, the teacher's page and the gallery to PDF to count
+# their pages (course_print.mjs). Screenshots: OUT/shots/.
 # Exit 77 (ctest: skipped) only when node or Debian's chromium is absent; a missing
 # node_modules is a failure: scripts/setup.sh installs it with `npm ci`.
 set -euo pipefail
@@ -21,4 +22,5 @@ mkdir -p "$out"
 "$bin" course --out "$out/course" --no-progress
 cd "$out/course"
 node "$here/check_pages.mjs" --shots "$out/shots" index.html teacher.html gallery/index.html lessons/*/index.html
+node "$here/course_print.mjs" "$out/course"
 SHADOWLAB_BINARY="$bin" exec node "$here/course_links.mjs" "$out/course"

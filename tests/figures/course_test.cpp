@@ -22,6 +22,7 @@
 #include "core/base/html.h"
 #include "core/scene/scene_library.h"
 #include "registry/cli.h"
+#include "registry/commands.h"
 #include "registry/registry.h"
 
 using namespace sl;
@@ -207,7 +208,84 @@ TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
       EXPECT_NE(teacher.find(htmlEscape(e.answer.substr(0, 40))), std::string::npos) << e.id;
     }
   }
+  // The scope page: linked from the students' page, one row per topic the course leaves out.
+  EXPECT_NE(index.find("href=\"scope.html\""), std::string::npos);
+  const std::string scope = slurp(dir / "scope.html");
+  for (const CourseScopeTopic& t : course.scope)
+    EXPECT_NE(scope.find(htmlEscape(t.topic)), std::string::npos) << t.topic;
+  // A measured exercise's answer stands beside the compare line run for the page.
+  for (const CourseStep& st : course.steps)
+    for (const CourseExercise& e : st.exercises)
+      if (!e.measure.empty()) {
+        std::vector<std::string> argv = {"shadowlab", "compare"};
+        for (const std::string& a : exerciseCompareArguments(e)) argv.push_back(a);
+        std::string command;
+        for (const std::string& a : argv) command += (command.empty() ? "" : " ") + a;
+        EXPECT_NE(teacher.find("<p class=measured><b>Measured</b> when this page was written: "
+                               "<code>" +
+                               htmlEscape(command) + "</code>"),
+                  std::string::npos)
+            << e.id;
+      }
   // Every relative link (the lessons' included) and anchor resolves.
   expectLinksResolve(dir / "index.html");
   expectLinksResolve(dir / "teacher.html");
+  expectLinksResolve(dir / "scope.html");
+}
+
+// The course leaves out what a 2026 reader will ask about, and says where to read it; "CSM"
+// names both meanings.
+TEST(Course, ScopeNamesWhatItLeavesOutAndBothMeaningsOfCsm) {
+  const Course course = loadCourse();
+  std::string topics;
+  for (const CourseScopeTopic& t : course.scope) {
+    EXPECT_FALSE(t.what.empty()) << t.topic;
+    EXPECT_FALSE(t.read.empty()) << t.topic;
+    topics += t.topic + "\n";
+  }
+  for (const char* topic : {"Cascaded", "parallel-split", "Perspective", "light-space", "PCSS",
+                            "ESM", "EVSM", "MSM", "Omnidirectional", "Normal-offset"})
+    EXPECT_NE(topics.find(topic), std::string::npos) << topic;
+  EXPECT_NE(course.naming.find("convolution shadow maps"), std::string::npos);
+  EXPECT_NE(course.naming.find("cascaded shadow maps"), std::string::npos);
+  EXPECT_NE(course.order.find("references come last"), std::string::npos);
+}
+
+// Exercise 11.2's answer says that shadow volumes and the ray-traced hard shadow disagree on no
+// scored pixel, and that the pixels that differ are among those the metric leaves out: the
+// compare the teacher's page runs must say so.
+TEST(Course, VolumesAgainstRaysAnswerHoldsOnItsCompareRun) {
+  const Course course = loadCourse();
+  int measured = 0;
+  for (const CourseStep& st : course.steps)
+    for (const CourseExercise& e : st.exercises) {
+      if (e.id != "volumes-against-rays") continue;
+      ASSERT_EQ(e.measure, "compare");
+      std::vector<std::string> argv = {"shadowlab", "compare"};
+      for (const std::string& a : exerciseCompareArguments(e)) argv.push_back(a);
+      std::vector<char*> pointers;
+      for (std::string& a : argv) pointers.push_back(a.data());
+      const nlohmann::json line =
+          runCompare(prepareCompare(cli::parse(int(pointers.size()), pointers.data()))).line;
+      EXPECT_EQ(line.at("mismatching").get<long long>(), 0) << line.dump();
+      const long long all = line.at("all_pixels").at("mismatching").get<long long>();
+      const long long leftOut = line.at("all_pixels").at("pixels").get<long long>() -
+                                line.at("scored_pixels").get<long long>();
+      // Not vacuous: most of the frame is scored, and the differing pixels fit in the rest.
+      EXPECT_GT(line.at("scored_pixels").get<long long>(), leftOut) << line.dump();
+      EXPECT_LE(all, leftOut) << line.dump();
+      ++measured;
+    }
+  EXPECT_EQ(measured, 1);
+}
+
+TEST(Course, MeasuredCompareRefusesAnOptionForOneSideOnly) {
+  const CourseExercise e = [] {
+    Course c = loadCourse();
+    CourseExercise x = c.steps.front().exercises.front();
+    x.pair.wrong = {{"shadow-map", "64"}};
+    return x;
+  }();
+  // A side option compare cannot set for one side only is an input error, not a silent drop.
+  EXPECT_THROW(exerciseCompareArguments(e), InputError);
 }

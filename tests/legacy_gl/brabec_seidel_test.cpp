@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -289,6 +290,7 @@ class AnalyticShadow {
     const double texel =
         2.0 * H * std::tan(glm::radians(scene.light.coneDegrees) / 2.0) / mapTexels;
     band_ = bandTexels * texel;
+    texel_ = texel;
     const Bounds ground = worldBounds(scene.objects.at(0));
     groundHalf_ = ground.hi.x;
     inverse_ = glm::inverse(cameraProjection(scene.camera, float(width) / float(height)) *
@@ -320,6 +322,23 @@ class AnalyticShadow {
     return m < half_ ? Geometry::kGroundShadow : Geometry::kGroundLit;
   }
 
+  // Where the ground point seen at pixel centre (px, py) lies from the shadow square's outline,
+  // in shadow-map texels projected to the ground (negative inside the shadow); nothing when the
+  // ray meets the occluder or misses the ground.
+  std::optional<double> texelsFromOutline(double px, double py) const {
+    if (classify(px, py) == Geometry::kOccluder) return std::nullopt;
+    const glm::vec4 a =
+        inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), -1, 1);
+    const glm::vec4 b =
+        inverse_ * glm::vec4(float(2 * px / width_ - 1), float(2 * py / height_ - 1), 1, 1);
+    const glm::dvec3 o = glm::dvec3(a) / double(a.w);
+    const glm::dvec3 d = glm::normalize(glm::dvec3(b) / double(b.w) - o);
+    if (d.y >= 0) return std::nullopt;
+    const glm::dvec3 p = o + d * (-o.y / d.y);
+    if (std::fabs(p.x) > groundHalf_ || std::fabs(p.z) > groundHalf_) return std::nullopt;
+    return (std::max(std::fabs(p.x), std::fabs(p.z)) - half_) / texel_;
+  }
+
   // The pixel's class when its centre and four corners agree, else kNearBoundary.
   Geometry::Kind pixel(int x, int y) const {
     const Geometry::Kind c = classify(x + 0.5, y + 0.5);
@@ -331,7 +350,7 @@ class AnalyticShadow {
  private:
   int width_, height_;
   Bounds box_;
-  double half_ = 0, band_ = 0, groundHalf_ = 0;
+  double half_ = 0, band_ = 0, groundHalf_ = 0, texel_ = 1;
   glm::mat4 inverse_;
 };
 
@@ -391,6 +410,62 @@ TEST(BrabecSeidel, FilteredMasksEqualGeometricShadowOnAnalyticScene) {
     expectGeometricShadow(render("legacy.fast-pcf", "analytic", params(b, 4)), 2.5,
                           "legacy.fast-pcf 4x4" + on);
   }
+}
+
+// The penumbra of a mask on the analytic scene: how wide it is across the shadow's outline, in
+// shadow-map texels.
+struct Penumbra {
+  double widthTexels = 0;  // the 2nd to 98th percentile of the partial pixels' distances
+  size_t pixels = 0;       // partial pixels on the ground
+};
+
+Penumbra penumbraOf(const Frame& f, int mapTexels) {
+  const AnalyticShadow exact(builtinScene("analytic"), kWidth, kHeight, 0.0, mapTexels);
+  std::vector<double> at;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const float v = f.visibility.at(x, y);
+      if (v <= 0.0f || v >= 1.0f) continue;
+      if (const auto d = exact.texelsFromOutline(x + 0.5, y + 0.5)) {
+        at.push_back(*d);
+      }
+    }
+  Penumbra p;
+  p.pixels = at.size();
+  if (at.empty()) return p;
+  std::sort(at.begin(), at.end());
+  // Percentiles, not the extremes: a pixel whose centre is a rasterisation tie away from the
+  // outline would stretch the extremes without widening the edge anyone sees.
+  constexpr double kTail = 0.02;
+  const auto q = [&](double share) { return at[size_t(share * double(at.size() - 1))]; };
+  p.widthTexels = q(1.0 - kTail) - q(kTail);
+  return p;
+}
+
+// Brabec & Seidel §3 jitter the n x n samples inside one texel (Fig. 3): a 4x4 footprint adds
+// levels (17 instead of 5; TwoByTwoFootprintsGiveFiveLevels and the 4x4 level tests), not width,
+// so legacy.pcf's 2x2 and 4x4 edges are within a texel of
+// each other. §4's fast PCF takes its samples from neighbouring texels, so its 4x4 edge is
+// wider than its 2x2 one (two texels more in theory). The course's answers say both.
+TEST(BrabecSeidel, PcfFootprintAddsLevelsNotWidthWhileFastPcfWidens) {
+  // 64 texels: one texel spans several pixels on the ground, so widths are measurable.
+  constexpr int kCoarseMap = 64;
+  RenderParams p = params(Backend::kOsmesa, 2);
+  p.shadowMapTexels = kCoarseMap;
+  const auto penumbra = [&](const std::string& technique, int filter) {
+    RenderParams q = p;
+    q.filter = filter;
+    return penumbraOf(render(technique, "analytic", q), kCoarseMap);
+  };
+  const Penumbra pcf2 = penumbra("legacy.pcf", 2), pcf4 = penumbra("legacy.pcf", 4);
+  const Penumbra fast2 = penumbra("legacy.fast-pcf", 2), fast4 = penumbra("legacy.fast-pcf", 4);
+  for (const Penumbra* q : {&pcf2, &pcf4, &fast2, &fast4}) EXPECT_GT(q->pixels, 200u);
+  // "Within a texel": the sample spread grows from 1/2 to 3/4 of a texel (Fig. 3's grid).
+  EXPECT_LT(std::fabs(pcf4.widthTexels - pcf2.widthTexels), 1.0)
+      << "legacy.pcf 2x2 " << pcf2.widthTexels << " texels, 4x4 " << pcf4.widthTexels;
+  // Fast PCF's 4x4 block spans two texels more than its 2x2 block; more than one is required.
+  EXPECT_GT(fast4.widthTexels - fast2.widthTexels, 1.0)
+      << "fast PCF 2x2 " << fast2.widthTexels << " texels, 4x4 " << fast4.widthTexels;
 }
 
 // A map larger than the window goes through legacy_gl's LightTarget framebuffer object
