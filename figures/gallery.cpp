@@ -104,7 +104,7 @@ const std::vector<GalleryEntry>& galleryEntries() {
        "behind the map's, the subtraction shadows the lit ground, in dark streaks along the "
        "contours of the 8-bit depth.",
        "depth-bias (0 steps) at 8-bit precision",
-       "the paper's bias of 2 steps (the technique's default)",
+       "our default bias of 2 steps (the paper names no bias)",
        "brabec",
        400,
        300,
