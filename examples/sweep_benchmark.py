@@ -66,5 +66,8 @@ def main():
     return 0
 
 
+# The guard is required: each LocalCluster worker process starts by importing this script
+# (Python's spawn/forkserver re-import the main module); unguarded, every worker would start a
+# cluster of its own and the run would never end.
 if __name__ == "__main__":
     sys.exit(main())

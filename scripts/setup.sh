@@ -26,6 +26,8 @@ PACKAGES=(
   python3-distributed  # sweeps on Dask workers (shadowlab.sweep(spec, client=...))
   python3-matplotlib python3-pil  # examples/ plots; tests/python reads PNGs with Pillow
   python3-pytest      # tests/python (ctest label python)
+  python3-venv python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (pyproject.toml)
+  python3-nbclient python3-nbformat python3-ipykernel  # examples/*.ipynb executed in tests/python
   freeglut3-dev xvfb  # run-legacy: unchanged GLUT programs on GLX (Xvfb when there is no display)
   piglit              # tests/interpose: piglit's pixel tests with and without the drop-in library
 )

@@ -13,7 +13,15 @@ message. Manual: docs/python.md.
 import io
 import json
 import numbers
+import os
 import warnings
+
+# An installed package (`pip install .`, setup.py) carries the assets the library reads at run
+# time (scenes, meshes, lessons, the course) beside this file; the build tree's package
+# (PYTHONPATH=build/python) has none and uses the source tree's. SHADOWLAB_ASSETS, when set, wins.
+_ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "assets")
+if os.path.isdir(_ASSETS) and not os.environ.get("SHADOWLAB_ASSETS"):
+    os.environ["SHADOWLAB_ASSETS"] = _ASSETS
 
 from . import _shadowlab as _core
 from ._shadowlab import GLError
