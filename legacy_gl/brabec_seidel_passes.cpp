@@ -467,7 +467,8 @@ void returnAccumulation() {
   glAccum(GL_RETURN, 1.0f);
 }
 
-void shadeWithShadowTerm(const Scene& scene, const RenderParams& params) {
+void shadeWithShadowTerm(const Scene& scene, const RenderParams& params,
+                         const SpotlightConeTexture& coneTexture) {
   setCameraMatrices(scene, params.width, params.height);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);  // the shadow term stays in alpha
   glClearColor(0, 0, 0, 0);
@@ -482,7 +483,6 @@ void shadeWithShadowTerm(const Scene& scene, const RenderParams& params) {
     glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ZERO);  // direct light x (1 - shadow)
     {
       // The cone per pixel (Segal et al. 1992): outside it the fragment is discarded, black.
-      const SpotlightConeTexture coneTexture;
       const ProjectedSpotlightCone cone(scene, coneTexture, GL_TEXTURE0);
       drawScene(scene, Draw::kAll);
     }

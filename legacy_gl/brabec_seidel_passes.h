@@ -13,6 +13,7 @@
 #include "core/scene/scene.h"
 #include "core/technique/technique.h"
 #include "legacy_gl/fixed_function.h"
+#include "legacy_gl/projected_spotlight.h"
 
 namespace sl::legacy::bs {
 
@@ -175,8 +176,11 @@ void accumulateGroup(double weight, bool first);
 void returnAccumulation();
 
 // §5 "normal OpenGL lighting": direct light (diffuse + specular) scaled by 1 - alpha through
-// GL_ONE_MINUS_DST_ALPHA blending, then the ambient added (Kilgard's note in Everitt).
-void shadeWithShadowTerm(const Scene& scene, const RenderParams& params);
+// GL_ONE_MINUS_DST_ALPHA blending, then the ambient added (Kilgard's note in Everitt), the
+// spotlight's cone from `cone` (made by the caller before the timed pass: it depends on
+// neither the light nor the scene).
+void shadeWithShadowTerm(const Scene& scene, const RenderParams& params,
+                         const SpotlightConeTexture& cone);
 
 // Reads the window: visibility = 1 - alpha (see brabec_seidel.h).
 Image readVisibilityFromAlpha(const RenderParams& params);

