@@ -371,6 +371,25 @@ std::string lessonTitle(const std::string& technique) {
   return field(lessonTextFor(technique), "title");
 }
 
+size_t whyPictureCount(const std::string& technique) {
+  const LessonText text = lessonTextFor(technique);
+  size_t n = 0;
+  try {
+    for (const json& block : text.entry.value("why", json::array()))
+      n += block.value("renders", json::array()).size();
+  } catch (const json::exception& e) {
+    throw InputError("lesson text " + text.file + ": why: " + e.what());
+  }
+  return n;
+}
+
+std::vector<std::string> techniquesWithoutWhyPicture() {
+  std::vector<std::string> out;
+  for (const Technique& t : allTechniques())
+    if (whyPictureCount(t.name) == 0) out.push_back(t.name);
+  return out;
+}
+
 int runLessonCommand(const cli::Args& args) {
   const Technique& t = findTechnique(args.required("technique"));
   LessonSettings s;

@@ -23,6 +23,7 @@
 // A technique without a twin (the later papers, the references) shows its own passes.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -61,5 +62,10 @@ std::string lessonIndexHtml(const std::vector<LessonLink>& links, const std::str
 // asserts there are none), and the title of a technique's lesson (InputError when none).
 std::vector<std::string> techniquesWithoutLesson();
 std::string lessonTitle(const std::string& technique);
+// Techniques registered in this build whose lesson text has no "why" block with a rendered
+// picture (a "renders" entry); a test asserts there are none.
+std::vector<std::string> techniquesWithoutWhyPicture();
+// How many pictures the "why" blocks of a technique's lesson render (InputError: no lesson).
+size_t whyPictureCount(const std::string& technique);
 
 }  // namespace sl::figures

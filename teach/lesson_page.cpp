@@ -344,7 +344,9 @@ void writeWhy(std::ostream& html, const LessonPage& page) {
   html << "<h2 id=\"why\">Why each step</h2>\n<p>The questions a student asks about the passes "
           "below, answered with pictures this page's run rendered (on "
        << htmlEscape(page.settings.scene) << " at " << page.settings.width << "x"
-       << page.settings.height << ") and numbers from its own GL traces.</p>\n";
+       << page.settings.height
+       << "; a picture that needs another scene or shadow map says so in its command) and numbers "
+          "from its own GL traces.</p>\n";
   for (size_t i = 0; i < page.why.size(); ++i) {
     const WhyBlock& w = page.why[i];
     html << "<div class=\"why\" id=\"why-" << i + 1 << "\"><h3>" << htmlEscape(w.title)

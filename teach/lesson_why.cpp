@@ -23,24 +23,50 @@
 
 namespace sl::figures::lesson_detail {
 
-// A part of an image, seen from the top ([x, y from the top, w, h] in pixels), enlarged `zoom`
-// times with nearest-neighbour sampling so that single pixels stay visible.
-Image croppedAndZoomed(const Image& image, const json& crop, int zoom) {
-  int x = 0, top = 0, w = image.width, h = image.height;
-  if (crop.is_array() && crop.size() == 4) {
-    x = std::clamp(crop[0].get<int>(), 0, image.width - 1);
-    top = std::clamp(crop[1].get<int>(), 0, image.height - 1);
-    w = std::clamp(crop[2].get<int>(), 1, image.width - x);
-    h = std::clamp(crop[3].get<int>(), 1, image.height - top);
+// The part of an image a why picture shows, seen from the top: [x, y from the top, w, h].
+// `region` gives it as fractions of the image (the same place at every lesson size), `crop` in
+// pixels of this image; neither: the whole image.
+struct Rect {
+  int x = 0, top = 0, w = 0, h = 0;
+};
+Rect cropRect(int width, int height, const json& crop, const json& region) {
+  Rect r{0, 0, width, height};
+  double v[4];
+  if (region.is_array() && region.size() == 4) {
+    for (size_t i = 0; i < 4; ++i) v[i] = region[i].get<double>() * (i % 2 ? height : width);
+  } else if (crop.is_array() && crop.size() == 4) {
+    for (size_t i = 0; i < 4; ++i) v[i] = crop[i].get<double>();
+  } else {
+    return r;
   }
+  r.x = std::clamp(int(std::lround(v[0])), 0, width - 1);
+  r.top = std::clamp(int(std::lround(v[1])), 0, height - 1);
+  r.w = std::clamp(int(std::lround(v[2])), 1, width - r.x);
+  r.h = std::clamp(int(std::lround(v[3])), 1, height - r.top);
+  return r;
+}
+
+// `r` of an image enlarged `zoom` times with nearest-neighbour sampling so that single pixels
+// stay visible.
+Image croppedAndZoomed(const Image& image, const Rect& r, int zoom) {
   zoom = std::max(zoom, 1);
-  Image out(w * zoom, h * zoom, image.channels);
-  const int bottom = image.height - top - h;  // rows are stored bottom-up
+  Image out(r.w * zoom, r.h * zoom, image.channels);
+  const int bottom = image.height - r.top - r.h;  // rows are stored bottom-up
   for (int y = 0; y < out.height; ++y)
     for (int xx = 0; xx < out.width; ++xx)
       for (int c = 0; c < image.channels; ++c)
-        out.at(xx, y, c) = image.at(x + xx / zoom, bottom + y / zoom, c);
+        out.at(xx, y, c) = image.at(r.x + xx / zoom, bottom + y / zoom, c);
   return out;
+}
+
+// The mean of a one-channel image over `r` (the visibility a why picture shows).
+double meanOver(const Image& image, const Rect& r) {
+  if (image.width == 0 || image.height == 0) return 0.0;
+  const int bottom = image.height - r.top - r.h;
+  double sum = 0.0;
+  for (int y = bottom; y < bottom + r.h; ++y)
+    for (int x = r.x; x < r.x + r.w; ++x) sum += image.at(x, y, 0);
+  return sum / double(r.w * r.h);
 }
 
 // The numbers of a traced line: "GL_S: GL_EYE_PLANE = (0.862, -0.43, ...)" -> {0.862, -0.43, ...}
@@ -202,8 +228,10 @@ std::string tilingFigure(const std::vector<Side>& sides) {
 }
 
 // The "why" blocks of the lesson text: [{"title", "text": [...], "renders": [{"technique",
-// "params", "filter", "caption", "crop", "zoom"}], "table": "planes" | "parts", "passes",
-// "match", "figure": "tiling"}]; each render is made here, on the lesson's scene and size.
+// "params", "filter", "scene", "shadow-map", "caption", "region" | "crop", "zoom"}], "table":
+// "planes" | "parts", "passes", "match", "figure": "tiling"}]; each render is made here, at the
+// lesson's size, on the lesson's scene and shadow map unless the render names its own (a
+// failure case that needs another configuration: the fence of Annen et al. Fig. 9, a coarse map).
 std::vector<WhyBlock> whyBlocks(const LessonText& text, const std::vector<Side>& sides,
                                 const LessonSettings& s, const Scene& scene) {
   std::vector<WhyBlock> out;
@@ -218,11 +246,15 @@ std::vector<WhyBlock> whyBlocks(const LessonText& text, const std::vector<Side>&
       for (size_t r = 0; r < renders.size(); ++r) {
         const json& render = renders[r];
         const Technique& t = findTechnique(render.at("technique").get<std::string>());
-        RenderParams p = paramsForSettings(s);
+        LessonSettings own = s;
+        own.scene = render.value("scene", s.scene);
+        own.shadowMapTexels = render.value("shadow-map", s.shadowMapTexels);
+        RenderParams p = paramsForSettings(own);
         p.filter = render.value("filter", p.filter);
         const json params = render.value("params", json::object());
         for (const auto& [k, v] : params.items()) p.extra[k] = v.get<std::string>();
-        const Frame frame = renderTechnique(t, scene, p);
+        const Frame frame =
+            renderTechnique(t, own.scene == s.scene ? scene : loadScene(own.scene), p);
         WhyPicture pic;
         pic.file = "why-" + std::to_string(b + 1) + "-" + std::to_string(r + 1) + ".png";
         pic.caption = render.at("caption").get<std::string>();
@@ -232,9 +264,15 @@ std::vector<WhyBlock> whyBlocks(const LessonText& text, const std::vector<Side>&
                                  ? 0.0
                                  : double(shadowed) / double(frame.visibility.data.size());
         pic.measured = fmt(100.0 * share, "%.1f") + "% of the image in shadow (visibility < 1/2)";
-        pic.command = renderCommandFor(t, p, s, pic.file.substr(0, pic.file.size() - 4), false);
-        pic.image =
-            croppedAndZoomed(frame.color, render.value("crop", json()), render.value("zoom", 1));
+        const Rect rect = cropRect(frame.color.width, frame.color.height,
+                                   render.value("crop", json()), render.value("region", json()));
+        const bool sameSize = frame.visibility.width == frame.color.width &&
+                              frame.visibility.height == frame.color.height;
+        if (sameSize && (rect.w != frame.color.width || rect.h != frame.color.height))
+          pic.measured += "; mean visibility in the part shown: " +
+                          fmt(meanOver(frame.visibility, rect), "%.3f");
+        pic.command = renderCommandFor(t, p, own, pic.file.substr(0, pic.file.size() - 4), false);
+        pic.image = croppedAndZoomed(frame.color, rect, render.value("zoom", 1));
         w.pictures.push_back(std::move(pic));
       }
       const std::string table = block.value("table", "");

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,6 +16,7 @@
 
 #include "command_util.h"
 #include "core/base/html.h"
+#include "core/base/image.h"
 #include "core/gl/shaders.h"
 #include "registry/registry.h"
 
@@ -108,6 +110,68 @@ TEST(Lesson, TechniqueWithoutTwinShowsItsOwnPasses) {
   EXPECT_EQ(html.find("id=\"compare\""), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "diff-mask.png"));
   EXPECT_GT(count(html, "<section class=\"pass\""), 0u);
+}
+
+// The share of the pixels of two pictures of the same size that differ by more than two 8-bit
+// steps in some channel (1.0 when the sizes differ).
+double differingShare(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels) return 1.0;
+  constexpr float kTwoSteps = 2.0f / 255.0f;  // above PNG rounding of the same render
+  long long differing = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < a.channels; ++c)
+        if (std::abs(a.at(x, y, c) - b.at(x, y, c)) > kTwoSteps) {
+          ++differing;
+          break;
+        }
+  return double(differing) / double(a.width * a.height);
+}
+
+// Every technique's lesson answers "why it works" with pictures rendered for the page: the
+// lesson text names at least one render for each technique of the registry, and each lesson
+// (one per lesson text; a twin pair shares one) writes every picture its text names, with its
+// caption, what the run measured and the command that re-makes it. A block's first and last
+// picture are the working and the breaking case: they differ on the part they show.
+TEST(Lesson, EveryTechniqueAnswersWhyWithRenderedPictures) {
+  const std::vector<std::string> missing = figures::techniquesWithoutWhyPicture();
+  EXPECT_TRUE(missing.empty()) << "no rendered why picture in the lesson of " << missing.front()
+                               << " (and " << missing.size() - 1 << " more)";
+  std::set<std::string> titles;  // one lesson per lesson text
+  const fs::path base = test::testDir("lesson", true) / "why";
+  fs::create_directories(base);
+  for (const Technique& t : allTechniques()) {
+    if (!titles.insert(figures::lessonTitle(t.name)).second) continue;
+    const size_t pictures = figures::whyPictureCount(t.name);
+    if (pictures == 0) continue;  // reported above
+    const fs::path dir = base / t.name;
+    const test::CommandResult r = test::runBinary(SHADOWLAB_BINARY, lessonArgs(t.name, dir), base);
+    ASSERT_EQ(r.status, 0) << t.name << ": " << r.err;
+    const std::string html = slurp(dir / "index.html");
+    const size_t why = html.find("<h2 id=\"why\">");
+    ASSERT_NE(why, std::string::npos) << t.name << ": no why section";
+    static const std::regex kWhyImage(R"re(<img src="(why-(\d+)-(\d+)\.png)")re");
+    std::map<std::string, std::vector<std::string>> byBlock;  // block -> files, in order
+    size_t shown = 0;
+    for (auto it = std::sregex_iterator(html.begin() + long(why), html.end(), kWhyImage);
+         it != std::sregex_iterator(); ++it, ++shown) {
+      EXPECT_TRUE(fs::exists(dir / (*it)[1].str())) << t.name << ": " << (*it)[1];
+      byBlock[(*it)[2].str()].push_back((*it)[1].str());
+    }
+    EXPECT_EQ(shown, pictures) << t.name << ": pictures on the page against the lesson text";
+    EXPECT_GE(count(html, "% of the image in shadow"), pictures) << t.name;
+    EXPECT_GE(count(html, "<code>shadowlab render --scene"), pictures) << t.name;
+    for (const auto& [block, files] : byBlock) {
+      if (files.size() < 2) continue;
+      // The pair must show a difference on the part it crops: more than 1% of its pixels
+      // (measured at this test's 160x120: from 3.1%, PCF 2x2 against 4x4, to 76%).
+      constexpr double kVisibleShare = 0.01;
+      EXPECT_GT(differingShare(readPng((dir / files.front()).string()),
+                               readPng((dir / files.back()).string())),
+                kVisibleShare)
+          << t.name << ": " << files.front() << " and " << files.back() << " look the same";
+    }
+  }
 }
 
 TEST(Lesson, UnknownTechniqueIsOneLineExit2AndWritesNothing) {
