@@ -17,6 +17,7 @@
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
 #include "registry/registry.h"
+#include "teach/exercise_page.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -234,6 +235,7 @@ std::string teacherHtml(const Course& c, const CourseSettings& s, const std::str
     }
     h << "</section>\n";
   }
+  h << teach::gradedExercisesTeacherHtml(s.progress);
   h << footer(command) << "</body>\n</html>\n";
   return h.str();
 }
