@@ -1,6 +1,7 @@
 // apps/commands.h — the shadowlab command's own handlers, one file per command family beside
 // apps/shadowlab.cpp (which parses the command line and dispatches): list (cmd_list.cpp),
-// render and compare (cmd_render.cpp). The other commands live in their rooms (figures/, lab/,
+// render and compare (cmd_render.cpp), exercise
+// (cmd_exercise.cpp). The other commands live in their rooms (figures/, lab/,
 // measure/ via figures/) and in apps/run_legacy.cpp.
 #pragma once
 
@@ -14,5 +15,8 @@ int list();
 int render(const cli::Args& args);
 // `shadowlab compare`: two techniques on one scene, the difference of their masks.
 int compare(const cli::Args& args);
+// `shadowlab exercise list|show|start|grade ...` (cmd_exercise.cpp, teach/exercise.h): argv
+// from "exercise" on; parsed here, as its subcommands take positional arguments.
+int exercise(int argc, char** argv);
 
 }  // namespace sl

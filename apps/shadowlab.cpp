@@ -1,6 +1,6 @@
 // apps/shadowlab.cpp — the shadowlab command: list, render, compare, bench, plan, figures,
-// lesson, gallery, course, serve, run-legacy. This file holds the usage text and the dispatch;
-// the handlers are beside it (apps/commands.h, apps/run_legacy.h) or in their rooms.
+// lesson, gallery, course, exercise, serve, run-legacy. This file holds the usage text and the
+// dispatch; the handlers are beside it (apps/commands.h, apps/run_legacy.h) or in their rooms.
 // Contract: docs/design.md "Command-line contract". Bad input -> one line on stderr, exit status 2.
 #include <iostream>
 #include <string>
@@ -40,6 +40,8 @@ usage:
   shadowlab lesson TECHNIQUE --out DIR             one HTML lesson: paper, passes, GL state, GLSL twin
   shadowlab gallery --out DIR                      the artefact gallery: DIR/gallery/index.html
   shadowlab course --out DIR                       the lessons in order, exercises, teacher's page
+  shadowlab exercise list | show ID | start ID --out FILE | grade ID ANSWER
+                                                   graded exercises: render and measure an answer
   shadowlab serve  [--host 127.0.0.1] [--port 8080] the live lab in a browser (Ctrl-C stops it)
   shadowlab run-legacy --backend glx|osmesa|reference [--keys "h v l"] --frames DIR -- PROGRAM [ARGS]
                                                    an unchanged GL 1.x GLUT program, imaging preloaded
@@ -65,6 +67,7 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (argc >= 2 && std::string(argv[1]) == "run-legacy") return runLegacy(argc - 1, argv + 1);
+  if (argc >= 2 && std::string(argv[1]) == "exercise") return exercise(argc - 1, argv + 1);
   cli::Args args;
   try {
     args = cli::parse(argc, argv);

@@ -19,6 +19,7 @@
 #include "core/scene/scene_library.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
+#include "teach/exercise_page.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -317,6 +318,7 @@ std::string teacherHtml(const Course& c, const CourseSettings& s, const Measured
     }
     h << "</section>\n";
   }
+  h << teach::gradedExercisesTeacherHtml(s.progress);
   h << footer(command) << "</body>\n</html>\n";
   return h.str();
 }

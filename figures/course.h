@@ -7,6 +7,7 @@
 //                             opens the pair in the live lab, a question); the exercises as
 //                             JSON in <script id=course-data> (the browser test reads it)
 //   DIR/teacher.html          the answers, beside the pictures each exercise should produce
+//                             and the graded exercises (teach/exercise_page.h)
 //   DIR/teacher/<id>-a.png    those pictures, rendered by the real renderer (-b.png: side B)
 //   DIR/gallery/              the artefact gallery (writeGallery)
 //   DIR/lessons/<technique>/  every lesson (writeLessons), unless the caller wrote them already

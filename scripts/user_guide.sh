@@ -21,7 +21,7 @@ guide=docs/user-guide.md
 check=""
 [[ "${1:-}" == "--check" ]] && check=1
 
-commands=(list render compare bench plan figures lesson serve gallery course run-legacy)
+commands=(list render compare bench plan figures lesson serve gallery course exercise run-legacy)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 

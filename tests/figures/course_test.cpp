@@ -24,6 +24,7 @@
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
+#include "teach/exercise.h"
 
 using namespace sl;
 using namespace sl::figures;
@@ -227,6 +228,15 @@ TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
                   std::string::npos)
             << e.id;
       }
+  // The graded exercises (teach/exercise_page.h): each on the teacher's page with its model
+  // answer graded PASS when the page was written (a failing model answer is shown as an error).
+  for (const sl::teach::Exercise& e : sl::teach::exercises()) {
+    const size_t at = teacher.find("<div class=exercise id=\"graded-" + e.id + "\">");
+    ASSERT_NE(at, std::string::npos) << e.id;
+    const std::string block = teacher.substr(at, teacher.find("</div>", at) - at);
+    EXPECT_NE(block.find("<b>PASS</b>: "), std::string::npos) << e.id << ": " << block;
+    EXPECT_EQ(block.find("class=error"), std::string::npos) << e.id << ": " << block;
+  }
   // Every relative link (the lessons' included) and anchor resolves.
   expectLinksResolve(dir / "index.html");
   expectLinksResolve(dir / "teacher.html");
