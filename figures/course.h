@@ -71,6 +71,9 @@ struct CourseSettings {
   std::string lessonsHref = "lessons/";  // relative to DIR, ending in "/"
   std::string labUrl = kDefaultLabUrl;
   bool progress = false;  // progress lines on stderr
+  // The report's figures each step links (the ones of its lessons, teach/lesson.h
+  // figureLinksFor); with no report beside the course (report.href empty) they are named.
+  ReportLinks report;
 };
 
 struct CourseSummary {
@@ -86,7 +89,9 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
 // wrote in OUT/lessons/ (not rendered again), and returns report.html's section linking the
 // course, its teacher's page and its gallery; a course that could not be written is named in
 // red with the reason.
-std::string writeCourseForReport(const std::string& outDir, bool progress);
+// Each step links the report's figures of its lessons (`report`: from OUT/course/).
+std::string writeCourseForReport(const std::string& outDir, const ReportLinks& report,
+                                 bool progress);
 
 // `shadowlab course --out DIR [--lab URL]`.
 int runCourseCommand(const cli::Args& args);
