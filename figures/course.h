@@ -2,7 +2,8 @@
 // order, with exercises, a teacher's page and the artefact gallery (figures/gallery.h).
 //
 //   DIR/index.html            the course: the steps in order, what each adds, links to each
-//                             step's lesson pages and to the gallery, 2-3 exercises per step
+//                             step's lesson pages, its report figures (CourseSettings::report)
+//                             and the gallery, 2-3 exercises per step
 //                             (the `shadowlab render` commands of a picture pair, a link that
 //                             opens the pair in the live lab, a question); the exercises as
 //                             JSON in <script id=course-data> (the browser test reads it)

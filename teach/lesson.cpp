@@ -438,8 +438,7 @@ std::string figureLinksHtml(const std::vector<FigureLink>& links) {
 std::string unlinkedFiguresHtml() {
   return "<p class=\"report-figures-made\">A figure named without a link is not in a report beside "
          "this page: <code>shadowlab figures --only ID --out DIR</code> makes it in "
-         "<code>DIR/report.html</code>; <code>shadowlab figures --out DIR</code> makes all of "
-         "them, "
+         "<code>DIR/report.html</code>; <code>shadowlab figures --out DIR</code> makes them all, "
          "with the lessons in <code>DIR/lessons/</code> and the course in <code>DIR/course/</code> "
          "linked to them.</p>\n";
 }

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # tests/browser/run_course.sh SHADOWLAB OUT — the ctest `browser.course`: writes the course
 # (shadowlab course --out OUT/course), loads its pages, the gallery's and every lesson's
-# (check_pages.mjs: every picture loads, no console error, every relative link names a file),
-# then checks every link's anchor and opens every lab link against `shadowlab serve`
-# (course_links.mjs). Screenshots: OUT/shots/.
+# (check_pages.mjs: every picture loads, no console error, every relative link names a file and
+# its #fragment an id of the page it opens), then opens every lab link against
+# `shadowlab serve` (course_links.mjs). Screenshots: OUT/shots/.
 # Exit 77 (ctest: skipped) only when node or Debian's chromium is absent; a missing
 # node_modules is a failure: scripts/setup.sh installs it with `npm ci`.
 set -euo pipefail

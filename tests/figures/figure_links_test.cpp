@@ -71,10 +71,9 @@ TEST(FigureLinks, EveryFigureIsLinkedFromALesson) {
     EXPECT_FALSE(figureTechniques(f).empty()) << f.id << " names no technique";
     EXPECT_TRUE(linked.count(f.id)) << f.id << " is linked from no lesson";
   }
-  for (const char* id :
-       {"brabec-fig3-packing", "brabec-fig5-packing", "csm-fig3", "csm-fig6", "csm-fig9",
-        "chan-2-4", "chan-2-5", "chan-3-5", "chan-4-4", "everitt-fig2", "everitt-fig4",
-        "everitt-fig5", "everitt-fig6"})
+  for (const char* id : {"brabec-fig3-packing", "brabec-fig5-packing", "csm-fig3", "csm-fig6",
+                         "csm-fig9", "chan-2-4", "chan-2-5", "chan-3-5", "chan-4-4", "everitt-fig2",
+                         "everitt-fig4", "everitt-fig5", "everitt-fig6"})
     EXPECT_TRUE(linked.count(id)) << id;
   // A figure's techniques are its panels' (and, where no panel renders one, its `lessons`):
   // Brabec Fig. 5's buffer strip is fast PCF's, both of whose lessons link it.
@@ -113,7 +112,8 @@ TEST(FigureLinks, TheReportLinksBackEveryLessonThatLinksAFigure) {
   for (const auto& [id, lessons] : back) EXPECT_FALSE(lessons.empty()) << id << " links no lesson";
 
   std::map<std::string, std::set<std::string>> forth;  // figure -> the lessons that link it
-  for (const auto& [technique, ids] : lessonLinks(reportLinksTo("../../report.html", everyFigure())))
+  for (const auto& [technique, ids] :
+       lessonLinks(reportLinksTo("../../report.html", everyFigure())))
     for (const std::string& id : ids) forth[id].insert(technique);
   for (const auto& [id, lessons] : back)
     EXPECT_EQ(lessons, forth[id]) << id << ": the lessons its article links, against the ones "
