@@ -13,6 +13,7 @@
 #include "figures/figures.h"
 #include "figures/gallery.h"
 #include "figures/overrides.h"
+#include "figures/report.h"
 #include "lab/lab_server.h"
 #include "registry/cli.h"
 #include "registry/registry.h"
@@ -83,7 +84,7 @@ int run(int argc, char** argv) {
         args.value("out").value_or("out/figures"),
         args.options.count("only") ? args.options.at("only") : std::vector<std::string>{},
         !args.has("no-progress"), figures::parseOverrides(args));
-  if (args.command == "lesson") return figures::runLessonCommand(args);
+  if (args.command == "lesson") return figures::runLessonCommand(args, figures::figureRefs());
   if (args.command == "gallery") return figures::runGalleryCommand(args);
   if (args.command == "course") return figures::runCourseCommand(args);
   if (args.command == "bench") return figures::runBench(args);

@@ -17,6 +17,7 @@
 #include "core/base/output_files.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
+#include "figures/report.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
 #include "teach/exercise_page.h"
@@ -239,6 +240,7 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
     << " <a href=\"" << kScopePage << "\">What the course leaves out, and where to read "
     << "it</a>.</p>\n<p>The <a href=\"gallery/index.html\">artefact gallery</a> "
     << "shows each classic artefact as a wrong/right pair; the exercises refer to it.</p>\n"
+    << (s.report.href.empty() ? unlinkedFiguresHtml() : std::string())
     << "<nav class=toc><h2>The order</h2>\n<ol>\n";
   for (const CourseStep& st : c.steps)
     h << "<li><a href=\"#step-" << htmlEscape(st.id) << "\">"
@@ -256,6 +258,9 @@ std::string indexHtml(const Course& c, const CourseSettings& s, const std::strin
         << htmlEscape(lessonHref(s, st.techniques[i])) << "\">" << htmlEscape(st.techniques[i])
         << "</a>";
     h << "</p>\n";
+    const std::vector<FigureLink> figures = figureLinksFor(st.techniques, s.report);
+    if (!figures.empty())
+      h << "<p class=figures>The report's figures of this step:</p>\n" << figureLinksHtml(figures);
     int k = 0;
     for (const CourseExercise& e : st.exercises) {
       h << "<div class=exercise id=\"ex-" << htmlEscape(e.id) << "\">\n<h3>Exercise " << n << "."
@@ -473,11 +478,13 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
   return summary;
 }
 
-std::string writeCourseForReport(const std::string& outDir, bool progress) {
+std::string writeCourseForReport(const std::string& outDir, const ReportLinks& report,
+                                 bool progress) {
   const auto start = std::chrono::steady_clock::now();
   CourseSettings s;
   s.writeLessons = false;
   s.lessonsHref = "../lessons/";
+  s.report = report;
   std::ostringstream h;
   h << "<section id=course><h2>The course</h2>\n";
   try {
@@ -507,7 +514,9 @@ int runCourseCommand(const cli::Args& args) {
   s.labUrl = args.value("lab").value_or(kDefaultLabUrl);
   if (s.labUrl.rfind("http://", 0) != 0 && s.labUrl.rfind("https://", 0) != 0)
     throw InputError("--lab must be an http:// or https:// address, got '" + s.labUrl + "'");
-  s.lessons = LessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap};
+  s.report.figures = figureRefs();  // no report beside the course: its steps name the figures
+  s.lessons =
+      LessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap, s.report};
   s.progress = !args.has("no-progress");
   const auto start = std::chrono::steady_clock::now();
   const CourseSummary summary = writeCourse(out, s);

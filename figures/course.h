@@ -2,7 +2,8 @@
 // order, with exercises, a teacher's page and the artefact gallery (figures/gallery.h).
 //
 //   DIR/index.html            the course: the steps in order, what each adds, links to each
-//                             step's lesson pages and to the gallery, 2-3 exercises per step
+//                             step's lesson pages, its report figures (CourseSettings::report)
+//                             and the gallery, 2-3 exercises per step
 //                             (the `shadowlab render` commands of a picture pair, a link that
 //                             opens the pair in the live lab, a question); the exercises as
 //                             JSON in <script id=course-data> (the browser test reads it)
@@ -87,6 +88,9 @@ struct CourseSettings {
   std::string lessonsHref = "lessons/";  // relative to DIR, ending in "/"
   std::string labUrl = kDefaultLabUrl;
   bool progress = false;  // progress lines on stderr
+  // The report's figures each step links (the ones of its lessons, teach/lesson.h
+  // figureLinksFor); with no report beside the course (report.href empty) they are named.
+  ReportLinks report;
 };
 
 struct CourseSummary {
@@ -102,7 +106,9 @@ CourseSummary writeCourse(const std::string& dir, const CourseSettings& settings
 // wrote in OUT/lessons/ (not rendered again), and returns report.html's section linking the
 // course, its teacher's page and its gallery; a course that could not be written is named in
 // red with the reason.
-std::string writeCourseForReport(const std::string& outDir, bool progress);
+// Each step links the report's figures of its lessons (`report`: from OUT/course/).
+std::string writeCourseForReport(const std::string& outDir, const ReportLinks& report,
+                                 bool progress);
 
 // `shadowlab course --out DIR [--lab URL]`.
 int runCourseCommand(const cli::Args& args);

@@ -8,6 +8,8 @@
 //
 // This file puts the papers' entries together in the report's order (figure_list_PAPER.cpp,
 // built with figure_list_parts.h) and adds the one entry across the papers.
+#include <algorithm>
+
 #include "figures/figure_list_parts.h"
 #include "figures/figure_spec.h"
 
@@ -51,6 +53,19 @@ const std::vector<FigureSpec>& figureList() {
     return v;
   }();
   return entries;
+}
+
+std::vector<std::string> figureTechniques(const FigureSpec& figure) {
+  std::vector<std::string> out;
+  auto add = [&](const std::string& t) {
+    if (!t.empty() && std::find(out.begin(), out.end(), t) == out.end()) out.push_back(t);
+  };
+  for (const PanelSpec& p : figure.panels) {
+    add(p.technique);
+    for (const std::string& t : p.errorsOf) add(t);
+  }
+  for (const std::string& t : figure.lessons) add(t);
+  return out;
 }
 
 }  // namespace sl::figures

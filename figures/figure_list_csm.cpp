@@ -67,6 +67,7 @@ std::vector<FigureSpec> csmFigures() {
       "surfaces (d - z = 0) fully lit; (d) scaling by 2 and clamping does too, with a steeper "
       "step.",
       "analytic", 1, {plot("reconstruction (a-d)", "csm-reconstruction")}));
+  out.back().lessons = {"modern.csm"};  // a computed chart: no panel renders the technique
 
   out.push_back(csmFigure(
       "csm-fig4", "Figure 4 (a, b)", "Scaling f vs offsetting d",

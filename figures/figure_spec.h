@@ -93,6 +93,9 @@ struct FigureSpec {
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted
+  // The techniques whose lessons teach this figure where no panel renders them (a computed chart
+  // such as CSM Fig. 3): with the panels' techniques, figureTechniques.
+  std::vector<std::string> lessons;
   // Re-made with `figures --set` (figures/overrides.h): the listed figure's id (id then names
   // this version's folder), the overrides as typed, and their slug in every file name.
   std::string sourceId;
@@ -102,5 +105,10 @@ struct FigureSpec {
 
 // Every figure we reproduce, in paper order.
 const std::vector<FigureSpec>& figureList();
+
+// The techniques a figure shows: its panels' (each render's technique and the ones whose errors
+// it shows, PanelSpec::errorsOf) and its `lessons`, each once, in that order. The links between
+// a figure and the lessons (teach/lesson.h figureShows) are made from these.
+std::vector<std::string> figureTechniques(const FigureSpec& figure);
 
 }  // namespace sl::figures

@@ -905,20 +905,24 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     results.push_back(std::move(fr));
   }
   // A lesson per technique (teach/lesson.h), small so that all of them cost about a minute;
-  // with --only, the techniques the selected figures show.
+  // with --only, the lessons of what the selected figures show (teach/lesson.h figureShows: a
+  // figure of legacy.pcf, both PCF lessons). Each links its figures in this report, and each
+  // figure its lessons.
   std::vector<std::string> lessonTechniques;
   for (const Technique& t : allTechniques()) {
     bool shown = only.empty();
+    const std::vector<std::string> subjects = lessonSubjects(t.name);
     for (const FigureSpec* f : selected)
-      for (const PanelSpec& p : f->panels) shown = shown || p.technique == t.name;
+      shown = shown || figureShows(FigureRef{f->id, f->title, figureTechniques(*f)}, subjects);
     if (shown) lessonTechniques.push_back(t.name);
   }
-  const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap};
+  const LessonSettings lessonSettings{kDefaultScene, kLessonWidth, kLessonHeight, kLessonShadowMap,
+                                      reportLinksTo("../../report.html", selected)};
   ReportInfo info;
   const auto lessonsStart = std::chrono::steady_clock::now();
-  info.lessonsHtml = lessonIndexHtml(writeLessons((fs::path(outDir) / "lessons").string(),
-                                                  lessonTechniques, lessonSettings, progress),
-                                     "lessons/");
+  info.lessons = writeLessons((fs::path(outDir) / "lessons").string(), lessonTechniques,
+                              lessonSettings, progress);
+  info.lessonsHtml = lessonIndexHtml(info.lessons, info.lessonsBase);
   if (progress)
     std::cerr << "[lesson] " << lessonTechniques.size() << " lessons in "
               << std::lround(
@@ -926,7 +930,9 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
                          .count())
               << " s" << std::endl;
   // The whole set: the course over those lessons (figures/course.h), linked from the report.
-  if (only.empty()) info.lessonsHtml += writeCourseForReport(outDir, progress);
+  if (only.empty())
+    info.lessonsHtml +=
+        writeCourseForReport(outDir, reportLinksTo("../report.html", selected), progress);
   if (only.empty()) {  // the whole set: the quick bench's table, plots and claims join the report
     if (progress) std::cerr << "[bench] shadowlab bench --quick" << std::endl;
     info.benchHtml = runQuickBenchForReport(outDir, progress);

@@ -234,13 +234,37 @@ std::string regenerateCommand(const FigureSpec& s) {
   return command;
 }
 
-void writeFigure(std::ostream& h, const FigureResult& f) {
+FigureRef refOf(const FigureSpec& f) {
+  return {f.id, f.paper + ", " + f.paperFigure + ": " + f.title, figureTechniques(f)};
+}
+
+// A written lesson and what it teaches (teach/lesson.h lessonSubjects).
+struct WrittenLesson {
+  std::string technique, href;
+  std::vector<std::string> subjects;
+};
+
+// The figure's links to the lessons beside the report that teach what it shows.
+void writeLessonLinks(std::ostream& h, const FigureSpec& s,
+                      const std::vector<WrittenLesson>& lessons) {
+  const FigureRef ref = refOf(s);
+  std::string links;
+  for (const WrittenLesson& l : lessons)
+    if (figureShows(ref, l.subjects))
+      links += std::string(links.empty() ? "" : ", ") + "<a class=lesson href=\"" +
+               htmlEscape(l.href) + "\"><code>" + htmlEscape(l.technique) + "</code></a>";
+  if (!links.empty()) h << "<p class=lessons>Lessons: " << links << "</p>\n";
+}
+
+void writeFigure(std::ostream& h, const FigureResult& f,
+                 const std::vector<WrittenLesson>& lessons) {
   const FigureSpec& s = f.spec;
   int missing = 0;
   for (const PanelResult& p : f.panels) missing += p.ok ? 0 : 1;
   h << "<article id=\"" << htmlEscape(s.id) << "\"><h3>" << htmlEscape(s.paperFigure) << " — "
     << htmlEscape(s.title) << " <small>(<code>" << htmlEscape(s.id) << "</code>)</small></h3>\n";
   h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
+  writeLessonLinks(h, s, lessons);
   h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
   h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height
     << ", " << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
@@ -303,6 +327,20 @@ void writeFigure(std::ostream& h, const FigureResult& f) {
 
 }  // namespace
 
+std::vector<FigureRef> figureRefs() {
+  std::vector<FigureRef> out;
+  for (const FigureSpec& f : figureList()) out.push_back(refOf(f));
+  return out;
+}
+
+ReportLinks reportLinksTo(const std::string& href, const std::vector<const FigureSpec*>& figures) {
+  ReportLinks r;
+  r.figures = figureRefs();
+  r.href = href;
+  for (const FigureSpec* f : figures) r.anchors[f->sourceId.empty() ? f->id : f->sourceId] = f->id;
+  return r;
+}
+
 void writeReport(const std::string& outDir, const std::vector<FigureResult>& figures,
                  const ReportInfo& info) {
   std::ostringstream h;
@@ -341,13 +379,17 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
   }
   h << "</table></nav>\n";
   h << info.lessonsHtml;
+  std::vector<WrittenLesson> lessons;
+  for (const LessonLink& l : info.lessons)
+    if (l.error.empty())
+      lessons.push_back({l.technique, info.lessonsBase + l.href, lessonSubjects(l.technique)});
   std::string paper;
   for (const FigureResult& f : figures) {
     if (f.spec.paper != paper) {
       paper = f.spec.paper;
       h << "<h2>" << htmlEscape(paper) << "</h2>\n";
     }
-    writeFigure(h, f);
+    writeFigure(h, f, lessons);
   }
   h << info.benchHtml;
   // Self-check for readers and for tests/figures/report_test.cpp: every image must have

@@ -10,6 +10,7 @@
 #include "core/technique/technique.h"
 #include "figures/figure_spec.h"
 #include "registry/twins.h"
+#include "teach/lesson.h"
 
 namespace sl::figures {
 
@@ -86,7 +87,17 @@ struct ReportInfo {
   double totalSeconds = 0;
   std::string benchHtml;    // the quick bench's section (measure/bench_report.cpp), if it ran
   std::string lessonsHtml;  // links to the lessons (teach/lesson.h lessonIndexHtml)
+  // The lessons written beside the report (hrefs relative to lessonsBase): each figure links
+  // the ones that teach what it shows (teach/lesson.h figureShows).
+  std::vector<LessonLink> lessons;
+  std::string lessonsBase = "lessons/";
 };
+
+// The figure list as the lessons name it (teach/lesson.h FigureRef): id, title, techniques.
+std::vector<FigureRef> figureRefs();
+// How a page beside a report of `figures` links to it: `href` is report.html from the page's
+// folder ("../../report.html" from OUT/lessons/T/); each figure by its article's id.
+ReportLinks reportLinksTo(const std::string& href, const std::vector<const FigureSpec*>& figures);
 
 // Writes outDir/report.html (a gallery per paper; missing panels in red with the reason).
 void writeReport(const std::string& outDir, const std::vector<FigureResult>& figures,

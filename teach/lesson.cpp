@@ -101,16 +101,39 @@ std::vector<std::pair<std::string, std::string>> refList(const LessonText& t, co
 
 // ---------------------------------------------------------------- known departures
 
-// Every departure the pass tables of `techniques` declare (each variant's too), pass by pass; a
-// text shared by several passes (a helper they all call) is listed once, under the first.
-std::vector<Departure> departuresOf(const std::vector<const Technique*>& techniques) {
+// Every departure the pass tables of the page's techniques declare (each variant's too), pass by
+// pass; a text shared by several passes (a helper they all call) is listed once. Each links to
+// the first pass on the page that declares it, on the side whose run has that pass: a pass that
+// runs only at some footprints (PCF's 2s at 3x3 and 4x4) is on the 4x4 side
+// ("legacy.pcf-4x4-pass-2s"), not on the 2x2 one. A departure of a pass no side of the page
+// runs (another variant's) is listed without a link.
+std::vector<Departure> departuresOf(const std::vector<Side>& sides) {
+  auto ran = [](const Side& s, const std::string& id) {
+    for (const json& pass : s.passes["passes"])
+      if (pass.value("id", "") == id) return true;
+    return false;
+  };
+  std::vector<const Technique*> techniques;  // each technique once, in the sides' order
+  for (const Side& side : sides)
+    if (std::find(techniques.begin(), techniques.end(), side.technique) == techniques.end())
+      techniques.push_back(side.technique);
   std::vector<Departure> out;
   for (const Technique* t : techniques)
     for (const PassTable* table : allPassTables(*t))
-      for (const PassSpec& p : *table)
-        for (const std::string& d : p.deviations)
-          if (std::none_of(out.begin(), out.end(), [&](const Departure& o) { return o.text == d; }))
-            out.push_back({t->name, p.id, p.name, d});
+      for (const PassSpec& p : *table) {
+        std::string anchor;
+        for (const Side& s : sides)
+          if (anchor.empty() && s.technique == t && ran(s, p.id))
+            anchor = passAnchor(s.anchor, p.id);
+        for (const std::string& d : p.deviations) {
+          auto same =
+              std::find_if(out.begin(), out.end(), [&](const Departure& o) { return o.text == d; });
+          if (same == out.end())
+            out.push_back({t->name, p.id, p.name, d, anchor});
+          else if (same->anchor.empty() && !anchor.empty())  // a pass the page shows
+            *same = {t->name, p.id, p.name, d, anchor};
+        }
+      }
   return out;
 }
 
@@ -294,12 +317,8 @@ LessonPage prepareLesson(const Technique& t, const LessonSettings& s, const std:
   if (pairs.empty())
     page.sides.push_back(renderSide(t, paramsForSettings(s), scene, s, cache, "own", ""));
   page.why = whyBlocks(page.text, page.sides, s, scene);
-  // Departures: what the pass tables of the page's techniques declare (each technique once).
-  std::vector<const Technique*> shown;
-  for (const Side& side : page.sides)
-    if (std::find(shown.begin(), shown.end(), side.technique) == shown.end())
-      shown.push_back(side.technique);
-  page.departures = departuresOf(shown);
+  page.departures = departuresOf(page.sides);
+  page.figures = figureLinksFor({t.name}, s.report);
   return page;
 }
 
@@ -367,6 +386,63 @@ std::vector<std::string> techniquesWithoutLesson() {
   return out;
 }
 
+std::vector<std::string> lessonSubjects(const std::string& technique) {
+  std::vector<std::string> out;
+  for (const LessonText& text : allLessonTexts())
+    for (const json& name : text.entry.value("techniques", json::array()))
+      if (name == technique) out = stringList(text, "techniques");
+  if (out.empty()) out.push_back(technique);
+  return out;
+}
+
+bool figureShows(const FigureRef& figure, const std::vector<std::string>& subjects) {
+  return std::any_of(figure.techniques.begin(), figure.techniques.end(), [&](const std::string& t) {
+    return std::find(subjects.begin(), subjects.end(), t) != subjects.end();
+  });
+}
+
+std::vector<FigureLink> figureLinksFor(const std::vector<std::string>& techniques,
+                                       const ReportLinks& report) {
+  std::vector<std::vector<std::string>> subjects;
+  for (const std::string& t : techniques) subjects.push_back(lessonSubjects(t));
+  std::vector<FigureLink> out;
+  for (const FigureRef& f : report.figures) {
+    if (std::none_of(subjects.begin(), subjects.end(),
+                     [&](const std::vector<std::string>& s) { return figureShows(f, s); }))
+      continue;
+    const auto anchor = report.anchors.find(f.id);
+    out.push_back({f.id, f.title,
+                   report.href.empty() || anchor == report.anchors.end()
+                       ? std::string()
+                       : report.href + "#" + anchor->second});
+  }
+  return out;
+}
+
+std::string figureLinksHtml(const std::vector<FigureLink>& links) {
+  if (links.empty()) return "";
+  std::ostringstream h;
+  h << "<ul class=\"report-figures\">\n";
+  for (const FigureLink& l : links) {
+    h << "<li>";
+    if (l.href.empty())
+      h << htmlEscape(l.title);
+    else
+      h << "<a href=\"" << htmlEscape(l.href) << "\">" << htmlEscape(l.title) << "</a>";
+    h << " (<code>" << htmlEscape(l.id) << "</code>)</li>\n";
+  }
+  h << "</ul>\n";
+  return h.str();
+}
+
+std::string unlinkedFiguresHtml() {
+  return "<p class=\"report-figures-made\">A figure named without a link is not in a report beside "
+         "this page: <code>shadowlab figures --only ID --out DIR</code> makes it in "
+         "<code>DIR/report.html</code>; <code>shadowlab figures --out DIR</code> makes them all, "
+         "with the lessons in <code>DIR/lessons/</code> and the course in <code>DIR/course/</code> "
+         "linked to them.</p>\n";
+}
+
 std::string lessonTitle(const std::string& technique) {
   return field(lessonTextFor(technique), "title");
 }
@@ -390,9 +466,10 @@ std::vector<std::string> techniquesWithoutWhyPicture() {
   return out;
 }
 
-int runLessonCommand(const cli::Args& args) {
+int runLessonCommand(const cli::Args& args, const std::vector<FigureRef>& figures) {
   const Technique& t = findTechnique(args.required("technique"));
   LessonSettings s;
+  s.report.figures = figures;
   if (auto v = args.value("scene")) s.scene = *v;
   if (auto v = args.value("size")) cli::parseSize(*v, s.width, s.height);
   constexpr int kLargestShadowMap = 1 << 16;  // the GL maximum is checked once a context exists

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -31,17 +32,63 @@
 
 namespace sl::figures {
 
-// What the lessons render: the scene and sizes. Small sizes keep the main job fast.
+// A figure of the report as the lessons name it. figures/ fills these from its figure list
+// (figures/figure_spec.h figureList, which teach/ cannot include): the id (report.html#id), the
+// paper's figure and title, and the techniques the figure shows.
+struct FigureRef {
+  std::string id;                       // "brabec-fig7"
+  std::string title;                    // "Brabec & Seidel 2001, Figure 7 (a-h): ..."
+  std::vector<std::string> techniques;  // figures/figure_spec.h figureTechniques
+};
+
+// Where a page finds the report's figures.
+struct ReportLinks {
+  std::vector<FigureRef> figures;  // every figure of the list
+  // report.html relative to the page's folder ("../../report.html" from OUT/lessons/T/); empty
+  // when no report is written beside the page (`shadowlab lesson`, `shadowlab course`).
+  std::string href;
+  // The figures that report holds: listed id -> the id of its <article> there (an --only run
+  // holds some; a --set run names its version's folder).
+  std::map<std::string, std::string> anchors;
+};
+
+// What the lessons render: the scene and sizes (small sizes keep the main job fast), and the
+// report figures they link.
 struct LessonSettings {
   std::string scene = "brabec";
   int width = 400;
   int height = 300;
   int shadowMapTexels = 512;
+  ReportLinks report;
 };
+
+// The techniques a technique's lesson teaches: those its lesson text names (legacy.pcf's
+// lesson: legacy.pcf and modern.pcf); the technique alone when it has no lesson text.
+std::vector<std::string> lessonSubjects(const std::string& technique);
+// Whether `figure` shows one of `subjects` (a lesson's, lessonSubjects): the one relation
+// behind every link between the lessons, the course's steps and the report's figures.
+bool figureShows(const FigureRef& figure, const std::vector<std::string>& subjects);
+
+// A report figure as a page links it: `href` is empty when the report is not beside the page
+// or does not hold the figure.
+struct FigureLink {
+  std::string id;
+  std::string title;
+  std::string href;  // "../../report.html#brabec-fig7"
+};
+// The figures of `report` that show the lessons of `techniques` (one lesson, or a course
+// step's), in the figure list's order.
+std::vector<FigureLink> figureLinksFor(const std::vector<std::string>& techniques,
+                                       const ReportLinks& report);
+// Those links as HTML (a <ul class="report-figures">; a figure without href is named), and the
+// sentence a page shows when it names one: the command that makes it.
+std::string figureLinksHtml(const std::vector<FigureLink>& links);
+std::string unlinkedFiguresHtml();
 
 // `shadowlab lesson TECHNIQUE --out DIR [--scene S] [--size WxH] [--shadow-map N]`: renders,
 // then writes DIR as a whole (core/base/output_files.h: all or none). Bad input -> InputError.
-int runLessonCommand(const cli::Args& args);
+// `figures`: the report's figures, named on the page (no report is written beside it).
+int runLessonCommand(const cli::Args& args, const std::vector<FigureRef>& figures);
 
 // The main job's lessons: one folder per technique under `lessonsDir` (lessonsDir/<name>/).
 struct LessonLink {

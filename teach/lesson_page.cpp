@@ -46,9 +46,9 @@ std::string compareAnchor(const std::string& tag) {
   return tag.empty() ? "compare" : "compare-" + tag;
 }
 
-// The anchor of a pass on the page: its technique and its id in the pass table.
-std::string passAnchor(const std::string& technique, const std::string& id) {
-  return htmlEscape(technique) + "-pass-" + htmlEscape(id);
+// The anchor of a pass on the page: its side's anchor and its id in the pass table.
+std::string passAnchor(const std::string& sideAnchor, const std::string& id) {
+  return htmlEscape(sideAnchor) + "-pass-" + htmlEscape(id);
 }
 
 // The GL state card of a pass (passes.json "state": [{"group", "text", "before_pass"}] in call
@@ -421,6 +421,7 @@ std::string pageHtml(const LessonPage& page) {
   html << "<h1>" << htmlEscape(field(text, "title")) << "</h1>\n<p><b>" << htmlEscape(t.name)
        << "</b> — " << htmlEscape(text.paper) << ", " << htmlEscape(field(text, "sections"))
        << ".</p>\n<p>Contents: <a href=\"#idea\">the idea</a>";
+  if (!page.figures.empty()) html << " · <a href=\"#report-figures\">the report's figures</a>";
   if (!page.why.empty()) html << " · <a href=\"#why\">why each step</a>";
   for (const Side& s : page.sides)
     html << " · <a href=\"#" << htmlEscape(s.anchor) << "\">" << htmlEscape(sideLabel(s, page))
@@ -448,6 +449,18 @@ std::string pageHtml(const LessonPage& page) {
     html << "</ul>\n";
   }
 
+  if (!page.figures.empty()) {
+    html << "<h2 id=\"report-figures\">The report's figures</h2>\n<p>The papers' figures as "
+            "<code>shadowlab figures</code> re-makes them, with our numbers beside the papers', "
+            "that show ";
+    const std::vector<std::string> subjects = stringList(text, "techniques");
+    for (size_t i = 0; i < subjects.size(); ++i)
+      html << (i == 0 ? "" : i + 1 == subjects.size() ? " or " : ", ") << code(subjects[i]);
+    html << ":</p>\n" << figureLinksHtml(page.figures);
+    if (std::any_of(page.figures.begin(), page.figures.end(),
+                    [](const FigureLink& l) { return l.href.empty(); }))
+      html << unlinkedFiguresHtml();
+  }
   writeWhy(html, page);
   for (const Side& s : page.sides) {
     html << "<h2 id=\"" << htmlEscape(s.anchor) << "\">"
@@ -474,10 +487,14 @@ std::string pageHtml(const LessonPage& page) {
     html << "<p>None: every pass on this page follows its paper as written.</p>\n";
   } else {
     html << "<ul class=\"departures\">\n";
-    for (const Departure& d : page.departures)
-      html << "<li><a href=\"#" << passAnchor(d.technique, d.passId) << "\">"
-           << htmlEscape(d.technique + " pass " + d.passId + " (" + d.passName + ")") << "</a> — "
-           << htmlEscape(d.text) << "</li>\n";
+    for (const Departure& d : page.departures) {
+      const std::string pass =
+          htmlEscape(d.technique + " pass " + d.passId + " (" + d.passName + ")");
+      html << "<li>"
+           << (d.anchor.empty() ? pass + " <i>(not run on this page)</i>"
+                                : "<a href=\"#" + d.anchor + "\">" + pass + "</a>")
+           << " — " << htmlEscape(d.text) << "</li>\n";
+    }
     html << "</ul>\n";
   }
 

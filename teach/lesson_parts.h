@@ -48,6 +48,7 @@ struct Departure {
   std::string passId;
   std::string passName;
   std::string text;
+  std::string anchor;  // the pass's id on the page ("legacy.pcf-4x4-pass-2s"); empty: not shown
 };
 
 // One technique as the lesson shows it: its frame, its dump (teach/pass_dump.h) and the command
@@ -106,6 +107,7 @@ struct LessonPage {
   std::vector<Comparison> comparisons;
   std::vector<WhyBlock> why;  // the lesson text's "why" blocks with their pictures
   std::vector<Departure> departures;
+  std::vector<FigureLink> figures;  // the report's figures that show the lesson's techniques
   std::string lessonCommand;
   std::string commit;
 };
@@ -119,6 +121,8 @@ std::vector<std::pair<std::string, std::string>> refList(const LessonText& t, co
 std::string fmt(double v, const char* format);
 // <code>text</code>, escaped.
 std::string code(const std::string& text);
+// The id of a pass's section on the page: "<side anchor>-pass-<pass id>", escaped.
+std::string passAnchor(const std::string& sideAnchor, const std::string& id);
 // "2x2", "4x4".
 std::string footprintTag(int filter);
 // The render parameters of the lesson's settings (scene size and shadow map).

@@ -42,6 +42,22 @@ std::vector<std::string> imageSources(const std::string& html) {
   return out;
 }
 
+// Every href="#id" of a page names an id of the page (a departure of a pass that runs only at
+// 4x4 links the 4x4 strip's section; tests/browser/check_pages.mjs checks all links in Chromium).
+void expectFragmentsResolve(const std::string& html) {
+  static const std::regex kFragment(R"re(href="#([^"]+)")re");
+  static const std::regex kId(R"re(\bid="([^"]+)")re");
+  std::set<std::string> ids;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), kId); it != std::sregex_iterator();
+       ++it)
+    ids.insert((*it)[1].str());
+  int links = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), kFragment);
+       it != std::sregex_iterator(); ++it, ++links)
+    EXPECT_TRUE(ids.count((*it)[1].str())) << "#" << (*it)[1].str() << " names no id of the page";
+  EXPECT_GT(links, 0);
+}
+
 size_t count(const std::string& html, const std::string& what) {
   size_t n = 0;
   for (size_t at = html.find(what); at != std::string::npos; at = html.find(what, at + 1)) ++n;
@@ -342,6 +358,7 @@ TEST(Lesson, FastPcfShowsTwoByTwoAndFourByFour) {
   EXPECT_TRUE(fs::exists(dir / "why-3-1.png"));
   EXPECT_TRUE(fs::exists(dir / "why-3-2.png"));
   EXPECT_TRUE(fs::exists(dir / "diff-mask-4x4.png"));
+  expectFragmentsResolve(html);
 }
 
 TEST(Lesson, PcfShowsTheAccumulationPassAtFourByFour) {
@@ -356,6 +373,9 @@ TEST(Lesson, PcfShowsTheAccumulationPassAtFourByFour) {
   EXPECT_EQ(passSection(html, "legacy.pcf-pass-5a"), "") << "the 2x2 strip has no accumulation";
   EXPECT_NE(html.find("<a href=\"#legacy.pcf-4x4-pass-5a\">legacy.pcf pass 5a"), std::string::npos)
       << "the 4x4 twin does not link the accumulation pass";
+  // The saved camera pass (2s) runs at 3x3 and 4x4 only: its departure links the 4x4 strip.
+  EXPECT_NE(html.find("<li><a href=\"#legacy.pcf-4x4-pass-2s\">"), std::string::npos);
+  expectFragmentsResolve(html);
 }
 
 // Everitt: the texgen planes beside the twin's matrix rows (the same numbers, 6 significant

@@ -1,13 +1,19 @@
 // tests/browser/check_pages.mjs — loads shadowlab's pages in headless Chromium (Debian's
 // /usr/bin/chromium, driven by puppeteer-core) and fails on what a reader would see broken:
 //   every page:  an image that did not load (naturalWidth 0), a console error, an uncaught
-//                script error, a failed request, a relative link to a file that does not exist;
+//                script error, a failed request; a relative link to a file that does not
+//                exist, or whose #fragment is no element id of the page it opens as the browser
+//                loads it (harness.mjs LinkChecker: a target not among the PAGEs is loaded too);
 //   a dump (index.html beside passes.json) and a lesson (index.html with <section class=pass>):
 //                with --require-state-cards, a pass without its GL state card: in a dump every
 //                pass of passes.json must have a "state" list whose lines the page shows,
 //                in a lesson every pass section must hold a .state-card that is not
 //                .state-card.missing ("state card: not recorded");
-//   report.html: it links at least one lesson.
+//   report.html: it links at least one lesson, and every figure (<article id>) links one
+//                (a.lesson);
+//   figures and lessons both ways: a link of a page's list of report figures (ul.report-figures)
+//                to report.html#F needs F's article to link that page back (a.lesson), and a
+//                lesson link of article F needs the lesson's list to link report.html#F.
 // A screenshot of every page goes to --shots DIR (the top of the page, 1300 px wide).
 //
 // usage: node check_pages.mjs [--require-state-cards] [--shots DIR] PAGE.html ...
@@ -15,14 +21,8 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import url from 'node:url';
-import puppeteer from 'puppeteer-core';
+import { LinkChecker, launchChromium } from './harness.mjs';
 
-const kChromium = process.env.SHADOWLAB_CHROMIUM || '/usr/bin/chromium';
-// The house flags (helper rules): headless, offline, no GPU, no sandbox (containers).
-const kChromiumFlags = [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
-  '--disable-component-update', '--disable-sync', '--no-first-run',
-];
 const kViewport = {width: 1300, height: 1600};
 // A page that has not loaded in this time is a failure (file:// pages load in well under 1 s).
 const kLoadTimeoutMs = 30000;
@@ -48,7 +48,9 @@ function kindOf(file, html) {
   return 'page';
 }
 
-async function checkPage(browser, file, options, failures) {
+let linkSeconds = 0;  // reading the pages' links and ids, and checking them
+
+async function checkPage(browser, checker, file, options, failures) {
   const fail = (what) => failures.push(`${file}: ${what}`);
   const html = fs.readFileSync(file, 'utf8');
   const kind = kindOf(file, html);
@@ -75,11 +77,9 @@ async function checkPage(browser, file, options, failures) {
     };
   });
   for (const src of result.broken) fail(`broken image ${src} (naturalWidth 0)`);
-  for (const href of result.links) {
-    if (/^[a-z]+:/i.test(href) || href.startsWith('#')) continue;
-    const target = path.join(path.dirname(file), decodeURIComponent(href.split('#')[0]));
-    if (!fs.existsSync(target)) fail(`link to a missing file: ${href}`);
-  }
+  const readStart = Date.now();
+  const links = await checker.read(file, page);
+  linkSeconds += (Date.now() - readStart) / 1000;
   if (kind === 'lesson') {
     if (result.passes.length === 0) fail('a lesson without a pass');
     for (const p of result.passes) {
@@ -113,6 +113,8 @@ async function checkPage(browser, file, options, failures) {
   if (kind === 'report') {
     const lessons = result.links.filter((h) => h.startsWith('lessons/'));
     if (lessons.length === 0) fail('report.html links no lesson');
+    for (const id of links.articles)
+      if (!links.links.some((l) => l.lesson && l.article === id)) fail(`figure ${id} links no lesson`);
   }
   if (options.shots) {
     const dims = await page.evaluate(() => ({h: document.documentElement.scrollHeight}));
@@ -126,6 +128,36 @@ async function checkPage(browser, file, options, failures) {
   return {kind, images: result.images, passes: result.passes.length};
 }
 
+// The figure <-> lesson links of the pages read, both ways (see the header); returns the
+// number of links checked.
+async function checkFigureLinks(checker, files, failures) {
+  let checked = 0;
+  const same = (a, b) => a.file === b.file && a.fragment === b.fragment;
+  for (const file of files) {
+    const from = path.resolve(file);
+    const info = await checker.info(from);
+    for (const l of info.links) {
+      const t = LinkChecker.target(from, l.href);
+      if (!t || !fs.existsSync(t.file)) continue;  // an absolute link; a missing file is failed above
+      if (l.figureList && t.fragment) {  // a page's link to a report figure
+        checked += 1;
+        const report = await checker.info(t.file);
+        const back = report.links.some((r) => r.lesson && r.article === t.fragment &&
+                                              same(LinkChecker.target(t.file, r.href), {file: from, fragment: ''}));
+        if (!back) failures.push(`${file}: links ${l.href}, whose figure does not link this page back`);
+      }
+      if (l.lesson && l.article) {  // a report figure's link to a lesson
+        checked += 1;
+        const lesson = await checker.info(t.file);
+        const back = lesson.links.some((r) => r.figureList &&
+                                              same(LinkChecker.target(t.file, r.href), {file: from, fragment: l.article}));
+        if (!back) failures.push(`${file}: figure ${l.article} links ${l.href}, which does not link the figure back`);
+      }
+    }
+  }
+  return checked;
+}
+
 async function main() {
   const options = parseArgs(process.argv.slice(2));
   if (options.pages.length === 0) {
@@ -133,21 +165,32 @@ async function main() {
     process.exit(2);
   }
   if (options.shots) fs.mkdirSync(options.shots, {recursive: true});
-  const browser = await puppeteer.launch({executablePath: kChromium, args: kChromiumFlags,
-                                          headless: true});
+  const started = Date.now();
+  const browser = await launchChromium();
+  const checker = new LinkChecker(browser);
   const failures = [];
+  let pairs = 0;
   try {
     for (const file of options.pages) {
       const before = failures.length;
-      const r = await checkPage(browser, file, options, failures);
+      const r = await checkPage(browser, checker, file, options, failures);
       console.log(`${failures.length === before ? 'ok  ' : 'FAIL'} ${r.kind} ${file} ` +
                   `(${r.images} images${r.kind === 'lesson' ? `, ${r.passes} passes` : ''})`);
     }
+    const checkStart = Date.now();
+    for (const file of options.pages)
+      await checker.check(path.resolve(file), (what) => failures.push(what));
+    pairs = await checkFigureLinks(checker, options.pages, failures);
+    linkSeconds += (Date.now() - checkStart) / 1000;
   } finally {
     await browser.close();
   }
   for (const f of failures) console.error(f);
-  console.log(`${options.pages.length} pages, ${failures.length} failures`);
+  console.log(`${options.pages.length} pages, ${checker.links} relative links (${checker.fragments} ` +
+              `with a #fragment, ${checker.pages.size - options.pages.length} further pages ` +
+              `loaded for their ids), ${pairs} figure/lesson links checked both ways, ` +
+              `${failures.length} failures, ${((Date.now() - started) / 1000).toFixed(1)} s ` +
+              `(the link check's own part: ${linkSeconds.toFixed(1)} s)`);
   process.exit(failures.length === 0 ? 0 : 1);
 }
 

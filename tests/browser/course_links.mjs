@@ -2,7 +2,7 @@
 // Chromium (puppeteer-core, no browser download):
 //   1. Every link of the course's pages (DIR/index.html, DIR/teacher.html) resolves: a relative
 //      link names a file that exists, and its #anchor an element of the page it opens (loaded
-//      in the browser, so the id is what the browser finds).
+//      in the browser, so the id is what the browser finds; harness.mjs LinkChecker).
 //   2. Every lab link (from <script id=course-data>) parses in the lab's URL scheme: opened
 //      against `shadowlab serve`, the page names no problem with it, writes the same state back
 //      into its own address, and its /api/render requests for A and B carry exactly the
@@ -10,10 +10,9 @@
 //      answered by the test (HTTP 204) instead of the server: what is checked is the state the
 //      link sets, not the frames (browser.lab_links renders the gallery's).
 // usage: SHADOWLAB_BINARY=... node course_links.mjs COURSE_DIR
-import { existsSync } from 'node:fs';
 import path from 'node:path';
 import url from 'node:url';
-import { commandPairs, embeddedJson, launchChromium, pairsOf, sameList, startLab } from './harness.mjs';
+import { LinkChecker, commandPairs, embeddedJson, launchChromium, pairsOf, sameList, startLab } from './harness.mjs';
 
 const kStateTimeoutMs = 60000;   // the page has read its URL and asked for both frames
 const binary = process.env.SHADOWLAB_BINARY;
@@ -32,35 +31,21 @@ const browser = await launchChromium();
 let server = null;
 try {
   // ---------------------------------------------------------------- 1. links and anchors
-  const idsOf = new Map();  // file -> the ids its page has
-  async function ids(file) {
-    if (!idsOf.has(file)) {
-      const page = await browser.newPage();
-      await page.goto(url.pathToFileURL(file).href, { waitUntil: 'load' });
-      idsOf.set(file, new Set(await page.$$eval('[id]', (xs) => xs.map((x) => x.id))));
-      await page.close();
-    }
-    return idsOf.get(file);
-  }
-  let links = 0, labLinks = 0;
+  // (harness.mjs LinkChecker, as check_pages.mjs checks every page of the course)
+  const checker = new LinkChecker(browser);
+  let labLinks = 0;
   for (const name of ['index.html', 'teacher.html']) {
     const file = path.join(dir, name);
     const page = await browser.newPage();
     await page.goto(url.pathToFileURL(file).href, { waitUntil: 'load' });
-    const hrefs = await page.$$eval('a[href]', (as) => as.map((a) => a.getAttribute('href')));
     const broken = await page.$$eval('img', (is) => is.filter((i) => !(i.complete && i.naturalWidth > 0))
                                                         .map((i) => i.getAttribute('src')));
     for (const src of broken) fail(`${name}: broken image ${src}`);
+    labLinks += (await checker.read(file, page)).links.filter((l) => /^https?:/.test(l.href)).length;
     await page.close();
-    for (const href of hrefs) {
-      if (/^https?:/.test(href)) { labLinks += 1; continue; }
-      links += 1;
-      const [target, anchor] = href.split('#');
-      const targetFile = target ? path.resolve(path.dirname(file), decodeURIComponent(target)) : file;
-      if (!existsSync(targetFile)) { fail(`${name}: link to a missing file: ${href}`); continue; }
-      if (anchor && !(await ids(targetFile)).has(anchor)) fail(`${name}: no #${anchor} in ${target || name}`);
-    }
+    await checker.check(file, fail);
   }
+  const links = checker.links;
   console.log(`course pages: ${links} relative links, ${labLinks} lab links`);
   if (links < 20) fail('the course pages have only ' + links + ' relative links');
 

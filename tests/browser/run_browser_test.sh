@@ -5,7 +5,10 @@
 #   OUT/dumps/<technique>/index.html    render --dump-passes of every technique in `shadowlab list`
 #   OUT/lessons/<technique>/index.html  shadowlab lesson of every technique
 #   OUT/figures/report.html             figures --only two cheap figures, with the lessons the
-#                                       report links (OUT/figures/lessons/*/index.html)
+#                                       report links (OUT/figures/lessons/*/index.html), which
+#                                       link the figures back
+# check_pages.mjs also checks every relative link and #fragment of every page, and the links
+# between the report's figures and its lessons both ways.
 # Small sizes keep it under a minute. Screenshots of every page: OUT/shots/.
 # Exit 77 (ctest: skipped) without node or Chromium; 1 when tests/browser/node_modules is
 # missing (scripts/setup.sh runs `npm ci` there).

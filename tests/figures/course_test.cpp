@@ -21,6 +21,7 @@
 #include "core/base/errors.h"
 #include "core/base/html.h"
 #include "core/scene/scene_library.h"
+#include "figures/report.h"
 #include "registry/cli.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
@@ -180,9 +181,18 @@ TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
   for (const CourseStep& st : course.steps)
     techniques.insert(techniques.end(), st.techniques.begin(), st.techniques.end());
   for (const LessonLink& l : writeLessons((out / "lessons").string(), techniques,
-                                          LessonSettings{"brabec", 160, 120, 128}, false))
+                                          LessonSettings{"brabec", 160, 120, 128, {}}, false))
     EXPECT_TRUE(l.error.empty()) << l.technique << ": " << l.error;
-  const std::string section = writeCourseForReport(out.string(), false);
+  // The report beside the course (its figures without panels: what is checked is the links).
+  std::vector<const FigureSpec*> figures;
+  std::vector<FigureResult> results;
+  for (const FigureSpec& f : figureList()) {
+    figures.push_back(&f);
+    results.push_back(FigureResult{f, {}, 0, "", ""});
+  }
+  writeReport(out.string(), results, ReportInfo{});
+  const std::string section =
+      writeCourseForReport(out.string(), reportLinksTo("../report.html", figures), false);
   for (const char* href :
        {"course/index.html", "course/teacher.html", "course/gallery/index.html"}) {
     EXPECT_NE(section.find(std::string("href=\"") + href + "\""), std::string::npos) << section;
@@ -202,6 +212,13 @@ TEST(Course, WritesEveryPagePictureAndTheGalleryOverTheMainJobsLessons) {
   for (const CourseStep& st : course.steps) {
     for (const std::string& t : st.techniques)
       EXPECT_NE(index.find("href=\"../lessons/" + t + "/index.html\""), std::string::npos) << t;
+    // The step links the report's figures of its lessons (teach/lesson.h figureLinksFor).
+    const std::string step = index.substr(index.find("id=\"step-" + st.id + "\""));
+    const std::string own = step.substr(0, step.find("<section", 1));
+    for (const FigureLink& l :
+         figureLinksFor(st.techniques, reportLinksTo("../report.html", figures)))
+      EXPECT_NE(own.find("<a href=\"../report.html#" + l.id + "\">"), std::string::npos)
+          << st.id << ": " << l.id;
     for (const CourseExercise& e : st.exercises) {
       EXPECT_NE(index.find(htmlEscape(e.question.substr(0, 40))), std::string::npos) << e.id;
       EXPECT_EQ(index.find(htmlEscape(e.answer.substr(0, 60))), std::string::npos)
