@@ -113,6 +113,7 @@ const char* kStyle =
     "@page{margin:1.2cm}\n"
     "@media print{body{max-width:none;font-size:9pt;line-height:1.25}"
     "a{color:inherit;text-decoration:none}nav.toc{break-after:page}"
+    "nav.toc .adds{display:none}nav.toc li{margin:0}"
     "section.step{break-inside:avoid-page;border:0;padding:0}"
     "section.step+section.step{break-before:page}"
     "div.exercise{break-inside:avoid;margin:.4em 0}.pair{flex-wrap:nowrap}"

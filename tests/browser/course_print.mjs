@@ -1,7 +1,7 @@
 // tests/browser/course_print.mjs — the course's pages as a teacher prints them: each page printed
 // to PDF on A4 and on US Letter by Debian's headless Chromium (puppeteer-core), its pages counted.
 //   index.html:         the order on its own page, then one page per step (steps + 1 pages);
-//   teacher.html:       about one page per step (at most steps + 1);
+//   teacher.html:       about one page per step, then the graded exercises (at most steps + 2);
 //   both:               every step after the first starts a new page (print media's computed
 //                       break-before), so the page counts mean one step a page;
 //   gallery/index.html: at most one page per artefact (plus the list's page).
@@ -15,7 +15,7 @@ const steps = new Set(embeddedJson(dir, 'course-data').map((e) => e.step)).size;
 const artefacts = embeddedJson(path.join(dir, 'gallery'), 'gallery-data').length;
 const expectations = [
   { page: 'index.html', min: steps + 1, max: steps + 1, stepPages: true },
-  { page: 'teacher.html', min: steps, max: steps + 1, stepPages: true },
+  { page: 'teacher.html', min: steps, max: steps + 2, stepPages: true },
   { page: 'gallery/index.html', min: 1, max: artefacts + 1, stepPages: false },
 ];
 
@@ -27,12 +27,14 @@ try {
     await page.goto(url.pathToFileURL(path.join(dir, file)).href, { waitUntil: 'load' });
     if (stepPages) {
       await page.emulateMediaType('print');
+      // Every section.step (the teacher's graded exercises are one too) but the first.
       const breaks = await page.$$eval('section.step', (xs) =>
-        xs.map((x) => getComputedStyle(x).breakBefore));
-      const unbroken = breaks.slice(1).filter((b) => b !== 'page').length;
-      if (breaks.length !== steps || unbroken > 0) {
-        console.log(`FAIL: ${file}: ${breaks.length} steps, ${unbroken} of them after the first ` +
-                    'do not start a printed page');
+        xs.map((x) => ({ id: x.id, before: getComputedStyle(x).breakBefore })));
+      const stepSections = breaks.filter((b) => b.id.startsWith('step-')).length;
+      const unbroken = breaks.slice(1).filter((b) => b.before !== 'page').length;
+      if (stepSections !== steps || unbroken > 0) {
+        console.log(`FAIL: ${file}: ${stepSections} of ${steps} steps, ${unbroken} sections ` +
+                    'after the first do not start a printed page');
         failures += 1;
       }
       await page.emulateMediaType(null);
