@@ -466,8 +466,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   std::vector<std::pair<std::string, std::string>> classifyDefines;
   if (maskInClassify) classifyDefines.push_back({"MASK_BIT", std::to_string(kStencilMaskBit)});
   if (conservative) classifyDefines.push_back({"CONSERVATIVE", "1"});
-  Program classifyProgram("shadow_volume.vert.glsl", "hybrid_classify.frag.glsl",
-                          classifyDefines);
+  Program classifyProgram("shadow_volume.vert.glsl", "hybrid_classify.frag.glsl", classifyDefines);
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});

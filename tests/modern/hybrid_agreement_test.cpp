@@ -1,13 +1,14 @@
 // modern.hybrid (Chan 2004 ch. 3) against modern.volumes and against the point truth, on every
 // scene of `shadowlab list`: the pixels it decides otherwise than the volumes, by cause
 // (tests/modern/hybrid_agreement.h), and its point error beside a plain shadow map's.
+#include "tests/modern/hybrid_agreement.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <iostream>
 
 #include "registry/shadow_error.h"
-#include "tests/modern/hybrid_agreement.h"
 
 namespace sl {
 namespace {
@@ -59,17 +60,18 @@ TEST(HybridAgreement, EqualsShadowVolumesOnEveryScene) {
 }
 
 TEST(HybridAgreement, ChansClassifierMissesAreClassified) {
-  // Chan's literal Figure 3-3 classifier (classify=chan) on the same scenes: every differing
-  // pixel gets a class, none is at a silhouette pixel, and it differs from the volumes on more
-  // pixels than the default classifier does on at least one scene (otherwise the default's
-  // extra work would buy nothing).
+  // Chan's literal Figure 3-3 classifier (classify=chan): every differing pixel gets a class,
+  // none is at a silhouette pixel, and it differs from the volumes on more pixels than the
+  // default classifier does on at least one scene (otherwise the default's extra work would
+  // buy nothing). The scenes where it differs most at 400x300 (134-732 pixels), less the two
+  // slowest (trees, dragon), to keep the test short; the full table is the first test's and
+  // docs/volumes.md's.
   bool chanWorseSomewhere = false;
-  for (const std::string& name : allScenes()) {
+  for (const std::string name : {"brabec", "fence", "dueling", "ball", "bunny", "teapot"}) {
     const Scene scene = loadScene(name);
     RenderParams p = agreementParams();
     p.extra["classify"] = "chan";
-    const hybrid_agreement::Agreement chan =
-        hybrid_agreement::classifyHybridDifferences(scene, p);
+    const hybrid_agreement::Agreement chan = hybrid_agreement::classifyHybridDifferences(scene, p);
     printRow(name, "chan", chan);
     long long classified = 0;
     for (long long n : chan.byClass) classified += n;
@@ -83,11 +85,12 @@ TEST(HybridAgreement, ChansClassifierMissesAreClassified) {
 }
 
 TEST(HybridAgreement, PointErrorNoWorseThanItsShadowMapAlone) {
-  // The hybrid's silhouette pixels are exact and the rest is its map's 2x2 compare at 0 or 1,
-  // which agrees with the map's own nearest-sample answer there; so against the point truth
-  // (docs/error.md) it can be no worse than modern.hw with the same map — compared with the
-  // same map size and offsets, bound: the RMSEs themselves (no tolerance: where the hybrid's
-  // RMSE exceeds the map's, one of its pixels is wrong that the map got right).
+  // The hybrid's silhouette pixels are exact (the volumes) and every other pixel is one where
+  // all 16 nearest map samples agree, where modern.hw's 2x2 linear compare gives the same 0 or 1
+  // (same map size, same offsets). So against the point truth (docs/error.md) the hybrid can be
+  // no worse than modern.hw; bound: the RMSEs themselves, no tolerance (an excess means a
+  // pixel the hybrid gets wrong that the map alone got right, or a fractional map answer the
+  // hybrid made binary the wrong way).
   if (!haveRayTracedReferences()) GTEST_SKIP() << "build without the ray tracer";
   for (const std::string& name : allScenes()) {
     const Scene scene = loadScene(name);
