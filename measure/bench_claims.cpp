@@ -70,9 +70,9 @@ std::string whyHybridIsNotCheaper(const BenchRow& hybrid, const BenchRow& volume
     return it == r.counters.end() ? std::string("?") : fmt(it->second, 3);
   };
   return "its shadow map and classification passes took " +
-         fmt(passMs(hybrid, "1") + passMs(hybrid, "3"), 3) +
-         " ms, its volume pass saved " + fmt(passMs(volumes, "3") - passMs(hybrid, "5"), 3) +
-         " ms (" + fmt(passMs(volumes, "3"), 3) + " -> " + fmt(passMs(hybrid, "5"), 3) +
+         fmt(passMs(hybrid, "1") + passMs(hybrid, "3"), 3) + " ms, its volume pass saved " +
+         fmt(passMs(volumes, "3") - passMs(hybrid, "5"), 3) + " ms (" +
+         fmt(passMs(volumes, "3"), 3) + " -> " + fmt(passMs(hybrid, "5"), 3) +
          " ms; silhouette pixels " + count(hybrid, "silhouette_fraction") +
          " of the image, volume fragments through the mask " + count(hybrid, "masked_overdraw") +
          " of " + count(volumes, "volume_overdraw") +
