@@ -95,7 +95,11 @@ PassTable hybridPasses() {
        .reference = "Chan 2004 §3.1 step 2 (\"Identify shadow silhouette pixels\"), Fig. 3-3; "
                     "the other pixels shaded from the shadow map",
        .writes = {{.name = "silhouette-pixels",
-                   .caption = "silhouette pixels (Chan Fig. 3-1b, 3-9b)"}},
+                   .caption = "silhouette pixels (Chan Fig. 3-1b, 3-9b)"},
+                  {.name = "decision",
+                   .caption = "what decided each pixel: red = silhouette pixel (the volumes), "
+                              "green = shadowed as back-facing to the light, blue = the shadow "
+                              "map's centre 2x2 compare"}},
        .shaders = {"volume-vertex", "classify"},
        .deviations = {kMaskInClassificationDeviation}},
       {.id = "4",
@@ -249,7 +253,10 @@ void classifySilhouettePixels(Passes& passes, const GpuScene& gpu, const RenderT
     glBindTexture(GL_TEXTURE_2D, map.depth.id());
     program.set("uShadowMap", 0);
     gpu.draw([](const Object&) { return true; },
-             [&](const Object& o) { setObjectUniforms(program, o); });
+             [&](const Object& o) {
+               setObjectUniforms(program, o);
+               program.set("uCastsShadow", o.castsShadow ? 1 : 0);
+             });
     if (writeMask) {
       glDisable(GL_STENCIL_TEST);
       glStencilMask(0xFF);
@@ -370,6 +377,16 @@ void shadeLitSilhouettePixels(Passes& passes, const GpuScene& gpu, const Program
   });
 }
 
+// The classification pass's tags as an RGB image (hybrid_classify.frag.glsl, oSilhouette): red =
+// silhouette pixel, green = shadowed as back-facing to the light, blue = the centre 2x2 compare.
+Image decisionImage(const Image& tags) {
+  Image out(tags.width, tags.height, 3);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int k = 0; k < 3; ++k) out.at(x, y, k) = tags.at(x, y, k);
+  return out;
+}
+
 // Figure 3-5b: non-silhouette pixels red (shadow map: shadowed) / blue (lit); silhouette pixels
 // black (volumes: shadowed) / green (lit).
 Image classificationImage(const Image& silhouette, const Image& visibility) {
@@ -390,6 +407,16 @@ ParamSpec maskParam() {
   return choiceParam("mask", "auto", {"auto", "depth-bounds", "stencil", "tiles"},
                      "computation mask of the volume pass (Chan §3.3): auto = depth-bounds where "
                      "the driver has it, else stencil + scissor tiles");
+}
+
+// --param classify: Chan's Figure 3-3 classifier as the thesis gives it, or ours, which also sends
+// the pixels the map is unsure of to the volumes (hybrid_classify.frag.glsl, docs/volumes.md).
+ParamSpec classifyParam() {
+  return choiceParam("classify", "conservative", {"chan", "conservative"},
+                     "silhouette pixels (Chan §3.1 step 2): chan = the 2x2 compare strictly "
+                     "between 0 and 1 on a surface whose normal faces the light (Fig. 3-3); "
+                     "conservative = also where a 2x2 compare one texel off disagrees, with "
+                     "back-facing judged by the triangle as the volumes judge it");
 }
 
 // --param mask-pass: which pass writes the mask's stencil bit.
@@ -435,12 +462,11 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   const std::string maskPass = params.text(maskPassParam());
   const bool maskInClassify = kind != MaskKind::kDepthBounds && maskPass == "classify" &&
                               ctx.caps().hasExtension("GL_ARB_shader_stencil_export");
-  Program classifyProgram(
-      "shadow_volume.vert.glsl", "hybrid_classify.frag.glsl",
-      maskInClassify
-          ? std::vector<std::pair<std::string, std::string>>{{"MASK_BIT",
-                                                              std::to_string(kStencilMaskBit)}}
-          : std::vector<std::pair<std::string, std::string>>{});
+  const bool conservative = params.text(classifyParam()) == "conservative";
+  std::vector<std::pair<std::string, std::string>> classifyDefines;
+  if (maskInClassify) classifyDefines.push_back({"MASK_BIT", std::to_string(kStencilMaskBit)});
+  if (conservative) classifyDefines.push_back({"CONSERVATIVE", "1"});
+  Program classifyProgram("shadow_volume.vert.glsl", "hybrid_classify.frag.glsl", classifyDefines);
   Program maskProgram("computation_mask.vert.glsl", "computation_mask.frag.glsl");
   // Colour attachment 2 = the silhouette tags (Figure 3-1b).
   RenderTarget target = makeStencilCameraTarget(params, {GL_RGBA8});
@@ -465,7 +491,8 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
   readCameraTarget(target, frame);
 
   // Untimed counters (Chan §3.3.2, Figures 3-9 and 3-10).
-  const Image silhouette = channel(readAttachment(target, 2), 0);
+  const Image tags = readAttachment(target, 2);
+  const Image silhouette = channel(tags, 0);
   double silhouettePixels = 0;
   for (float v : silhouette.data) silhouettePixels += v > 0.5f ? 1 : 0;
   const VolumeFill all = measureVolumeFill(target, volumes, viewProjection, 0, false);
@@ -493,6 +520,7 @@ Frame render(GlContext& ctx, const Scene& scene, const RenderParams& params) {
     frame.counters["mask_tiles_scissored"] = scissored ? 1 : 0;
   }
   passes.capture("3", "silhouette-pixels", [&] { return silhouette; });
+  passes.capture("3", "decision", [&] { return decisionImage(tags); });
   passes.capture("6", "classification",
                  [&] { return classificationImage(silhouette, frame.visibility); });
   passes.capture("5", "stencil-count", [&] { return stencilCountImage(target); });
@@ -510,8 +538,8 @@ Technique hybridShadowsTechnique() {
       "complete (depth-bounds mask where the driver has it, else stencil bit + scissor tiles)";
   t.needs.profile = Profile::kCore;
   t.params = {offsetFactorParam(kDefaultOffsetFactor),
-              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), maskParam(),
-              maskPassParam()};
+              offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), classifyParam(),
+              maskParam(), maskPassParam()};
   t.reads = {.shadowMap = true};
   t.passes = passTable();
   t.render = render;

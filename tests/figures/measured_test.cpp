@@ -155,6 +155,52 @@ TEST(Measured, ChanThreeSevenCountsWrongPixelsPerScene) {
       << html;
 }
 
+// Chan Fig. 3-7: each column's error and where the hybrid's time goes, from the run's own
+// panels (errors, pass times by pass-table id, counters); the §3.4.1 limit quoted when slower.
+TEST(Measured, ChanThreeSevenStatesErrorsAndWhereTheHybridsTimeGoes) {
+  FigureResult fig;
+  fig.spec.id = "chan-3-7";
+  fig.spec.scene = "brabec";
+  const auto panel = [](const std::string& technique, double rmse, double ms) {
+    PanelResult p;
+    p.ok = true;
+    p.spec.technique = technique;
+    p.error = MaskDifference{};
+    p.error->rmse = rmse;
+    p.milliseconds = ms;
+    return p;
+  };
+  PanelResult sm = panel("modern.hw", 0.02, 5.0);
+  PanelResult hy = panel("modern.hybrid", 0.03, 40.0);
+  PanelResult sv = panel("modern.volumes", 0.03, 30.0);
+  hy.passes = {PassTime("map", 4.0), PassTime("classify", 16.0), PassTime("volumes", 2.0)};
+  hy.passes[0].id = "1";
+  hy.passes[1].id = "3";
+  hy.passes[2].id = "5";
+  sv.passes = {PassTime("z-fail", 6.0)};
+  sv.passes[0].id = "3";
+  hy.counters = {{"silhouette_fraction", 0.05}, {"masked_overdraw", 0.5}};
+  sv.counters = {{"volume_overdraw", 3.0}};
+  PanelResult overlay = sv;
+  overlay.spec.errorsOf = {"modern.hw", "modern.hybrid"};
+  fig.panels = {sm, hy, sv, overlay};
+  const std::string html = measuredHtml(fig);
+  EXPECT_NE(html.find("at most the shadow map's with the same map on 0 of 1 scenes; where it is "
+                      "above, so are the exact shadow volumes on 1 of 1"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<td>brabec</td><td>0.0200</td><td>0.0300</td><td>0.0300</td>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("slower than the volumes on 1 of 1 scenes"), std::string::npos) << html;
+  EXPECT_NE(html.find("Ordinary shadow volumes will clearly run faster"), std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<td>40.0 / 30.0 = 1.33</td><td>5.0%</td><td>0.50 of 3.00</td><td>20.0</td>"
+                      "<td>4.0</td>"),
+            std::string::npos)
+      << html;
+}
+
 // Every number in a caption is configuration (the figure's sizes, maps, panel parameters and
 // labels, close-up magnifications) or the paper's, in a clause that names its source; a
 // measured number (an overdraw, a ratio, a share) typed into a caption fails here. The

@@ -451,6 +451,28 @@ TEST(BenchClaims, VerdictsRestOnTheFairSetups) {
   ASSERT_NE(unsure, nullptr);
   EXPECT_EQ(unsure->verdict.rfind("agrees (time ranking within the spread", 0), 0u)
       << unsure->verdict;
+  // The hybrid slower: the verdict says why, in the run's pass times (its shadow map and
+  // classification, pass ids 1 and 3, against the volume pass time saved, 3 -> 5) and Chan's
+  // own limit (§3.4.1).
+  BenchResult slow = fill;
+  slow.rows[0].frameMs = 3.0;
+  slow.rows[0].passes = {PassTime("map", 0.5), PassTime("classify", 1.0), PassTime("vol", 0.25)};
+  slow.rows[0].passes[0].id = "1";
+  slow.rows[0].passes[1].id = "3";
+  slow.rows[0].passes[2].id = "5";
+  slow.rows[1].passes = {PassTime("z-fail", 1.0)};
+  slow.rows[1].passes[0].id = "3";
+  const std::vector<ClaimCheck> slowClaims = checkClaims(slow);
+  const ClaimCheck* slower = claim(slowClaims, "hybrid-vs-volumes", kFillBoundScene);
+  ASSERT_NE(slower, nullptr);
+  EXPECT_EQ(slower->verdict.rfind("disagrees (not cheaper)", 0), 0u) << slower->verdict;
+  EXPECT_NE(slower->verdict.find("classification passes took 1.5 ms, its volume pass saved "
+                                 "0.75 ms (1 -> 0.25 ms"),
+            std::string::npos)
+      << slower->verdict;
+  EXPECT_NE(slower->verdict.find("§3.4.1: \"Ordinary shadow volumes will clearly run faster"),
+            std::string::npos)
+      << slower->verdict;
   for (const ClaimCheck& c : claims) {
     if (c.verdict.rfind("not measured", 0) != 0 && c.scene != "-") {
       EXPECT_FALSE(c.setup.empty()) << c.id << " on " << c.scene << " must cite its setup";
