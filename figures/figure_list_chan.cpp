@@ -26,9 +26,7 @@ FigureSpec chanFigure(std::string id, std::string figure, std::string title, std
 // the colours' meaning (the pass's own caption names panel (b) only).
 PanelSpec classification35(std::string label) {
   PanelSpec p = withCloseups(buffers(std::move(label), "modern.hybrid", "classif"));
-  p.bufferCaption =
-      "red/blue: the shadow map decides shadowed/lit; black/green: the volumes decide "
-      "shadowed/lit";
+  p.bufferCaption = "red/blue: shadow map shadowed/lit; black/green: volumes shadowed/lit";
   return p;
 }
 
@@ -161,9 +159,9 @@ std::vector<FigureSpec> chanFigures() {
       "and the image's caption gives the mean and the peak of this run; (b) the hybrid method's "
       "silhouette pixels (white here), the only pixels where it draws shadow volumes; (c) the "
       "resulting stencil buffer, black where the count is non-zero (in shadow), as Chan shows "
-      "it. Bottom row: the dragon magnified 3x. Below the caption: our overdraw factor and share "
-      "of silhouette pixels beside the thesis's (its Dragon Cage: overdraw factor 79, silhouette "
-      "pixels 5% of the image; ours is a stand-in scene), as this run measured them.",
+      "it. Bottom row: the dragon magnified 3x. Below the caption: our overdraw factor and "
+      "share of silhouette pixels beside the thesis's for its Dragon Cage (ours is a stand-in "
+      "scene), as this run measured them.",
       "dragon", 3,
       {withPaper(
            withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "volume-overdraw")),

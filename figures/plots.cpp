@@ -49,6 +49,8 @@ std::string terminalLine(int width, int height) {
     s << "set terminal pngcairo size " << width << "," << height << " font 'sans,10'\n";
   else
     s << "set terminal png size " << width << "," << height << "\n";
+  // Titles and labels are plain text: a counter's or a pass's name keeps its underscores.
+  s << "set termoption noenhanced\n";
   return s.str();
 }
 
@@ -85,6 +87,30 @@ void runScript(const std::string& script, const std::string& pngPath) {
     throw InputError("cannot write " + pngPath);
   }
   fs::remove(log, ec);
+}
+
+// gnuplot's `set tics (...)` for a log axis over [lo, hi]: its own ticks sit at powers of ten
+// only, so a range within one decade would show one label or none. The first of 1; 1, 2, 5;
+// 1, 2, ..., 9 (x 10^k) that puts at least kMinLogTicks inside the range.
+constexpr size_t kMinLogTicks = 3;
+std::string logTicks(double lo, double hi) {
+  const std::vector<std::vector<int>> mantissaSets = {{1}, {1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}};
+  std::vector<double> ticks;
+  for (const std::vector<int>& mantissas : mantissaSets) {
+    ticks.clear();
+    for (int decade = int(std::floor(std::log10(lo))); decade <= int(std::ceil(std::log10(hi)));
+         ++decade)
+      for (int m : mantissas) {
+        const double v = m * std::pow(10.0, decade);
+        if (v >= lo && v <= hi) ticks.push_back(v);
+      }
+    if (ticks.size() >= kMinLogTicks) break;
+  }
+  std::ostringstream s;
+  s << "(";
+  for (size_t i = 0; i < ticks.size(); ++i) s << (i ? ", " : "") << ticks[i];
+  s << ")";
+  return s.str();
 }
 
 }  // namespace
@@ -147,7 +173,7 @@ std::vector<std::string> plotGroupedPoints(const std::string& title, const std::
                                            const std::vector<PointGroup>& groups,
                                            const std::string& pngPath, int width, int height) {
   // The plot area in screen fractions (gnuplot's margins set "at screen"), the key right of it.
-  constexpr double kLeft = 0.09, kRight = 0.80, kBottom = 0.10, kTop = 0.92;
+  constexpr double kLeft = 0.09, kRight = 0.72, kBottom = 0.10, kTop = 0.92;
   constexpr double kRangeMargin = 1.35;        // a factor each way around the data, for labels
   constexpr double kLabelFontPoints = 8;       // the labels' font
   constexpr double kCharWidthPerPoint = 0.75;  // pngcairo sans: a wide character, pixels/point
@@ -188,6 +214,8 @@ std::vector<std::string> plotGroupedPoints(const std::string& title, const std::
     << "\nset bmargin at screen " << kBottom << "\nset tmargin at screen " << kTop << "\n"
     << "set xrange [" << canvas.xLo << ":" << canvas.xHi << "]\nset yrange [" << canvas.yLo << ":"
     << canvas.yHi << "]\n"
+    << "set xtics " << logTicks(canvas.xLo, canvas.xHi) << "\nset ytics "
+    << logTicks(canvas.yLo, canvas.yHi) << "\n"
     << "set key at screen " << kRight + 0.01 << ", " << kTop << " left top Left reverse\n";
   size_t block = 0;
   for (const PointGroup& g : groups) {

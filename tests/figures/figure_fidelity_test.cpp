@@ -85,7 +85,7 @@ TEST(FigureFidelity, ErrorVsTimeGroupsByTheRegistry) {
   const auto rank = [](const std::string& g) { return g == "hard" ? 0 : g == "filtered" ? 1 : 2; };
   EXPECT_TRUE(std::is_sorted(groups.begin(), groups.end(),
                              [&](auto& a, auto& b) { return rank(a) < rank(b); }));
-  EXPECT_EQ(std::count(groups.begin(), groups.end(), "hard"), 5)
+  EXPECT_EQ(std::count(groups.begin(), groups.end(), "hard"), 4)
       << "legacy.ramp, modern.ramp, modern.volumes, modern.hybrid and no filtered one";
 }
 
