@@ -13,11 +13,29 @@ namespace {
 
 constexpr const char* kChan = "Chan 2004 (MIT thesis)";
 constexpr float kSmoothieWidthPerRadius = 0.5f;  // smoothie width (map side = 1) per unit radius
+// The contact scene's box foot and its shadow (512x384): Figs. 2-4 and 4-4.
+constexpr Closeup kBoxFootCloseup{0.22f, 0.22f, 0.36f, 0.3f, 3};
 
 FigureSpec chanFigure(std::string id, std::string figure, std::string title, std::string caption,
                       std::string scene, int columns, std::vector<PanelSpec> panels) {
   return paperFigure(kChan, std::move(id), std::move(figure), std::move(title), std::move(caption),
                      std::move(scene), columns, std::move(panels));
+}
+
+// Chan Fig. 3-5 (b, c): the hybrid's classification buffer, with close-ups, captioned with
+// the colours' meaning (the pass's own caption names panel (b) only).
+PanelSpec classification35(std::string label) {
+  PanelSpec p = withCloseups(buffers(std::move(label), "modern.hybrid", "classif"));
+  p.bufferCaption = "red/blue: shadow map shadowed/lit; black/green: volumes shadowed/lit";
+  return p;
+}
+
+// Chan Fig. 4-10 (left, middle): the smoothie buffer's alpha, labelled as the thesis labels
+// the two images; its images captioned by what they show (the pass's own caption names Fig. 4-1).
+PanelSpec smoothieBuffer410(std::string label, std::string caption, Params params) {
+  PanelSpec p = buffers(std::move(label), "modern.smoothies", "alpha", std::move(params));
+  p.bufferCaption = std::move(caption);
+  return p;
 }
 
 }  // namespace
@@ -26,15 +44,16 @@ std::vector<FigureSpec> chanFigures() {
   std::vector<FigureSpec> out;
   out.push_back(chanFigure(
       "chan-2-4", "Figure 2-4 (a-c)", "Depth bias: too little, too much, tuned",
-      "Polygon offset (glPolygonOffset factor, units) on a cylinder standing on a plane: too "
-      "little bias shadows lit surfaces (acne), too much detaches the shadow from the contact "
-      "point, a tuned value does neither.",
-      "cylinder", 3,
+      "Polygon offset (glPolygonOffset factor, units) on a box standing on a floor, as in the "
+      "thesis (our scene: Fig. 4-4's box-floor contact): too little bias shadows lit surfaces "
+      "(acne), too much detaches the shadow from the box-floor contact, a tuned value does "
+      "neither. Bottom: the box's foot and its shadow magnified 3x.",
+      "contact", 3,
       {render("(a) too little: 0, 0", "legacy.hw", {{"offset-factor", "0"}, {"offset-units", "0"}}),
        render("(b) too much: 8, 1000000", "legacy.hw",
               {{"offset-factor", "8"}, {"offset-units", "1000000"}}),
        render("(c) tuned: 2, 4", "legacy.hw", {{"offset-factor", "2"}, {"offset-units", "4"}})}));
-  out.back().closeups = {{0.33f, 0.30f, 0.22f, 0.22f, 3}};
+  out.back().closeups = {kBoxFootCloseup};
 
   std::vector<PanelSpec> aliasing;
   for (int texels : {256, 512, 1024})
@@ -69,13 +88,16 @@ std::vector<FigureSpec> chanFigures() {
       "A ball's shadow. (a) a 256² shadow map alone aliases; (b) the classification with the "
       "256² map and (c) with a 512² map: non-silhouette pixels red (shadow map says shadow) and "
       "blue (lit), silhouette pixels black and green (shadow volumes decide); the band of "
-      "silhouette pixels narrows as the map grows; (d) the hybrid result (256² map).",
+      "silhouette pixels narrows as the map grows; (d) the hybrid result (256² map). Bottom: "
+      "the shadow's lower left edge magnified 3x in every panel (the thesis's figure is itself "
+      "a close-up of the ball's shadow).",
       "ball", 4,
       {render("(a) shadow map 256²", "modern.hw", {{"compare", "nearest"}}),
-       buffers("(b) classification, 256² map", "modern.hybrid", "classif"),
-       withMap(buffers("(c) classification, 512² map", "modern.hybrid", "classif"), 512),
+       classification35("(b) classification, 256² map"),
+       withMap(classification35("(c) classification, 512² map"), 512),
        render("(d) hybrid", "modern.hybrid")});
   f35.shadowMapTexels = 256;
+  f35.closeups = {{0.36f, 0.30f, 0.2f, 0.2f, 3}};  // the shadow's lower left edge
   out.push_back(f35);
 
   // Two close-ups per scene, 160x120 pixels each, magnified 6x so that a single pixel is still
@@ -150,10 +172,15 @@ std::vector<FigureSpec> chanFigures() {
       "and the image's caption gives the mean and the peak of this run; (b) the hybrid method's "
       "silhouette pixels (white here), the only pixels where it draws shadow volumes; (c) the "
       "resulting stencil buffer, black where the count is non-zero (in shadow), as Chan shows "
-      "it. Bottom row: the dragon magnified 3x.",
+      "it. Bottom row: the dragon magnified 3x. Below the caption: our overdraw factor and "
+      "share of silhouette pixels beside the thesis's for its Dragon Cage (ours is a stand-in "
+      "scene), as this run measured them.",
       "dragon", 3,
-      {withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "volume-overdraw")),
-       withCloseups(buffers("(b) silhouette pixels", "modern.hybrid", "silhouette")),
+      {withPaper(
+           withCloseups(buffers("(a) shadow-volume overdraw", "modern.volumes", "volume-overdraw")),
+           "overdraw factor 79"),
+       withPaper(withCloseups(buffers("(b) silhouette pixels", "modern.hybrid", "silhouette")),
+                 "silhouette pixels 5% of the image"),
        withCloseups(buffers("(c) stencil", "modern.hybrid", "stencil")),
        buffers("legend of (a)", "modern.volumes", "overdraw-legend")}));
   out.back().closeups = {{0.469f, 0.313f, 0.156f, 0.208f, 3}};  // the dragon, as in Fig. 3-7
@@ -263,7 +290,7 @@ std::vector<FigureSpec> chanFigures() {
               {{"remap", "off"}, {"width", kContactWidth}}),
        render("(d) remapped alpha (Eq. 4.1, the default)", "modern.smoothies",
               {{"width", kContactWidth}})}));
-  out.back().closeups = {{0.22f, 0.22f, 0.36f, 0.3f, 3}};  // the box's front foot and its shadow
+  out.back().closeups = {kBoxFootCloseup};  // the box's front foot and its shadow
 
   std::vector<PanelSpec> p48;
   const char* paperMs[3][4] = {{"16 ms", "129 ms", "19 ms", "19 ms"},
@@ -342,10 +369,11 @@ std::vector<FigureSpec> chanFigures() {
       "top (the dark corner) and on the ground in front of box 2. Bottom: box 1's shadow edge "
       "on box 2 (harder) and on the ground (softer), magnified 3x.",
       "boxes", 3,
-      {buffers("smoothie buffer, alpha not remapped", "modern.smoothies", "alpha",
-               {{"remap", "off"}, {"width", kBoxesWidth}}),
-       buffers("smoothie buffer, alpha remapped (Eq. 4.1)", "modern.smoothies", "alpha",
-               {{"width", kBoxesWidth}}),
+      {smoothieBuffer410("smoothie buffer (alpha not remapped): identical thickness",
+                         "alpha interpolated linearly across each smoothie (remap=off)",
+                         {{"remap", "off"}, {"width", kBoxesWidth}}),
+       smoothieBuffer410("smoothie buffer (remapped alpha, Eq. 4.1): different thickness",
+                         "alpha remapped by b/r (Eq. 4.1)", {{"width", kBoxesWidth}}),
        render("result (remapped)", "modern.smoothies", {{"width", kBoxesWidth}})}));
   out.back().closeups = {{0.34f, 0.46f, 0.16f, 0.2f, 3},   // box 1's shadow edge on box 2
                          {0.52f, 0.22f, 0.16f, 0.2f, 3}};  // and on the ground

@@ -61,10 +61,14 @@ struct PanelSpec {
   std::optional<Precision> precision;         // RenderParams::precision; unset: its default
   float cameraDistance = 1.0f;                // > 1 moves the camera away (minification)
   bool mask = false;                          // show the visibility mask instead of colour
-  std::string intermediate;           // kIntermediates: substring of the PassImage names to show
-  std::string plot;                   // kPlot: which chart (see plots.h)
-  std::string counter;                // Frame::counters entry a chart plots for this panel
-  std::string paperNumbers;           // what the paper reports for this panel, quoted, or empty
+  std::string intermediate;   // kIntermediates: substring of the PassImage names to show
+  std::string bufferCaption;  // kIntermediates: its images' caption instead of the pass's own
+                              // (which may name another panel of the paper's figure)
+  std::string plot;           // kPlot: which chart (see plots.h)
+  std::string counter;        // Frame::counters entry a chart plots for this panel
+  std::string paperNumbers;   // what the paper reports for this panel, quoted, or empty
+  std::string reference;      // error against this instead of the figure's reference (a soft-shadow
+                              // technique against reference.soft on error-vs-time), or empty
   bool countDepthErrors = false;      // count its leak and acne pixels (figures/measured.h
                                       // kLeakPixelsCounter) against reference.hard, legacy.hw
   bool closeups = true;               // apply the figure's close-ups to this panel
@@ -89,7 +93,11 @@ struct FigureSpec {
   std::vector<PanelSpec> panels;
   std::vector<Closeup> closeups;
   std::string reference = "reference.hard";  // error of every render panel against this
-  int timingRounds = 0;      // interleaved rounds of its timed panels; 0: figures.cpp's default
+  int timingRounds = 0;  // interleaved rounds of its timed panels; 0: figures.cpp's default
+  // Its timed panels round-robin in one group, every round rendering each of them once, so that
+  // any two of its cells are compared round by round (CSM Table 1's trends pair cells across
+  // map sizes); false: groups of figures.cpp's kInterleavedGroup, by map size.
+  bool interleaveAllTimed = false;
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted

@@ -27,6 +27,7 @@
 #include <sstream>
 
 #include "core/base/errors.h"
+#include "core/base/output_files.h"
 #include "core/base/png_text.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
@@ -143,9 +144,13 @@ int roundsOf(const FigureSpec& fig) {
 }
 // Contexts alive at once in one interleaved group (each holds its window's buffers: a 1024x768
 // context ~20 MB with Mesa's depth/stencil; a figure of more timed renders is measured in
-// groups of this many, grouped by shadow-map size so that the cells compared within a column
-// of CSM Table 1 share a group).
+// groups of this many, grouped by shadow-map size), unless the figure asks for all of them in
+// one group (FigureSpec::interleaveAllTimed, CSM Table 1: its 40 cells).
 constexpr size_t kInterleavedGroup = 10;
+
+size_t interleavedGroupOf(const FigureSpec& fig, size_t jobs) {
+  return fig.interleaveAllTimed ? std::max<size_t>(jobs, 1) : kInterleavedGroup;
+}
 // Charts whose axis is our frame time: every render panel of their figure is timed steadily.
 const std::vector<std::string> kTimeCharts = {"error-vs-time", "chan-3-11"};
 
@@ -220,7 +225,8 @@ class Renderer {
   // number, and their twins), measured interleaved before the panels are made; steadyFrame
   // then finds them. A group that fails (a technique refusing its parameters) is left to
   // steadyFrame, which reports the failing panel alone.
-  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs, int rounds) {
+  void timeInterleaved(const std::vector<std::pair<const Technique*, Setup>>& jobs, int rounds,
+                       size_t groupSize) {
     std::vector<size_t> todo;
     std::set<std::string> keys;
     for (size_t i = 0; i < jobs.size(); ++i) {
@@ -230,10 +236,10 @@ class Renderer {
     std::stable_sort(todo.begin(), todo.end(), [&](size_t a, size_t b) {
       return jobs[a].second.texels < jobs[b].second.texels;
     });
-    for (size_t start = 0; start < todo.size(); start += kInterleavedGroup) {
+    for (size_t start = 0; start < todo.size(); start += groupSize) {
       const std::vector<size_t> group(
           todo.begin() + long(start),
-          todo.begin() + long(std::min(todo.size(), start + kInterleavedGroup)));
+          todo.begin() + long(std::min(todo.size(), start + groupSize)));
       try {
         std::vector<TimingJob> timing;
         for (size_t i : group)
@@ -535,11 +541,12 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           }
         }
         if (!fig.table) addImage(shown, p.label, true);
-        // Step 3: error against the reference.
-        if (fig.reference.empty()) {
+        // Step 3: error against the reference (the panel's own, or the figure's).
+        const std::string& referenceName = p.reference.empty() ? fig.reference : p.reference;
+        if (referenceName.empty()) {
           out.errorNote = "not measured in this figure";
-        } else if (const Technique* ref = lookup(fig.reference); ref == nullptr) {
-          out.errorNote = fig.reference + " not available yet";
+        } else if (const Technique* ref = lookup(referenceName); ref == nullptr) {
+          out.errorNote = referenceName + " not available yet";
         } else if (ref->name != t.name) {
           // The pixel-integrated form of the reference (--param pixel=area), the truth of a
           // displayed pixel, as in the bench (measure/bench.h kPrimaryHardReference), with
@@ -615,7 +622,8 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           if (!p.intermediate.empty() && pass.name.find(p.intermediate) == std::string::npos)
             continue;
           for (auto& [image, caption] : splitIntermediate(pass))
-            addImage(image, caption, true, "-" + std::to_string(n++));
+            addImage(image, p.bufferCaption.empty() ? caption : p.bufferCaption, true,
+                     "-" + std::to_string(n++));
         }
         if (out.images.empty()) {
           std::string names;
@@ -695,6 +703,40 @@ void writeComposite(Renderer& r, FigureResult& fig) {
                  {"panels", fig.panels.size()}});
 }
 
+// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180).
+std::string csvField(const std::string& v) {
+  if (v.find_first_of(",\"\n") == std::string::npos) return v;
+  std::string out = "\"";
+  for (char c : v) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// The figure's timed panels, every interleaved round of each (one row per round, in the order
+// rendered), with the median and quartiles the report prints, into FIGURE/rounds.csv.
+void writeRoundsCsv(Renderer& r, FigureResult& fig) {
+  bool any = false;
+  for (const PanelResult& p : fig.panels) any = any || (p.ok && !p.frameSamples.empty());
+  if (!any) return;
+  const std::string rel = fig.spec.id + "/rounds" + fig.spec.fileSuffix + ".csv";
+  writeFileAtomically((fs::path(r.outDir()) / rel).string(), [&](std::ostream& out) {
+    out << "panel,technique,scene,shadow_map,params,mip_maps,round,frame_ms,median_ms,q1_ms,"
+           "q3_ms,paper\n";
+    for (const PanelResult& p : fig.panels) {
+      if (!p.ok || p.frameSamples.empty()) continue;
+      const Setup s = setupFor(fig.spec, p.spec);
+      std::string params;
+      for (const auto& [k, v] : s.params) params += (params.empty() ? "" : ";") + k + "=" + v;
+      const Quartiles q = quartilesOf(p.frameSamples);
+      for (size_t round = 0; round < p.frameSamples.size(); ++round)
+        out << csvField(p.spec.label) << "," << p.spec.technique << "," << s.sceneName << ","
+            << s.texels << "," << csvField(params) << "," << csvField(mipmapUse(p.counters)) << ","
+            << round + 1 << "," << p.frameSamples[round] << "," << p.milliseconds << "," << q.q1
+            << "," << q.q3 << "," << csvField(p.spec.paperNumbers) << "\n";
+    }
+  });
+  fig.roundsCsv = rel;
+}
+
 // Step 5: charts.
 void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
   std::string why;
@@ -712,27 +754,51 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
     if (chart == "csm-reconstruction") {
       plotLines(csmFigure3Charts(), 2, png, kPlotWidth, kPlotWidth * 3 / 4);
     } else if (chart == "error-vs-time") {
-      std::vector<std::pair<std::pair<double, double>, std::string>> points;
-      for (const PanelResult* p : rendered)
-        if (p->error) points.push_back({{p->milliseconds, p->error->rmse}, p->spec.technique});
-      if (points.empty()) {
+      // One group per registry shadow group (core/technique/technique.h shadowGroup), in the
+      // order the figure lists its panels; each group's reference named in the key.
+      std::vector<PointGroup> groups;
+      for (const PanelResult* p : rendered) {
+        const Technique* t = lookup(p->spec.technique);
+        if (!p->error || t == nullptr) continue;
+        const std::string reference =
+            p->spec.reference.empty() ? fig.spec.reference : p->spec.reference;
+        const std::string title = std::string(shadowGroup(*t)) + " (vs " + reference + ")";
+        auto g = std::find_if(groups.begin(), groups.end(),
+                              [&](const PointGroup& x) { return x.title == title; });
+        if (g == groups.end()) g = groups.insert(groups.end(), PointGroup{title, {}});
+        g->points.push_back({p->milliseconds, p->error->rmse, p->spec.technique});
+      }
+      if (groups.empty()) {
         plot.reason = "no technique could be measured against " + fig.spec.reference +
                       " (it or the techniques are not available yet)";
         return;
       }
-      plotLabelledPoints("visibility RMSE against " + fig.spec.reference + " vs frame time",
-                         "frame time (ms, log scale)", "RMSE of the visibility mask", points, true,
-                         png, kPlotWidth, kPlotHeight);
+      const std::vector<std::string> crowded =
+          plotGroupedPoints("visibility RMSE against the ray-traced reference vs frame time",
+                            "frame time (ms, log scale)", "RMSE of the visibility mask (log scale)",
+                            groups, png, kPlotWidth, kPlotHeight);
+      for (const std::string& label : crowded)
+        std::cerr << "        " << fig.spec.id << ": no free place for the label " << label
+                  << std::endl;
     } else if (chart == "chan-3-10") {
       // Shares of the image: shadow-volume coverage (volumes) and silhouette pixels (hybrid),
-      // from the counter each panel names.
-      std::vector<std::string> rows;
-      std::vector<std::vector<double>> values;
+      // from the counter each panel names; one series (colour) per counter and map size, as
+      // Chan's bars are coloured by method and map resolution.
+      std::vector<std::string> rows, columns;
+      std::vector<std::pair<size_t, double>> cells;  // per row: its series, its value
       for (const PanelResult* p : rendered) {
         const auto it = p->counters.find(p->spec.counter);
-        if (p->spec.counter.empty() || it == p->counters.end()) continue;
+        const Technique* t = lookup(p->spec.technique);
+        if (p->spec.counter.empty() || it == p->counters.end() || t == nullptr) continue;
+        const Setup s = setupFor(fig.spec, p->spec);
+        const std::string series =
+            p->spec.technique + " " + p->spec.counter +
+            (readsOption(*t, CommonOption::kShadowMap) ? ", " + std::to_string(s.texels) + "² map"
+                                                       : std::string());
+        auto c = std::find(columns.begin(), columns.end(), series);
+        if (c == columns.end()) c = columns.insert(columns.end(), series);
         rows.push_back(p->spec.label);
-        values.push_back({100.0 * it->second});  // the counters are fractions of the image
+        cells.push_back({size_t(c - columns.begin()), 100.0 * it->second});  // fractions
       }
       if (rows.empty()) {
         plot.reason =
@@ -740,9 +806,13 @@ void drawPlot(Renderer& r, FigureResult& fig, PanelResult& plot) {
             "modern.volumes: volume_coverage)";
         return;
       }
-      plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows,
-                      {"shadow-volume coverage / silhouette pixels"}, values, png, kPlotWidth,
-                      kPlotHeight);
+      std::vector<std::vector<double>> values;
+      for (const auto& [column, value] : cells) {
+        values.emplace_back(columns.size(), 0.0);
+        values.back()[column] = value;
+      }
+      plotStackedBars("share of pixels drawn (Chan Fig. 3-10)", "% of the image", rows, columns,
+                      values, png, kPlotWidth, kPlotHeight);
     } else if (chart == "chan-3-11") {
       std::vector<std::string> rows, columns;
       for (const PanelResult* p : rendered)
@@ -881,7 +951,8 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     const auto figureStart = std::chrono::steady_clock::now();
     FigureResult fr;
     fr.spec = *f;
-    renderer.timeInterleaved(timedRenders(*f), roundsOf(*f));
+    const auto timed = timedRenders(*f);
+    renderer.timeInterleaved(timed, roundsOf(*f), interleavedGroupOf(*f, timed.size()));
     for (size_t i = 0; i < f->panels.size(); ++i) {
       if (progress)
         std::cerr << "[" << ++done << "/" << total << "] " << f->id << " " << f->panels[i].label
@@ -892,6 +963,7 @@ int runFigures(const std::string& outDir, const std::vector<std::string>& only, 
     }
     for (PanelResult& p : fr.panels)
       if (p.spec.kind == PanelKind::kPlot) drawPlot(renderer, fr, p);
+    writeRoundsCsv(renderer, fr);
     fr.measured = measuredHtml(fr);
     try {
       writeComposite(renderer, fr);

@@ -10,6 +10,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/output_files.h"
+#include "measure/plot_labels.h"
 
 namespace sl::figures {
 namespace fs = std::filesystem;
@@ -48,6 +49,8 @@ std::string terminalLine(int width, int height) {
     s << "set terminal pngcairo size " << width << "," << height << " font 'sans,10'\n";
   else
     s << "set terminal png size " << width << "," << height << "\n";
+  // Titles and labels are plain text: a counter's or a pass's name keeps its underscores.
+  s << "set termoption noenhanced\n";
   return s.str();
 }
 
@@ -84,6 +87,30 @@ void runScript(const std::string& script, const std::string& pngPath) {
     throw InputError("cannot write " + pngPath);
   }
   fs::remove(log, ec);
+}
+
+// gnuplot's `set tics (...)` for a log axis over [lo, hi]: its own ticks sit at powers of ten
+// only, so a range within one decade would show one label or none. The first of 1; 1, 2, 5;
+// 1, 2, ..., 9 (x 10^k) that puts at least kMinLogTicks inside the range.
+constexpr size_t kMinLogTicks = 3;
+std::string logTicks(double lo, double hi) {
+  const std::vector<std::vector<int>> mantissaSets = {{1}, {1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}};
+  std::vector<double> ticks;
+  for (const std::vector<int>& mantissas : mantissaSets) {
+    ticks.clear();
+    for (int decade = int(std::floor(std::log10(lo))); decade <= int(std::ceil(std::log10(hi)));
+         ++decade)
+      for (int m : mantissas) {
+        const double v = m * std::pow(10.0, decade);
+        if (v >= lo && v <= hi) ticks.push_back(v);
+      }
+    if (ticks.size() >= kMinLogTicks) break;
+  }
+  std::ostringstream s;
+  s << "(";
+  for (size_t i = 0; i < ticks.size(); ++i) s << (i ? ", " : "") << ticks[i];
+  s << ")";
+  return s.str();
 }
 
 }  // namespace
@@ -139,6 +166,78 @@ void plotLabelledPoints(
   s << "plot $d using 1:2 with points pt 7 ps 1.5, $d using 1:2:3 with labels offset char 1,0.6 "
        "left font ',8'\n";
   runScript(s.str(), pngPath);
+}
+
+std::vector<std::string> plotGroupedPoints(const std::string& title, const std::string& xLabel,
+                                           const std::string& yLabel,
+                                           const std::vector<PointGroup>& groups,
+                                           const std::string& pngPath, int width, int height) {
+  // The plot area in screen fractions (gnuplot's margins set "at screen"), the key right of it.
+  constexpr double kLeft = 0.09, kRight = 0.72, kBottom = 0.10, kTop = 0.92;
+  constexpr double kRangeMargin = 1.35;        // a factor each way around the data, for labels
+  constexpr double kLabelFontPoints = 8;       // the labels' font
+  constexpr double kCharWidthPerPoint = 0.75;  // pngcairo sans: a wide character, pixels/point
+  constexpr double kCharHeightPerPoint = 1.6;  // line height, pixels per point
+  constexpr double kMarkerRadiusPixels = 7;    // point size 1.5
+  plots::LabelCanvas canvas;
+  canvas.xLo = canvas.yLo = 1e300;
+  canvas.xHi = canvas.yHi = 0;
+  std::vector<plots::PlotPoint> points;
+  std::vector<std::string> labels;
+  for (const PointGroup& g : groups)
+    for (const LabelledPoint& p : g.points) {
+      canvas.xLo = std::min(canvas.xLo, p.x);
+      canvas.xHi = std::max(canvas.xHi, p.x);
+      canvas.yLo = std::min(canvas.yLo, p.y);
+      canvas.yHi = std::max(canvas.yHi, p.y);
+      points.push_back({p.x, p.y});
+      labels.push_back(p.label);
+    }
+  if (points.empty()) throw InputError("no points to plot");
+  canvas.xLo /= kRangeMargin;
+  canvas.xHi *= kRangeMargin;
+  canvas.yLo /= kRangeMargin;
+  canvas.yHi *= kRangeMargin;
+  canvas.widthPixels = (kRight - kLeft) * width;
+  canvas.heightPixels = (kTop - kBottom) * height;
+  canvas.charWidthPixels = kCharWidthPerPoint * kLabelFontPoints;
+  canvas.charHeightPixels = kCharHeightPerPoint * kLabelFontPoints;
+  canvas.markerRadiusPixels = kMarkerRadiusPixels;
+  std::vector<size_t> crowded;
+  const std::vector<plots::PlotPoint> at =
+      plots::placeLabels(points, labels, points, canvas, &crowded);
+  std::ostringstream s;
+  s << terminalLine(width, height) << "set output " << quote(pngPath) << "\n";
+  s << "set grid\nset title " << quote(title) << "\nset xlabel " << quote(xLabel) << "\nset ylabel "
+    << quote(yLabel) << "\nset logscale xy\nset format xy '%g'\n"
+    << "set lmargin at screen " << kLeft << "\nset rmargin at screen " << kRight
+    << "\nset bmargin at screen " << kBottom << "\nset tmargin at screen " << kTop << "\n"
+    << "set xrange [" << canvas.xLo << ":" << canvas.xHi << "]\nset yrange [" << canvas.yLo << ":"
+    << canvas.yHi << "]\n"
+    << "set xtics " << logTicks(canvas.xLo, canvas.xHi) << "\nset ytics "
+    << logTicks(canvas.yLo, canvas.yHi) << "\n"
+    << "set key at screen " << kRight + 0.01 << ", " << kTop << " left top Left reverse\n";
+  size_t block = 0;
+  for (const PointGroup& g : groups) {
+    s << "$g" << block++ << " << EOD\n";
+    for (const LabelledPoint& p : g.points) s << p.x << " " << p.y << "\n";
+    s << "EOD\n";
+  }
+  s << "$labels << EOD\n";
+  for (size_t i = 0; i < at.size(); ++i)
+    s << at[i].x << " " << at[i].y << " " << quote(labels[i]) << "\n";
+  s << "EOD\n";
+  const std::vector<std::string> colours = segmentColours(groups.size());
+  s << "plot $labels using 1:2:3 with labels font '," << kLabelFontPoints << "' notitle";
+  constexpr int kPointTypes[] = {7, 5, 9, 11, 13};  // filled circle, square, triangle, ...
+  for (size_t i = 0; i < groups.size(); ++i)
+    s << ", $g" << i << " using 1:2 with points pt " << kPointTypes[i % 5] << " ps 1.5 lc rgb "
+      << quote(colours[i]) << " title " << quote(groups[i].title);
+  s << "\n";
+  runScript(s.str(), pngPath);
+  std::vector<std::string> out;
+  for (size_t i : crowded) out.push_back(labels[i]);
+  return out;
 }
 
 std::vector<std::string> segmentColours(size_t count) {

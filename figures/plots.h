@@ -31,6 +31,23 @@ void plotLabelledPoints(
     const std::string& title, const std::string& xLabel, const std::string& yLabel,
     const std::vector<std::pair<std::pair<double, double>, std::string>>& points, bool logX,
     const std::string& pngPath, int width, int height);
+// A scatter plot's groups: each its own point type and colour and a line in the key.
+struct LabelledPoint {
+  double x = 0, y = 0;
+  std::string label;
+};
+struct PointGroup {
+  std::string title;
+  std::vector<LabelledPoint> points;
+};
+// Labelled points on log-log axes, one point style per group with a key; every label placed
+// where it overlaps no other label and no point (measure/plot_labels.h, the plot area's margins
+// fixed so that the placement's pixels are gnuplot's). Returns the labels that found no free
+// place (none on the report's error-vs-time chart so far; the caller may say so).
+std::vector<std::string> plotGroupedPoints(const std::string& title, const std::string& xLabel,
+                                           const std::string& yLabel,
+                                           const std::vector<PointGroup>& groups,
+                                           const std::string& pngPath, int width, int height);
 // Colours of `count` stack segments, "#rrggbb", all different (one per pass in Chan Fig. 3-11).
 std::vector<std::string> segmentColours(size_t count);
 // Stacked bars: one bar per row label, one stack segment per column name, each its own colour

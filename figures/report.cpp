@@ -3,6 +3,7 @@
 // beside the paper's, and every missing panel in red with the reason.
 #include "figures/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -157,7 +158,9 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
   h << "</table>\n";
 }
 
-// CSM Table 1: labels "C=.. M=.. S=.." pivot into rows (C, M) and columns (S).
+// CSM Table 1: labels "C=.. M=.. S=.." pivot into rows (C, M) and columns (S). Each cell: the
+// median frame rate of its rounds, their interquartile range, and whether the frame built a mip
+// chain.
 void writePivot(std::ostream& h, const FigureResult& f) {
   std::vector<std::string> rows, cols;
   std::map<std::pair<std::string, std::string>, const PanelResult*> cell;
@@ -178,12 +181,16 @@ void writePivot(std::ostream& h, const FigureResult& f) {
     for (const auto& c : cols) {
       const PanelResult* p = cell[{r, c}];
       h << "<td>";
-      if (p && p->ok)
+      if (p && p->ok) {
         h << fixed(1000.0 / p->milliseconds, 1) << " fps <small>"
-          << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame")
-          << "</small>";
-      else if (p)
+          << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame");
+        // The interquartile range of the rounds, as frame rates (the slow quartile first).
+        if (const Quartiles q = quartilesOf(p->frameSamples); q.q1 > 0)
+          h << ", IQR " << fixed(1000.0 / q.q3, 1) << "-" << fixed(1000.0 / q.q1, 1);
+        h << "; " << htmlEscape(mipmapUse(p->counters)) << "</small>";
+      } else if (p) {
         h << "<span class=bad>missing: " << htmlEscape(p->reason) << "</span>";
+      }
       if (p) h << " / <span class=paper>" << htmlEscape(p->spec.paperNumbers) << "</span>";
       h << "</td>";
     }
@@ -313,6 +320,9 @@ void writeFigure(std::ostream& h, const FigureResult& f,
     h << "<p><small>The whole figure as one image: <a href=\"" << htmlEscape(f.composite) << "\">"
       << htmlEscape(f.composite) << "</a></small></p>\n";
   writeTwins(h, f);
+  if (!f.roundsCsv.empty())
+    h << "<p><small>Every interleaved round of every timed panel: <a href=\""
+      << htmlEscape(f.roundsCsv) << "\">" << htmlEscape(f.roundsCsv) << "</a></small></p>\n";
   if (!s.paperNumbers.empty())
     h << "<p class=paper>The paper's numbers: " << htmlEscape(s.paperNumbers) << "</p>\n";
   bool pivot = s.table && !f.panels.empty();
@@ -339,6 +349,24 @@ ReportLinks reportLinksTo(const std::string& href, const std::vector<const Figur
   r.href = href;
   for (const FigureSpec* f : figures) r.anchors[f->sourceId.empty() ? f->id : f->sourceId] = f->id;
   return r;
+}
+
+Quartiles quartilesOf(std::vector<double> samples) {
+  if (samples.empty()) return {};
+  std::sort(samples.begin(), samples.end());
+  const auto at = [&](double q) {
+    const double pos = q * double(samples.size() - 1);
+    const size_t lo = size_t(pos);
+    const size_t hi = std::min(lo + 1, samples.size() - 1);
+    return samples[lo] + (pos - double(lo)) * (samples[hi] - samples[lo]);
+  };
+  return {at(0.25), at(0.75)};
+}
+
+std::string mipmapUse(const std::map<std::string, double>& counters) {
+  const auto it = counters.find("mip-maps");
+  if (it == counters.end()) return "no mip chain";
+  return it->second > 0 ? "mip-maps built" : "no mip-maps";
 }
 
 void writeReport(const std::string& outDir, const std::vector<FigureResult>& figures,

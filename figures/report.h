@@ -73,11 +73,23 @@ struct PanelResult {
   std::optional<TwinResult> twin;
 };
 
+// The first and third quartiles of a panel's frame samples (linear interpolation between order
+// statistics, as the bench's timing spread, measure/bench.h); {0, 0} for no samples.
+struct Quartiles {
+  double q1 = 0, q3 = 0;
+};
+Quartiles quartilesOf(std::vector<double> samples);
+
+// What a frame's "mip-maps" counter (modern.csm) says: "mip-maps built", "no mip-maps" (the
+// chain was skipped), or "no mip chain" for a technique that reports none.
+std::string mipmapUse(const std::map<std::string, double>& counters);
+
 struct FigureResult {
   FigureSpec spec;
   std::vector<PanelResult> panels;
   double seconds = 0;     // wall time to make the figure
   std::string composite;  // the whole figure as one PNG (empty for tables)
+  std::string roundsCsv;  // its timed panels' every round (figures.cpp writeRoundsCsv), or empty
   std::string measured;   // figures/measured.h measuredHtml: what this run measured, in words
 };
 

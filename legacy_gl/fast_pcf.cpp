@@ -377,6 +377,7 @@ Technique fastPcfTechnique() {
   t.needs.colorFromPrecision = true;
   t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
+  t.edge = Technique::Edge::kFiltered;                         // PCF over the --filter footprint
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // §4: packed 2x2 phases
   t.plan.colourTableCompare = true;                            // §3 Fig. 4
   t.plan.colourMatrixSum = true;

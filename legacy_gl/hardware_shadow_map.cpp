@@ -351,6 +351,7 @@ Technique hardwareShadowMapTechnique() {
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), compareParam(),
               planParam()};
   t.reads = {.shadowMap = true};
+  t.edge = Technique::Edge::kFiltered;  // compare=linear (default): the driver's 2x2 PCF
   t.passes = passTable();
   t.render = render;
   return t;

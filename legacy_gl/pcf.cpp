@@ -367,6 +367,7 @@ Technique pcfTechnique() {
   t.needs.colorFromPrecision = true;
   t.params = {bs::depthBiasParam()};
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.edge = Technique::Edge::kFiltered;                        // PCF over the --filter footprint
   t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // §3: one sample per channel
   t.plan.colourTableCompare = true;                           // §3 Fig. 4
   t.plan.colourMatrixSum = true;

@@ -134,6 +134,7 @@ Technique secondDepthShadowMapTechnique() {
   t.needs.profile = Profile::kCompatibility;
   t.params = {compareParam()};
   t.reads = {.shadowMap = true};
+  t.edge = Technique::Edge::kFiltered;  // compare=linear (default): the driver's 2x2 PCF
   t.passes = passTable();
   t.render = render;
   return t;

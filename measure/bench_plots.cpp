@@ -17,6 +17,7 @@
 #include "core/base/png_text.h"
 #include "core/base/provenance.h"
 #include "measure/bench.h"
+#include "measure/plot_labels.h"
 #include "registry/twins.h"
 
 namespace sl::figures {
@@ -32,13 +33,9 @@ bool gnuplotHasTerminal(const std::string& terminal) {
 
 namespace {
 // The Pareto front's numbers on an error-against-time plot, placed so that none overlaps
-// another or a plotted point: each label tries below its point, then above, right, left and
-// farther out, and takes the first place that is free. Positions are in data coordinates on
-// the log axes [xLo, xHi] x [yLo, yHi] of a plot area of about kPlotAreaPixels (the 1000x640
-// terminal less its margins and the key outside) with kLabelCharPixels characters.
-struct PlotPoint {
-  double x, y;
-};
+// another or a plotted point (measure/plot_labels.h), in a plot area of about
+// kPlotAreaPixels (the 1000x640 terminal less its margins and the key outside).
+using plots::PlotPoint;
 constexpr double kPlotAreaWidthPixels = 720, kPlotAreaHeightPixels = 540;
 constexpr double kLabelCharWidthPixels = 7, kLabelCharHeightPixels = 13;
 constexpr double kMarkerRadiusPixels = 7;  // point size 1.6 of the terminal
@@ -46,49 +43,17 @@ std::vector<PlotPoint> placeFrontLabels(const std::vector<PlotPoint>& front,
                                         const std::vector<std::string>& labels,
                                         const std::vector<PlotPoint>& points, double xLo,
                                         double xHi, double yLo, double yHi) {
-  const double lx = std::log10(xHi / xLo), ly = std::log10(yHi / yLo);
-  auto toPixels = [&](const PlotPoint& p) {
-    return PlotPoint{std::log10(p.x / xLo) / lx * kPlotAreaWidthPixels,
-                     std::log10(p.y / yLo) / ly * kPlotAreaHeightPixels};
-  };
-  auto toData = [&](const PlotPoint& p) {
-    return PlotPoint{xLo * std::pow(10.0, p.x / kPlotAreaWidthPixels * lx),
-                     yLo * std::pow(10.0, p.y / kPlotAreaHeightPixels * ly)};
-  };
-  struct Box {
-    double x0, y0, x1, y1;
-  };
-  auto overlaps = [](const Box& a, const Box& b) {
-    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-  };
-  std::vector<Box> taken;
-  for (const PlotPoint& p : points) {
-    const PlotPoint c = toPixels(p);
-    taken.push_back({c.x - kMarkerRadiusPixels, c.y - kMarkerRadiusPixels,
-                     c.x + kMarkerRadiusPixels, c.y + kMarkerRadiusPixels});
-  }
-  // Offsets of the label's centre from its point, in character heights.
-  const std::vector<PlotPoint> candidates = {{0, -1.2},   {0, 1.2},    {1.6, 0},  {-1.6, 0},
-                                             {1.4, -1.2}, {-1.4, 1.2}, {0, -2.3}, {0, 2.3}};
-  std::vector<PlotPoint> placed;
-  for (size_t i = 0; i < front.size(); ++i) {
-    const PlotPoint c = toPixels(front[i]);
-    const double halfW = 0.5 * kLabelCharWidthPixels * double(labels[i].size()) + 1;
-    const double halfH = 0.5 * kLabelCharHeightPixels;
-    PlotPoint chosen{c.x, c.y - 1.2 * kLabelCharHeightPixels};
-    for (const PlotPoint& o : candidates) {
-      const PlotPoint at{c.x + o.x * kLabelCharHeightPixels, c.y + o.y * kLabelCharHeightPixels};
-      const Box box{at.x - halfW, at.y - halfH, at.x + halfW, at.y + halfH};
-      if (std::none_of(taken.begin(), taken.end(),
-                       [&](const Box& t) { return overlaps(box, t); })) {
-        chosen = at;
-        break;
-      }
-    }
-    taken.push_back({chosen.x - halfW, chosen.y - halfH, chosen.x + halfW, chosen.y + halfH});
-    placed.push_back(toData(chosen));
-  }
-  return placed;
+  plots::LabelCanvas canvas;
+  canvas.xLo = xLo;
+  canvas.xHi = xHi;
+  canvas.yLo = yLo;
+  canvas.yHi = yHi;
+  canvas.widthPixels = kPlotAreaWidthPixels;
+  canvas.heightPixels = kPlotAreaHeightPixels;
+  canvas.charWidthPixels = kLabelCharWidthPixels;
+  canvas.charHeightPixels = kLabelCharHeightPixels;
+  canvas.markerRadiusPixels = kMarkerRadiusPixels;
+  return plots::placeLabels(front, labels, points, canvas);
 }
 }  // namespace
 

@@ -829,6 +829,7 @@ Technique convolutionShadowMapTechnique() {
               mipmapsParam(),
               skipErrorParam()};
   t.reads = {.shadowMap = true};
+  t.edge = Technique::Edge::kFiltered;  // a blurred, mip-mapped basis
   t.plan.prefilter = PlanTraits::Prefilter::kConvolution;
   t.passes = passTable(true);
   // Without a mip chain (a filtering that does not mip-map; with mipmaps=auto also a view that

@@ -169,6 +169,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
   t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
+  t.edge = Technique::Edge::kFiltered;                         // PCF over the --filter footprint
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)
   t.passes = passTable();
   t.render = render;

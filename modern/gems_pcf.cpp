@@ -336,6 +336,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
   if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
+  t.edge = Technique::Edge::kFiltered;  // 4 or 16 hardware 2x2 PCF lookups
   // The default variant's passes (samples = the technique's own, box kernel); a render with
   // other --params runs the table of its variant (passTable): the other lookup counts and, for
   // modern.gems16, the bicubic kernel.

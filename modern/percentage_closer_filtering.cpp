@@ -124,6 +124,7 @@ Technique percentageCloserFilteringTechnique() {
   t.params = bs::params();
   t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // the twin of legacy.pcf (§3)
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
+  t.edge = Technique::Edge::kFiltered;  // PCF over the --filter footprint
   t.passes = passTable();
   t.render = render;
   return t;

@@ -193,6 +193,7 @@ Technique varianceShadowMapTechnique() {
   t.params = {minVarianceParam(),          bleedReductionParam(), storageParam(),
               blurParam(kDefaultBlurTaps), filteringParam(),      anisotropyParam()};
   t.reads = {.shadowMap = true};
+  t.edge = Technique::Edge::kFiltered;  // blurred, mip-mapped moments
   t.plan.prefilter = PlanTraits::Prefilter::kVariance;
   t.passes = passTable();
   t.render = render;

@@ -277,6 +277,11 @@ std::vector<const PassTable*> allPassTables(const Technique& t) {
   return out;
 }
 
+const char* shadowGroup(const Technique& t) {
+  if (t.light == Technique::Light::kArea) return "soft";
+  return t.edge == Technique::Edge::kFiltered ? "filtered" : "hard";
+}
+
 bool readsOption(const Technique& t, CommonOption o) {
   switch (o) {
     case CommonOption::kShadowMap: return t.reads.shadowMap;

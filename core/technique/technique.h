@@ -250,10 +250,18 @@ struct Technique {
   // and the figures score it against the matching ray-traced truth.
   enum class Light { kPoint, kArea };
   Light light = Light::kPoint;
+  // What its visibility is across a point light's shadow edge with its default parameters: the
+  // binary result of a depth or stencil test per pixel (hard), or a fraction filtered over a
+  // footprint (filtered: PCF kernels, the driver's 2x2 compare, prefiltered maps). The figures
+  // group techniques by it (figures/figure_list.cpp error-vs-time); light = kArea is "soft".
+  enum class Edge { kHard, kFiltered };
+  Edge edge = Edge::kHard;
   RenderFunction render;
 };
 
 bool readsOption(const Technique& t, CommonOption o);
+// "soft" (light = kArea), "filtered" or "hard" (Technique::edge).
+const char* shadowGroup(const Technique& t);
 // Its default pass table, then each variant's (Technique::passVariants).
 std::vector<const PassTable*> allPassTables(const Technique& t);
 std::vector<std::string> paramKeys(const Technique& t);  // its --param keys, in declared order
