@@ -76,6 +76,20 @@ constexpr const char* kScissorTilesDeviation =
     "scissor; its per-fragment stencil test runs inside the fragment function, after the "
     "rasteriser has already produced every fragment (measured in docs/volumes.md).";
 
+// The DEVIATION comments of hybrid_classify.frag's conservative classifier, for the pass table.
+constexpr const char* kPlaneBackFacingDeviation =
+    "DEVIATION (Chan 2004 §3.1 step 2, \"pixels that are back-facing with respect to "
+    "the light are always in shadow\"): back-facing is judged by the triangle's "
+    "plane, as the volumes' light-facing caps judge it, not by the interpolated "
+    "normal, and only on objects that have a volume (a receiver that casts nothing "
+    "has none around its far side).";
+constexpr const char* kUnsureNeighbourhoodDeviation =
+    "DEVIATION (Chan 2004 §3.3.1: an affected pixel's depth \"usually lies between "
+    "the depth values of two adjacent samples\"; \"usually\" is not always): the "
+    "pixel is unsure, and goes to the volumes, when any of the 4x4 samples around it "
+    "— the 2x2 compares one texel off diagonally, together covering the 16 nearest "
+    "texels — disagrees with the centre's.";
+
 // The passes of §3.1 steps 1-4 and §3.2, declared once: names, the thesis's text, the buffers a
 // dump shows, shaders and deviations.
 PassTable hybridPasses() {
@@ -101,7 +115,8 @@ PassTable hybridPasses() {
                               "green = shadowed as back-facing to the light, blue = the shadow "
                               "map's centre 2x2 compare"}},
        .shaders = {"volume-vertex", "classify"},
-       .deviations = {kMaskInClassificationDeviation}},
+       .deviations = {kMaskInClassificationDeviation, kPlaneBackFacingDeviation,
+                      kUnsureNeighbourhoodDeviation}},
       {.id = "4",
        .name = "computation mask",
        .reference = "Chan 2004 §3.4.2 (computation masks): later passes run only at silhouette "
