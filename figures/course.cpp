@@ -1,5 +1,6 @@
 #include "figures/course.h"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -122,18 +123,9 @@ const char* kStyle =
 
 // A text of course.json as HTML: escaped, and `...` (a command or an option) as <code>.
 std::string prose(const std::string& text) {
-  std::string out;
-  bool open = false;
-  for (char c : htmlEscape(text)) {
-    if (c == '`') {
-      out += open ? "</code>" : "<code>";
-      open = !open;
-    } else {
-      out += c;
-    }
-  }
-  if (open) throw InputError("course " + courseFile() + ": an unpaired ` in: " + text);
-  return out;
+  if (std::count(text.begin(), text.end(), '`') % 2 != 0)
+    throw InputError("course " + courseFile() + ": an unpaired ` in: " + text);
+  return htmlWithCode(text);
 }
 
 std::string head(const std::string& title) {

@@ -8,25 +8,6 @@
 #include "teach/exercise.h"
 
 namespace sl::teach {
-namespace {
-
-// A task text as HTML: escaped, and `...` (a command, key or file) as <code>.
-std::string taskHtml(const std::string& text) {
-  std::string out;
-  bool open = false;
-  for (char c : htmlEscape(text)) {
-    if (c == '`') {
-      out += open ? "</code>" : "<code>";
-      open = !open;
-    } else {
-      out += c;
-    }
-  }
-  if (open) out += "</code>";
-  return out;
-}
-
-}  // namespace
 
 std::string gradedExercisesTeacherHtml(bool progress) {
   std::ostringstream h;
@@ -42,7 +23,7 @@ std::string gradedExercisesTeacherHtml(bool progress) {
     const std::string model = modelAnswerPath(e);
     h << "<div class=exercise id=\"graded-" << htmlEscape(e.id) << "\">\n<h3>" << htmlEscape(e.id)
       << ": " << htmlEscape(e.title) << " (" << htmlEscape(e.family) << ", "
-      << htmlEscape(e.technique) << ")</h3>\n<p><b>Task:</b> " << taskHtml(e.task)
+      << htmlEscape(e.technique) << ")</h3>\n<p><b>Task:</b> " << htmlWithCode(e.task)
       << "</p>\n<p><b>Graded by:</b> " << htmlEscape(e.measures) << ".</p>\n";
     std::string verdict;
     try {

@@ -17,4 +17,19 @@ std::string htmlEscape(const std::string& text) {
   return out;
 }
 
+std::string htmlWithCode(const std::string& text) {
+  std::string out;
+  bool open = false;
+  for (char c : htmlEscape(text)) {
+    if (c == '`') {
+      out += open ? "</code>" : "<code>";
+      open = !open;
+    } else {
+      out += c;
+    }
+  }
+  if (open) out += "</code>";
+  return out;
+}
+
 }  // namespace sl

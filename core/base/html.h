@@ -9,4 +9,8 @@ namespace sl {
 // and in double-quoted attribute values).
 std::string htmlEscape(const std::string& text);
 
+// `text` escaped as htmlEscape does, with each `...` (a command, key or option) as
+// <code>...</code>; an unpaired ` opens a <code> closed at the end.
+std::string htmlWithCode(const std::string& text);
+
 }  // namespace sl
