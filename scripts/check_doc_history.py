@@ -8,9 +8,10 @@ blocks, which are skipped here:
   <!-- generated:ID --> ... <!-- /generated:ID -->       (scripts/user_guide.sh)
   <!-- NAME:begin --> ... <!-- NAME:end -->              (scripts/error_tables.sh,
                                                           scripts/bench_tables.py)
-Everywhere else a line fails when it quotes a load (`load 8-9`, `load average 0.6`,
+Everywhere else a paragraph fails when it quotes a load (`load 8-9`, `load average 0.6`,
 `/proc/loadavg 9.2`) or uses one of the history phrases below (an earlier run or binary, what
-was "not kept", "this round", a commit hash, "before the merge", ...). Naming the load average
+was "not kept", "this round", a commit hash, a date, "before the merge", ...), also where the
+phrase wraps across lines; the finding names the line it starts on. Naming the load average
 as a concept ("each table states its load average") is allowed. A block opened and not closed
 is an error too (it would hide the rest of the file). Prints one line per finding and exits 1
 when there is any (the CTest docs.no_history); --self-test checks the checker on a made-up tree
@@ -37,6 +38,10 @@ HISTORY = [
     r"\bcommit [0-9a-f]{7,40}\b", r"\bcommits [0-9a-f]{7,40}\b",
     r"\bwe (?:changed|tried|removed|replaced)\b", r"\bwhat was tried\b",
     r"\bused to (?:be|take|run|cost)\b", r"\bno longer\b", r"\bpreviously\b",
+    r"\bearlier (?:default|setup|foliage|form|table)s?\b", r"\bprevious setup\b",
+    r"\bfresh-clone run\b", r"\bchanged since\b", r"\buntil this change\b",
+    r"\bthe old (?:table|axis|code|binary)\b", r"\ban older run\b",
+    r"\b20[0-9]{2}-[01][0-9]-[0-3][0-9]\b",  # a date: runs are dated in generated blocks only
 ]
 HISTORY_RE = re.compile("|".join(HISTORY), re.IGNORECASE)
 
@@ -45,15 +50,21 @@ def block_name(m):
     return next(g for g in m.groups() if g is not None)
 
 
-def findings(path, shown):
-    """(line, message) for each hand-written line of PATH that quotes a load or tells history."""
-    out = []
-    open_block = None
+def paragraphs(path):
+    """(first line, [lines]) for each hand-written paragraph of PATH (blank-line separated, the
+    generated blocks left out), and the line of a block never closed (or None)."""
+    out, current, first, open_block = [], [], 0, None
+    def flush():
+        nonlocal current
+        if current:
+            out.append((first, current))
+        current = []
     for number, line in enumerate(open(path, encoding="utf-8"), 1):
         text = line.rstrip("\n")
         if open_block is None:
             m = BEGIN.match(text)
             if m:
+                flush()
                 open_block = (block_name(m), number)
                 continue
         else:
@@ -61,14 +72,33 @@ def findings(path, shown):
             if m and block_name(m) == open_block[0]:
                 open_block = None
             continue
+        if not text.strip():
+            flush()
+            continue
+        if not current:
+            first = number
+        current.append(text)
+    flush()
+    return out, open_block
+
+
+def findings(path, shown):
+    """Lines of PATH whose paragraph quotes a load or tells history (a phrase may wrap)."""
+    out = []
+    paras, open_block = paragraphs(path)
+    for first, lines in paras:
+        joined = " ".join(lines)
+        starts = [0]
+        for line in lines[:-1]:
+            starts.append(starts[-1] + len(line) + 1)
         for regex, what in ((LOAD, "quotes a load"), (HISTORY_RE, "tells history")):
-            hit = regex.search(text)
-            if hit:
-                out.append((number, f"{what} ('{hit.group(0)}'): move the number into a "
+            for hit in regex.finditer(joined):
+                line = first + max(i for i, s in enumerate(starts) if s <= hit.start())
+                out.append((line, f"{what} ('{hit.group(0)}'): move the number into a "
                             "generated table or say what holds now"))
     if open_block is not None:
         out.append((open_block[1], f"generated block '{open_block[0]}' is never closed"))
-    return [f"{shown}:{n}: {msg}" for n, msg in out]
+    return [f"{shown}:{n}: {msg}" for n, msg in sorted(out)]
 
 
 def check(root):
@@ -94,6 +124,8 @@ def self_test():
         "An earlier run gave 3x.": "tells history",
         "The blur form was not kept.": "tells history",
         "Fixed in commit 1e0f175.": "tells history",
+        "Measured on 2026-12-02.": "tells history",
+        "These numbers are no\nlonger shown.": "tells history",
         "<!-- perf-table u -->\nload 1\n": "never closed",
     }
     failures = 0
@@ -124,8 +156,8 @@ def main():
     files, lines = check(root)
     for line in lines:
         print(line)
-    print(f"check_doc_history.py: {len(files)} files, {len(lines)} hand-written lines quote a "
-          "load or tell history")
+    print(f"check_doc_history.py: {len(files)} files, {len(lines)} findings (a load quoted or "
+          "history told outside generated blocks)")
     return 1 if lines else 0
 
 
