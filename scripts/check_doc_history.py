@@ -27,7 +27,7 @@ END = re.compile(r"^<!-- (?:/perf-table (\S+)|/generated:(\S+)|(\S+):end) -->$")
 
 # A load quoted with a number: "load 8-9", "load average 7.0-7.5", "load average about 15",
 # "/proc/loadavg 9.20".
-LOAD = re.compile(r"\bload(?:\s+averages?)?(?:\s+(?:of|about|under|around|near|was|is|at))?"
+LOAD = re.compile(r"\bload(?:\s+averages?)?(?:\s+(?:of|about|under|around|near|was|is|at)){0,2}"
                   r"\s+~?[0-9]|loadavg\s*[0-9]", re.IGNORECASE)
 # How the code came to be, rather than what it is now.
 HISTORY = [
