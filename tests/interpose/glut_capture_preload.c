@@ -19,7 +19,7 @@
 #include <stdlib.h>
 
 #define EXPORT __attribute__((visibility("default")))
-#define REAL(type, name) \
+#define REAL(type, name)   \
   static type real_##name; \
   if (!real_##name) real_##name = (type)next(#name)
 
@@ -150,8 +150,8 @@ struct Array {
   const char* base;
 };
 
-static struct Array array(GLenum enable, GLenum pointer, GLenum size, GLenum type,
-                          GLenum stride, int fixedSize) {
+static struct Array array(GLenum enable, GLenum pointer, GLenum size, GLenum type, GLenum stride,
+                          int fixedSize) {
   REAL(IsEnabledFn, glIsEnabled);
   REAL(GetIntegervFn, glGetIntegerv);
   REAL(GetPointervFn, glGetPointerv);
@@ -193,8 +193,8 @@ static void drawn(GLenum m, long n, const void* indices, GLenum indexType, GLint
   real_glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &elementBuffer);
   const struct Array v = array(GL_VERTEX_ARRAY, GL_VERTEX_ARRAY_POINTER, GL_VERTEX_ARRAY_SIZE,
                                GL_VERTEX_ARRAY_TYPE, GL_VERTEX_ARRAY_STRIDE, 0);
-  const struct Array nr = array(GL_NORMAL_ARRAY, GL_NORMAL_ARRAY_POINTER, 0,
-                                GL_NORMAL_ARRAY_TYPE, GL_NORMAL_ARRAY_STRIDE, 3);
+  const struct Array nr = array(GL_NORMAL_ARRAY, GL_NORMAL_ARRAY_POINTER, 0, GL_NORMAL_ARRAY_TYPE,
+                                GL_NORMAL_ARRAY_STRIDE, 3);
   const struct Array t =
       array(GL_TEXTURE_COORD_ARRAY, GL_TEXTURE_COORD_ARRAY_POINTER, GL_TEXTURE_COORD_ARRAY_SIZE,
             GL_TEXTURE_COORD_ARRAY_TYPE, GL_TEXTURE_COORD_ARRAY_STRIDE, 0);
