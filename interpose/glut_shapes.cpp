@@ -12,8 +12,9 @@
 // face. This file makes the same calls with arrays computed by the same single-precision
 // arithmetic (the same operations in the same order; sin, cos and sqrt in double, rounded to
 // float, as C's <math.h> does for freeglut). Our reading of freeglut 3.4.0's src/fg_geometry.c
-// and src/fg_teapot.c, written here anew; tests/interpose/shapes_capture.c compares the two
-// call streams (tests/interpose/legacy_clients_test.cpp, GlutShapes.*).
+// and src/fg_teapot.c, written here anew. GlutShapes.SameCallsAsFreeglut
+// (tests/interpose/legacy_clients_test.cpp) compares the two call streams, captured by
+// tests/interpose/glut_capture_preload.c from tests/interpose/clients/glut_shapes.c.
 //
 // The teapot's control points are the Newell teapot (Martin Newell, Utah, 1975) as freeglut
 // 3.4.0 ships them in src/fg_teapot_data.h (MIT-style licence, Pawel W. Olszta): taken from
@@ -475,7 +476,20 @@ constexpr int kTeapotPatchCorners[kTeapotInputPatches][16] = {
     {101, 102, 103, 104, 105, 106, 107, 108, 109, 110, 111, 112, 113, 114, 115, 116},  // spout
     {113, 114, 115, 116, 117, 118, 119, 120, 121, 122, 123, 124, 125, 126, 127, 128},  // spout
 };
-// x, y, z with z up, in the data set's units.
+// x, y, z with z up, in the data set's units. From freeglut 3.4.0's src/fg_teapot_data.h,
+// which carries this notice:
+//   Permission is hereby granted, free of charge, to any person obtaining a copy of this
+//   software and associated documentation files (the "Software"), to deal in the Software
+//   without restriction, including without limitation the rights to use, copy, modify, merge,
+//   publish, distribute, sublicense, and/or sell copies of the Software, and to permit persons
+//   to whom the Software is furnished to do so, subject to the following conditions: The above
+//   copyright notice and this permission notice shall be included in all copies or substantial
+//   portions of the Software. THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND,
+//   EXPRESS OR IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY, FITNESS
+//   FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL PAWEL W. OLSZTA BE LIABLE
+//   FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR
+//   OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER
+//   DEALINGS IN THE SOFTWARE.
 constexpr float kTeapotControlPoints[][3] = {
     {1.4f, 0.0f, 2.4f},           {1.4f, -0.784f, 2.4f},        {0.784f, -1.4f, 2.4f},
     {0.0f, -1.4f, 2.4f},          {1.3375f, 0.0f, 2.53125f},    {1.3375f, -0.749f, 2.53125f},

@@ -559,8 +559,9 @@ std::string compareShape(const CapturedShape& a, const CapturedShape& b, float& 
 // the GL equals what Debian's freeglut sends it, primitive for primitive, vertex for vertex.
 TEST(GlutShapes, SameCallsAsFreeglut) {
   SL_REQUIRE_GLX();
-  if (std::getenv("DISPLAY") == nullptr && !onPath("xvfb-run"))
-    GTEST_SKIP() << "skipped: xvfb-run is not installed (scripts/setup.sh installs xvfb)";
+  if (std::getenv("DISPLAY") == nullptr && (!onPath("xvfb-run") || !onPath("xauth")))
+    GTEST_SKIP() << "skipped: xvfb-run or xauth is not installed (scripts/setup.sh installs xvfb "
+                    "and xauth)";
   const fs::path dir = testDir("interpose", true);
   const fs::path program = client("glut_shapes", sourceDir() / "tests" / "interpose" / "clients");
   const fs::path shim = captureShim(dir);
