@@ -9,13 +9,15 @@
 // callback. One window, single-buffered (OSMesa has one colour buffer: glutSwapBuffers shows
 // it). Frames and keys as in frame_files.h; after the last frame the program exits 0, as
 // freeglut does when its window is closed. Written from the GLUT 3 specification's
-// description of each call (Kilgard 1996), not from any GLUT's source.
+// description of each call (Kilgard 1996), not from any GLUT's source. The shapes
+// (glutSolid*/glutWire*) are in glut_shapes.cpp.
+#include "interpose/glut_headless.h"
+
 #include <GL/freeglut_std.h>
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 #include <dlfcn.h>
 
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +32,12 @@
 #define SL_EXPORT extern "C" __attribute__((visibility("default")))
 
 namespace sl::interpose {
+
+void fatal(const std::string& message) {
+  std::fprintf(stderr, "libshadowlab-glut: %s\n", message.c_str());
+  std::exit(kExitGlFailure);
+}
+
 namespace {
 
 constexpr int kDefaultWindowSide = 300;  // GLUT 3 spec, glutInitWindowSize: 300 x 300
@@ -40,25 +48,6 @@ constexpr int kStencilBits = 8;
 constexpr int kAccumBits = 16;                // GLUT_ACCUM
 constexpr int kMaxIdleWithoutFrame = 100000;  // idle calls that show nothing: a stalled program
 constexpr float kByteMax = 255.0f;
-constexpr double kPi = 3.14159265358979323846;
-constexpr int kExitGlFailure = 3;
-
-// GL, resolved at run time from whatever GL is preloaded after this library.
-template <class Fn>
-Fn gl(const char* name) {
-  void* p = dlsym(RTLD_DEFAULT, name);
-  if (p == nullptr) {
-    std::fprintf(stderr, "libshadowlab-glut: the GL has no %s\n", name);
-    std::exit(kExitGlFailure);
-  }
-  return reinterpret_cast<Fn>(p);
-}
-#define SL_GL(name) static const auto name = ::sl::interpose::gl<decltype(&::name)>(#name)
-
-[[noreturn]] void fatal(const std::string& message) {
-  std::fprintf(stderr, "libshadowlab-glut: %s\n", message.c_str());
-  std::exit(kExitGlFailure);
-}
 
 struct Timer {
   long due;  // ms of the virtual clock
@@ -143,140 +132,6 @@ bool deliverKey() {
   s.awaiting = true;
   g.keyboard(s.keys[size_t(key)], g.width / 2, g.height / 2);
   return true;
-}
-
-// ---- shapes (GLUT 3 spec 11): drawn with glBegin/glEnd, normals for lighting ----
-struct Gl {
-  decltype(&::glBegin) begin = gl<decltype(&::glBegin)>("glBegin");
-  decltype(&::glEnd) end = gl<decltype(&::glEnd)>("glEnd");
-  decltype(&::glVertex3d) vertex = gl<decltype(&::glVertex3d)>("glVertex3d");
-  decltype(&::glNormal3d) normal = gl<decltype(&::glNormal3d)>("glNormal3d");
-};
-const Gl& immediate() {
-  static const Gl g;
-  return g;
-}
-
-// A sphere of `radius` around the origin, `slices` around z and `stacks` along z.
-void sphere(double radius, int slices, int stacks, bool wire) {
-  const Gl& g = immediate();
-  auto point = [&](int i, int j) {
-    const double theta = 2.0 * kPi * i / slices, phi = kPi * j / stacks;
-    const double x = std::cos(theta) * std::sin(phi), y = std::sin(theta) * std::sin(phi),
-                 z = std::cos(phi);
-    g.normal(x, y, z);
-    g.vertex(radius * x, radius * y, radius * z);
-  };
-  if (wire) {
-    for (int j = 1; j < stacks; ++j) {
-      g.begin(GL_LINE_LOOP);
-      for (int i = 0; i < slices; ++i) point(i, j);
-      g.end();
-    }
-    for (int i = 0; i < slices; ++i) {
-      g.begin(GL_LINE_STRIP);
-      for (int j = 0; j <= stacks; ++j) point(i, j);
-      g.end();
-    }
-    return;
-  }
-  for (int j = 0; j < stacks; ++j) {
-    g.begin(GL_QUAD_STRIP);
-    for (int i = 0; i <= slices; ++i) {
-      point(i, j);
-      point(i, j + 1);
-    }
-    g.end();
-  }
-}
-
-// A torus around z: tube radius `inner`, centre-line radius `outer`.
-void torus(double inner, double outer, int sides, int rings, bool wire) {
-  const Gl& g = immediate();
-  auto point = [&](int ring, int side) {
-    const double u = 2.0 * kPi * ring / rings, v = 2.0 * kPi * side / sides;
-    const double nx = std::cos(u) * std::cos(v), ny = std::sin(u) * std::cos(v), nz = std::sin(v);
-    g.normal(nx, ny, nz);
-    g.vertex(std::cos(u) * (outer + inner * std::cos(v)),
-             std::sin(u) * (outer + inner * std::cos(v)), inner * nz);
-  };
-  for (int r = 0; r < rings; ++r) {
-    g.begin(wire ? GL_LINE_STRIP : GL_QUAD_STRIP);
-    for (int s = 0; s <= sides; ++s) {
-      point(r, s);
-      point(r + 1, s);
-    }
-    g.end();
-  }
-}
-
-// A cone along +z: base of `base` radius at z = 0, apex at z = height.
-void cone(double base, double height, int slices, int stacks, bool wire) {
-  const Gl& g = immediate();
-  const double slope = std::atan2(base, height);
-  auto point = [&](int i, int j) {
-    const double theta = 2.0 * kPi * i / slices, t = double(j) / stacks;
-    g.normal(std::cos(theta) * std::cos(slope), std::sin(theta) * std::cos(slope), std::sin(slope));
-    g.vertex(std::cos(theta) * base * (1 - t), std::sin(theta) * base * (1 - t), height * t);
-  };
-  for (int j = 0; j < stacks; ++j) {
-    g.begin(wire ? GL_LINE_STRIP : GL_QUAD_STRIP);
-    for (int i = 0; i <= slices; ++i) {
-      point(i, j);
-      point(i, j + 1);
-    }
-    g.end();
-  }
-  g.begin(wire ? GL_LINE_LOOP : GL_POLYGON);  // the base, facing -z
-  g.normal(0, 0, -1);
-  for (int i = slices - 1; i >= 0; --i) {
-    const double theta = 2.0 * kPi * i / slices;
-    g.vertex(std::cos(theta) * base, std::sin(theta) * base, 0);
-  }
-  g.end();
-}
-
-// Polyhedra from their faces: each face a polygon, its normal the normalised mean of its
-// corners (exact for these regular solids centred on the origin).
-void faces(const double (*v)[3], const int* index, int faceCount, int corners, double scale,
-           bool wire) {
-  const Gl& g = immediate();
-  for (int f = 0; f < faceCount; ++f) {
-    double n[3] = {0, 0, 0};
-    for (int k = 0; k < corners; ++k)
-      for (int c = 0; c < 3; ++c) n[c] += v[index[f * corners + k]][c];
-    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    g.begin(wire ? GL_LINE_LOOP : GL_POLYGON);
-    g.normal(n[0] / len, n[1] / len, n[2] / len);
-    for (int k = 0; k < corners; ++k) {
-      const double* p = v[index[f * corners + k]];
-      g.vertex(p[0] * scale, p[1] * scale, p[2] * scale);
-    }
-    g.end();
-  }
-}
-
-void cube(double side, bool wire) {
-  static const double v[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  static const int f[6 * 4] = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4,
-                               2, 3, 7, 6, 1, 2, 6, 5, 0, 4, 7, 3};  // counter-clockwise outside
-  faces(v, f, 6, 4, side / 2, wire);
-}
-
-void octahedron(bool wire) {
-  static const double v[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
-                                 {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
-  static const int f[8 * 3] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
-                               2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
-  faces(v, f, 8, 3, 1.0, wire);
-}
-
-void tetrahedron(bool wire) {
-  // Corners of a cube, alternate ones: radius sqrt(3) scaled to 1.
-  static const double v[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
-  static const int f[4 * 3] = {0, 3, 1, 0, 1, 2, 0, 2, 3, 1, 3, 2};
-  faces(v, f, 4, 3, 1.0 / std::sqrt(3.0), wire);
 }
 
 }  // namespace
@@ -456,47 +311,8 @@ SL_EXPORT void glutMainLoop() {
   }
 }
 
-// ---- shapes ----
-SL_EXPORT void glutSolidSphere(double r, GLint slices, GLint stacks) {
-  sl::interpose::sphere(r, slices, stacks, false);
-}
-SL_EXPORT void glutWireSphere(double r, GLint slices, GLint stacks) {
-  sl::interpose::sphere(r, slices, stacks, true);
-}
-SL_EXPORT void glutSolidCube(double side) { sl::interpose::cube(side, false); }
-SL_EXPORT void glutWireCube(double side) { sl::interpose::cube(side, true); }
-SL_EXPORT void glutSolidTorus(double inner, double outer, GLint sides, GLint rings) {
-  sl::interpose::torus(inner, outer, sides, rings, false);
-}
-SL_EXPORT void glutWireTorus(double inner, double outer, GLint sides, GLint rings) {
-  sl::interpose::torus(inner, outer, sides, rings, true);
-}
-SL_EXPORT void glutSolidCone(double base, double height, GLint slices, GLint stacks) {
-  sl::interpose::cone(base, height, slices, stacks, false);
-}
-SL_EXPORT void glutWireCone(double base, double height, GLint slices, GLint stacks) {
-  sl::interpose::cone(base, height, slices, stacks, true);
-}
-SL_EXPORT void glutSolidOctahedron() { sl::interpose::octahedron(false); }
-SL_EXPORT void glutWireOctahedron() { sl::interpose::octahedron(true); }
-SL_EXPORT void glutSolidTetrahedron() { sl::interpose::tetrahedron(false); }
-SL_EXPORT void glutWireTetrahedron() { sl::interpose::tetrahedron(true); }
-// Shapes and fonts whose data this GLUT does not carry: stop with a message rather than
-// draw nothing.
-SL_EXPORT void glutSolidTeapot(double) { sl::interpose::fatal("glutSolidTeapot is not provided"); }
-SL_EXPORT void glutWireTeapot(double) { sl::interpose::fatal("glutWireTeapot is not provided"); }
-SL_EXPORT void glutSolidDodecahedron() {
-  sl::interpose::fatal("glutSolidDodecahedron is not provided");
-}
-SL_EXPORT void glutWireDodecahedron() {
-  sl::interpose::fatal("glutWireDodecahedron is not provided");
-}
-SL_EXPORT void glutSolidIcosahedron() {
-  sl::interpose::fatal("glutSolidIcosahedron is not provided");
-}
-SL_EXPORT void glutWireIcosahedron() {
-  sl::interpose::fatal("glutWireIcosahedron is not provided");
-}
+// ---- fonts ----
+// Fonts whose data this GLUT does not carry: stop with a message rather than draw nothing.
 SL_EXPORT void glutBitmapCharacter(void*, int) {
   sl::interpose::fatal("GLUT bitmap fonts are not provided");
 }

@@ -29,6 +29,7 @@ PACKAGES=(
   python3-venv python3-pip python3-setuptools python3-wheel  # pip install --no-build-isolation . (pyproject.toml)
   python3-nbclient python3-nbformat python3-ipykernel  # examples/*.ipynb executed in tests/python
   freeglut3-dev xvfb  # run-legacy: unchanged GLUT programs on GLX (Xvfb when there is no display)
+  xauth               # xvfb-run (GlutShapes.SameCallsAsFreeglut runs freeglut under it)
   piglit              # tests/interpose: piglit's pixel tests with and without the drop-in library
 )
 

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <iostream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -231,13 +233,25 @@ struct ThreeRuns {
     return pngBytes(dir / backend / "frames" / name, w, h);
   }
 };
-ThreeRuns runThree(const fs::path& program, const std::string& keys, bool trace) {
+// Mesa 22's window-system framebuffers (GLX) are sRGB-capable whenever the GL exposes
+// GL_EXT_framebuffer_sRGB, so their colour buffers have an sRGB format; Mesa's software glAccum
+// (src/mesa/main/accum.c) reads and writes the colour buffer through that format's unpack and
+// pack, which decode and encode sRGB whatever GL_FRAMEBUFFER_SRGB says. OSMesa's buffer is
+// linear. So on glx a GL_ACCUM average is taken of sRGB-decoded colours (51 and 0 over two
+// passes: 35 on glx, sRGB(lin(51) / 2); 25 on osmesa): our reading of Mesa's source, borne
+// out by the frames. Without the extension the GLX buffers are linear too, and the back ends
+// agree; programs of GL 1.x never use it.
+constexpr const char* kGlxLinearAccumulation = "MESA_EXTENSION_OVERRIDE=-GL_EXT_framebuffer_sRGB";
+
+// `glxEnv`: environment for the glx run only.
+ThreeRuns runThree(const fs::path& program, const std::string& keys, bool trace,
+                   const std::string& glxEnv = "") {
   ThreeRuns runs{testDir("interpose", true), keys};
   for (const std::string backend : {"glx", "osmesa", "reference"}) {
     const fs::path logs = runs.dir / backend;
     fs::create_directories(logs);
     const std::string env =
-        "SHADOWLAB_IMAGING_VERBOSE=1 " +
+        "SHADOWLAB_IMAGING_VERBOSE=1 " + (backend == "glx" ? glxEnv + " " : std::string()) +
         (trace ? "SHADOWLAB_IMAGING_TRACE=" + (logs / "trace.jsonl").string() : std::string());
     const CommandResult r = runLegacy(program, keys, logs / "frames", logs, env, backend);
     EXPECT_EQ(r.status, 0) << backend << ": " << r.err;
@@ -397,15 +411,16 @@ TEST(LegacyClients, HistogramReadBackEqualsInProcess) {
 // A program of our own in the style of the book's accumulation and imaging chapters
 // (clients/accumulate.c): jittered passes averaged in the accumulation buffer, key 'a' (1 -> 8
 // passes), key 'g' (the window copied onto itself through a grey colour matrix). It runs on
-// the three back ends; the grey frame is grey; the 8-pass frame is not the 1-pass one. The
-// back ends rasterise the torus and sphere differently (glx and osmesa by a few levels where
-// the surfaces meet, the reference by its older rasteriser), so frames are not compared
-// across them.
+// the three back ends; the grey frame is grey; the 8-pass frame is not the 1-pass one. glx
+// (its accumulation linear: kGlxLinearAccumulation) and osmesa draw every frame bit-identically
+// (the same GL, and the headless GLUT's torus and sphere are freeglut's); the reference
+// rasterises with its older rasteriser, so its frames are not compared.
 TEST(LegacyClients, AccumulationProgramOnAllThreeBackends) {
   SL_REQUIRE_GLX();
   SL_REQUIRE_REFERENCE();
   const ThreeRuns runs =
-      runThree(client("accumulate", sourceDir() / "tests" / "interpose" / "clients"), "a g", false);
+      runThree(client("accumulate", sourceDir() / "tests" / "interpose" / "clients"), "a g", false,
+               kGlxLinearAccumulation);
   for (const std::string backend : {"glx", "osmesa", "reference"}) {
     int w = 0, h = 0;
     const std::vector<uint8_t> one = runs.frame(backend, 0, w, h);
@@ -420,6 +435,212 @@ TEST(LegacyClients, AccumulationProgramOnAllThreeBackends) {
       notGrey += grey[p] != grey[p + 1] || grey[p] != grey[p + 2];
     EXPECT_EQ(notGrey, 0) << backend << ": the colour matrix rows are equal, so R = G = B";
   }
+  for (int f = 0; f < 3; ++f) {
+    int w = 0, h = 0;
+    EXPECT_EQ(differingPixels(runs.frame("glx", f, w, h), runs.frame("osmesa", f, w, h)), 0)
+        << "frame " << f << ": glx and osmesa";
+  }
+}
+
+// ---- the headless GLUT's shapes against freeglut's ----
+
+// tests/interpose/glut_capture_preload.c built into dir.
+fs::path captureShim(const fs::path& dir) {
+  const fs::path lib = dir / "libglut_capture.so";
+  const std::string build =
+      "cc -O1 -shared -fPIC -o " + lib.string() + " " +
+      (sourceDir() / "tests" / "interpose" / "glut_capture_preload.c").string() + " -ldl";
+  EXPECT_EQ(std::system(build.c_str()), 0) << build;
+  return lib;
+}
+
+// What one GLUT sent the GL for each shape of clients/glut_shapes.c (the shim's format).
+struct Primitive {
+  std::string kind;  // "prim", or "unread" (a draw the shim could not read)
+  unsigned mode = 0;
+  std::vector<std::vector<float>> vertices;  // x y z nx ny nz [s t]
+};
+struct CapturedShape {
+  std::string call;
+  std::vector<Primitive> primitives;
+};
+std::vector<CapturedShape> readCapture(const fs::path& capture, const fs::path& calls) {
+  std::vector<CapturedShape> shapes;
+  std::ifstream names(calls);
+  for (std::string line; std::getline(names, line);)
+    shapes.push_back({line.substr(line.find(' ') + 1), {}});
+  std::ifstream in(capture);
+  int current = -1;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    if (first == "mark") {
+      words >> current;
+      continue;
+    }
+    if (current < 1 || current > int(shapes.size())) continue;  // a draw outside the shapes
+    auto& prims = shapes[size_t(current - 1)].primitives;
+    if (first == "prim" || first == "unread") {
+      std::string mode;
+      words >> mode;
+      prims.push_back({first, unsigned(std::stoul(mode, nullptr, 16)), {}});
+      continue;
+    }
+    std::vector<float> values{std::strtof(first.c_str(), nullptr)};
+    for (std::string w; words >> w;) values.push_back(std::strtof(w.c_str(), nullptr));
+    if (!prims.empty()) prims.back().vertices.push_back(values);
+  }
+  return shapes;
+}
+
+// Runs clients/glut_shapes with the capture shim ahead of the GL: on freeglut + GLX (Xvfb via
+// xvfb-run unless DISPLAY is set), or on the headless GLUT + Debian's OSMesa, as run-legacy
+// --backend glx|osmesa stacks them (without the imaging library, which this does not need).
+std::vector<CapturedShape> captureShapes(const fs::path& program, const fs::path& shim,
+                                         const std::string& backend, const fs::path& dir) {
+  fs::create_directories(dir);
+  const fs::path capture = dir / "capture.txt";
+  std::string preload = shim.string();
+  std::string launcher;
+  if (backend == "glx") {
+    if (std::getenv("DISPLAY") == nullptr) launcher = "xvfb-run -a -s '-screen 0 640x480x24' ";
+  } else {
+    preload += " " + (libraryDir() / "libshadowlab-glut.so").string() + " libOSMesa.so.8";
+  }
+  const CommandResult r = runBinary("cd " + program.parent_path().string() + " && " + launcher +
+                                        "env LIBGL_ALWAYS_SOFTWARE=1 LD_PRELOAD='" + preload +
+                                        "' SHADOWLAB_GLUT_CAPTURE=" + capture.string(),
+                                    "./" + program.filename().string(), dir);
+  EXPECT_EQ(r.status, 0) << backend << ": " << r.err;
+  return readCapture(capture, dir / "stdout.txt");
+}
+
+// Two captures agree where they send the same primitives (mode and vertex count, in order)
+// with the same vertices, normals and texture coordinates in the same order. Both compute in
+// single precision by the same operations with the same libm, and are bit-identical here; the
+// tolerance, 4 float ulps of each value's magnitude (at least of 1), leaves room only for a
+// freeglut built to round differently (fused multiply-adds), while a tessellation that differs
+// (a slice more or less, another order) moves values by orders of magnitude more.
+constexpr float kCaptureUlps = 4.0f;
+std::string compareShape(const CapturedShape& a, const CapturedShape& b, float& worst) {
+  worst = 0.0f;
+  if (a.primitives.empty()) return "freeglut drew nothing";
+  if (a.primitives.size() != b.primitives.size())
+    return std::to_string(a.primitives.size()) + " primitives against " +
+           std::to_string(b.primitives.size());
+  for (size_t p = 0; p < a.primitives.size(); ++p) {
+    const Primitive &x = a.primitives[p], &y = b.primitives[p];
+    const std::string where = "primitive " + std::to_string(p) + ": ";
+    if (x.kind != "prim" || y.kind != "prim") return where + "a draw the shim could not read";
+    if (x.mode != y.mode)
+      return where + "mode " + std::to_string(x.mode) + " against " + std::to_string(y.mode);
+    if (x.vertices.size() != y.vertices.size())
+      return where + std::to_string(x.vertices.size()) + " vertices against " +
+             std::to_string(y.vertices.size());
+    for (size_t v = 0; v < x.vertices.size(); ++v) {
+      if (x.vertices[v].size() != y.vertices[v].size())
+        return where + "vertex " + std::to_string(v) + " has other attributes";
+      for (size_t c = 0; c < x.vertices[v].size(); ++c) {
+        const float d = std::fabs(x.vertices[v][c] - y.vertices[v][c]);
+        worst = std::max(worst, d);
+        const float allowed =
+            kCaptureUlps * FLT_EPSILON * std::max(1.0f, std::fabs(x.vertices[v][c]));
+        if (d > allowed)
+          return where + "vertex " + std::to_string(v) + " value " + std::to_string(c) + ": " +
+                 std::to_string(x.vertices[v][c]) + " against " + std::to_string(y.vertices[v][c]);
+      }
+    }
+  }
+  return "";
+}
+
+// Every glutSolid*/glutWire* shape of clients/glut_shapes.c: what libshadowlab-glut.so sends
+// the GL equals what Debian's freeglut sends it, primitive for primitive, vertex for vertex.
+TEST(GlutShapes, SameCallsAsFreeglut) {
+  SL_REQUIRE_GLX();
+  if (std::getenv("DISPLAY") == nullptr && (!onPath("xvfb-run") || !onPath("xauth")))
+    GTEST_SKIP() << "skipped: xvfb-run or xauth is not installed (scripts/setup.sh installs xvfb "
+                    "and xauth)";
+  const fs::path dir = testDir("interpose", true);
+  const fs::path program = client("glut_shapes", sourceDir() / "tests" / "interpose" / "clients");
+  const fs::path shim = captureShim(dir);
+  const std::vector<CapturedShape> freeglut = captureShapes(program, shim, "glx", dir / "glx");
+  const std::vector<CapturedShape> ours = captureShapes(program, shim, "osmesa", dir / "osmesa");
+  constexpr size_t kShapes = 23;  // the client's 22 shapes and its "end" marker
+  ASSERT_EQ(freeglut.size(), kShapes);
+  ASSERT_EQ(ours.size(), kShapes);
+  for (size_t i = 0; i + 1 < kShapes; ++i) {
+    ASSERT_EQ(freeglut[i].call, ours[i].call);
+    float worst = 0.0f;
+    const std::string why = compareShape(freeglut[i], ours[i], worst);
+    size_t vertices = 0;
+    for (const Primitive& p : freeglut[i].primitives) vertices += p.vertices.size();
+    EXPECT_EQ(why, "") << freeglut[i].call;
+    std::cout << freeglut[i].call << ": " << freeglut[i].primitives.size() << " draws, " << vertices
+              << " vertices: "
+              << (!why.empty()    ? why
+                  : worst == 0.0f ? std::string("bit-identical")
+                                  : "same within the tolerance (largest difference " +
+                                        std::to_string(worst) + ")")
+              << "\n";
+  }
+  EXPECT_TRUE(freeglut.back().primitives.empty() && ours.back().primitives.empty());
+}
+
+// The same client drawn (lit, flat-shaded: each triangle's colour is its provoking vertex's)
+// by run-legacy on glx and on osmesa: the same GL (Mesa 22 llvmpipe) given the same calls
+// draws the same pixels.
+TEST(GlutShapes, SameFrameOnGlxAndOsmesa) {
+  SL_REQUIRE_GLX();
+  const fs::path dir = testDir("interpose", true);
+  const fs::path program = client("glut_shapes", sourceDir() / "tests" / "interpose" / "clients");
+  std::vector<std::vector<uint8_t>> frames;
+  for (const std::string backend : {"glx", "osmesa"}) {
+    const fs::path logs = dir / backend;
+    fs::create_directories(logs);
+    const CommandResult r = runLegacy(program, "", logs / "frames", logs, "", backend);
+    ASSERT_EQ(r.status, 0) << backend << ": " << r.err;
+    int w = 0, h = 0;
+    frames.push_back(pngBytes(logs / "frames" / "000.png", w, h));
+    constexpr int kWidth = 384, kHeight = 256;  // the client's 6 x 4 cells of 64 pixels
+    ASSERT_EQ(w, kWidth);
+    ASSERT_EQ(h, kHeight);
+  }
+  int lit = 0;
+  for (size_t i = 0; i < frames[1].size(); ++i) lit += frames[1][i] != 0;
+  EXPECT_GT(lit, 0) << "osmesa drew nothing";
+  EXPECT_EQ(differingPixels(frames[0], frames[1]), 0) << "glx and osmesa";
+}
+
+// The Red Book's accanti.c (torus, cube, sphere and octahedron, flat-shaded, 8 jittered passes
+// averaged in the accumulation buffer), unchanged, when it is among the shared clients
+// (../shared/legacy-clients/redbook/accanti.c with its jitter.h; $SHADOWLAB_ACCANTI_DIR names
+// another folder holding them): glx, its accumulation linear (kGlxLinearAccumulation), and
+// osmesa draw the same pixels.
+TEST(LegacyClients, AccantiSameOnGlxAndOsmesa) {
+  SL_REQUIRE_GLX();
+  const char* other = std::getenv("SHADOWLAB_ACCANTI_DIR");
+  const fs::path sources = other != nullptr ? fs::path(other) : clientsDir();
+  if (!fs::exists(sources / "accanti.c") || !fs::exists(sources / "jitter.h"))
+    GTEST_SKIP() << "skipped: accanti.c and jitter.h (mesa-demos src/redbook) are not in "
+                 << sources.string();
+  const fs::path program = client("accanti", sources);
+  const fs::path dir = testDir("interpose", true);
+  std::vector<std::vector<uint8_t>> frames;
+  for (const std::string backend : {"glx", "osmesa"}) {
+    const fs::path logs = dir / backend;
+    fs::create_directories(logs);
+    const CommandResult r = runLegacy(program, "", logs / "frames", logs,
+                                      backend == "glx" ? kGlxLinearAccumulation : "", backend);
+    ASSERT_EQ(r.status, 0) << backend << ": " << r.err;
+    int w = 0, h = 0;
+    frames.push_back(pngBytes(logs / "frames" / "000.png", w, h));
+    constexpr int kSide = 250;  // accanti.c's glutInitWindowSize
+    ASSERT_EQ(w, kSide);
+    ASSERT_EQ(h, kSide);
+  }
+  EXPECT_EQ(differingPixels(frames[0], frames[1]), 0) << "glx and osmesa";
 }
 
 // Builds tests/interpose/NAME.c against Debian's OSMesa into dir/NAME.
