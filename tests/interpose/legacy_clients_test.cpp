@@ -613,36 +613,6 @@ TEST(GlutShapes, SameFrameOnGlxAndOsmesa) {
   EXPECT_EQ(differingPixels(frames[0], frames[1]), 0) << "glx and osmesa";
 }
 
-// The Red Book's accanti.c (torus, cube, sphere and octahedron, flat-shaded, 8 jittered passes
-// averaged in the accumulation buffer), unchanged, when it is among the shared clients
-// (../shared/legacy-clients/redbook/accanti.c with its jitter.h; $SHADOWLAB_ACCANTI_DIR names
-// another folder holding them): glx, its accumulation linear (kGlxLinearAccumulation), and
-// osmesa draw the same pixels.
-TEST(LegacyClients, AccantiSameOnGlxAndOsmesa) {
-  SL_REQUIRE_GLX();
-  const char* other = std::getenv("SHADOWLAB_ACCANTI_DIR");
-  const fs::path sources = other != nullptr ? fs::path(other) : clientsDir();
-  if (!fs::exists(sources / "accanti.c") || !fs::exists(sources / "jitter.h"))
-    GTEST_SKIP() << "skipped: accanti.c and jitter.h (mesa-demos src/redbook) are not in "
-                 << sources.string();
-  const fs::path program = client("accanti", sources);
-  const fs::path dir = testDir("interpose", true);
-  std::vector<std::vector<uint8_t>> frames;
-  for (const std::string backend : {"glx", "osmesa"}) {
-    const fs::path logs = dir / backend;
-    fs::create_directories(logs);
-    const CommandResult r = runLegacy(program, "", logs / "frames", logs,
-                                      backend == "glx" ? kGlxLinearAccumulation : "", backend);
-    ASSERT_EQ(r.status, 0) << backend << ": " << r.err;
-    int w = 0, h = 0;
-    frames.push_back(pngBytes(logs / "frames" / "000.png", w, h));
-    constexpr int kSide = 250;  // accanti.c's glutInitWindowSize
-    ASSERT_EQ(w, kSide);
-    ASSERT_EQ(h, kSide);
-  }
-  EXPECT_EQ(differingPixels(frames[0], frames[1]), 0) << "glx and osmesa";
-}
-
 // Builds tests/interpose/NAME.c against Debian's OSMesa into dir/NAME.
 fs::path osmesaClient(const std::string& name, const fs::path& dir) {
   const fs::path exe = dir / name;
