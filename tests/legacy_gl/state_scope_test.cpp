@@ -52,9 +52,9 @@ struct Job {
   int filter;  // legacy.pcf 3x3: groups, accumulation, the saved camera pass; fast PCF 4x4: phases
 };
 const std::vector<Job>& jobs() {
-  static const std::vector<Job> list = {{"legacy.hw", 1},   {"legacy.woo", 1},
+  static const std::vector<Job> list = {{"legacy.hw", 1},           {"legacy.woo", 1},
                                         {"legacy.second-depth", 1}, {"legacy.ramp", 1},
-                                        {"legacy.pcf", 3},  {"legacy.fast-pcf", 4}};
+                                        {"legacy.pcf", 3},          {"legacy.fast-pcf", 4}};
   return list;
 }
 
@@ -97,20 +97,37 @@ void addEnable(StateValues& out, const std::string& name, GLenum cap) {
 // them, every pass loads them before use; the image check covers them).
 StateValues readState(bool imaging) {
   StateValues s;
-  for (const auto& [name, cap] :
-       {SL_NAMED(GL_ALPHA_TEST), SL_NAMED(GL_AUTO_NORMAL), SL_NAMED(GL_BLEND),
-        SL_NAMED(GL_COLOR_LOGIC_OP), SL_NAMED(GL_COLOR_MATERIAL), SL_NAMED(GL_CULL_FACE),
-        SL_NAMED(GL_DEPTH_TEST), SL_NAMED(GL_DITHER), SL_NAMED(GL_FOG), SL_NAMED(GL_LIGHTING),
-        SL_NAMED(GL_LINE_SMOOTH), SL_NAMED(GL_LINE_STIPPLE), SL_NAMED(GL_NORMALIZE),
-        SL_NAMED(GL_POINT_SMOOTH), SL_NAMED(GL_POLYGON_OFFSET_FILL),
-        SL_NAMED(GL_POLYGON_OFFSET_LINE), SL_NAMED(GL_POLYGON_OFFSET_POINT),
-        SL_NAMED(GL_POLYGON_SMOOTH), SL_NAMED(GL_POLYGON_STIPPLE), SL_NAMED(GL_RESCALE_NORMAL),
-        SL_NAMED(GL_SCISSOR_TEST), SL_NAMED(GL_STENCIL_TEST), SL_NAMED(GL_VERTEX_ARRAY),
-        SL_NAMED(GL_NORMAL_ARRAY), SL_NAMED(GL_COLOR_ARRAY), SL_NAMED(GL_INDEX_ARRAY),
-        SL_NAMED(GL_EDGE_FLAG_ARRAY)})
+  for (const auto& [name, cap] : {SL_NAMED(GL_ALPHA_TEST),
+                                  SL_NAMED(GL_AUTO_NORMAL),
+                                  SL_NAMED(GL_BLEND),
+                                  SL_NAMED(GL_COLOR_LOGIC_OP),
+                                  SL_NAMED(GL_COLOR_MATERIAL),
+                                  SL_NAMED(GL_CULL_FACE),
+                                  SL_NAMED(GL_DEPTH_TEST),
+                                  SL_NAMED(GL_DITHER),
+                                  SL_NAMED(GL_FOG),
+                                  SL_NAMED(GL_LIGHTING),
+                                  SL_NAMED(GL_LINE_SMOOTH),
+                                  SL_NAMED(GL_LINE_STIPPLE),
+                                  SL_NAMED(GL_NORMALIZE),
+                                  SL_NAMED(GL_POINT_SMOOTH),
+                                  SL_NAMED(GL_POLYGON_OFFSET_FILL),
+                                  SL_NAMED(GL_POLYGON_OFFSET_LINE),
+                                  SL_NAMED(GL_POLYGON_OFFSET_POINT),
+                                  SL_NAMED(GL_POLYGON_SMOOTH),
+                                  SL_NAMED(GL_POLYGON_STIPPLE),
+                                  SL_NAMED(GL_RESCALE_NORMAL),
+                                  SL_NAMED(GL_SCISSOR_TEST),
+                                  SL_NAMED(GL_STENCIL_TEST),
+                                  SL_NAMED(GL_VERTEX_ARRAY),
+                                  SL_NAMED(GL_NORMAL_ARRAY),
+                                  SL_NAMED(GL_COLOR_ARRAY),
+                                  SL_NAMED(GL_INDEX_ARRAY),
+                                  SL_NAMED(GL_EDGE_FLAG_ARRAY)})
     addEnable(s, name, cap);
   for (int i = 0; i < 8; ++i) addEnable(s, "GL_LIGHT" + std::to_string(i), GLenum(GL_LIGHT0 + i));
-  for (int i = 0; i < 6; ++i) addEnable(s, "GL_CLIP_PLANE" + std::to_string(i), GLenum(GL_CLIP_PLANE0 + i));
+  for (int i = 0; i < 6; ++i)
+    addEnable(s, "GL_CLIP_PLANE" + std::to_string(i), GLenum(GL_CLIP_PLANE0 + i));
   if (imaging) {
     SL_ENABLE(s, GL_COLOR_TABLE);
     SL_ENABLE(s, GL_POST_CONVOLUTION_COLOR_TABLE);
@@ -132,8 +149,8 @@ StateValues readState(bool imaging) {
           SL_NAMED(GL_POST_COLOR_MATRIX_RED_BIAS), SL_NAMED(GL_POST_COLOR_MATRIX_GREEN_BIAS),
           SL_NAMED(GL_POST_COLOR_MATRIX_BLUE_BIAS), SL_NAMED(GL_POST_COLOR_MATRIX_ALPHA_BIAS)})
       addFloats(s, name, q, 1);
-    for (const auto& [target, t] : {SL_NAMED(GL_CONVOLUTION_1D), SL_NAMED(GL_CONVOLUTION_2D),
-                                    SL_NAMED(GL_SEPARABLE_2D)}) {
+    for (const auto& [target, t] :
+         {SL_NAMED(GL_CONVOLUTION_1D), SL_NAMED(GL_CONVOLUTION_2D), SL_NAMED(GL_SEPARABLE_2D)}) {
       GLint mode = 0;
       glGetConvolutionParameteriv(t, GL_CONVOLUTION_BORDER_MODE, &mode);
       s.emplace_back(target + " GL_CONVOLUTION_BORDER_MODE", std::vector<double>{double(mode)});
@@ -148,7 +165,8 @@ StateValues readState(bool imaging) {
     for (const auto& [target, t] :
          {SL_NAMED(GL_COLOR_TABLE), SL_NAMED(GL_POST_CONVOLUTION_COLOR_TABLE),
           SL_NAMED(GL_POST_COLOR_MATRIX_COLOR_TABLE)})
-      for (const auto& [name, p] : {SL_NAMED(GL_COLOR_TABLE_SCALE), SL_NAMED(GL_COLOR_TABLE_BIAS)}) {
+      for (const auto& [name, p] :
+           {SL_NAMED(GL_COLOR_TABLE_SCALE), SL_NAMED(GL_COLOR_TABLE_BIAS)}) {
         float v[4] = {0, 0, 0, 0};
         glGetColorTableParameterfv(t, p, v);
         s.emplace_back(target + " " + name, std::vector<double>(v, v + 4));
