@@ -127,14 +127,16 @@ struct TransferState {
   Minmax minmax;
 };
 
-// The emulated state glPushAttrib saves (glspec121 6.1.14, tables 6.14-6.16: the imaging
+// The emulated state glPushAttrib saves (glspec121 6.1.12, tables 6.17-6.21: the imaging
 // enables belong to GL_ENABLE_BIT and GL_PIXEL_MODE_BIT, the scale/bias, border and
 // GL_MAP_COLOR parameters to GL_PIXEL_MODE_BIT; tables, filters and the color matrix stack
-// are not attributes).
+// are not attributes. Table 6.16: the clear value of an emulated accumulation buffer belongs
+// to GL_ACCUM_BUFFER_BIT).
 struct AttribSnapshot {
   GLbitfield mask = 0;
   TransferState transfer;        // the saved fields only are restored
   bool colorMatrixMode = false;  // GL_TRANSFORM_BIT saves MATRIX_MODE (table 6.7): GL_COLOR too
+  Rgba clearAccum{0, 0, 0, 0};   // GL_ACCUM_BUFFER_BIT, where the accumulation is emulated
 };
 
 // How 8-bit results are written into the framebuffer (write_back.cpp).

@@ -270,6 +270,7 @@ void emPushAttrib(GLbitfield mask) {
   snap.mask = mask;
   if ((mask & (GL_PIXEL_MODE_BIT | GL_ENABLE_BIT)) != 0) copyPixelMode(s.transfer, snap.transfer);
   snap.colorMatrixMode = s.colorMatrixMode;
+  snap.clearAccum = s.clearAccum;
   s.attribStack.push_back(std::move(snap));
 }
 
@@ -284,6 +285,7 @@ void emPopAttrib() {
     copyEnables(snap.transfer, s.transfer);
   }
   if ((snap.mask & GL_TRANSFORM_BIT) != 0) s.colorMatrixMode = snap.colorMatrixMode;
+  if ((snap.mask & GL_ACCUM_BUFFER_BIT) != 0) s.clearAccum = snap.clearAccum;
   s.attribStack.pop_back();
 }
 

@@ -1,4 +1,10 @@
-// legacy_gl/brabec_seidel_passes.cpp — the passes Brabec & Seidel 2001 §2-§4 share.
+// legacy_gl/brabec_seidel_passes.cpp — the steps Brabec & Seidel 2001 §2-§5 share, in the
+// paper's order: depth as colour (§2, Fig. 1; the precisions of §6), the light pass (§2; Fig. 3's
+// jitter; §4's packing convolution), the camera pass (§2, §3) and its saved copy, the
+// projective subtraction (§2) and footnote 1's saturation, the count through the colour table
+// and the colour matrix (§3, Fig. 4), the accumulation (§3, §4), the lighting (§5); then the
+// --dump-passes read-backs. The technique files (ramp_shadow_map.cpp, pcf.cpp, fast_pcf.cpp)
+// run them as their passes.
 // Only OpenGL 1.x calls (+ EXT_blend_subtract / ARB_imaging), so the same code runs on the
 // reference Mesa 7.8.2 (native imaging) and on Debian's OSMesa (imaging/ emulation).
 #include "legacy_gl/brabec_seidel_passes.h"
@@ -24,14 +30,15 @@ constexpr int kRampTexelsFloat = 2;  // two texels 0 and 1, LINEAR: d itself, in
 // At float precision no quantisation step exists; this is the step the colour-table threshold
 // and the depth bias are expressed in (2^-20 of the light's depth range).
 constexpr double kFloatDepthStep = 1.0 / 1048576.0;
+// M at float precision: the colour table's shares are counted in 16-bit steps (its format).
 constexpr double kChannelMax16 = 65535.0;
 // The unit of `depth-bias` at every precision: one 8-bit step of the light's depth range, so
 // that 8-bit, 12-bit and float frames with the same bias differ only by quantisation.
-constexpr double kBiasStep = 1.0 / 255.0;  // shares of a 16-bit colour table
+constexpr double kBiasStep = 1.0 / 255.0;  // fraction of the light's depth range
 // The colour table of Fig. 4: 256 entries (GL_MAX_COLOR_TABLE_WIDTH of the reference is 256).
 constexpr int kShadowTableWidth = 256;
 constexpr int kShadowTableLastIndex = kShadowTableWidth - 1;
-const float kFarDepth[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // map border and clear value: lit
+constexpr float kFarDepth[4] = {1.0f, 1.0f, 1.0f, 1.0f};  // map border and clear value: lit
 
 void setChannelMask(ChannelMask c) { glColorMask(c[0], c[1], c[2], c[3]); }
 
@@ -103,6 +110,8 @@ double shadowTableScale(const DepthEncoding& enc) {
 
 }  // namespace
 
+// ---- Depth as colour (§2, Fig. 1; the precisions of §6): encoding, bias, ramp, map
+
 DepthEncoding depthEncoding(Precision precision) {
   DepthEncoding e;
   e.precision = precision;
@@ -169,6 +178,9 @@ void allocateShadowMap(ShadowMapTexture& map, const DepthEncoding& enc, int texe
   glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, kFarDepth);
   checkGl("allocate shadow map texture");
 }
+
+// ---- The light pass (§2; Fig. 3's jitter into one channel) and the copy into the map (§4
+// Eq. (1): packed)
 
 ChannelMask onlyChannel(int c) {
   ChannelMask m = {false, false, false, false};
@@ -238,6 +250,8 @@ void copyLightPassToMapPacked(const ShadowMapTexture& map, int texels, glm::ivec
   const ScopedEnable convolution(GL_CONVOLUTION_2D);
   copyLightPassToMap(map, texels);
 }
+
+// ---- The camera pass (§2; §3: replicated over the channels) and its saved copy (ours)
 
 void loadCameraToRampTexgen(const Scene& scene, const DepthEncoding& enc, double bias,
                             ScopedTexgen& texgen) {
@@ -323,6 +337,8 @@ void restoreCameraPass(const SavedCameraPass& saved, const RenderParams& params)
   glEnable(GL_DEPTH_TEST);
 }
 
+// ---- The projective subtraction (§2) and footnote 1's saturation
+
 namespace {
 void drawProjectedMap(const Scene& scene, const RenderParams& params, const ShadowMapTexture& map,
                       glm::vec2 offsetTexels) {
@@ -405,6 +421,8 @@ void saturateAlphaByCopy(const RenderParams& params, const DepthEncoding& enc) {
   glEnable(GL_DEPTH_TEST);
 }
 
+// ---- The count (§3, Fig. 4): colour table 0 / share, colour matrix sums into alpha
+
 std::array<double, 4> shadowShares(const DepthEncoding& enc, int samples) {
   std::array<double, 4> shares = {0, 0, 0, 0};
   const double m = enc.channelMax;
@@ -457,6 +475,8 @@ Image readThroughColorTable(const RenderParams& params, const DepthEncoding& enc
   return image;
 }
 
+// ---- The accumulation (§3: "summed up using the accumulation buffer"; §4: 4x4 phases)
+
 void accumulateGroup(double weight, bool first) {
   setChannelMask(kAllChannels);
   glAccum(first ? GL_LOAD : GL_ACCUM, float(weight));
@@ -466,6 +486,8 @@ void returnAccumulation() {
   setChannelMask(kAllChannels);
   glAccum(GL_RETURN, 1.0f);
 }
+
+// ---- Lighting x shadow term (§5) and the visibility read back
 
 void shadeWithShadowTerm(const Scene& scene, const RenderParams& params,
                          const SpotlightConeTexture& coneTexture) {
@@ -504,6 +526,8 @@ Image readVisibilityFromAlpha(const RenderParams& params) {
   for (float& a : alpha.data) a = 1.0f - std::clamp(a, 0.0f, 1.0f);
   return alpha;
 }
+
+// ---- --dump-passes read-backs and the footprint parameter
 
 void capture(Frame& frame, const RenderParams& params, std::string name, std::string caption,
              const Image& image) {

@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/base/errors.h"
+#include "core/gl/context.h"
 #include "core/gl/gl.h"
 #include "core/gl/gl_trace.h"
 #include "core/gl/winding.h"
@@ -127,6 +128,64 @@ void LightTarget::bind() {
 
 void LightTarget::unbind() {
   if (fbo_.id() != 0) glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+namespace {
+// The imaging subset's colour matrix exists: native ARB_imaging or imaging/'s emulation.
+bool hasColorMatrix() {
+  const GlContext* context = GlContext::current();
+  return context != nullptr &&
+         (context->caps().nativeImaging() || context->layerState("imaging") != nullptr);
+}
+
+glm::mat4 readMatrix(GLenum query) {
+  glm::mat4 m(1.0f);
+  glGetFloatv(query, glm::value_ptr(m));
+  return m;
+}
+}  // namespace
+
+ScopedLegacyState::ScopedLegacyState() {
+  const GlTracePause notAPass;
+  glPushAttrib(GL_ALL_ATTRIB_BITS);
+  glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS);
+  projection_ = readMatrix(GL_PROJECTION_MATRIX);
+  modelview_ = readMatrix(GL_MODELVIEW_MATRIX);
+  if (hasColorMatrix()) color_ = readMatrix(GL_COLOR_MATRIX);
+  GLint units = 1, active = GL_TEXTURE0;
+  glGetIntegerv(GL_MAX_TEXTURE_UNITS, &units);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  for (GLint i = 0; i < units; ++i) {
+    glActiveTexture(GLenum(GL_TEXTURE0 + i));
+    texture_.push_back(readMatrix(GL_TEXTURE_MATRIX));
+  }
+  glActiveTexture(GLenum(active));
+  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &framebuffer_);
+}
+
+ScopedLegacyState::~ScopedLegacyState() {
+  try {
+    const GlTracePause notAPass;
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer_));
+    for (size_t i = 0; i < texture_.size(); ++i) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + i));
+      loadMatrix(GL_TEXTURE, texture_[i]);
+    }
+    if (hasColorMatrix()) loadMatrix(GL_COLOR, color_);
+    loadMatrix(GL_PROJECTION, projection_);
+    loadMatrix(GL_MODELVIEW, modelview_);
+    glPopClientAttrib();
+    glPopAttrib();  // the matrix mode and the active unit too (GL_TRANSFORM_BIT, GL_TEXTURE_BIT)
+  } catch (...) {   // no current context or entry point: the error on its way says why
+  }
+}
+
+RenderFunction withScopedLegacyState(RenderFunction render) {
+  return [render = std::move(render)](GlContext& context, const Scene& scene,
+                                      const RenderParams& params) {
+    const ScopedLegacyState state;
+    return render(context, scene, params);
+  };
 }
 
 Image readRedChannel(int width, int height) {

@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 #include <string>
+#include <vector>
 
 #include "core/gl/gl.h"
 #include "core/gl/gl_objects.h"
@@ -60,6 +61,43 @@ class LightTarget {
   Texture depth_;
   Texture color_;  // none without needColor
 };
+
+// Everything a legacy frame may change in its context, given back when the frame ends, also
+// when it throws (the lab and the benchmarks render frame after frame in one context;
+// tests/legacy_gl/state_scope_test.cpp renders every legacy technique after every other):
+//   - every server attribute group, glPushAttrib(GL_ALL_ATTRIB_BITS) (glspec121 §6.1.12 and the
+//     attribute column of tables 6.5-6.21): the enables, texgen modes and planes, texture
+//     environments, bindings and enables of every unit, blending, depth, stencil, lighting,
+//     pixel transfer, viewport, clear values, matrix mode, active unit, current colour and
+//     raster position. Where imaging/ emulates ARB_imaging, its enables (colour tables,
+//     convolutions, histogram, minmax) and pixel-mode parameters (scales, biases, border modes)
+//     go with the same push, as the tables' "pixel" and "pixel/enable" rows assign them
+//     (imaging/internal.h AttribSnapshot);
+//   - the client groups, glPushClientAttrib(GL_CLIENT_ALL_ATTRIB_BITS): pixel store and vertex
+//     arrays;
+//   - what no group holds (the tables' "-" rows; "matrix stacks are never pushed or popped",
+//     appendix F): the projection and modelview matrices, the texture matrix of every texture
+//     unit and the colour matrix, read now and loaded back at the end (the frame keeps the
+//     stacks' full depth); and the framebuffer binding (framebuffer objects came after 1.2.1).
+// Not given back: the contents of objects and tables (textures, colour tables, convolution
+// filters, the accumulation buffer), which every pass loads or clears before it reads them.
+// The scope's own calls are in no pass's GL trace (--dump-passes).
+class ScopedLegacyState {
+ public:
+  ScopedLegacyState();
+  ~ScopedLegacyState();
+  ScopedLegacyState(const ScopedLegacyState&) = delete;
+  ScopedLegacyState& operator=(const ScopedLegacyState&) = delete;
+
+ private:
+  glm::mat4 projection_{1.0f}, modelview_{1.0f}, color_{1.0f};
+  std::vector<glm::mat4> texture_;  // one per texture unit (GL_MAX_TEXTURE_UNITS)
+  GLint framebuffer_ = 0;
+};
+
+// `render` inside a ScopedLegacyState: the render function of every technique legacy_gl lists
+// (legacy_gl/techniques.cpp).
+RenderFunction withScopedLegacyState(RenderFunction render);
 
 // Reads the window's red channel as a one-channel image (visibility masks).
 Image readRedChannel(int width, int height);

@@ -4,6 +4,7 @@
 // float destinations, the Brabec–Seidel color table + sum-into-alpha matrix (their Fig. 4),
 // and the accumulation buffer emulation against OSMesa's real one (4.2.4).
 #include "imaging/imaging_test_util.h"
+#include "imaging/internal.h"
 
 namespace sl::imaging::testing {
 namespace {
@@ -338,7 +339,7 @@ namespace sl::imaging::testing {
 namespace {
 
 // glPushAttrib / glPopAttrib save and restore the emulated imaging enables and pixel-mode
-// parameters with the driver's own (6.1.14, tables 6.14-6.16), as legacy passes rely on.
+// parameters with the driver's own (6.1.12, tables 6.17-6.21), as legacy passes rely on.
 TEST(Pipeline, PushPopAttribRestoresImagingState) {
   auto ctx = emulatedContext(2, 2);
   glPushAttrib(GL_PIXEL_MODE_BIT | GL_ENABLE_BIT);
@@ -368,6 +369,30 @@ TEST(Pipeline, PushPopAttribRestoresImagingState) {
   EXPECT_FALSE(glIsEnabled(GL_HISTOGRAM));
   glGetFloatv(GL_GREEN_BIAS, &v);
   EXPECT_EQ(v, 0.125f);
+  EXPECT_TRUE(drainErrors().empty());
+}
+
+// Where the visual has no accumulation buffer the emulation keeps one, and its clear value
+// belongs to GL_ACCUM_BUFFER_BIT (table 6.16, "accum-buffer"): popped with the driver's state.
+TEST(Pipeline, PushPopAttribRestoresTheEmulatedAccumulationClearValue) {
+  constexpr bool kVisualAccumulation = false;  // the emulation's own buffer
+  auto ctx = emulatedContext(2, 2, ColorFormat::kRgba8, kVisualAccumulation);
+  ASSERT_TRUE(detail::currentState()->emulateAccum);
+  glPushAttrib(GL_ACCUM_BUFFER_BIT);
+  glClearAccum(0.5f, 0.25f, 0.125f, 1.0f);
+  float v[4] = {-1, -1, -1, -1};
+  glGetFloatv(GL_ACCUM_CLEAR_VALUE, v);
+  EXPECT_EQ(v[0], 0.5f);
+  glPopAttrib();
+  glGetFloatv(GL_ACCUM_CLEAR_VALUE, v);
+  for (float c : v) EXPECT_EQ(c, 0.0f);  // the initial value (table 6.16)
+  // Another group leaves it.
+  glClearAccum(0.5f, 0.5f, 0.5f, 0.5f);
+  glPushAttrib(GL_COLOR_BUFFER_BIT);
+  glClearAccum(0.0f, 0.0f, 0.0f, 0.0f);
+  glPopAttrib();
+  glGetFloatv(GL_ACCUM_CLEAR_VALUE, v);
+  EXPECT_EQ(v[0], 0.0f);
   EXPECT_TRUE(drainErrors().empty());
 }
 
