@@ -89,6 +89,13 @@ bool bytePathApplies(const TransferState& t) {
 
 bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h, BytePath path) {
   if (!bytePathApplies(t)) return false;
+  // The colour matrix as the only stage: the vector form of color_matrix_groups.cpp, in place.
+  if (path == BytePath::kFastest && matrixOnlyPipeline(t)) {
+    PixelStore tight;
+    tight.alignment = 1;
+    matrixGroupsToBytes(t, bytes.data(), w, h, GL_RGBA, GL_UNSIGNED_BYTE, tight, bytes.data());
+    return true;
+  }
   // The per-component prefix on the 256 byte values, by the general stages themselves.
   TransferState prefix = t;
   prefix.colorMatrixStack = {Matrix4{}};
