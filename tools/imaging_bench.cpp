@@ -8,6 +8,11 @@
 //   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
 //     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
 //     driver's read-back and the write-back.
+//   * stage without the matrix vectors: where the colour matrix is the only stage, the same
+//     transform without imaging/color_matrix_groups.cpp (the byte path's scalar loops, or for
+//     client groups the general path's float image), in the same run: what the vectors save.
+//     The dense-matrix glDrawPixels rows' stage is the transform from the client groups
+//     (GL_RGBA / GL_RGB of bytes or floats) to the bytes the call writes;
 //   * emulated, glDrawPixels write-back: the same call with imaging/'s write-back forced to
 //     the driver's glDrawPixels (what every emulated call used before write_back.cpp).
 //   * preloaded: the same GL call made the way an unchanged program makes it, through
