@@ -32,8 +32,8 @@
 namespace sl::imaging::detail {
 namespace {
 
-constexpr int kLanes = 16;           // floats per vector: four RGBA groups
-constexpr float kByteMax = 255.0f;   // table 2.6 / table 4.7: bytes are k / 255
+constexpr int kLanes = 16;          // floats per vector: four RGBA groups
+constexpr float kByteMax = 255.0f;  // table 2.6 / table 4.7: bytes are k / 255
 
 typedef float Floats __attribute__((vector_size(kLanes * sizeof(float))));
 typedef int32_t Ints __attribute__((vector_size(kLanes * sizeof(int32_t))));
@@ -100,8 +100,10 @@ template <Post P>
 [[gnu::always_inline]] inline void groups4(const Plan& plan, const Floats x, uint8_t* dst) {
   const Floats r = __builtin_shuffle(x, Ints{0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12});
   const Floats g = __builtin_shuffle(x, Ints{1, 1, 1, 1, 5, 5, 5, 5, 9, 9, 9, 9, 13, 13, 13, 13});
-  const Floats b = __builtin_shuffle(x, Ints{2, 2, 2, 2, 6, 6, 6, 6, 10, 10, 10, 10, 14, 14, 14, 14});
-  const Floats a = __builtin_shuffle(x, Ints{3, 3, 3, 3, 7, 7, 7, 7, 11, 11, 11, 11, 15, 15, 15, 15});
+  const Floats b =
+      __builtin_shuffle(x, Ints{2, 2, 2, 2, 6, 6, 6, 6, 10, 10, 10, 10, 14, 14, 14, 14});
+  const Floats a =
+      __builtin_shuffle(x, Ints{3, 3, 3, 3, 7, 7, 7, 7, 11, 11, 11, 11, 15, 15, 15, 15});
   // Lane 4g + row: k_row0 * R + k_row1 * G + k_row2 * B + k_row3 * A, left to right.
   Floats o = plan.column[0] * r + plan.column[1] * g + plan.column[2] * b + plan.column[3] * a;
   if constexpr (P == kScaled) o = o * plan.scale + plan.bias;
@@ -163,10 +165,9 @@ template <Layout L>
 }
 
 // The same loop compiled for three instruction sets.
-__attribute__((target("avx512f,avx512bw,avx512vl"))) void rowAvx512(const Plan& plan,
-                                                                      Layout layout, Post post,
-                                                                      const uint8_t* src,
-                                                                      uint8_t* dst, size_t n) {
+__attribute__((target("avx512f,avx512bw,avx512vl"))) void rowAvx512(const Plan& plan, Layout layout,
+                                                                    Post post, const uint8_t* src,
+                                                                    uint8_t* dst, size_t n) {
   rowAny(plan, layout, post, src, dst, n);
 }
 __attribute__((target("avx2"))) void rowAvx2(const Plan& plan, Layout layout, Post post,
@@ -254,9 +255,7 @@ void matrixGroupsToBytes(const TransferState& t, const void* data, int w, int h,
     plan.bias[lane] = t.postColorMatrixBias[size_t(lane % 4)];
   }
   const bool scaled = t.postColorMatrixScale != Rgba{1, 1, 1, 1};
-  const Post post = scaled                                       ? kScaled
-                    : t.postColorMatrixBias != Rgba{0, 0, 0, 0} ? kBiased
-                                                                 : kPlain;
+  const Post post = scaled ? kScaled : t.postColorMatrixBias != Rgba{0, 0, 0, 0} ? kBiased : kPlain;
   const RowFunction row = rowFunction(isa);
   // A group costs about as much as two of the scalar loops' components (the work measure).
   constexpr size_t kWorkPerGroup = 2;

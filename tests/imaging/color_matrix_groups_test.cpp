@@ -55,8 +55,8 @@ const char* isaName(MatrixIsa isa) {
 // of byte inputs: both paths must break them the same way); post-color-matrix scale 1 or in
 // [-2, 2], bias 0 or in [-0.5, 0.5].
 TransferState randomState(std::mt19937& rng) {
-  std::uniform_real_distribution<float> entry(-2.5f, 2.5f), scale(-2.0f, 2.0f),
-      bias(-0.5f, 0.5f), unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> entry(-2.5f, 2.5f), scale(-2.0f, 2.0f), bias(-0.5f, 0.5f),
+      unit(0.0f, 1.0f);
   const float exact[] = {0.0f, 0.5f, -0.5f, 1.0f, -1.0f, 2.0f, 0.25f};
   TransferState t;
   Matrix4& m = t.colorMatrixStack.back();
@@ -131,7 +131,8 @@ std::string firstDifference(const std::vector<uint8_t>& got, const std::vector<u
 size_t clientBytes(const Layout& l, int w, int h, const PixelStore& store) {
   const size_t size = l.type == GL_FLOAT ? 4 : 1, n = l.format == GL_RGBA ? 4 : 3;
   size_t row = size_t(store.rowLength > 0 ? store.rowLength : w) * n * size;
-  if (size < size_t(store.alignment)) row = (row + store.alignment - 1) / store.alignment * store.alignment;
+  if (size < size_t(store.alignment))
+    row = (row + store.alignment - 1) / store.alignment * store.alignment;
   return row * size_t(h + store.skipRows) + size_t(store.skipPixels) * n * size + 64;
 }
 
@@ -162,11 +163,10 @@ TEST(ColorMatrixGroups, RandomDenseMatricesEveryLayoutAndInstructionSet) {
             generalPath(state, data.data(), c.w, c.h, l.format, l.type, *c.store);
         for (MatrixIsa isa : availableIsas()) {
           std::vector<uint8_t> got(size_t(c.w) * c.h * 4, 0xCD);
-          matrixGroupsToBytes(state, data.data(), c.w, c.h, l.format, l.type, *c.store,
-                              got.data(), isa);
-          ASSERT_EQ(firstDifference(got, want), "")
-              << "state " << k << ", " << l.name << ", " << c.w << "x" << c.h << ", "
-              << isaName(isa);
+          matrixGroupsToBytes(state, data.data(), c.w, c.h, l.format, l.type, *c.store, got.data(),
+                              isa);
+          ASSERT_EQ(firstDifference(got, want), "") << "state " << k << ", " << l.name << ", "
+                                                    << c.w << "x" << c.h << ", " << isaName(isa);
           compared += got.size();
         }
       }
@@ -245,8 +245,8 @@ TEST(ColorMatrixGroups, DrawPixelsAndTexImageWriteTheGeneralPathsBytes) {
   glBindTexture(GL_TEXTURE_2D, texture);
   for (const Layout& l : kLayouts) {
     const std::vector<uint8_t> data = randomClient(l, clientBytes(l, kW, kH, tight), rng);
-    const std::vector<uint8_t> want = generalPath(state, data.data(), kW, kH, l.format, l.type,
-                                                  tight);
+    const std::vector<uint8_t> want =
+        generalPath(state, data.data(), kW, kH, l.format, l.type, tight);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glWindowPos2i(0, 0);
     glDrawPixels(kW, kH, l.format, l.type, data.data());
