@@ -89,6 +89,18 @@ bool bytePathApplies(const TransferState& t) {
 
 bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h, BytePath path) {
   if (!bytePathApplies(t)) return false;
+  // The colour matrix as the only stage: the vector form of color_matrix_groups.cpp, in place,
+  // where the processor has AVX-512. Its AVX2 and SSE2 forms (GCC splits the 16-lane vectors,
+  // comparisons and byte narrowing partly lane by lane) measured slower than the loops below
+  // on RGBA8 (tools/imaging_bench's stage without the matrix vectors, and matrixGroupsToBytes
+  // at each MatrixIsa); for client RGB / float groups they still beat the float image.
+  if (path == BytePath::kFastest && matrixOnlyPipeline(t) &&
+      matrixIsaAvailable(MatrixIsa::kAvx512)) {
+    PixelStore tight;
+    tight.alignment = 1;
+    matrixGroupsToBytes(t, bytes.data(), w, h, GL_RGBA, GL_UNSIGNED_BYTE, tight, bytes.data());
+    return true;
+  }
   // The per-component prefix on the 256 byte values, by the general stages themselves.
   TransferState prefix = t;
   prefix.colorMatrixStack = {Matrix4{}};

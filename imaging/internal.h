@@ -207,6 +207,25 @@ bool transformBytes(TransferState& t, std::vector<uint8_t>& bytes, int w, int h,
                     BytePath path = BytePath::kFastest);
 bool bytePathApplies(const TransferState& t);
 
+// ---- the colour matrix alone, client groups to bytes (color_matrix_groups.cpp) ----
+struct PixelStore;  // client memory layout (below)
+// Stage 6 (the color matrix, not identity, with its post-color-matrix scale and bias) is the
+// only stage of 3.6.5 that changes RGBA groups: no histogram, minmax or table after it.
+bool matrixOnlyPipeline(const TransferState& t);
+// matrixOnlyPipeline, for client groups that matrixGroupsToBytes reads: GL_RGBA or GL_RGB of
+// GL_UNSIGNED_BYTE or GL_FLOAT.
+bool matrixGroupsApply(const TransferState& t, GLenum format, GLenum type);
+// The instruction set of matrixGroupsToBytes: kBest picks the widest this processor has (tests
+// run each available one and compare).
+enum class MatrixIsa { kBest, kAvx512, kAvx2, kSse2 };
+bool matrixIsaAvailable(MatrixIsa isa);
+// w x h client groups (unpacked per `store`, 3.6.4) through stage 6 and the final conversion of
+// 4.3.2 to tight RGBA8 in `out` (w * h * 4 bytes, rows bottom-up): bytes identical to
+// unpackImage, runPipeline and the final conversion, four groups per vector.
+void matrixGroupsToBytes(const TransferState& t, const void* data, int w, int h, GLenum format,
+                         GLenum type, const PixelStore& store, uint8_t* out,
+                         MatrixIsa isa = MatrixIsa::kBest);
+
 // ---- vector maps of the 8-bit path (byte_maps.cpp) ----
 constexpr int kMaxByteSteps = 4;  // breakpoints per component the vector maps test
 constexpr int kMaxClasses = 16;   // classes of RGBA groups: one 16-byte shuffle table

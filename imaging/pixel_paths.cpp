@@ -244,6 +244,15 @@ void emDrawPixels(GLsizei w, GLsizei h, GLenum format, GLenum type, const void* 
     drawBytes(*s, w, h, bytes.data());
     return;
   }
+  if (data != nullptr && w > 0 && h > 0 && eightBitFramebuffer(*s) &&
+      matrixGroupsApply(s->transfer, format, type)) {  // RGB / float groups, matrix only
+    std::vector<uint8_t>& bytes = s->scratchOut;
+    bytes.resize(size_t(w) * h * 4);  // every byte is written
+    matrixGroupsToBytes(s->transfer, data, w, h, format, type, unpackStore(s->driver),
+                        bytes.data());
+    drawBytes(*s, w, h, bytes.data());
+    return;
+  }
   Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;  // sink
@@ -390,8 +399,19 @@ void emTexImage2D(GLenum target, GLint level, GLint internalformat, GLsizei w, G
     return s->driver.TexImage2D(target, level, internalformat, cw, ch, border, format, type,
                                 nullptr);
   }
-  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
+  if (w > 0 && h > 0 && eightBitTexture(GLenum(internalformat)) &&
+      matrixGroupsApply(s->transfer, format, type)) {
+    std::vector<uint8_t>& bytes = s->scratchOut;
+    bytes.resize(size_t(w) * h * 4);
+    matrixGroupsToBytes(s->transfer, data, w, h, format, type, unpackStore(s->driver),
+                        bytes.data());
+    ClientTransfers tight(*s);
+    s->driver.TexImage2D(target, level, internalformat, w, h, border, GL_RGBA, GL_UNSIGNED_BYTE,
+                         bytes.data());
+    return;
+  }
+  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   const bool kept = runPipeline(s->transfer, image, Dimensionality::k2D);
   uploadTexture(*s, Dimensionality::k2D, false, target, level, internalformat, 0, 0, border,
                 kept ? &image : nullptr, image.width, image.height);
@@ -403,8 +423,19 @@ void emTexSubImage2D(GLenum target, GLint level, GLint xoffset, GLint yoffset, G
   if (passThrough(s) || checkColorFormat(format, type) != GL_NO_ERROR || w < 0 || h < 0 ||
       data == nullptr)
     return s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, format, type, data);
-  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   refreshColorMaps(*s);
+  if (w > 0 && h > 0 && matrixGroupsApply(s->transfer, format, type) &&
+      eightBitTexture(levelFormat(*s, target, level))) {
+    std::vector<uint8_t>& bytes = s->scratchOut;
+    bytes.resize(size_t(w) * h * 4);
+    matrixGroupsToBytes(s->transfer, data, w, h, format, type, unpackStore(s->driver),
+                        bytes.data());
+    ClientTransfers tight(*s);
+    s->driver.TexSubImage2D(target, level, xoffset, yoffset, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
+                            bytes.data());
+    return;
+  }
+  Image4 image = unpackImage(data, w, h, format, type, unpackStore(s->driver));
   if (!runPipeline(s->transfer, image, Dimensionality::k2D)) return;
   uploadTexture(*s, Dimensionality::k2D, true, target, level, 0, xoffset, yoffset, 0, &image,
                 image.width, image.height);

@@ -8,6 +8,11 @@
 //   * stage: the emulation's transform alone (the 8-bit byte path where it applies, else
 //     runPipeline on a float RGBA image), the part imaging/ controls; the GL call adds the
 //     driver's read-back and the write-back.
+//   * stage without the matrix vectors: where the colour matrix is the only stage, the same
+//     transform without imaging/color_matrix_groups.cpp (the byte path's scalar loops, or for
+//     client groups the general path's float image), in the same run: what the vectors save.
+//     The dense-matrix glDrawPixels rows' stage is the transform from the client groups
+//     (GL_RGBA / GL_RGB of bytes or floats) to the bytes the call writes;
 //   * emulated, glDrawPixels write-back: the same call with imaging/'s write-back forced to
 //     the driver's glDrawPixels (what every emulated call used before write_back.cpp).
 //   * preloaded: the same GL call made the way an unchanged program makes it, through
@@ -121,6 +126,50 @@ void luminanceMatrix() {
   glLoadMatrixf(m);
   glMatrixMode(GL_MODELVIEW);
 }
+// A dense 4x4 colour matrix with negative entries and entries above 1 (a saturation boost
+// with a hue shift and alpha mixed in; the post-color-matrix bias 0.02): the general case of
+// glColorMatrix, results below 0 and above 1 clamped by the final conversion.
+void denseMatrix() {
+  const float m[16] = {1.35f,  -0.12f, -0.21f, 0.05f, -0.28f, 1.42f,  -0.17f, 0.1f,
+                       -0.07f, -0.3f,  1.38f,  0.2f,  0.04f,  -0.02f, 0.03f,  0.75f};
+  glMatrixMode(GL_COLOR);
+  glLoadMatrixf(m);
+  glMatrixMode(GL_MODELVIEW);
+  for (GLenum bias : {GL_POST_COLOR_MATRIX_RED_BIAS, GL_POST_COLOR_MATRIX_GREEN_BIAS,
+                      GL_POST_COLOR_MATRIX_BLUE_BIAS, GL_POST_COLOR_MATRIX_ALPHA_BIAS})
+    glPixelTransferf(bias, 0.02f);
+}
+// Client groups of the dense-matrix glDrawPixels rows: the bench image's bytes in `format`
+// (GL_RGBA or GL_RGB) and `type` (GL_UNSIGNED_BYTE or GL_FLOAT, as bytes / 255).
+const std::vector<uint8_t>& clientGroups(GLenum format, GLenum type, int w, int h) {
+  static std::vector<uint8_t> data;
+  static GLenum madeFormat = 0, madeType = 0;
+  static size_t madeGroups = 0;
+  const size_t groups = size_t(w) * h;
+  if (madeFormat == format && madeType == type && madeGroups == groups) return data;
+  const int n = format == GL_RGBA ? 4 : 3;
+  const size_t size = type == GL_FLOAT ? sizeof(float) : 1;
+  data.assign(groups * size_t(n) * size, 0);
+  for (size_t i = 0; i < groups * size_t(n); ++i) {
+    const uint8_t v = uint8_t((i * 2654435761u) >> 24);
+    if (type == GL_FLOAT) {
+      const float f = float(v) / 255.0f;
+      std::memcpy(data.data() + i * sizeof f, &f, sizeof f);
+    } else {
+      data[i] = v;
+    }
+  }
+  madeFormat = format, madeType = type, madeGroups = groups;
+  return data;
+}
+std::function<void(int, int)> drawGroups(GLenum format, GLenum type) {
+  return [format, type](int w, int h) {
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glWindowPos2i(0, 0);
+    glDrawPixels(w, h, format, type, clientGroups(format, type, w, h).data());
+    glFinish();
+  };
+}
 void blur3x3() {
   const std::vector<float> k = detail::binomialBlur3x3Rgba();
   glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 3, 3, GL_RGBA, GL_FLOAT, k.data());
@@ -142,6 +191,9 @@ void resetAll() {
   glMatrixMode(GL_COLOR);
   glLoadIdentity();
   glMatrixMode(GL_MODELVIEW);
+  for (GLenum bias : {GL_POST_COLOR_MATRIX_RED_BIAS, GL_POST_COLOR_MATRIX_GREEN_BIAS,
+                      GL_POST_COLOR_MATRIX_BLUE_BIAS, GL_POST_COLOR_MATRIX_ALPHA_BIAS})
+    glPixelTransferf(bias, 0.0f);
 }
 
 struct Operation {
@@ -151,6 +203,9 @@ struct Operation {
   bool noStage = false;     // no imaging/ transform of its own (accumulation buffer, floor rows)
   bool osmesaOnly = false;  // a write-back candidate of Debian's OSMesa: no reference call
   bool writesBack = true;   // ends in imaging/'s write-back (the glDrawPixels column applies)
+  // glDrawPixels of client groups in this format and type (0: the framebuffer's RGBA8 bytes):
+  // the stage is the emulation's transform from those groups to the bytes it writes.
+  GLenum clientFormat = 0, clientType = 0;
 };
 
 // ---- write-back candidates: one w x h RGBA8 image into the window at (0, 0) ----
@@ -295,6 +350,15 @@ std::vector<Operation> allOperations() {
        },
        copyPixels},
       {"+ colour matrix alone (RGB to luminance, dense 3x3 block)", luminanceMatrix, copyPixels},
+      {"+ dense 4x4 colour matrix (negative and >1 entries, post bias)", denseMatrix, copyPixels},
+      {"glDrawPixels GL_RGBA GL_UNSIGNED_BYTE + dense 4x4 colour matrix", denseMatrix,
+       drawGroups(GL_RGBA, GL_UNSIGNED_BYTE), false, false, true, GL_RGBA, GL_UNSIGNED_BYTE},
+      {"glDrawPixels GL_RGB GL_UNSIGNED_BYTE + dense 4x4 colour matrix", denseMatrix,
+       drawGroups(GL_RGB, GL_UNSIGNED_BYTE), false, false, true, GL_RGB, GL_UNSIGNED_BYTE},
+      {"glDrawPixels GL_RGBA GL_FLOAT + dense 4x4 colour matrix", denseMatrix,
+       drawGroups(GL_RGBA, GL_FLOAT), false, false, true, GL_RGBA, GL_FLOAT},
+      {"glDrawPixels GL_RGB GL_FLOAT + dense 4x4 colour matrix", denseMatrix,
+       drawGroups(GL_RGB, GL_FLOAT), false, false, true, GL_RGB, GL_FLOAT},
       {"+ 3x3 convolution", blur3x3, copyPixels},
       {"glCopyTexSubImage2D + 3x3 packing kernel (Eq. 1)", packingKernel,
        [](int w, int h) {
@@ -368,8 +432,14 @@ std::vector<double> measure(Backend backend, int w, int h, int reps, double& mem
 }
 
 // The transform alone (imaging/'s part of the call) on a float image, best of as many runs as
-// the memcpy it is divided by (kSamplesPerRepetition).
-std::vector<double> measureStages(int w, int h, int repetitions, double base) {
+// the memcpy it is divided by (kSamplesPerRepetition). `without`: where the colour matrix is
+// the only stage, the same transform without the matrix vectors of
+// imaging/color_matrix_groups.cpp (RGBA8 bytes: transformBytes' scalar loops; client groups:
+// the float image of the general path), else -1.
+struct StageRatios {
+  std::vector<double> fast, without;
+};
+StageRatios measureStages(int w, int h, int repetitions, double base) {
   const int reps = repetitions * kSamplesPerRepetition;  // as many samples as the memcpy
   using namespace detail;
   ContextSpec spec;
@@ -377,27 +447,51 @@ std::vector<double> measureStages(int w, int h, int repetitions, double base) {
   spec.height = 16;
   auto ctx = GlContext::create(spec);
   imaging::install(*ctx);
-  std::vector<double> ratios;
+  StageRatios ratios;
   Image4 source(w, h);
   std::vector<uint8_t> bytes(source.px.size());
   for (size_t i = 0; i < source.px.size(); ++i) {
     bytes[i] = uint8_t((i * 2654435761u) >> 24);
     source.px[i] = float(bytes[i]) / 255.0f;
   }
+  PixelStore tight;
+  tight.alignment = 1;
   for (const Operation& op : operations()) {
     if (op.noStage) {
-      ratios.push_back(-1.0);
+      ratios.fast.push_back(-1.0);
+      ratios.without.push_back(-1.0);
       continue;
     }
     op.setup();
     State& s = *currentState();
     if (pipelineIsIdentity(s.transfer, Dimensionality::k2D)) {  // the call forwards: no stage
       resetAll();
-      ratios.push_back(-1.0);
+      ratios.fast.push_back(-1.0);
+      ratios.without.push_back(-1.0);
       continue;
     }
-    double ms = 0, copyMs = 0;
-    if (convolveBytesApplies(s.transfer)) {  // what the call runs for 8-bit buffers
+    const bool matrixOnly = matrixOnlyPipeline(s.transfer);
+    double ms = 0, copyMs = 0, withoutMs = -1, withoutCopyMs = 0;
+    if (op.clientFormat != 0) {  // glDrawPixels of client groups: to the bytes it writes
+      const std::vector<uint8_t>& data = clientGroups(op.clientFormat, op.clientType, w, h);
+      std::vector<uint8_t> out(size_t(w) * h * 4);
+      auto general = [&] {  // unpack, the stages, the final conversion
+        Image4 image = unpackImage(data.data(), w, h, op.clientFormat, op.clientType, tight);
+        runPipeline(s.transfer, image, Dimensionality::k2D);
+        packImage(image, out.data(), GL_RGBA, GL_UNSIGNED_BYTE, tight, true);
+      };
+      if (matrixGroupsApply(s.transfer, op.clientFormat, op.clientType)) {
+        ms = bestMs(
+            [&] {
+              matrixGroupsToBytes(s.transfer, data.data(), w, h, op.clientFormat, op.clientType,
+                                  tight, out.data());
+            },
+            reps);
+        withoutMs = bestMs(general, reps);
+      } else {
+        ms = bestMs(general, reps);
+      }
+    } else if (convolveBytesApplies(s.transfer)) {  // what the call runs for 8-bit buffers
       std::vector<uint8_t> out;
       int ow = 0, oh = 0;
       ms = bestMs([&] { convolveBytes(s.transfer, bytes, w, h, out, ow, oh); }, reps);
@@ -410,6 +504,15 @@ std::vector<double> measureStages(int w, int h, int repetitions, double base) {
           },
           reps);
       copyMs = bestMs([&] { work = bytes; }, reps);
+      if (matrixOnly) {
+        withoutMs = bestMs(
+            [&] {
+              work = bytes;
+              transformBytes(s.transfer, work, w, h, BytePath::kScalar);
+            },
+            reps);
+        withoutCopyMs = copyMs;
+      }
     } else {
       Image4 work;
       ms = bestMs(
@@ -421,7 +524,9 @@ std::vector<double> measureStages(int w, int h, int repetitions, double base) {
       copyMs = bestMs([&] { work = source; }, reps);
     }
     resetAll();
-    ratios.push_back(std::max(0.0, ms - copyMs) / base);  // the stages, without the copy
+    ratios.fast.push_back(std::max(0.0, ms - copyMs) / base);  // the stages, without the copy
+    ratios.without.push_back(withoutMs < 0 ? -1.0
+                                           : std::max(0.0, withoutMs - withoutCopyMs) / base);
   }
   return ratios;
 }
@@ -524,10 +629,11 @@ int run(int argc, char** argv) {
       "preloaded = the same call by an unchanged program through libshadowlab-imaging.so)\n\n",
       haveReference ? "" : ": NOT FOUND, column empty");
   std::printf(
-      "| operation | size | stage (imaging/ transform) | emulated call | emulated call, "
+      "| operation | size | stage (imaging/ transform) | stage without the matrix vectors | "
+      "emulated call | emulated call, "
       "glDrawPixels write-back | reference call | emulated / reference | preloaded call | "
       "preloaded / emulated |\n"
-      "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+      "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   const auto ops = operations();
   for (const auto& sz : sizes) {
     double base = 0, refBase = 0;
@@ -540,9 +646,11 @@ int run(int argc, char** argv) {
     std::vector<double> reference(ops.size(), -1.0);
     if (haveReference) reference = measure(Backend::kReference, sz[0], sz[1], reps, refBase);
     for (size_t i = 0; i < ops.size(); ++i) {
-      char stage[32] = "-", ref[32] = "-", speed[32] = "-", old[32] = "-";
+      char stage[32] = "-", without[32] = "-", ref[32] = "-", speed[32] = "-", old[32] = "-";
       if (drawn[i] >= 0 && ops[i].writesBack) std::snprintf(old, sizeof old, "%.1fx", drawn[i]);
-      if (stages[i] >= 0) std::snprintf(stage, sizeof stage, "%.1fx", stages[i]);
+      if (stages.fast[i] >= 0) std::snprintf(stage, sizeof stage, "%.1fx", stages.fast[i]);
+      if (stages.without[i] >= 0)
+        std::snprintf(without, sizeof without, "%.1fx", stages.without[i]);
       if (reference[i] >= 0 && emulated[i] >= 0) {
         std::snprintf(ref, sizeof ref, "%.0fx", reference[i]);
         // Both ratios are to a memcpy measured in the same process run: the quotient is the
@@ -558,8 +666,8 @@ int run(int argc, char** argv) {
         std::snprintf(preRatio, sizeof preRatio, "%.2f",
                       (preloaded.ratios[i] * preloaded.base) / (emulated[i] * base));
       }
-      std::printf("| %s | %dx%d | %s | %.1fx | %s | %s | %s | %s | %s |\n", ops[i].name, sz[0],
-                  sz[1], stage, emulated[i], old, ref, speed, pre, preRatio);
+      std::printf("| %s | %dx%d | %s | %s | %.1fx | %s | %s | %s | %s | %s |\n", ops[i].name, sz[0],
+                  sz[1], stage, without, emulated[i], old, ref, speed, pre, preRatio);
     }
   }
   return 0;

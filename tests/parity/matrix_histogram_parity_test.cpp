@@ -35,6 +35,76 @@ TEST_P(ColorMatrixParity, ReadPixelsAndQuery) {
 }
 INSTANTIATE_TEST_SUITE_P(SixMatrices, ColorMatrixParity, ::testing::Range(0, 6));
 
+// Dense colour matrices (every entry non-zero, negative entries and entries above 1) on
+// glDrawPixels of GL_RGBA / GL_RGB groups of GL_UNSIGNED_BYTE / GL_FLOAT (the layouts of the
+// vector path, imaging/color_matrix_groups.cpp), with and without post-color-matrix scale and
+// bias; results below 0 and above 1 are clamped by the final conversion (4.3.2). The float
+// groups run from -200/255 to 310/255. Entries and scales are fifths, biases and float inputs
+// whole 1/255 steps, so 255 times every exact result is a multiple of 1/25: at least 0.02 of a
+// step from a rounding tie. Departure F (ReferenceSaturatesAbove0996) is marked from the exact
+// value, computed here in double.
+const float kDenseMatrices[][16] = {
+    // column-major: R' = 1.4R - 0.2G - 0.4B + 0.2A, ...
+    {1.4f, -0.6f, 0.2f, 0.4f, -0.2f, 1.2f, -0.4f, 0.2f, -0.4f, 0.6f, 1.6f, -0.2f, 0.2f, -0.2f, 0.4f,
+     0.8f},
+    {-0.8f, 0.4f, 1.2f, 0.6f, 2.2f, -1.4f, 0.4f, -0.2f, 0.6f, 1.8f, -0.6f, 0.4f, -0.2f, 0.2f, 0.2f,
+     1.2f},
+};
+class DenseColorMatrixParity : public ::testing::TestWithParam<int> {};
+TEST_P(DenseColorMatrixParity, DrawPixelsEveryLayout) {
+  SL_REQUIRE_REFERENCE();
+  const int layout = GetParam() % 4, k = GetParam() / 4;
+  const GLenum format = layout % 2 == 0 ? GL_RGBA : GL_RGB;
+  const GLenum type = layout < 2 ? GL_UNSIGNED_BYTE : GL_FLOAT;
+  const int n = format == GL_RGBA ? 4 : 3;
+  const std::vector<uint8_t> pattern = patternImage(kParityW, kParityH, 131 + GetParam());
+  std::vector<uint8_t> bytes(size_t(kParityW) * kParityH * n);
+  std::vector<float> floats(bytes.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    bytes[i] = pattern[i];
+    floats[i] = float(2 * int(pattern[i]) - 200) / 255.0f;
+  }
+  const float scale[4] = {1.2f, 0.8f, 1.4f, 0.6f};
+  const float bias[4] = {10.0f / 255.0f, -20.0f / 255.0f, 5.0f / 255.0f, 30.0f / 255.0f};
+  const bool scaled = k == 1;
+  // The exact value of each written component, for departure F's band.
+  std::vector<uint8_t> band(size_t(kParityW) * kParityH * 4);
+  for (size_t g = 0; g < band.size() / 4; ++g) {
+    double x[4] = {0, 0, 0, 1};
+    for (int c = 0; c < n; ++c)
+      x[c] = type == GL_FLOAT ? double(2 * int(pattern[g * n + c]) - 200) / 255.0
+                              : double(pattern[g * n + c]) / 255.0;
+    for (int r = 0; r < 4; ++r) {
+      double v = 0;
+      for (int c = 0; c < 4; ++c) v += double(kDenseMatrices[k][c * 4 + r]) * x[c];
+      if (scaled) v = v * scale[r] + bias[r];
+      band[g * 4 + size_t(r)] = inSaturationBand(float(v)) ? 1 : 0;
+    }
+  }
+  checkParity([&](Outcome& o) {
+    glMatrixMode(GL_COLOR);
+    glLoadMatrixf(kDenseMatrices[k]);
+    glMatrixMode(GL_MODELVIEW);
+    if (scaled) {
+      const GLenum scales[4] = {GL_POST_COLOR_MATRIX_RED_SCALE, GL_POST_COLOR_MATRIX_GREEN_SCALE,
+                                GL_POST_COLOR_MATRIX_BLUE_SCALE, GL_POST_COLOR_MATRIX_ALPHA_SCALE};
+      const GLenum biases[4] = {GL_POST_COLOR_MATRIX_RED_BIAS, GL_POST_COLOR_MATRIX_GREEN_BIAS,
+                                GL_POST_COLOR_MATRIX_BLUE_BIAS, GL_POST_COLOR_MATRIX_ALPHA_BIAS};
+      for (int c = 0; c < 4; ++c) {
+        glPixelTransferf(scales[c], scale[c]);
+        glPixelTransferf(biases[c], bias[c]);
+      }
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glWindowPos2i(0, 0);
+    const void* data = type == GL_FLOAT ? static_cast<const void*>(floats.data()) : bytes.data();
+    glDrawPixels(kParityW, kParityH, format, type, data);
+    appendBytes(o, readWindow());
+    o.saturationBand = band;
+  });
+}
+INSTANTIATE_TEST_SUITE_P(FourLayoutsTwoMatrices, DenseColorMatrixParity, ::testing::Range(0, 8));
+
 // The stack: push, multiply, pop, depths, overflow past 4 and underflow.
 TEST(ColorMatrixStackParity, PushMultiplyPopOverflowUnderflow) {
   SL_REQUIRE_REFERENCE();
