@@ -74,6 +74,12 @@ constexpr const char* kSearchRegionDeviation =
     "region through which the light disk is seen from the receiver, down to the light's fitted "
     "near plane (the nearest geometry), radius R (z_r - near) / (z_r 2 near tan(cone / 2)); "
     "search and filter radii are clamped to an eighth of the map.";
+constexpr const char* kShaderPlaneDeviation =  // pcss.frag blockerAt
+    "DEVIATION (ours, after Fernando 2005, not in shared/papers): the tap compares the texel's "
+    "depth with the receiver's plane at the texel's centre (pcss.cpp says why).";
+constexpr const char* kShaderSearchDeviation =  // pcss.frag findBlockers
+    "DEVIATION (ours, after Fernando 2005, not in shared/papers): the search reaches down to the "
+    "light's fitted near plane and is clamped to uMaxRadius (pcss.cpp says why).";
 
 // A deterministic uniform number in [0, 1) from a 32-bit xorshift: std:: distributions differ
 // between standard libraries.
@@ -146,7 +152,8 @@ PassTable pcssPasses() {
                                    "pcss.frag: blocker search, w_p = (d_r - d_b) w_light / d_b, "
                                    "PCF over w_p (ours, after Fernando 2005)"),
        .shaders = {"pcss-blocker-search", "pcss-penumbra", "pcss-filter"},
-       .deviations = {kReceiverPlaneDeviation, kSearchRegionDeviation}},
+       .deviations = {kReceiverPlaneDeviation, kSearchRegionDeviation, kShaderPlaneDeviation,
+                      kShaderSearchDeviation}},
   };
 }
 

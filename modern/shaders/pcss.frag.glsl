@@ -46,7 +46,8 @@ bool blockerAt(Receiver r, vec2 uv, out float depth) {
   ivec2 t = ivec2(floor(uv * vec2(size)));
   if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size))) return false;  // no caster
   depth = texelFetch(uLightDepth, t, 0).r;
-  // DEVIATION (receiver plane, pcss.cpp): the receiver's depth at the texel's centre.
+  // DEVIATION (ours, after Fernando 2005, not in shared/papers): the tap compares the texel's
+  // depth with the receiver's plane at the texel's centre (pcss.cpp says why).
   vec2 centre = (vec2(t) + 0.5) / vec2(size);
   float receiver = r.z + dot(r.dzduv, centre - r.uv) - r.bias;
   return depth < receiver;
@@ -56,6 +57,8 @@ bool blockerAt(Receiver r, vec2 uv, out float depth) {
 float findBlockers(Receiver r) {
   // The cone from the receiver to the light disk (radius R) is R (z_r - z) / z_r wide at depth
   // z, and the map spans 2 z tan(cone / 2) there: widest at the nearest depth, uLightNear.
+  // DEVIATION (ours, after Fernando 2005, not in shared/papers): the search reaches down to the
+  // light's fitted near plane and is clamped to uMaxRadius (pcss.cpp says why).
   float radius = uLightRadius * (r.z - uLightNear) / (r.z * 2.0 * uLightNear * uTanHalfCone);
   radius = clamp(radius, 0.0, uMaxRadius);
   float sum = 0.0;
