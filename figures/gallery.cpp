@@ -203,6 +203,23 @@ const std::vector<GalleryEntry>& galleryEntries() {
        {{"param", "remap=off"}},
        {},
        {88, 144, 144, 90, 3}},
+      {"pcss-few-taps",
+       "PCSS with few filter taps",
+       "Percentage-closer soft shadows (ours, after Fernando 2005) filter each pixel over a "
+       "region as wide as its estimated penumbra. With a light of radius 0.5 that region spans "
+       "many texels, and 4 taps at fixed offsets show it: the penumbra is a few shifted copies of "
+       "the hard shadow, not a ramp.",
+       "filter-taps=4: four shadow-map comparisons per pixel over the penumbra (light radius 0.5)",
+       "the default 36 taps: a smoother ramp with the same width",
+       "brabec",
+       400,
+       300,
+       {{"param", "light-radius=0.5"}},
+       "modern.pcss",
+       "modern.pcss",
+       {{"param", "filter-taps=4"}},
+       {},
+       {80, 95, 260, 125, 2}},
       {"woo-thin-caster",
        "Woo's midpoint fails on a thin caster",
        "Woo's map stores the midpoint between the nearest and the second-nearest surface, "

@@ -5,6 +5,7 @@
 //   modern.gems16, modern.gems4: Bunnell & Pellacini, GPU Gems ch. 11
 //   modern.csm, modern.vsm: Annen et al. 2007 (and Donnelly & Lauritzen 2006)
 //   modern.volumes, modern.hybrid, modern.smoothies: Chan 2004
+//   modern.pcss: percentage-closer soft shadows (ours, after Fernando 2005; not in shared/papers)
 #pragma once
 
 #include <vector>

@@ -5,6 +5,7 @@
 #include "modern/hardware_shadow_map.h"
 #include "modern/hybrid_shadows.h"
 #include "modern/modern.h"
+#include "modern/pcss.h"
 #include "modern/shadow_volumes.h"
 #include "modern/smoothies.h"
 #include "modern/variance_shadow_map.h"
@@ -32,6 +33,8 @@ std::vector<Technique> techniques() {
       shadowVolumesTechnique(),
       hybridShadowsTechnique(),
       smoothiesTechnique(),
+      // Fernando 2005 (not in shared/papers): percentage-closer soft shadows
+      pcssTechnique(),
   };
 }
 
