@@ -1,6 +1,7 @@
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/convolution_shadow_map.h"
 #include "modern/depth_layer_shadow_maps.h"
+#include "modern/exponential_shadow_map.h"
 #include "modern/gems_pcf.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/hybrid_shadows.h"
@@ -28,6 +29,8 @@ std::vector<Technique> techniques() {
       // Annen et al. 2007 and Donnelly & Lauritzen 2006
       convolutionShadowMapTechnique(),
       varianceShadowMapTechnique(),
+      // The filtered-map baselines after VSM (ours, after papers not in shared/papers)
+      exponentialShadowMapTechnique(),
       // Chan 2004
       shadowVolumesTechnique(),
       hybridShadowsTechnique(),

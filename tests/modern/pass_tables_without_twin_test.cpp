@@ -56,8 +56,8 @@ TEST_P(PassTablesWithoutTwin, FramePassesAndBuffersAreTheDeclaredOnes) {
 
 INSTANTIATE_TEST_SUITE_P(Modern, PassTablesWithoutTwin,
                          ::testing::Values("modern.gems16", "modern.gems4", "modern.csm",
-                                           "modern.vsm", "modern.volumes", "modern.hybrid",
-                                           "modern.smoothies"),
+                                           "modern.vsm", "modern.esm", "modern.volumes",
+                                           "modern.hybrid", "modern.smoothies"),
                          [](const auto& info) { return testName(info.param); });
 
 // modern.gems16 with the bicubic kernel runs its own variant's passes: the same ids, the
