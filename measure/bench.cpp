@@ -527,7 +527,12 @@ std::vector<SceneRun> benchSceneRuns(const BenchOptions& options) {
   const auto bleedingRun = [] {
     Scene s = loadScene(kBleedingScene);
     s.name = kBleedingScene;  // the claim looks for this name
-    return SceneRun{s, {"modern.vsm", "modern.csm", "modern.esm"}, false, false, false};
+    return SceneRun{
+        s,
+        {"modern.vsm", "modern.csm", "modern.esm", "modern.evsm2", "modern.evsm4", "modern.msm"},
+        false,
+        false,
+        false};
   };
   for (const std::string& name : scenes)
     runs.push_back(name == kBleedingScene ? bleedingRun()

@@ -2,10 +2,12 @@
 #include "modern/convolution_shadow_map.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/exponential_shadow_map.h"
+#include "modern/exponential_variance_shadow_map.h"
 #include "modern/gems_pcf.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/hybrid_shadows.h"
 #include "modern/modern.h"
+#include "modern/moment_shadow_map.h"
 #include "modern/shadow_volumes.h"
 #include "modern/smoothies.h"
 #include "modern/variance_shadow_map.h"
@@ -31,6 +33,9 @@ std::vector<Technique> techniques() {
       varianceShadowMapTechnique(),
       // The filtered-map baselines after VSM (ours, after papers not in shared/papers)
       exponentialShadowMapTechnique(),
+      evsm2Technique(),
+      evsm4Technique(),
+      momentShadowMapTechnique(),
       // Chan 2004
       shadowVolumesTechnique(),
       hybridShadowsTechnique(),

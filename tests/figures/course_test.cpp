@@ -271,14 +271,14 @@ TEST(Course, ScopeNamesWhatItLeavesOutAndBothMeaningsOfCsm) {
     topics += t.topic + "\n";
   }
   for (const char* topic : {"Cascaded", "parallel-split", "Perspective", "light-space", "PCSS",
-                            "EVSM", "MSM", "Omnidirectional", "Normal-offset"})
+                            "Omnidirectional", "Normal-offset"})
     EXPECT_NE(topics.find(topic), std::string::npos) << topic;
   EXPECT_NE(course.naming.find("convolution shadow maps"), std::string::npos);
   EXPECT_NE(course.naming.find("cascaded shadow maps"), std::string::npos);
   EXPECT_NE(course.order.find("references come last"), std::string::npos);
 }
 
-// Exercise 12.2's answer says that shadow volumes and the ray-traced hard shadow disagree on no
+// Exercise 14.2's answer says that shadow volumes and the ray-traced hard shadow disagree on no
 // scored pixel, and that the pixels that differ are among those the metric leaves out: the
 // compare the teacher's page runs must say so.
 TEST(Course, VolumesAgainstRaysAnswerHoldsOnItsCompareRun) {

@@ -56,7 +56,8 @@ TEST_P(PassTablesWithoutTwin, FramePassesAndBuffersAreTheDeclaredOnes) {
 
 INSTANTIATE_TEST_SUITE_P(Modern, PassTablesWithoutTwin,
                          ::testing::Values("modern.gems16", "modern.gems4", "modern.csm",
-                                           "modern.vsm", "modern.esm", "modern.volumes",
+                                           "modern.vsm", "modern.esm", "modern.evsm2",
+                                           "modern.evsm4", "modern.msm", "modern.volumes",
                                            "modern.hybrid", "modern.smoothies"),
                          [](const auto& info) { return testName(info.param); });
 
