@@ -89,7 +89,9 @@ TEST(Msm, UmbraOnAPlaneIsTheMirroredReconstruction) {
       const glm::ivec2 lit = pixelOf(scene, p, {1.8f, 0.0f, 0.3f});
       // 16-bit moments round to 1.5e-5, which the bias (>= 1e-3) dwarfs; 2e-3 absolute.
       constexpr double kTolerance = 2e-3;
-      EXPECT_NEAR(frame.visibility.at(umbra.x, umbra.y), expected, kTolerance)
+      // The umbra's visibility is only what the bias lets through (~1e-3): relative, 10% of it
+      // (16-bit rounding of the moments moves the reconstruction by a few %).
+      EXPECT_NEAR(frame.visibility.at(umbra.x, umbra.y), expected, 1e-5 + 0.1 * expected)
           << storage << " bias " << bias;
       // Lit: the empty map (depth 1) behind the ground; the bias spreads alpha over [0, 1],
       // which the reconstruction partly counts as shadow (under alpha).
