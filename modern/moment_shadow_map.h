@@ -17,9 +17,10 @@ Technique momentShadowMapTechnique();
 // of the uniform distribution on [0, 1] (ours, default alpha 3e-5, the value the issue names for
 // the 16-bit map). u's Hankel matrix is positive definite, so every biased footprint's is too.
 // DEVIATION (Peters & Klein 2015, not in shared/papers; public implementations bias towards
-// (1/2, 1/2, 1/2, 1/2), the moments of depths 0 and 1 in equal shares): a footprint of the empty
-// map (every texel at depth 1) stays singular under that bias (its support is {0, 1}), and the
-// Cholesky solve divides 0 by 0 there; with u it does not.
+// (1/2, 1/2, 1/2, 1/2)): the moment bias points to (1/2, 1/3, 1/4, 1/5), the moments of depths
+// uniform on [0, 1], whose Hankel matrix is positive definite; towards the moments of depths 0
+// and 1 a footprint of the empty map (depth 1) stays singular and the Cholesky solve divides 0
+// by 0
 constexpr double kMsmDefaultMomentBias = 3e-5;
 constexpr double kMsmBiasMoments[4] = {1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5};
 
