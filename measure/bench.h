@@ -163,7 +163,8 @@ constexpr const char* kFillBoundScene = "fill-bound";
 // Annen et al. Fig. 9's claim (CSM does not leak where VSM does) needs a scene where VSM
 // bleeds: assets/scenes/bleeding.json, a picket fence near the light over the shadow of a low
 // plank, so that one filter kernel holds occluders at very different depths over one receiver.
-// Measured with modern.vsm and modern.csm only (their defaults); `--scene bleeding` runs just
+// Measured with modern.vsm and modern.csm (their defaults) and the filtered-map baselines after
+// them (modern.esm, evsm2, evsm4, msm); `--scene bleeding` runs just
 // that; without the file the claim keeps its other scenes' verdicts.
 constexpr const char* kBleedingScene = "bleeding";
 // The fill-bound scene is measured in Chan's setting (§3.1 step 1: "a low-resolution shadow

@@ -1,10 +1,13 @@
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/convolution_shadow_map.h"
 #include "modern/depth_layer_shadow_maps.h"
+#include "modern/exponential_shadow_map.h"
+#include "modern/exponential_variance_shadow_map.h"
 #include "modern/gems_pcf.h"
 #include "modern/hardware_shadow_map.h"
 #include "modern/hybrid_shadows.h"
 #include "modern/modern.h"
+#include "modern/moment_shadow_map.h"
 #include "modern/pcss.h"
 #include "modern/shadow_volumes.h"
 #include "modern/smoothies.h"
@@ -29,6 +32,11 @@ std::vector<Technique> techniques() {
       // Annen et al. 2007 and Donnelly & Lauritzen 2006
       convolutionShadowMapTechnique(),
       varianceShadowMapTechnique(),
+      // The filtered-map baselines after VSM (ours, after papers not in shared/papers)
+      exponentialShadowMapTechnique(),
+      evsm2Technique(),
+      evsm4Technique(),
+      momentShadowMapTechnique(),
       // Chan 2004
       shadowVolumesTechnique(),
       hybridShadowsTechnique(),
