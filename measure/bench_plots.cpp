@@ -18,6 +18,7 @@
 #include "core/base/provenance.h"
 #include "measure/bench.h"
 #include "measure/plot_labels.h"
+#include "registry/registry.h"
 #include "registry/twins.h"
 
 namespace sl::figures {
@@ -100,8 +101,9 @@ std::string ticsList(const std::vector<double>& ticks) {
 }  // namespace
 
 std::string plotFamily(const std::string& technique) {
-  if (technique.rfind("reference.", 0) == 0) return "";
-  if (technique.rfind("legacy.", 0) == 0) return "legacy";
+  const TechniqueFamily family = findTechnique(technique).family;
+  if (family == TechniqueFamily::kReference) return "";
+  if (family == TechniqueFamily::kLegacy) return "legacy";
   for (const twins::TwinPair& pair : twins::twinPairs())
     if (pair.modern == technique) return "modern twins";
   return "later papers";
