@@ -529,12 +529,6 @@ Image readVisibilityFromAlpha(const RenderParams& params) {
 
 // ---- --dump-passes read-backs and the footprint parameter
 
-void capture(Frame& frame, const RenderParams& params, std::string name, std::string caption,
-             const Image& image) {
-  if (!params.capturePasses) return;
-  frame.intermediates.push_back({std::move(name), std::move(caption), image});
-}
-
 Image readWindowRgba(const RenderParams& params) {
   const GlTracePause dumpOnly;  // a readback for --dump-passes, not state of a pass
   return readColorBuffer(0, 0, params.width, params.height);

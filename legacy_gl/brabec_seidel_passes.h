@@ -186,8 +186,6 @@ void shadeWithShadowTerm(const Scene& scene, const RenderParams& params,
 Image readVisibilityFromAlpha(const RenderParams& params);
 
 // --dump-passes helpers.
-void capture(Frame& frame, const RenderParams& params, std::string name, std::string caption,
-             const Image& image);
 Image readWindowRgba(const RenderParams& params);
 Image readShadowMap(const ShadowMapTexture& map, int texels);
 Image channelPanels(const Image& rgba);           // R | G | B | A as grey panels side by side

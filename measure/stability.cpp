@@ -359,9 +359,8 @@ MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
   return compareMasksWithin(visibility, ref.visibility, region, 0.5);
 }
 
-// Per-technique exceptions, each with its reason: a bound >= 0 replaces the case's bound (a
-// documented limitation of the technique); a bound < 0 is a known bug, reported and skipped
-// (the test prints the measured error) until the technique's owner fixes it.
+// Per-technique exceptions, each with its reason: the bound replaces the case's bound (a
+// documented limitation of the technique; a bug is fixed, not listed here).
 // Brabec–Seidel §2-§4 compare colour-encoded depth with a constant bias (no slope-scaled
 // offset): a receiver that casts too self-shadows where its depth changes by more than the
 // bias per texel. At 80 degrees that is tan 80 = 5.7 texel widths per texel; at 89, 57: the
@@ -432,12 +431,6 @@ Outcome evaluate(const Case& c, const Technique& t) {
   if (auto refusal = expectedRefusals().find({c.name, t.name}); refusal != expectedRefusals().end())
     out.expectedRefusal = refusal->second;
   auto issue = knownIssues().find({c.name, t.name});
-  if (issue != knownIssues().end() && issue->second.bound < 0 &&
-      issue->second.why.find("GlError") != std::string::npos) {
-    out.kind = Outcome::Kind::kKnownBug;
-    out.note = issue->second.why;
-    return out;
-  }
   RenderParams params = baseParams();
   c.params(params);
   const Scene scene = c.scene();
@@ -481,10 +474,6 @@ Outcome evaluate(const Case& c, const Technique& t) {
   out.wronglyShadowed = errorWhereItMatters(darker, *out.reference);
   out.referenceLit = errorWhereItMatters(unlit, *out.reference).shareAboveHalf;
   if (issue != knownIssues().end()) {
-    if (issue->second.bound < 0) {
-      out.kind = Outcome::Kind::kKnownBug;
-      out.note = issue->second.why;
-    }
     out.bound = issue->second.bound;
     out.why = issue->second.why;
     out.selfShadowedAtLeast = issue->second.selfShadowedAtLeast;
@@ -526,7 +515,6 @@ std::string summaryHtml(bool progress) {
         case Outcome::Kind::kRefused:
           h << "<td class=" << (o.refusedAsExpected() ? "ok" : "bad") << ">refused</td>";
           break;
-        case Outcome::Kind::kKnownBug: h << "<td class=bad>known bug</td>"; break;
         case Outcome::Kind::kMeasured: {
           const bool good = o.finite && o.lowest >= 0.0f && o.highest <= 1.0f && o.withinBound() &&
                             o.expectedRefusal.empty();

@@ -30,8 +30,8 @@ struct Case {
   std::string why;  // why the bound is right
 };
 
-// Per-technique exceptions, each with its reason: a bound >= 0 replaces the case's bound (a
-// documented limitation of the technique); a bound < 0 is a known bug, reported and skipped.
+// Per-technique exceptions, each with its reason: the bound replaces the case's bound (a
+// documented limitation of the technique; a bug is fixed, not listed here).
 // A limitation that predicts its own failure states the prediction: with selfShadowedAtLeast
 // > 0 (a depth bias too small for the receiver's slope: the lit receiver shadows itself), at
 // least that share of the counted pixels the reference shows lit must be shadowed, and `bound`
@@ -63,9 +63,9 @@ MaskDifference errorWhereItMatters(const Image& visibility, const Frame& referen
 
 // One (case, technique) run and what it measured.
 struct Outcome {
-  enum class Kind { kNotApplicable, kRefused, kKnownBug, kMeasured };
+  enum class Kind { kNotApplicable, kRefused, kMeasured };
   Kind kind = Kind::kMeasured;
-  std::string note;  // why not applicable, the InputError, or the known bug
+  std::string note;  // why not applicable, or the InputError
   Frame frame;
   bool finite = true;   // no NaN/Inf in colour, visibility or any intermediate
   float lowest = 0.0f;  // visibility range

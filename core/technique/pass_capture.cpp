@@ -72,17 +72,6 @@ Image readDepthTexture(unsigned texture, int width, int height) {
   return depth;
 }
 
-void captureCameraPass(Frame& frame, int pass, const std::string& source) {
-  const std::string n = std::to_string(pass);
-  frame.intermediates.push_back(
-      {n + "-shaded", "pass " + n + ": the shaded image (" + source + ")", frame.color});
-  frame.intermediates.push_back(
-      {n + "-visibility",
-       "pass " + n + ": the shadow test's result alone, white = lit, black = shadow (" + source +
-           "); what --mask writes",
-       frame.visibility});
-}
-
 std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source) {
   return {{.name = "shaded", .caption = "pass " + pass + ": the shaded image (" + source + ")"},
           {.name = "visibility",

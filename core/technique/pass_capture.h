@@ -44,12 +44,10 @@ PassImage greyDepth(std::string name, const std::string& what, const Image& dept
 // GL_TEXTURE_2D binding of the active unit is restored. Compare mode does not apply to reads.
 Image readDepthTexture(unsigned texture, int width, int height);
 
-// The camera pass' outcome, as every technique fills Frame::color and Frame::visibility:
-// "<pass>-shaded" and "<pass>-visibility" with captions that name `source` (paper section).
-void captureCameraPass(Frame& frame, int pass, const std::string& source);
-// The same for a technique that runs its passes through core/technique/passes.h: its camera pass's
-// buffers "shaded" and "visibility" for its pass table (PassSpec::writes), captioned as above
-// ("pass <pass>: ..."), and their capture as pass `id` from Frame::color and Frame::visibility.
+// The camera pass' outcome, as every technique fills Frame::color and Frame::visibility: its
+// buffers "shaded" and "visibility" for its pass table (PassSpec::writes), captioned "pass
+// <pass>: ..." with `source` (the paper section), and their capture as pass `id` from
+// Frame::color and Frame::visibility (core/technique/passes.h).
 std::vector<PassBuffer> cameraPassBuffers(const std::string& pass, const std::string& source);
 void captureCameraPass(Passes& passes, const std::string& id);
 

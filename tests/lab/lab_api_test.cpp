@@ -246,11 +246,24 @@ TEST_F(LabApi, PassesGiveNamesMedianTimesAndFetchableImages) {
   EXPECT_EQ(doc["technique"], "legacy.hw");
   EXPECT_EQ(doc["timing_frames"], lab::kPassTimingFrames);
   ASSERT_FALSE(doc["median_timings"].empty());
-  for (const json& t : doc["median_timings"]) {
-    EXPECT_FALSE(t["name"].get<std::string>().empty());
-    EXPECT_GE(t["median_ms"].get<double>(), 0.0);
-  }
   ASSERT_FALSE(doc["passes"].empty());
+  // The medians are of the passes the page shows: one per timed pass of the captured frame,
+  // under the same names.
+  std::multiset<std::string> shown;
+  for (const json& p : doc["passes"])
+    for (const json& t : p.value("timings", json::array())) shown.insert(t["name"]);
+  std::multiset<std::string> timed;
+  for (const json& t : doc["median_timings"]) timed.insert(t["name"].get<std::string>());
+  EXPECT_EQ(timed, shown);
+  const double frameMs = doc["median_frame_ms"].get<double>();
+  for (const json& t : doc["median_timings"]) {
+    // Every timing frame ran the same passes, so each median is over all of them.
+    EXPECT_EQ(t["frames"], lab::kPassTimingFrames) << t["name"];
+    // A pass ends with glFinish and takes measurable time; and in every frame a pass takes at
+    // most the frame's total (the sum of its passes), so its median is at most the frames'.
+    EXPECT_GT(t["median_ms"].get<double>(), 0.0) << t["name"];
+    EXPECT_LE(t["median_ms"].get<double>(), frameMs) << t["name"];
+  }
   ASSERT_FALSE(doc["images"].empty());
   const std::string url = doc["images"][0]["url"];
   auto image = get(url);

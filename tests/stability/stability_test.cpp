@@ -77,10 +77,6 @@ TEST_P(Stability, FiniteBoundedAndWithinErrorBound) {
           << "refused with \"" << o.note << "\", expected a message containing \""
           << o.expectedRefusal << "\"";
       return;
-    case Outcome::Kind::kKnownBug:
-      std::cout << "[stability] " << c.name << " " << t.name << ": KNOWN ISSUE, wrong "
-                << 100.0 * o.error.shareAboveHalf << "%: " << o.note << "\n";
-      GTEST_SKIP() << "known issue: " << o.note;
     case Outcome::Kind::kMeasured: break;
   }
   EXPECT_TRUE(o.expectedRefusal.empty())
