@@ -101,9 +101,10 @@ std::string ticsList(const std::vector<double>& ticks) {
 }  // namespace
 
 std::string plotFamily(const std::string& technique) {
-  const TechniqueFamily family = findTechnique(technique).family;
-  if (family == TechniqueFamily::kReference) return "";
-  if (family == TechniqueFamily::kLegacy) return "legacy";
+  // Technique::family; a technique this build lacks (a merged row) is one of the later papers.
+  const Technique* t = techniqueNamed(technique);
+  if (t != nullptr && t->family == TechniqueFamily::kReference) return "";
+  if (t != nullptr && t->family == TechniqueFamily::kLegacy) return "legacy";
   for (const twins::TwinPair& pair : twins::twinPairs())
     if (pair.modern == technique) return "modern twins";
   return "later papers";

@@ -18,10 +18,11 @@
 namespace sl::figures {
 
 namespace {
-// A row of the ray-traced truth, not a competitor (Technique::family; the technique is one of
-// the registry's: rows are made by the bench or read back by mergeBenchRows, which checks it).
+// A row of the ray-traced truth, not a competitor (Technique::family). A row that names a
+// technique this build lacks (merged from another build's bench) is a competitor.
 bool isReferenceRow(const BenchRow& r) {
-  return findTechnique(r.technique).family == TechniqueFamily::kReference;
+  const Technique* t = techniqueNamed(r.technique);
+  return t != nullptr && t->family == TechniqueFamily::kReference;
 }
 }  // namespace
 
@@ -187,7 +188,6 @@ std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths
         r.scene = rankGroup(j.at("scene").get<std::string>(), j.at("width").get<int>(),
                             j.at("height").get<int>(), orbit);
         r.technique = j.at("technique").get<std::string>();
-        findTechnique(r.technique);  // InputError naming it unless it is one of the registry's
         r.status = j.at("status").get<std::string>();
         r.primaryReference = j.at("reference").get<std::string>();
         if (r.status == "ok") {
@@ -197,17 +197,14 @@ std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths
         }
       } catch (const Json::exception& e) {
         throw InputError(where + ": a field of the wrong type (" + e.what() + ")");
-      } catch (const InputError& e) {
-        throw InputError(where + ": " + e.what());
+        lines.push_back(std::move(j));
+        rows.push_back(std::move(r));
       }
-      lines.push_back(std::move(j));
-      rows.push_back(std::move(r));
     }
+    assignParetoRanks(rows);
+    for (size_t i = 0; i < rows.size(); ++i)
+      lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
+    return lines;
   }
-  assignParetoRanks(rows);
-  for (size_t i = 0; i < rows.size(); ++i)
-    lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
-  return lines;
-}
 
 }  // namespace sl::figures

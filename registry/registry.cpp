@@ -33,9 +33,14 @@ const std::vector<Technique>& allTechniques() {
   return kAll;
 }
 
-const Technique& findTechnique(const std::string& name) {
+const Technique* techniqueNamed(const std::string& name) {
   for (const Technique& t : allTechniques())
-    if (t.name == name) return t;
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+const Technique& findTechnique(const std::string& name) {
+  if (const Technique* t = techniqueNamed(name)) return *t;
   std::string known;
   for (const Technique& t : allTechniques()) known += (known.empty() ? "" : ", ") + t.name;
   throw InputError("unknown technique '" + name + "' (known: " + known + ")");
