@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/base/decimal.h"
 #include "core/base/html.h"
 #include "figures/disagreement.h"
 #include "registry/registry.h"
@@ -18,19 +19,15 @@
 namespace sl::figures {
 namespace {
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 // A frame rate with enough digits to tell cells apart on a slow back end (0.42, not 0.4).
 std::string fpsOf(double ms) {
   const double fps = 1000.0 / ms;
-  return fixed(fps, fps < 1.0 ? 3 : fps < 10.0 ? 2 : 1);
+  return fixedDecimals(fps, fps < 1.0 ? 3 : fps < 10.0 ? 2 : 1);
 }
 
-std::string percent(double share) { return fixed(100.0 * share, share < 0.01 ? 2 : 1) + "%"; }
+std::string percent(double share) {
+  return fixedDecimals(100.0 * share, share < 0.01 ? 2 : 1) + "%";
+}
 
 bool timedRender(const PanelResult& p) {
   return p.ok && p.spec.kind == PanelKind::kRender && p.milliseconds > 0 && p.timedFrames > 0;
@@ -85,35 +82,22 @@ std::string trendTable(const std::vector<TrendCell>& cells) {
        "ratio)</th><th>rounds</th><th>paper's trend</th></tr>\n";
   for (const TrendCell& c : cells)
     h << "<tr><td>" << htmlEscape(c.label) << "</td><td>" << htmlEscape(c.baseline) << "</td><td>"
-      << fixed(c.ours, 1) << " / " << fixed(c.oursBaseline, 1) << " = "
-      << fixed(c.ours / c.oursBaseline, 2) << "</td><td class=paper>" << fixed(c.paper, 1) << " / "
-      << fixed(c.paperBaseline, 1) << " = " << fixed(c.paper / c.paperBaseline, 2) << "</td><td>"
-      << c.roundsAgreeing << " of " << c.rounds
-      << "</td><td class=" << (c.verdict.rfind("holds", 0) == 0 ? "ok" : "bad") << ">"
+      << fixedDecimals(c.ours, 1) << " / " << fixedDecimals(c.oursBaseline, 1) << " = "
+      << fixedDecimals(c.ours / c.oursBaseline, 2) << "</td><td class=paper>"
+      << fixedDecimals(c.paper, 1) << " / " << fixedDecimals(c.paperBaseline, 1) << " = "
+      << fixedDecimals(c.paper / c.paperBaseline, 2) << "</td><td>" << c.roundsAgreeing << " of "
+      << c.rounds << "</td><td class=" << (c.verdict.rfind("holds", 0) == 0 ? "ok" : "bad") << ">"
       << htmlEscape(c.verdict) << "</td></tr>\n";
   h << "</table>\n";
   return h.str();
 }
 
 // ---------------------------------------------------------------- Brabec Figs. 7 and 8
-// A pass's role: the first two words of its name before the colon, without its number ("3
-// camera pass: light depth in RGBA" -> "camera pass", "5 copy: colour table ..." -> "copy",
-// "2 copy to texture through ..." -> "copy to"; "passes" counts as "pass"). Two techniques'
-// passes with the same role do the same job in their pipelines (Brabec & Seidel §2-§4 name them
-// alike).
-std::string passRole(const std::string& name) {
-  std::istringstream words(name.substr(0, name.find(':')));
-  std::string word, role;
-  int taken = 0;
-  while (taken < 2 && words >> word) {
-    const bool number =
-        std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
-    if (role.empty() && number) continue;
-    if (word == "passes") word = "pass";  // "1 light passes: jittered ..." is a light pass
-    role += (role.empty() ? "" : " ") + word;
-    ++taken;
-  }
-  return role;
+// Two passes do the same job in their pipelines when their tables give them the same role
+// (PassSpec::role; Brabec & Seidel §2-§4 name such passes alike); a pass of no role
+// (PassRole::kOther) pairs with none.
+bool sameJob(const PassTime& a, const PassTime& b) {
+  return a.role != PassRole::kOther && a.role == b.role;
 }
 
 // Where a timed cell's frame differs from the frame the paper compares it with, pass by pass:
@@ -138,9 +122,8 @@ std::string passBreakdown(const FigureResult& fig) {
     std::string paired, added, mostChanged;
     double addedMs = 0, pairedDelta = 0, mostDelta = 0;
     for (const PassTime& pass : cell->passes) {
-      const std::string role = passRole(pass.name);
       size_t k = 0;
-      while (k < base->passes.size() && (used[k] || passRole(base->passes[k].name) != role)) ++k;
+      while (k < base->passes.size() && (used[k] || !sameJob(pass, base->passes[k]))) ++k;
       if (k < base->passes.size()) {
         used[k] = true;
         const double delta = pass.milliseconds - base->passes[k].milliseconds;
@@ -150,12 +133,13 @@ std::string passBreakdown(const FigureResult& fig) {
           mostChanged = pass.name;
         }
         paired += "<tr><td>" + htmlEscape(base->passes[k].name) + "</td><td>" +
-                  fixed(base->passes[k].milliseconds, 1) + "</td><td>" + htmlEscape(pass.name) +
-                  "</td><td>" + fixed(pass.milliseconds, 1) + "</td></tr>\n";
+                  fixedDecimals(base->passes[k].milliseconds, 1) + "</td><td>" +
+                  htmlEscape(pass.name) + "</td><td>" + fixedDecimals(pass.milliseconds, 1) +
+                  "</td></tr>\n";
       } else {
         addedMs += pass.milliseconds;
-        added +=
-            (added.empty() ? "" : "; ") + pass.name + " " + fixed(pass.milliseconds, 1) + " ms";
+        added += (added.empty() ? "" : "; ") + pass.name + " " +
+                 fixedDecimals(pass.milliseconds, 1) + " ms";
       }
     }
     std::string dropped;
@@ -164,9 +148,9 @@ std::string passBreakdown(const FigureResult& fig) {
       if (!used[k] && base->passes[k].milliseconds > 0) {
         droppedMs += base->passes[k].milliseconds;
         dropped += (dropped.empty() ? "" : "; ") + base->passes[k].name + " " +
-                   fixed(base->passes[k].milliseconds, 1) + " ms";
+                   fixedDecimals(base->passes[k].milliseconds, 1) + " ms";
       }
-    const auto signedMs = [](double ms) { return (ms >= 0 ? "+" : "") + fixed(ms, 1); };
+    const auto signedMs = [](double ms) { return (ms >= 0 ? "+" : "") + fixedDecimals(ms, 1); };
     const double paperRatio = c.paper / c.paperBaseline;
     // The paper's ratio p = cell / base: with the shared passes costing the same, the added
     // work is (p - 1) / p of the cell's frame.
@@ -175,18 +159,19 @@ std::string passBreakdown(const FigureResult& fig) {
     h << "<p><b>Measured: " << htmlEscape(c.label) << " against " << htmlEscape(c.baseline)
       << ", pass by pass</b> (medians of the interleaved rounds, ms; passes paired by their "
          "role, the first words of their names). Frames: "
-      << fixed(cell->milliseconds, 1) << " against " << fixed(base->milliseconds, 1) << " ms ("
-      << signedMs(cell->milliseconds - base->milliseconds) << "). The passes "
+      << fixedDecimals(cell->milliseconds, 1) << " against " << fixedDecimals(base->milliseconds, 1)
+      << " ms (" << signedMs(cell->milliseconds - base->milliseconds) << "). The passes "
       << htmlEscape(c.label) << " adds: " << htmlEscape(added.empty() ? std::string("none") : added)
-      << ", together " << fixed(addedMs, 1) << " ms, " << percent(ownShare) << " of its frame";
+      << ", together " << fixedDecimals(addedMs, 1) << " ms, " << percent(ownShare)
+      << " of its frame";
     if (!dropped.empty())
       h << "; the passes of " << htmlEscape(c.baseline)
-        << " without a partner: " << htmlEscape(dropped) << ", together " << fixed(droppedMs, 1)
-        << " ms";
+        << " without a partner: " << htmlEscape(dropped) << ", together "
+        << fixedDecimals(droppedMs, 1) << " ms";
     h << ". The paired passes differ by " << signedMs(pairedDelta) << " ms in total";
     if (!mostChanged.empty())
       h << ", the most " << htmlEscape(mostChanged) << " (" << signedMs(mostDelta) << " ms)";
-    h << ". The paper's ratio (" << fixed(paperRatio, 2) << ") needs the work "
+    h << ". The paper's ratio (" << fixedDecimals(paperRatio, 2) << ") needs the work "
       << htmlEscape(c.label) << " adds to cost " << percent(neededShare)
       << " of its frame if the shared passes cost the same in both; ";
     if (added.empty())
@@ -211,7 +196,7 @@ std::string change(const PanelResult& a, const PanelResult& b, const char* name)
   return std::string(to > from   ? "rises "
                      : to < from ? "falls "
                                  : "stays ") +
-         fixed(from, 0) + " -> " + fixed(to, 0) + " pixels";
+         fixedDecimals(from, 0) + " -> " + fixedDecimals(to, 0) + " pixels";
 }
 
 // Brabec Fig. 8: the 8-bit method's depth bias against 12-bit depth, in pixels (the panels'
@@ -228,8 +213,9 @@ std::string depthBiasCounts(const FigureResult& fig) {
        "legacy.hw put them in shadow; acne: drawn in shadow where the ray tracer puts them in "
        "light). ";
   for (const PanelResult* p : counted)
-    h << htmlEscape(p->spec.label) << ": leak " << fixed(*counter(*p, kLeakPixelsCounter), 0)
-      << ", acne " << fixed(*counter(*p, kAcnePixelsCounter), 0) << ". ";
+    h << htmlEscape(p->spec.label) << ": leak "
+      << fixedDecimals(*counter(*p, kLeakPixelsCounter), 0) << ", acne "
+      << fixedDecimals(*counter(*p, kAcnePixelsCounter), 0) << ". ";
   if (counted.size() > 1) {
     const PanelResult &a = *counted.front(), &b = *counted.back();
     h << "From " << htmlEscape(a.spec.label) << " to " << htmlEscape(b.spec.label) << " the leak "
@@ -325,15 +311,16 @@ std::string tableTrend(const FigureResult& fig, const TableAxis& axis) {
     for (const PassTime& p : last.passes) {
       names.insert(p.name);
       const double delta = p.milliseconds - firstMs[p.name];
-      passes +=
-          (passes.empty() ? "" : ", ") + p.name + " " + (delta >= 0 ? "+" : "") + fixed(delta, 1);
+      passes += (passes.empty() ? "" : ", ") + p.name + " " + (delta >= 0 ? "+" : "") +
+                fixedDecimals(delta, 1);
     }
     for (const auto& [name, ms] : firstMs)
-      if (!names.count(name)) passes += (passes.empty() ? "" : ", ") + name + " -" + fixed(ms, 1);
+      if (!names.count(name))
+        passes += (passes.empty() ? "" : ", ") + name + " -" + fixedDecimals(ms, 1);
     std::string samples;
     for (size_t r = 0; r < std::min(first.frameSamples.size(), last.frameSamples.size()); ++r)
-      samples += (samples.empty() ? "" : ", ") + fixed(first.frameSamples[r], 0) + "/" +
-                 fixed(last.frameSamples[r], 0);
+      samples += (samples.empty() ? "" : ", ") + fixedDecimals(first.frameSamples[r], 0) + "/" +
+                 fixedDecimals(last.frameSamples[r], 0);
     std::string fps;
     for (const std::string& step : axis.steps)
       if (bySteps.count(step))
@@ -414,10 +401,11 @@ std::string hybridAgainstVolumes(const FigureResult& fig) {
     const int fasterRounds = roundsGoing(h, *sv, -1, &rounds);
     const bool isFaster = direction(ratio) < 0;
     faster += isFaster ? 1 : 0;
-    rows << "<tr><td>" << htmlEscape(h.spec.label) << "</td><td>" << fixed(h.milliseconds, 1)
-         << " / " << fixed(sv->milliseconds, 1) << " = " << fixed(ratio, 2) << "</td><td>"
-         << fasterRounds << " of " << rounds << "</td><td class=" << (isFaster ? "ok" : "bad")
-         << ">" << (isFaster ? "holds (hybrid faster)" : "does not hold") << "</td></tr>\n";
+    rows << "<tr><td>" << htmlEscape(h.spec.label) << "</td><td>"
+         << fixedDecimals(h.milliseconds, 1) << " / " << fixedDecimals(sv->milliseconds, 1) << " = "
+         << fixedDecimals(ratio, 2) << "</td><td>" << fasterRounds << " of " << rounds
+         << "</td><td class=" << (isFaster ? "ok" : "bad") << ">"
+         << (isFaster ? "holds (hybrid faster)" : "does not hold") << "</td></tr>\n";
   }
   if (compared == 0) return "";
   std::ostringstream h;
@@ -450,11 +438,12 @@ std::string fillCounters(const FigureResult& fig, bool timesToo) {
       any = any || v.has_value();
       const bool share = std::string(name).find("fraction") != std::string::npos ||
                          std::string(name) == "volume_coverage";
-      cells += "<td>" + (v ? (share ? percent(*v) : fixed(*v, 2)) : std::string("")) + "</td>";
+      cells +=
+          "<td>" + (v ? (share ? percent(*v) : fixedDecimals(*v, 2)) : std::string("")) + "</td>";
     }
     if (!any) continue;
     rows << "<tr><td>" << htmlEscape(p.spec.label) << "</td>" << cells;
-    if (timesToo) rows << "<td>" << fixed(p.milliseconds, 1) << "</td>";
+    if (timesToo) rows << "<td>" << fixedDecimals(p.milliseconds, 1) << "</td>";
     rows << "</tr>\n";
   }
   if (rows.str().empty()) return "";
@@ -473,7 +462,8 @@ std::string chan310(const FigureResult& fig) {
   for (const PanelResult& p : fig.panels)
     if (p.ok && p.spec.technique == "modern.volumes")
       if (const auto o = counter(p, "volume_overdraw"))
-        overdraws += (overdraws.empty() ? "" : ", ") + sceneOf(fig, p) + " " + fixed(*o, 1) +
+        overdraws += (overdraws.empty() ? "" : ", ") + sceneOf(fig, p) + " " +
+                     fixedDecimals(*o, 1) +
                      (counter(p, "volume_coverage")
                           ? " over " + percent(*counter(p, "volume_coverage")) + " of the image"
                           : std::string());
@@ -510,8 +500,9 @@ std::string twinsBeyondImageBound(const FigureResult& fig) {
              p.twin->technique + "): " + std::to_string(a.beyondWhereMasksAgree) +
              " pixels beyond " + std::to_string(twins::kImageSteps) +
              "/255 where the masks agree, bound " + std::to_string(a.boundPixels) +
-             ", largest channel difference " + fixed(a.maxAbs, 3) + "; their masks differ on " +
-             std::to_string(p.twin->difference.mismatching) + " pixels";
+             ", largest channel difference " + fixedDecimals(a.maxAbs, 3) +
+             "; their masks differ on " + std::to_string(p.twin->difference.mismatching) +
+             " pixels";
   }
   if (items.empty()) return "";
   return "<p><b>Measured: twins beyond their image bound.</b> " + htmlEscape(items) +
@@ -557,15 +548,16 @@ std::string errorVsTime(const FigureResult& fig) {
     });
     for (const PanelResult* p : panels)
       rows << "<tr><td>" << htmlEscape(g) << "</td><td>" << htmlEscape(p->spec.technique)
-           << "</td><td>" << fixed(p->milliseconds, 1) << "</td><td>" << fixed(p->error->rmse, 4)
-           << "</td><td>" << percent(bandShareOf(*p)) << "</td><td>" << p->error->mismatching
-           << "</td></tr>\n";
+           << "</td><td>" << fixedDecimals(p->milliseconds, 1) << "</td><td>"
+           << fixedDecimals(p->error->rmse, 4) << "</td><td>" << percent(bandShareOf(*p))
+           << "</td><td>" << p->error->mismatching << "</td></tr>\n";
     const PanelResult& best = *panels.front();
     const PanelResult& worst = *panels.back();
     if (panels.size() < 2) continue;
     words << " " << g << ": the largest RMSE is " << htmlEscape(worst.spec.technique) << "'s ("
-          << fixed(worst.error->rmse, 4) << ", the smallest " << htmlEscape(best.spec.technique)
-          << "'s " << fixed(best.error->rmse, 4) << "); " << percent(bandShareOf(worst))
+          << fixedDecimals(worst.error->rmse, 4) << ", the smallest "
+          << htmlEscape(best.spec.technique) << "'s " << fixedDecimals(best.error->rmse, 4) << "); "
+          << percent(bandShareOf(worst))
           << " of its squared error lies within 2 px of the reference's shadow edges (the "
              "outlines of the cast shadows and the terminators of curved blockers), "
           << worst.error->mismatching << " pixels off by more than 0.5.";
@@ -591,7 +583,7 @@ std::string chan39(const FigureResult& fig) {
     const auto silhouettes = counter(p, "silhouette_fraction");
     std::string ours;
     if (p.spec.technique == "modern.volumes" && overdraw)
-      ours = "overdraw factor " + fixed(*overdraw, 1) +
+      ours = "overdraw factor " + fixedDecimals(*overdraw, 1) +
              " (volume_overdraw: volume fragments / "
              "image pixels)";
     else if (p.spec.technique == "modern.hybrid" && silhouettes)
@@ -652,9 +644,9 @@ std::string chan37(const FigureResult& fig) {
       const int w = p.spec.width ? p.spec.width : fig.spec.width;
       const int h = p.spec.height ? p.spec.height : fig.spec.height;
       const double pixels = double(w) * double(h);
-      rows += "<tr><td>" + htmlEscape(scene) + "</td><td>" + fixed(*first, 0) + " (" +
-              percent(*first / pixels) + ")</td><td>" + fixed(*second, 0) + " (" +
-              percent(*second / pixels) + ")</td><td>" + fixed(*both, 0) + "</td><td>" +
+      rows += "<tr><td>" + htmlEscape(scene) + "</td><td>" + fixedDecimals(*first, 0) + " (" +
+              percent(*first / pixels) + ")</td><td>" + fixedDecimals(*second, 0) + " (" +
+              percent(*second / pixels) + ")</td><td>" + fixedDecimals(*both, 0) + "</td><td>" +
               (*first > 0 ? percent((*first - *both) / *first) : std::string("-")) + "</td></tr>\n";
     }
     const PanelResult* sm = scenePanel(fig, scene, kShadowMapTechnique);
@@ -665,10 +657,11 @@ std::string chan37(const FigureResult& fig) {
       const bool below = hy->error->rmse <= sm->error->rmse;
       hybridBelowMap += below ? 1 : 0;
       volumesAboveMapToo += !below && sv->error->rmse > sm->error->rmse ? 1 : 0;
-      errorRows += "<tr><td>" + htmlEscape(scene) + "</td><td>" + fixed(sm->error->rmse, 4) +
-                   "</td><td>" + fixed(hy->error->rmse, 4) + "</td><td>" +
-                   fixed(sv->error->rmse, 4) + "</td><td class=" + (below ? "ok" : "bad") + ">" +
-                   (below ? "yes" : "no") + "</td></tr>\n";
+      errorRows += "<tr><td>" + htmlEscape(scene) + "</td><td>" +
+                   fixedDecimals(sm->error->rmse, 4) + "</td><td>" +
+                   fixedDecimals(hy->error->rmse, 4) + "</td><td>" +
+                   fixedDecimals(sv->error->rmse, 4) + "</td><td class=" + (below ? "ok" : "bad") +
+                   ">" + (below ? "yes" : "no") + "</td></tr>\n";
     }
     if (hy && sv && hy->milliseconds > 0 && sv->milliseconds > 0) {
       ++timeScenes;
@@ -681,13 +674,15 @@ std::string chan37(const FigureResult& fig) {
       const auto share = counter(*hy, "silhouette_fraction");
       const auto masked = counter(*hy, "masked_overdraw");
       const auto overdraw = counter(*sv, "volume_overdraw");
-      timeRows += "<tr><td>" + htmlEscape(scene) + "</td><td>" + fixed(hy->milliseconds, 1) +
-                  " / " + fixed(sv->milliseconds, 1) + " = " +
-                  fixed(hy->milliseconds / sv->milliseconds, 2) + "</td><td>" +
-                  (share ? percent(*share) : std::string("-")) + "</td><td>" +
-                  (masked && overdraw ? fixed(*masked, 2) + " of " + fixed(*overdraw, 2)
-                                      : std::string("-")) +
-                  "</td><td>" + fixed(extra, 1) + "</td><td>" + fixed(saved, 1) + "</td></tr>\n";
+      timeRows +=
+          "<tr><td>" + htmlEscape(scene) + "</td><td>" + fixedDecimals(hy->milliseconds, 1) +
+          " / " + fixedDecimals(sv->milliseconds, 1) + " = " +
+          fixedDecimals(hy->milliseconds / sv->milliseconds, 2) + "</td><td>" +
+          (share ? percent(*share) : std::string("-")) + "</td><td>" +
+          (masked && overdraw ? fixedDecimals(*masked, 2) + " of " + fixedDecimals(*overdraw, 2)
+                              : std::string("-")) +
+          "</td><td>" + fixedDecimals(extra, 1) + "</td><td>" + fixedDecimals(saved, 1) +
+          "</td></tr>\n";
     }
   }
   std::string h;
@@ -771,22 +766,23 @@ std::string chan48(const FigureResult& fig) {
     const auto paperPlain = paperMilliseconds(plain->spec.paperNumbers);
     const double cameraB = passMilliseconds(b, "camera");
     const double cameraPlain = passMilliseconds(*plain, "camera");
-    rows << "<tr><td>" << texelsOf(fig, b) << "²</td><td>" << fixed(b.milliseconds, 1) << " / "
-         << fixed(plain->milliseconds, 1) << " = " << fixed(b.milliseconds / plain->milliseconds, 2)
-         << "</td><td class=paper>"
-         << (paperB && paperPlain ? fixed(*paperB, 0) + " / " + fixed(*paperPlain, 0) + " = " +
-                                        fixed(*paperB / *paperPlain, 2)
-                                  : std::string("-"))
-         << "</td><td>" << fixed(cameraB, 1) << " / " << fixed(cameraPlain, 1) << " = "
-         << fixed(cameraPlain > 0 ? cameraB / cameraPlain : 0.0, 2) << "</td><td>";
+    rows << "<tr><td>" << texelsOf(fig, b) << "²</td><td>" << fixedDecimals(b.milliseconds, 1)
+         << " / " << fixedDecimals(plain->milliseconds, 1) << " = "
+         << fixedDecimals(b.milliseconds / plain->milliseconds, 2) << "</td><td class=paper>"
+         << (paperB && paperPlain
+                 ? fixedDecimals(*paperB, 0) + " / " + fixedDecimals(*paperPlain, 0) + " = " +
+                       fixedDecimals(*paperB / *paperPlain, 2)
+                 : std::string("-"))
+         << "</td><td>" << fixedDecimals(cameraB, 1) << " / " << fixedDecimals(cameraPlain, 1)
+         << " = " << fixedDecimals(cameraPlain > 0 ? cameraB / cameraPlain : 0.0, 2) << "</td><td>";
     if (smoothie != nullptr) {
       if (const auto w = smoothie->spec.params.find("width"); w != smoothie->spec.params.end())
         smoothieWidth = w->second;
       ++withSmoothie;
       smoothieFaster += direction(smoothie->milliseconds / b.milliseconds) < 0 ? 1 : 0;
       const auto paperS = paperMilliseconds(smoothie->spec.paperNumbers);
-      rows << fixed(smoothie->milliseconds / b.milliseconds, 2) << "</td><td class=paper>"
-           << (paperS && paperB ? fixed(*paperS / *paperB, 2) : std::string("-"));
+      rows << fixedDecimals(smoothie->milliseconds / b.milliseconds, 2) << "</td><td class=paper>"
+           << (paperS && paperB ? fixedDecimals(*paperS / *paperB, 2) : std::string("-"));
     } else {
       rows << "-</td><td class=paper>-";
     }
@@ -821,15 +817,16 @@ std::string csmFig9(const FigureResult& fig) {
   if (!vsm || !csm) return "";
   auto line = [](const char* name, const PanelResult& p) {
     const ErrorDetail& d = *p.errorDetail;
-    return std::string(name) + ": RMSE " + fixed(p.error->rmse, 3) +
+    return std::string(name) + ": RMSE " + fixedDecimals(p.error->rmse, 3) +
            ", within 2 px of the "
            "reference's shadow edges " +
-           fixed(d.bandRmse, 3) + "; umbra pixels beyond that band shown more than 20% lit " +
-           percent(d.leakShare) + " of " + std::to_string(d.umbraPixels) + "; deep umbra (over " +
+           fixedDecimals(d.bandRmse, 3) +
+           "; umbra pixels beyond that band shown more than 20% lit " + percent(d.leakShare) +
+           " of " + std::to_string(d.umbraPixels) + "; deep umbra (over " +
            std::to_string(kDeepUmbraPixels) + " px from any edge, " +
            std::to_string(d.deepUmbraPixels) + " pixels): mean visibility " +
-           fixed(d.deepUmbraMean, 4) + ", " + percent(d.deepLeakShare) + " shown more than " +
-           fixed(100.0 * kDeepLeakThreshold, 0) + "% lit";
+           fixedDecimals(d.deepUmbraMean, 4) + ", " + percent(d.deepLeakShare) +
+           " shown more than " + fixedDecimals(100.0 * kDeepLeakThreshold, 0) + "% lit";
   };
   // The share of the squared error inside the edge band: where RMSE ranks them.
   auto bandShare = [](const PanelResult& p) {
@@ -845,7 +842,7 @@ std::string csmFig9(const FigureResult& fig) {
   const bool csmWorseRmse = csm->error->rmse > vsm->error->rmse;
   const bool vsmBleeds = v.deepLeakShare > c.deepLeakShare;
   h << "RMSE: " << (csmWorseRmse ? "VSM lower (better) than CSM" : "CSM lower (better) than VSM")
-    << ". Deep-umbra pixels shown more than " << fixed(100.0 * kDeepLeakThreshold, 0)
+    << ". Deep-umbra pixels shown more than " << fixedDecimals(100.0 * kDeepLeakThreshold, 0)
     << "% lit, out of reach of a blurred penumbra: VSM " << percent(v.deepLeakShare) << ", CSM "
     << percent(c.deepLeakShare) << ": "
     << (vsmBleeds ? "VSM bleeds more, as the paper says"

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/base/decimal.h"
 #include "core/base/errors.h"
 #include "core/base/html.h"
 #include "core/base/output_files.h"
@@ -21,15 +22,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 std::string msAndFps(double ms) {
   if (ms <= 0) return "";
-  return fixed(ms, 1) + " ms (" + fixed(1000.0 / ms, 1) + " fps)";
+  return fixedDecimals(ms, 1) + " ms (" + fixedDecimals(1000.0 / ms, 1) + " fps)";
 }
 
 // A frame time and how it was measured: a steady-state median (core/technique/frame_timing.h) or
@@ -66,7 +61,8 @@ std::string loadAverages() {
   constexpr int kAverages = 3;
   double load[kAverages] = {};
   if (getloadavg(load, kAverages) != kAverages) return "unknown";
-  return fixed(load[0], 2) + ", " + fixed(load[1], 2) + ", " + fixed(load[2], 2);
+  return fixedDecimals(load[0], 2) + ", " + fixedDecimals(load[1], 2) + ", " +
+         fixedDecimals(load[2], 2);
 }
 
 const char* kStyle = R"(
@@ -140,17 +136,18 @@ void writeNumbers(std::ostream& h, const FigureResult& f) {
     } else {
       h << "<td>" << frameTime(p.milliseconds, p.timedFrames) << "</td><td>";
       for (const PassTime& pass : p.passes)
-        h << htmlEscape(pass.name) << ": " << fixed(pass.milliseconds, 1) << " ms<br>";
+        h << htmlEscape(pass.name) << ": " << fixedDecimals(pass.milliseconds, 1) << " ms<br>";
       h << "</td><td>";
       if (p.error)
-        h << "RMSE " << fixed(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
-          << fixed(100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
+        h << "RMSE " << fixedDecimals(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
+          << fixedDecimals(
+                 100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
           << "% of scored pixels<br><small>" << htmlEscape(p.errorMetric) << "</small>";
       else
         h << htmlEscape(p.errorNote);
       h << "</td><td>";
       for (const auto& [name, value] : p.counters)
-        h << htmlEscape(name) << ": " << fixed(value, 3) << "<br>";
+        h << htmlEscape(name) << ": " << fixedDecimals(value, 3) << "<br>";
       h << "</td>";
     }
     h << "<td class=paper>" << htmlEscape(p.spec.paperNumbers) << "</td></tr>\n";
@@ -182,11 +179,12 @@ void writePivot(std::ostream& h, const FigureResult& f) {
       const PanelResult* p = cell[{r, c}];
       h << "<td>";
       if (p && p->ok) {
-        h << fixed(1000.0 / p->milliseconds, 1) << " fps <small>"
+        h << fixedDecimals(1000.0 / p->milliseconds, 1) << " fps <small>"
           << (p->timedFrames > 0 ? "median of " + std::to_string(p->timedFrames) : "first frame");
         // The interquartile range of the rounds, as frame rates (the slow quartile first).
         if (const Quartiles q = quartilesOf(p->frameSamples); q.q1 > 0)
-          h << ", IQR " << fixed(1000.0 / q.q3, 1) << "-" << fixed(1000.0 / q.q1, 1);
+          h << ", IQR " << fixedDecimals(1000.0 / q.q3, 1) << "-"
+            << fixedDecimals(1000.0 / q.q1, 1);
         h << "; " << htmlEscape(mipmapUse(p->counters)) << "</small>";
       } else if (p) {
         h << "<span class=bad>missing: " << htmlEscape(p->reason) << "</span>";
@@ -217,7 +215,7 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
     h << "<figure><img src=\"" << htmlEscape(t.diffFile)
       << "\" alt=\"difference\"><figcaption>|visibility difference| (black = equal, white = 1): "
       << t.difference.mismatching << " of " << t.difference.pixels << " pixels differ, max "
-      << fixed(t.difference.maxAbs, 3) << ", RMSE " << fixed(t.difference.rmse, 4)
+      << fixedDecimals(t.difference.maxAbs, 3) << ", RMSE " << fixedDecimals(t.difference.rmse, 4)
       << "</figcaption></figure>\n";
     // The images, not only the masks, against registry/twins.h's bound.
     h << "<figure><img src=\"" << htmlEscape(t.imageDiffFile)
@@ -226,8 +224,8 @@ void writeTwins(std::ostream& h, const FigureResult& f) {
       << twins::kImageSteps << "/255, white = 16/255 or more): " << t.image.beyondSteps << " of "
       << t.image.pixels << " pixels differ by more than " << twins::kImageSteps << "/255 ("
       << t.image.beyondWhereMasksAgree << " where the masks agree; bound " << t.image.boundPixels
-      << ", the spotlight cone's edge band), max " << fixed(t.image.maxAbs, 3) << ", RMSE "
-      << fixed(t.image.rmse, 4)
+      << ", the spotlight cone's edge band), max " << fixedDecimals(t.image.maxAbs, 3) << ", RMSE "
+      << fixedDecimals(t.image.rmse, 4)
       << " <span class=" << (t.image.withinBound ? "ok>within" : "bad>beyond")
       << " the bound</span></figcaption></figure>\n";
   }
@@ -274,7 +272,7 @@ void writeFigure(std::ostream& h, const FigureResult& f,
   writeLessonLinks(h, s, lessons);
   h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
   h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height
-    << ", " << s.shadowMapTexels << "² shadow map; made in " << fixed(f.seconds, 1)
+    << ", " << s.shadowMapTexels << "² shadow map; made in " << fixedDecimals(f.seconds, 1)
     << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s)) << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
@@ -377,7 +375,7 @@ void writeReport(const std::string& outDir, const std::vector<FigureResult>& fig
     << kStyle << "</style></head><body>\n";
   h << "<h1>shadowlab — the papers' figures, re-made</h1>\n";
   h << "<p>Rendered " << htmlEscape(info.date) << " with " << htmlEscape(info.renderer) << " in "
-    << fixed(info.totalSeconds, 0)
+    << fixedDecimals(info.totalSeconds, 0)
     << " s. Times are ours on this machine. Where a time stands beside a paper's number "
        "(blue; 2001-2007 hardware) or on a chart of times, it is the steady-state median: one "
        "GL context, warm-up frames first (shader compilation, first-use allocation), then the "

@@ -61,6 +61,7 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 1: one light pass, encoded depth in all four channels (one "
                               "shown)"}},
        .floor = F::kLightDepth,
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
        .keyState = {"rising in 256 steps", "texture matrix (unit 0): load", "GL_EYE_PLANE"}},
       {.id = "2",
@@ -80,6 +81,7 @@ PassTable fastPcfPasses() {
                               "lower left (G | B | A minus R), amplified " +
                               gain + "x, grey = equal: the one-texel shift of Fig. 5"}},
        .floor = F::kCopyToTexture,
+       .role = PassRole::kCopyToTexture,
        .keyState = {"GL_CONVOLUTION_2D [", "GL_CONVOLUTION_BORDER", "glCopyTexSubImage2D"}},
       {.id = "3",
        .name = "camera pass: light depth in RGBA",
@@ -89,6 +91,7 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 3: light depth of each visible point in all four "
                               "channels{again}"}},
        .floor = F::kCameraDepth,
+       .role = PassRole::kCamera,
        .deviations = {bs::kDepthBiasDeviation},
        .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       {.id = "3s",
@@ -97,12 +100,14 @@ PassTable fastPcfPasses() {
                     "phases 2-4, instead of drawing it again in each (Brabec & Seidel 2001 §3 "
                     "counts the redraws, §4 does not require them)",
        .floor = F::kCopyWindowToTexture,
+       .role = PassRole::kCopyToTexture,
        .deviations = {bs::kCameraPassCopyDeviation}},
       {.id = "3r",
        .name = "camera pass restored from its copy",
        .reference = "ours, 4x4 phases 2-4: the saved camera pass drawn back as one textured "
                     "full-window quad, where §3/§4 draw the camera pass again",
        .floor = F::kTexturedWindowQuad,
+       .role = PassRole::kCamera,
        .deviations = {bs::kCameraPassCopyDeviation}},
       {.id = "4",
        .name = "projective pass: subtract packed map, offset texture coordinates",
@@ -115,6 +120,7 @@ PassTable fastPcfPasses() {
                               "x: > 0 = that neighbour shadows the "
                               "point"}},
        .floor = F::kProjectiveSubtract,
+       .role = PassRole::kProjective,
        .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
                     "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)",
                     "texture matrix (unit 0): load"}},
@@ -129,11 +135,13 @@ PassTable fastPcfPasses() {
                    .caption = "Pass 5: alpha = share of the four neighbours that shadow the "
                               "point"}},
        .floor = F::kCopyPixels,
+       .role = PassRole::kCopy,
        .keyState = {"GL_COLOR_TABLE [", "colour matrix: load [0 0 0 0", "glCopyPixels"}},
       {.id = "6a",
        .name = "accumulate",
        .reference = "Brabec & Seidel 2001 §4 (4x4 footprints)",
        .floor = F::kAccumulate,
+       .role = PassRole::kAccumulate,
        .keyState = {"glAccum"}},
       {.id = "6b",
        .name = "accumulation return",
@@ -144,6 +152,7 @@ PassTable fastPcfPasses() {
                               "(the paper counts 4 x 5 = 20; sums of four 5-level phases "
                               "coincide)"}},
        .floor = F::kAccumulationReturn,
+       .role = PassRole::kAccumulationReturn,
        .keyState = {"glAccum(GL_RETURN"}},
       {.id = "7",
        .name = "lighting x shadow term",
@@ -152,6 +161,7 @@ PassTable fastPcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 7: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
+       .role = PassRole::kLighting,
        .deviations = {kProjectedConeDeviation},
        .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };

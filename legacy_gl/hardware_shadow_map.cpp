@@ -219,6 +219,7 @@ PassTable hardwareShadowMapPasses() {
                    .caption = "pass 1 (Everitt Fig. 2): depth from the light with polygon "
                               "offset"}},
        .floor = PassFloor::kDepthFromLight,
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation},
        .keyState = {"GL_POLYGON_OFFSET_FILL", "glPolygonOffset", "glColorMask"}},
   };
@@ -283,7 +284,8 @@ PassTable shadowMapCameraPasses(int firstPass) {
        .writes = {{.name = "ambient",
                    .caption = "pass " + ambient +
                               ": the ambient term alone, unshadowed (Everitt, Kilgard's note)"}},
-       .floor = PassFloor::kAmbientCamera},
+       .floor = PassFloor::kAmbientCamera,
+       .role = PassRole::kCamera},
       {.id = direct,
        .name = "direct light x shadow test",
        .reference = "Everitt, Rege & Cebenoyan 2001, How It Works (r/q <= texture2D(s/q, t/q)), "
@@ -294,6 +296,7 @@ PassTable shadowMapCameraPasses(int firstPass) {
                               ": + diffuse and specular x the ARB_shadow comparison (Everitt "
                               "Eq. 5, Fig. 5): the final image"}},
        .floor = PassFloor::kShadowedDirectLight,
+       .role = PassRole::kLighting,
        .deviations = {kProjectedConeDeviation}},
       {.id = mask,
        .name = "visibility mask",

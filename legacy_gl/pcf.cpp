@@ -67,6 +67,7 @@ PassTable pcfPasses() {
                               "x, grey = equal: the sub-texel jitter of "
                               "Fig. 3"}},
        .floor = F::kJitteredLightGroup,
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
        .keyState = {"projection: load", "glColorMask", "glCopyTexSubImage2D"}},
       {.id = "2",
@@ -77,6 +78,7 @@ PassTable pcfPasses() {
                    .caption = "Pass 2: light depth of each visible point in all four "
                               "channels{again}"}},
        .floor = F::kCameraDepth,
+       .role = PassRole::kCamera,
        .deviations = {bs::kDepthBiasDeviation},
        .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       // §3 prescribes no redraw: "another eight passes are necessary to perform the
@@ -89,12 +91,14 @@ PassTable pcfPasses() {
                     "§3 counts the redraws, \"another eight passes ... to perform the "
                     "subtraction\", and does not require them)",
        .floor = F::kCopyWindowToTexture,
+       .role = PassRole::kCopyToTexture,
        .deviations = {bs::kCameraPassCopyDeviation}},
       {.id = "2r",
        .name = "camera pass restored from its copy",
        .reference = "ours, 3x3 and 4x4 groups 2 on: the saved camera pass drawn back as one "
                     "textured full-window quad, where §3 draws the camera pass again",
        .floor = F::kTexturedWindowQuad,
+       .role = PassRole::kCamera,
        .deviations = {bs::kCameraPassCopyDeviation}},
       {.id = "3",
        .name = "projective pass: subtract packed map",
@@ -107,6 +111,7 @@ PassTable pcfPasses() {
                               "x: > 0 = that sample shadows the "
                               "point"}},
        .floor = F::kProjectiveSubtract,
+       .role = PassRole::kProjective,
        .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
                     "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)"}},
       {.id = "4",
@@ -120,12 +125,14 @@ PassTable pcfPasses() {
                    .caption = "Pass 4: alpha after the colour matrix summed the channels: share "
                               "of shadowed samples (white = all)"}},
        .floor = F::kCopyPixels,
+       .role = PassRole::kCopy,
        .keyState = {"GL_COLOR_TABLE [", "colour matrix: load [0 0 0 0", "glCopyPixels"}},
       {.id = "5a",
        .name = "accumulate",
        .reference = "Brabec & Seidel 2001 §3: larger footprints in parts of four, \"summed up "
                     "using the accumulation buffer [3]\"",
        .floor = F::kAccumulate,
+       .role = PassRole::kAccumulate,
        .keyState = {"glAccum"}},
       {.id = "5b",
        .name = "accumulation return",
@@ -135,6 +142,7 @@ PassTable pcfPasses() {
                    .caption = "Pass 5: the groups summed in the accumulation buffer (white = all "
                               "shadowed)"}},
        .floor = F::kAccumulationReturn,
+       .role = PassRole::kAccumulationReturn,
        .keyState = {"glAccum(GL_RETURN"}},
       {.id = "6",
        .name = "lighting x shadow term",
@@ -143,6 +151,7 @@ PassTable pcfPasses() {
        .writes = {{.name = "shaded",
                    .caption = "Pass 6: OpenGL lighting x (1 - shadow) + ambient"}},
        .floor = F::kLighting,
+       .role = PassRole::kLighting,
        .deviations = {kProjectedConeDeviation},
        .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };

@@ -42,6 +42,7 @@ PassTable rampPasses() {
                    .caption = "Pass 1: light-space depth through the 1D ramp, alpha channel of "
                               "the shadow map (black = near, white = far or empty)"}},
        .floor = F::kLightDepthAndCopy,
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation, bs::kFloatChannelsDeviation},
        .keyState = {"rising in 256 steps", "texture matrix (unit 0): load", "glCopyTexSubImage2D"}},
       {.id = "2",
@@ -52,6 +53,7 @@ PassTable rampPasses() {
                    .caption = "Pass 2: each visible point's own depth from the light, same ramp "
                               "(minus bias)"}},
        .floor = F::kCameraDepth,
+       .role = PassRole::kCamera,
        .deviations = {bs::kDepthBiasDeviation},
        .keyState = {"texture matrix (unit 0): load", "GL_TEXTURE_1D = texture"}},
       {.id = "3",
@@ -67,6 +69,7 @@ PassTable rampPasses() {
                   {.name = "difference-alpha-x" + gain,
                    .caption = "Pass 3 difference amplified " + gain + "x for display"}},
        .floor = F::kProjectiveSubtract,
+       .role = PassRole::kProjective,
        .keyState = {"GL_FUNC_REVERSE_SUBTRACT", "glBlendFunc(GL_ONE, GL_ONE)",
                     "GL_TEXTURE_2D = texture", "glDepthFunc(GL_LEQUAL)"}},
       {.id = "4",
@@ -76,6 +79,7 @@ PassTable rampPasses() {
        .writes = {{.name = "shadow-mask-alpha",
                    .caption = "Pass 4 (footnote 1): the mask after the extra copy, 1 = shadow"}},
        .floor = F::kCopyPixels,
+       .role = PassRole::kCopy,
        .deviations = {bs::kFloatClampDeviation},
        .keyState = {"glPixelTransferf", "glCopyPixels"}},
       {.id = "5",
@@ -84,6 +88,7 @@ PassTable rampPasses() {
                     "(1 - mask), ambient kept",
        .writes = {{.name = "shaded", .caption = "Pass 5: OpenGL lighting x (1 - mask) + ambient"}},
        .floor = F::kLighting,
+       .role = PassRole::kLighting,
        .deviations = {kProjectedConeDeviation},
        .keyState = {"GL_ONE_MINUS_DST_ALPHA", "GL_LIGHT_MODEL_AMBIENT", "GL_LIGHT0 GL_DIFFUSE"}},
   };

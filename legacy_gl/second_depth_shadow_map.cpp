@@ -97,6 +97,7 @@ PassTable secondDepthPasses() {
                    .caption = "pass 1 (Wang & Molnar 1994, Everitt \"Advantages and "
                               "Limitations\"): back faces of closed casters from the light, open "
                               "casters with polygon offset"}},
+       .role = PassRole::kLight,
        .deviations = {kOpenCasterDeviation, kOffscreenLightPassDeviation,
                       kDepthRoundoffScaleDeviation}},
   };

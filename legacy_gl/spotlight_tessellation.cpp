@@ -336,7 +336,8 @@ PassSpec meshFeedingPass() {
               "ours, not a paper's pass (run before the camera passes, listed first): "
               "fixed-function lighting is evaluated per vertex, so the receivers are split "
               "until it matches the modern twins' per-pixel lighting",
-          .floor = PassFloor::kCpuOnly};
+          .floor = PassFloor::kCpuOnly,
+          .role = PassRole::kMesh};
 }
 
 bool backFacesHiddenFrom(const Object& object, const Camera& camera) {

@@ -157,6 +157,7 @@ PassTable wooPasses() {
                     "nearest layer from the light, no polygon offset",
        .writes = {{.name = "first-depth-layer",
                    .caption = "pass 1: nearest depth from the light z1 (Everitt, Woo paragraph)"}},
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation}},
       {.id = "2",
        .name = "peel to second depth layer",
@@ -164,6 +165,7 @@ PassTable wooPasses() {
                     "depth peeling [2]: the second-nearest layer",
        .writes = {{.name = "second-depth-layer",
                    .caption = "pass 2: depth after peeling z1 away, z2 (depth peeling)"}},
+       .role = PassRole::kLight,
        .deviations = {kOffscreenLightPassDeviation, kDepthRoundoffScaleDeviation}},
       {.id = "3",
        .name = "midpoint of the layers",
@@ -171,6 +173,7 @@ PassTable wooPasses() {
                     "is the average of the two layers (averaged on the host: DEVIATION)",
        .writes = {{.name = "midpoint-shadow-map",
                    .caption = "pass 3: Woo's midpoint (z1 + z2) / 2, the shadow map"}},
+       .role = PassRole::kLight,
        .deviations = {kHostMidpointDeviation}},
   };
   for (PassSpec& spec : shadowMapCameraPasses(4)) table.push_back(std::move(spec));

@@ -18,6 +18,7 @@
 #include "core/base/provenance.h"
 #include "measure/bench.h"
 #include "measure/plot_labels.h"
+#include "registry/registry.h"
 #include "registry/twins.h"
 
 namespace sl::figures {
@@ -100,8 +101,10 @@ std::string ticsList(const std::vector<double>& ticks) {
 }  // namespace
 
 std::string plotFamily(const std::string& technique) {
-  if (technique.rfind("reference.", 0) == 0) return "";
-  if (technique.rfind("legacy.", 0) == 0) return "legacy";
+  // Technique::family; a technique this build lacks (a merged row) is one of the later papers.
+  const Technique* t = techniqueNamed(technique);
+  if (t != nullptr && t->family == TechniqueFamily::kReference) return "";
+  if (t != nullptr && t->family == TechniqueFamily::kLegacy) return "legacy";
   for (const twins::TwinPair& pair : twins::twinPairs())
     if (pair.modern == technique) return "modern twins";
   return "later papers";

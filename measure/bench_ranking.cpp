@@ -13,14 +13,23 @@
 #include "core/base/decimal.h"
 #include "core/base/errors.h"
 #include "measure/bench.h"
+#include "registry/registry.h"
 
 namespace sl::figures {
+
+namespace {
+// A row of the ray-traced truth, not a competitor (Technique::family). A row that names a
+// technique this build lacks (merged from another build's bench) is a competitor.
+bool isReferenceRow(const BenchRow& r) {
+  const Technique* t = techniqueNamed(r.technique);
+  return t != nullptr && t->family == TechniqueFamily::kReference;
+}
+}  // namespace
 
 std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::string& scene) {
   std::vector<size_t> candidates;
   for (size_t i = 0; i < rows.size(); ++i)
-    if (rows[i].scene == scene && rows[i].status == "ok" &&
-        rows[i].technique.rfind("reference.", 0) != 0)
+    if (rows[i].scene == scene && rows[i].status == "ok" && !isReferenceRow(rows[i]))
       candidates.push_back(i);
   std::sort(candidates.begin(), candidates.end(), [&](size_t a, size_t b) {
     return rows[a].frameMs != rows[b].frameMs
@@ -39,7 +48,7 @@ std::vector<size_t> paretoFront(const std::vector<BenchRow>& rows, const std::st
 
 namespace {
 bool isRankedRow(const BenchRow& r) {  // a competitor: ran, and not a reference (the truth)
-  return r.status == "ok" && r.technique.rfind("reference.", 0) != 0;
+  return r.status == "ok" && !isReferenceRow(r);
 }
 // a no slower and no worse than b, and strictly better in one of the two.
 bool dominates(const BenchRow& a, const BenchRow& b) {
@@ -94,7 +103,7 @@ std::vector<BudgetRanking> rankWithinBudget(const std::vector<BenchRow>& rows, d
   };
   for (size_t i = 0; i < rows.size(); ++i) {
     const BenchRow& r = rows[i];
-    if (r.technique.rfind("reference.", 0) == 0) continue;  // the truth, not a competitor
+    if (isReferenceRow(r)) continue;  // the truth, not a competitor
     BudgetRanking& s = sceneRanking(r.scene);
     if (r.status != "ok")
       ++s.notRun;
@@ -112,14 +121,9 @@ std::vector<BudgetRanking> rankWithinBudget(const std::vector<BenchRow>& rows, d
 }
 
 void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, double budgetMs) {
-  auto fixed = [](double v, int digits) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(digits) << v;
-    return s.str();
-  };
   auto variants = [](size_t n) { return std::to_string(n) + (n == 1 ? " variant" : " variants"); };
   for (const BudgetRanking& s : rankWithinBudget(rows, budgetMs)) {
-    out << "budget " << fixed(budgetMs, 1) << " ms, scene " << s.scene << ": "
+    out << "budget " << fixedDecimals(budgetMs, 1) << " ms, scene " << s.scene << ": "
         << variants(s.within.size())
         << " within budget, ranked by RMSE against the pixel-integrated reference\n";
     if (!s.within.empty())
@@ -132,15 +136,15 @@ void printBudgetRanking(std::ostream& out, const std::vector<BenchRow>& rows, do
     for (size_t i : s.within) {
       const BenchRow& r = rows[i];
       const std::string temporal =
-          (r.temporalChange >= 0 ? fixed(r.temporalChange, 5) : std::string("-")) + " (" +
-          (r.referenceTemporalChange >= 0 ? fixed(r.referenceTemporalChange, 5)
+          (r.temporalChange >= 0 ? fixedDecimals(r.temporalChange, 5) : std::string("-")) + " (" +
+          (r.referenceTemporalChange >= 0 ? fixedDecimals(r.referenceTemporalChange, 5)
                                           : std::string("-")) +
           ")";
       out << "  " << std::left << std::setw(4) << std::to_string(++place) + "." << std::setw(20)
           << r.technique << std::setw(44) << r.variant << std::right << std::setw(9)
-          << fixed(r.frameMs, 2) << std::setw(9) << fixed(r.primary().all.rmse, 4) << std::setw(9)
-          << fixed(r.primary().band.rmse, 4) << std::setw(20) << temporal << std::setw(8)
-          << r.paretoRank << "\n";
+          << fixedDecimals(r.frameMs, 2) << std::setw(9) << fixedDecimals(r.primary().all.rmse, 4)
+          << std::setw(9) << fixedDecimals(r.primary().band.rmse, 4) << std::setw(20) << temporal
+          << std::setw(8) << r.paretoRank << "\n";
     }
     out << "  " << variants(size_t(s.overBudget)) << " over budget";
     if (s.notRun > 0)
@@ -193,15 +197,14 @@ std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths
         }
       } catch (const Json::exception& e) {
         throw InputError(where + ": a field of the wrong type (" + e.what() + ")");
+        lines.push_back(std::move(j));
+        rows.push_back(std::move(r));
       }
-      lines.push_back(std::move(j));
-      rows.push_back(std::move(r));
     }
+    assignParetoRanks(rows);
+    for (size_t i = 0; i < rows.size(); ++i)
+      lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
+    return lines;
   }
-  assignParetoRanks(rows);
-  for (size_t i = 0; i < rows.size(); ++i)
-    lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
-  return lines;
-}
 
 }  // namespace sl::figures

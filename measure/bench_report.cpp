@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/base/decimal.h"
 #include "core/base/errors.h"
 #include "core/base/html.h"
 #include "core/base/output_files.h"
@@ -19,12 +20,6 @@ namespace sl::figures {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string number(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
 
 // The quick bench's claim verdicts as the last run before the one error definition
 // (docs/error.md) printed them: assets/bench/claims-before-error-definition.json, the claim
@@ -131,12 +126,14 @@ std::string runQuickBenchForReport(const std::string& outDir, bool progress) {
       h << "<td colspan=8 class=bad>" << htmlEscape(r.status) << "</td></tr>\n";
       continue;
     }
-    h << "<td>" << number(r.frameMs, 1) << "</td><td>" << number(e.all.rmse, 4) << "</td><td>"
-      << number(point.all.rmse, 4) << "</td><td>" << number(e.all.maxAbs, 2) << "</td><td>"
-      << number(e.all.shareAboveHalf, 4) << "</td><td>" << number(e.band.rmse, 3) << "</td><td>"
-      << number(e.leakShare, 4) << "</td><td>"
-      << (r.temporalChange >= 0 ? number(r.temporalChange, 5) : std::string("-")) << " ("
-      << (r.referenceTemporalChange >= 0 ? number(r.referenceTemporalChange, 5) : std::string("-"))
+    h << "<td>" << fixedDecimals(r.frameMs, 1) << "</td><td>" << fixedDecimals(e.all.rmse, 4)
+      << "</td><td>" << fixedDecimals(point.all.rmse, 4) << "</td><td>"
+      << fixedDecimals(e.all.maxAbs, 2) << "</td><td>" << fixedDecimals(e.all.shareAboveHalf, 4)
+      << "</td><td>" << fixedDecimals(e.band.rmse, 3) << "</td><td>"
+      << fixedDecimals(e.leakShare, 4) << "</td><td>"
+      << (r.temporalChange >= 0 ? fixedDecimals(r.temporalChange, 5) : std::string("-")) << " ("
+      << (r.referenceTemporalChange >= 0 ? fixedDecimals(r.referenceTemporalChange, 5)
+                                         : std::string("-"))
       << ")</td></tr>\n";
   }
   const PreviousVerdicts before = previousVerdicts();

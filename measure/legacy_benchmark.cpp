@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/base/decimal.h"
 #include "core/base/errors.h"
 #include "core/gl/gl.h"
 #include "core/gl/gl_objects.h"
@@ -35,15 +36,9 @@ std::string glName(const BenchmarkResult& r) {
   return std::string(backendName(r.backend)) + (r.imagingReplaced ? " + imaging/" : "");
 }
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
 // time / floor, "-" without a floor.
 std::string ratio(double ms, double floorMs) {
-  return floorMs > 0.0 ? fixed(ms / floorMs, 1) + "x" : "-";
+  return floorMs > 0.0 ? fixedDecimals(ms / floorMs, 1) + "x" : "-";
 }
 
 // Installs the imaging subset options.imaging asks for (as registry/registry.cpp does for render).
@@ -268,19 +263,21 @@ std::string splitCostMarkdown(const Scene& scene, const BenchmarkOptions& option
        "invocations (llvmpipe counts whole 4x4 blocks)\n\n"
     << "| draw | triangles | fragments shaded | ms | / floor |\n| --- | --- | --- | --- | --- |\n"
     << "| floor: clear + one ramp-textured full-window quad | 2 | " << shaded(0) << " | "
-    << fixed(floorMs, 2) << " | 1.0x |\n";
+    << fixedDecimals(floorMs, 2) << " | 1.0x |\n";
   const std::string names[] = {ownName, splitName, geometryName, culledName};
   const size_t counts[] = {triangles(scene), triangles(split), triangles(split), triangles(split)};
   for (size_t i = 1; i < draws.size(); ++i)
     s << "| " << names[i - 1] << " | " << counts[i - 1] << " | " << shaded(i) << " | "
-      << fixed(timings[i].frameMs, 2) << " | " << ratio(timings[i].frameMs, floorMs) << " |\n";
+      << fixedDecimals(timings[i].frameMs, 2) << " | " << ratio(timings[i].frameMs, floorMs)
+      << " |\n";
   if (fragments[0] > 0 && fragments[2] > 0 && fragments[4] > 0)
-    s << "\nThe split meshes shade " << fixed(fragments[2] / fragments[0], 2)
-      << "x the floor's fragments with both faces and " << fixed(fragments[4] / fragments[0], 2)
+    s << "\nThe split meshes shade " << fixedDecimals(fragments[2] / fragments[0], 2)
+      << "x the floor's fragments with both faces and "
+      << fixedDecimals(fragments[4] / fragments[0], 2)
       << "x with their hidden back faces culled (what is left: surfaces hidden behind other "
          "objects and the 4x4 blocks that small triangles cover partly); their vertices and "
          "setup alone take "
-      << fixed(timings[3].frameMs, 2) << " ms.\n";
+      << fixedDecimals(timings[3].frameMs, 2) << " ms.\n";
   return s.str();
 }
 
@@ -298,8 +295,8 @@ std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {
   for (const BenchmarkResult& r : results)
     s << "| " << r.variant.label << " | " << glName(r) << " | "
       << (r.variant.paperFps.empty() ? "-" : r.variant.paperFps) << " | "
-      << fixed(r.timing.fps(), 1) << " | " << fixed(r.timing.frameMs, 1) << " | "
-      << fixed(r.timing.wallMs, 1) << " | " << fixed(r.frameFloorMs, 1) << " | "
+      << fixedDecimals(r.timing.fps(), 1) << " | " << fixedDecimals(r.timing.frameMs, 1) << " | "
+      << fixedDecimals(r.timing.wallMs, 1) << " | " << fixedDecimals(r.frameFloorMs, 1) << " | "
       << ratio(r.timing.frameMs, r.frameFloorMs) << " |\n";
   for (const BenchmarkResult& r : results) {
     s << "\n"
@@ -310,16 +307,16 @@ std::string benchmarkMarkdown(const std::vector<BenchmarkResult>& results) {
       const PassTime& p = r.timing.passes[i];
       const bool known = i < r.passFloorMs.size() && r.passFloorMs[i].has_value();
       const double floor = known ? r.passFloorMs[i].value_or(0.0) : 0.0;
-      s << "| " << p.name << " | " << fixed(p.milliseconds, 2) << " | "
+      s << "| " << p.name << " | " << fixedDecimals(p.milliseconds, 2) << " | "
         << (!known         ? "no rule"
             : floor == 0.0 ? "- (no GL work)"
-                           : fixed(floor, 2))
+                           : fixedDecimals(floor, 2))
         << " | " << ratio(p.milliseconds, floor) << " |\n";
     }
     s << "\nFloors measured (median ms):\n\n| floor | ms |\n| --- | --- |\n";
     for (const PassTime& f : r.floors)
-      s << "| " << f.name.substr(std::string("floor: ").size()) << " | " << fixed(f.milliseconds, 2)
-        << " |\n";
+      s << "| " << f.name.substr(std::string("floor: ").size()) << " | "
+        << fixedDecimals(f.milliseconds, 2) << " |\n";
   }
   return s.str();
 }

@@ -5,21 +5,13 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/base/decimal.h"
 #include "core/base/errors.h"
 #include "core/scene/scene_library.h"
 #include "core/technique/frame_timing.h"
 #include "registry/registry.h"
 
 namespace sl::measure::twin_tables {
-namespace {
-
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-}  // namespace
 
 void agreementTable(const Options& o) {
   std::cout << "### Agreement (" << backendName(o.backend) << ", " << o.width << "x" << o.height
@@ -43,14 +35,15 @@ void agreementTable(const Options& o) {
         const Frame legacy = renderTechnique(findTechnique(pair.legacy), scene, pl);
         const Frame modern = renderTechnique(findTechnique(pair.modern), scene, pm);
         const twins::Agreement a = twins::judge(pair, legacy.visibility, modern.visibility);
-        std::cout << fixed(a.all.maxAbs, 4) << " (" << fixed(a.all.maxAbs * 255.0, 1) << "/255) | "
-                  << a.differing << " of " << a.all.pixels << " | " << a.beyondOneStep << " | "
-                  << a.beyondOutsideBand << " | " << (a.withinBound ? "yes" : "**no**") << " | ";
+        std::cout << fixedDecimals(a.all.maxAbs, 4) << " ("
+                  << fixedDecimals(a.all.maxAbs * 255.0, 1) << "/255) | " << a.differing << " of "
+                  << a.all.pixels << " | " << a.beyondOneStep << " | " << a.beyondOutsideBand
+                  << " | " << (a.withinBound ? "yes" : "**no**") << " | ";
         const twins::ImageAgreement im =
             twins::judgeImages(legacy.color, modern.color, legacy.visibility, modern.visibility);
         std::cout << im.beyondSteps << " (" << im.beyondWhereMasksAgree << ") | " << im.boundPixels
-                  << " | " << fixed(im.maxAbs, 3) << ", " << fixed(im.rmse, 4) << " | "
-                  << (im.withinBound ? "yes" : "**no**") << " |\n";
+                  << " | " << fixedDecimals(im.maxAbs, 3) << ", " << fixedDecimals(im.rmse, 4)
+                  << " | " << (im.withinBound ? "yes" : "**no**") << " |\n";
       } catch (const std::exception& e) {
         std::cout << "not run: " << e.what() << " | | | | | | | | |\n";
       }
@@ -79,10 +72,11 @@ void benchTable(const Options& o) {
           findTechnique(pair.modern), scene,
           twins::paramsFor(pair, false, o.benchWidth, o.benchHeight, o.benchShadowMap, o.backend),
           o.frames);
-      std::cout << fixed(legacy.median, 1) << " / " << fixed(legacy.minimum, 1) << " | "
-                << fixed(modern.median, 1) << " / " << fixed(modern.minimum, 1) << " | "
-                << fixed(legacy.median / modern.median, 2) << " | "
-                << fixed(legacy.minimum / modern.minimum, 2) << " |\n";
+      std::cout << fixedDecimals(legacy.median, 1) << " / " << fixedDecimals(legacy.minimum, 1)
+                << " | " << fixedDecimals(modern.median, 1) << " / "
+                << fixedDecimals(modern.minimum, 1) << " | "
+                << fixedDecimals(legacy.median / modern.median, 2) << " | "
+                << fixedDecimals(legacy.minimum / modern.minimum, 2) << " |\n";
     } catch (const std::exception& e) {
       std::cout << "not run: " << e.what() << " | | |\n";
     }

@@ -15,19 +15,32 @@ namespace sl {
 
 const std::vector<Technique>& allTechniques() {
   static const std::vector<Technique> kAll = [] {
-    std::vector<Technique> all = legacy::techniques();
-    for (Technique& t : modern::techniques()) all.push_back(std::move(t));
+    std::vector<Technique> all;
+    // The family is the module that declares the technique (Technique::family).
+    const auto add = [&all](std::vector<Technique> declared, TechniqueFamily family) {
+      for (Technique& t : declared) {
+        t.family = family;
+        all.push_back(std::move(t));
+      }
+    };
+    add(legacy::techniques(), TechniqueFamily::kLegacy);
+    add(modern::techniques(), TechniqueFamily::kModern);
 #ifdef SHADOWLAB_HAVE_REFERENCE
-    for (Technique& t : reference::techniques()) all.push_back(std::move(t));
+    add(reference::techniques(), TechniqueFamily::kReference);
 #endif
     return all;
   }();
   return kAll;
 }
 
-const Technique& findTechnique(const std::string& name) {
+const Technique* techniqueNamed(const std::string& name) {
   for (const Technique& t : allTechniques())
-    if (t.name == name) return t;
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+const Technique& findTechnique(const std::string& name) {
+  if (const Technique* t = techniqueNamed(name)) return *t;
   std::string known;
   for (const Technique& t : allTechniques()) known += (known.empty() ? "" : ", ") + t.name;
   throw InputError("unknown technique '" + name + "' (known: " + known + ")");

@@ -11,6 +11,8 @@ namespace sl {
 
 const std::vector<Technique>& allTechniques();
 const Technique& findTechnique(const std::string& name);  // throws InputError if unknown
+// The technique named `name`, or nullptr when this build has none (a bench row of another build).
+const Technique* techniqueNamed(const std::string& name);
 
 // Options a technique ignores are input errors. `given` are the common
 // options (core/technique/technique.h CommonOption) given explicitly on the command line; throws

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -164,21 +163,18 @@ void writeGlsl(std::ostream& html, const json& pass) {
   }
 }
 
-// "legacy.fast-pcf pass 6a accumulate" -> a link to that pass of the legacy side with the same
-// footprint as `from` (the 4x4 twin's accumulation on the 4x4 legacy strip), when this page
-// shows it.
-std::string replacesLink(const std::string& text, const std::vector<Side>& sides,
-                         const Side& from) {
-  static const std::regex kPass(R"(^\s*([a-z]+\.[a-z0-9-]+) pass ([0-9a-z]+)\b.*)");
-  std::smatch m;
-  if (std::regex_match(text, m, kPass))
-    for (const Side& s : sides) {
-      if (s.technique->name != m[1].str() || s.tag != from.tag) continue;
-      for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
-        if (pass.value("id", "") == m[2].str())
-          return "<a href=\"#" + passAnchor(s.anchor, m[2].str()) + "\">" + htmlEscape(text) +
-                 "</a>";
-    }
+// A "replaces" entry (legacy.fast-pcf pass 6a) -> a link to that pass of the legacy side with
+// the same footprint as `from` (the 4x4 twin's accumulation on the 4x4 legacy strip), when this
+// page shows it; found by its id, the technique and the pass.
+std::string replacesLink(const json& replaced, const std::vector<Side>& sides, const Side& from) {
+  const std::string text = replacedPassText(replaced);
+  const std::string technique = replaced.value("technique", ""), id = replaced.value("pass", "");
+  for (const Side& s : sides) {
+    if (s.technique->name != technique || s.tag != from.tag) continue;
+    for (const json& pass : s.passes["passes"])  // the 4x4 accumulation is not in every run
+      if (pass.value("id", "") == id)
+        return "<a href=\"#" + passAnchor(s.anchor, id) + "\">" + htmlEscape(text) + "</a>";
+  }
   return htmlEscape(text);
 }
 
@@ -238,7 +234,7 @@ void writeSide(std::ostream& html, const Side& side, const LessonPage& page) {
       bool first = true;
       for (const json& r : replaces) {
         html << (first ? "" : ", ")
-             << replacesLink(r.is_string() ? r.get<std::string>() : "", page.sides, side);
+             << replacesLink(r.is_object() ? r : json::object(), page.sides, side);
         first = false;
       }
       html << "</p>\n";

@@ -140,12 +140,19 @@ std::string shownValue(const nlohmann::json& v) {
                        : v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-// A legacy pass that a twin's pass replaces: its place in the twin's pass table and its
-// "replaces" text.
+// A legacy pass that a twin's pass replaces: its place in the twin's pass table, its id (the
+// technique and the pass of its table) and its name there, for the page.
 struct ReplacedPass {
   size_t order = 0;
-  std::string text;  // "legacy.fast-pcf pass 6a accumulate"
+  std::string technique;  // "legacy.fast-pcf"
+  std::string pass;       // "6a"
+  std::string name;       // "accumulate"
 };
+
+// A "replaces" entry of passes.json: the id, and the name for a reader.
+nlohmann::json replacedJson(const ReplacedPass& r) {
+  return {{"technique", r.technique}, {"pass", r.pass}, {"name", r.name}};
+}
 
 // Pass `id` of the header's twin, named from the twin's pass table. Throws GlError when the
 // table has no such pass (a shader's @replaces line names a pass that is not there).
@@ -155,7 +162,7 @@ ReplacedPass replacedPass(const PassDumpHeader& header, const std::string& id) {
                            " without its pass table");
   const PassTable& table = *header.twinPasses;
   for (size_t i = 0; i < table.size(); ++i)
-    if (table[i].id == id) return {i, header.twin + " pass " + id + " " + table[i].name};
+    if (table[i].id == id) return {i, header.twin, id, table[i].name};
   throw GlError("a shader's @replaces names " + header.twin + " pass " + id + ", which is not in " +
                 header.twin + "'s pass table");
 }
@@ -179,7 +186,9 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const PassDumpHe
       if (header.twin.empty() || r.technique != header.twin) continue;  // a twin's passes only
       ReplacedPass named = replacedPass(header, r.passId);
       if (std::none_of(replaced.begin(), replaced.end(),
-                       [&](const ReplacedPass& p) { return p.text == named.text; }))
+                       [&](const ReplacedPass& p) {
+                         return p.technique == named.technique && p.pass == named.pass;
+                       }))
         replaced.push_back(std::move(named));
     }
   }
@@ -260,6 +269,11 @@ std::string nameAfterId(const PassTime& t) {
 }
 
 }  // namespace
+
+std::string replacedPassText(const nlohmann::json& replaced) {
+  return replaced.value("technique", "") + " pass " + replaced.value("pass", "") + " " +
+         replaced.value("name", "");
+}
 
 int passNumberOf(const std::string& name) {
   size_t i = 0;
@@ -443,7 +457,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
         legacy.begin(), legacy.end(),
         [](const ReplacedPass& a, const ReplacedPass& b) { return a.order < b.order; });
     p["replaces"] = nlohmann::json::array();
-    for (const ReplacedPass& r : legacy) p["replaces"].push_back(r.text);
+    for (const ReplacedPass& r : legacy) p["replaces"].push_back(replacedJson(r));
     p["id"] = id;
     p["number"] = passNumberOf(id);
     if (!p.contains("name")) p["name"] = "";
@@ -535,7 +549,7 @@ std::string indexHtml(const nlohmann::json& passes) {
       html << "<p class=\"replaces\">Replaces: ";
       bool first = true;
       for (const nlohmann::json& r : p["replaces"]) {
-        html << (first ? "" : "; ") << htmlEscape(r.get<std::string>());
+        html << (first ? "" : "; ") << htmlEscape(replacedPassText(r));
         first = false;
       }
       html << "</p>\n";

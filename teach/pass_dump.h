@@ -92,6 +92,9 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
 
 nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
                           const std::vector<PassDumpImage>& images);
+// A "replaces" entry of passes.json ({"technique", "pass", "name"}: the id of a legacy twin's
+// pass and its name there) as a page shows it: "legacy.fast-pcf pass 6a accumulate".
+std::string replacedPassText(const nlohmann::json& replaced);
 // A self-contained page: the technique, then each pass with its time and its images at their
 // natural aspect ratio (sized by width only), each with its caption.
 std::string indexHtml(const nlohmann::json& passes);

@@ -1,7 +1,9 @@
 #include "core/base/decimal.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <system_error>
 
 namespace sl {
@@ -63,6 +65,13 @@ std::optional<long long> parseWholeNumber(std::string_view text) {
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (error != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
   return value;
+}
+
+std::string fixedDecimals(double value, int digits) {
+  const int length = std::snprintf(nullptr, 0, "%.*f", digits, value);
+  std::string text(size_t(std::max(length, 0)), '\0');
+  std::snprintf(text.data(), text.size() + 1, "%.*f", digits, value);
+  return text;
 }
 
 }  // namespace sl

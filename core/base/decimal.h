@@ -8,12 +8,17 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace sl {
 
 // The value of `text`, or std::nullopt when it is not a finite decimal number as above.
 std::optional<double> parseDecimal(std::string_view text);
+
+// `value` with exactly `digits` decimals ("%.*f": 2.345 -> "2.35" at 2), the one way figures,
+// tables and reports print a fixed-point number.
+std::string fixedDecimals(double value, int digits);
 
 // The value of `text` when it is an optional sign and decimal digits only (no point, no
 // exponent) and fits a long long; std::nullopt otherwise.

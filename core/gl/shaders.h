@@ -57,7 +57,7 @@ struct ShaderPassMarker {
 };
 // Every marker of every embedded shader, by file then line. Throws GlError naming the file and
 // line of a marker without its @end, an @end without its @pass, an empty block, or an @replaces
-// line that is not "legacy.X ID [ID ...]".
+// line that is not "TECHNIQUE ID [ID ...]" (the technique a legacy one: the registry checks it).
 std::vector<ShaderPassMarker> shaderPassMarkers();
 
 }  // namespace sl

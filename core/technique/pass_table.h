@@ -42,6 +42,23 @@ enum class PassFloor {
 };
 const char* passFloorName(PassFloor floor);
 
+// The job a pass does in its pipeline, declared by its table: two techniques' passes with the
+// same role do the same job (Brabec & Seidel §2-§4 name them alike), so a figure pairs them
+// when it sets one frame's passes beside another's (figures/measured.cpp). kOther: a pass no
+// other pipeline pairs with (state only, a reference's rays, a shader technique's own step).
+enum class PassRole {
+  kOther,
+  kMesh,                // the scene's triangles prepared for the pipeline
+  kLight,               // a pass from the light that makes (part of) the shadow map
+  kCopyToTexture,       // the framebuffer copied into a texture
+  kCamera,              // a pass from the camera drawing light depth (or restoring it)
+  kProjective,          // the map projected onto the scene and compared
+  kCopy,                // glCopyPixels through the imaging subset
+  kAccumulate,          // one accumulation-buffer step
+  kAccumulationReturn,  // the accumulation buffer returned to colour
+  kLighting,            // lighting times the shadow term
+};
+
 // One buffer a pass writes, as --dump-passes shows it.
 struct PassBuffer {
   // The file name after the pass id: "packed-shadow-map{part}-rgba". "{part}" is replaced by
@@ -63,6 +80,7 @@ struct PassSpec {
   std::string reference{};  // "Brabec & Seidel 2001 §4, Eq. (1), Fig. 5", or "ours: ..."
   std::vector<PassBuffer> writes{};
   PassFloor floor = PassFloor::kNone;
+  PassRole role = PassRole::kOther;
   // The `// @pass ID` markers of the GLSL this pass runs (core/gl/shaders.h).
   std::vector<std::string> shaders{};
   // A modern twin's pass: the ids of the legacy twin's passes it does ("3", "4", "5").

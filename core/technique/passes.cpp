@@ -68,6 +68,7 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   pass.name = displayName(spec, part, suffix);
   pass.id = spec.id;
   pass.floor = spec.floor;
+  pass.role = spec.role;
   pass.part = part.index;
   pass.section = spec.reference;
   pass.glsl = spec.shaders;

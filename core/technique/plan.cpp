@@ -162,7 +162,7 @@ double maxTexelsPerPixel(const Scene& scene, const RenderParams& params) {
   return rhos.back().first;
 }
 
-std::string fixed(double v, int digits = 3) {
+std::string significantDigits(double v, int digits = 3) {
   std::ostringstream s;
   s.precision(digits);
   s << v;
@@ -307,7 +307,8 @@ FramePlan planFrame(const Scene& scene, const Technique& t, const RenderParams& 
     }
     const std::string filtering = value("filtering");
     plan.maxShadowTexelsPerPixel = maxTexelsPerPixel(scene, params);
-    const std::string rho = fixed(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
+    const std::string rho =
+        significantDigits(plan.maxShadowTexelsPerPixel) + " shadow-map texels per pixel";
     // Tri-linear and anisotropic filtering read the mip chain (modern/prefiltered_maps.cpp);
     // mipmaps=always builds it whatever the view does.
     const bool readsMipChain = filtering == "trilinear" || filtering == "anisotropic";
@@ -347,19 +348,21 @@ std::string formatPlan(const FramePlan& plan) {
   list("passes", plan.passes);
   list("objects in the light passes", plan.lightObjects);
   list("resources", plan.resources);
-  s << "light frustum: cone " << fixed(plan.sceneConeDegrees, 4) << " deg, fitted to the casters "
-    << fixed(plan.fittedConeDegrees, 4) << " deg: "
-    << fixed(std::tan(glm::radians(0.5 * plan.sceneConeDegrees)) /
-                 std::tan(glm::radians(0.5 * plan.fittedConeDegrees)),
-             3)
+  s << "light frustum: cone " << significantDigits(plan.sceneConeDegrees, 4)
+    << " deg, fitted to the casters " << significantDigits(plan.fittedConeDegrees, 4) << " deg: "
+    << significantDigits(std::tan(glm::radians(0.5 * plan.sceneConeDegrees)) /
+                             std::tan(glm::radians(0.5 * plan.fittedConeDegrees)),
+                         3)
     << "x the shadow-map texels per unit across the casters\n";
-  s << "light depth range: scene fit [" << fixed(plan.sceneRange.nearPlane, 4) << ", "
-    << fixed(plan.sceneRange.farPlane, 4) << "], fitted to casters and receivers in the frustum ["
-    << fixed(plan.fittedRange.nearPlane, 4) << ", " << fixed(plan.fittedRange.farPlane, 4)
-    << "]: near/far " << fixed(plan.sceneRange.nearPlane / plan.sceneRange.farPlane, 3) << " -> "
-    << fixed(plan.fittedRange.nearPlane / plan.fittedRange.farPlane, 3) << "\n";
+  s << "light depth range: scene fit [" << significantDigits(plan.sceneRange.nearPlane, 4) << ", "
+    << significantDigits(plan.sceneRange.farPlane, 4)
+    << "], fitted to casters and receivers in the frustum ["
+    << significantDigits(plan.fittedRange.nearPlane, 4) << ", "
+    << significantDigits(plan.fittedRange.farPlane, 4) << "]: near/far "
+    << significantDigits(plan.sceneRange.nearPlane / plan.sceneRange.farPlane, 3) << " -> "
+    << significantDigits(plan.fittedRange.nearPlane / plan.fittedRange.farPlane, 3) << "\n";
   if (plan.maxShadowTexelsPerPixel > 0)
-    s << "largest minification: " << fixed(plan.maxShadowTexelsPerPixel)
+    s << "largest minification: " << significantDigits(plan.maxShadowTexelsPerPixel)
       << " shadow-map texels per camera pixel\n";
   return s.str();
 }

@@ -123,10 +123,11 @@ struct PassTime {
   std::string name;
   double milliseconds = 0.0;
   // From the technique's pass table (core/technique/pass_table.h), for passes run through
-  // core/technique/passes.h: the pass's id ("5c"), its floor class and which of its repeated parts
-  // this run is.
+  // core/technique/passes.h: the pass's id ("5c"), its floor class, its role and which of its
+  // repeated parts this run is.
   std::string id;
   PassFloor floor = PassFloor::kNone;
+  PassRole role = PassRole::kOther;
   int part = 0;
   // Declared by the pass itself (PassTimer): the paper's section/equation/figure it follows,
   // and where its function lives (file relative to the source tree, function name).
@@ -234,11 +235,17 @@ struct PassVariant {
   PassTable passes;
 };
 
+// Which module declares a technique: the OpenGL 1.x fixed-function pipelines (legacy_gl/), the
+// GLSL techniques (modern/) or the ray-traced truth (reference/). Set by the registry from the
+// module's list (registry/registry.cpp), never read from the name.
+enum class TechniqueFamily { kLegacy, kModern, kReference };
+
 struct Technique {
-  std::string name;     // "legacy.pcf"
-  std::string paper;    // "Brabec & Seidel 2001, §3"
-  std::string summary;  // one line
-  std::string status;   // "complete", or what is missing
+  std::string name;                                   // "legacy.pcf"
+  TechniqueFamily family = TechniqueFamily::kModern;  // set by the registry
+  std::string paper;                                  // "Brabec & Seidel 2001, §3"
+  std::string summary;                                // one line
+  std::string status;                                 // "complete", or what is missing
   ContextNeeds needs;
   std::vector<ParamSpec> params;          // the --param keys it understands, declared once
   CommonOptions reads;                    // the common options its render reads
@@ -291,9 +298,6 @@ class PassTimer {
   ~PassTimer();
   PassTimer(const PassTimer&) = delete;
   PassTimer& operator=(const PassTimer&) = delete;
-
-  // The `// @pass ID` markers of the shader code this pass runs (modern techniques).
-  void shaderPasses(std::vector<std::string> ids) { pass_.glsl = std::move(ids); }
 
  private:
   Frame& frame_;

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "command_util.h"
+#include "registry/twins.h"
 #include "tests/test_names.h"
 
 namespace sl {
@@ -151,9 +152,11 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
   const nlohmann::json legacy = dumpOf("legacy.fast-pcf");
   const nlohmann::json& pack = pass(modern, 2);
   ASSERT_EQ(pack["replaces"].size(), 1u) << pack.dump();
-  EXPECT_EQ(pack["replaces"][0],
-            "legacy.fast-pcf pass 2 " + pass(legacy, 2)["name"].get<std::string>())
-      << "the replaced pass is named as the legacy dump names it";
+  const nlohmann::json packing = {{"technique", "legacy.fast-pcf"},
+                                  {"pass", "2"},
+                                  {"name", pass(legacy, 2)["name"].get<std::string>()}};
+  EXPECT_EQ(pack["replaces"][0], packing)
+      << "the replaced pass by its id, named as the legacy dump names it";
   ASSERT_EQ(pack["glsl"].size(), 1u);
   const nlohmann::json& where = pack["glsl"][0];
   EXPECT_EQ(where["file"], "fast_pcf_pack.frag.glsl");
@@ -172,17 +175,21 @@ TEST(StateCards, ModernFastPcfLinksItsPackPassToItsGlslLines) {
   // The camera pass replaces legacy passes 3 to 7, each named by its id (passes 6a and 6b, the
   // accumulation and its return, exist in the 4x4 footprint only).
   const nlohmann::json& camera = pass(modern, 3);
-  for (const char* accumulation :
-       {"legacy.fast-pcf pass 6a accumulate", "legacy.fast-pcf pass 6b accumulation return"})
-    EXPECT_NE(std::find(camera["replaces"].begin(), camera["replaces"].end(), accumulation),
-              camera["replaces"].end())
-        << accumulation << " in " << camera["replaces"].dump();
+  const auto replaces = [&](const nlohmann::json& id) {
+    return std::find(camera["replaces"].begin(), camera["replaces"].end(), id) !=
+           camera["replaces"].end();
+  };
+  for (const auto& [accumulation, name] :
+       {std::pair{"6a", "accumulate"}, std::pair{"6b", "accumulation return"}}) {
+    const nlohmann::json id = {
+        {"technique", "legacy.fast-pcf"}, {"pass", accumulation}, {"name", name}};
+    EXPECT_TRUE(replaces(id)) << id << " in " << camera["replaces"].dump();
+  }
   for (const char* legacyPass : {"3", "4", "5", "7"}) {
-    const std::string named = "legacy.fast-pcf pass " + std::string(legacyPass) + " " +
-                              passWithId(legacy, legacyPass)["name"].get<std::string>();
-    EXPECT_NE(std::find(camera["replaces"].begin(), camera["replaces"].end(), named),
-              camera["replaces"].end())
-        << named << " in " << camera["replaces"].dump();
+    const nlohmann::json id = {{"technique", "legacy.fast-pcf"},
+                               {"pass", legacyPass},
+                               {"name", passWithId(legacy, legacyPass)["name"]}};
+    EXPECT_TRUE(replaces(id)) << id << " in " << camera["replaces"].dump();
   }
 }
 
@@ -197,25 +204,22 @@ class TwinLinks : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(TwinLinks, EveryModernPassNamesTheLegacyPassesItReplaces) {
   const std::string modernName = GetParam();
-  const std::string legacyName = "legacy." + modernName.substr(modernName.find('.') + 1);
+  const std::string legacyName = twins::legacyTwinOf(modernName);
   const nlohmann::json modern = dumpOf(modernName, "", "twin_links_");
   const nlohmann::json legacy = dumpOf(legacyName, "", "twin_links_of_" + modernName + "_");
   std::map<std::string, std::string> legacyPasses;  // id -> name, the numbered ones
   for (const nlohmann::json& p : legacy["passes"])
     if (p["number"].get<int>() >= 1) legacyPasses[p["id"].get<std::string>()] = p["name"];
   std::set<std::string> replaced;
-  static const std::regex kNamed(R"re((legacy\.[a-z-]+) pass ([0-9a-z]+) (.*))re");
   for (const nlohmann::json& p : modern["passes"]) {
     EXPECT_FALSE(p["replaces"].empty()) << modernName << " pass " << p["id"];
     EXPECT_FALSE(p["glsl"].empty()) << modernName << " pass " << p["id"];
     for (const nlohmann::json& r : p["replaces"]) {
-      std::smatch m;
-      const std::string text = r;
-      ASSERT_TRUE(std::regex_match(text, m, kNamed)) << text;
-      EXPECT_EQ(m[1].str(), legacyName) << text;
-      const std::string id = m[2].str();
+      ASSERT_TRUE(r.is_object() && r.contains("technique") && r.contains("pass")) << r;
+      EXPECT_EQ(r["technique"], legacyName) << r;
+      const std::string id = r["pass"];
       if (!legacyPasses.count(id)) continue;
-      EXPECT_EQ(m[3].str(), legacyPasses[id]) << "the legacy dump names pass " << id;
+      EXPECT_EQ(r.value("name", ""), legacyPasses[id]) << "the legacy dump names pass " << id;
       replaced.insert(id);
     }
   }

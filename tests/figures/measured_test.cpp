@@ -32,6 +32,14 @@ PanelResult timed(const std::string& label, const std::string& technique,
   return p;
 }
 
+// A pass as a render through core/technique/passes.h reports it: its name, time and the role its
+// table declares (PassSpec::role), by which figures pair passes.
+PassTime pass(const std::string& name, double ms, PassRole role) {
+  PassTime t(name, ms);
+  t.role = role;
+  return t;
+}
+
 // The numbers of a text: "2x2" gives 2 and 2, "0.25" one number, "-1.5" gives 1.5.
 std::vector<std::string> numbersIn(const std::string& text) {
   static const std::regex number(R"(\d+(?:\.\d+)?)");
@@ -313,27 +321,31 @@ TEST(Measured, BrabecFig8ExplainsItsTimingPassByPassAndCountsTheBiasTrade) {
   FigureResult fig;
   fig.spec.id = "brabec-fig8";
   fig.panels.push_back(timed("(a) unfiltered", "legacy.ramp", {100, 98, 99}, "about 15 fps"));
-  fig.panels.back().passes = {{"mesh feeding: triangles split", 0.0},
-                              {"1 light pass: depth ramp into alpha + copy to texture", 17.6},
-                              {"2 camera pass: light depth ramp into alpha", 12.2},
-                              {"3 projective pass: subtract shadow map", 25.2},
-                              {"4 copy: shadow mask to 0 / 1", 7.9},
-                              {"5 lighting x shadow mask", 36.0}};
+  using R = PassRole;
+  fig.panels.back().passes = {
+      pass("mesh feeding: triangles split", 0.0, R::kMesh),
+      pass("1 light pass: depth ramp into alpha + copy to texture", 17.6, R::kLight),
+      pass("2 camera pass: light depth ramp into alpha", 12.2, R::kCamera),
+      pass("3 projective pass: subtract shadow map", 25.2, R::kProjective),
+      pass("4 copy: shadow mask to 0 / 1", 7.9, R::kCopy),
+      pass("5 lighting x shadow mask", 36.0, R::kLighting)};
   fig.panels.back().counters = {{kLeakPixelsCounter, 1013}, {kAcnePixelsCounter, 328}};
   fig.panels.push_back(timed("(b) fast PCF 2x2", "legacy.fast-pcf", {90, 88, 89}, "about 10 fps"));
-  fig.panels.back().passes = {{"mesh feeding: triangles split", 0.0},
-                              {"1 light pass: depth ramp in RGBA", 9.9},
-                              {"2 copy to texture through the 3x3 packing convolution", 2.0},
-                              {"3 camera pass: light depth in RGBA", 18.4},
-                              {"4 projective pass: subtract packed map", 18.2},
-                              {"5 copy: colour table + colour matrix -> alpha", 1.8},
-                              {"7 lighting x shadow term", 38.7}};
+  fig.panels.back().passes = {
+      pass("mesh feeding: triangles split", 0.0, R::kMesh),
+      pass("1 light pass: depth ramp in RGBA", 9.9, R::kLight),
+      pass("2 copy to texture through the 3x3 packing convolution", 2.0, R::kCopyToTexture),
+      pass("3 camera pass: light depth in RGBA", 18.4, R::kCamera),
+      pass("4 projective pass: subtract packed map", 18.2, R::kProjective),
+      pass("5 copy: colour table + colour matrix -> alpha", 1.8, R::kCopy),
+      pass("7 lighting x shadow term", 38.7, R::kLighting)};
   fig.panels.push_back(timed("(c) unfiltered, 12-bit", "legacy.ramp", {101, 99, 100}));
   fig.panels.back().counters = {{kLeakPixelsCounter, 54}, {kAcnePixelsCounter, 4763}};
   const std::string html = measuredHtml(fig);
   EXPECT_NE(html.find("(b) fast PCF 2x2 against (a) unfiltered, pass by pass"), std::string::npos)
       << html;
-  // The packing copy has no partner ("copy to" is not "copy"); 2.0 ms of an 89 ms frame.
+  // The packing copy has no partner (a copy to texture is not a glCopyPixels copy); 2.0 ms of an
+  // 89 ms frame.
   EXPECT_NE(html.find("adds: 2 copy to texture through the 3x3 packing convolution 2.0 ms, "
                       "together 2.0 ms, 2.2% of its frame"),
             std::string::npos)

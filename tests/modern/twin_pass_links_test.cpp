@@ -49,6 +49,20 @@ std::set<std::string> markerReplaces(const std::string& marker, const std::strin
   return out;
 }
 
+// Every `// @replaces` line names a technique of the legacy family (Technique::family, as the
+// registry declares it) and a pass of its table.
+TEST(TwinPassLinks, EveryReplacesMarkerNamesALegacyTechniquesPass) {
+  size_t lines = 0;
+  for (const ShaderPassMarker& m : shaderPassMarkers())
+    for (const ShaderReplaces& r : m.replaces) {
+      ++lines;
+      const Technique& legacy = findTechnique(r.technique);
+      EXPECT_EQ(legacy.family, TechniqueFamily::kLegacy) << m.file << " @pass " << m.id;
+      EXPECT_NO_THROW(findPassSpec(legacy.passes, r.passId)) << m.file << " @pass " << m.id;
+    }
+  EXPECT_GT(lines, 0u) << "no @replaces line in the embedded shaders";
+}
+
 TEST(TwinPassLinks, EveryTwinPassTableAndItsShadersNameTheLegacyPassesTheyReplace) {
   const auto pairs = pairByModern();
   ASSERT_EQ(pairs.size(), kTwins) << "a twin pair is missing from this build";
