@@ -185,10 +185,9 @@ void addShaderPass(nlohmann::json& pass, const std::string& id, const PassDumpHe
     for (const ShaderReplaces& r : m.replaces) {
       if (header.twin.empty() || r.technique != header.twin) continue;  // a twin's passes only
       ReplacedPass named = replacedPass(header, r.passId);
-      if (std::none_of(replaced.begin(), replaced.end(),
-                       [&](const ReplacedPass& p) {
-                         return p.technique == named.technique && p.pass == named.pass;
-                       }))
+      if (std::none_of(replaced.begin(), replaced.end(), [&](const ReplacedPass& p) {
+            return p.technique == named.technique && p.pass == named.pass;
+          }))
         replaced.push_back(std::move(named));
     }
   }
