@@ -197,14 +197,15 @@ std::vector<nlohmann::json> mergeBenchRows(const std::vector<std::string>& paths
         }
       } catch (const Json::exception& e) {
         throw InputError(where + ": a field of the wrong type (" + e.what() + ")");
-        lines.push_back(std::move(j));
-        rows.push_back(std::move(r));
       }
+      lines.push_back(std::move(j));
+      rows.push_back(std::move(r));
     }
-    assignParetoRanks(rows);
-    for (size_t i = 0; i < rows.size(); ++i)
-      lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
-    return lines;
   }
+  assignParetoRanks(rows);
+  for (size_t i = 0; i < rows.size(); ++i)
+    lines[i]["pareto_rank"] = rows[i].paretoRank > 0 ? Json(rows[i].paretoRank) : Json(nullptr);
+  return lines;
+}
 
 }  // namespace sl::figures
