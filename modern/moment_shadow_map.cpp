@@ -38,7 +38,7 @@ PassTable msmPasses() {
        .name = "four moments from light",
        .reference = "ours, after Peters & Klein 2015 (not in shared/papers): the moments "
                     "(z, z^2, z^3, z^4) of the linear light depth z, in 16-bit storage through "
-                    "their optimised quantisation (§4.3)",
+                    "their optimised quantisation",
        .writes = {{.name = "moments-mean", .caption = "filtered mean depth E[z]"}},
        .shaders = {"msm-map"}},
       {.id = "2",
@@ -94,7 +94,7 @@ ParamSpec storageParam() {
 }
 ParamSpec quantizationParam() {
   return choiceParam("quantization", "optimized", {"optimized", "plain"},
-                     "16-bit storage: Peters & Klein §4.3's affine map of the moments "
+                     "16-bit storage: Peters & Klein 2015's affine map of the moments "
                      "(optimized) or the moments as they are (plain)");
 }
 

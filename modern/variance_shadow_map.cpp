@@ -74,8 +74,9 @@ struct VsmSettings {
 
 // The --params of modern.vsm, declared once (Technique::params).
 ParamSpec minVarianceParam() {
-  return numberParam("min-variance", kDefaultMinVariance, 0.0, kMaxMinVariance,
-                     "lower bound of the variance, (linear depth)^2 (Donnelly & Lauritzen §3)");
+  return numberParam(
+      "min-variance", kDefaultMinVariance, 0.0, kMaxMinVariance,
+      "lower bound of the variance, (linear depth)^2 (ours, after Donnelly & Lauritzen 2006)");
 }
 ParamSpec bleedReductionParam() {
   return numberParam("bleed-reduction", kDefaultBleedReduction, 0.0, kMaxBleedReduction,

@@ -1,7 +1,7 @@
 // msm_map.frag — Moment Shadow Maps (ours, after Peters & Klein 2015, not in shared/papers),
 // light pass: the four moments b = (z, z^2, z^3, z^4) of the linear light depth z in [0, 1];
 // filtering the map yields their means under the footprint. With uQuantize (16-bit storage) the
-// moments are stored through Peters & Klein §4.3's affine map q = Q b + o (uQuantization,
+// moments are stored through Peters & Klein 2015's affine map q = Q b + o (uQuantization,
 // uQuantizationOffset), which spreads them over [0, 1]; the map is linear in b either way, so it
 // filters the same.
 #version 330 core
