@@ -11,6 +11,7 @@
 #include "core/base/metrics.h"
 #include "core/base/output_files.h"
 #include "core/base/provenance.h"
+#include "core/gl/gl_fault.h"
 #include "core/scene/scene_library.h"
 #include "registry/commands.h"
 #include "registry/registry.h"
@@ -60,10 +61,28 @@ void writeFrameOutputs(const Frame& frame, const PassDumpHeader& dumpHeader, Ren
   if (outputs.dump) writePassDump(*outputs.dump, frame, dumpHeader, provenance);
 }
 
+// SHADOWLAB_INJECT_GL_FAULT=KIND@pass=ID (core/gl/gl_fault.h) names a pass of the technique's
+// pass tables: an id it has not is an input error that lists its ids, not a fault that never
+// fires.
+void requireFaultPassOf(const Technique& technique) {
+  const std::string id = armedGlFaultPassId();
+  if (id.empty()) return;
+  std::string ids;
+  for (const PassTable* table : allPassTables(technique))
+    for (const PassSpec& pass : *table) {
+      if (pass.id == id) return;
+      if (ids.find(" " + pass.id + ",") == std::string::npos) ids += " " + pass.id + ",";
+    }
+  if (!ids.empty()) ids.pop_back();
+  throw InputError(std::string(kGlFaultVariable) + ": " + technique.name + " has no pass '" + id +
+                   "' (its pass ids:" + ids + ")");
+}
+
 }  // namespace
 
 int render(const cli::Args& args) {
   RenderRequest request = prepareRender(args);
+  requireFaultPassOf(*request.technique);
   RenderOutputs outputs;
   addSceneInputs(outputs.set, request.sceneName);
   outputs.image = outputs.set.addFile("--out", args.required("out"));

@@ -1,7 +1,9 @@
 // core/gl/gl_fault.cpp — see gl_fault.h.
 #include "core/gl/gl_fault.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cstdlib>
 #include <mutex>
 #include <type_traits>
@@ -106,6 +108,13 @@ const GlDispatch& faultTable() {
   return table;
 }
 
+// A pass-table id as the tables spell them: letters, digits, '-' and '_' ("3", "5b", "mesh").
+bool isPassId(const std::string& id) {
+  return !id.empty() && std::all_of(id.begin(), id.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
+  });
+}
+
 long long positiveCount(const std::string& digits, const std::string& spelling) {
   const bool allDigits = !digits.empty() && digits.size() <= 18 &&
                          digits.find_first_not_of("0123456789") == std::string::npos;
@@ -120,7 +129,7 @@ long long positiveCount(const std::string& digits, const std::string& spelling) 
 
 GlFault parseGlFault(const std::string& text) {
   const std::string forms =
-      " (KIND@TRIGGER: KIND error or missing, TRIGGER pass=PREFIX, "
+      " (KIND@TRIGGER: KIND error or missing, TRIGGER pass=ID, "
       "pass#N or call#N)";
   GlFault f;
   f.spelling = text;
@@ -137,8 +146,12 @@ GlFault parseGlFault(const std::string& text) {
                      text + "'" + forms);
   }
   if (trigger.rfind("pass=", 0) == 0 && trigger.size() > 5) {
-    f.trigger = GlFault::Trigger::kPassPrefix;
-    f.passPrefix = trigger.substr(5);
+    f.trigger = GlFault::Trigger::kPassId;
+    f.passId = trigger.substr(5);
+    if (!isPassId(f.passId))
+      throw InputError(std::string(kGlFaultVariable) + ": pass= takes a pass id of the " +
+                       "technique's pass table (pass=3, pass=5b, pass=mesh), got '" + f.passId +
+                       "' in '" + text + "'");
   } else if (trigger.rfind("pass#", 0) == 0) {
     f.trigger = GlFault::Trigger::kPassNumber;
     f.number = positiveCount(trigger.substr(5), text);
@@ -180,15 +193,19 @@ const GlDispatch* glFaultLayer(const GlDispatch* table) {
   return &faultTable();
 }
 
-void glFaultPassBegin(const std::string& name) {
+std::string armedGlFaultPassId() {
+  if (!glFaultArmed() || gFault.fault.trigger != GlFault::Trigger::kPassId) return "";
+  return gFault.fault.passId;
+}
+
+void glFaultPassBegin(const std::string& id, const std::string& name) {
   if (!tInstalled) return;
   tOpenPasses.push_back(name);
   if (!gFault.armed.load(std::memory_order_acquire)) return;
   const GlFault& f = gFault.fault;
   bool met = false;
   if (f.trigger == GlFault::Trigger::kPassNumber) met = ++gFault.passes == f.number;
-  if (f.trigger == GlFault::Trigger::kPassPrefix)
-    met = name.compare(0, f.passPrefix.size(), f.passPrefix) == 0;
+  if (f.trigger == GlFault::Trigger::kPassId) met = !id.empty() && id == f.passId;
   if (!met || !fire()) return;
   if (f.kind == GlFault::Kind::kError)
     tErrorPending = true;

@@ -10,8 +10,10 @@
 //                     the call is made, then reports the error, as a failed call would)
 //            missing  the next GL call finds its entry point absent: the dispatch's own check
 //                     throws GlError "the current GL implementation has no entry point glX"
-//   TRIGGER  pass=P   when a pass whose name starts with P begins (PassTimer; "3 projective")
-//            pass#N   when the Nth pass (PassTimer) begins, counted from 1 since arming
+//   TRIGGER  pass=ID  when the pass with pass-table id ID begins (core/technique/passes.h;
+//                     "3", "5b", "mesh"); hand-timed passes (PassTimer) have no id
+//            pass#N   when the Nth pass (Passes::run or PassTimer) begins, counted from 1
+//                     since arming
 //            call#N   at the Nth GL call made through the dispatch table since arming
 //
 // A fault fires once, on the first thread that meets its trigger, and is then disarmed: the
@@ -35,12 +37,12 @@ inline constexpr const char* kGlFaultVariable = "SHADOWLAB_INJECT_GL_FAULT";
 
 struct GlFault {
   enum class Kind { kError, kMissingEntryPoint };
-  enum class Trigger { kPassPrefix, kPassNumber, kCallNumber };
+  enum class Trigger { kPassId, kPassNumber, kCallNumber };
   Kind kind = Kind::kError;
   Trigger trigger = Trigger::kPassNumber;
-  std::string passPrefix;  // kPassPrefix
-  long long number = 0;    // kPassNumber, kCallNumber: 1 = the first
-  std::string spelling;    // as SHADOWLAB_INJECT_GL_FAULT spells it: "error@pass=3 projective"
+  std::string passId;    // kPassId: a pass-table id (core/technique/pass_table.h PassSpec::id)
+  long long number = 0;  // kPassNumber, kCallNumber: 1 = the first
+  std::string spelling;  // as SHADOWLAB_INJECT_GL_FAULT spells it: "error@pass=3"
 };
 
 // Reads KIND@TRIGGER (above); throws InputError naming the variable and what is wrong.
@@ -49,6 +51,10 @@ GlFault parseGlFault(const std::string& text);
 // The test hook: arms `fault` for the whole process (replacing an armed one; pass and call
 // counts start again). It takes effect from the next GlContext::makeCurrent on any thread.
 void injectGlFault(const GlFault& fault);
+// The pass id a pass=ID fault waits for, while one is armed; empty otherwise. A command that
+// knows its technique checks it against the technique's pass tables (an id no pass has is an
+// input error there, not a fault that silently never fires).
+std::string armedGlFaultPassId();
 // Disarms without firing (a test's cleanup). A fired fault is disarmed already.
 void clearGlFault();
 // How many faults have fired in this process (a test checks that its fault was met).
@@ -60,8 +66,10 @@ int glFaultsFired();
 bool glFaultArmed();
 // The table to make current for a context's `table`: the fault table while armed.
 const GlDispatch* glFaultLayer(const GlDispatch* table);
-// PassTimer: a pass begins / ends on this thread. Cheap unless the fault table is current.
-void glFaultPassBegin(const std::string& name);
+// A pass begins / ends on this thread: its pass-table id (empty for a hand-timed PassTimer)
+// meets a pass=ID trigger, its display name goes into the fault's note. Cheap unless the fault
+// table is current.
+void glFaultPassBegin(const std::string& id, const std::string& name);
 void glFaultPassEnd();
 // The " (injected GL fault ..., in pass '...')" note of the fault that just fired on this
 // thread, once; empty when none. checkGl and the missing-entry-point error append it.

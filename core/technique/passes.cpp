@@ -34,12 +34,12 @@ std::string replaced(std::string text, const std::string& key, const std::string
 
 // Ends the pass's GL trace however the body leaves (the body may throw).
 // Also the pass boundary of fault injection (core/gl/gl_fault.h): a fault armed for the pass
-// `name` fires inside it.
+// id `id` fires inside it (`name` goes into its note).
 class TracedScope {
  public:
-  explicit TracedScope(const std::string& name) {
+  TracedScope(const std::string& id, const std::string& name) {
     beginTracedPass();
-    glFaultPassBegin(name);
+    glFaultPassBegin(id, name);
   }
   ~TracedScope() {
     if (!ended_) endTracedPass();
@@ -77,7 +77,7 @@ void Passes::run(const std::string& id, const std::function<void()>& body, const
   pass.sourceFunction = function;
   throwNotedGlError();  // a timed pass's failure (PassTimer) ends the render before this one
   glFinish();
-  TracedScope trace(pass.name);
+  TracedScope trace(pass.id, pass.name);
   const double start = nowMilliseconds();
   body();
   glFinish();
@@ -94,7 +94,7 @@ void Passes::resume(const std::string& id, const std::function<void()>& body) {
   if (at == 0) throw std::logic_error("pass \"" + id + "\" resumed before it ran");
   throwNotedGlError();
   glFinish();
-  TracedScope trace(frame_.passes[at - 1].name);
+  TracedScope trace(frame_.passes[at - 1].id, frame_.passes[at - 1].name);
   const double start = nowMilliseconds();
   body();
   glFinish();

@@ -375,7 +375,7 @@ PassTimer::PassTimer(Frame& frame, std::string name, std::string section, const 
   pass_.sourceFunction = function;
   glFinish();
   beginTracedPass();
-  glFaultPassBegin(pass_.name);  // core/gl/gl_fault.h: a fault armed for this pass fires here
+  glFaultPassBegin("", pass_.name);  // core/gl/gl_fault.h: pass#N faults fire here (no id)
   start_ = nowMilliseconds();
 }
 

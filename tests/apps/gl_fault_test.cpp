@@ -78,18 +78,17 @@ INSTANTIATE_TEST_SUITE_P(
     Passes, RenderUnderFault,
     ::testing::Values(
         FaultCase{"legacy.hw", kSmall, "error@pass=1", "1 depth from light"},
-        FaultCase{"legacy.hw", kSmall, "missing@pass=mesh feeding",
+        FaultCase{"legacy.hw", kSmall, "missing@pass=mesh",
                   "mesh feeding: triangles split for per-vertex spotlight lighting"},
-        FaultCase{"legacy.ramp", kSmall, "error@pass=3 projective",
-                  "3 projective pass: subtract shadow map"},
-        FaultCase{"legacy.pcf", kSmall + " --filter 2", "missing@pass=4 copy",
+        FaultCase{"legacy.ramp", kSmall, "error@pass=3", "3 projective pass: subtract shadow map"},
+        FaultCase{"legacy.pcf", kSmall + " --filter 2", "missing@pass=4",
                   "4 copy: colour table + colour matrix -> alpha"},
-        FaultCase{"legacy.fast-pcf", kSmall + " --filter 2", "error@pass=2 copy",
+        FaultCase{"legacy.fast-pcf", kSmall + " --filter 2", "error@pass=2",
                   "2 copy to texture through the 3x3 packing convolution"},
         FaultCase{"legacy.fast-pcf", kSmall + " --filter 4", "missing@pass=7",
                   "7 lighting x shadow term"},
         FaultCase{"modern.hw", kSmall, "missing@pass=1", "1 depth from light"},
-        FaultCase{"modern.pcf", kSmall + " --filter 3", "error@pass=2 camera",
+        FaultCase{"modern.pcf", kSmall + " --filter 3", "error@pass=2",
                   "2 camera pass = legacy passes 2-6: depth, subtract, colour table, colour "
                   "matrix, accumulate, shade (pcf_shadow.frag)"},
         FaultCase{"modern.csm", kSmall, "error@pass=5b",
@@ -110,17 +109,39 @@ TEST(RenderUnderFault, WithoutTheVariableTheSameRenderWritesEveryOutput) {
 }
 
 // A fault whose trigger no pass meets changes nothing: exit 0 and the same pixels as a run
-// without the variable.
+// without the variable (legacy.pcf --filter 2 runs fewer than 99 passes).
 TEST(RenderUnderFault, AnUnmetFaultLeavesTheImageUnchanged) {
   const fs::path plain = testDir("apps", true) / "plain", armed = testDir("apps") / "armed";
   fs::create_directories(plain);
   fs::create_directories(armed);
   const std::string options = kSmall + " --filter 2";
   ASSERT_EQ(renderWithFault(plain, "legacy.pcf", options, "").status, 0);
-  const CommandResult r = renderWithFault(armed, "legacy.pcf", options, "error@pass=no such pass");
+  const CommandResult r = renderWithFault(armed, "legacy.pcf", options, "error@pass#99");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(readPng((plain / "x.png").string()).data == readPng((armed / "x.png").string()).data);
   EXPECT_TRUE(readPng((plain / "m.png").string()).data == readPng((armed / "m.png").string()).data);
+}
+
+// pass=ID names a pass-table id; one the technique does not have is an input error listing the
+// ids it has (before anything is rendered or written).
+TEST(RenderUnderFault, APassIdTheTechniqueLacksIsAnInputErrorListingItsIds) {
+  const fs::path dir = testDir("apps", true);
+  const CommandResult r = renderWithFault(dir, "legacy.ramp", kSmall, "error@pass=9z");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  EXPECT_NE(r.err.find("legacy.ramp has no pass '9z' (its pass ids: mesh, 1, 2, 3, 4, 5)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(leftBehind(dir).empty());
+}
+
+// A pass's display name is not its id: "pass=3 projective" is refused when the variable is read.
+TEST(RenderUnderFault, APassNameInsteadOfAnIdIsAnInputError) {
+  const fs::path dir = testDir("apps", true);
+  const CommandResult r = renderWithFault(dir, "legacy.ramp", kSmall, "error@pass=3 projective");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("pass= takes a pass id"), std::string::npos) << r.err;
+  EXPECT_TRUE(leftBehind(dir).empty());
 }
 
 TEST(RenderUnderFault, AMalformedVariableIsAnInputError) {

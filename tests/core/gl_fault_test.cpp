@@ -13,6 +13,7 @@
 #include "core/gl/context.h"
 #include "core/gl/gl.h"
 #include "core/gl/gl_trace.h"
+#include "core/technique/passes.h"
 #include "core/technique/technique.h"
 
 namespace sl {
@@ -26,22 +27,15 @@ std::unique_ptr<GlContext> smallContext() {
   return GlContext::create(spec);
 }
 
-// Two passes that clear the colour buffer: "1 clear" and "2 clear again".
-Frame twoPasses() {
-  Frame frame;
-  {
-    PassTimer timer(frame, "1 clear");
-    glClear(GL_COLOR_BUFFER_BIT);
-  }
-  {
-    PassTimer timer(frame, "2 clear again");
-    glClear(GL_COLOR_BUFFER_BIT);
-  }
-  return frame;
-}
+// Two passes of a pass table that clear the colour buffer: "1 clear" and "2 clear again".
+const PassTable kTwoPassTable = {{.id = "1", .name = "clear"}, {.id = "2", .name = "clear again"}};
 
-const RenderFunction kTwoPasses = [](GlContext&, const Scene&, const RenderParams&) {
-  return twoPasses();
+const RenderFunction kTwoPasses = [](GlContext&, const Scene&, const RenderParams& params) {
+  Frame frame;
+  Passes passes(frame, params, kTwoPassTable);
+  passes.run("1", [] { glClear(GL_COLOR_BUFFER_BIT); });
+  passes.run("2", [] { glClear(GL_COLOR_BUFFER_BIT); });
+  return frame;
 };
 
 // The message of the GlError `body` throws, or "no GlError".
@@ -69,10 +63,10 @@ class GlFaultTest : public ::testing::Test {
 };
 
 TEST(GlFaultParse, ReadsEveryKindAndTrigger) {
-  const GlFault a = parseGlFault("error@pass=3 projective pass: x");
+  const GlFault a = parseGlFault("error@pass=5b");
   EXPECT_EQ(a.kind, GlFault::Kind::kError);
-  EXPECT_EQ(a.trigger, GlFault::Trigger::kPassPrefix);
-  EXPECT_EQ(a.passPrefix, "3 projective pass: x");
+  EXPECT_EQ(a.trigger, GlFault::Trigger::kPassId);
+  EXPECT_EQ(a.passId, "5b");
   const GlFault b = parseGlFault("missing@pass#12");
   EXPECT_EQ(b.kind, GlFault::Kind::kMissingEntryPoint);
   EXPECT_EQ(b.trigger, GlFault::Trigger::kPassNumber);
@@ -84,8 +78,9 @@ TEST(GlFaultParse, ReadsEveryKindAndTrigger) {
 }
 
 TEST(GlFaultParse, RefusesMalformedSpellingsNamingTheVariable) {
-  for (const char* bad : {"error", "crash@pass#1", "error@pass=", "error@pass#0", "error@call#x",
-                          "error@call#-3", "error@frame#1", "@pass#1", "missing@call#1.5"}) {
+  for (const char* bad :
+       {"error", "crash@pass#1", "error@pass=", "error@pass=3 projective", "error@pass#0",
+        "error@call#x", "error@call#-3", "error@frame#1", "@pass#1", "missing@call#1.5"}) {
     try {
       parseGlFault(bad);
       ADD_FAILURE() << bad << " was accepted";
@@ -105,13 +100,13 @@ TEST_F(GlFaultTest, UnarmedTheContextsOwnTableIsCurrent) {
   EXPECT_FALSE(glFaultArmed());
 }
 
-TEST_F(GlFaultTest, ErrorAtAPassByNamePrefixEndsTheRenderNamingThePass) {
+TEST_F(GlFaultTest, ErrorAtAPassByIdEndsTheRenderNamingThePass) {
   const int fired = glFaultsFired();
-  arm("error@pass=2 clear");
+  arm("error@pass=2");
   EXPECT_NE(&currentGl(), &context_->dispatch()) << "armed: the fault table is current";
   const std::string what = glErrorOf([&] { kTwoPasses(*context_, scene_, params_); });
   EXPECT_EQ(what,
-            "2 clear again: GL_INVALID_OPERATION (injected GL fault error@pass=2 clear, in pass "
+            "2 clear again: GL_INVALID_OPERATION (injected GL fault error@pass=2, in pass "
             "'2 clear again')");
   EXPECT_EQ(glFaultsFired(), fired + 1);
   EXPECT_FALSE(glFaultArmed()) << "a fault fires once";
@@ -140,9 +135,10 @@ TEST_F(GlFaultTest, MissingEntryPointAtTheNthPassIsTheDispatchsOwnError) {
 }
 
 // A pass with no GL call of its own: the missing entry point is PassTimer's own glFinish at
-// the end of the pass, which the destructor notes instead of throwing.
+// the end of the pass, which the destructor notes instead of throwing. (A hand-timed pass has
+// no pass-table id: pass#N meets it, pass=ID cannot.)
 TEST_F(GlFaultTest, MissingEntryPointInAPassWithoutCallsIsNotedByThePassEnd) {
-  arm("missing@pass=1");
+  arm("missing@pass#1");
   Frame frame;
   const RenderFunction render = [&](GlContext&, const Scene&, const RenderParams&) {
     { PassTimer timer(frame, "1 CPU only"); }
@@ -150,7 +146,7 @@ TEST_F(GlFaultTest, MissingEntryPointInAPassWithoutCallsIsNotedByThePassEnd) {
   };
   EXPECT_EQ(glErrorOf([&] { render(*context_, scene_, params_); }),
             "1 CPU only: the current GL implementation has no entry point glFinish (injected GL "
-            "fault missing@pass=1, in pass '1 CPU only')");
+            "fault missing@pass#1, in pass '1 CPU only')");
 }
 
 // The Nth call is glGetError itself: it reports the error.
@@ -175,8 +171,8 @@ TEST_F(GlFaultTest, ErrorAtTheNthCallFailsThatCall) {
 TEST_F(GlFaultTest, MissingAtTheNthCallNamesThePassItFallsIn) {
   arm("missing@call#3");  // glFinish (pass 1 begins), glClear, glFinish (pass 1 ends)
   EXPECT_EQ(glErrorOf([&] { kTwoPasses(*context_, scene_, params_); }),
-            "1 clear: the current GL implementation has no entry point glFinish (injected GL "
-            "fault missing@call#3, in pass '1 clear')");
+            "the current GL implementation has no entry point glFinish (injected GL fault "
+            "missing@call#3, in pass '1 clear')");
 }
 
 // --dump-passes traces on top of the fault table: the fault still fires, the trace sees the
@@ -192,9 +188,18 @@ TEST_F(GlFaultTest, FiresUnderAGlTrace) {
   EXPECT_EQ(&currentGl(), &context_->dispatch()) << "fired: no fault table at makeCurrent";
 }
 
-// An armed fault whose trigger is never met changes nothing: same passes, no error.
+// An armed fault whose trigger is never met changes nothing: same passes, no error. A display
+// name's prefix is not an id: pass=1 does not meet a hand-timed pass named "1 ...".
 TEST_F(GlFaultTest, AnUnmetFaultChangesNothing) {
-  arm("error@pass=no such pass");
+  arm("error@pass=1");
+  {
+    Frame frame;
+    PassTimer timer(frame, "1 hand-timed");
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  context_->makeCurrent();
+  arm("error@pass=9");
   const Frame frame = kTwoPasses(*context_, scene_, params_);
   EXPECT_EQ(frame.passes.size(), 2u);
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
