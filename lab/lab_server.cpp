@@ -22,6 +22,7 @@
 #include "core/base/metrics.h"
 #include "core/base/provenance.h"
 #include "core/scene/scene_library.h"
+#include "core/technique/pass_run_key.h"
 #include "lab/lab_engine.h"
 #include "lab/lab_request.h"
 #include "lab/web_files.h"
@@ -228,7 +229,7 @@ struct LabServer::Impl {
     for (size_t i = 0; i < timed.front().passes.size(); ++i) {
       std::vector<double> times;
       for (const Frame& f : timed)
-        if (i < f.passes.size() && f.passes[i].name == timed.front().passes[i].name)
+        if (i < f.passes.size() && passRunKey(f.passes[i]) == passRunKey(timed.front().passes[i]))
           times.push_back(f.passes[i].milliseconds);
       medians.push_back({{"name", timed.front().passes[i].name},
                          {"median_ms", median(times)},

@@ -27,16 +27,14 @@ constexpr int kLettersInAlphabet = 26;
 constexpr int kMinShownWidthPixels = 256;
 constexpr int kMaxShownWidthPixels = 1100;
 
-// The text after the pass number of a buffer name: "3a-projected-map" -> "projected-map".
-std::string afterPassNumber(const std::string& name) {
-  size_t i = 0;
-  while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i]))) ++i;
-  if (i == 0) return name;
-  if (i < name.size() && std::islower(static_cast<unsigned char>(name[i])) && i + 1 < name.size() &&
-      name[i + 1] == '-')
-    ++i;  // a letter the technique gave itself ("3a-")
-  if (i < name.size() && (name[i] == '-' || name[i] == ' ')) ++i;
-  return name.substr(i);
+// A buffer's name in its file: its name without the id of its pass (core/technique/passes.cpp
+// names a buffer "ID-NAME"), "3a-projected-map" -> "projected-map"; a buffer of a named pass
+// ("mesh-...") keeps its whole name, so that its file says which pass made it.
+std::string bufferFileName(const PassImage& p) {
+  const bool numbered = passIdNumber(p.passId) >= 0;
+  if (numbered && p.name.compare(0, p.passId.size() + 1, p.passId + "-") == 0)
+    return p.name.substr(p.passId.size() + 1);
+  return p.name;
 }
 
 // A file-name-safe form: letters, digits, '.', '_' and '-'; anything else becomes '-'.
@@ -240,31 +238,26 @@ std::string stateCard(const nlohmann::json& pass) {
   return html.str();
 }
 
-// The key a pass is grouped by: its id from the technique's pass table; for a pass timed by
-// hand without one, the number its name starts with.
-std::string passKeyOf(const PassTime& t) {
-  return !t.id.empty() ? t.id : std::to_string(passNumberOf(t.name));
-}
-std::string passKeyOf(const PassImage& p) {
-  return !p.passId.empty() ? p.passId : std::to_string(passNumberOf(p.name));
-}
+// The key a pass is grouped by: its id from the technique's pass table (core/technique/
+// passes.h gives every pass of a render and every buffer it captures one).
+const std::string& passKeyOf(const PassTime& t) { return t.id; }
+const std::string& passKeyOf(const PassImage& p) { return p.passId; }
 
 // Pipeline order of pass keys: by number ("mesh" and other named ids first), then the id
 // ("5a" < "5b").
 struct PipelineOrder {
   bool operator()(const std::string& a, const std::string& b) const {
-    const int na = passNumberOf(a), nb = passNumberOf(b);
+    const int na = passIdNumber(a), nb = passIdNumber(b);
     return na != nb ? na < nb : a < b;
   }
 };
 
 // A pass's name without its id: "1 light pass" -> "light pass", "5a depth bounds" -> "depth
-// bounds"; a pass without an id loses its number as afterPassNumber does.
+// bounds" (core/technique/passes.cpp puts a numbered id before the declared name).
 std::string nameAfterId(const PassTime& t) {
-  if (!t.id.empty() && std::isdigit(static_cast<unsigned char>(t.id[0])) &&
-      t.name.compare(0, t.id.size() + 1, t.id + " ") == 0)
+  if (passIdNumber(t.id) >= 0 && t.name.compare(0, t.id.size() + 1, t.id + " ") == 0)
     return t.name.substr(t.id.size() + 1);
-  return t.id.empty() ? afterPassNumber(t.name) : t.name;
+  return t.name;
 }
 
 }  // namespace
@@ -274,11 +267,11 @@ std::string replacedPassText(const nlohmann::json& replaced) {
          replaced.value("name", "");
 }
 
-int passNumberOf(const std::string& name) {
+int passIdNumber(const std::string& id) {
   size_t i = 0;
   int number = 0;
-  while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])) && number < 1000)
-    number = number * 10 + (name[i++] - '0');
+  while (i < id.size() && std::isdigit(static_cast<unsigned char>(id[i])) && number < 1000)
+    number = number * 10 + (id[i++] - '0');
   return i == 0 ? -1 : number;
 }
 
@@ -297,16 +290,16 @@ std::vector<PassDumpImage> planPassDump(const Frame& frame, const std::string& t
     return PipelineOrder()(passKeyOf(frame.intermediates[a]), passKeyOf(frame.intermediates[b]));
   });
   std::map<int, size_t> perPass;
-  for (const PassImage& p : frame.intermediates) ++perPass[passNumberOf(p.name)];
+  for (const PassImage& p : frame.intermediates) ++perPass[passIdNumber(p.passId)];
   std::map<int, size_t> seen;
   std::set<std::string> used;
   std::vector<PassDumpImage> out;
   for (size_t i : order) {
     const PassImage& p = frame.intermediates[i];
-    const int pass = passNumberOf(p.name);
+    const int pass = passIdNumber(p.passId);
     std::string stem = passPrefix(pass, seen[pass]++, perPass[pass]);
     stem += '-';
-    stem += fileSafe(afterPassNumber(p.name));
+    stem += fileSafe(bufferFileName(p));
     for (int k = 2; used.count(stem); ++k) {
       stem += '-';
       stem += std::to_string(k);
@@ -429,7 +422,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
   }
   out["images"] = nlohmann::json::array();
   for (const PassDumpImage& i : images) {
-    nlohmann::json& p = passes[i.passId.empty() ? std::to_string(i.pass) : i.passId];
+    nlohmann::json& p = passes[i.passId];
     p["files"].push_back(i.file);
     nlohmann::json image = {{"file", i.file},           {"pass", i.pass},
                             {"pass_id", i.passId},      {"pass_name", p.value("name", "")},
@@ -458,7 +451,7 @@ nlohmann::json passesJson(const Frame& frame, const PassDumpHeader& header,
     p["replaces"] = nlohmann::json::array();
     for (const ReplacedPass& r : legacy) p["replaces"].push_back(replacedJson(r));
     p["id"] = id;
-    p["number"] = passNumberOf(id);
+    p["number"] = passIdNumber(id);
     if (!p.contains("name")) p["name"] = "";
     if (!p.contains("section")) p["section"] = header.paper;
     if (!p.contains("source")) p["source"] = {{"file", ""}, {"function", ""}};

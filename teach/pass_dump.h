@@ -79,9 +79,9 @@ struct PassDumpImage {
   std::string passId{};  // the id of its pass in the technique's pass table ("5c")
 };
 
-// The pass number a buffer or pass name starts with ("3a-projected..." -> 3, "1 depth" -> 1),
-// or -1.
-int passNumberOf(const std::string& name);
+// The number a pass-table id starts with ("3a" -> 3, "12" -> 12), which orders the passes in the
+// dump, or -1 for a named id ("mesh").
+int passIdNumber(const std::string& id);
 
 // Throws InputError (exit 2) naming the technique when the frame holds no intermediate buffer:
 // a dump is never an empty folder. Call before any output is written.

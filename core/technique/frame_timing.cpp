@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/technique/pass_run_key.h"
+
 namespace sl {
 
 double median(std::vector<double> values) {
@@ -18,11 +20,11 @@ double median(std::vector<double> values) {
 namespace {
 // Each pass as first seen, its time the median of its timed frames.
 std::vector<PassTime> medianPasses(const std::vector<PassTime>& order,
-                                   std::map<std::string, std::vector<double>>& perPass) {
+                                   std::map<PassRunKey, std::vector<double>>& perPass) {
   std::vector<PassTime> out;
   for (const PassTime& p : order) {
     PassTime m = p;
-    m.milliseconds = median(perPass[p.name]);
+    m.milliseconds = median(perPass[passRunKey(p)]);
     m.gl = {};
     out.push_back(std::move(m));
   }
@@ -41,7 +43,7 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
   // Step 2: timed frames; after a first timed frame slower than the budget, no more.
   std::vector<double> sums, walls;
   std::vector<PassTime> order;  // each pass as first seen (its id, floor, part, source)
-  std::map<std::string, std::vector<double>> perPass;
+  std::map<PassRunKey, std::vector<double>> perPass;
   Frame frame;
   int frames = counts.timed;
   for (int i = 0; i < frames; ++i) {
@@ -51,8 +53,8 @@ SteadyTiming timeSteadyState(const std::function<Frame()>& renderFrame, const Fr
     if (i == 0 && walls.back() > counts.slowFrameMs) frames = std::min(counts.slowTimed, frames);
     sums.push_back(frame.totalMilliseconds());
     for (const PassTime& p : frame.passes) {
-      if (!perPass.count(p.name)) order.push_back(p);
-      perPass[p.name].push_back(p.milliseconds);
+      if (!perPass.count(passRunKey(p))) order.push_back(p);
+      perPass[passRunKey(p)].push_back(p.milliseconds);
     }
   }
   out.timedFrames = frames;
@@ -74,12 +76,12 @@ SteadyTiming mediansOf(int warmup, const std::vector<Frame>& frames,
   out.warmupFrames = warmup;
   out.timedFrames = int(frames.size());
   std::vector<PassTime> order;
-  std::map<std::string, std::vector<double>> perPass;
+  std::map<PassRunKey, std::vector<double>> perPass;
   for (const Frame& f : frames) {
     out.frameSamples.push_back(f.totalMilliseconds());
     for (const PassTime& p : f.passes) {
-      if (!perPass.count(p.name)) order.push_back(p);
-      perPass[p.name].push_back(p.milliseconds);
+      if (!perPass.count(passRunKey(p))) order.push_back(p);
+      perPass[passRunKey(p)].push_back(p.milliseconds);
     }
   }
   out.frameMs = median(out.frameSamples);

@@ -25,8 +25,20 @@ using test::slurp;
 
 fs::path freshDir() { return test::testDir("pass_dump", true); }
 
-PassImage buffer(const std::string& name, int channels = 1, float value = 0.5f) {
-  return {name, "caption of " + name, Image(4, 2, channels, value)};
+// A buffer of pass `id`, named as core/technique/passes.cpp names captures: "ID-NAME".
+PassImage buffer(const std::string& id, const std::string& name, int channels = 1,
+                 float value = 0.5f) {
+  PassImage p(id + "-" + name, "caption of " + id + "-" + name, Image(4, 2, channels, value));
+  p.passId = id;
+  return p;
+}
+
+// A timed run of pass `id` (part `part`), named as core/technique/passes.cpp names it.
+PassTime timed(const std::string& id, const std::string& name, double ms, int part = 0) {
+  PassTime t(id + " " + name, ms);
+  t.id = id;
+  t.part = part;
+  return t;
 }
 
 std::vector<std::string> files(const std::vector<PassDumpImage>& images) {
@@ -39,9 +51,15 @@ std::vector<std::string> files(const std::vector<PassDumpImage>& images) {
 // "5-alpha-after-colour-matrix" no longer sorts before "5-mask-after-colour-table".
 TEST(PassDump, FileNamesSortInPipelineOrder) {
   Frame f;
-  for (const char* name : {"1-light", "3a-projected", "2-camera", "3-difference",
-                           "5-mask-after-colour-table", "5-alpha-after-colour-matrix", "12-last"})
-    f.intermediates.push_back(buffer(name));
+  for (const auto& [id, name] :
+       std::vector<std::pair<std::string, std::string>>{{"1", "light"},
+                                                        {"3a", "projected"},
+                                                        {"2", "camera"},
+                                                        {"3b", "difference"},
+                                                        {"5", "mask-after-colour-table"},
+                                                        {"5", "alpha-after-colour-matrix"},
+                                                        {"12", "last"}})
+    f.intermediates.push_back(buffer(id, name));
   const std::vector<std::string> expected = {"01-light.png",
                                              "02-camera.png",
                                              "03a-projected.png",
@@ -59,7 +77,7 @@ TEST(PassDump, FileNamesSortInPipelineOrder) {
 // A packed map (four depths in R, G, B, A) is written opaque, then one grey PNG per channel.
 TEST(PassDump, PackedMapsAreOpaqueWithOneGreyPanelPerChannel) {
   Frame f;
-  f.intermediates.push_back(buffer("2-packed", 4, 0.25f));  // alpha 0.25: transparent as is
+  f.intermediates.push_back(buffer("2", "packed", 4, 0.25f));  // alpha 0.25: transparent as is
   const std::vector<PassDumpImage> images = planPassDump(f, "test");
   ASSERT_EQ(images.size(), 5u);
   EXPECT_EQ(images[0].file, "02-packed.png");
@@ -85,9 +103,9 @@ TEST(PassDump, NothingToDumpIsAnInputError) {
 // passes.json pairs each pass's time with its images; index.html shows every image.
 TEST(PassDump, PassesJsonAndIndexDescribeEveryImage) {
   Frame f;
-  f.passes = {
-      {"1 light pass", 2.0}, {"2 camera pass (phase 1)", 1.0}, {"2 camera pass (phase 2)", 3.0}};
-  f.intermediates = {buffer("2-shaded", 3), buffer("1-light-depth")};
+  f.passes = {timed("1", "light pass", 2.0), timed("2", "camera pass (phase 1)", 1.0, 0),
+              timed("2", "camera pass (phase 2)", 3.0, 1)};
+  f.intermediates = {buffer("2", "shaded", 3), buffer("1", "light-depth")};
   const std::vector<PassDumpImage> images = planPassDump(f, "t");
   const nlohmann::json j = passesJson(f, {"t", "paper", "scene", {{"size", "4x2"}}, ""}, images);
   ASSERT_EQ(j["passes"].size(), 2u);
