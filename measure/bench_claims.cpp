@@ -255,6 +255,44 @@ std::vector<ClaimCheck> checkClaims(const BenchResult& result) {
       }
       out.push_back(c);
     }
+    // 4b. The filtered-map baselines after VSM (ours, after Lauritzen & McCool 2008 and Peters
+    //     & Klein 2015; neither paper is in shared/papers): warping the depth (EVSM4) or keeping
+    //     four moments (MSM) leaks less light than VSM's two moments at equal blur, and MSM
+    //     leaks less than EVSM2's positive warp alone. Fair setup: the bleeding scene, where
+    //     every one of them runs its default variant with the same 3x3 blur.
+    if (scene == kBleedingScene) {
+      ClaimCheck c{"filtered-leak-order",
+                   "ours, after Lauritzen & McCool 2008; Peters & Klein 2015",
+                   "EVSM4 and MSM leak less than VSM at equal blur; MSM leaks less than EVSM2",
+                   scene,
+                   "",
+                   "not measured",
+                   ""};
+      const BenchRow* vsm = f.row(scene, "modern.vsm", "default");
+      const BenchRow* evsm2 = f.row(scene, "modern.evsm2", "default");
+      const BenchRow* evsm4 = f.row(scene, "modern.evsm4", "default");
+      const BenchRow* msm = f.row(scene, "modern.msm", "default");
+      if (vsm && evsm2 && evsm4 && msm) {
+        c.setup = "default variants (3x3 blur each); umbra = pixels where " + areaReference(*vsm) +
+                  " is 0 outside the 2-pixel edge band; leaking = shown more than 20% lit";
+        c.measured = "umbra pixels shown lit > 20%: VSM " + fmt(100 * vsm->hard.leakShare, 3) +
+                     "%, EVSM2 " + fmt(100 * evsm2->hard.leakShare, 3) + "%, EVSM4 " +
+                     fmt(100 * evsm4->hard.leakShare, 3) + "%, MSM " +
+                     fmt(100 * msm->hard.leakShare, 3) + "%";
+        const bool belowVsm = evsm4->hard.leakShare < vsm->hard.leakShare &&
+                              msm->hard.leakShare < vsm->hard.leakShare;
+        const bool msmBelowEvsm2 = msm->hard.leakShare < evsm2->hard.leakShare;
+        if (vsm->hard.leakShare < kNoLeakShare)
+          c.verdict = "not exercised (VSM does not leak on this scene)";
+        else if (belowVsm && msmBelowEvsm2)
+          c.verdict = "agrees";
+        else if (belowVsm)
+          c.verdict = "agrees on VSM, not on EVSM2 (MSM leaks as much or more)";
+        else
+          c.verdict = "disagrees";
+      }
+      out.push_back(c);
+    }
     // 5. Chan §3.3: the hybrid equals shadow volumes at silhouette pixels, at lower cost where
     //    the volumes are fill bound. Fair setup: the fill-bound scene only.
     if (scene == kFillBoundScene) {

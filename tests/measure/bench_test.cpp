@@ -664,6 +664,12 @@ TEST(BenchClaims, BleedingSceneExercisesTheNoLeakClaim) {
       EXPECT_GT(row.hard.leakShare, 0.01) << "VSM bleeds on the scene built for it";
     }
   }
+  // The same run measures the baselines after VSM: EVSM4 and MSM keep the plank's shadow closed
+  // where VSM shows the fence through it, and EVSM2's positive warp alone leaks a little (the
+  // error columns repeat exactly from run to run; only the times vary).
+  const ClaimCheck* order = claim(claims, "filtered-leak-order", kBleedingScene);
+  ASSERT_NE(order, nullptr);
+  EXPECT_EQ(order->verdict, "agrees") << order->measured;
 }
 
 TEST(BenchTiming, SpreadIsTheInterquartileRangeAndLargeAboveTheNamedShare) {
