@@ -9,7 +9,10 @@ Neither is parsed from a name. This check fails on a source line that does it an
   - a technique name tested for a family prefix: `name.rfind("legacy.", 0)`, `find("reference.")`,
     `starts_with("modern.")`, `compare(0, 7, "legacy.")`;
   - a pass's display name cut at its colon or read word by word to find what the pass does:
-    `name.substr(0, name.find(':'))`, `std::istringstream words(pass.name...)`.
+    `name.substr(0, name.find(':'))`, `std::istringstream words(pass.name...)`;
+  - a pass found again, or numbered, by its display name: `passes[i].name == ...`,
+    `name.compare(0, passPrefix.size(), passPrefix)`, `passNumberOf(name)` (the pass-table id and part
+    are its identity: core/technique/pass_run_key.h).
 Scanned: the C++ sources of every room (tests/ are exempt: they may build names to ask the
 registry). Prints one line per finding (file:line: what) and exits 1 when there is any (the CTest
 layering.no_identity_lookups); --self-test plants each kind in a made-up tree and expects each to
@@ -26,8 +29,12 @@ ROOMS = ["core", "imaging", "legacy_gl", "modern", "reference", "registry", "tea
 FAMILY = re.compile(r"\b(?:r?find|starts_with|compare)\s*\([^;]*\"(?:legacy|modern|reference)\.\"")
 ROLE = re.compile(r"\bname\s*\.\s*substr\s*\(\s*0\s*,\s*[\w.>-]*name\s*\.\s*find\s*\(\s*':'"
                   r"|\bistringstream\s+\w+\s*\(\s*[\w.>-]*\bname\b")
+PASS = re.compile(r"\bpasses\s*\[[^\]]*\]\s*\.\s*name\s*==|\bname\s*\.\s*compare\s*\(\s*0\s*,"
+                  r"\s*[\w.>-]*[pP]refix|\b(?:passNumberOf|afterPassNumber)\s*\(")
 CHECKS = ((FAMILY, "a technique's family read from its name (use Technique::family)"),
-          (ROLE, "a pass's role read from its display name (use PassSpec::role / PassTime::role)"))
+          (ROLE, "a pass's role read from its display name (use PassSpec::role / PassTime::role)"),
+          (PASS, "a pass found or numbered by its display name (use PassTime::id and part: "
+                 "core/technique/pass_run_key.h)"))
 
 
 def findings(root):
@@ -56,6 +63,9 @@ def self_test():
         'bool m = name.compare(0, 7, "modern.") == 0;': "family",
         'std::string role = name.substr(0, name.find(\':\'));': "role",
         'std::istringstream words(pass.name);': "role",
+        'if (f.passes[i].name == first.passes[i].name) times.push_back(ms);': "pass found",
+        'met = name.compare(0, prefix.size(), prefix) == 0;': "pass found",
+        'const int n = passNumberOf(p.name);': "pass found",
     }
     clean = ('// a comment may say rfind("legacy.", 0)\n'
              'const bool legacy = t.family == TechniqueFamily::kLegacy;\n'
