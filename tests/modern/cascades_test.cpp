@@ -93,8 +93,14 @@ TEST(Cascades, StabilisedCropCoversSlicesOnWholeTexelsWithAFixedSize) {
   const auto before = modern::cascadeCrops(scene, kAspect, s);
   const float nearest = lightDepthRange(scene).nearPlane;
   const auto check = [&](const Scene& sc, const std::vector<modern::CascadeCrop>& cascades) {
+    // The two nearest slices of the long scene are cropped; a farther one may need the whole
+    // light frustum (its sphere's projection reaches 1), which does not move at all.
+    ASSERT_LT(cascades[1].halfSize.x, 1.0f);
     for (const auto& c : cascades) {
-      ASSERT_LT(c.halfSize.x, 1.0f) << "a slice of the long scene needs less than the frustum";
+      if (c.halfSize.x >= 1.0f) {
+        EXPECT_EQ(c.centre, glm::vec2(0.0f));
+        continue;
+      }
       const float texel = 2.0f * c.halfSize.x / kTexels;
       for (int a = 0; a < 2; ++a) {
         const float k = c.centre[a] / texel;
@@ -124,7 +130,7 @@ TEST(Cascades, StabilisedCropCoversSlicesOnWholeTexelsWithAFixedSize) {
   ASSERT_EQ(after.size(), before.size());
   for (size_t i = 0; i < after.size(); ++i) {
     EXPECT_EQ(after[i].halfSize, before[i].halfSize) << i;  // exactly: nothing depends on yaw
-    EXPECT_NE(after[i].centre, before[i].centre) << i;      // the slice did move
+    if (before[i].halfSize.x < 1.0f) EXPECT_NE(after[i].centre, before[i].centre) << i;  // moved
   }
 }
 
@@ -218,14 +224,17 @@ Flicker cameraMotionFlicker(const std::string& technique, const Scene& scene, co
 // floor both approach.
 TEST(Cascades, StabilisedCascadesFlickerLessUnderCameraMotion) {
   const Scene scene = builtinScene("long");
-  const RenderParams p = longParams(512);
+  // Texels a few pixels wide next to the camera (a 128² map per cascade), so that a texel grid
+  // sliding under the shadows shows at the window's resolution.
+  constexpr int kTexels = 128;
+  const RenderParams p = longParams(kTexels);
   // A sixth of a world unit per frame along the strip and a little sideways, four frames.
   const glm::vec3 step(0.03f, 0.0f, -0.17f);
   constexpr int kSteps = 4;
   const Flicker on = cameraMotionFlicker("modern.cascades", scene,
-                                         longParams(512, {{"stabilize", "on"}}), step, kSteps);
-  const Flicker off = cameraMotionFlicker("modern.cascades", scene,
-                                          longParams(512, {{"stabilize", "off"}}), step, kSteps);
+                                         longParams(kTexels, {{"stabilize", "on"}}), step, kSteps);
+  const Flicker off = cameraMotionFlicker(
+      "modern.cascades", scene, longParams(kTexels, {{"stabilize", "off"}}), step, kSteps);
   std::printf(
       "camera motion flicker (mean |change| of world-fixed ground points, %lld points): "
       "stabilize=on %.5f, stabilize=off %.5f",
