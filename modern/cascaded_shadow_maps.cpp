@@ -161,6 +161,7 @@ void tightCrop(const glm::mat4& lightVP, const std::array<glm::vec3, 8>& corners
   c.halfSize = half;
 }
 
+// DEVIATION (ours, after Zhang et al. 2006): stabilisation is ours (kStabilizeDeviation).
 // The stabilised crop: the slice's bounding sphere (its size depends only on the split depths
 // and the camera's opening, not on where the camera is or looks), projected with a bound that
 // holds wherever the sphere lies in the light's cone, and its centre snapped to whole texels.
@@ -390,6 +391,9 @@ std::array<glm::vec3, 8> frustumSliceCorners(const Camera& camera, float aspect,
   return out;
 }
 
+// DEVIATION (ours, after Zhang et al. 2006): the papers' light is directional, ours is the
+// scene's spot light with a wide cone far away; the crop is built in its post-projective space
+// (kSpotLightDeviation), and the split range is drawn in to the scene (kFitDeviation).
 std::vector<CascadeCrop> cascadeCrops(const Scene& scene, const float aspect,
                                       const CascadeSettings& s) {
   const Camera& cam = scene.camera;

@@ -20,6 +20,9 @@ layout(location = 1) out vec4 oVisibility;
 layout(location = 2) out vec4 oCascade;  // the split used, as colour (--dump-passes)
 #include "lighting.glsl"
 
+// The debug colours are tinted by the shaded colour: kTintFloor of the colour always, the rest
+// scaled by the shading, so that the scene stays readable under them.
+const float kTintFloor = 0.35;
 const vec3 kCascadeColours[4] =
     vec3[4](vec3(1.0, 0.25, 0.25), vec3(0.25, 1.0, 0.25), vec3(0.3, 0.45, 1.0), vec3(1.0, 1.0, 0.2));
 
@@ -57,5 +60,5 @@ void main() {
   float visibility = uReceivesShadow ? shadowTest(cascade, coord) : 1.0;
   oColor = vec4(shadeSpotlight(vWorldPosition, vWorldNormal, visibility), 1.0);
   oVisibility = vec4(visibility, visibility, visibility, 1.0);
-  oCascade = vec4(kCascadeColours[cascade] * (0.35 + 0.65 * oColor.rgb), 1.0);
+  oCascade = vec4(kCascadeColours[cascade] * (kTintFloor + (1.0 - kTintFloor) * oColor.rgb), 1.0);
 }
