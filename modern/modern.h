@@ -6,6 +6,8 @@
 //   modern.csm, modern.vsm: Annen et al. 2007 (and Donnelly & Lauritzen 2006)
 //   modern.volumes, modern.hybrid, modern.smoothies: Chan 2004
 //   modern.pcss: percentage-closer soft shadows (ours, after Fernando 2005; not in shared/papers)
+//   modern.cascades: parallel-split shadow maps (ours, after Zhang et al. 2006; not in
+//       shared/papers)
 #pragma once
 
 #include <vector>

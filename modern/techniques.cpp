@@ -1,4 +1,5 @@
 #include "modern/brabec_seidel_techniques.h"
+#include "modern/cascaded_shadow_maps.h"
 #include "modern/convolution_shadow_map.h"
 #include "modern/depth_layer_shadow_maps.h"
 #include "modern/exponential_shadow_map.h"
@@ -43,6 +44,8 @@ std::vector<Technique> techniques() {
       smoothiesTechnique(),
       // Fernando 2005 (not in shared/papers): percentage-closer soft shadows
       pcssTechnique(),
+      // Zhang et al. 2006 (not in shared/papers): parallel-split (cascaded) shadow maps
+      cascadedShadowMapTechnique(),
   };
 }
 

@@ -123,7 +123,7 @@ const std::vector<CommandSpec>& commandSpecs() {
       {"bench",
        "error against run time for every technique and a sweep of its parameters\n"
        "Scenes: quick = brabec, fence; full = every built-in scene (analytic, brabec, fence,\n"
-       "trees, dueling); both add brabec-light-away (planner on/off) and trees-far\n"
+       "trees, dueling, long); both add brabec-light-away (planner on/off) and trees-far\n"
        "(minification claim), full also fill-bound (assets/scenes). Each variant is measured\n"
        "against the ray-traced references (pixel=area): RMSE, band RMSE (2 px of an edge),\n"
        "leak, temporal change (light moved by a fifth of a texel). Not swept: values a\n"

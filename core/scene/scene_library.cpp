@@ -171,6 +171,43 @@ Scene duelingScene() {
   return s;
 }
 
+// A long strip of ground seen from one end, posts and boxes near the camera and far away, the
+// spot light high and far with a cone over the whole strip (parallel-split shadow maps, ours,
+// after Zhang et al. 2006): one map over the strip gives the near posts blocky shadows.
+Scene longScene() {
+  Scene s;
+  s.name = "long";
+  s.description =
+      "a 6 x 60 ground strip with posts near and far, light high and far (one map is blocky near)";
+  constexpr float kWidth = 6.0f, kLength = 60.0f;  // world units
+  constexpr float kNearEnd = 2.5f;                 // z of the strip's end behind the camera
+  constexpr int kLongDivisions = 60;               // about a unit per cell along the strip
+  s.objects.push_back(object("ground", makePlane(kWidth, kLength, kLongDivisions),
+                             at({0, 0, kNearEnd - 0.5f * kLength}), kGround, false, true));
+  const glm::vec3 post{0.12f, 1.2f, 0.12f};  // thin: a one-texel-wide shadow in one map
+  const float postZ[] = {0.5f, -1.0f, -2.5f, -15.0f, -25.0f, -35.0f, -45.0f};
+  for (size_t i = 0; i < std::size(postZ); ++i)
+    for (float x : {-1.2f, 1.2f})
+      s.objects.push_back(object("post " + std::to_string(2 * i + (x > 0 ? 1 : 0)), makeBox(post),
+                                 at({x, 0.5f * post.y, postZ[i]}), {0.55f, 0.45f, 0.35f}));
+  const glm::vec3 box{0.5f, 0.5f, 0.5f};
+  for (float z : {-1.6f, -20.0f, -40.0f})
+    s.objects.push_back(object("box " + std::to_string(int(-z)), makeBox(box),
+                               at({0.3f, 0.5f * box.y, z}), {0.4f, 0.55f, 0.8f}));
+  s.camera.position = {0.4f, 1.3f, 3.5f};
+  s.camera.target = {0, 0.4f, -12};
+  s.camera.fovyDegrees = 50;
+  s.camera.nearPlane = 0.3f;
+  // Nearer than the strip's far corners (61 units), so that the far plane, not the scene, ends
+  // the view frustum and the splits do not change as the camera moves.
+  s.camera.farPlane = 58;
+  s.light.position = {10, 30, 25};
+  s.light.target = {0, 0, -26};
+  s.light.up = {0, 1, 0};
+  s.light.coneDegrees = 48;  // the strip's corners lie within 44 degrees
+  return s;
+}
+
 glm::vec3 vec3(const json& j, const std::string& what) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw InputError(what + " must be an array of three numbers");
@@ -314,7 +351,7 @@ Mesh meshFromJson(const json& j, const std::string& where, const std::string& ba
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  return {"analytic", "brabec", "fence", "trees", "dueling"};
+  return {"analytic", "brabec", "fence", "trees", "dueling", "long"};
 }
 
 Scene builtinScene(const std::string& name) {
@@ -329,6 +366,8 @@ Scene builtinScene(const std::string& name) {
     s = treesScene();
   else if (name == "dueling")
     s = duelingScene();
+  else if (name == "long")
+    s = longScene();
   else
     throw InputError("unknown scene '" + name + "'");
   validateScene(s);

@@ -58,7 +58,8 @@ INSTANTIATE_TEST_SUITE_P(Modern, PassTablesWithoutTwin,
                          ::testing::Values("modern.gems16", "modern.gems4", "modern.csm",
                                            "modern.vsm", "modern.esm", "modern.evsm2",
                                            "modern.evsm4", "modern.msm", "modern.volumes",
-                                           "modern.hybrid", "modern.smoothies", "modern.pcss"),
+                                           "modern.hybrid", "modern.smoothies", "modern.pcss",
+                                           "modern.cascades"),
                          [](const auto& info) { return testName(info.param); });
 
 // modern.gems16 with the bicubic kernel runs its own variant's passes: the same ids, the
