@@ -832,8 +832,10 @@ Verdict compare(const Sequence& s, const Runs& runs) {
     }
     fail(m.str());
   }
-  // Accumulation: each operation rounds to the 16-bit buffer's step on either side (its
-  // precision is the implementation's), half a step each, and GL_RETURN scales the sum.
+  // Accumulation: each operation rounds or truncates to the 16-bit buffer's step on either
+  // side (the buffer's precision and rounding are the implementation's, 4.2.4), up to a step
+  // each, and GL_RETURN scales the sum (the reference truncates GL_MULT: seed 10719).
+  // The value written is then a tie if it lies within that many steps of k + 0.5.
   int accumOps = 0;
   float returnScale = 1.0f;
   for (const Call& c : s.calls) {
@@ -841,7 +843,7 @@ Verdict compare(const Sequence& s, const Runs& runs) {
     if (c.e[0] == GL_RETURN) returnScale = std::max(returnScale, std::fabs(c.f[0]));
     else ++accumOps;
   }
-  const float accumWindow = 0.5f * float(accumOps + 1) * kAccumStepInBytes * returnScale;
+  const float accumWindow = float(accumOps + 1) * kAccumStepInBytes * returnScale;
   if (e.bytes.size() != r.bytes.size()) {
     fail("byte counts differ: emulated " + std::to_string(e.bytes.size()) + ", reference " +
          std::to_string(r.bytes.size()));
@@ -865,7 +867,7 @@ Verdict compare(const Sequence& s, const Runs& runs) {
         else if (nearest &&
                  (b == int(std::floor(t)) || b == int(std::floor(t + kTieWindow)) ||
                   b == int(std::floor(t - kTieWindow))) &&
-                 e.truncatable[k] != kNoTruncation)
+                 e.truncatable[k] == kReadTruncation)
           name = truncationName(e.truncatable[k], t - std::floor(t));
       }
       if (name != nullptr) {
