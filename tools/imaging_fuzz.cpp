@@ -7,6 +7,8 @@
 // Exit 0 when every difference is explained, 1 otherwise; bad arguments: one line, exit 2.
 // --print writes the sequences as C instead of running them (a seed's case, replayed).
 // Usage: build/bin/imaging_fuzz --sequences N [--seed S] [--out DIR] [--print]
+#include "parity/imaging_fuzz.h"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -15,8 +17,6 @@
 #include <fstream>
 #include <map>
 #include <string>
-
-#include "parity/imaging_fuzz.h"
 
 namespace {
 
@@ -28,8 +28,10 @@ bool parseCount(const char* text, unsigned long long& out) {
 }
 
 int usage(const std::string& why) {
-  std::fprintf(stderr, "imaging_fuzz: %s (usage: imaging_fuzz --sequences N [--seed S] [--out DIR] [--print])\n",
-               why.c_str());
+  std::fprintf(
+      stderr,
+      "imaging_fuzz: %s (usage: imaging_fuzz --sequences N [--seed S] [--out DIR] [--print])\n",
+      why.c_str());
   return 2;
 }
 
@@ -43,7 +45,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[k];
     const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
     if (a == "--sequences") {
-      if (!parseCount(value, count) || count == 0) return usage("--sequences needs a positive integer");
+      if (!parseCount(value, count) || count == 0)
+        return usage("--sequences needs a positive integer");
       haveCount = true;
       ++k;
     } else if (a == "--seed") {
@@ -86,14 +89,15 @@ int main(int argc, char** argv) {
       const fuzz::Sequence m = fuzz::minimise(s);
       const fuzz::Verdict mv = fuzz::compare(m, fuzz::runAll(m));
       std::ofstream f(out + "/seed_" + std::to_string(seed + k) + ".c");
-      f << "// seed " << seed + k << ": " << v.unexplainedCount << " unexplained differences; minimised ("
-        << s.calls.size() << " -> " << m.calls.size() << " calls):\n";
+      f << "// seed " << seed + k << ": " << v.unexplainedCount
+        << " unexplained differences; minimised (" << s.calls.size() << " -> " << m.calls.size()
+        << " calls):\n";
       for (const auto& l : mv.unexplained) f << "//   " << l << "\n";
       f << fuzz::toC(m);
     }
     if ((k + 1) % 10000 == 0)
-      std::fprintf(stderr, "imaging_fuzz: %llu sequences, %lld with unexplained differences\n", k + 1,
-                   differing);
+      std::fprintf(stderr, "imaging_fuzz: %llu sequences, %lld with unexplained differences\n",
+                   k + 1, differing);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -21,7 +21,7 @@ Outcome both(Backend b, const Scenario& s) {
 //    round the tie differently, so a returned tie may be k or k + 1 on either side (the
 //    fuzzer's "accumulation: a tie within the 16-bit buffer's rounding"; seeds 802, 2351,
 //    10719 found ties one or more buffer steps from k + 0.5 after GL_MULT). No departure: not
-//    a truncation by the reference, as an earlier reading had it; even values, which are no
+//    a truncation by the reference; even values, which are no
 //    ties, agree exactly.
 TEST(FuzzRegressions, AccumulationTiesGoEitherWay) {
   SL_REQUIRE_REFERENCE();
@@ -100,10 +100,9 @@ TEST(FuzzRegressions, AdditionalJ_OneDimensionalFilterChangesTexImage2D) {
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
   EXPECT_EQ(e.bytes, kPixel);
   EXPECT_NE(r.bytes, kPixel);
-  ::testing::Test::RecordProperty("reference_texel", std::to_string(r.bytes[0]) + "," +
-                                                         std::to_string(r.bytes[1]) + "," +
-                                                         std::to_string(r.bytes[2]) + "," +
-                                                         std::to_string(r.bytes[3]));
+  ::testing::Test::RecordProperty(
+      "reference_texel", std::to_string(r.bytes[0]) + "," + std::to_string(r.bytes[1]) + "," +
+                             std::to_string(r.bytes[2]) + "," + std::to_string(r.bytes[3]));
 }
 
 // K. glCopyTexImage2D processes the groups "exactly as for CopyPixels" (3.8.2), once: a
@@ -175,6 +174,34 @@ TEST(FuzzRegressions, AdditionalM_CopyColorTableAppliesTheColorMatrix) {
   const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
   EXPECT_NEAR(e.floats[0], 200.0f / 255.0f, kFloatTolerance);
   EXPECT_NEAR(r.floats[0], 100.0f / 255.0f, 1.0f / 255.0f);  // halved (stored as 8 bits)
+}
+
+// Table index ties: the index is round(clamp(c) * (N - 1)) (3.6.5 Color Table Lookup); where a
+// box filter makes c * (N - 1) exactly k + 0.5, single-precision sums may land on either
+// side, so either entry is the specification's answer (fuzzer seed 141915: a 6x5 box of 1/30
+// before a 256-entry post-color-matrix table). Here a 2x1 box of 0.5 over alphas 100 and 101.
+TEST(FuzzRegressions, TableIndexTiesGoEitherWay) {
+  SL_REQUIRE_REFERENCE();
+  auto scenario = [](Outcome& o) {
+    putImage(2, 1, {100, 100, 100, 100, 101, 101, 101, 101});
+    const float box[8] = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+    glConvolutionFilter2D(GL_CONVOLUTION_2D, GL_RGBA, 2, 1, GL_RGBA, GL_FLOAT, box);
+    glEnable(GL_CONVOLUTION_2D);  // GL_REDUCE: one pixel, c = 100.5 / 255
+    std::vector<float> table(256 * 4);
+    for (int i = 0; i < 256; ++i)
+      for (int c = 0; c < 4; ++c) table[size_t(i) * 4 + c] = float(255 - i) / 255.0f;
+    glColorTable(GL_POST_CONVOLUTION_COLOR_TABLE, GL_RGBA, 256, GL_RGBA, GL_FLOAT, table.data());
+    glEnable(GL_POST_CONVOLUTION_COLOR_TABLE);
+    glWindowPos2i(4, 0);
+    glCopyPixels(0, 0, 2, 1, GL_COLOR);
+    appendBytes(o, readWindow());
+  };
+  const Outcome e = both(Backend::kOsmesa, scenario), r = both(Backend::kReference, scenario);
+  for (int c = 0; c < 4; ++c) {
+    const size_t i = 4 * 4 + size_t(c);                                      // pixel (4, 0)
+    EXPECT_TRUE(e.bytes[i] == 155 || e.bytes[i] == 154) << int(e.bytes[i]);  // T[100] or T[101]
+    EXPECT_TRUE(r.bytes[i] == 155 || r.bytes[i] == 154) << int(r.bytes[i]);
+  }
 }
 
 }  // namespace

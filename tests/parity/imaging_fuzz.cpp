@@ -14,8 +14,8 @@
 //   * Table data lies in [0, 1] (departure 8); copies of tables and filters start at row 0
 //     (departures 4, 9), before any other stage is enabled (the reference runs the copied
 //     groups through the enabled stages, histogram included, where 3.6.3 stops after the
-//     expansion to RGBA: AdditionalM); table/histogram/minmax read-backs use formats holding only the
-//     components the object has (departures 10, B).
+//     expansion to RGBA: AdditionalM); table/histogram/minmax read-backs use formats holding only
+//     the components the object has (departures 10, B).
 //   * With GL_HISTOGRAM_SINK the only pipeline call is glReadPixels, whose pixels are not
 //     compared (departure 5); with GL_MINMAX_SINK too (the reference honours it on
 //     glReadPixels only: AdditionalI).
@@ -60,8 +60,8 @@ struct Rng {
   }
 };
 
-constexpr int kMaxFilter = 9;               // GL_MAX_CONVOLUTION_WIDTH/HEIGHT of the reference
-constexpr int kMaxTable = 256;              // the reference's largest color table
+constexpr int kMaxFilter = 9;   // GL_MAX_CONVOLUTION_WIDTH/HEIGHT of the reference
+constexpr int kMaxTable = 256;  // the reference's largest color table
 
 GLenum baseOf(GLenum f) {
   switch (f) {
@@ -111,7 +111,9 @@ struct Gen {
     return b;
   }
   // A scale: exact halves and doubles (rounding ties), or arbitrary.
-  float scale() { return r.chance(30) ? r.pick<float>({0.5f, 1.0f, 2.0f, 0.25f}) : r.range(-0.3f, 1.8f); }
+  float scale() {
+    return r.chance(30) ? r.pick<float>({0.5f, 1.0f, 2.0f, 0.25f}) : r.range(-0.3f, 1.8f);
+  }
   float bias() { return r.chance(40) ? 0.0f : r.range(-0.4f, 0.4f); }
 
   int group = 0;  // the feature the calls being added belong to (minimise() drops whole ones)
@@ -138,7 +140,8 @@ struct Gen {
     greyify(bi);
     // All four or none: a later group's values replace an earlier one's in every component,
     // so the grey level holds.
-    const bool scaled = sc[0] != 1.0f || sc[1] != 1.0f || sc[2] != 1.0f || sc[3] != 1.0f || r.chance(10);
+    const bool scaled =
+        sc[0] != 1.0f || sc[1] != 1.0f || sc[2] != 1.0f || sc[3] != 1.0f || r.chance(10);
     const bool biased = bi[0] != 0.0f || bi[1] != 0.0f || bi[2] != 0.0f || bi[3] != 0.0f;
     for (int k = 0; k < 4; ++k) {
       if (scaled) add({Kind::kPixelTransfer, {scales[stage][k]}, {}, {sc[k]}, {}});
@@ -177,7 +180,7 @@ struct Gen {
     const GLenum format = tableFormat();
     int width = 1 << r.uni(0, 8);
     if (r.chance(3)) width = r.pick<int>({3, 6, 2 * kMaxTable});  // errors
-    if (r.chance(15) && t == 0 && width <= s.w && copyable()) {  // AdditionalM
+    if (r.chance(15) && t == 0 && width <= s.w && copyable()) {   // AdditionalM
       add({Kind::kCopyColorTable, {target, format}, {0, 0, width}, {}, {}});
     } else {
       const GLenum type = r.chance(50) ? GL_FLOAT : GL_UNSIGNED_BYTE;
@@ -240,7 +243,10 @@ struct Gen {
       const float delta = k == centre ? 1.0f : 0.0f;
       switch (baseOf(format)) {
         case GL_ALPHA: p[0] = p[1] = p[2] = delta; break;
-        case GL_LUMINANCE: p[1] = p[2] = p[0]; p[3] = delta; break;
+        case GL_LUMINANCE:
+          p[1] = p[2] = p[0];
+          p[3] = delta;
+          break;
         case GL_LUMINANCE_ALPHA: p[1] = p[2] = p[0]; break;
         case GL_INTENSITY: p[1] = p[2] = p[3] = p[0]; break;
         case GL_RGB: p[3] = delta; break;
@@ -253,7 +259,9 @@ struct Gen {
   void convolution() {
     ++group;
     const int kind = r.uni(0, 2);  // 1D, 2D, separable
-    const GLenum target = kind == 0 ? GL_CONVOLUTION_1D : kind == 1 ? GL_CONVOLUTION_2D : GL_SEPARABLE_2D;
+    const GLenum target = kind == 0   ? GL_CONVOLUTION_1D
+                          : kind == 1 ? GL_CONVOLUTION_2D
+                                      : GL_SEPARABLE_2D;
     const GLenum format = filterFormat();
     const int fw = r.uni(1, kMaxFilter), fh = kind == 0 ? 1 : r.uni(1, kMaxFilter);
     if (baseOf(format) == GL_RGBA && r.chance(30)) {
@@ -264,7 +272,11 @@ struct Gen {
     }
     if (kind == 0) {
       if (r.chance(3)) {  // an error: too wide, nothing defined
-        add({Kind::kConvolutionFilter1D, {format}, {fw + kMaxFilter}, taps(format, fw + kMaxFilter, 0), {}});
+        add({Kind::kConvolutionFilter1D,
+             {format},
+             {fw + kMaxFilter},
+             taps(format, fw + kMaxFilter, 0),
+             {}});
         return;
       }
       add({Kind::kConvolutionFilter1D, {format}, {fw}, taps(format, fw, fw / 2), {}});
@@ -272,7 +284,11 @@ struct Gen {
       if (r.chance(15) && baseOf(format) == GL_RGBA && fw <= s.w && fh <= s.h && copyable())
         add({Kind::kCopyConvolutionFilter2D, {GL_RGBA}, {0, 0, fw, fh}, {}, {}});
       else
-        add({Kind::kConvolutionFilter2D, {format}, {fw, fh}, taps(format, fw * fh, (fh / 2) * fw + fw / 2), {}});
+        add({Kind::kConvolutionFilter2D,
+             {format},
+             {fw, fh},
+             taps(format, fw * fh, (fh / 2) * fw + fw / 2),
+             {}});
     } else {
       auto row = taps(format, fw, fw / 2), col = taps(format, fh, fh / 2);
       row.insert(row.end(), col.begin(), col.end());
@@ -334,7 +350,11 @@ struct Gen {
     ++group;
     int x, y, w, h;
     rect(x, y, w, h);
-    add({Kind::kReadPixels, {r.chance(50) ? GLenum(GL_FLOAT) : GLenum(GL_UNSIGNED_BYTE)}, {x, y, w, h}, {}, {}});
+    add({Kind::kReadPixels,
+         {r.chance(50) ? GLenum(GL_FLOAT) : GLenum(GL_UNSIGNED_BYTE)},
+         {x, y, w, h},
+         {},
+         {}});
   }
 
   void writeOnce() {
@@ -343,11 +363,23 @@ struct Gen {
     rect(x, y, w, h);
     const int choice = r.uni(0, 99);
     if (choice < 35) {
-      add({Kind::kCopyPixels, {}, {x, y, w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)}, {}, {}});
+      add({Kind::kCopyPixels,
+           {},
+           {x, y, w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)},
+           {},
+           {}});
     } else if (choice < 65) {
-      add({Kind::kDrawPixels, {}, {w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)}, {}, bytes(w * h)});
+      add({Kind::kDrawPixels,
+           {},
+           {w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)},
+           {},
+           bytes(w * h)});
     } else if (convolved) {  // AdditionalJ, AdditionalL: textures only without convolution
-      add({Kind::kDrawPixels, {}, {w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)}, {}, bytes(w * h)});
+      add({Kind::kDrawPixels,
+           {},
+           {w, h, r.uni(0, kWindow - 1), r.uni(0, kWindow - 1)},
+           {},
+           bytes(w * h)});
     } else if (choice < 85 || tables || matrix || histogram || minmax) {  // AdditionalD, K
       add({Kind::kTexImage2D, {}, {w, h}, {}, bytes(w * h)});
     } else {
@@ -389,7 +421,8 @@ struct Gen {
           add({Kind::kGetColorTable, {targets[t], GL_ALPHA}, {}, {}, {}});
           break;
         case GL_INTENSITY: add({Kind::kGetColorTable, {targets[t], GL_RED}, {}, {}, {}}); break;
-        default: add({Kind::kGetColorTable, {targets[t], baseOf(tableFormats[t].back())}, {}, {}, {}});
+        default:
+          add({Kind::kGetColorTable, {targets[t], baseOf(tableFormats[t].back())}, {}, {}, {}});
       }
     }
   }
@@ -412,10 +445,23 @@ struct Gen {
       float v = 0.0f;
       const float room = float(1.0 - bound);
       switch (op) {
-        case GL_LOAD: v = r.chance(30) ? r.pick<float>({1.0f, 0.5f, 0.25f}) : r.range(-1.0f, 1.0f); bound = std::fabs(v); ++loads; break;
-        case GL_ACCUM: v = r.chance(30) ? std::min(room, 0.25f) : r.range(-room, room); bound += std::fabs(v); break;
-        case GL_MULT: v = r.range(-1.0f, 1.0f); bound *= std::fabs(v); break;
-        default: v = r.range(-room, room); bound += std::fabs(v); break;
+        case GL_LOAD:
+          v = r.chance(30) ? r.pick<float>({1.0f, 0.5f, 0.25f}) : r.range(-1.0f, 1.0f);
+          bound = std::fabs(v);
+          ++loads;
+          break;
+        case GL_ACCUM:
+          v = r.chance(30) ? std::min(room, 0.25f) : r.range(-room, room);
+          bound += std::fabs(v);
+          break;
+        case GL_MULT:
+          v = r.range(-1.0f, 1.0f);
+          bound *= std::fabs(v);
+          break;
+        default:
+          v = r.range(-room, room);
+          bound += std::fabs(v);
+          break;
       }
       add({Kind::kAccum, {op}, {}, {v}, {}});
     }
@@ -435,11 +481,20 @@ struct Gen {
     const int stages = r.uni(1, 5);
     for (int k = 0; k < stages; ++k) {
       switch (r.uni(0, 5)) {
-        case 0: ++group; pixelTransfer(0); break;
+        case 0:
+          ++group;
+          pixelTransfer(0);
+          break;
         case 1: colorTable(); break;
-        case 2: if (!matrix) colorMatrix(); break;
-        case 3: if (!convolved) convolution(); break;
-        default: if (!histogram && !minmax) histogramOrMinmax(); break;
+        case 2:
+          if (!matrix) colorMatrix();
+          break;
+        case 3:
+          if (!convolved) convolution();
+          break;
+        default:
+          if (!histogram && !minmax) histogramOrMinmax();
+          break;
       }
     }
     if (r.chance(15)) {
@@ -460,10 +515,9 @@ struct Gen {
 // ---------------------------------------------------------------- executor
 
 void resetImaging() {
-  for (GLenum cap :
-       {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE,
-        GL_CONVOLUTION_1D, GL_CONVOLUTION_2D, GL_SEPARABLE_2D, GL_HISTOGRAM, GL_MINMAX,
-        GL_SCISSOR_TEST})
+  for (GLenum cap : {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE,
+                     GL_POST_COLOR_MATRIX_COLOR_TABLE, GL_CONVOLUTION_1D, GL_CONVOLUTION_2D,
+                     GL_SEPARABLE_2D, GL_HISTOGRAM, GL_MINMAX, GL_SCISSOR_TEST})
     glDisable(cap);
   glMatrixMode(GL_COLOR);
   glLoadIdentity();
@@ -676,7 +730,8 @@ struct Executor {
     drain();
     resetImaging();
     const float one[4] = {1, 1, 1, 1}, zero[4] = {0, 0, 0, 0};
-    for (GLenum t : {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE}) {
+    for (GLenum t :
+         {GL_COLOR_TABLE, GL_POST_CONVOLUTION_COLOR_TABLE, GL_POST_COLOR_MATRIX_COLOR_TABLE}) {
       glColorTableParameterfv(t, GL_COLOR_TABLE_SCALE, one);
       glColorTableParameterfv(t, GL_COLOR_TABLE_BIAS, zero);
     }
@@ -751,9 +806,10 @@ const char* truncationName(uint8_t code, float fraction) {
   switch (code) {
     case kReadTruncation: return "AdditionalA: glReadPixels(UNSIGNED_BYTE) truncates";
     case kReturnTruncation:
-      return fraction - 0.5f <= kAccumStepInBytes
-                 ? "AdditionalH: GL_RETURN truncates (value within one accumulation step above k + 0.5)"
-                 : "AdditionalH: GL_RETURN truncates (value more than one accumulation step above k + 0.5)";
+      return fraction - 0.5f <= kAccumStepInBytes ? "AdditionalH: GL_RETURN truncates (value "
+                                                    "within one accumulation step above k + 0.5)"
+                                                  : "AdditionalH: GL_RETURN truncates (value more "
+                                                    "than one accumulation step above k + 0.5)";
     case kTextureTruncation: return "texture: 8-bit texels truncate";
     default: return nullptr;
   }
@@ -840,8 +896,10 @@ Verdict compare(const Sequence& s, const Runs& runs) {
   float returnScale = 1.0f;
   for (const Call& c : s.calls) {
     if (c.kind != Kind::kAccum) continue;
-    if (c.e[0] == GL_RETURN) returnScale = std::max(returnScale, std::fabs(c.f[0]));
-    else ++accumOps;
+    if (c.e[0] == GL_RETURN)
+      returnScale = std::max(returnScale, std::fabs(c.f[0]));
+    else
+      ++accumOps;
   }
   const float accumWindow = float(accumOps + 1) * kAccumStepInBytes * returnScale;
   if (e.bytes.size() != r.bytes.size()) {
@@ -856,7 +914,8 @@ Verdict compare(const Sequence& s, const Runs& runs) {
       if (haveExact) {
         const float x = clamp01(runs.exact.exact[k]);
         const float t = x * 255.0f;
-        const bool nearest = a == int(std::floor(t + 0.5f)) || std::fabs(t - std::floor(t) - 0.5f) <= kTieWindow;
+        const bool nearest =
+            a == int(std::floor(t + 0.5f)) || std::fabs(t - std::floor(t) - 0.5f) <= kTieWindow;
         if (a == 254 && b == 255 && x >= kMesaSaturationStart && x < 254.5f / 255.0f)
           name = "AdditionalF: saturation band (the reference writes 255)";
         else if (std::abs(a - b) == 1 && std::fabs(t - std::floor(t) - 0.5f) <= kTieWindow)
@@ -875,8 +934,8 @@ Verdict compare(const Sequence& s, const Runs& runs) {
         continue;
       }
       std::ostringstream m;
-      m << "byte " << k << " (origin " << int(e.byteOrigin[k]) << ", pixel " << k / 4 << ", component " << k % 4
-        << "): emulated " << a << ", reference " << b;
+      m << "byte " << k << " (origin " << int(e.byteOrigin[k]) << ", pixel " << k / 4
+        << ", component " << k % 4 << "): emulated " << a << ", reference " << b;
       if (haveExact) m << ", exact " << runs.exact.exact[k] * 255.0f << "/255";
       fail(m.str());
     }
@@ -899,7 +958,8 @@ Verdict compare(const Sequence& s, const Runs& runs) {
         continue;
       }
       std::ostringstream m;
-      m << "float " << k << " (origin " << int(e.floatOrigin[k]) << "): emulated " << a << ", reference " << b;
+      m << "float " << k << " (origin " << int(e.floatOrigin[k]) << "): emulated " << a
+        << ", reference " << b;
       fail(m.str());
     }
   }
@@ -914,25 +974,29 @@ std::string enumName(uint32_t e) {
   switch (e) {
 #define N(x) \
   case x: return #x;
-    N(GL_RED_SCALE) N(GL_GREEN_SCALE) N(GL_BLUE_SCALE) N(GL_ALPHA_SCALE) N(GL_RED_BIAS)
-    N(GL_GREEN_BIAS) N(GL_BLUE_BIAS) N(GL_ALPHA_BIAS) N(GL_POST_CONVOLUTION_RED_SCALE)
-    N(GL_POST_CONVOLUTION_GREEN_SCALE) N(GL_POST_CONVOLUTION_BLUE_SCALE)
-    N(GL_POST_CONVOLUTION_ALPHA_SCALE) N(GL_POST_CONVOLUTION_RED_BIAS)
-    N(GL_POST_CONVOLUTION_GREEN_BIAS) N(GL_POST_CONVOLUTION_BLUE_BIAS)
-    N(GL_POST_CONVOLUTION_ALPHA_BIAS) N(GL_POST_COLOR_MATRIX_RED_SCALE)
-    N(GL_POST_COLOR_MATRIX_GREEN_SCALE) N(GL_POST_COLOR_MATRIX_BLUE_SCALE)
-    N(GL_POST_COLOR_MATRIX_ALPHA_SCALE) N(GL_POST_COLOR_MATRIX_RED_BIAS)
-    N(GL_POST_COLOR_MATRIX_GREEN_BIAS) N(GL_POST_COLOR_MATRIX_BLUE_BIAS)
-    N(GL_POST_COLOR_MATRIX_ALPHA_BIAS) N(GL_COLOR_TABLE) N(GL_POST_CONVOLUTION_COLOR_TABLE)
-    N(GL_POST_COLOR_MATRIX_COLOR_TABLE) N(GL_COLOR_TABLE_SCALE) N(GL_COLOR_TABLE_BIAS)
-    N(GL_CONVOLUTION_1D) N(GL_CONVOLUTION_2D) N(GL_SEPARABLE_2D) N(GL_REDUCE)
-    N(GL_CONSTANT_BORDER) N(GL_REPLICATE_BORDER) N(GL_CONVOLUTION_FILTER_SCALE)
-    N(GL_CONVOLUTION_FILTER_BIAS) N(GL_HISTOGRAM) N(GL_MINMAX) N(GL_SCISSOR_TEST) N(GL_ALPHA)
-    N(GL_RGB) N(GL_RGBA) N(GL_LUMINANCE) N(GL_LUMINANCE_ALPHA) N(GL_INTENSITY) N(GL_ALPHA8)
-    N(GL_RGB8) N(GL_RGBA8) N(GL_LUMINANCE8) N(GL_LUMINANCE8_ALPHA8) N(GL_INTENSITY8) N(GL_RED)
-    N(GL_FLOAT) N(GL_UNSIGNED_BYTE) N(GL_LOAD) N(GL_ACCUM) N(GL_MULT) N(GL_ADD) N(GL_RETURN)
+    // clang-format off
+    N(GL_RED_SCALE) N(GL_GREEN_SCALE) N(GL_BLUE_SCALE)
+    N(GL_ALPHA_SCALE) N(GL_RED_BIAS) N(GL_GREEN_BIAS)
+    N(GL_BLUE_BIAS) N(GL_ALPHA_BIAS) N(GL_POST_CONVOLUTION_RED_SCALE)
+    N(GL_POST_CONVOLUTION_GREEN_SCALE) N(GL_POST_CONVOLUTION_BLUE_SCALE) N(GL_POST_CONVOLUTION_ALPHA_SCALE)
+    N(GL_POST_CONVOLUTION_RED_BIAS) N(GL_POST_CONVOLUTION_BLUE_BIAS) N(GL_POST_CONVOLUTION_ALPHA_BIAS)
+    N(GL_POST_COLOR_MATRIX_RED_SCALE) N(GL_POST_COLOR_MATRIX_BLUE_SCALE) N(GL_POST_COLOR_MATRIX_ALPHA_SCALE)
+    N(GL_POST_COLOR_MATRIX_RED_BIAS) N(GL_POST_COLOR_MATRIX_BLUE_BIAS) N(GL_POST_COLOR_MATRIX_ALPHA_BIAS)
+    N(GL_COLOR_TABLE) N(GL_POST_COLOR_MATRIX_COLOR_TABLE) N(GL_COLOR_TABLE_SCALE)
+    N(GL_COLOR_TABLE_BIAS) N(GL_CONVOLUTION_1D) N(GL_CONVOLUTION_2D)
+    N(GL_SEPARABLE_2D) N(GL_REDUCE) N(GL_REPLICATE_BORDER)
+    N(GL_CONVOLUTION_FILTER_SCALE) N(GL_CONVOLUTION_FILTER_BIAS) N(GL_HISTOGRAM)
+    N(GL_MINMAX) N(GL_SCISSOR_TEST) N(GL_ALPHA)
+    N(GL_RGB) N(GL_RGBA) N(GL_LUMINANCE)
+    N(GL_LUMINANCE_ALPHA) N(GL_INTENSITY) N(GL_ALPHA8)
+    N(GL_RGB8) N(GL_RGBA8) N(GL_LUMINANCE8)
+    N(GL_LUMINANCE8_ALPHA8) N(GL_INTENSITY8) N(GL_RED)
+    N(GL_FLOAT) N(GL_UNSIGNED_BYTE) N(GL_LOAD)
+    N(GL_ACCUM) N(GL_MULT) N(GL_ADD)
+    N(GL_RETURN)
+    // clang-format on
 #undef N
-    default: {
+                                                                default : {
       char buf[16];
       std::snprintf(buf, sizeof buf, "0x%04x", unsigned(e));
       return buf;
@@ -977,7 +1041,9 @@ std::string toC(const Sequence& s) {
     const std::string v = "v" + std::to_string(n++);
     o << "  ";
     switch (c.kind) {
-      case Kind::kPixelTransfer: o << "glPixelTransferf(" << enumName(e[0]) << ", " << num(f[0]) << ");"; break;
+      case Kind::kPixelTransfer:
+        o << "glPixelTransferf(" << enumName(e[0]) << ", " << num(f[0]) << ");";
+        break;
       case Kind::kColorTable:
         if (e[2] == GL_FLOAT) {
           o << "{ static const GLfloat " << v << "[] = " << floats(f) << ";\n    ";
@@ -986,88 +1052,99 @@ std::string toC(const Sequence& s) {
           for (float x : f) ub.push_back(uint8_t(std::lround(x * 255.0f)));
           o << "{ static const GLubyte " << v << "[] = " << bytesC(ub) << ";\n    ";
         }
-        o << "glColorTable(" << enumName(e[0]) << ", " << enumName(e[1]) << ", " << i[0] << ", GL_RGBA, "
-          << enumName(e[2]) << ", " << v << "); }";
+        o << "glColorTable(" << enumName(e[0]) << ", " << enumName(e[1]) << ", " << i[0]
+          << ", GL_RGBA, " << enumName(e[2]) << ", " << v << "); }";
         break;
       case Kind::kColorTableParameter:
-        o << "{ const GLfloat " << v << "[4] = " << floats(f) << "; glColorTableParameterfv(" << enumName(e[0]) << ", "
-          << enumName(e[1]) << ", " << v << "); }";
+        o << "{ const GLfloat " << v << "[4] = " << floats(f) << "; glColorTableParameterfv("
+          << enumName(e[0]) << ", " << enumName(e[1]) << ", " << v << "); }";
         break;
       case Kind::kCopyColorTable:
-        o << "glCopyColorTable(" << enumName(e[0]) << ", " << enumName(e[1]) << ", " << i[0] << ", " << i[1] << ", "
-          << i[2] << ");";
+        o << "glCopyColorTable(" << enumName(e[0]) << ", " << enumName(e[1]) << ", " << i[0] << ", "
+          << i[1] << ", " << i[2] << ");";
         break;
       case Kind::kEnable: o << "glEnable(" << enumName(e[0]) << ");"; break;
       case Kind::kDisable: o << "glDisable(" << enumName(e[0]) << ");"; break;
       case Kind::kLoadColorMatrix:
         o << "{ const GLfloat " << v << "[16] = " << floats(f)
-          << ";\n    glMatrixMode(GL_COLOR); glLoadMatrixf(" << v << "); glMatrixMode(GL_MODELVIEW); }";
+          << ";\n    glMatrixMode(GL_COLOR); glLoadMatrixf(" << v
+          << "); glMatrixMode(GL_MODELVIEW); }";
         break;
       case Kind::kConvolutionFilter1D:
-        o << "{ static const GLfloat " << v << "[] = " << floats(f) << ";\n    glConvolutionFilter1D(GL_CONVOLUTION_1D, "
-          << enumName(e[0]) << ", " << i[0] << ", GL_RGBA, GL_FLOAT, " << v << "); }";
+        o << "{ static const GLfloat " << v << "[] = " << floats(f)
+          << ";\n    glConvolutionFilter1D(GL_CONVOLUTION_1D, " << enumName(e[0]) << ", " << i[0]
+          << ", GL_RGBA, GL_FLOAT, " << v << "); }";
         break;
       case Kind::kConvolutionFilter2D:
-        o << "{ static const GLfloat " << v << "[] = " << floats(f) << ";\n    glConvolutionFilter2D(GL_CONVOLUTION_2D, "
-          << enumName(e[0]) << ", " << i[0] << ", " << i[1] << ", GL_RGBA, GL_FLOAT, " << v << "); }";
+        o << "{ static const GLfloat " << v << "[] = " << floats(f)
+          << ";\n    glConvolutionFilter2D(GL_CONVOLUTION_2D, " << enumName(e[0]) << ", " << i[0]
+          << ", " << i[1] << ", GL_RGBA, GL_FLOAT, " << v << "); }";
         break;
       case Kind::kSeparableFilter2D:
-        o << "{ static const GLfloat " << v << "r[] = " << floats(f, 0, size_t(i[0]) * 4) << ";\n    static const GLfloat "
-          << v << "c[] = " << floats(f, size_t(i[0]) * 4) << ";\n    glSeparableFilter2D(GL_SEPARABLE_2D, "
-          << enumName(e[0]) << ", " << i[0] << ", " << i[1] << ", GL_RGBA, GL_FLOAT, " << v << "r, " << v << "c); }";
+        o << "{ static const GLfloat " << v << "r[] = " << floats(f, 0, size_t(i[0]) * 4)
+          << ";\n    static const GLfloat " << v << "c[] = " << floats(f, size_t(i[0]) * 4)
+          << ";\n    glSeparableFilter2D(GL_SEPARABLE_2D, " << enumName(e[0]) << ", " << i[0]
+          << ", " << i[1] << ", GL_RGBA, GL_FLOAT, " << v << "r, " << v << "c); }";
         break;
       case Kind::kCopyConvolutionFilter2D:
-        o << "glCopyConvolutionFilter2D(GL_CONVOLUTION_2D, " << enumName(e[0]) << ", " << i[0] << ", " << i[1] << ", "
-          << i[2] << ", " << i[3] << ");";
+        o << "glCopyConvolutionFilter2D(GL_CONVOLUTION_2D, " << enumName(e[0]) << ", " << i[0]
+          << ", " << i[1] << ", " << i[2] << ", " << i[3] << ");";
         break;
       case Kind::kConvolutionBorder:
-        o << "{ const GLfloat " << v << "[4] = " << floats(f) << ";\n    glConvolutionParameteri(" << enumName(e[0])
-          << ", GL_CONVOLUTION_BORDER_MODE, " << enumName(e[1]) << ");\n    glConvolutionParameterfv("
-          << enumName(e[0]) << ", GL_CONVOLUTION_BORDER_COLOR, " << v << "); }";
+        o << "{ const GLfloat " << v << "[4] = " << floats(f) << ";\n    glConvolutionParameteri("
+          << enumName(e[0]) << ", GL_CONVOLUTION_BORDER_MODE, " << enumName(e[1])
+          << ");\n    glConvolutionParameterfv(" << enumName(e[0])
+          << ", GL_CONVOLUTION_BORDER_COLOR, " << v << "); }";
         break;
       case Kind::kConvolutionScaleBias:
-        o << "{ const GLfloat " << v << "[4] = " << floats(f) << "; glConvolutionParameterfv(" << enumName(e[0]) << ", "
-          << enumName(e[1]) << ", " << v << "); }";
+        o << "{ const GLfloat " << v << "[4] = " << floats(f) << "; glConvolutionParameterfv("
+          << enumName(e[0]) << ", " << enumName(e[1]) << ", " << v << "); }";
         break;
       case Kind::kHistogram:
-        o << "glHistogram(GL_HISTOGRAM, " << i[0] << ", " << enumName(e[0]) << ", " << (i[1] ? "GL_TRUE" : "GL_FALSE")
-          << ");";
+        o << "glHistogram(GL_HISTOGRAM, " << i[0] << ", " << enumName(e[0]) << ", "
+          << (i[1] ? "GL_TRUE" : "GL_FALSE") << ");";
         break;
       case Kind::kMinmax:
-        o << "glMinmax(GL_MINMAX, " << enumName(e[0]) << ", " << (i[0] ? "GL_TRUE" : "GL_FALSE") << ");";
+        o << "glMinmax(GL_MINMAX, " << enumName(e[0]) << ", " << (i[0] ? "GL_TRUE" : "GL_FALSE")
+          << ");";
         break;
-      case Kind::kScissor: o << "glScissor(" << i[0] << ", " << i[1] << ", " << i[2] << ", " << i[3] << ");"; break;
+      case Kind::kScissor:
+        o << "glScissor(" << i[0] << ", " << i[1] << ", " << i[2] << ", " << i[3] << ");";
+        break;
       case Kind::kAccum: o << "glAccum(" << enumName(e[0]) << ", " << num(f[0]) << ");"; break;
       case Kind::kReadPixels:
-        o << "/* read */ glReadPixels(" << i[0] << ", " << i[1] << ", " << i[2] << ", " << i[3] << ", GL_RGBA, "
-          << enumName(e[0]) << ", buffer);";
+        o << "/* read */ glReadPixels(" << i[0] << ", " << i[1] << ", " << i[2] << ", " << i[3]
+          << ", GL_RGBA, " << enumName(e[0]) << ", buffer);";
         break;
       case Kind::kCopyPixels:
-        o << "glWindowPos2i(" << i[4] << ", " << i[5] << "); glCopyPixels(" << i[0] << ", " << i[1] << ", " << i[2]
-          << ", " << i[3] << ", GL_COLOR);";
+        o << "glWindowPos2i(" << i[4] << ", " << i[5] << "); glCopyPixels(" << i[0] << ", " << i[1]
+          << ", " << i[2] << ", " << i[3] << ", GL_COLOR);";
         break;
       case Kind::kDrawPixels:
-        o << "{ static const GLubyte " << v << "[] = " << bytesC(c.b) << ";\n    glWindowPos2i(" << i[2] << ", " << i[3]
-          << "); glDrawPixels(" << i[0] << ", " << i[1] << ", GL_RGBA, GL_UNSIGNED_BYTE, " << v << "); }";
+        o << "{ static const GLubyte " << v << "[] = " << bytesC(c.b) << ";\n    glWindowPos2i("
+          << i[2] << ", " << i[3] << "); glDrawPixels(" << i[0] << ", " << i[1]
+          << ", GL_RGBA, GL_UNSIGNED_BYTE, " << v << "); }";
         break;
       case Kind::kTexImage2D:
-        o << "{ static const GLubyte " << v << "[] = " << bytesC(c.b) << ";\n    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, "
-          << i[0] << ", " << i[1] << ", 0, GL_RGBA, GL_UNSIGNED_BYTE, " << v << "); /* read: glGetTexImage */ }";
+        o << "{ static const GLubyte " << v << "[] = " << bytesC(c.b)
+          << ";\n    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, " << i[0] << ", " << i[1]
+          << ", 0, GL_RGBA, GL_UNSIGNED_BYTE, " << v << "); /* read: glGetTexImage */ }";
         break;
       case Kind::kCopyTexImage2D:
-        o << "glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, " << i[0] << ", " << i[1] << ", " << i[2] << ", " << i[3]
-          << ", 0); /* read: glGetTexImage */";
+        o << "glCopyTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, " << i[0] << ", " << i[1] << ", " << i[2]
+          << ", " << i[3] << ", 0); /* read: glGetTexImage */";
         break;
       case Kind::kGetHistogram:
-        o << "/* read */ glGetHistogram(GL_HISTOGRAM, " << (i[0] ? "GL_TRUE" : "GL_FALSE") << ", " << enumName(e[0])
-          << ", GL_FLOAT, buffer);";
+        o << "/* read */ glGetHistogram(GL_HISTOGRAM, " << (i[0] ? "GL_TRUE" : "GL_FALSE") << ", "
+          << enumName(e[0]) << ", GL_FLOAT, buffer);";
         break;
       case Kind::kGetMinmax:
-        o << "/* read */ glGetMinmax(GL_MINMAX, " << (i[0] ? "GL_TRUE" : "GL_FALSE") << ", " << enumName(e[0])
-          << ", GL_FLOAT, buffer);";
+        o << "/* read */ glGetMinmax(GL_MINMAX, " << (i[0] ? "GL_TRUE" : "GL_FALSE") << ", "
+          << enumName(e[0]) << ", GL_FLOAT, buffer);";
         break;
       case Kind::kGetColorTable:
-        o << "/* read */ glGetColorTable(" << enumName(e[0]) << ", " << enumName(e[1]) << ", GL_FLOAT, buffer);";
+        o << "/* read */ glGetColorTable(" << enumName(e[0]) << ", " << enumName(e[1])
+          << ", GL_FLOAT, buffer);";
         break;
     }
     o << "\n";

@@ -26,16 +26,16 @@ namespace sl::imaging::fuzz {
 
 // One GL call (or a short fixed idiom, such as "read the window") with its arguments.
 enum class Kind {
-  kPixelTransfer,        // e[0] pname, f[0] value
-  kColorTable,           // e: target, internalformat, type; i[0] width; f data (RGBA)
-  kColorTableParameter,  // e: target, pname (SCALE/BIAS); f[0..3]
-  kCopyColorTable,       // e: target, internalformat; i: x, y, width
-  kEnable,               // e[0] cap
-  kDisable,              // e[0] cap
-  kLoadColorMatrix,      // f[0..15] column-major
-  kConvolutionFilter1D,  // e[0] internalformat; i[0] width; f data (RGBA floats)
-  kConvolutionFilter2D,  // e[0] internalformat; i: width, height; f data
-  kSeparableFilter2D,    // e[0] internalformat; i: width, height; f row (4w) then column (4h)
+  kPixelTransfer,            // e[0] pname, f[0] value
+  kColorTable,               // e: target, internalformat, type; i[0] width; f data (RGBA)
+  kColorTableParameter,      // e: target, pname (SCALE/BIAS); f[0..3]
+  kCopyColorTable,           // e: target, internalformat; i: x, y, width
+  kEnable,                   // e[0] cap
+  kDisable,                  // e[0] cap
+  kLoadColorMatrix,          // f[0..15] column-major
+  kConvolutionFilter1D,      // e[0] internalformat; i[0] width; f data (RGBA floats)
+  kConvolutionFilter2D,      // e[0] internalformat; i: width, height; f data
+  kSeparableFilter2D,        // e[0] internalformat; i: width, height; f row (4w) then column (4h)
   kCopyConvolutionFilter2D,  // e[0] internalformat; i: x, y, width, height
   kConvolutionBorder,        // e: target, mode; f[0..3] border color
   kConvolutionScaleBias,     // e: target, pname (FILTER_SCALE/BIAS); f[0..3]
@@ -74,12 +74,12 @@ struct Sequence {
 
 // Where a recorded value came from: decides which documented departure can explain it.
 enum class Origin : uint8_t {
-  kWindow,          // the window read at the end with every stage off (identity path)
-  kReadPixels,      // glReadPixels through the pipeline
-  kTexture,         // glGetTexImage after TexImage2D/CopyTexImage2D
-  kHistogram,       // glGetHistogram counts
-  kMinmax,          // glGetMinmax values
-  kColorTable,      // glGetColorTable
+  kWindow,      // the window read at the end with every stage off (identity path)
+  kReadPixels,  // glReadPixels through the pipeline
+  kTexture,     // glGetTexImage after TexImage2D/CopyTexImage2D
+  kHistogram,   // glGetHistogram counts
+  kMinmax,      // glGetMinmax values
+  kColorTable,  // glGetColorTable
 };
 
 struct Record {
