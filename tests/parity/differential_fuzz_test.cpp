@@ -9,7 +9,7 @@
 namespace sl::imaging::testing {
 namespace {
 
-// Seeds per test: 2,500 sequences take about 3 s here (small images, contexts kept), so the
+// Seeds per test: 2,500 sequences take about 2 s here (small images, contexts kept), so the
 // four blocks stay well under a minute on two cores.
 constexpr uint64_t kSeedsPerBlock = 2500;
 

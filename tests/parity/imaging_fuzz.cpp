@@ -546,9 +546,11 @@ std::vector<uint32_t> drain() {
   return errors;
 }
 
-// Truncation codes of Record::truncatable.
-constexpr uint8_t kNoTruncation = 0, kReadTruncation = 1, kReturnTruncation = 2,
-                  kTextureTruncation = 3;
+// Codes of Record::truncatable: which rule a byte's difference may fall under.
+constexpr uint8_t kNoTruncation = 0;
+constexpr uint8_t kReadTruncation = 1;     // glReadPixels(UNSIGNED_BYTE): the reference truncates
+constexpr uint8_t kReturnTruncation = 2;   // written by glAccum(GL_RETURN): accumulation ties
+constexpr uint8_t kTextureTruncation = 3;  // texels: the plain rules only
 
 struct Executor {
   const Sequence& s;
@@ -802,19 +804,6 @@ float clamp01(float v) { return v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v); }
 // One step of the 16-bit accumulation buffer, in 8-bit units (imaging/accumulation.cpp).
 constexpr float kAccumStepInBytes = 255.0f / 32767.0f;
 
-const char* truncationName(uint8_t code, float fraction) {
-  switch (code) {
-    case kReadTruncation: return "AdditionalA: glReadPixels(UNSIGNED_BYTE) truncates";
-    case kReturnTruncation:
-      return fraction - 0.5f <= kAccumStepInBytes ? "AdditionalH: GL_RETURN truncates (value "
-                                                    "within one accumulation step above k + 0.5)"
-                                                  : "AdditionalH: GL_RETURN truncates (value more "
-                                                    "than one accumulation step above k + 0.5)";
-    case kTextureTruncation: return "texture: 8-bit texels truncate";
-    default: return nullptr;
-  }
-}
-
 }  // namespace
 
 Sequence generate(uint64_t seed) {
@@ -927,7 +916,7 @@ Verdict compare(const Sequence& s, const Runs& runs) {
                  (b == int(std::floor(t)) || b == int(std::floor(t + kTieWindow)) ||
                   b == int(std::floor(t - kTieWindow))) &&
                  e.truncatable[k] == kReadTruncation)
-          name = truncationName(e.truncatable[k], t - std::floor(t));
+          name = "AdditionalA: glReadPixels(UNSIGNED_BYTE) truncates";
       }
       if (name != nullptr) {
         ++v.explained[name];

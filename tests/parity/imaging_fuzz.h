@@ -93,8 +93,9 @@ struct Record {
   // Exact mode only (the emulation on a float colour buffer): the value each byte of `bytes`
   // had before its conversion to 8 bits, so the comparison can tell a rounding tie.
   std::vector<float> exact;
-  // Per byte: the reference truncates here rather than rounds (glReadPixels(UNSIGNED_BYTE)
-  // after pixel transfer, departures_test.cpp AdditionalA; glAccum(GL_RETURN)).
+  // Per byte, where it came from as far as the tie rules care: glReadPixels(UNSIGNED_BYTE),
+  // which the reference truncates (departures_test.cpp AdditionalA), a glAccum(GL_RETURN)
+  // result (accumulation ties), a texel, or none of these.
   std::vector<uint8_t> truncatable;
 };
 
