@@ -1017,7 +1017,8 @@ std::string bytesC(const std::vector<uint8_t>& b) {
 
 std::string toC(const Sequence& s) {
   std::ostringstream o;
-  o << "// imaging_fuzz seed " << s.seed << ": a " << s.w << "x" << s.h << " window\n";
+  o << "// imaging_fuzz seed " << s.seed << ": a " << s.w << "x" << s.h << " image in a " << kWindow
+    << "x" << kWindow << " window cleared to 0; `buffer` receives each read\n";
   o << "{\n";
   o << "  static const GLubyte image[] = " << bytesC(s.image) << ";\n";
   o << "  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);\n  glWindowPos2i(0, 0);\n";
