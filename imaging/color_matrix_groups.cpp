@@ -492,16 +492,24 @@ void matrixGroupsToBytes(const TransferState& t, const void* data, int w, int h,
     else
       row(plan, layout, post, src, dst, groups);
   };
-  // A group costs about as much as two of the scalar loops' components (the work measure).
-  constexpr size_t kWorkPerGroup = 2;
-  parallelRows(h, size_t(w) * kWorkPerGroup, [&](int y0, int y1) {
+  auto span = [&](int y0, int y1) {
     if (stride == size_t(w) * groupSize) {  // tight rows: one span
       rows(base + size_t(y0) * stride, out + size_t(y0) * w * 4, size_t(y1 - y0) * size_t(w));
       return;
     }
     for (int y = y0; y < y1; ++y)
       rows(base + size_t(y) * stride, out + size_t(y) * w * 4, size_t(w));
-  });
+  };
+  // The planar form runs on one core: with it, imaging_bench's dense-matrix stage rows were
+  // faster on one core than split over two at every size (both builds timed alternately on
+  // the shared 2-core machine): the thread starts and the wait for the second core cost more
+  // than the half of the work they take off. The four-groups forms keep the split.
+  // A group costs about as much as two of the scalar loops' components (the work measure).
+  constexpr size_t kWorkPerGroup = 2;
+  if (planar)
+    span(0, h);
+  else
+    parallelRows(h, size_t(w) * kWorkPerGroup, span);
 }
 
 }  // namespace sl::imaging::detail

@@ -151,7 +151,8 @@ TEST(ColorMatrixGroups, RandomDenseMatricesEveryLayoutAndInstructionSet) {
     int w, h;
     const PixelStore* store;
   };
-  // 37 groups: two 16-group blocks and a tail of 5; 512 x 300: both threads.
+  // 37 groups: two 16-group blocks and a tail of 5; 512 x 300: both threads
+  // (the four-groups forms; the planar form runs on one).
   const Case cases[] = {{37, 11, &tight}, {37, 9, &padded}, {1, 3, &tight}, {512, 300, &tight}};
   size_t compared = 0;
   for (int k = 0; k < kRandomStates; ++k) {
