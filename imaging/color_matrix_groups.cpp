@@ -20,7 +20,17 @@
 // compiled three times: AVX-512 and AVX2 behind __builtin_cpu_supports, SSE2 (the x86-64
 // baseline) otherwise. The build compiles imaging/ with -ffp-contract=off (CMakeLists.txt): a
 // fused multiply-add would round once where the general path rounds twice.
+//
+// Where the processor has AVX-512 VBMI, a second form (the "planar" section below) does the
+// same per-component arithmetic on sixteen groups at a time, one vector per component: no
+// per-group broadcasts, byte permutes to unpack the bytes, v / 255 without the division
+// (hi and lo below, checked against v / 255.0f on all 256 bytes before use) and a final
+// conversion whose clamp is one minimum and the saturation of the packs (its comment says why
+// the bytes are the same).
+#include <immintrin.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "imaging/internal.h"
@@ -187,11 +197,215 @@ RowFunction rowFunction(MatrixIsa isa) {
       if (matrixIsaAvailable(MatrixIsa::kAvx512)) return rowAvx512;
       if (matrixIsaAvailable(MatrixIsa::kAvx2)) return rowAvx2;
       return rowSse2;
+    case MatrixIsa::kAvx512Vbmi:  // its four-groups form (bytes where hi + lo is not exact)
     case MatrixIsa::kAvx512: return rowAvx512;
     case MatrixIsa::kAvx2: return rowAvx2;
     case MatrixIsa::kSse2: return rowSse2;
   }
   return rowSse2;
+}
+
+// ---- planar: sixteen groups per block, one 16-float vector per component (AVX-512 VBMI) ----
+// x_c holds component c of groups 0 .. 15; output row r is
+//   o_r = ((k_r0 * x_R + k_r1 * x_G) + k_r2 * x_B) + k_r3 * x_A,
+// each coefficient broadcast from memory: the operations of each output component are the
+// ones above, in the same order. For GL_RGB, x_A = 1 and k_r3 * 1 is k_r3 exactly, so the last
+// term is k_r3 itself.
+
+// v / 255 for a byte v as fma(v, hi, v * lo): hi is 1/255 with its low kSplitBits mantissa
+// bits cleared, so v * hi is exact for v < 256 and the fma is the rounded sum of v * hi and
+// v * lo. It is used only where it equals v / 255.0f (unpackImage's IEEE division) for every
+// byte, checked once (std::fma rounds once, as vfmadd does); the division otherwise.
+constexpr int kSplitBits = 8;  // a byte's significant bits
+struct ByteSplit {
+  float hi = 0, lo = 0;
+  bool exact = false;
+};
+const ByteSplit& byteSplit() {
+  static const ByteSplit split = [] {
+    ByteSplit s;
+    float hi = 1.0f / kByteMax;
+    uint32_t bits = 0;
+    std::memcpy(&bits, &hi, sizeof bits);
+    bits &= ~((uint32_t(1) << kSplitBits) - 1);
+    std::memcpy(&hi, &bits, sizeof hi);
+    s.hi = hi;
+    s.lo = float(1.0 / double(kByteMax) - double(hi));
+    s.exact = true;
+    for (int v = 0; v <= int(kByteMax); ++v) {
+      const float f = float(v);
+      if (std::fma(f, s.hi, f * s.lo) != f / kByteMax) s.exact = false;
+    }
+    return s;
+  }();
+  return split;
+}
+
+struct PlanarPlan {
+  float k[16];  // k[r * 4 + c] = k_rc, the coefficient of input c in output r
+  float scale[4], bias[4];
+  float hi, lo;  // byteSplit()
+};
+
+// Bytes a planar block reads: RGB bytes a whole 64-byte vector (48 used), else its groups.
+template <Layout L>
+constexpr size_t planarReadBytes() {
+  return L == kRgb8 ? sizeof(__m512i) : kBlockGroups * groupBytes<L>();
+}
+
+#define SL_PLANAR_TARGET __attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi")))
+constexpr uint64_t kFirstByteOfEachWord = 0x1111111111111111ull;  // byte mask, 64 bytes
+constexpr __mmask16 kAllLanes = 0xffff;
+// A 64-byte vector of byte indices (the byte permutes' and shuffles' operand).
+struct ByteIndex {
+  uint8_t b[64];
+};
+// Byte 4 i + c of each 128-bit lane from byte 4 c + i: R, G, B, A of four groups interleaved.
+alignas(64) constexpr ByteIndex kInterleave = [] {
+  ByteIndex r{};
+  for (int j = 0; j < 64; ++j) r.b[j] = uint8_t(4 * (j % 4) + (j % 16) / 4);
+  return r;
+}();
+
+// Component c of the block's sixteen groups of n bytes as x = v / 255: byte n g + c moved
+// into 32-bit lane g (one byte permute, the lane's other bytes zeroed), converted, split.
+template <int n, int c>
+SL_PLANAR_TARGET [[gnu::always_inline]] inline __m512 bytePlane(__m512i block, __m512 hi,
+                                                                __m512 lo) {
+  alignas(64) static constexpr ByteIndex index = [] {
+    ByteIndex r{};
+    for (int g = 0; g < int(kBlockGroups); ++g) r.b[4 * g] = uint8_t(n * g + c);
+    return r;
+  }();
+  const __m512i v =
+      _mm512_maskz_permutexvar_epi8(kFirstByteOfEachWord, _mm512_load_si512(&index), block);
+  const __m512 f = __m512(__builtin_convertvector(Ints(v), Floats));
+  return _mm512_fmadd_ps(f, hi, _mm512_mul_ps(f, lo));
+}
+
+// The block's components: x[c] lane g = component c of group g (x[3] only for RGBA).
+template <Layout L>
+SL_PLANAR_TARGET [[gnu::always_inline]] inline void planarLoad(const PlanarPlan& p,
+                                                               const uint8_t* src, __m512 x[4]) {
+  if constexpr (L == kRgba8 || L == kRgb8) {
+    const __m512 hi = _mm512_set1_ps(p.hi), lo = _mm512_set1_ps(p.lo);
+    const __m512i block = _mm512_loadu_si512(src);
+    constexpr int n = L == kRgba8 ? 4 : 3;
+    x[0] = bytePlane<n, 0>(block, hi, lo);
+    x[1] = bytePlane<n, 1>(block, hi, lo);
+    x[2] = bytePlane<n, 2>(block, hi, lo);
+    if constexpr (L == kRgba8) x[3] = bytePlane<n, 3>(block, hi, lo);
+  } else if constexpr (L == kRgbaF) {  // a 4 x 4 transpose of 4-float groups
+    const auto* f = reinterpret_cast<const float*>(src);
+    const __m512 v0 = _mm512_loadu_ps(f), v1 = _mm512_loadu_ps(f + 16);
+    const __m512 v2 = _mm512_loadu_ps(f + 32), v3 = _mm512_loadu_ps(f + 48);
+    const __m512i rg = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
+    const __m512i ba =
+        _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
+    const __m512 rg0 = _mm512_permutex2var_ps(v0, rg, v1), ba0 = _mm512_permutex2var_ps(v0, ba, v1);
+    const __m512 rg1 = _mm512_permutex2var_ps(v2, rg, v3), ba1 = _mm512_permutex2var_ps(v2, ba, v3);
+    const __m512i first = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23);
+    const __m512i second =
+        _mm512_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31);
+    x[0] = _mm512_permutex2var_ps(rg0, first, rg1);
+    x[1] = _mm512_permutex2var_ps(rg0, second, rg1);
+    x[2] = _mm512_permutex2var_ps(ba0, first, ba1);
+    x[3] = _mm512_permutex2var_ps(ba0, second, ba1);
+  } else {  // RGB floats: float 3 g + c of the 48, from the first 32, then the last 16
+    const auto* f = reinterpret_cast<const float*>(src);
+    const __m512 v0 = _mm512_loadu_ps(f), v1 = _mm512_loadu_ps(f + 16),
+                 v2 = _mm512_loadu_ps(f + 32);
+    const __m512i a[3] = {_mm512_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0, 0, 0, 0),
+                          _mm512_setr_epi32(1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0, 0, 0, 0),
+                          _mm512_setr_epi32(2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0, 0, 0, 0)};
+    const __m512i b[3] = {_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29),
+                          _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30),
+                          _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31)};
+    for (int c = 0; c < 3; ++c)
+      x[c] = _mm512_permutex2var_ps(_mm512_permutex2var_ps(v0, a[c], v1), b[c], v2);
+  }
+}
+
+// Sixteen groups through the matrix, the post-color-matrix scale and bias and the final
+// conversion. The conversion is byte = int(min(o * 255 + 0.5, 255.5)) with the packs'
+// saturation to [0, 255], which gives toByte's byte for every o: for 0 < o < 1 the operations
+// are toByte's (c = o); o >= 1 (+inf too) gives o * 255 >= 255 (rounding is monotonic), so
+// 255.5 after the minimum, 255; o <= 0 (-0, -inf) gives at most 0.5, truncated to 0 or a
+// negative integer that saturates to 0; NaN passes the minimum (its second operand is
+// returned: minps(255.5, NaN) = NaN) and converts to INT_MIN, which saturates to 0, as toByte's
+// failed comparison gives 0.
+template <Layout L, Post P>
+SL_PLANAR_TARGET [[gnu::always_inline]] inline void planarBlock(const PlanarPlan& p,
+                                                                const uint8_t* src, uint8_t* dst) {
+  __m512 x[4];
+  planarLoad<L>(p, src, x);
+  constexpr bool rgb = L == kRgb8 || L == kRgbF;
+  const __m512 byteMax = _mm512_set1_ps(kByteMax), half = _mm512_set1_ps(0.5f);
+  const __m512 limit = _mm512_set1_ps(kByteMax + 0.5f);
+  __m512i k[4];
+  for (int r = 0; r < 4; ++r) {
+    const float* row = p.k + r * 4;
+    __m512 o = _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(row[0]), x[0]),
+                             _mm512_mul_ps(_mm512_set1_ps(row[1]), x[1]));
+    o = _mm512_add_ps(o, _mm512_mul_ps(_mm512_set1_ps(row[2]), x[2]));
+    if constexpr (rgb)
+      o = _mm512_add_ps(o, _mm512_set1_ps(row[3]));
+    else
+      o = _mm512_add_ps(o, _mm512_mul_ps(_mm512_set1_ps(row[3]), x[3]));
+    if constexpr (P == kScaled)
+      o = _mm512_add_ps(_mm512_mul_ps(o, _mm512_set1_ps(p.scale[r])), _mm512_set1_ps(p.bias[r]));
+    if constexpr (P == kBiased) o = _mm512_add_ps(o, _mm512_set1_ps(p.bias[r]));
+    // (The all-lanes masks only keep GCC 12 from warning about its headers' undefined vectors.)
+    const __m512 u =
+        _mm512_maskz_min_ps(kAllLanes, limit, _mm512_add_ps(_mm512_mul_ps(o, byteMax), half));
+    k[r] = _mm512_maskz_cvttps_epi32(kAllLanes, u);
+  }
+  // Signed saturation to 16 bits, then unsigned to 8: 128-bit lane j holds R, G, B, A of groups
+  // 4j .. 4j + 3 in turn; one byte shuffle interleaves them.
+  const __m512i bytes =
+      _mm512_packus_epi16(_mm512_packs_epi32(k[0], k[1]), _mm512_packs_epi32(k[2], k[3]));
+  const __m512i interleave = _mm512_load_si512(&kInterleave);
+  _mm512_storeu_si512(dst, _mm512_shuffle_epi8(bytes, interleave));
+}
+
+template <Layout L, Post P>
+SL_PLANAR_TARGET void planarRow(const PlanarPlan& plan, const uint8_t* src, uint8_t* dst,
+                                size_t groups) {
+  constexpr size_t in = groupBytes<L>();
+  size_t g = 0;
+  for (; g * in + planarReadBytes<L>() <= groups * in; g += kBlockGroups)
+    planarBlock<L, P>(plan, src + g * in, dst + g * 4);
+  while (g < groups) {  // the rest from a padded copy
+    const size_t m = std::min(kBlockGroups, groups - g);
+    uint8_t tailIn[planarReadBytes<L>()] = {}, tailOut[kBlockGroups * 4];
+    std::memcpy(tailIn, src + g * in, m * in);
+    planarBlock<L, P>(plan, tailIn, tailOut);
+    std::memcpy(dst + g * 4, tailOut, m * 4);
+    g += m;
+  }
+}
+#undef SL_PLANAR_TARGET
+
+using PlanarRowFunction = void (*)(const PlanarPlan&, const uint8_t*, uint8_t*, size_t);
+
+template <Layout L>
+PlanarRowFunction planarRowPost(Post post) {
+  switch (post) {
+    case kPlain: return planarRow<L, kPlain>;
+    case kBiased: return planarRow<L, kBiased>;
+    case kScaled: return planarRow<L, kScaled>;
+  }
+  return planarRow<L, kScaled>;
+}
+
+PlanarRowFunction planarRowFunction(Layout layout, Post post) {
+  switch (layout) {
+    case kRgba8: return planarRowPost<kRgba8>(post);
+    case kRgb8: return planarRowPost<kRgb8>(post);
+    case kRgbaF: return planarRowPost<kRgbaF>(post);
+    case kRgbF: return planarRowPost<kRgbF>(post);
+  }
+  return planarRowPost<kRgbaF>(post);
 }
 
 bool identity(const Rgba& scale, const Rgba& bias) {
@@ -211,6 +425,8 @@ size_t clientRowBytes(int w, size_t groupSize, size_t componentSize, const Pixel
 
 bool matrixIsaAvailable(MatrixIsa isa) {
   switch (isa) {
+    case MatrixIsa::kAvx512Vbmi:
+      return matrixIsaAvailable(MatrixIsa::kAvx512) && __builtin_cpu_supports("avx512vbmi");
     case MatrixIsa::kAvx512:
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
              __builtin_cpu_supports("avx512vl");
@@ -257,17 +473,43 @@ void matrixGroupsToBytes(const TransferState& t, const void* data, int w, int h,
   const bool scaled = t.postColorMatrixScale != Rgba{1, 1, 1, 1};
   const Post post = scaled ? kScaled : t.postColorMatrixBias != Rgba{0, 0, 0, 0} ? kBiased : kPlain;
   const RowFunction row = rowFunction(isa);
-  // A group costs about as much as two of the scalar loops' components (the work measure).
-  constexpr size_t kWorkPerGroup = 2;
-  parallelRows(h, size_t(w) * kWorkPerGroup, [&](int y0, int y1) {
+  // The planar form where asked for (or the best) and available; for bytes only where hi + lo
+  // is v / 255 exactly.
+  const bool planar = (isa == MatrixIsa::kAvx512Vbmi || isa == MatrixIsa::kBest) &&
+                      matrixIsaAvailable(MatrixIsa::kAvx512Vbmi) && (!bytes || byteSplit().exact);
+  PlanarPlan planarPlan{};
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) planarPlan.k[r * 4 + c] = m.m[size_t(c * 4 + r)];
+    planarPlan.scale[r] = t.postColorMatrixScale[size_t(r)];
+    planarPlan.bias[r] = t.postColorMatrixBias[size_t(r)];
+  }
+  planarPlan.hi = byteSplit().hi;
+  planarPlan.lo = byteSplit().lo;
+  const PlanarRowFunction planarRowOf = planarRowFunction(layout, post);
+  auto rows = [&](const uint8_t* src, uint8_t* dst, size_t groups) {
+    if (planar)
+      planarRowOf(planarPlan, src, dst, groups);
+    else
+      row(plan, layout, post, src, dst, groups);
+  };
+  auto span = [&](int y0, int y1) {
     if (stride == size_t(w) * groupSize) {  // tight rows: one span
-      row(plan, layout, post, base + size_t(y0) * stride, out + size_t(y0) * w * 4,
-          size_t(y1 - y0) * size_t(w));
+      rows(base + size_t(y0) * stride, out + size_t(y0) * w * 4, size_t(y1 - y0) * size_t(w));
       return;
     }
     for (int y = y0; y < y1; ++y)
-      row(plan, layout, post, base + size_t(y) * stride, out + size_t(y) * w * 4, size_t(w));
-  });
+      rows(base + size_t(y) * stride, out + size_t(y) * w * 4, size_t(w));
+  };
+  // The planar form runs on one core: with it, imaging_bench's dense-matrix stage rows were
+  // faster on one core than split over two at every size (both builds timed alternately on
+  // the shared 2-core machine): the thread starts and the wait for the second core cost more
+  // than the half of the work they take off. The four-groups forms keep the split.
+  // A group costs about as much as two of the scalar loops' components (the work measure).
+  constexpr size_t kWorkPerGroup = 2;
+  if (planar)
+    span(0, h);
+  else
+    parallelRows(h, size_t(w) * kWorkPerGroup, span);
 }
 
 }  // namespace sl::imaging::detail

@@ -216,12 +216,14 @@ bool matrixOnlyPipeline(const TransferState& t);
 // GL_UNSIGNED_BYTE or GL_FLOAT.
 bool matrixGroupsApply(const TransferState& t, GLenum format, GLenum type);
 // The instruction set of matrixGroupsToBytes: kBest picks the widest this processor has (tests
-// run each available one and compare).
-enum class MatrixIsa { kBest, kAvx512, kAvx2, kSse2 };
+// run each available one and compare). kAvx512Vbmi: sixteen groups per block, one vector per
+// component (planar; byte permutes of AVX-512 VBMI unpack the bytes); the others: four groups
+// per vector, one group per four lanes.
+enum class MatrixIsa { kBest, kAvx512Vbmi, kAvx512, kAvx2, kSse2 };
 bool matrixIsaAvailable(MatrixIsa isa);
 // w x h client groups (unpacked per `store`, 3.6.4) through stage 6 and the final conversion of
 // 4.3.2 to tight RGBA8 in `out` (w * h * 4 bytes, rows bottom-up): bytes identical to
-// unpackImage, runPipeline and the final conversion, four groups per vector.
+// unpackImage, runPipeline and the final conversion, in vectors.
 void matrixGroupsToBytes(const TransferState& t, const void* data, int w, int h, GLenum format,
                          GLenum type, const PixelStore& store, uint8_t* out,
                          MatrixIsa isa = MatrixIsa::kBest);

@@ -36,13 +36,15 @@ constexpr Layout kLayouts[] = {{GL_RGBA, GL_UNSIGNED_BYTE, "RGBA bytes"},
 
 std::vector<MatrixIsa> availableIsas() {
   std::vector<MatrixIsa> isas;
-  for (MatrixIsa isa : {MatrixIsa::kBest, MatrixIsa::kAvx512, MatrixIsa::kAvx2, MatrixIsa::kSse2})
+  for (MatrixIsa isa : {MatrixIsa::kBest, MatrixIsa::kAvx512Vbmi, MatrixIsa::kAvx512,
+                        MatrixIsa::kAvx2, MatrixIsa::kSse2})
     if (matrixIsaAvailable(isa)) isas.push_back(isa);
   return isas;
 }
 const char* isaName(MatrixIsa isa) {
   switch (isa) {
     case MatrixIsa::kBest: return "best";
+    case MatrixIsa::kAvx512Vbmi: return "AVX-512 VBMI (planar)";
     case MatrixIsa::kAvx512: return "AVX-512";
     case MatrixIsa::kAvx2: return "AVX2";
     case MatrixIsa::kSse2: return "SSE2";
@@ -149,7 +151,8 @@ TEST(ColorMatrixGroups, RandomDenseMatricesEveryLayoutAndInstructionSet) {
     int w, h;
     const PixelStore* store;
   };
-  // 37 groups: two 16-group blocks and a tail of 5; 512 x 300: both threads.
+  // 37 groups: two 16-group blocks and a tail of 5; 512 x 300: both threads
+  // (the four-groups forms; the planar form runs on one).
   const Case cases[] = {{37, 11, &tight}, {37, 9, &padded}, {1, 3, &tight}, {512, 300, &tight}};
   size_t compared = 0;
   for (int k = 0; k < kRandomStates; ++k) {
@@ -173,6 +176,68 @@ TEST(ColorMatrixGroups, RandomDenseMatricesEveryLayoutAndInstructionSet) {
     }
   }
   EXPECT_GT(compared, size_t(0));
+}
+
+// The final conversion at the values where the vector forms' clamps could part from toByte's
+// (4.3.2: clamp to [0, 1], times 255, + 0.5, truncate): NaN, infinities, -0, values at and
+// beside 0 and 1, just below and above a rounding tie, and far outside [0, 1] (past the 32-bit
+// range of the conversion). Each value is one component of a group whose other components are
+// 0, and reaches the final conversion unchanged in its own row (1 times it plus +0 times the
+// zeros; A is doubled, 2 times it); float layouts, then random groups, every instruction set.
+TEST(ColorMatrixGroups, FinalConversionAtTheClampEdges) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  const float one = 1.0f, below1 = std::nextafter(one, 0.0f), above1 = std::nextafter(one, 2.0f);
+  const float tie = 254.5f / 255.0f;  // o * 255 + 0.5 near 255: the last rounding step
+  const float edges[] = {std::numeric_limits<float>::quiet_NaN(),
+                         -std::numeric_limits<float>::quiet_NaN(),
+                         kInf,
+                         -kInf,
+                         0.0f,
+                         -0.0f,
+                         std::numeric_limits<float>::denorm_min(),
+                         -std::numeric_limits<float>::denorm_min(),
+                         one,
+                         below1,
+                         above1,
+                         std::nextafter(tie, 0.0f),
+                         tie,
+                         std::nextafter(tie, 2.0f),
+                         0.5f / 255.0f,
+                         -0.5f / 255.0f,
+                         2147483648.0f,   // 2^31: past int32
+                         -2147483648.0f,  // -2^31
+                         16777216.0f,
+                         std::numeric_limits<float>::max(),
+                         -std::numeric_limits<float>::max(),
+                         -1.0f,
+                         2.0f};
+  TransferState state;
+  state.colorMatrixStack.back().m[15] = 2.0f;  // A doubled: not the identity
+  ASSERT_TRUE(matrixOnlyPipeline(state));
+  PixelStore tight;
+  tight.alignment = 1;
+  std::mt19937 rng(kSeed + 3);
+  for (const Layout& l : kLayouts) {
+    if (l.type != GL_FLOAT) continue;  // bytes cannot reach these values without scale/bias
+    const int n = l.format == GL_RGBA ? 4 : 3;
+    // Each edge value in each component of a group whose other components are 0; 61 groups:
+    // three blocks and a tail.
+    constexpr int kW = 61, kH = 3;
+    std::vector<float> groups(size_t(kW) * kH * size_t(n), 0.0f);
+    size_t g = 0;
+    for (float e : edges)
+      for (int c = 0; c < n; ++c, ++g) groups[g * size_t(n) + size_t(c)] = e;
+    ASSERT_LE(g, size_t(kW) * kH);
+    std::uniform_real_distribution<float> value(-1.5f, 2.5f);
+    for (size_t i = g * size_t(n); i < groups.size(); ++i) groups[i] = value(rng);
+    const std::vector<uint8_t> want =
+        generalPath(state, groups.data(), kW, kH, l.format, l.type, tight);
+    for (MatrixIsa isa : availableIsas()) {
+      std::vector<uint8_t> got(want.size(), 0xCD);
+      matrixGroupsToBytes(state, groups.data(), kW, kH, l.format, l.type, tight, got.data(), isa);
+      ASSERT_EQ(firstDifference(got, want), "") << l.name << ", " << isaName(isa);
+    }
+  }
 }
 
 // All 2^24 RGB byte groups (a 4096 x 4096 image, every (R, G, B) once), in strips of 256

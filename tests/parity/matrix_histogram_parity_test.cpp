@@ -105,6 +105,124 @@ TEST_P(DenseColorMatrixParity, DrawPixelsEveryLayout) {
 }
 INSTANTIATE_TEST_SUITE_P(FourLayoutsTwoMatrices, DenseColorMatrixParity, ::testing::Range(0, 8));
 
+// Dense colour matrix, post-color-matrix scale and bias chosen so that the final conversion
+// (4.3.2) clamps below 0 and above 1 in every output component, on the emulation's vector
+// paths (imaging/color_matrix_groups.cpp): glDrawPixels of each client layout 13 groups wide
+// (16-group blocks and a tail), glTexSubImage2D of each layout into an RGBA8 texture (read
+// back with glGetTexImage, which has no pixel transfer, 6.1.4) and glCopyPixels of the RGBA8
+// window onto itself. Entries and scales are fifths, biases and float inputs whole 1/255
+// steps: 255 times every exact result is a multiple of 1/25, at least 0.02 of a step from a
+// rounding tie. Each case also checks, on the exact values computed here in double, that
+// it exercises both clamps.
+constexpr float kClampScale[4] = {1.4f, 0.6f, 1.2f, 0.8f};
+constexpr float kClampBias[4] = {-30.0f / 255.0f, 40.0f / 255.0f, 20.0f / 255.0f, -10.0f / 255.0f};
+// Exact results below 0 and above 1 each case must contain: a twentieth of the smallest
+// case's 4 x 13 x 5 = 260 components (its byte uploads have 20 and 21 below 0).
+constexpr int kMinimumClamped = 13;
+enum class DenseCall { kDrawPixels, kTexSubImage, kCopyPixels };
+class DenseColorMatrixClampParity : public ::testing::TestWithParam<int> {};
+TEST_P(DenseColorMatrixClampParity, ClampsBelowZeroAndAboveOne) {
+  SL_REQUIRE_REFERENCE();
+  // 0-3: glDrawPixels, 4-7: glTexSubImage2D of the four layouts; 8: glCopyPixels.
+  const DenseCall call = GetParam() < 4   ? DenseCall::kDrawPixels
+                         : GetParam() < 8 ? DenseCall::kTexSubImage
+                                          : DenseCall::kCopyPixels;
+  const int layout = call == DenseCall::kCopyPixels ? 0 : GetParam() % 4;
+  const GLenum format = layout % 2 == 0 ? GL_RGBA : GL_RGB;
+  const GLenum type = layout < 2 ? GL_UNSIGNED_BYTE : GL_FLOAT;
+  const int n = format == GL_RGBA ? 4 : 3;
+  constexpr int kTexture = 16, kSubW = 13, kSubH = 5, kSubX = 2, kSubY = 3;
+  const int w = call == DenseCall::kCopyPixels ? kParityW : kSubW;
+  const int h = call == DenseCall::kTexSubImage ? kSubH : kParityH;
+  const std::vector<uint8_t> pattern = patternImage(kParityW, kParityH, 171 + GetParam());
+  std::vector<uint8_t> bytes(size_t(w) * h * size_t(n));
+  std::vector<float> floats(bytes.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    bytes[i] = pattern[i];
+    floats[i] = float(2 * int(pattern[i]) - 200) / 255.0f;
+  }
+  const float* m = kDenseMatrices[1];
+  // The exact value of every written component: departure F's band, and the clamps counted.
+  std::vector<double> exact(size_t(w) * h * 4);
+  int below = 0, above = 0;
+  for (size_t g = 0; g < exact.size() / 4; ++g) {
+    double x[4] = {0, 0, 0, 1};
+    for (int c = 0; c < n; ++c) {
+      const int v = bytes[g * size_t(n) + size_t(c)];
+      x[c] = double(type == GL_FLOAT ? 2 * v - 200 : v) / 255.0;
+    }
+    for (int r = 0; r < 4; ++r) {
+      double v = 0;
+      for (int c = 0; c < 4; ++c) v += double(m[c * 4 + r]) * x[c];
+      v = v * kClampScale[r] + kClampBias[r];
+      exact[g * 4 + size_t(r)] = v;
+      below += v < 0 ? 1 : 0;
+      above += v > 1 ? 1 : 0;
+    }
+  }
+  EXPECT_GE(below, kMinimumClamped);
+  EXPECT_GE(above, kMinimumClamped);
+  // Window (or texture) bytes of the written groups: departure F's band there, 0 elsewhere.
+  const int outW = call == DenseCall::kTexSubImage ? kTexture : kParityW;
+  const int outH = call == DenseCall::kTexSubImage ? kTexture : kParityH;
+  const int x0 = call == DenseCall::kCopyPixels ? 0 : kSubX;
+  const int y0 = call == DenseCall::kTexSubImage ? kSubY : 0;
+  std::vector<uint8_t> band(size_t(outW) * outH * 4, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int r = 0; r < 4; ++r)
+        band[(size_t(y0 + y) * outW + size_t(x0 + x)) * 4 + size_t(r)] =
+            inSaturationBand(float(exact[(size_t(y) * w + size_t(x)) * 4 + size_t(r)])) ? 1 : 0;
+  checkParity([&](Outcome& o) {
+    GLuint texture = 0;
+    if (call == DenseCall::kTexSubImage) {  // made before the matrix: zeros, no transfer
+      const std::vector<uint8_t> zero(size_t(kTexture) * kTexture * 4, 0);
+      glGenTextures(1, &texture);
+      glBindTexture(GL_TEXTURE_2D, texture);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kTexture, kTexture, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                   zero.data());
+    }
+    if (call == DenseCall::kCopyPixels) putImage(kParityW, kParityH, pattern);
+    glMatrixMode(GL_COLOR);
+    glLoadMatrixf(m);
+    glMatrixMode(GL_MODELVIEW);
+    const GLenum scales[4] = {GL_POST_COLOR_MATRIX_RED_SCALE, GL_POST_COLOR_MATRIX_GREEN_SCALE,
+                              GL_POST_COLOR_MATRIX_BLUE_SCALE, GL_POST_COLOR_MATRIX_ALPHA_SCALE};
+    const GLenum biases[4] = {GL_POST_COLOR_MATRIX_RED_BIAS, GL_POST_COLOR_MATRIX_GREEN_BIAS,
+                              GL_POST_COLOR_MATRIX_BLUE_BIAS, GL_POST_COLOR_MATRIX_ALPHA_BIAS};
+    for (int c = 0; c < 4; ++c) {
+      glPixelTransferf(scales[c], kClampScale[c]);
+      glPixelTransferf(biases[c], kClampBias[c]);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const void* data = type == GL_FLOAT ? static_cast<const void*>(floats.data()) : bytes.data();
+    switch (call) {
+      case DenseCall::kDrawPixels:
+        glWindowPos2i(kSubX, 0);
+        glDrawPixels(w, h, format, type, data);
+        appendBytes(o, readWindow());
+        break;
+      case DenseCall::kTexSubImage: {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, kSubX, kSubY, w, h, format, type, data);
+        resetImaging();
+        std::vector<uint8_t> texels(size_t(kTexture) * kTexture * 4);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+        appendBytes(o, texels);
+        glDeleteTextures(1, &texture);
+        break;
+      }
+      case DenseCall::kCopyPixels:
+        glWindowPos2i(0, 0);
+        glCopyPixels(0, 0, w, h, GL_COLOR);
+        appendBytes(o, readWindow());
+        break;
+    }
+    o.saturationBand = band;
+  });
+}
+INSTANTIATE_TEST_SUITE_P(DrawTexSubImageCopy, DenseColorMatrixClampParity, ::testing::Range(0, 9));
+
 // The stack: push, multiply, pop, depths, overflow past 4 and underflow.
 TEST(ColorMatrixStackParity, PushMultiplyPopOverflowUnderflow) {
   SL_REQUIRE_REFERENCE();
