@@ -176,8 +176,7 @@ PassSpec filterInCameraPassSpec(int samples, Kernel kernel) {
             .writes = cameraPassBuffers("2",
                                         "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
                                         "B-spline, Chan 2004 Fig. 4-8"),
-            .shaders = {"bicubic-weights", "bicubic-region", "receiver-plane-bias",
-                        "normal-offset-bias"},
+            .shaders = {"bicubic-weights", "bicubic-region"},
             .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation,
                            kBicubicReceiverPlaneDeviation, kNormalOffsetDeviation}};
   const std::string n = std::to_string(samples);
@@ -192,8 +191,7 @@ PassSpec filterInCameraPassSpec(int samples, Kernel kernel) {
                                         "2x2 lookup (Fig. 11-6)",
           .writes = cameraPassBuffers("2", "gems_pcf.frag, " + n + " offset lookups, " +
                                                (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3")),
-          .shaders = {"offset-lookup", "dither", "gems-region", "receiver-plane-bias",
-                      "normal-offset-bias"},
+          .shaders = {"offset-lookup", "dither", "gems-region"},
           .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation,
                          kReceiverPlaneDeviation, kNormalOffsetDeviation}};
 }

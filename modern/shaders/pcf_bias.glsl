@@ -1,5 +1,6 @@
 // pcf_bias.glsl — the depth biases of the GPU Gems PCF family (--param bias, gems_pcf.cpp),
-// included by gems_pcf.frag and bicubic_pcf.frag. BIAS_METHOD (a define) selects one:
+// included by gems_pcf.frag and bicubic_pcf.frag (their pass markers show the calls; an
+// included file is not a file of the program a pass dump lists, so it carries no marker). BIAS_METHOD (a define) selects one:
 //   BIAS_CONSTANT: the receiver moves towards the light by uRelativeBias of its distance (the
 //     shaders' own DEVIATION), with pass 1's polygon offset: today's behaviour;
 //   BIAS_RECEIVER_PLANE: ours, after Isidoro 2006 and Dou et al. 2014 — each lookup compares
@@ -20,7 +21,7 @@ const float kSingularJacobian = 1e-30;  // (map units per pixel)^2
 // Beyond this a slope (depth per map unit) is a near-singular solve, not a plane: taken as 0.
 const float kLargestSlope = 1e30;
 
-// @pass normal-offset-bias: the receiver's point moved along its normal by texel footprints, before it is projected into the light (ours, after Holbert 2011)
+// Normal offset (ours, after Holbert 2011): the receiver's point moved along its normal.
 // The world position moved along the surface normal (towards the side the camera sees, as
 // lighting.glsl shades it) by uNormalOffsetTexels footprints of a map texel at the point's
 // distance from the light, times 1 - N.L with uNormalOffsetByAngle. A zero normal moves nothing.
@@ -35,9 +36,9 @@ vec3 normalOffsetPosition(vec3 world, vec3 worldNormal) {
   float scale = uNormalOffsetByAngle ? 1.0 - nDotL : 1.0;
   return world + n * (uNormalOffsetTexels * footprint * scale);
 }
-// @end normal-offset-bias
 
-// @pass receiver-plane-bias: the receiver's depth plane in map coordinates from screen derivatives; each lookup compares the plane's depth at its own texels (ours, after Isidoro 2006, Dou et al. 2014)
+// Receiver-plane depth bias (ours, after Isidoro 2006, Dou et al. 2014): the receiver's depth
+// plane in map coordinates from screen derivatives; each lookup compares the plane's depth.
 // d(depth)/d(u, v) of the receiver's plane: the window derivatives of (u, v, depth) give
 // dz/dx = a du/dx + b dv/dx and dz/dy = a du/dy + b dv/dy; (a, b) solves that 2x2 system.
 // Call in uniform control flow (derivatives).
@@ -57,4 +58,3 @@ vec2 receiverPlaneDepthSlope(vec3 mapCoord) {
 float receiverPlaneDepth(float depth, vec2 slope, vec2 offset, vec2 reach) {
   return depth + dot(slope, offset) - dot(abs(slope), reach);
 }
-// @end receiver-plane-bias

@@ -70,9 +70,7 @@ TEST(PassTablesWithoutTwinGems, BicubicKernelRunsItsOwnVariant) {
   EXPECT_EQ(f.passes[0].id, "1");
   EXPECT_EQ(f.passes[1].id, "2");
   EXPECT_EQ(f.passes[1].name, "2 camera pass, 16-sample bicubic PCF");
-  EXPECT_EQ(f.passes[1].glsl,
-            (std::vector<std::string>{"bicubic-weights", "bicubic-region", "receiver-plane-bias",
-                                      "normal-offset-bias"}));
+  EXPECT_EQ(f.passes[1].glsl, (std::vector<std::string>{"bicubic-weights", "bicubic-region"}));
   EXPECT_EQ(f.passes[0].section.rfind("Chan 2004 §4.4, Fig. 4-8", 0), 0u);
 }
 
