@@ -4,10 +4,13 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "core/technique/technique.h"
 #include "measure/stability.h"
 #include "registry/registry.h"
+#include "registry/shadow_error.h"
 
 namespace sl::measure::bias {
 
@@ -36,6 +39,26 @@ std::vector<double> offsetFactors(const Variant& v) {
   return {factor->fallback, kNoSlopeOffset};
 }
 
+// Over the scored pixels of the reference (receivers facing the light), band included: the share
+// of the reference's lit pixels that `visibility` shadows and of its shadowed pixels that it
+// lights (each by more than half).
+std::pair<double, double> wrongWithBand(const Image& visibility, const Frame& reference) {
+  const ShadowTruth truth =
+      truthFromReferenceFrame(reference, ErrorMetric::kPoint, false, "the case's reference");
+  constexpr float kHalf = 0.5f;
+  long long lit = 0, shadowed = 0, litShadowed = 0, shadowedLit = 0;
+  for (size_t i = 0; i < visibility.data.size(); ++i) {
+    if (truth.scored.data[i] <= kHalf) continue;
+    const bool referenceLit = reference.visibility.data[i] > kHalf;
+    const bool techniqueLit = visibility.data[i] > kHalf;
+    (referenceLit ? lit : shadowed) += 1;
+    litShadowed += referenceLit && !techniqueLit;
+    shadowedLit += !referenceLit && techniqueLit;
+  }
+  return {lit > 0 ? double(litShadowed) / double(lit) : 0.0,
+          shadowed > 0 ? double(shadowedLit) / double(shadowed) : 0.0};
+}
+
 Row measure(const std::string& caseName, const Variant& v, double offsetFactor,
             const std::string& method) {
   stability::Case c = stability::findCase(caseName);
@@ -58,6 +81,8 @@ Row measure(const std::string& caseName, const Variant& v, double offsetFactor,
   r.acne = o.selfShadowed();
   const double referenceShadowed = 1.0 - o.referenceLit;
   r.peterPanning = referenceShadowed > 0.0 ? o.wronglyLit.shareAboveHalf / referenceShadowed : 0.0;
+  std::tie(r.acneWithBand, r.peterPanningWithBand) =
+      wrongWithBand(o.frame.visibility, *o.reference);
   r.finite = o.finite;
   return r;
 }
@@ -84,15 +109,17 @@ std::string percent(double share) {
 
 std::string markdown(const std::vector<Row>& rows) {
   std::ostringstream md;
-  md << "| case | technique | offset-factor | bias | acne (%) | peter-panning (%) |\n"
-     << "|---|---|---|---|---|---|\n";
+  md << "| case | technique | offset-factor | bias | acne (%) | peter-panning (%) | acne, band "
+        "included (%) | peter-panning, band included (%) |\n"
+     << "|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     char factor[16] = "none";
     if (r.offsetFactor != kNoOffsetFactor)
       std::snprintf(factor, sizeof factor, "%g", r.offsetFactor);
     md << "| " << r.caseName << " | `" << r.variant.technique
        << (r.variant.kernel.empty() ? "" : " kernel=" + r.variant.kernel) << "` | " << factor
-       << " | " << r.method << " | " << percent(r.acne) << " | " << percent(r.peterPanning)
+       << " | " << r.method << " | " << percent(r.acne) << " | " << percent(r.peterPanning) << " | "
+       << percent(r.acneWithBand) << " | " << percent(r.peterPanningWithBand)
        << (r.finite ? "" : " NaN") << " |\n";
   }
   return md.str();

@@ -126,9 +126,10 @@ constexpr const char* kBicubicShaderBiasDeviation =  // bicubic_pcf.frag
 
 constexpr const char* kReceiverPlaneDeviation =  // gems_pcf.frag, --param bias
     "DEVIATION (GPU Gems §11.3 compares one depth in all 16 lookups): with --param "
-    "bias=receiver-plane each lookup compares the receiver plane's depth at its own offset, less "
-    "the plane's fall over the one texel each way that the hardware 2x2 compare reaches "
-    "(pcf_bias.glsl: ours, after Isidoro 2006 and Dou et al. 2014).";
+    "bias=receiver-plane each lookup's hardware 2x2 compare is rebuilt from four single "
+    "comparisons at its texel centres, weighted bilinearly as the hardware weights them, each "
+    "against the receiver plane's depth at that centre (pcf_bias.glsl: ours, after Isidoro 2006 "
+    "and Dou et al. 2014).";
 constexpr const char* kBicubicReceiverPlaneDeviation =  // bicubic_pcf.frag, --param bias
     "DEVIATION (Chan 2004 compares one depth in all 16 comparisons): with --param "
     "bias=receiver-plane each comparison takes the receiver plane's depth at its texel centre "

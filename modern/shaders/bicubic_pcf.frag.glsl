@@ -73,7 +73,7 @@ float shadowTest(vec3 world, vec3 worldNormal) {
       // DEVIATION (Chan 2004 compares one depth in all 16 comparisons): with --param
       // bias=receiver-plane each comparison takes the receiver plane's depth at its texel centre
       // (pcf_bias.glsl: ours, after Isidoro 2006 and Dou et al. 2014).
-      float depth = receiverPlaneDepth(p.z, slope, centre - p.xy, vec2(0.0));
+      float depth = receiverPlaneDepth(p.z, slope, centre - p.xy);
       sum += wx[i] * wy[j] * texture(uShadowMap, vec3(centre, depth));
 #else
       sum += wx[i] * wy[j] * texture(uShadowMap, vec3(centre, p.z));

@@ -32,13 +32,23 @@ vec2 receiverSlope = vec2(0.0);
 float offsetLookup(vec4 loc, vec2 offset) {
 #if BIAS_METHOD == BIAS_RECEIVER_PLANE
   // DEVIATION (GPU Gems §11.3 compares one depth in all 16 lookups): with --param
-  // bias=receiver-plane each lookup compares the receiver plane's depth at its own offset, less
-  // the plane's fall over the one texel each way that the hardware 2x2 compare reaches
-  // (pcf_bias.glsl: ours, after Isidoro 2006 and Dou et al. 2014).
+  // bias=receiver-plane each lookup's hardware 2x2 compare is rebuilt from four single
+  // comparisons at its texel centres, weighted bilinearly as the hardware weights them, each
+  // against the receiver plane's depth at that centre (pcf_bias.glsl: ours, after Isidoro 2006
+  // and Dou et al. 2014).
   vec3 p = loc.xyz / loc.w;
-  vec2 shift = offset * uTexmapScale;
-  return texture(uShadowMap,
-                 vec3(p.xy + shift, receiverPlaneDepth(p.z, receiverSlope, shift, uTexmapScale)));
+  vec2 t = (p.xy + offset * uTexmapScale) / uTexmapScale - 0.5;  // texel centres counted
+  vec2 first = floor(t);
+  vec2 f = t - first;
+  float sum = 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      vec2 centre = (first + vec2(float(i), float(j)) + 0.5) * uTexmapScale;
+      float weight = (i == 0 ? 1.0 - f.x : f.x) * (j == 0 ? 1.0 - f.y : f.y);
+      sum += weight * texture(uShadowMap,
+                              vec3(centre, receiverPlaneDepth(p.z, receiverSlope, centre - p.xy)));
+    }
+  return sum;
 #else
   return textureProj(uShadowMap, vec4(loc.xy + offset * uTexmapScale * loc.w, loc.z, loc.w));
 #endif

@@ -51,10 +51,8 @@ vec2 receiverPlaneDepthSlope(vec3 mapCoord) {
   return all(lessThan(abs(slope), vec2(kLargestSlope))) ? slope : vec2(0.0);  // no Inf into a compare
 }
 
-// The depth a lookup displaced by `offset` (map units) from the receiver's point compares:
-// the plane's depth there, less the plane's largest fall over `reach` (map units per axis), how
-// far the texels that one lookup compares lie from it (the hardware 2x2 compare: up to one
-// texel each way; one comparison at a texel centre: 0).
-float receiverPlaneDepth(float depth, vec2 slope, vec2 offset, vec2 reach) {
-  return depth + dot(slope, offset) - dot(abs(slope), reach);
+// The receiver plane's depth at a texel centre displaced by `offset` (map units) from the
+// receiver's point: what that texel's single comparison takes.
+float receiverPlaneDepth(float depth, vec2 slope, vec2 offset) {
+  return depth + dot(slope, offset);
 }
