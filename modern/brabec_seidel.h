@@ -80,6 +80,12 @@ struct SampleGroup {
   glm::vec2 offsetTexels{0.0f};  // texture-coordinate offset of the lookup (§4, Figure 6)
 };
 
+// --param bias of modern.pcf and modern.fast-pcf (modern/pcf_bias.h): the normal offset only,
+// one footprint by default (their default 2x2 footprint reaches about a texel from the lookup;
+// --filter 4 reaches further and may want more).
+inline constexpr pcf_bias::Offer kBiasOffer = {.receiverPlane = false,
+                                               .defaultNormalOffsetTexels = 1.0};
+
 // The DEVIATION of texgen.vert's normal offset, for the camera passes' tables.
 inline constexpr const char* kNormalOffsetDeviation =
     "DEVIATION (Brabec & Seidel §2-§4 bias the depth by a constant only): with --param "

@@ -135,8 +135,7 @@ std::vector<RenderTarget> packNeighbours(Passes& passes, const RenderParams& par
 // the first pass it replaces.
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
-  const pcf_bias::Settings bias =
-      pcf_bias::settings("modern.fast-pcf", params, /*receiverPlane=*/false);
+  const pcf_bias::Settings bias = pcf_bias::settings("modern.fast-pcf", params, bs::kBiasOffer);
   passes.run("3", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame(), bias); });
 }
 
@@ -175,7 +174,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
-  for (const ParamSpec& spec : pcf_bias::params(/*receiverPlane=*/false)) t.params.push_back(spec);
+  for (const ParamSpec& spec : pcf_bias::params(bs::kBiasOffer)) t.params.push_back(spec);
   t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
   t.edge = Technique::Edge::kFiltered;                         // PCF over the --filter footprint
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)

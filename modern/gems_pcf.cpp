@@ -83,6 +83,14 @@ float relativeBias(const Scene& scene, int shadowMapTexels, float biasTexels) {
                   kMaxRelativeBias);
 }
 
+// --param bias (modern/pcf_bias.h): all three methods; the normal offset covers the 4x4 region's
+// reach by default, 1.5 texels of lookup offset and 1 of the hardware 2x2 compare (with 1
+// footprint the 80-degree stability ground kept faint stripes, looked at).
+constexpr double kRegionReachTexels = 2.5;
+pcf_bias::Offer biasOffer() {
+  return {.receiverPlane = true, .defaultNormalOffsetTexels = kRegionReachTexels};
+}
+
 // The uniforms and the define of pcf_bias.glsl (--param bias, modern/pcf_bias.h).
 void setBiasUniforms(const Program& program, const Scene& scene, const RenderParams& params,
                      const pcf_bias::Settings& bias) {
@@ -342,7 +350,7 @@ ParamSpec biasTexelsParam() {
 Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defaultSamples) {
   const std::string samples = params.text(samplesParam(defaultSamples));
   const pcf_bias::Settings biasMethod = pcf_bias::settings(
-      defaultSamples == 16 ? "modern.gems16" : "modern.gems4", params, /*receiverPlane=*/true);
+      defaultSamples == 16 ? "modern.gems16" : "modern.gems4", params, biasOffer());
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
   const float units =
       float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
@@ -378,7 +386,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.needs.profile = Profile::kCore;
   t.params = {samplesParam(samples), offsetFactorParam(kDefaultOffsetFactor),
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
-  for (const ParamSpec& spec : pcf_bias::params(/*receiverPlane=*/true)) t.params.push_back(spec);
+  for (const ParamSpec& spec : pcf_bias::params(biasOffer())) t.params.push_back(spec);
   if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
   t.edge = Technique::Edge::kFiltered;  // 4 or 16 hardware 2x2 PCF lookups

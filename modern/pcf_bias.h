@@ -32,15 +32,22 @@ struct Settings {
   bool normalOffsetByAngle = false;  // times 1 - N.L (normal-offset only)
 };
 
-// The declarations; `receiverPlane`: whether the technique offers bias=receiver-plane.
-ParamSpec methodParam(bool receiverPlane);
-ParamSpec normalOffsetTexelsParam();
+// What a technique offers: bias=receiver-plane or not, and the default normal offset (texel
+// footprints): the reach of its filter in texels, which the offset covers at any angle.
+struct Offer {
+  bool receiverPlane = false;
+  double defaultNormalOffsetTexels = 1.0;
+};
+
+// The declarations.
+ParamSpec methodParam(const Offer& offer);
+ParamSpec normalOffsetTexelsParam(const Offer& offer);
 ParamSpec normalOffsetByAngleParam();
-std::vector<ParamSpec> params(bool receiverPlane);
+std::vector<ParamSpec> params(const Offer& offer);
 
 // The settings of a render. A normal-offset key given with another method, other than its
 // default, is an InputError naming `technique` (it would be ignored).
-Settings settings(const std::string& technique, const RenderParams& params, bool receiverPlane);
+Settings settings(const std::string& technique, const RenderParams& params, const Offer& offer);
 
 // The width of a map texel's footprint as a fraction of its distance to the light:
 // 2 tan(cone / 2) / size.

@@ -93,7 +93,7 @@ std::vector<RenderTarget> renderJitteredLightPasses(Passes& passes, const GpuSce
 // pass it replaces.
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
-  const pcf_bias::Settings bias = pcf_bias::settings("modern.pcf", params, /*receiverPlane=*/false);
+  const pcf_bias::Settings bias = pcf_bias::settings("modern.pcf", params, bs::kBiasOffer);
   passes.run("2", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame(), bias); });
 }
 
@@ -128,7 +128,7 @@ Technique percentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
-  for (const ParamSpec& spec : pcf_bias::params(/*receiverPlane=*/false)) t.params.push_back(spec);
+  for (const ParamSpec& spec : pcf_bias::params(bs::kBiasOffer)) t.params.push_back(spec);
   t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // the twin of legacy.pcf (§3)
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.edge = Technique::Edge::kFiltered;  // PCF over the --filter footprint
