@@ -133,6 +133,8 @@ std::vector<RenderTarget> packNeighbours(Passes& passes, const RenderParams& par
 
 // Pass 3 (§3 Fig. 4, §4 Fig. 6, §5): legacy passes 3-7 in one camera pass, numbered 3, after
 // the first pass it replaces.
+// --param bias=normal-offset: the point moved along its normal in texgen.vert (ours, after
+// Holbert 2011).
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
   const pcf_bias::Settings bias = pcf_bias::settings("modern.fast-pcf", params, bs::kBiasOffer);

@@ -91,6 +91,8 @@ std::vector<RenderTarget> renderJitteredLightPasses(Passes& passes, const GpuSce
 
 // Pass 2 (§3 Figs. 3-4, §5): legacy passes 2-6 in one camera pass, numbered 2, after the first
 // pass it replaces.
+// --param bias=normal-offset: the point moved along its normal in texgen.vert (ours, after
+// Holbert 2011).
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
   const pcf_bias::Settings bias = pcf_bias::settings("modern.pcf", params, bs::kBiasOffer);
