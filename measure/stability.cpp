@@ -377,6 +377,8 @@ MaskDifference errorWhereItMatters(const Image& visibility, const Frame& ref) {
 // these floors, which sit under the least measured share of each angle by about a fifth
 // (rounding of the ramp on another driver moves a few rows of texels, not a fifth of the lit
 // ground).
+// The entries hold for the techniques' defaults (--param bias=constant); the modern twins'
+// --param bias=normal-offset removes the self-shadowing (measure/bias_table.h, docs/bias.md).
 constexpr double kSelfShadowedAt80 = 0.10;     // least measured: 12.3% (ramp)
 constexpr double kSelfShadowedAt89 = 0.35;     // least measured: 43.6% (ramp)
 constexpr double kNothingShadowedIsLit = 0.0;  // measured 0 in all twelve; bias only darkens

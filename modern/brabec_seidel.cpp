@@ -207,7 +207,8 @@ void renderEncodedDepth(const GpuScene& gpu, const RenderParams& params, const T
 }
 
 void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const Texture& ramp,
-                        const std::vector<SampleGroup>& groups, Frame& frame) {
+                        const std::vector<SampleGroup>& groups, Frame& frame,
+                        const pcf_bias::Settings& bias) {
   constexpr int kMaxGroups = 4;  // 4x4 = 16 samples = four RGBA maps
   if (groups.empty() || groups.size() > size_t(kMaxGroups))
     throw InputError("the shadow test takes 1 to 4 groups of samples");
@@ -226,6 +227,11 @@ void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const T
   program.set("uDepthPlane", depthPlane(scene));
   program.set("uBias", depthBias(params));
   program.set("uFaithful", faithful ? 1 : 0);
+  // texgen.vert's normal offset (0: none); set on every use, the program is cached.
+  program.set(
+      "uNormalOffsetPerDistance",
+      bias.normalOffsetTexels * pcf_bias::footprintPerDistance(scene, params.shadowMapTexels));
+  program.set("uNormalOffsetByAngle", bias.normalOffsetByAngle ? 1 : 0);
   setLegacyArithmeticUniforms(program, params);
   program.set("uGroupCount", int(groups.size()));
   setLightingUniforms(program, scene);

@@ -9,6 +9,7 @@
 
 #include "core/technique/technique.h"
 #include "modern/gl_objects.h"
+#include "modern/pcf_bias.h"
 
 namespace sl::modern::bs {
 
@@ -79,10 +80,26 @@ struct SampleGroup {
   glm::vec2 offsetTexels{0.0f};  // texture-coordinate offset of the lookup (§4, Figure 6)
 };
 
+// --param bias of modern.pcf and modern.fast-pcf (modern/pcf_bias.h): the normal offset only,
+// one footprint by default (their default 2x2 footprint reaches about a texel from the lookup;
+// --filter 4 reaches further and may want more).
+inline constexpr pcf_bias::Offer kBiasOffer = {.receiverPlane = false,
+                                               .defaultNormalOffsetTexels = 1.0};
+
+// The DEVIATION of texgen.vert's normal offset, for the camera passes' tables.
+inline constexpr const char* kNormalOffsetDeviation =
+    "DEVIATION (Brabec & Seidel §2-§4 bias the depth by a constant only): with --param "
+    "bias=normal-offset (ours, after Holbert 2011) the camera pass's point moves along its "
+    "surface normal by normal-offset-texels texel footprints at its distance from the light "
+    "before texgen, so the ramp and map coordinates are those of the moved point.";
+
 // The camera pass shared by modern.pcf and modern.fast-pcf: pcf_shadow.frag over the groups
 // (colour table, colour matrix, accumulation), shading and visibility into the camera target.
+// `bias`: --param bias=normal-offset moves the point along its normal in texgen.vert (ours,
+// after Holbert 2011); the default (constant) moves nothing.
 void shadowTestAndShade(const GpuScene& gpu, const RenderParams& params, const Texture& ramp,
-                        const std::vector<SampleGroup>& groups, Frame& frame);
+                        const std::vector<SampleGroup>& groups, Frame& frame,
+                        const pcf_bias::Settings& bias = {});
 
 // The --param keys every Brabec–Seidel twin understands.
 // The --params every Brabec–Seidel twin declares (modern.ramp, modern.pcf, modern.fast-pcf).

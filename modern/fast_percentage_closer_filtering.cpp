@@ -11,6 +11,8 @@
 //   3. shadowTestAndShade           — pcf_shadow.frag with the (ds/2, dt/2) texture-coordinate
 //                                     offset (Figure 6, shifted by one texel per 4x4 phase); the
 //                                     phases summed as the accumulation buffer does (20 levels)
+// --param bias=normal-offset (modern/pcf_bias.h; ours, after Holbert 2011): texgen.vert moves
+// the camera pass's point along its normal before texgen; constant, the default, moves nothing.
 // The passes are declared once in fastPcfPasses().
 #include <string>
 
@@ -20,6 +22,7 @@
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"
+#include "modern/pcf_bias.h"
 
 namespace sl::modern {
 using namespace sl::gl;
@@ -60,8 +63,10 @@ PassTable fastPcfPasses() {
        .reference = "Brabec & Seidel 2001 §3 Fig. 4, §4 Fig. 6, §5",
        .writes =
            cameraPassBuffers("3", "pcf_shadow.frag: shadow test, colour table, colour matrix (§4)"),
-       .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
-       .replaces = {"3", "3s", "3r", "4", "5", "6a", "6b", "7"}},
+       .shaders = {"vertex-normal-offset-bias", "camera-depth", "subtract-and-count", "accumulate",
+                   "float-shadow", "shade"},
+       .replaces = {"3", "3s", "3r", "4", "5", "6a", "6b", "7"},
+       .deviations = {bs::kNormalOffsetDeviation}},
   };
 }
 
@@ -128,9 +133,12 @@ std::vector<RenderTarget> packNeighbours(Passes& passes, const RenderParams& par
 
 // Pass 3 (§3 Fig. 4, §4 Fig. 6, §5): legacy passes 3-7 in one camera pass, numbered 3, after
 // the first pass it replaces.
+// --param bias=normal-offset: the point moved along its normal in texgen.vert (ours, after
+// Holbert 2011).
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
-  passes.run("3", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame()); });
+  const pcf_bias::Settings bias = pcf_bias::settings("modern.fast-pcf", params, bs::kBiasOffer);
+  passes.run("3", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame(), bias); });
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
@@ -168,6 +176,7 @@ Technique fastPercentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
+  for (const ParamSpec& spec : pcf_bias::params(bs::kBiasOffer)) t.params.push_back(spec);
   t.reads = {.shadowMap = true, .filter = true, .filterSides = {2, 4}, .precision = true};
   t.edge = Technique::Edge::kFiltered;                         // PCF over the --filter footprint
   t.plan.samples = PlanTraits::SampleGrouping::kPackedPhases;  // the twin of legacy.fast-pcf (§4)

@@ -14,6 +14,10 @@
 //                               gems_pcf.frag sums offset_lookup (§11.3/§11.4), or
 //                               bicubic_pcf.frag weights 16 single comparisons (kernel=bicubic)
 // The passes are declared once in gemsPasses(), one table per variant (samples, kernel).
+//
+// --param bias (modern/pcf_bias.h, pcf_bias.glsl): pass 2 adds to the constant bias below the
+// receiver-plane depth bias (ours, after Isidoro 2006, Dou et al. 2014) or the normal offset
+// (ours, after Holbert 2011); constant, the default, adds nothing.
 #include "modern/gems_pcf.h"
 
 #include <algorithm>
@@ -21,12 +25,15 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/base/errors.h"
+#include "core/gl/shaders.h"
 #include "core/technique/pass_capture.h"
 #include "core/technique/passes.h"
 #include "modern/camera_pass.h"
 #include "modern/hardware_shadow_map.h"
+#include "modern/pcf_bias.h"
 #include "modern/prefiltered_maps.h"
 
 namespace sl::modern {
@@ -72,9 +79,28 @@ constexpr float kMaxRelativeBias = 0.5f;
 
 // The bias as a fraction of the receiver's distance to the light (see above).
 float relativeBias(const Scene& scene, int shadowMapTexels, float biasTexels) {
-  const float halfCone = glm::radians(scene.light.coneDegrees) * 0.5f;
-  return std::min(biasTexels * 2.0f * std::tan(halfCone) / float(shadowMapTexels),
+  return std::min(biasTexels * pcf_bias::footprintPerDistance(scene, shadowMapTexels),
                   kMaxRelativeBias);
+}
+
+// --param bias (modern/pcf_bias.h): all three methods; the normal offset covers the 4x4 region's
+// reach by default, 1.5 texels of lookup offset and 1 of the hardware 2x2 compare (with 1
+// footprint the 80-degree stability ground kept faint stripes, looked at).
+constexpr double kRegionReachTexels = 2.5;
+pcf_bias::Offer biasOffer() {
+  return {.receiverPlane = true, .defaultNormalOffsetTexels = kRegionReachTexels};
+}
+
+// The uniforms and the define of pcf_bias.glsl (--param bias, modern/pcf_bias.h).
+void setBiasUniforms(const Program& program, const Scene& scene, const RenderParams& params,
+                     const pcf_bias::Settings& bias) {
+  program.set("uNormalOffsetTexels", bias.normalOffsetTexels);
+  program.set("uFootprintPerDistance",
+              pcf_bias::footprintPerDistance(scene, params.shadowMapTexels));
+  program.set("uNormalOffsetByAngle", int(bias.normalOffsetByAngle));
+}
+ShaderDefines biasDefines(const pcf_bias::Settings& bias) {
+  return {{"BIAS_METHOD", std::to_string(int(bias.method))}};
 }
 
 // The weights of the 16 samples (--param kernel).
@@ -106,6 +132,21 @@ constexpr const char* kBicubicShaderBiasDeviation =  // bicubic_pcf.frag
     "along the light ray by uRelativeBias of its distance, as modern.gems16 (gems_pcf.cpp says "
     "why; the 4x4 region reaches 2 texels from the lookup point here too).";
 
+constexpr const char* kReceiverPlaneDeviation =  // gems_pcf.frag, --param bias
+    "DEVIATION (GPU Gems §11.3 compares one depth in all 16 lookups): with --param "
+    "bias=receiver-plane each lookup's hardware 2x2 compare is rebuilt from four single "
+    "comparisons at its texel centres, weighted bilinearly as the hardware weights them, each "
+    "against the receiver plane's depth at that centre (pcf_bias.glsl: ours, after Isidoro 2006 "
+    "and Dou et al. 2014).";
+constexpr const char* kBicubicReceiverPlaneDeviation =  // bicubic_pcf.frag, --param bias
+    "DEVIATION (Chan 2004 compares one depth in all 16 comparisons): with --param "
+    "bias=receiver-plane each comparison takes the receiver plane's depth at its texel centre "
+    "(pcf_bias.glsl: ours, after Isidoro 2006 and Dou et al. 2014).";
+constexpr const char* kNormalOffsetDeviation =  // gems_pcf.frag, bicubic_pcf.frag, --param bias
+    "DEVIATION (the chapter has no bias): with --param bias=normal-offset the receiver's point "
+    "moves along its normal by normal-offset-texels texel footprints before it is projected "
+    "(pcf_bias.glsl: ours, after Holbert 2011).";
+
 // The passes, each declared once: pass 1 of each kernel (the map is compared with GL_LINEAR or
 // GL_NEAREST) and pass 2 of each lookup count and kernel, with the paper's text, the buffers a
 // dump shows, shaders and deviations. A variant's table (gemsPasses) is one of each.
@@ -135,18 +176,18 @@ PassSpec depthFromLightPass(Kernel kernel) {
 
 PassSpec filterInCameraPassSpec(int samples, Kernel kernel) {
   if (kernel == Kernel::kBicubic)
-    return {
-        .id = "2",
-        .name = "camera pass, 16-sample bicubic PCF",
-        .reference =
-            "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a "
-            "bicubic filter, 16 samples (cubic B-spline weights over 4x4 texels; "
-            "bicubic_pcf.frag)",
-        .writes = cameraPassBuffers("2",
-                                    "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
-                                    "B-spline, Chan 2004 Fig. 4-8"),
-        .shaders = {"bicubic-weights", "bicubic-region"},
-        .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation}};
+    return {.id = "2",
+            .name = "camera pass, 16-sample bicubic PCF",
+            .reference =
+                "Chan 2004 §4.4, Fig. 4-8: percentage-closer filtering [RSC87] with a "
+                "bicubic filter, 16 samples (cubic B-spline weights over 4x4 texels; "
+                "bicubic_pcf.frag)",
+            .writes = cameraPassBuffers("2",
+                                        "bicubic_pcf.frag, 16 comparisons weighted by the cubic "
+                                        "B-spline, Chan 2004 Fig. 4-8"),
+            .shaders = {"bicubic-weights", "bicubic-region"},
+            .deviations = {kLightSpaceBiasDeviation, kBSplineDeviation, kBicubicShaderBiasDeviation,
+                           kBicubicReceiverPlaneDeviation, kNormalOffsetDeviation}};
   const std::string n = std::to_string(samples);
   return {.id = "2",
           .name = "camera pass, " + n + "-sample PCF",
@@ -160,7 +201,8 @@ PassSpec filterInCameraPassSpec(int samples, Kernel kernel) {
           .writes = cameraPassBuffers("2", "gems_pcf.frag, " + n + " offset lookups, " +
                                                (samples == 4 ? "§11.4 Fig. 11-4 dither" : "§11.3")),
           .shaders = {"offset-lookup", "dither", "gems-region"},
-          .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation}};
+          .deviations = {kLightSpaceBiasDeviation, kGemsShaderBiasDeviation,
+                         kReceiverPlaneDeviation, kNormalOffsetDeviation}};
 }
 
 PassTable gemsPasses(int samples, Kernel kernel) {
@@ -213,19 +255,22 @@ RenderTarget renderDepthFromLight(Passes& passes, const GpuScene& gpu, const Ren
 
 // Pass 2 (Chan 2004 §4.4, Fig. 4-8, "bicubic (16 samples)"): the camera view, 16 single
 // comparisons at the 4x4 texel centres around the lookup weighted by the cubic B-spline.
+// --param bias: the receiver-plane or normal-offset bias (pcf_bias.glsl), ours.
 void bicubicFilterInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
-                               const RenderTarget& map, float relativeBias) {
+                               const RenderTarget& map, float relativeBias,
+                               const pcf_bias::Settings& bias) {
   passes.run("2", [&] {
     const Scene& scene = gpu.scene();
     RenderTarget target = makeCameraTarget(params, true);
     clearCameraTarget(target);
     glEnable(GL_DEPTH_TEST);
-    Program program("scene.vert.glsl", "bicubic_pcf.frag.glsl");
+    Program program("scene.vert.glsl", "bicubic_pcf.frag.glsl", biasDefines(bias));
     program.use();
     program.set("uViewProjection", cameraViewProjection(scene, params));
     program.set("uWorldToShadowMap", worldToShadowMap(scene));
     program.set("uMapSize", glm::vec2(float(map.width), float(map.height)));
     program.set("uRelativeBias", relativeBias);
+    setBiasUniforms(program, scene, params, bias);
     setLightingUniforms(program, scene);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, map.depth.id());
@@ -237,22 +282,26 @@ void bicubicFilterInCameraPass(Passes& passes, const GpuScene& gpu, const Render
   });
 }
 
-// Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view.
+// Pass 2 (§11.3 16 samples, §11.4 4 dithered samples): the camera view; --param bias: the
+// receiver-plane or normal-offset bias (pcf_bias.glsl), ours.
 void filterInCameraPass(Passes& passes, const GpuScene& gpu, const RenderParams& params,
-                        const RenderTarget& map, int samples, float relativeBias) {
+                        const RenderTarget& map, int samples, float relativeBias,
+                        const pcf_bias::Settings& bias) {
   passes.run("2", [&] {
     const Scene& scene = gpu.scene();
     RenderTarget target = makeCameraTarget(params, true);
     clearCameraTarget(target);
     glEnable(GL_DEPTH_TEST);
-    Program program("scene.vert.glsl", "gems_pcf.frag.glsl",
-                    {{"SAMPLES", std::to_string(samples)}});
+    ShaderDefines defines = biasDefines(bias);
+    defines.emplace_back("SAMPLES", std::to_string(samples));
+    Program program("scene.vert.glsl", "gems_pcf.frag.glsl", defines);
     program.use();
     program.set("uViewProjection", cameraViewProjection(scene, params));
     program.set("uWorldToShadowMap", worldToShadowMap(scene));
     const float texel = 1.0f / float(map.width);
     program.set("uTexmapScale", glm::vec2(texel, texel));
     program.set("uRelativeBias", relativeBias);
+    setBiasUniforms(program, scene, params, bias);
     setLightingUniforms(program, scene);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, map.depth.id());
@@ -291,14 +340,17 @@ ParamSpec kernelParam() {
                      "texels weighted by a cubic B-spline; needs samples=16)");
 }
 
-// --param bias-texels: the receiver-plane bias, in shadow-map texel footprints.
+// --param bias-texels: the constant bias, in shadow-map texel footprints along the light ray.
 ParamSpec biasTexelsParam() {
   return numberParam("bias-texels", kDefaultBiasTexels, 0, kMaxBiasTexels,
-                     "depth bias along the light ray, in shadow-map texel footprints");
+                     "depth bias along the light ray, in shadow-map texel footprints (every "
+                     "--param bias keeps it)");
 }
 
 Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defaultSamples) {
   const std::string samples = params.text(samplesParam(defaultSamples));
+  const pcf_bias::Settings biasMethod = pcf_bias::settings(
+      defaultSamples == 16 ? "modern.gems16" : "modern.gems4", params, biasOffer());
   const float factor = float(params.number(offsetFactorParam(kDefaultOffsetFactor)));
   const float units =
       float(params.number(offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits)));
@@ -316,9 +368,9 @@ Frame renderWithSamples(const Scene& scene, const RenderParams& params, int defa
   RenderTarget map = renderDepthFromLight(passes, gpu, params, factor, units, kernel);
   const float bias = relativeBias(scene, params.shadowMapTexels, biasTexels);
   if (bicubic)
-    bicubicFilterInCameraPass(passes, gpu, params, map, bias);
+    bicubicFilterInCameraPass(passes, gpu, params, map, bias, biasMethod);
   else
-    filterInCameraPass(passes, gpu, params, map, std::stoi(samples), bias);
+    filterInCameraPass(passes, gpu, params, map, std::stoi(samples), bias, biasMethod);
   frame.counters["samples per pixel"] = std::stoi(samples);
   captureMapAndCameraPass(passes, map);
   return frame;
@@ -334,6 +386,7 @@ Technique gemsTechnique(const std::string& name, int samples, const std::string&
   t.needs.profile = Profile::kCore;
   t.params = {samplesParam(samples), offsetFactorParam(kDefaultOffsetFactor),
               offsetUnitsParam(kDefaultOffsetUnits, kLargestOffsetUnits), biasTexelsParam()};
+  for (const ParamSpec& spec : pcf_bias::params(biasOffer())) t.params.push_back(spec);
   if (samples == 16) t.params.push_back(kernelParam());
   t.reads = {.shadowMap = true};
   t.edge = Technique::Edge::kFiltered;  // 4 or 16 hardware 2x2 PCF lookups

@@ -10,6 +10,8 @@
 //                                  channels minus each packed map, colour table (0 or 64, 63 in
 //                                  red) and colour matrix sum into alpha (Figure 4); groups summed
 //                                  as the accumulation buffer does (3x3, 4x4); shading
+// --param bias=normal-offset (modern/pcf_bias.h; ours, after Holbert 2011): texgen.vert moves
+// the camera pass's point along its normal before texgen; constant, the default, moves nothing.
 // The passes are declared once in pcfPasses().
 #include <string>
 
@@ -19,6 +21,7 @@
 #include "modern/brabec_seidel.h"
 #include "modern/brabec_seidel_techniques.h"
 #include "modern/camera_pass.h"
+#include "modern/pcf_bias.h"
 
 namespace sl::modern {
 using namespace sl::gl;
@@ -45,8 +48,10 @@ PassTable pcfPasses() {
        .reference = "Brabec & Seidel 2001 §3 Figs. 3-4, §5",
        .writes =
            cameraPassBuffers("2", "pcf_shadow.frag: shadow test, colour table, colour matrix (§3)"),
-       .shaders = {"camera-depth", "subtract-and-count", "accumulate", "float-shadow", "shade"},
-       .replaces = {"2", "2s", "2r", "3", "4", "5a", "5b", "6"}},
+       .shaders = {"vertex-normal-offset-bias", "camera-depth", "subtract-and-count", "accumulate",
+                   "float-shadow", "shade"},
+       .replaces = {"2", "2s", "2r", "3", "4", "5a", "5b", "6"},
+       .deviations = {bs::kNormalOffsetDeviation}},
   };
 }
 
@@ -86,9 +91,12 @@ std::vector<RenderTarget> renderJitteredLightPasses(Passes& passes, const GpuSce
 
 // Pass 2 (§3 Figs. 3-4, §5): legacy passes 2-6 in one camera pass, numbered 2, after the first
 // pass it replaces.
+// --param bias=normal-offset: the point moved along its normal in texgen.vert (ours, after
+// Holbert 2011).
 void shadowTestAndShade(Passes& passes, const GpuScene& gpu, const RenderParams& params,
                         const Texture& ramp, const std::vector<bs::SampleGroup>& groups) {
-  passes.run("2", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame()); });
+  const pcf_bias::Settings bias = pcf_bias::settings("modern.pcf", params, bs::kBiasOffer);
+  passes.run("2", [&] { bs::shadowTestAndShade(gpu, params, ramp, groups, passes.frame(), bias); });
 }
 
 Frame render(GlContext&, const Scene& scene, const RenderParams& params) {
@@ -122,6 +130,7 @@ Technique percentageCloserFilteringTechnique() {
   t.status = "complete";
   t.needs.profile = Profile::kCore;
   t.params = bs::params();
+  for (const ParamSpec& spec : pcf_bias::params(bs::kBiasOffer)) t.params.push_back(spec);
   t.plan.samples = PlanTraits::SampleGrouping::kFourPerPass;  // the twin of legacy.pcf (§3)
   t.reads = {.shadowMap = true, .filter = true, .precision = true};
   t.edge = Technique::Edge::kFiltered;  // PCF over the --filter footprint

@@ -19,6 +19,7 @@
 #version 330 core
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
+in vec3 vShadowWorldPosition;      // texgen.vert: vWorldPosition, moved by --param bias=normal-offset
 in vec4 vRampCoord;                // texgen.vert: the ramp coordinate of d - bias
 in vec4 vShadowCoord[4];           // texgen.vert: projective coordinates of each group's map,
                                    // the Figure 6 offset folded into the texture matrix
@@ -133,7 +134,7 @@ float floatShadow(float d) {
 void main() {
   float visibility = 1.0;
   if (uReceivesShadow) {
-    float d = dot(uDepthPlane, vec4(vWorldPosition, 1.0)) - uBias;
+    float d = dot(uDepthPlane, vec4(vShadowWorldPosition, 1.0)) - uBias;
     visibility = 1.0 - (uFaithful ? faithfulShadow() : floatShadow(d));
   }
   // @pass shade: OpenGL lighting x (1 - shadow) + ambient (§5)
