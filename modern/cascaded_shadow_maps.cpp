@@ -161,10 +161,10 @@ void tightCrop(const glm::mat4& lightVP, const std::array<glm::vec3, 8>& corners
   c.halfSize = half;
 }
 
-// DEVIATION (ours, after Zhang et al. 2006): stabilisation is ours (kStabilizeDeviation).
-// The stabilised crop: the slice's bounding sphere (its size depends only on the split depths
-// and the camera's opening, not on where the camera is or looks), projected with a bound that
-// holds wherever the sphere lies in the light's cone, and its centre snapped to whole texels.
+// Departs from the method as kStabilizeDeviation says (declared by pass 1). The stabilised crop:
+// the slice's bounding sphere (its size depends only on the split depths and the camera's opening,
+// not on where the camera is or looks), projected with a bound that holds wherever the sphere lies
+// in the light's cone, and its centre snapped to whole texels.
 void stableCrop(const Scene& scene, const glm::mat4& lightVP, float aspect, const CascadeCrop& in,
                 int texels, CascadeCrop& c) {
   const Camera& cam = scene.camera;
@@ -391,9 +391,9 @@ std::array<glm::vec3, 8> frustumSliceCorners(const Camera& camera, float aspect,
   return out;
 }
 
-// DEVIATION (ours, after Zhang et al. 2006): the papers' light is directional, ours is the
-// scene's spot light with a wide cone far away; the crop is built in its post-projective space
-// (kSpotLightDeviation), and the split range is drawn in to the scene (kFitDeviation).
+// Departs from the method as kSpotLightDeviation (the scene's spot light, not a directional one:
+// the crop is built in its post-projective space) and kFitDeviation (the split range drawn in to
+// the scene) say, both declared by pass 1.
 std::vector<CascadeCrop> cascadeCrops(const Scene& scene, const float aspect,
                                       const CascadeSettings& s) {
   const Camera& cam = scene.camera;

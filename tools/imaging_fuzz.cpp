@@ -9,6 +9,7 @@
 // Usage: build/bin/imaging_fuzz --sequences N [--seed S] [--out DIR] [--print]
 #include "parity/imaging_fuzz.h"
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -28,10 +29,7 @@ bool parseCount(const char* text, unsigned long long& out) {
 }
 
 int usage(const std::string& why) {
-  std::fprintf(
-      stderr,
-      "imaging_fuzz: %s (usage: imaging_fuzz --sequences N [--seed S] [--out DIR] [--print])\n",
-      why.c_str());
+  std::fprintf(stderr, "imaging_fuzz: %s (try: imaging_fuzz --help)\n", why.c_str());
   return 2;
 }
 
@@ -39,30 +37,30 @@ int usage(const std::string& why) {
 
 int main(int argc, char** argv) {
   unsigned long long count = 0, seed = 1;
-  bool haveCount = false, print = false;
-  std::string out = "imaging_fuzz_cases";
-  for (int k = 1; k < argc; ++k) {
-    const std::string a = argv[k];
-    const char* value = k + 1 < argc ? argv[k + 1] : nullptr;
-    if (a == "--sequences") {
-      if (!parseCount(value, count) || count == 0)
-        return usage("--sequences needs a positive integer");
-      haveCount = true;
-      ++k;
-    } else if (a == "--seed") {
-      if (!parseCount(value, seed)) return usage("--seed needs a non-negative integer");
-      ++k;
-    } else if (a == "--print") {
-      print = true;
-    } else if (a == "--out") {
-      if (value == nullptr || *value == '\0') return usage("--out needs a directory");
-      out = value;
-      ++k;
-    } else {
-      return usage("unknown argument '" + a + "'");
-    }
+  bool print = false;
+  std::string countText, seedText, out = "imaging_fuzz_cases";
+  CLI::App app{"the imaging subset's differential fuzzer against Mesa 7.8.2 (docs/imaging.md)",
+               "imaging_fuzz"};
+  app.add_option("--sequences", countText, "how many sequences to run (from --seed on)")
+      ->required()
+      ->type_name("N");
+  app.add_option("--seed", seedText, "the first sequence's seed [1]")->type_name("S");
+  app.add_option("--out", out, "directory for the unexplained cases [imaging_fuzz_cases]")
+      ->type_name("DIR");
+  app.add_flag("--print", print, "write the sequences as C instead of running them");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    return usage(e.what());
   }
-  if (!haveCount) return usage("--sequences is required");
+  if (!parseCount(countText.c_str(), count) || count == 0)
+    return usage("--sequences needs a positive integer, got '" + countText + "'");
+  if (!seedText.empty() && !parseCount(seedText.c_str(), seed))
+    return usage("--seed needs a non-negative integer, got '" + seedText + "'");
+  if (out.empty()) return usage("--out needs a directory");
   if (print) {  // the sequences as C, nothing run
     for (unsigned long long k = 0; k < count; ++k)
       std::fputs(sl::imaging::fuzz::toC(sl::imaging::fuzz::generate(seed + k)).c_str(), stdout);

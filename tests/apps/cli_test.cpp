@@ -297,6 +297,8 @@ const std::vector<Tool>& tools() {
        {"--quick", "--size", "--repeat", "--warmup", "--scene", "--backend", "--part", "--csv",
         "--param"}},
       {"imaging_bench", IMAGING_BENCH_BINARY, {"--quick", "--cpu", "--only"}},
+      {"imaging_fuzz", IMAGING_FUZZ_BINARY, {"--sequences", "--seed", "--out", "--print"}},
+      {"bias_table", BIAS_TABLE_BINARY, {"--progress"}},
   };
   return kTools;
 }
@@ -342,6 +344,13 @@ TEST_P(ToolBadInput, OneLineOnStderrExitTwoNothingOnStdout) {
 
 std::vector<BadToolInput> badToolInputs() {
   return {
+      {"fuzz sequences not a number", IMAGING_FUZZ_BINARY, "--sequences many"},
+      {"fuzz sequences zero", IMAGING_FUZZ_BINARY, "--sequences 0"},
+      {"fuzz sequences missing", IMAGING_FUZZ_BINARY, "--seed 3"},
+      {"fuzz negative seed", IMAGING_FUZZ_BINARY, "--sequences 1 --seed -1"},
+      {"fuzz unknown option", IMAGING_FUZZ_BINARY, "--sequences 1 --fast"},
+      {"bias table unknown option", BIAS_TABLE_BINARY, "--scene brabec"},
+      {"bias table stray argument", BIAS_TABLE_BINARY, "extra"},
       {"legacy frames not a number", LEGACY_BENCH_BINARY, "--frames five"},
       {"legacy frames zero", LEGACY_BENCH_BINARY, "--frames 0"},
       {"legacy frames trailing junk", LEGACY_BENCH_BINARY, "--frames 3x"},
