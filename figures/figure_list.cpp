@@ -84,8 +84,9 @@ FigureSpec earlyAgainstLate() {
   // As wide as figure.png holds its columns without shrinking them (figure_composite.h), in
   // steps of 8 pixels, at the 4:3 of the other figures; the default 512² map.
   constexpr int kStep = 8;
+  constexpr int kAspectWidth = 4, kAspectHeight = 3;
   f.width = (kCompositeMaxWidth - (f.columns - 1) * kCompositeGap) / f.columns / kStep * kStep;
-  f.height = f.width * 3 / 4;
+  f.height = f.width * kAspectHeight / kAspectWidth;
   f.twins = false;
   f.bothMetrics = true;
   std::string scenes;
