@@ -98,6 +98,10 @@ struct FigureSpec {
   // any two of its cells are compared round by round (CSM Table 1's trends pair cells across
   // map sizes); false: groups of figures.cpp's kInterleavedGroup, by map size.
   bool interleaveAllTimed = false;
+  // Every render panel's error by both metrics of docs/error.md, side by side in the numbers
+  // table: the area metric (the reference's pixel=area form, the primary truth) and the point
+  // metric (its pixel-centre form); false: the area metric alone.
+  bool bothMetrics = false;
   bool twins = true;         // show legacy.X beside modern.X with the difference image
   bool table = false;        // a table of numbers (CSM Table 1): panels give cells, no images
   std::string paperNumbers;  // the paper's numbers for the whole figure, quoted

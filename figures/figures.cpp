@@ -573,6 +573,21 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
           out.errorMetric =
               score.metric + " metric vs " + score.truth + "; " + describeLeftOut(score.counts);
           out.errorDetail = errorDetailOf(f->visibility, truth);
+          // FigureSpec::bothMetrics: the point metric too, against the reference's default
+          // pixel-centre form (docs/error.md "The two truths").
+          if (fig.bothMetrics && area) {
+            Setup pointSetup = refSetup;
+            pointSetup.params[reference::kPixelParam] = reference::kPixelCentre;
+            pointSetup.params.erase(reference::kPixelSamplesParam);
+            auto pf = r.frame(*ref, pointSetup, true);
+            const ShadowTruth pointTruth = truthFromReferenceFrame(
+                *pf, ErrorMetric::kPoint, soft, truthName(soft, ErrorMetric::kPoint));
+            const ShadowError pointScore =
+                scoreShadow(f->visibility, pointTruth, kWrongPixelThreshold);
+            out.pointError = pointScore.all;
+            out.pointErrorMetric = pointScore.metric + " metric vs " + pointScore.truth + "; " +
+                                   describeLeftOut(pointScore.counts);
+          }
         }
         if (p.countDepthErrors) countDepthErrors(r, t, setup, *f, &out.counters);
         // Step 4: the legacy/modern twin.
@@ -668,7 +683,9 @@ PanelResult makePanel(Renderer& r, const FigureSpec& fig, const PanelSpec& p, in
 std::vector<LabelledTile> compositeTiles(const std::string& outDir, const FigureSpec& s,
                                          const PanelResult& p, const std::string& letter) {
   std::string label = letter + p.spec.label;
-  if (!p.spec.technique.empty()) label += " \u2014 " + p.spec.technique;
+  // The technique after the label, unless the label names it already ("legacy.pcf (2001)").
+  if (!p.spec.technique.empty() && p.spec.label.find(p.spec.technique) == std::string::npos)
+    label += " \u2014 " + p.spec.technique;
   // A figure re-made with --set: the overrides that changed this panel, in its drawn label.
   if (!p.spec.overridden.empty()) {
     std::string set;

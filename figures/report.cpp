@@ -110,7 +110,9 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
   for (const ImageFile& im : p.images) {
     h << "<figure><a href=\"" << htmlEscape(im.file) << "\"><img src=\"" << htmlEscape(im.file)
       << "\" alt=\"" << htmlEscape(im.caption) << "\"></a><figcaption>" << htmlEscape(p.spec.label);
-    if (!p.spec.technique.empty()) h << " — <code>" << htmlEscape(p.spec.technique) << "</code>";
+    // The technique after the label, unless the label names it already ("legacy.pcf (2001)").
+    if (!p.spec.technique.empty() && p.spec.label.find(p.spec.technique) == std::string::npos)
+      h << " — <code>" << htmlEscape(p.spec.technique) << "</code>";
     if (p.milliseconds > 0) h << "<br>" << frameTime(p.milliseconds, p.timedFrames);
     if (!p.spec.paperNumbers.empty())
       h << "<br><span class=paper>paper: " << htmlEscape(p.spec.paperNumbers) << "</span>";
@@ -118,33 +120,55 @@ void writePanelCell(std::ostream& h, const PanelResult& p) {
   }
 }
 
+// One error cell: RMSE, the share of wrong pixels and, small, the metric that measured them.
+void writeError(std::ostream& h, const MaskDifference& e, const std::string& metric) {
+  h << "RMSE " << fixedDecimals(e.rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
+    << fixedDecimals(100.0 * double(e.mismatching) / double(std::max(1LL, e.pixels)), 2)
+    << "% of scored pixels<br><small>" << htmlEscape(metric) << "</small>";
+}
+
 void writeNumbers(std::ostream& h, const FigureResult& f) {
   bool any = false;
   for (const PanelResult& p : f.panels)
     any = any || (p.spec.kind == PanelKind::kRender || p.spec.kind == PanelKind::kIntermediates);
   if (!any) return;
-  h << "<table><tr><th>panel</th><th>technique</th><th>frame time (ours)</th><th>passes</th>"
-       "<th>error vs "
-    << htmlEscape(f.spec.reference.empty() ? "reference" : f.spec.reference)
-    << "</th><th>counters</th><th>paper</th></tr>\n";
+  // The figure's reference, or "reference" where a panel has its own (each cell names its truth).
+  bool ownReference = f.spec.reference.empty();
+  for (const PanelResult& p : f.panels)
+    ownReference =
+        ownReference || (!p.spec.reference.empty() && p.spec.reference != f.spec.reference);
+  const std::string reference = htmlEscape(ownReference ? "reference" : f.spec.reference);
+  const bool both = f.spec.bothMetrics;
+  h << "<table><tr><th>panel</th><th>technique</th><th>frame time (ours)</th><th>passes</th>";
+  if (both)
+    h << "<th>error vs " << reference << ": area metric</th><th>error vs " << reference
+      << ": point metric</th>";
+  else
+    h << "<th>error vs " << reference << "</th>";
+  h << "<th>counters</th><th>paper</th></tr>\n";
   for (const PanelResult& p : f.panels) {
     if (p.spec.kind != PanelKind::kRender && p.spec.kind != PanelKind::kIntermediates) continue;
     h << "<tr><td>" << htmlEscape(p.spec.label) << "</td><td><code>" << htmlEscape(p.spec.technique)
       << "</code></td>";
     if (!p.ok) {
-      h << "<td colspan=4 class=bad>missing: " << htmlEscape(p.reason) << "</td>";
+      h << "<td colspan=" << (both ? 5 : 4) << " class=bad>missing: " << htmlEscape(p.reason)
+        << "</td>";
     } else {
       h << "<td>" << frameTime(p.milliseconds, p.timedFrames) << "</td><td>";
       for (const PassTime& pass : p.passes)
         h << htmlEscape(pass.name) << ": " << fixedDecimals(pass.milliseconds, 1) << " ms<br>";
       h << "</td><td>";
       if (p.error)
-        h << "RMSE " << fixedDecimals(p.error->rmse, 4) << ", wrong (|&Delta;|&gt;0.5) "
-          << fixedDecimals(
-                 100.0 * double(p.error->mismatching) / double(std::max(1LL, p.error->pixels)), 2)
-          << "% of scored pixels<br><small>" << htmlEscape(p.errorMetric) << "</small>";
+        writeError(h, *p.error, p.errorMetric);
       else
         h << htmlEscape(p.errorNote);
+      if (both) {
+        h << "</td><td>";
+        if (p.pointError)
+          writeError(h, *p.pointError, p.pointErrorMetric);
+        else
+          h << htmlEscape(p.errorNote.empty() ? "no point form of the reference" : p.errorNote);
+      }
       h << "</td><td>";
       for (const auto& [name, value] : p.counters)
         h << htmlEscape(name) << ": " << fixedDecimals(value, 3) << "<br>";
@@ -271,9 +295,19 @@ void writeFigure(std::ostream& h, const FigureResult& f,
   h << "<p class=caption>" << htmlEscape(s.caption) << "</p>\n";
   writeLessonLinks(h, s, lessons);
   h << f.measured;  // figures/measured.h: the numbers this run measured, never typed
-  h << "<p><small>scene <code>" << htmlEscape(s.scene) << "</code>, " << s.width << "x" << s.height
-    << ", " << s.shadowMapTexels << "² shadow map; made in " << fixedDecimals(f.seconds, 1)
-    << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s)) << "</code></small></p>\n";
+  // The panels' scenes (PanelSpec::scene, else the figure's), each once.
+  std::vector<std::string> scenes;
+  for (const PanelResult& p : f.panels) {
+    const std::string& scene = p.spec.scene.empty() ? s.scene : p.spec.scene;
+    if (std::find(scenes.begin(), scenes.end(), scene) == scenes.end()) scenes.push_back(scene);
+  }
+  if (scenes.empty()) scenes.push_back(s.scene);
+  h << "<p><small>" << (scenes.size() > 1 ? "scenes " : "scene ");
+  for (size_t i = 0; i < scenes.size(); ++i)
+    h << (i > 0 ? ", " : "") << "<code>" << htmlEscape(scenes[i]) << "</code>";
+  h << ", " << s.width << "x" << s.height << ", " << s.shadowMapTexels << "² shadow map; made in "
+    << fixedDecimals(f.seconds, 1) << " s; regenerate: <code>" << htmlEscape(regenerateCommand(s))
+    << "</code></small></p>\n";
   if (missing > 0)
     h << "<p class=bad>" << missing << " of " << f.panels.size()
       << " panels missing (reasons below, in red).</p>\n";

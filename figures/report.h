@@ -69,6 +69,9 @@ struct PanelResult {
   std::optional<MaskDifference> error;
   std::string errorMetric;
   std::optional<ErrorDetail> errorDetail;
+  // FigureSpec::bothMetrics: the same mask against the reference's point form (pixel centres).
+  std::optional<MaskDifference> pointError;
+  std::string pointErrorMetric;
   std::string errorNote;  // why there is no error number
   std::optional<TwinResult> twin;
 };
