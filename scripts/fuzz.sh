@@ -55,14 +55,14 @@ for t in "${targets[@]}"; do
   "build-fuzz/bin/${t}_fuzz" -max_total_time="$seconds" -timeout="$per_input_timeout" \
     -rss_limit_mb="$rss_limit_mb" -print_final_stats=1 -artifact_prefix="$run_dir/" \
     "$run_dir/corpus" "tests/fuzz/corpus/$t" >"$run_dir/log.txt" 2>&1 || status=$?
-  grep -E '^#[0-9]+ +(INITED|DONE)' "$run_dir/log.txt" | sed "s/^/$t: /"
+  grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)' "$run_dir/log.txt" | sed "s/^/$t: /"
   grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$run_dir/log.txt" |
     sed "s/^/$t: /"
   kept=$(find "$run_dir/corpus" -type f | wc -l)
   echo "$t: new inputs kept: $kept"
   # libFuzzer's last status line: "#RUNS DONE cov: C ft: F corp: N/SIZE ... exec/s: E rss: MMb".
-  done_line=$(grep -E '^#[0-9]+ +DONE' "$run_dir/log.txt" | tail -1 || true)
-  field() { sed -nE "s/.* $1: ([^ ]+).*/\1/p" <<<"$done_line"; }
+  done_line=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$run_dir/log.txt" | tail -1 || true)
+  field() { sed -nE "s#.* $1: ([^ ]+).*#\1#p" <<<"$done_line"; }
   printf -- '- `%s`: %s s, %s; %s inputs run (%s/s), coverage %s edges and %s features, %s\n' \
     "$t" "$seconds" "$started" "$(sed -nE 's/^#([0-9]+).*/\1/p' <<<"$done_line")" \
     "$(field 'exec/s')" "$(field cov)" "$(field ft)" \

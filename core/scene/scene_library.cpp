@@ -395,7 +395,7 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1E9999
     throw InputError("malformed scene file " + sourceName + ": " + e.what());
   }
   try {

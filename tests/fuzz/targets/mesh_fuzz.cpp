@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "core/scene/mesh_io.h"
@@ -34,12 +35,21 @@ std::vector<std::string> meshFileNames(const std::string& bytes) {
   return {"input.obj"};
 }
 
+// The process's own temporary folder, removed when the process exits normally.
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("shadowlab-mesh-fuzz-" + std::to_string(getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const fs::path dir =
-      fs::temp_directory_path() / ("shadowlab-mesh-fuzz-" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  static const TempDir tempDir;
+  const fs::path& dir = tempDir.path;
   const std::string bytes = sl::fuzz::bytesAsString(data, size);
   for (const std::string& name : meshFileNames(bytes)) {
     const fs::path path = dir / name;
