@@ -26,6 +26,8 @@ per_input_timeout=10
 # Memory limit (MB) of a fuzzing process: the mesh caps (core/scene/mesh_io.h) bound any one
 # file well below it.
 rss_limit_mb=4096
+# Most inputs one FUZZ_MERGE adds to a target's corpus (the replay test runs them all).
+max_merged_inputs=40
 
 if ! command -v clang++ >/dev/null 2>&1; then
   if [[ $(id -u) -ne 0 ]]; then
@@ -80,8 +82,15 @@ for t in "${targets[@]}"; do
   echo "  nothing found (no crash, leak, hang, out-of-memory or sanitizer report)" \
     >>"$run_dir/summary.md"
   if [[ ${FUZZ_MERGE:-0} == 1 ]]; then
-    "build-fuzz/bin/${t}_fuzz" -merge=1 -timeout="$per_input_timeout" \
-      "tests/fuzz/corpus/$t" "$run_dir/corpus" >"$run_dir/merge.txt" 2>&1
+    # A set cover of the run's inputs over the corpus's edges (not hit counts or comparisons),
+    # of which the smallest max_merged_inputs join the repository's corpus.
+    merged=$run_dir/merged
+    rm -rf "$merged" && mkdir -p "$merged" && cp "tests/fuzz/corpus/$t"/* "$merged/"
+    "build-fuzz/bin/${t}_fuzz" -set_cover_merge=1 -use_counters=0 -use_cmp=0 \
+      -timeout="$per_input_timeout" "$merged" "$run_dir/corpus" >"$run_dir/merge.txt" 2>&1
+    (cd "$merged" && find . -type f -printf '%s %f\n' | sort -n | cut -d' ' -f2) |
+      while read -r f; do [[ -e "tests/fuzz/corpus/$t/$f" ]] || echo "$f"; done |
+      head -n "$max_merged_inputs" | while read -r f; do cp "$merged/$f" "tests/fuzz/corpus/$t/"; done
     echo "$t: corpus after merge: $(find "tests/fuzz/corpus/$t" -type f | wc -l) files"
   fi
 done
