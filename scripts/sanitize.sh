@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # scripts/sanitize.sh — the input-hardening suites (scene validation, mesh loading and its
 # fuzz test, the command line's bad inputs and output guarantees, the stability cases, the live
-# lab's API and its fuzz test of malformed requests, the drop-in imaging library under the C
-# clients on OSMesa: tests/interpose DropIn.*) built
+# lab's API and its fuzz test of malformed requests, the libFuzzer targets' corpora replayed
+# (tests/fuzz; the coverage-guided runs are scripts/fuzz.sh), the drop-in imaging library under
+# the C clients on OSMesa: tests/interpose DropIn.*) built
 # with AddressSanitizer + UndefinedBehaviorSanitizer (CMake preset asan, build-asan/) and run
 # with ctest. Sized for CI: two cores, well under half an hour with the release build done.
 set -euo pipefail
@@ -10,7 +11,7 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset asan >/dev/null
 cmake --build build-asan -j"$(nproc)" --target shadowlab lab_bench test_core test_apps test_stability test_lab \
-  shadowlab-imaging test_interpose
+  test_fuzz shadowlab-imaging test_interpose
 # Only the suites above are built: the others' ctest entries would be "not found" here.
 # reference.soft's stability cases are left out: 288 Embree rays a pixel take ~20 s each under
 # ASan and exercise no input handling that reference.hard's cases do not.
@@ -27,7 +28,7 @@ accuracy_cases+='|scaled_1e4|near_far_1e_3|near_far_1e_6|ramp_8bit_limit|csm_ord
 accuracy_cases+='|csm_order_64_float|vsm_zero_variance'
 shader_techniques='modern_(hw|woo|second_depth|ramp|pcf|fast_pcf|gems16|gems4|csm|vsm|esm|evsm2'
 shader_techniques+='|evsm4|msm|pcss)'
-ctest --preset asan -j"$(nproc)" -L 'core|apps|stability|lab' \
+ctest --preset asan -j"$(nproc)" -L 'core|apps|stability|lab|fuzz' \
   -E "reference_soft|Stability[.]FiniteBoundedAndWithinErrorBound/(${accuracy_cases})__${shader_techniques}" "$@"
 # The drop-in library preloaded into plain C programs (the sanitizer runtime first): only the
 # OSMesa clients; the X and run-legacy cases preload their own libraries ahead of it.

@@ -344,6 +344,16 @@ std::string declaredInstance(const PlyElement& e, std::uint64_t i) {
   return e.name + " " + std::to_string(i) + " of " + std::to_string(e.count);
 }
 
+// A word of an ascii PLY body is a decimal number (an optional sign, digits, a point, an
+// exponent): Assimp's reader skips over anything else without failing, and a line it misreads
+// so can leave it reading past the body (a file found by tests/fuzz leaked in Assimp that way).
+bool isNumberWord(std::string_view word) {
+  if (!word.empty() && word.front() == '+') word.remove_prefix(1);
+  double value = 0;
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+  return error == std::errc() && end == word.data() + word.size();
+}
+
 // An ascii body has one line per element instance, each with a word per scalar property and,
 // per list property, a count word followed by that many words (Assimp reads them so).
 void checkPlyAsciiBody(const std::string& data, const PlyHeader& header, const std::string& path) {
@@ -370,10 +380,15 @@ void checkPlyAsciiBody(const std::string& data, const PlyHeader& header, const s
                              " lacks a list count");
           if (isFaceElement(e)) triangles.addPolygon(items);
         }
-        for (std::uint64_t k = 0; k < items; ++k)
-          if (nextWord(line, &at).empty())
+        for (std::uint64_t k = 0; k < items; ++k) {
+          const std::string_view word = nextWord(line, &at);
+          if (word.empty())
             throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
                              " has too few values");
+          if (!isNumberWord(word))
+            throw InputError("PLY file " + path + ": " + declaredInstance(e, i) +
+                             " has a value that is not a number");
+        }
       }
     }
   }

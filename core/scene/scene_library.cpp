@@ -263,7 +263,9 @@ std::string stringValue(const json& j, const std::string& what) {
 const json& strictObject(const json& j, const std::string& what,
                          std::initializer_list<const char*> known) {
   if (!j.is_object()) throw InputError(what + " must be a JSON object");
-  for (const auto& [key, value] : j.items()) {
+  for (const auto& item : j.items()) {
+    // item.key(), not a structured binding: clang before 16 cannot capture one in a lambda.
+    const std::string& key = item.key();
     if (std::none_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) {
       std::string list;
       for (const char* k : known) list += std::string(list.empty() ? "" : ", ") + k;
@@ -393,7 +395,7 @@ Scene parseSceneJson(const std::string& text, const std::string& sourceName,
   json doc;
   try {
     doc = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1E9999
     throw InputError("malformed scene file " + sourceName + ": " + e.what());
   }
   try {
